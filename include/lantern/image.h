@@ -1,0 +1,27 @@
+// Images in and out of the renderer.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace lantern {
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<float> rgb;  // linear, 3 floats per pixel, row 0 at the top
+
+  float* at(int x, int y) { return &rgb[3 * (size_t(y) * size_t(width) + size_t(x))]; }
+  const float* at(int x, int y) const { return &rgb[3 * (size_t(y) * size_t(width) + size_t(x))]; }
+};
+
+using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
+
+// Writes through OpenImageIO; the format follows the extension. .exr and
+// .hdr/.pfm keep linear floats; .png/.jpg/.tga get sRGB-encoded 8-bit.
+// Written to a temporary file and renamed, so a failure never leaves a
+// truncated image. Throws std::runtime_error with the reason.
+void write_image(const std::string& path, const Image& image, const ImageMetadata& metadata);
+Image read_image(const std::string& path);
+
+}  // namespace lantern

@@ -1,0 +1,51 @@
+// Rendering a loaded scene.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "lantern/image.h"
+#include "lantern/scene.h"
+
+namespace lantern {
+
+struct RenderProgress {
+  double fraction = 0.0;  // of the sample budget, or of the time budget
+  double elapsed_seconds = 0.0;
+  uint64_t samples_done = 0;
+};
+
+struct RenderOptions {
+  std::string integrator = "path";
+  int spp = 16;
+  double time_limit_seconds = 0.0;  // > 0: render passes until the time is up (spp is then ignored)
+  int maxdepth = 5;
+  int threads = 0;  // 0: all cores
+  uint64_t seed = 0;
+  int width = 0, height = 0;  // 0: the scene's Film resolution
+  std::string ray_backend = "stream";
+  int wave_size = 4096;  // paths per wave
+  std::function<void(const RenderProgress&)> progress;
+  const std::atomic<bool>* cancel = nullptr;  // set it to stop after the waves in flight
+};
+
+struct RenderStats {
+  double seconds = 0.0;
+  uint64_t samples = 0;
+  uint64_t camera_rays = 0, extension_rays = 0, shadow_rays = 0;
+  uint64_t nonfinite_samples = 0;  // produced NaN/Inf; counted and discarded, never on the film
+  uint32_t min_spp = 0;            // samples in the least-sampled pixel
+};
+
+struct RenderResult {
+  Image image;
+  RenderStats stats;
+  bool interrupted = false;
+};
+
+// Throws std::invalid_argument for bad options.
+RenderResult render(const Scene& scene, const RenderOptions& options);
+
+}  // namespace lantern

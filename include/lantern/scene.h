@@ -1,0 +1,32 @@
+// Loading a scene in pbrt-v4 format.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "lantern/error.h"
+
+namespace lantern {
+
+struct Scene;  // entities and component pools; see src/scene/scene.h
+
+// What the scene file asks for; the command line may override each.
+struct SceneSettings {
+  std::string integrator = "path";
+  int maxdepth = 5;
+  int spp = 16;
+  int width = 1280, height = 720;
+  std::string output = "pbrt.exr";
+};
+
+struct LoadOptions {
+  WarningSink warn;  // receives "file:line:col: warning: ..." lines
+};
+
+// Throws InputError for anything wrong with the input.
+std::shared_ptr<Scene> load_scene(const std::string& path, const LoadOptions& options = {});
+std::shared_ptr<Scene> load_scene_from_string(const std::string& text, const std::string& filename_for_messages,
+                                              const LoadOptions& options = {});
+const SceneSettings& scene_settings(const Scene& scene);
+
+}  // namespace lantern

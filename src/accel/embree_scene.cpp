@@ -1,0 +1,70 @@
+#include "accel/embree_scene.h"
+
+#include <stdexcept>
+#include <string>
+#include <mutex>
+
+namespace lantern {
+
+// Embree may report from its build threads, so the first message is kept
+// under a lock and turned into an exception on the constructing thread.
+void EmbreeScene::on_error(void* user, RTCError code, const char* str) {
+  auto* self = static_cast<EmbreeScene*>(user);
+  std::lock_guard<std::mutex> lock(self->error_mutex_);
+  if (self->error_.empty()) self->error_ = "Embree error " + std::to_string(int(code)) + ": " + (str ? str : "");
+}
+
+void EmbreeScene::check(const char* what) {
+  RTCError code = rtcGetDeviceError(device_);
+  std::lock_guard<std::mutex> lock(error_mutex_);
+  if (code != RTC_ERROR_NONE || !error_.empty())
+    throw std::runtime_error(std::string("while ") + what + ": " + (error_.empty() ? "unknown Embree error" : error_));
+}
+
+EmbreeScene::EmbreeScene(const ShapePools& shapes) {
+  device_ = rtcNewDevice(nullptr);
+  if (!device_) throw std::runtime_error("cannot create the Embree device");
+  rtcSetDeviceErrorFunction(device_, on_error, this);
+  scene_ = rtcNewScene(device_);
+  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+
+  for (uint32_t id = 0; id < shapes.geometries.size(); ++id) {
+    const Geometry& g = shapes.geometries[id];
+    RTCGeometry geom;
+    if (g.kind == ShapeKind::Mesh) {
+      const TriangleMesh& m = shapes.meshes[g.index];
+      geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+      // Shared buffers: Embree reads the pool's own arrays, no second copy.
+      rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.positions.data(), 0,
+                                 sizeof(Vec3), m.vertex_count);
+      rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.triangles.data(), 0,
+                                 sizeof(glm::uvec3), m.triangles.size());
+    } else {
+      const Sphere& s = shapes.spheres[g.index];
+      geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+      auto* v = static_cast<float*>(
+          rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+      v[0] = s.center.x, v[1] = s.center.y, v[2] = s.center.z, v[3] = s.radius;
+    }
+    rtcCommitGeometry(geom);
+    rtcAttachGeometryByID(scene_, geom, id);
+    rtcReleaseGeometry(geom);
+    check("adding geometry to the Embree scene");
+  }
+  rtcCommitScene(scene_);
+  check("building the Embree BVH");
+}
+
+EmbreeScene::~EmbreeScene() {
+  if (scene_) rtcReleaseScene(scene_);
+  if (device_) rtcReleaseDevice(device_);
+}
+
+void EmbreeScene::bounds(Vec3* lo, Vec3* hi) const {
+  RTCBounds b;
+  rtcGetSceneBounds(scene_, &b);
+  *lo = Vec3(b.lower_x, b.lower_y, b.lower_z);
+  *hi = Vec3(b.upper_x, b.upper_y, b.upper_z);
+}
+
+}  // namespace lantern

@@ -1,0 +1,51 @@
+// A batch of rays and their hits in structure-of-arrays form: exactly the
+// layout Embree's RTCRayHitNp points into, so the stream back end passes the
+// arrays straight through.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "math/common.h"
+
+namespace lantern {
+
+inline constexpr uint32_t kInvalidGeometry = 0xFFFFFFFFu;  // RTC_INVALID_GEOMETRY_ID
+
+struct RayBatch {
+  std::vector<float> org_x, org_y, org_z, tnear, dir_x, dir_y, dir_z, time, tfar;
+  std::vector<uint32_t> mask, id, flags;
+  std::vector<float> ng_x, ng_y, ng_z, u, v;
+  std::vector<uint32_t> prim_id, geom_id, inst_id;
+  uint32_t count = 0;
+
+  void reserve(size_t n) {
+    for (auto* a : {&org_x, &org_y, &org_z, &tnear, &dir_x, &dir_y, &dir_z, &time, &tfar, &ng_x, &ng_y, &ng_z, &u, &v})
+      a->resize(n);
+    for (auto* a : {&mask, &id, &flags, &prim_id, &geom_id, &inst_id}) a->resize(n);
+  }
+  size_t capacity() const { return org_x.size(); }
+
+  // Appends a ray; d need not be unit length (t is then in units of |d|).
+  uint32_t push(const Vec3& o, const Vec3& d, float t_min, float t_max) {
+    uint32_t i = count++;
+    org_x[i] = o.x, org_y[i] = o.y, org_z[i] = o.z;
+    dir_x[i] = d.x, dir_y[i] = d.y, dir_z[i] = d.z;
+    tnear[i] = t_min;
+    tfar[i] = t_max;
+    time[i] = 0.f;
+    mask[i] = 0xFFFFFFFFu;
+    id[i] = i;
+    flags[i] = 0;
+    geom_id[i] = kInvalidGeometry;
+    inst_id[i] = kInvalidGeometry;
+    return i;
+  }
+  Vec3 origin(uint32_t i) const { return Vec3(org_x[i], org_y[i], org_z[i]); }
+  Vec3 direction(uint32_t i) const { return Vec3(dir_x[i], dir_y[i], dir_z[i]); }
+  bool hit(uint32_t i) const { return geom_id[i] != kInvalidGeometry; }
+  // After an occlusion query Embree sets tfar to -inf for blocked rays.
+  bool occluded(uint32_t i) const { return tfar[i] < 0.f; }
+};
+
+}  // namespace lantern

@@ -1,0 +1,173 @@
+#include "accel/ray_stream.h"
+
+#include <stdexcept>
+
+namespace lantern {
+
+RayBackend parse_ray_backend(const std::string& n) {
+  if (n == "stream" || n == "stream-np") return RayBackend::StreamNp;
+  if (n == "stream-1m") return RayBackend::Stream1M;
+  if (n == "single") return RayBackend::Single;
+  if (n == "packet16") return RayBackend::Packet16;
+  throw std::invalid_argument("unknown ray back end \"" + n + "\"; expected stream, stream-1m, single or packet16");
+}
+
+const char* ray_backend_name(RayBackend b) {
+  switch (b) {
+    case RayBackend::StreamNp: return "stream";
+    case RayBackend::Stream1M: return "stream-1m";
+    case RayBackend::Single: return "single";
+    case RayBackend::Packet16: return "packet16";
+  }
+  return "?";
+}
+
+RayStream::RayStream(RTCScene scene, RayBackend backend, RayCounters* counters)
+    : scene_(scene), backend_(backend), counters_(counters) {}
+
+static RTCRayHitNp soa_view(RayBatch& b) {
+  RTCRayHitNp r;
+  r.ray.org_x = b.org_x.data();
+  r.ray.org_y = b.org_y.data();
+  r.ray.org_z = b.org_z.data();
+  r.ray.tnear = b.tnear.data();
+  r.ray.dir_x = b.dir_x.data();
+  r.ray.dir_y = b.dir_y.data();
+  r.ray.dir_z = b.dir_z.data();
+  r.ray.time = b.time.data();
+  r.ray.tfar = b.tfar.data();
+  r.ray.mask = b.mask.data();
+  r.ray.id = b.id.data();
+  r.ray.flags = b.flags.data();
+  r.hit.Ng_x = b.ng_x.data();
+  r.hit.Ng_y = b.ng_y.data();
+  r.hit.Ng_z = b.ng_z.data();
+  r.hit.u = b.u.data();
+  r.hit.v = b.v.data();
+  r.hit.primID = b.prim_id.data();
+  r.hit.geomID = b.geom_id.data();
+  r.hit.instID[0] = b.inst_id.data();
+  return r;
+}
+
+static RTCRay aos_ray(const RayBatch& b, uint32_t i) {
+  RTCRay r;
+  r.org_x = b.org_x[i], r.org_y = b.org_y[i], r.org_z = b.org_z[i], r.tnear = b.tnear[i];
+  r.dir_x = b.dir_x[i], r.dir_y = b.dir_y[i], r.dir_z = b.dir_z[i], r.time = 0.f;
+  r.tfar = b.tfar[i], r.mask = 0xFFFFFFFFu, r.id = i, r.flags = 0;
+  return r;
+}
+
+static void store_hit(RayBatch& b, uint32_t i, const RTCRay& r, const RTCHit& h) {
+  b.tfar[i] = r.tfar;
+  b.ng_x[i] = h.Ng_x, b.ng_y[i] = h.Ng_y, b.ng_z[i] = h.Ng_z;
+  b.u[i] = h.u, b.v[i] = h.v;
+  b.prim_id[i] = h.primID, b.geom_id[i] = h.geomID, b.inst_id[i] = h.instID[0];
+}
+
+template <class Packet>
+static void load_packet(Packet& p, const RayBatch& b, uint32_t base, int* valid) {
+  for (uint32_t k = 0; k < 16; ++k) {
+    uint32_t i = base + k;
+    valid[k] = i < b.count ? -1 : 0;
+    if (i >= b.count) i = base;  // keep lanes well defined
+    p.org_x[k] = b.org_x[i], p.org_y[k] = b.org_y[i], p.org_z[k] = b.org_z[i], p.tnear[k] = b.tnear[i];
+    p.dir_x[k] = b.dir_x[i], p.dir_y[k] = b.dir_y[i], p.dir_z[k] = b.dir_z[i], p.time[k] = 0.f;
+    p.tfar[k] = b.tfar[i], p.mask[k] = 0xFFFFFFFFu, p.id[k] = k, p.flags[k] = 0;
+  }
+}
+
+void RayStream::intersect(RayBatch& b, RayKind kind) {
+  if (b.count == 0) return;
+  if (counters_) (kind == RayKind::Camera ? counters_->camera : counters_->extension) += b.count;
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  ctx.flags = kind == RayKind::Camera ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  for (uint32_t i = 0; i < b.count; ++i) b.geom_id[i] = b.inst_id[i] = RTC_INVALID_GEOMETRY_ID;
+  switch (backend_) {
+    case RayBackend::StreamNp: {
+      RTCRayHitNp r = soa_view(b);
+      rtcIntersectNp(scene_, &ctx, &r, b.count);
+      break;
+    }
+    case RayBackend::Stream1M: {
+      aos_.resize(b.count);
+      for (uint32_t i = 0; i < b.count; ++i) {
+        aos_[i].ray = aos_ray(b, i);
+        aos_[i].hit.geomID = aos_[i].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      }
+      rtcIntersect1M(scene_, &ctx, aos_.data(), b.count, sizeof(RTCRayHit));
+      for (uint32_t i = 0; i < b.count; ++i) store_hit(b, i, aos_[i].ray, aos_[i].hit);
+      break;
+    }
+    case RayBackend::Single: {
+      for (uint32_t i = 0; i < b.count; ++i) {
+        RTCRayHit rh;
+        rh.ray = aos_ray(b, i);
+        rh.hit.geomID = rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(scene_, &ctx, &rh);
+        store_hit(b, i, rh.ray, rh.hit);
+      }
+      break;
+    }
+    case RayBackend::Packet16: {
+      for (uint32_t base = 0; base < b.count; base += 16) {
+        alignas(64) RTCRayHit16 p;
+        alignas(64) int valid[16];
+        load_packet(p.ray, b, base, valid);
+        for (int k = 0; k < 16; ++k) p.hit.geomID[k] = p.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect16(valid, scene_, &ctx, &p);
+        for (uint32_t k = 0; k < 16 && base + k < b.count; ++k) {
+          uint32_t i = base + k;
+          b.tfar[i] = p.ray.tfar[k];
+          b.ng_x[i] = p.hit.Ng_x[k], b.ng_y[i] = p.hit.Ng_y[k], b.ng_z[i] = p.hit.Ng_z[k];
+          b.u[i] = p.hit.u[k], b.v[i] = p.hit.v[k];
+          b.prim_id[i] = p.hit.primID[k], b.geom_id[i] = p.hit.geomID[k], b.inst_id[i] = p.hit.instID[0][k];
+        }
+      }
+      break;
+    }
+  }
+}
+
+void RayStream::occluded(RayBatch& b) {
+  if (b.count == 0) return;
+  if (counters_) counters_->shadow += b.count;
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  switch (backend_) {
+    case RayBackend::StreamNp: {
+      RTCRayHitNp r = soa_view(b);
+      rtcOccludedNp(scene_, &ctx, &r.ray, b.count);
+      break;
+    }
+    case RayBackend::Stream1M: {
+      aos_rays_.resize(b.count);
+      for (uint32_t i = 0; i < b.count; ++i) aos_rays_[i] = aos_ray(b, i);
+      rtcOccluded1M(scene_, &ctx, aos_rays_.data(), b.count, sizeof(RTCRay));
+      for (uint32_t i = 0; i < b.count; ++i) b.tfar[i] = aos_rays_[i].tfar;
+      break;
+    }
+    case RayBackend::Single: {
+      for (uint32_t i = 0; i < b.count; ++i) {
+        RTCRay r = aos_ray(b, i);
+        rtcOccluded1(scene_, &ctx, &r);
+        b.tfar[i] = r.tfar;
+      }
+      break;
+    }
+    case RayBackend::Packet16: {
+      for (uint32_t base = 0; base < b.count; base += 16) {
+        alignas(64) RTCRay16 p;
+        alignas(64) int valid[16];
+        load_packet(p, b, base, valid);
+        rtcOccluded16(valid, scene_, &ctx, &p);
+        for (uint32_t k = 0; k < 16 && base + k < b.count; ++k) b.tfar[base + k] = p.tfar[k];
+      }
+      break;
+    }
+  }
+}
+
+}  // namespace lantern

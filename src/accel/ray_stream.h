@@ -1,0 +1,45 @@
+// The one door every integrator uses to trace rays: whole batches, never a
+// single ray from inside shading code. The back end is a run-time switch so
+// benchmarks can compare Embree's stream, single-ray and packet interfaces on
+// the very same batches.
+#pragma once
+
+#include <embree3/rtcore.h>
+
+#include <atomic>
+#include <string>
+#include <vector>
+
+#include "accel/ray_batch.h"
+
+namespace lantern {
+
+enum class RayBackend { StreamNp, Stream1M, Single, Packet16 };
+
+RayBackend parse_ray_backend(const std::string& name);  // throws std::invalid_argument
+const char* ray_backend_name(RayBackend b);
+
+enum class RayKind { Camera, Extension, Shadow };
+
+struct RayCounters {
+  std::atomic<uint64_t> camera{0}, extension{0}, shadow{0};
+};
+
+class RayStream {
+ public:
+  RayStream(RTCScene scene, RayBackend backend, RayCounters* counters);
+
+  // Closest hits for all rays of the batch.
+  void intersect(RayBatch& batch, RayKind kind);
+  // Any hit: afterwards batch.occluded(i) says whether ray i was blocked.
+  void occluded(RayBatch& batch);
+
+ private:
+  RTCScene scene_;
+  RayBackend backend_;
+  RayCounters* counters_;
+  std::vector<RTCRayHit> aos_;   // scratch for the 1M back end
+  std::vector<RTCRay> aos_rays_;
+};
+
+}  // namespace lantern

@@ -1,0 +1,135 @@
+// The lantern command line.
+#include <CLI/CLI.hpp>
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+
+#include "lantern/render.h"
+#include "lantern/scene.h"
+
+namespace {
+
+std::atomic<bool> g_cancel{false};
+
+extern "C" void on_signal(int) {
+  g_cancel.store(true);
+  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends at once
+  std::signal(SIGTERM, SIG_DFL);
+}
+
+std::string hms(double s) {
+  int t = int(s + 0.5);
+  char buf[32];
+  if (t >= 3600) std::snprintf(buf, sizeof buf, "%d:%02d:%02d", t / 3600, t / 60 % 60, t % 60);
+  else std::snprintf(buf, sizeof buf, "%02d:%02d", t / 60, t % 60);
+  return buf;
+}
+
+struct RenderArgs {
+  std::string scene, output, integrator, rays = "stream";
+  int spp = 0, maxdepth = -1, threads = 0, wave_size = 4096;
+  double time = 0.0;
+  uint64_t seed = 0;
+  std::vector<int> resolution;
+  bool quiet = false;
+};
+
+int run_render(const RenderArgs& a) {
+  using namespace lantern;
+  LoadOptions lo;
+  lo.warn = [](const std::string& w) { std::cerr << w << "\n"; };
+  auto t0 = std::chrono::steady_clock::now();
+  std::shared_ptr<Scene> scene = load_scene(a.scene, lo);
+  double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const SceneSettings& ss = scene_settings(*scene);
+
+  RenderOptions o;
+  o.integrator = a.integrator.empty() ? ss.integrator : a.integrator;
+  o.spp = a.spp > 0 ? a.spp : ss.spp;
+  o.time_limit_seconds = a.time;
+  o.maxdepth = a.maxdepth >= 0 ? a.maxdepth : ss.maxdepth;
+  o.threads = a.threads;
+  o.seed = a.seed;
+  if (a.resolution.size() == 2) {
+    o.width = a.resolution[0];
+    o.height = a.resolution[1];
+  }
+  o.ray_backend = a.rays;
+  o.wave_size = a.wave_size;
+  o.cancel = &g_cancel;
+  if (!a.quiet && isatty(STDERR_FILENO)) {
+    o.progress = [](const RenderProgress& p) {
+      double eta = p.fraction > 0 ? p.elapsed_seconds * (1.0 - p.fraction) / p.fraction : 0.0;
+      double rate = p.elapsed_seconds > 0 ? double(p.samples_done) / p.elapsed_seconds : 0.0;
+      std::fprintf(stderr, "\r[%5.1f%%] %s elapsed, ETA %s, %.2f Msamples/s   ", 100.0 * p.fraction,
+                   hms(p.elapsed_seconds).c_str(), hms(eta).c_str(), rate * 1e-6);
+      std::fflush(stderr);
+    };
+  }
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  RenderResult r = render(*scene, o);
+  if (o.progress) std::fprintf(stderr, "\n");
+
+  std::string out = a.output.empty() ? ss.output : a.output;
+  ImageMetadata md = {{"lantern:integrator", o.integrator},
+                      {"lantern:spp", std::to_string(r.stats.min_spp)},
+                      {"lantern:samples", std::to_string(r.stats.samples)},
+                      {"lantern:seed", std::to_string(o.seed)},
+                      {"lantern:maxdepth", std::to_string(o.maxdepth)},
+                      {"lantern:render_seconds", std::to_string(r.stats.seconds)},
+                      {"lantern:interrupted", r.interrupted ? "true" : "false"},
+                      {"lantern:scene", a.scene}};
+  write_image(out, r.image, md);
+  if (!a.quiet) {
+    const RenderStats& s = r.stats;
+    double rays = double(s.camera_rays + s.extension_rays + s.shadow_rays);
+    std::fprintf(stderr,
+                 "%s: %dx%d, %u spp (min), %.2f s render, %.2f s load; %.3f Msamples/s, %.2f Mrays/s "
+                 "(camera %.1fM, extension %.1fM, shadow %.1fM); non-finite samples discarded: %llu\n",
+                 out.c_str(), r.image.width, r.image.height, s.min_spp, s.seconds, load_s, double(s.samples) / s.seconds * 1e-6,
+                 rays / s.seconds * 1e-6, double(s.camera_rays) * 1e-6, double(s.extension_rays) * 1e-6,
+                 double(s.shadow_rays) * 1e-6, (unsigned long long)s.nonfinite_samples);
+  }
+  if (r.interrupted) {
+    std::fprintf(stderr, "interrupted: wrote the %llu samples rendered so far to %s\n",
+                 (unsigned long long)r.stats.samples, out.c_str());
+    return 130;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Lantern: physically based rendering with bidirectional path tracing"};
+  app.require_subcommand(1);
+  RenderArgs a;
+  CLI::App* render = app.add_subcommand("render", "Render a pbrt-v4 scene to an image");
+  render->add_option("scene", a.scene, "Scene file (pbrt-v4 format)")->required();
+  render->add_option("-o,--output", a.output, "Output image (.exr linear float, .png sRGB); default: the scene's Film filename");
+  auto* spp = render->add_option("--spp", a.spp, "Samples per pixel (default: the scene's Sampler pixelsamples)")->check(CLI::PositiveNumber);
+  render->add_option("--time", a.time, "Render for this many seconds instead of a sample count")->check(CLI::PositiveNumber)->excludes(spp);
+  render->add_option("--integrator", a.integrator, "Integrator: path (default: the scene's Integrator)")->check(CLI::IsMember({"path"}));
+  render->add_option("--maxdepth", a.maxdepth, "Maximum path depth, as pbrt defines it (default: the scene's)")->check(CLI::NonNegativeNumber);
+  render->add_option("--threads", a.threads, "Worker threads (default: all cores)")->check(CLI::PositiveNumber);
+  render->add_option("--seed", a.seed, "Random seed");
+  render->add_option("--resolution", a.resolution, "Image size W H (default: the scene's Film)")->expected(2)->check(CLI::Range(1, 65536));
+  render->add_option("--rays", a.rays, "Ray query back end: stream (Embree Np streams), stream-1m, single, packet16")
+      ->check(CLI::IsMember({"stream", "stream-1m", "single", "packet16"}));
+  render->add_option("--wave-size", a.wave_size, "Paths per wave")->check(CLI::Range(1, 1 << 22));
+  render->add_flag("-q,--quiet", a.quiet, "No progress line or summary");
+  CLI11_PARSE(app, argc, argv);
+  try {
+    return run_render(a);
+  } catch (const lantern::InputError& e) {
+    std::cerr << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 1;
+  }
+}

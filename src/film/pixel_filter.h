@@ -1,0 +1,34 @@
+// Pixel filters by importance sampling (as pbrt-v4 does): a sample's offset
+// from the pixel centre is drawn from the filter, so each sample lands in one
+// pixel with weight 1 and no splatting between neighbours is needed.
+#pragma once
+
+#include "math/sampling.h"
+#include "scene/scene.h"
+
+namespace lantern {
+
+inline float sample_gaussian_offset(float u, float radius, float sigma) {
+  // Inverse CDF of the truncated normal by bisection on the error function:
+  // exact to float precision and cheap next to tracing a path.
+  auto cdf = [&](float x) { return 0.5f * (1.f + std::erf(x / (sigma * std::sqrt(2.f)))); };
+  float lo = -radius, hi = radius, c0 = cdf(-radius), c1 = cdf(radius);
+  float target = c0 + u * (c1 - c0);
+  for (int i = 0; i < 24; ++i) {
+    float mid = 0.5f * (lo + hi);
+    (cdf(mid) < target ? lo : hi) = mid;
+  }
+  return 0.5f * (lo + hi);
+}
+
+inline Vec2 sample_pixel_filter(const PixelFilter& f, Vec2 u) {
+  switch (f.type) {
+    case PixelFilter::Type::Box: return Vec2((2.f * u.x - 1.f) * f.radius.x, (2.f * u.y - 1.f) * f.radius.y);
+    case PixelFilter::Type::Triangle: return Vec2(sample_tent(u.x, f.radius.x), sample_tent(u.y, f.radius.y));
+    case PixelFilter::Type::Gaussian:
+      return Vec2(sample_gaussian_offset(u.x, f.radius.x, f.sigma), sample_gaussian_offset(u.y, f.radius.y, f.sigma));
+  }
+  return Vec2(0.f);
+}
+
+}  // namespace lantern

@@ -1,0 +1,195 @@
+#include "integrator/path_tracer.h"
+
+#include "film/pixel_filter.h"
+#include "integrator/path_wave.h"
+#include "material/bsdf_kernel.h"
+#include "scene/surface.h"
+
+namespace lantern {
+
+std::vector<uint32_t> tile_order(int width, int height, int tile) {
+  std::vector<uint32_t> order;
+  order.reserve(size_t(width) * size_t(height));
+  for (int ty = 0; ty < height; ty += tile)
+    for (int tx = 0; tx < width; tx += tile)
+      for (int y = ty; y < std::min(ty + tile, height); ++y)
+        for (int x = tx; x < std::min(tx + tile, width); ++x) order.push_back(uint32_t(y) * uint32_t(width) + uint32_t(x));
+  return order;
+}
+
+PathTracer::PathTracer(const Scene& scene, const PathTracerSettings& s)
+    : scene_(scene), settings_(s), camera_(scene.camera, s.width, s.height) {}
+
+std::unique_ptr<PathWave, void (*)(PathWave*)> PathTracer::make_wave_state(uint32_t capacity, RayStream stream) const {
+  return {new PathWave(capacity, std::move(stream)), [](PathWave* w) { delete w; }};
+}
+
+void PathTracer::generate_camera_rays(const WaveDesc& wave, PathWave& w) const {
+  w.rays.count = 0;
+  const uint32_t width = uint32_t(settings_.width);
+  for (uint32_t slot = 0; slot < wave.size(); ++slot) {
+    uint32_t pixel = wave.pixels[slot / wave.samples];
+    uint32_t sample_index = wave.first_sample + slot % wave.samples;
+    PathSampler s = PathSampler::make(settings_.seed, pixel, sample_index);
+    Vec2 offset = sample_pixel_filter(scene_.filter, s.get2d());
+    Vec2 p_raster(float(pixel % width) + 0.5f + offset.x, float(pixel / width) + 0.5f + offset.y);
+    CameraRay r = camera_.generate_ray(p_raster, s.get2d());
+    w.pixel[slot] = pixel;
+    w.sampler[slot] = s;
+    w.beta[slot] = RGB(1.f);
+    w.L[slot] = RGB(0.f);
+    w.prev_pdf[slot] = 1.f;
+    w.eta_scale[slot] = 1.f;
+    w.prev_specular[slot] = 1;
+    w.prev_p[slot] = r.o;
+    w.active[slot] = slot;
+    w.rays.push(r.o, r.d, 0.f, kInfinity);
+  }
+}
+
+// Hit reconstruction, emission with MIS, maxdepth, and binning by material.
+void PathTracer::surface_stage(PathWave& w) const {
+  for (auto& b : w.bins) b.clear();
+  const ShapePools& shapes = scene_.shapes;
+  const LightPools& lights = scene_.lights;
+  const bool last = int(w.depth) == settings_.maxdepth;
+  for (uint32_t i = 0; i < w.rays.count; ++i) {
+    uint32_t slot = w.active[i];
+    w.alive[i] = 0;
+    Vec3 d = glm::normalize(w.rays.direction(i));
+    bool unweighted = w.prev_specular[slot] != 0;
+    if (!w.rays.hit(i)) {
+      if (!lights.infinite.empty()) {
+        RGB Le = infinite_lights_Le(lights, scene_.textures, d);
+        float weight = unweighted ? 1.f : power_heuristic(w.prev_pdf[slot], infinite_lights_pdf(lights, scene_.textures, d));
+        w.L[slot] += w.beta[slot] * weight * Le;
+      }
+      continue;
+    }
+    const Geometry& g = shapes.geometries[w.rays.geom_id[i]];
+    uint32_t prim = w.rays.prim_id[i];
+    SurfacePoint sp = g.kind == ShapeKind::Mesh
+                          ? triangle_point(shapes.meshes[g.index], prim, w.rays.u[i], w.rays.v[i])
+                          : sphere_point(shapes.spheres[g.index], w.rays.origin(i) + w.rays.tfar[i] * w.rays.direction(i));
+    if (g.light_offset >= 0) {
+      uint32_t light = uint32_t(g.light_offset) + (g.kind == ShapeKind::Mesh ? prim : 0);
+      RGB Le = area_light_Le(lights.area[light], sp.ng, -d);
+      if (!is_black(Le)) {
+        float weight = unweighted ? 1.f
+                                  : power_heuristic(w.prev_pdf[slot],
+                                                    area_light_pdf(lights, shapes, light, w.prev_p[slot], sp.p, sp.ng));
+        w.L[slot] += w.beta[slot] * weight * Le;
+      }
+    }
+    if (last) continue;
+    w.p[i] = sp.p;
+    w.ng[i] = sp.ng;
+    // Shading normal on the side of the geometric one.
+    w.ns[i] = glm::dot(sp.ns, sp.ng) < 0.f ? -sp.ns : sp.ns;
+    w.uv[i] = sp.uv;
+    w.wo[i] = -d;
+    w.error_scale[i] = sp.error_scale;
+    w.material_index[i] = g.material.index();
+    w.bins[size_t(g.material.kind())].push_back(i);
+  }
+}
+
+// Next-event estimation and BSDF sampling, one batch kernel per material kind.
+void PathTracer::shade_stage(PathWave& w) const {
+  w.shadow.count = 0;
+  const Scene& sc = scene_;
+  for (int k = 0; k < kMaterialKindCount; ++k) {
+    const auto& bin = w.bins[size_t(k)];
+    if (bin.empty()) continue;
+    for_each_bsdf(MaterialKind(k), sc.materials, sc.textures, bin.data(), bin.size(), w.material_index.data(),
+                  w.uv.data(), [&](uint32_t i, const auto& bsdf) {
+      uint32_t slot = w.active[i];
+      PathSampler& s = w.sampler[slot];
+      Frame frame = Frame::from_z(w.ns[i]);
+      Vec3 wo = frame.to_local(w.wo[i]);
+      // Next-event estimation towards one light chosen by power.
+      float u_light = s.get1d();
+      Vec2 u_light2 = s.get2d();
+      if (!bsdf.is_specular()) {
+        if (auto ls = sample_light(sc.lights, sc.shapes, sc.textures, w.p[i], u_light, u_light2); ls && !is_black(ls->L)) {
+          Vec3 wi = frame.to_local(ls->wi);
+          RGB f = bsdf.f(wo, wi, TransportMode::Radiance) * std::fabs(wi.z);
+          if (!is_black(f)) {
+            float weight = ls->delta ? 1.f : power_heuristic(ls->pdf, bsdf.pdf(wo, wi, TransportMode::Radiance));
+            RGB contrib = w.beta[slot] * f * ls->L * (weight / ls->pdf);
+            Vec3 o = offset_ray_origin(w.p[i], w.ng[i], w.error_scale[i], ls->wi);
+            uint32_t r;
+            if (ls->infinite) {
+              r = w.shadow.push(o, ls->wi, 0.f, kInfinity);
+            } else {
+              Vec3 target = ls->n_light == Vec3(0.f)
+                                ? ls->p_light
+                                : offset_ray_origin(ls->p_light, ls->n_light, ls->error_scale, -ls->wi);
+              r = w.shadow.push(o, target - o, 0.f, 1.f);
+            }
+            w.shadow_slot[r] = slot;
+            w.shadow_contrib[r] = contrib;
+          }
+        }
+      }
+      // Continue the path by sampling the BSDF.
+      float uc = s.get1d();
+      Vec2 u2 = s.get2d();
+      float u_rr = s.get1d();
+      auto bs = bsdf.sample_f(wo, uc, u2, TransportMode::Radiance);
+      if (!bs || bs->pdf == 0.f || is_black(bs->f)) return;
+      Vec3 wi = frame.from_local(bs->wi);
+      w.beta[slot] *= bs->f * (std::fabs(bs->wi.z) / bs->pdf);
+      w.prev_pdf[slot] = bs->pdf;
+      w.prev_specular[slot] = bs->specular;
+      if (bs->transmission) w.eta_scale[slot] *= sqr(bs->etap);
+      // Russian roulette on the throughput with refraction's scaling undone.
+      float rr = max_component(w.beta[slot] * w.eta_scale[slot]);
+      if (rr < 1.f && w.depth >= 1) {
+        float q = std::fmax(0.f, 1.f - rr);
+        if (u_rr < q) return;
+        w.beta[slot] /= 1.f - q;
+      }
+      if (!is_finite(w.beta[slot])) return;
+      w.alive[i] = 1;
+      w.prev_p[slot] = w.p[i];
+      w.next_o[i] = offset_ray_origin(w.p[i], w.ng[i], w.error_scale[i], wi);
+      w.next_d[i] = wi;
+    });
+  }
+}
+
+void PathTracer::shadow_stage(PathWave& w) const {
+  w.stream.occluded(w.shadow);
+  for (uint32_t r = 0; r < w.shadow.count; ++r)
+    if (!w.shadow.occluded(r)) w.L[w.shadow_slot[r]] += w.shadow_contrib[r];
+}
+
+void PathTracer::compact(PathWave& w) const {
+  uint32_t n = 0;
+  uint32_t count = w.rays.count;
+  w.rays.count = 0;
+  for (uint32_t i = 0; i < count; ++i) {
+    if (!w.alive[i]) continue;
+    w.active[n++] = w.active[i];
+    w.rays.push(w.next_o[i], w.next_d[i], 0.f, kInfinity);
+  }
+}
+
+void PathTracer::trace(const WaveDesc& wave, PathWave& w, Film& film) const {
+  generate_camera_rays(wave, w);
+  w.depth = 0;
+  w.stream.intersect(w.rays, RayKind::Camera);
+  for (;;) {
+    surface_stage(w);
+    shade_stage(w);
+    shadow_stage(w);
+    compact(w);
+    if (w.rays.count == 0) break;
+    ++w.depth;
+    w.stream.intersect(w.rays, RayKind::Extension);
+  }
+  for (uint32_t slot = 0; slot < wave.size(); ++slot) film.add_sample(w.pixel[slot], w.L[slot]);
+}
+
+}  // namespace lantern

@@ -1,0 +1,42 @@
+// Unidirectional path tracing with next-event estimation and MIS (power
+// heuristic), run as wavefront stages over structure-of-arrays path state.
+#pragma once
+
+#include <memory>
+
+#include "accel/ray_stream.h"
+#include "film/film.h"
+#include "integrator/wave.h"
+#include "scene/scene.h"
+
+namespace lantern {
+
+struct PathTracerSettings {
+  int maxdepth = 5;
+  uint64_t seed = 0;
+  int width = 0, height = 0;
+};
+
+struct PathWave;  // the SoA pools, reused wave after wave by one thread
+
+class PathTracer {
+ public:
+  PathTracer(const Scene& scene, const PathTracerSettings& settings);
+
+  std::unique_ptr<PathWave, void (*)(PathWave*)> make_wave_state(uint32_t capacity, RayStream stream) const;
+  // Traces all paths of the wave and adds one sample per slot to the film.
+  void trace(const WaveDesc& wave, PathWave& state, Film& film) const;
+
+ private:
+  void generate_camera_rays(const WaveDesc& wave, PathWave& w) const;
+  void surface_stage(PathWave& w) const;
+  void shade_stage(PathWave& w) const;
+  void shadow_stage(PathWave& w) const;
+  void compact(PathWave& w) const;
+
+  const Scene& scene_;
+  PathTracerSettings settings_;
+  PerspectiveCamera camera_;
+};
+
+}  // namespace lantern

@@ -1,0 +1,60 @@
+// Structure-of-arrays pools of the path tracer's wave. Arrays indexed by
+// slot hold per-path state; arrays indexed by ray hold per-bounce data for
+// the active paths (ray i belongs to slot active[i]).
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "accel/ray_stream.h"
+#include "material/material.h"
+#include "math/rng.h"
+
+namespace lantern {
+
+struct PathWave {
+  explicit PathWave(uint32_t capacity, RayStream s) : stream(std::move(s)) { resize(capacity); }
+
+  // per slot
+  std::vector<uint32_t> pixel;
+  std::vector<PathSampler> sampler;
+  std::vector<RGB> beta, L;
+  std::vector<float> prev_pdf, eta_scale;
+  std::vector<Vec3> prev_p;  // origin of the ray that found the current vertex
+  std::vector<uint8_t> prev_specular;
+  uint32_t depth = 0;  // all active paths share the bounce count
+
+  // per ray of the current bounce
+  std::vector<uint32_t> active;
+  RayBatch rays;
+  std::vector<Vec3> p, ng, ns, wo;
+  std::vector<Vec2> uv;
+  std::vector<float> error_scale;
+  std::vector<uint32_t> material_index;
+  std::vector<uint8_t> alive;  // the path continues past this bounce
+  std::vector<Vec3> next_o, next_d;
+  std::array<std::vector<uint32_t>, kMaterialKindCount> bins;
+
+  // next-event estimation
+  RayBatch shadow;
+  std::vector<uint32_t> shadow_slot;
+  std::vector<RGB> shadow_contrib;
+
+  RayStream stream;
+
+  void resize(uint32_t n) {
+    for (auto* v : {&pixel, &active, &material_index, &shadow_slot}) v->resize(n);
+    sampler.resize(n);
+    for (auto* v : {&beta, &L, &shadow_contrib}) v->resize(n);
+    for (auto* v : {&prev_pdf, &eta_scale, &error_scale}) v->resize(n);
+    for (auto* v : {&prev_p, &p, &ng, &ns, &wo, &next_o, &next_d}) v->resize(n);
+    uv.resize(n);
+    prev_specular.resize(n);
+    alive.resize(n);
+    for (auto& b : bins) b.reserve(n);
+    rays.reserve(n);
+    shadow.reserve(n);
+  }
+};
+
+}  // namespace lantern

@@ -1,0 +1,23 @@
+// A wave: the unit of parallel work. It covers a run of pixels (in tile
+// order) times a run of sample indices; slot = pixel_in_wave * samples +
+// sample_in_wave, so a pixel's samples are adjacent and in index order.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace lantern {
+
+struct WaveDesc {
+  const uint32_t* pixels;  // pixel indices (y * width + x)
+  uint32_t pixel_count;
+  uint32_t first_sample;
+  uint32_t samples;  // per pixel
+  uint32_t size() const { return pixel_count * samples; }
+};
+
+// Pixel indices in 16x16 tiles, row-major inside a tile: neighbouring
+// camera rays stay together in a wave, which keeps primary rays coherent.
+std::vector<uint32_t> tile_order(int width, int height, int tile = 16);
+
+}  // namespace lantern

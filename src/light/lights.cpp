@@ -1,0 +1,305 @@
+#include "light/lights.h"
+
+#include "math/sampling.h"
+#include "scene/surface.h"
+#include "scene/texture.h"
+
+namespace lantern {
+
+Vec3 equal_area_square_to_sphere(Vec2 p) {
+  float u = 2.f * p.x - 1.f, v = 2.f * p.y - 1.f;
+  float up = std::fabs(u), vp = std::fabs(v);
+  float signed_distance = 1.f - (up + vp);
+  float d = std::fabs(signed_distance);
+  float r = 1.f - d;
+  float phi = (r == 0.f ? 1.f : (vp - up) / r + 1.f) * kPi / 4.f;
+  float z = std::copysign(1.f - r * r, signed_distance);
+  float cos_phi = std::copysign(std::cos(phi), u);
+  float sin_phi = std::copysign(std::sin(phi), v);
+  float s = r * safe_sqrt(2.f - r * r);
+  return Vec3(cos_phi * s, sin_phi * s, z);
+}
+
+Vec2 equal_area_sphere_to_square(const Vec3& d) {
+  float x = std::fabs(d.x), y = std::fabs(d.y), z = std::fabs(d.z);
+  float r = safe_sqrt(1.f - z);
+  float a = std::fmax(x, y), b = std::fmin(x, y);
+  b = a == 0.f ? 0.f : b / a;
+  float phi = std::atan(b) * 2.f / kPi;
+  if (x < y) phi = 1.f - phi;
+  float v = phi * r, u = r - v;
+  if (d.z < 0.f) {
+    std::swap(u, v);
+    u = 1.f - u;
+    v = 1.f - v;
+  }
+  u = std::copysign(u, d.x);
+  v = std::copysign(v, d.y);
+  return Vec2(glm::clamp((u + 1.f) * 0.5f, 0.f, kOneMinusEpsilon), glm::clamp((v + 1.f) * 0.5f, 0.f, kOneMinusEpsilon));
+}
+
+static Vec3 latlong_to_dir(Vec2 uv, float* sin_theta) {
+  float theta = uv.y * kPi, phi = uv.x * 2.f * kPi;
+  *sin_theta = std::sin(theta);
+  return Vec3(*sin_theta * std::cos(phi), *sin_theta * std::sin(phi), std::cos(theta));
+}
+static Vec2 dir_to_latlong(const Vec3& w) {
+  float theta = std::acos(glm::clamp(w.z, -1.f, 1.f));
+  float phi = std::atan2(w.y, w.x);
+  if (phi < 0.f) phi += 2.f * kPi;
+  return Vec2(glm::clamp(phi * kInv2Pi, 0.f, kOneMinusEpsilon), glm::clamp(theta * kInvPi, 0.f, kOneMinusEpsilon));
+}
+
+static RGB env_lookup(const InfiniteLight& l, const TexturePools& tex, Vec2 uv) {
+  const TextureImage& img = tex.images[size_t(l.image)];
+  int x = glm::clamp(int(uv.x * float(img.width)), 0, img.width - 1);
+  int y = glm::clamp(int(uv.y * float(img.height)), 0, img.height - 1);
+  return l.scale * img.texels[size_t(y) * size_t(img.width) + size_t(x)];
+}
+
+static float power_of(const LightPools& L, const LightRef& r, const TexturePools& tex) {
+  auto avg = [](const RGB& c) { return (c.x + c.y + c.z) / 3.f; };
+  float disk = kPi * sqr(L.scene_radius);
+  switch (r.kind) {
+    case LightKind::Area: {
+      const AreaLight& a = L.area[r.index];
+      return avg(a.L) * a.area * kPi * (a.two_sided ? 2.f : 1.f);
+    }
+    case LightKind::Point: return 4.f * kPi * avg(L.point[r.index].I);
+    case LightKind::Spot: {
+      const SpotLight& s = L.spot[r.index];
+      return avg(s.I) * 2.f * kPi * (1.f - 0.5f * (s.cos_falloff_start + s.cos_falloff_end));
+    }
+    case LightKind::Distant: return avg(L.distant[r.index].L) * disk;
+    case LightKind::Infinite: {
+      const InfiniteLight& e = L.infinite[r.index];
+      float mean = avg(e.scale);
+      if (e.image >= 0) {
+        const TextureImage& img = tex.images[size_t(e.image)];
+        double s = 0.0;
+        for (const RGB& c : img.texels) s += double(avg(c));
+        mean *= float(s / double(img.texels.size()));
+      }
+      return 4.f * kPi * disk * mean;
+    }
+  }
+  return 0.f;
+}
+
+void finalize_lights(LightPools& L, const ShapePools& shapes, const TexturePools& tex, Vec3 center, float radius) {
+  L.scene_center = center;
+  L.scene_radius = radius;
+  L.all.clear();
+  L.area_to_all.resize(L.area.size());
+  L.infinite_to_all.resize(L.infinite.size());
+  for (uint32_t i = 0; i < L.area.size(); ++i) {
+    L.area_to_all[i] = uint32_t(L.all.size());
+    L.all.push_back({LightKind::Area, i});
+  }
+  for (uint32_t i = 0; i < L.point.size(); ++i) L.all.push_back({LightKind::Point, i});
+  for (uint32_t i = 0; i < L.spot.size(); ++i) L.all.push_back({LightKind::Spot, i});
+  for (uint32_t i = 0; i < L.distant.size(); ++i) L.all.push_back({LightKind::Distant, i});
+  for (uint32_t i = 0; i < L.infinite.size(); ++i) {
+    L.infinite_to_all[i] = uint32_t(L.all.size());
+    L.all.push_back({LightKind::Infinite, i});
+    InfiniteLight& e = L.infinite[i];
+    if (e.image < 0) continue;
+    const TextureImage& img = tex.images[size_t(e.image)];
+    std::vector<float> w(img.texels.size());
+    for (int y = 0; y < img.height; ++y) {
+      float sin_theta = e.equal_area ? 1.f : std::sin(kPi * (float(y) + 0.5f) / float(img.height));
+      for (int x = 0; x < img.width; ++x) {
+        const RGB& c = img.texels[size_t(y) * size_t(img.width) + size_t(x)];
+        w[size_t(y) * size_t(img.width) + size_t(x)] = (c.x + c.y + c.z) * sin_theta;
+      }
+    }
+    e.distribution = Distribution2D(w, img.width, img.height);
+  }
+  std::vector<float> power(L.all.size());
+  for (size_t i = 0; i < L.all.size(); ++i) power[i] = power_of(L, L.all[i], tex);
+  L.selection = Distribution1D(std::move(power));
+}
+
+static float sphere_cone_sin2_max(const Sphere& s, const Vec3& p) {
+  return sqr(s.radius) / glm::dot(p - s.center, p - s.center);
+}
+
+static std::optional<LightSample> sample_area(const LightPools& L, const ShapePools& shapes, const AreaLight& a,
+                                              const Vec3& p, Vec2 u) {
+  const Geometry& g = shapes.geometries[a.geometry];
+  SurfacePoint sp;
+  float pdf;
+  if (g.kind == ShapeKind::Mesh) {
+    Vec2 b = sample_uniform_triangle(u);
+    sp = triangle_point(shapes.meshes[g.index], a.primitive, b.y, 1.f - b.x - b.y);
+    Vec3 d = sp.p - p;
+    float dist2 = glm::dot(d, d);
+    float cos_l = std::fabs(glm::dot(sp.ng, d)) / std::sqrt(dist2);
+    pdf = dist2 / (cos_l * a.area);
+  } else {
+    const Sphere& s = shapes.spheres[g.index];
+    float sin2_max = sphere_cone_sin2_max(s, p);
+    if (sin2_max >= 1.f) {  // inside: uniform area sampling
+      sp = sphere_point(s, s.center + s.radius * sample_uniform_sphere(u));
+      Vec3 d = sp.p - p;
+      float dist2 = glm::dot(d, d);
+      float cos_l = std::fabs(glm::dot(sp.ng, d)) / std::sqrt(dist2);
+      pdf = dist2 / (cos_l * a.area);
+    } else {
+      // Uniform over the cone of directions the sphere subtends, with the
+      // point computed by trigonometry rather than a ray-sphere test.
+      float sin_max = std::sqrt(sin2_max), cos_max = safe_sqrt(1.f - sin2_max);
+      float one_minus_cos_max = 1.f - cos_max;
+      float cos_t = (cos_max - 1.f) * u.x + 1.f;
+      float sin2_t = 1.f - cos_t * cos_t;
+      if (sin2_max < 0.00068523f) {  // sin^2(1.5 deg): use a Taylor expansion
+        sin2_t = sin2_max * u.x;
+        cos_t = std::sqrt(1.f - sin2_t);
+        one_minus_cos_max = sin2_max / 2.f;
+      }
+      float cos_alpha = sin2_t / sin_max + cos_t * safe_sqrt(1.f - sin2_t / sin2_max);
+      float sin_alpha = safe_sqrt(1.f - cos_alpha * cos_alpha);
+      float phi = u.y * 2.f * kPi;
+      Vec3 w(sin_alpha * std::cos(phi), sin_alpha * std::sin(phi), cos_alpha);
+      Frame f = Frame::from_z(glm::normalize(s.center - p));
+      Vec3 n = f.from_local(-w);
+      sp = sphere_point(s, s.center + s.radius * n);
+      pdf = 1.f / (2.f * kPi * one_minus_cos_max);
+    }
+  }
+  Vec3 d = sp.p - p;
+  float dist2 = glm::dot(d, d);
+  if (!(dist2 > 0.f) || !std::isfinite(pdf) || pdf <= 0.f) return std::nullopt;
+  LightSample ls;
+  ls.wi = d / std::sqrt(dist2);
+  ls.L = area_light_Le(a, sp.ng, -ls.wi);
+  ls.pdf = pdf;
+  ls.p_light = sp.p;
+  ls.n_light = sp.ng;
+  ls.error_scale = sp.error_scale;
+  return ls;
+}
+
+std::optional<LightSample> sample_light(const LightPools& L, const ShapePools& shapes, const TexturePools& tex,
+                                        const Vec3& p, float u_select, Vec2 u) {
+  if (L.all.empty()) return std::nullopt;
+  float pmf;
+  size_t i = L.selection.sample_discrete(u_select, &pmf);
+  if (pmf == 0.f) return std::nullopt;
+  const LightRef r = L.all[i];
+  std::optional<LightSample> ls;
+  switch (r.kind) {
+    case LightKind::Area: ls = sample_area(L, shapes, L.area[r.index], p, u); break;
+    case LightKind::Point: {
+      const PointLight& pl = L.point[r.index];
+      Vec3 d = pl.p - p;
+      float dist2 = glm::dot(d, d);
+      if (!(dist2 > 0.f)) return std::nullopt;
+      ls = LightSample{pl.I / dist2, d / std::sqrt(dist2), 1.f, pl.p, Vec3(0.f), max_abs_component(pl.p), true, false};
+      break;
+    }
+    case LightKind::Spot: {
+      const SpotLight& s = L.spot[r.index];
+      Vec3 d = s.p - p;
+      float dist2 = glm::dot(d, d);
+      if (!(dist2 > 0.f)) return std::nullopt;
+      Vec3 wi = d / std::sqrt(dist2);
+      float cos_t = glm::dot(-wi, s.frame.n);
+      float falloff = glm::smoothstep(s.cos_falloff_end, s.cos_falloff_start, cos_t);
+      ls = LightSample{s.I * falloff / dist2, wi, 1.f, s.p, Vec3(0.f), max_abs_component(s.p), true, false};
+      break;
+    }
+    case LightKind::Distant: {
+      const DistantLight& dl = L.distant[r.index];
+      ls = LightSample{dl.L, dl.w, 1.f, Vec3(0.f), Vec3(0.f), 0.f, true, true};
+      break;
+    }
+    case LightKind::Infinite: {
+      const InfiniteLight& e = L.infinite[r.index];
+      LightSample s;
+      s.infinite = true;
+      if (e.image < 0) {
+        s.wi = sample_uniform_sphere(u);
+        s.pdf = uniform_sphere_pdf();
+        s.L = e.scale;
+      } else {
+        float pdf_uv;
+        Vec2 uv = e.distribution.sample_continuous(u, &pdf_uv);
+        if (pdf_uv == 0.f) return std::nullopt;
+        Vec3 wl;
+        if (e.equal_area) {
+          wl = equal_area_square_to_sphere(uv);
+          s.pdf = pdf_uv / (4.f * kPi);
+        } else {
+          float sin_theta;
+          wl = latlong_to_dir(uv, &sin_theta);
+          if (sin_theta <= 0.f) return std::nullopt;
+          s.pdf = pdf_uv / (2.f * kPi * kPi * sin_theta);
+        }
+        s.wi = glm::normalize(e.world_from_light * wl);
+        s.L = env_lookup(e, tex, uv);
+      }
+      ls = s;
+      break;
+    }
+  }
+  if (!ls || ls->pdf == 0.f) return std::nullopt;
+  ls->pdf *= pmf;
+  return ls;
+}
+
+float area_light_pdf(const LightPools& L, const ShapePools& shapes, uint32_t area_index, const Vec3& p,
+                     const Vec3& p_light, const Vec3& n_light) {
+  const AreaLight& a = L.area[area_index];
+  float pmf = L.selection.discrete_pmf(L.area_to_all[area_index]);
+  const Geometry& g = shapes.geometries[a.geometry];
+  if (g.kind == ShapeKind::Sphere) {
+    const Sphere& s = shapes.spheres[g.index];
+    float sin2_max = sphere_cone_sin2_max(s, p);
+    if (sin2_max < 1.f) {
+      float one_minus_cos_max = sin2_max < 0.00068523f ? sin2_max / 2.f : 1.f - safe_sqrt(1.f - sin2_max);
+      return pmf / (2.f * kPi * one_minus_cos_max);
+    }
+  }
+  Vec3 d = p_light - p;
+  float dist2 = glm::dot(d, d);
+  float cos_l = std::fabs(glm::dot(n_light, d)) / std::sqrt(dist2);
+  if (cos_l == 0.f || a.area == 0.f) return 0.f;
+  return pmf * dist2 / (cos_l * a.area);
+}
+
+RGB infinite_lights_Le(const LightPools& L, const TexturePools& tex, const Vec3& w) {
+  RGB sum(0.f);
+  for (const InfiniteLight& e : L.infinite) {
+    if (e.image < 0) {
+      sum += e.scale;
+      continue;
+    }
+    Vec3 wl = glm::normalize(e.light_from_world * w);
+    sum += env_lookup(e, tex, e.equal_area ? equal_area_sphere_to_square(wl) : dir_to_latlong(wl));
+  }
+  return sum;
+}
+
+float infinite_lights_pdf(const LightPools& L, const TexturePools& tex, const Vec3& w) {
+  float pdf = 0.f;
+  for (size_t i = 0; i < L.infinite.size(); ++i) {
+    const InfiniteLight& e = L.infinite[i];
+    float pmf = L.selection.discrete_pmf(L.infinite_to_all[i]);
+    if (e.image < 0) {
+      pdf += pmf * uniform_sphere_pdf();
+      continue;
+    }
+    Vec3 wl = glm::normalize(e.light_from_world * w);
+    if (e.equal_area) {
+      pdf += pmf * e.distribution.pdf(equal_area_sphere_to_square(wl)) / (4.f * kPi);
+    } else {
+      Vec2 uv = dir_to_latlong(wl);
+      float sin_theta = std::sin(uv.y * kPi);
+      if (sin_theta > 0.f) pdf += pmf * e.distribution.pdf(uv) / (2.f * kPi * kPi * sin_theta);
+    }
+  }
+  return pdf;
+}
+
+}  // namespace lantern

@@ -1,0 +1,108 @@
+// Emitter component pools, one per light kind, and the power distribution
+// that selects among all of them.
+#pragma once
+
+#include <glm/mat3x3.hpp>
+#include <optional>
+#include <vector>
+
+#include "math/distribution.h"
+#include "math/frame.h"
+
+namespace lantern {
+
+struct ShapePools;
+struct TexturePools;
+
+enum class LightKind : uint8_t { Area, Point, Spot, Distant, Infinite };
+
+struct AreaLight {  // one per emissive triangle or sphere
+  uint32_t geometry;
+  uint32_t primitive;
+  RGB L;
+  bool two_sided;
+  float area;
+};
+struct PointLight {
+  Vec3 p;
+  RGB I;
+};
+struct SpotLight {
+  Vec3 p;
+  Frame frame;  // n = the cone's axis
+  RGB I;
+  float cos_falloff_start, cos_falloff_end;
+};
+struct DistantLight {
+  Vec3 w;  // unit direction towards the light
+  RGB L;
+};
+struct InfiniteLight {
+  RGB scale{1.f};
+  glm::mat3 world_from_light{1.f}, light_from_world{1.f};
+  int32_t image = -1;       // -1: constant radiance `scale`
+  bool equal_area = true;   // pbrt-v4 octahedral equal-area map; else lat-long
+  Distribution2D distribution;
+};
+
+struct LightRef {
+  LightKind kind;
+  uint32_t index;
+};
+
+struct LightPools {
+  std::vector<AreaLight> area;
+  std::vector<PointLight> point;
+  std::vector<SpotLight> spot;
+  std::vector<DistantLight> distant;
+  std::vector<InfiniteLight> infinite;
+
+  std::vector<LightRef> all;        // what the selection distribution indexes
+  std::vector<uint32_t> area_to_all;
+  std::vector<uint32_t> infinite_to_all;
+  Distribution1D selection;
+  Vec3 scene_center{0.f};
+  float scene_radius = 1.f;
+
+  bool empty() const { return all.empty(); }
+};
+
+struct LightSample {
+  RGB L{0.f};        // radiance (or intensity / dist^2) arriving at the reference point
+  Vec3 wi{0.f};      // towards the light
+  float pdf = 0.f;   // solid angle density at the reference point, times the selection pmf; 1 for delta lights
+  Vec3 p_light{0.f};
+  Vec3 n_light{0.f};
+  float error_scale = 0.f;
+  bool delta = false;
+  bool infinite = false;  // no end point: the shadow ray is unbounded
+};
+
+// Builds the selection distribution (proportional to emitted power) and the
+// environment-map sampling tables. Call once after all lights are added.
+void finalize_lights(LightPools& lights, const ShapePools& shapes, const TexturePools& tex, Vec3 center, float radius);
+
+// Chooses a light by power and samples a direction to it from p.
+std::optional<LightSample> sample_light(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex,
+                                        const Vec3& p, float u_select, Vec2 u);
+
+// Density (solid angle at p, times selection pmf) that sample_light picks
+// area light `area_index` at point p_light with normal n_light.
+float area_light_pdf(const LightPools& lights, const ShapePools& shapes, uint32_t area_index, const Vec3& p,
+                     const Vec3& p_light, const Vec3& n_light);
+
+inline RGB area_light_Le(const AreaLight& l, const Vec3& n, const Vec3& w) {
+  return (l.two_sided || glm::dot(n, w) > 0.f) ? l.L : RGB(0.f);
+}
+
+// Radiance from infinite lights along a ray leaving the scene in direction w.
+RGB infinite_lights_Le(const LightPools& lights, const TexturePools& tex, const Vec3& w);
+// Density (times selection pmf) that sample_light produces direction w from the infinite lights.
+float infinite_lights_pdf(const LightPools& lights, const TexturePools& tex, const Vec3& w);
+
+// The equal-area mapping between the unit square and the sphere used by
+// pbrt-v4 environment maps (Clarberg 2008).
+Vec3 equal_area_square_to_sphere(Vec2 p);
+Vec2 equal_area_sphere_to_square(const Vec3& d);
+
+}  // namespace lantern

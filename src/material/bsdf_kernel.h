@@ -1,0 +1,49 @@
+// Batch shading: the hits of one material kind are shaded in one loop over
+// that kind's bin, with the concrete BSDF type known at compile time. An
+// integrator passes a generic lambda; it is instantiated once per kind, so
+// there is no virtual call per hit and no kind a scene lacks is ever entered.
+#pragma once
+
+#include <cstdint>
+
+#include "material/coated_diffuse_bsdf.h"
+#include "material/conductor_bsdf.h"
+#include "material/dielectric_bsdf.h"
+#include "material/diffuse_bsdf.h"
+#include "material/material.h"
+
+namespace lantern {
+
+inline DiffuseBSDF make_bsdf(const DiffuseMaterial& m, Vec2 uv, const TexturePools& tex) {
+  return DiffuseBSDF{tex.evaluate(m.reflectance, uv)};
+}
+inline ConductorBSDF make_bsdf(const ConductorMaterial& m, Vec2, const TexturePools&) {
+  return ConductorBSDF{{m.alpha_x, m.alpha_y}, m.eta, m.k, m.mirror_reflectance, m.mirror};
+}
+inline DielectricBSDF make_bsdf(const DielectricMaterial& m, Vec2, const TexturePools&) {
+  return DielectricBSDF{{m.alpha_x, m.alpha_y}, m.eta};
+}
+inline CoatedDiffuseBSDF make_bsdf(const CoatedDiffuseMaterial& m, Vec2 uv, const TexturePools& tex) {
+  return CoatedDiffuseBSDF{{m.alpha_x, m.alpha_y}, tex.evaluate(m.reflectance, uv), m.eta, m.fdr_internal};
+}
+
+// Calls fn(slot, bsdf) for every slot in `bin`; all slots share `kind`.
+// material_index[slot] and uv[slot] describe the hit in that slot.
+template <class Fn>
+void for_each_bsdf(MaterialKind kind, const MaterialPools& pools, const TexturePools& tex, const uint32_t* bin,
+                   size_t count, const uint32_t* material_index, const Vec2* uv, Fn&& fn) {
+  auto run = [&](const auto& pool) {
+    for (size_t j = 0; j < count; ++j) {
+      uint32_t slot = bin[j];
+      fn(slot, make_bsdf(pool[material_index[slot]], uv[slot], tex));
+    }
+  };
+  switch (kind) {
+    case MaterialKind::Diffuse: run(pools.diffuse); break;
+    case MaterialKind::Conductor: run(pools.conductor); break;
+    case MaterialKind::Dielectric: run(pools.dielectric); break;
+    case MaterialKind::CoatedDiffuse: run(pools.coated_diffuse); break;
+  }
+}
+
+}  // namespace lantern

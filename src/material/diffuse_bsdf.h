@@ -1,0 +1,34 @@
+// Lambertian reflection, two-sided as in pbrt.
+#pragma once
+
+#include "material/bsdf_common.h"
+#include "math/sampling.h"
+
+namespace lantern {
+
+struct DiffuseBSDF {
+  RGB R;
+
+  static constexpr bool kAlwaysSpecular = false;
+  bool is_specular() const { return false; }
+
+  RGB f(const Vec3& wo, const Vec3& wi, TransportMode) const {
+    return same_hemisphere(wo, wi) ? R * kInvPi : RGB(0.f);
+  }
+  std::optional<BSDFSample> sample_f(const Vec3& wo, float, Vec2 u, TransportMode mode) const {
+    Vec3 wi = sample_cosine_hemisphere(u);
+    if (wo.z < 0.f) wi.z = -wi.z;
+    float pdf = cosine_hemisphere_pdf(std::fabs(wi.z));
+    if (pdf == 0.f || wo.z == 0.f) return std::nullopt;
+    BSDFSample s;
+    s.f = R * kInvPi;
+    s.wi = wi;
+    s.pdf = pdf;
+    return s;
+  }
+  float pdf(const Vec3& wo, const Vec3& wi, TransportMode) const {
+    return same_hemisphere(wo, wi) ? cosine_hemisphere_pdf(std::fabs(wi.z)) : 0.f;
+  }
+};
+
+}  // namespace lantern

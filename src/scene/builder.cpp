@@ -1,0 +1,346 @@
+#include "scene/builder.h"
+
+#include <filesystem>
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include "material/fresnel.h"
+#include "scene/ply.h"
+#include "scene/surface.h"
+
+namespace lantern {
+
+using pbrt::ColorUsage;
+using pbrt::ParamSet;
+
+void SceneBuilder::warn(const SourceLocation& where, const std::string& what) const {
+  if (warn_) warn_((where.file.empty() ? std::string() : where.str() + ": ") + "warning: " + what);
+}
+
+static std::string resolve_path(const std::string& base_dir, const std::string& file) {
+  std::filesystem::path p(file);
+  return p.is_absolute() || base_dir.empty() ? file : (std::filesystem::path(base_dir) / p).string();
+}
+
+void SceneBuilder::camera(const std::string& type, const ParamSet& ps, const Mat4& camera_from_world) {
+  if (type != "perspective")
+    ps.fail("camera type \"" + type + "\" is not supported; expected \"perspective\"");
+  CameraDesc& c = scene_.camera;
+  c.world_from_camera = glm::inverse(camera_from_world);
+  c.fov_degrees = ps.get_float("fov", 90.f);
+  if (!(c.fov_degrees > 0.f && c.fov_degrees < 180.f)) ps.fail("\"fov\" must lie strictly between 0 and 180 degrees");
+  c.lens_radius = ps.get_float("lensradius", 0.f);
+  c.focal_distance = ps.get_float("focaldistance", 1e6f);
+  if (c.lens_radius < 0.f || !(c.focal_distance > 0.f)) ps.fail("\"lensradius\" must be >= 0 and \"focaldistance\" > 0");
+  std::vector<float> sw = ps.get_floats("screenwindow");
+  if (!sw.empty()) {
+    if (sw.size() != 4) ps.fail("\"screenwindow\" needs 4 values: xmin xmax ymin ymax");
+    c.has_screen_window = true;
+    std::copy(sw.begin(), sw.end(), c.screen_window);
+  }
+}
+
+void SceneBuilder::film(const std::string& type, const ParamSet& ps) {
+  if (type != "rgb" && type != "gbuffer" && type != "spectral" && type != "image")
+    warn(ps.where, "film type \"" + type + "\" is not supported; rendering an RGB film");
+  SceneSettings& s = scene_.settings;
+  s.width = ps.get_int("xresolution", 1280);
+  s.height = ps.get_int("yresolution", 720);
+  if (s.width <= 0 || s.height <= 0 || s.width > 65536 || s.height > 65536)
+    ps.fail("resolution must be between 1 and 65536 pixels per side");
+  s.output = ps.get_string("filename", "pbrt.exr");
+}
+
+void SceneBuilder::sampler(const std::string&, const ParamSet& ps) {
+  // The sample pattern changes noise, not the expected image; Lantern uses
+  // its own independent random numbers whatever the type.
+  int spp = ps.get_int("pixelsamples", 16);
+  if (spp <= 0) ps.fail("\"pixelsamples\" must be positive");
+  scene_.settings.spp = spp;
+}
+
+void SceneBuilder::integrator(const std::string& type, const ParamSet& ps) {
+  int maxdepth = ps.get_int("maxdepth", 5);
+  if (maxdepth < 0) ps.fail("\"maxdepth\" must be >= 0");
+  scene_.settings.maxdepth = maxdepth;
+  if (type == "path") {
+    scene_.settings.integrator = "path";
+  } else {
+    warn(ps.where, "integrator \"" + type + "\" is not available; using \"path\" (choose with --integrator)");
+    scene_.settings.integrator = "path";
+  }
+  for (const char* p : {"regularize", "lightsampler"}) ps.find(p);  // affect noise only
+}
+
+void SceneBuilder::pixel_filter(const std::string& type, const ParamSet& ps) {
+  PixelFilter& f = scene_.filter;
+  float def_r;
+  if (type == "box") {
+    f.type = PixelFilter::Type::Box;
+    def_r = 0.5f;
+  } else if (type == "triangle") {
+    f.type = PixelFilter::Type::Triangle;
+    def_r = 2.f;
+  } else if (type == "gaussian") {
+    f.type = PixelFilter::Type::Gaussian;
+    def_r = 1.5f;
+    f.sigma = ps.get_float("sigma", 0.5f);
+  } else {
+    warn(ps.where, "pixel filter \"" + type + "\" is not supported; using a gaussian of radius 1.5");
+    f.type = PixelFilter::Type::Gaussian;
+    for (const char* p : {"B", "C", "tau", "xradius", "yradius"}) ps.find(p);
+    f.radius = Vec2(1.5f);
+    return;
+  }
+  f.radius = Vec2(ps.get_float("xradius", def_r), ps.get_float("yradius", def_r));
+  if (!(f.radius.x > 0.f && f.radius.y > 0.f)) ps.fail("filter radii must be positive");
+}
+
+RGBTexture SceneBuilder::rgb_texture(const ParamSet& ps, const std::string& name, RGB def) {
+  if (auto tex = ps.get_texture(name)) {
+    auto it = rgb_textures_.find(*tex);
+    if (it == rgb_textures_.end()) ps.fail(*ps.find(name), "no spectrum texture named \"" + *tex + "\" was defined");
+    return it->second;
+  }
+  RGBTexture t;
+  t.value = ps.get_rgb(name, ColorUsage::Reflectance).value_or(def);
+  if (const pbrt::Param* p = ps.find(name); p && p->type == "float") t.value = RGB(float(p->numbers.at(0)));
+  return t;
+}
+
+float SceneBuilder::float_param(const ParamSet& ps, const std::string& name, float def) {
+  if (auto tex = ps.get_texture(name)) {
+    auto it = float_textures_.find(*tex);
+    if (it == float_textures_.end())
+      ps.fail(*ps.find(name), "\"" + *tex + "\" is not a constant float texture (only those are supported here)");
+    return it->second;
+  }
+  return ps.get_float(name, def);
+}
+
+void SceneBuilder::roughness(const ParamSet& ps, float* ax, float* ay, float def) {
+  float r = float_param(ps, "roughness", def);
+  float u = float_param(ps, "uroughness", r), v = float_param(ps, "vroughness", r);
+  if (u < 0.f || v < 0.f) ps.fail("roughness must not be negative");
+  bool remap = ps.get_bool("remaproughness", true);
+  *ax = remap ? roughness_to_alpha(u) : u;
+  *ay = remap ? roughness_to_alpha(v) : v;
+}
+
+static float eta_param(const ParamSet& ps, float def) {
+  const pbrt::Param* p = ps.find("eta");
+  if (!p) p = ps.find("index");
+  if (!p) return def;
+  float eta = p->type == "float" ? float(p->numbers.at(0)) : ps.get_rgb(p->name, ColorUsage::Unbounded)->x;
+  if (!(eta > 0.f)) ps.fail(*p, "index of refraction must be positive");
+  return eta;
+}
+
+MaterialHandle SceneBuilder::material(const std::string& type, const ParamSet& ps) {
+  MaterialPools& m = scene_.materials;
+  if (type == "diffuse" || type == "matte") {
+    m.diffuse.push_back({rgb_texture(ps, ps.has("Kd") ? "Kd" : "reflectance", RGB(0.5f))});
+    ps.find("sigma");
+    return MaterialHandle::make(MaterialKind::Diffuse, uint32_t(m.diffuse.size() - 1));
+  }
+  if (type == "conductor" || type == "metal" || type == "mirror") {
+    ConductorMaterial c;
+    if (type == "mirror") {
+      c.mirror = true;
+      c.mirror_reflectance = rgb_texture(ps, "Kr", RGB(0.9f)).value;
+      c.alpha_x = c.alpha_y = 0.f;
+    } else {
+      c.eta = ps.get_rgb("eta", ColorUsage::Unbounded).value_or(*pbrt::named_spectrum_rgb("metal-Cu-eta"));
+      c.k = ps.get_rgb("k", ColorUsage::Unbounded).value_or(*pbrt::named_spectrum_rgb("metal-Cu-k"));
+      if (auto r = ps.get_rgb("reflectance", ColorUsage::Reflectance)) {
+        // pbrt-v4: a conductor given by its reflectance at normal incidence.
+        RGB rc = glm::clamp(*r, RGB(0.f), RGB(0.9999f));
+        c.eta = RGB(1.f);
+        c.k = 2.f * glm::sqrt(rc) / glm::sqrt(RGB(1.f) - rc);
+      }
+      roughness(ps, &c.alpha_x, &c.alpha_y, type == "metal" ? 0.01f : 0.f);
+    }
+    m.conductor.push_back(c);
+    return MaterialHandle::make(MaterialKind::Conductor, uint32_t(m.conductor.size() - 1));
+  }
+  if (type == "dielectric" || type == "glass") {
+    DielectricMaterial d;
+    d.eta = eta_param(ps, 1.5f);
+    roughness(ps, &d.alpha_x, &d.alpha_y, 0.f);
+    for (const char* p : {"Kr", "Kt"}) ps.find(p);
+    m.dielectric.push_back(d);
+    return MaterialHandle::make(MaterialKind::Dielectric, uint32_t(m.dielectric.size() - 1));
+  }
+  if (type == "coateddiffuse" || type == "plastic") {
+    CoatedDiffuseMaterial c;
+    bool v3 = type == "plastic";
+    c.reflectance = rgb_texture(ps, v3 ? "Kd" : "reflectance", RGB(v3 ? 0.25f : 0.5f));
+    if (v3 && ps.has("Ks")) ps.find("Ks");
+    c.eta = eta_param(ps, 1.5f);
+    roughness(ps, &c.alpha_x, &c.alpha_y, v3 ? 0.1f : 0.f);
+    c.fdr_internal = diffuse_fresnel_reflectance(1.f / c.eta);
+    m.coated_diffuse.push_back(c);
+    return MaterialHandle::make(MaterialKind::CoatedDiffuse, uint32_t(m.coated_diffuse.size() - 1));
+  }
+  ps.fail("material type \"" + type +
+          "\" is not supported; expected diffuse, conductor, dielectric, coateddiffuse (or matte, metal, glass, plastic, mirror)");
+}
+
+MaterialHandle SceneBuilder::default_material() {
+  if (!default_material_) {
+    scene_.materials.diffuse.push_back({RGBTexture{}});
+    default_material_ = MaterialHandle::make(MaterialKind::Diffuse, uint32_t(scene_.materials.diffuse.size() - 1));
+  }
+  return *default_material_;
+}
+
+void SceneBuilder::texture(const std::string& name, const std::string& value_type, const std::string& cls,
+                           const ParamSet& ps, const std::string& base_dir) {
+  bool is_float = value_type == "float";
+  if (!is_float && value_type != "spectrum" && value_type != "color" && value_type != "rgb")
+    ps.fail("texture value type \"" + value_type + "\" is unknown; expected \"spectrum\" or \"float\"");
+  if (is_float) {
+    if (cls != "constant") ps.fail("float texture class \"" + cls + "\" is not supported; only \"constant\"");
+    float_textures_[name] = ps.get_float("value", 1.f);
+    return;
+  }
+  RGBTexture t;
+  if (cls == "constant") {
+    t.value = ps.get_rgb("value", ColorUsage::Reflectance).value_or(RGB(1.f));
+  } else if (cls == "imagemap") {
+    std::string file = ps.get_string("filename", "");
+    if (file.empty()) ps.fail("imagemap texture needs a \"filename\"");
+    std::string enc = ps.get_string("encoding", "");
+    bool gamma = ps.get_bool("gamma", false);
+    t.image = int32_t(scene_.textures.images.size());
+    TextureImage img = load_texture_image(resolve_path(base_dir, file), enc == "linear", enc == "sRGB" || gamma);
+    scene_.textures.images.push_back(std::move(img));
+    t.scale = ps.get_float("scale", 1.f);
+    t.invert = ps.get_bool("invert", false);
+    t.su = ps.get_float("uscale", 1.f);
+    t.sv = ps.get_float("vscale", 1.f);
+    t.du = ps.get_float("udelta", 0.f);
+    t.dv = ps.get_float("vdelta", 0.f);
+    for (const char* p : {"filter", "maxanisotropy", "wrap"}) ps.find(p);
+  } else {
+    ps.fail("texture class \"" + cls + "\" is not supported; expected \"constant\" or \"imagemap\"");
+  }
+  rgb_textures_[name] = t;
+}
+
+static bool swaps_handedness(const Mat4& m) { return glm::determinant(glm::mat3(m)) < 0.f; }
+
+void SceneBuilder::add_mesh(TriangleMesh mesh, const GraphicsState& gs, const ParamSet& ps) {
+  const Mat4& M = gs.ctm;
+  glm::mat3 N = glm::inverseTranspose(glm::mat3(M));
+  for (Vec3& p : mesh.positions) {
+    p = Vec3(M * Vec4(p, 1.f));
+    if (!is_finite(p)) ps.fail("a vertex position is NaN or infinite (after the transform)");
+  }
+  for (Vec3& n : mesh.normals) {
+    n = N * n;
+    if (gs.reverse_orientation) n = -n;
+  }
+  if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size())
+    ps.fail("\"N\" has " + std::to_string(mesh.normals.size()) + " normals for " + std::to_string(mesh.positions.size()) + " vertices");
+  if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size())
+    ps.fail("\"uv\" has " + std::to_string(mesh.uvs.size()) + " entries for " + std::to_string(mesh.positions.size()) + " vertices");
+  for (const glm::uvec3& t : mesh.triangles)
+    if (std::max({t.x, t.y, t.z}) >= mesh.positions.size())
+      ps.fail("index " + std::to_string(std::max({t.x, t.y, t.z})) + " is out of range: there are " +
+              std::to_string(mesh.positions.size()) + " vertices");
+  if (mesh.triangles.empty()) {
+    warn(ps.where, ps.directive + " has no triangles and was skipped");
+    return;
+  }
+  mesh.flip_normal = gs.reverse_orientation != swaps_handedness(M);
+  mesh.vertex_count = uint32_t(mesh.positions.size());
+  mesh.positions.push_back(Vec3(0.f));  // Embree's 16-byte read of the last vertex
+  scene_.triangle_count += mesh.triangles.size();
+  uint32_t prims = uint32_t(mesh.triangles.size());
+  ShapePools& s = scene_.shapes;
+  s.meshes.push_back(std::move(mesh));
+  s.geometries.push_back({ShapeKind::Mesh, uint32_t(s.meshes.size() - 1), gs.material.value_or(default_material()), -1});
+  add_area_lights(uint32_t(s.geometries.size() - 1), prims, gs);
+}
+
+void SceneBuilder::shape(const std::string& type, const ParamSet& ps, const GraphicsState& gs, const std::string& base_dir) {
+  if (type == "trianglemesh" || type == "bilinearmesh") {
+    TriangleMesh m;
+    m.positions = ps.get_point3s("P");
+    m.normals = ps.get_point3s("N");
+    m.uvs = ps.get_point2s(ps.has("uv") ? "uv" : "st");
+    if (m.positions.empty()) ps.fail("\"point3 P\" is missing");
+    std::vector<int> idx = ps.get_ints("indices");
+    size_t per = type == "trianglemesh" ? 3 : 4;
+    if (idx.empty() && m.positions.size() == per)
+      for (size_t i = 0; i < per; ++i) idx.push_back(int(i));
+    if (idx.empty()) ps.fail("\"integer indices\" is missing");
+    if (idx.size() % per != 0)
+      ps.fail("\"indices\" has " + std::to_string(idx.size()) + " values, expected a multiple of " + std::to_string(per));
+    for (int i : idx)
+      if (i < 0) ps.fail("\"indices\" contains a negative index");
+    for (size_t i = 0; i < idx.size(); i += per) {
+      if (per == 3) {
+        m.triangles.emplace_back(idx[i], idx[i + 1], idx[i + 2]);
+      } else {  // pbrt's patch order p00 p10 p01 p11; split along p00-p11
+        m.triangles.emplace_back(idx[i], idx[i + 1], idx[i + 3]);
+        m.triangles.emplace_back(idx[i], idx[i + 3], idx[i + 2]);
+      }
+    }
+    for (const char* p : {"S", "faceIndices"}) ps.find(p);
+    add_mesh(std::move(m), gs, ps);
+  } else if (type == "plymesh") {
+    std::string file = ps.get_string("filename", "");
+    if (file.empty()) ps.fail("plymesh needs a \"filename\"");
+    PlyMesh ply = read_ply(resolve_path(base_dir, file));
+    TriangleMesh m;
+    m.positions = std::move(ply.positions);
+    m.normals = std::move(ply.normals);
+    m.uvs = std::move(ply.uvs);
+    m.triangles = std::move(ply.triangles);
+    add_mesh(std::move(m), gs, ps);
+  } else if (type == "sphere") {
+    float r = ps.get_float("radius", 1.f);
+    float zmin = ps.get_float("zmin", -r), zmax = ps.get_float("zmax", r), phimax = ps.get_float("phimax", 360.f);
+    if (zmin > -r || zmax < r || phimax < 360.f) ps.fail("partial spheres (zmin, zmax, phimax) are not supported");
+    if (!(r > 0.f) || !std::isfinite(r)) ps.fail("\"radius\" must be positive and finite");
+    const Mat4& M = gs.ctm;
+    float sx = glm::length(Vec3(M[0])), sy = glm::length(Vec3(M[1])), sz = glm::length(Vec3(M[2]));
+    if (std::fabs(sx - sy) > 1e-4f * sx || std::fabs(sx - sz) > 1e-4f * sx)
+      ps.fail("a non-uniformly scaled sphere (an ellipsoid) is not supported");
+    Sphere s{Vec3(M * Vec4(0, 0, 0, 1)), r * sx, gs.reverse_orientation != swaps_handedness(M), glm::inverse(M)};
+    if (!is_finite(s.center) || !std::isfinite(s.radius)) ps.fail("the sphere's centre or radius is not finite");
+    ShapePools& p = scene_.shapes;
+    p.spheres.push_back(s);
+    p.geometries.push_back({ShapeKind::Sphere, uint32_t(p.spheres.size() - 1), gs.material.value_or(default_material()), -1});
+    add_area_lights(uint32_t(p.geometries.size() - 1), 1, gs);
+  } else {
+    ps.fail("shape \"" + type + "\" is not supported; expected trianglemesh, plymesh, sphere or bilinearmesh");
+  }
+}
+
+void SceneBuilder::add_area_lights(uint32_t geometry, uint32_t primitives, const GraphicsState& gs) {
+  if (!gs.area_light) return;
+  const ParamSet& ps = *gs.area_light;
+  RGB L = ps.get_rgb("L", ColorUsage::Illuminant).value_or(RGB(1.f)) * ps.get_float("scale", 1.f);
+  bool two_sided = ps.get_bool("twosided", false);
+  if (ps.has("filename")) ps.fail("image-textured area lights are not supported");
+  Geometry& g = scene_.shapes.geometries[geometry];
+  g.light_offset = int32_t(scene_.lights.area.size());
+  float total = 0.f;
+  for (uint32_t i = 0; i < primitives; ++i) {
+    float area = g.kind == ShapeKind::Mesh ? triangle_area(scene_.shapes.meshes[g.index], i)
+                                           : 4.f * kPi * sqr(scene_.shapes.spheres[g.index].radius);
+    total += area;
+    scene_.lights.area.push_back({geometry, i, L, two_sided, area});
+  }
+  if (ps.has("power")) {
+    float power = ps.get_float("power", 0.f);
+    float k = (two_sided ? 2.f : 1.f) * total * kPi;
+    if (k > 0.f)
+      for (uint32_t i = 0; i < primitives; ++i) scene_.lights.area[size_t(g.light_offset) + i].L *= power / k;
+  }
+  ps.warn_unused();
+}
+
+}  // namespace lantern

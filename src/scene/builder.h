@@ -1,0 +1,60 @@
+// Turns parsed pbrt directives into entities and component pools.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+
+#include "scene/pbrt/params.h"
+#include "scene/scene.h"
+
+namespace lantern {
+
+// The part of pbrt's graphics state that shapes and lights read.
+struct GraphicsState {
+  Mat4 ctm{1.f};
+  bool reverse_orientation = false;
+  std::optional<MaterialHandle> material;  // none yet: pbrt's default diffuse
+  std::optional<pbrt::ParamSet> area_light;
+};
+
+class SceneBuilder {
+ public:
+  SceneBuilder(Scene& scene, WarningSink warn) : scene_(scene), warn_(std::move(warn)) {}
+
+  void warn(const SourceLocation& where, const std::string& what) const;
+  void warn_line(const std::string& line) const {
+    if (warn_) warn_(line);
+  }
+
+  void camera(const std::string& type, const pbrt::ParamSet& ps, const Mat4& camera_from_world);
+  void film(const std::string& type, const pbrt::ParamSet& ps);
+  void sampler(const std::string& type, const pbrt::ParamSet& ps);
+  void integrator(const std::string& type, const pbrt::ParamSet& ps);
+  void pixel_filter(const std::string& type, const pbrt::ParamSet& ps);
+
+  MaterialHandle material(const std::string& type, const pbrt::ParamSet& ps);
+  void texture(const std::string& name, const std::string& value_type, const std::string& cls, const pbrt::ParamSet& ps,
+               const std::string& base_dir);
+  void shape(const std::string& type, const pbrt::ParamSet& ps, const GraphicsState& gs, const std::string& base_dir);
+  void light(const std::string& type, const pbrt::ParamSet& ps, const Mat4& ctm, const std::string& base_dir);
+
+  // Builds the acceleration structure and light tables.
+  void finish();
+
+ private:
+  RGBTexture rgb_texture(const pbrt::ParamSet& ps, const std::string& name, RGB def);
+  float float_param(const pbrt::ParamSet& ps, const std::string& name, float def);
+  void roughness(const pbrt::ParamSet& ps, float* ax, float* ay, float def);
+  MaterialHandle default_material();
+  void add_mesh(TriangleMesh mesh, const GraphicsState& gs, const pbrt::ParamSet& ps);
+  void add_area_lights(uint32_t geometry, uint32_t primitives, const GraphicsState& gs);
+
+  Scene& scene_;
+  WarningSink warn_;
+  std::map<std::string, RGBTexture> rgb_textures_;
+  std::map<std::string, float> float_textures_;
+  std::optional<MaterialHandle> default_material_;
+};
+
+}  // namespace lantern

@@ -1,0 +1,210 @@
+#include "scene/pbrt/params.h"
+
+#include <map>
+
+namespace lantern::pbrt {
+
+const Param* ParamSet::find(const std::string& name) const {
+  for (const Param& p : params)
+    if (p.name == name) {
+      p.used = true;
+      return &p;
+    }
+  return nullptr;
+}
+
+void ParamSet::fail(const Param& p, const std::string& what) const {
+  throw InputError(p.where, directive + ": parameter \"" + p.name + "\": " + what);
+}
+void ParamSet::fail(const std::string& what) const { throw InputError(where, directive + ": " + what); }
+
+void ParamSet::warn_unused() const {
+  if (!warn || !*warn) return;
+  for (const Param& p : params)
+    if (!p.used)
+      (*warn)(p.where.str() + ": warning: " + directive + ": parameter \"" + p.type + " " + p.name +
+              "\" is not supported and was ignored");
+}
+
+const Param& ParamSet::expect(const Param& p, std::initializer_list<const char*> types, const char* expected) const {
+  for (const char* t : types)
+    if (p.type == t) return p;
+  fail(p, "has type \"" + p.type + "\", expected " + expected);
+}
+
+static void expect_count(const ParamSet& ps, const Param& p, size_t have, size_t multiple) {
+  if (have == 0) ps.fail(p, "has no values");
+  if (have % multiple != 0)
+    ps.fail(p, "has " + std::to_string(have) + " values, expected a multiple of " + std::to_string(multiple));
+}
+
+float ParamSet::get_float(const std::string& name, float def) const {
+  const Param* p = find(name);
+  if (!p) return def;
+  expect(*p, {"float"}, "\"float\"");
+  if (p->numbers.size() != 1) fail(*p, "expected exactly one value, got " + std::to_string(p->numbers.size()));
+  return float(p->numbers[0]);
+}
+
+int ParamSet::get_int(const std::string& name, int def) const {
+  const Param* p = find(name);
+  if (!p) return def;
+  expect(*p, {"integer"}, "\"integer\"");
+  if (p->numbers.size() != 1) fail(*p, "expected exactly one value, got " + std::to_string(p->numbers.size()));
+  double v = p->numbers[0];
+  if (v != std::floor(v) || std::fabs(v) > 2147483647.0) fail(*p, "expected an integer value");
+  return int(v);
+}
+
+bool ParamSet::get_bool(const std::string& name, bool def) const {
+  const Param* p = find(name);
+  if (!p) return def;
+  expect(*p, {"bool"}, "\"bool\"");
+  if (p->bools.size() != 1) fail(*p, "expected exactly one value (true or false)");
+  return p->bools[0];
+}
+
+std::string ParamSet::get_string(const std::string& name, const std::string& def) const {
+  const Param* p = find(name);
+  if (!p) return def;
+  expect(*p, {"string"}, "\"string\"");
+  if (p->strings.size() != 1) fail(*p, "expected exactly one string");
+  return p->strings[0];
+}
+
+std::vector<float> ParamSet::get_floats(const std::string& name) const {
+  const Param* p = find(name);
+  if (!p) return {};
+  expect(*p, {"float"}, "\"float\"");
+  return std::vector<float>(p->numbers.begin(), p->numbers.end());
+}
+
+std::vector<int> ParamSet::get_ints(const std::string& name) const {
+  const Param* p = find(name);
+  if (!p) return {};
+  expect(*p, {"integer"}, "\"integer\"");
+  std::vector<int> out;
+  out.reserve(p->numbers.size());
+  for (double v : p->numbers) {
+    if (v != std::floor(v) || std::fabs(v) > 2147483647.0) fail(*p, "expected integer values");
+    out.push_back(int(v));
+  }
+  return out;
+}
+
+std::vector<Vec3> ParamSet::get_point3s(const std::string& name) const {
+  const Param* p = find(name);
+  if (!p) return {};
+  expect(*p, {"point3", "point", "vector3", "vector", "normal", "normal3"}, "\"point3\", \"vector3\" or \"normal\"");
+  expect_count(*this, *p, p->numbers.size(), 3);
+  std::vector<Vec3> out(p->numbers.size() / 3);
+  for (size_t i = 0; i < out.size(); ++i)
+    out[i] = Vec3(float(p->numbers[3 * i]), float(p->numbers[3 * i + 1]), float(p->numbers[3 * i + 2]));
+  return out;
+}
+
+std::vector<Vec2> ParamSet::get_point2s(const std::string& name) const {
+  const Param* p = find(name);
+  if (!p) return {};
+  expect(*p, {"point2", "vector2", "float"}, "\"point2\"");
+  expect_count(*this, *p, p->numbers.size(), 2);
+  std::vector<Vec2> out(p->numbers.size() / 2);
+  for (size_t i = 0; i < out.size(); ++i) out[i] = Vec2(float(p->numbers[2 * i]), float(p->numbers[2 * i + 1]));
+  return out;
+}
+
+Vec3 ParamSet::get_point3(const std::string& name, Vec3 def) const {
+  const Param* p = find(name);
+  if (!p) return def;
+  auto v = get_point3s(name);
+  if (v.size() != 1) fail(*p, "expected exactly three values");
+  return v[0];
+}
+
+std::optional<std::string> ParamSet::get_texture(const std::string& name) const {
+  const Param* p = find(name);
+  if (!p || p->type != "texture") return std::nullopt;
+  if (p->strings.size() != 1) fail(*p, "expected exactly one texture name");
+  return p->strings[0];
+}
+
+std::optional<RGB> ParamSet::get_rgb(const std::string& name, ColorUsage usage) const {
+  const Param* p = find(name);
+  if (!p) return std::nullopt;
+  if (p->type == "rgb" || p->type == "color") {
+    if (p->numbers.size() != 3) fail(*p, "expected three values (r g b), got " + std::to_string(p->numbers.size()));
+    RGB c(float(p->numbers[0]), float(p->numbers[1]), float(p->numbers[2]));
+    if (c.x < 0.f || c.y < 0.f || c.z < 0.f) fail(*p, "RGB values must not be negative");
+    if (usage == ColorUsage::Reflectance && max_component(c) > 1.f && warn && *warn)
+      (*warn)(p->where.str() + ": warning: " + directive + ": reflectance \"" + name + "\" exceeds 1 and was clamped");
+    if (usage == ColorUsage::Reflectance) c = glm::min(c, RGB(1.f));
+    return c;
+  }
+  if (p->type == "blackbody") {
+    if (p->numbers.size() != 1) fail(*p, "expected one temperature in kelvin");
+    return blackbody_rgb(float(p->numbers[0]));
+  }
+  if (p->type == "spectrum") {
+    if (!p->strings.empty()) {
+      if (auto c = named_spectrum_rgb(p->strings[0])) return *c;
+      fail(*p, "unknown named spectrum \"" + p->strings[0] +
+                   "\"; known: metal-{Cu,Au,Ag,Al}-{eta,k}, glass-{BK7,BAF10,FK51A,LASF9,F5,F10,F11}");
+    }
+    if (p->numbers.size() == 1) return RGB(float(p->numbers[0]));
+    fail(*p, "sampled spectra (wavelength/value pairs) are not supported: give \"rgb\" values instead");
+  }
+  if (p->type == "float" && usage == ColorUsage::Unbounded && p->numbers.size() == 1)
+    return RGB(float(p->numbers[0]));
+  fail(*p, "has type \"" + p->type + "\", expected \"rgb\", \"spectrum\" or \"blackbody\"");
+}
+
+// CIE 1931 colour matching functions by the multi-lobe Gaussian fit of
+// Wyman, Sloan and Shirley 2013 ("Simple Analytic Approximations to the CIE
+// XYZ Color Matching Functions"), good to a few percent.
+static float g(float x, float mu, float s1, float s2) {
+  float t = (x - mu) / (x < mu ? s1 : s2);
+  return std::exp(-0.5f * t * t);
+}
+static Vec3 cie_xyz(float nm) {
+  float x = 1.056f * g(nm, 599.8f, 37.9f, 31.0f) + 0.362f * g(nm, 442.0f, 16.0f, 26.7f) - 0.065f * g(nm, 501.1f, 20.4f, 26.2f);
+  float y = 0.821f * g(nm, 568.8f, 46.9f, 40.5f) + 0.286f * g(nm, 530.9f, 16.3f, 31.1f);
+  float z = 1.217f * g(nm, 437.0f, 11.8f, 36.0f) + 0.681f * g(nm, 459.0f, 26.0f, 13.8f);
+  return Vec3(x, y, z);
+}
+
+RGB blackbody_rgb(float kelvin) {
+  if (!(kelvin > 0.f)) return RGB(0.f);
+  const double c = 299792458.0, h = 6.62606957e-34, kb = 1.3806488e-23;
+  Vec3 xyz(0.f);
+  for (int nm = 360; nm <= 830; nm += 5) {
+    double l = nm * 1e-9;
+    double le = (2.0 * h * c * c) / (std::pow(l, 5) * (std::exp((h * c) / (l * kb * kelvin)) - 1.0));
+    xyz += cie_xyz(float(nm)) * float(le);
+  }
+  if (xyz.y <= 0.f) return RGB(0.f);
+  xyz /= xyz.y;
+  // XYZ -> linear sRGB (D65), IEC 61966-2-1.
+  RGB rgb(3.2404542f * xyz.x - 1.5371385f * xyz.y - 0.4985314f * xyz.z,
+          -0.9692660f * xyz.x + 1.8760108f * xyz.y + 0.0415560f * xyz.z,
+          0.0556434f * xyz.x - 0.2040259f * xyz.y + 1.0572252f * xyz.z);
+  return glm::max(rgb, RGB(0.f));
+}
+
+std::optional<RGB> named_spectrum_rgb(const std::string& name) {
+  // Metal optical constants reduced to RGB and glass indices at the sodium
+  // d-line (587.6 nm); dispersion is not modelled.
+  static const std::map<std::string, RGB> table = {
+      {"metal-Cu-eta", RGB(0.200438f, 0.924033f, 1.102212f)}, {"metal-Cu-k", RGB(3.912949f, 2.452848f, 2.142188f)},
+      {"metal-Au-eta", RGB(0.143119f, 0.374957f, 1.442479f)}, {"metal-Au-k", RGB(3.983160f, 2.385721f, 1.603215f)},
+      {"metal-Ag-eta", RGB(0.155265f, 0.116723f, 0.138342f)}, {"metal-Ag-k", RGB(4.828350f, 3.122250f, 2.146960f)},
+      {"metal-Al-eta", RGB(1.657460f, 0.880369f, 0.521229f)}, {"metal-Al-k", RGB(9.223869f, 6.269523f, 4.837001f)},
+      {"glass-BK7", RGB(1.5168f)},  {"glass-BAF10", RGB(1.6700f)}, {"glass-FK51A", RGB(1.4866f)},
+      {"glass-LASF9", RGB(1.8503f)}, {"glass-F5", RGB(1.6034f)},    {"glass-F10", RGB(1.6200f)},
+      {"glass-F11", RGB(1.6200f)},
+  };
+  auto it = table.find(name);
+  if (it == table.end()) return std::nullopt;
+  return it->second;
+}
+
+}  // namespace lantern::pbrt

@@ -1,0 +1,67 @@
+// A directive's parameter list: "type name" [values], type-checked on read.
+// Every parameter remembers whether it was read, so the parser can warn
+// about the ones a directive ignored.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lantern/error.h"
+#include "math/common.h"
+
+namespace lantern::pbrt {
+
+struct Param {
+  std::string type;  // as written: "float", "rgb", "point3", ...
+  std::string name;
+  std::vector<double> numbers;
+  std::vector<std::string> strings;
+  std::vector<bool> bools;
+  SourceLocation where;
+  mutable bool used = false;
+};
+
+// What a colour parameter describes: pbrt converts spectra differently for
+// reflectances (bounded by 1), illuminants and unbounded quantities (eta, k).
+enum class ColorUsage { Reflectance, Illuminant, Unbounded };
+
+class ParamSet {
+ public:
+  std::vector<Param> params;
+  SourceLocation where;        // of the directive
+  std::string directive;      // e.g. Shape "sphere", for messages
+  WarningSink* warn = nullptr;
+
+  const Param* find(const std::string& name) const;
+  bool has(const std::string& name) const { return find(name) != nullptr; }
+
+  float get_float(const std::string& name, float def) const;
+  int get_int(const std::string& name, int def) const;
+  bool get_bool(const std::string& name, bool def) const;
+  std::string get_string(const std::string& name, const std::string& def) const;
+  std::vector<float> get_floats(const std::string& name) const;
+  std::vector<int> get_ints(const std::string& name) const;
+  std::vector<Vec3> get_point3s(const std::string& name) const;  // point3, vector3, normal
+  std::vector<Vec2> get_point2s(const std::string& name) const;
+  Vec3 get_point3(const std::string& name, Vec3 def) const;
+  // rgb / color / spectrum / blackbody; nullopt when absent.
+  std::optional<RGB> get_rgb(const std::string& name, ColorUsage usage) const;
+  // Name of a texture parameter ("texture reflectance" "tex"), if given that way.
+  std::optional<std::string> get_texture(const std::string& name) const;
+
+  [[noreturn]] void fail(const Param& p, const std::string& what) const;
+  [[noreturn]] void fail(const std::string& what) const;
+  void warn_unused() const;
+
+ private:
+  const Param& expect(const Param& p, std::initializer_list<const char*> types, const char* expected) const;
+};
+
+// Colour of a blackbody emitter at the given temperature, in linear sRGB,
+// normalised to luminance 1 (pbrt normalises light spectra photometrically).
+RGB blackbody_rgb(float kelvin);
+// A named spectrum of pbrt-v4 (metal-Cu-eta, glass-BK7, ...) as RGB.
+std::optional<RGB> named_spectrum_rgb(const std::string& name);
+
+}  // namespace lantern::pbrt

@@ -1,0 +1,373 @@
+#include "scene/pbrt/parser.h"
+
+#include <charconv>
+#include <filesystem>
+#include <glm/gtc/matrix_transform.hpp>
+#include <map>
+
+#include "scene/pbrt/tokenizer.h"
+
+namespace lantern::pbrt {
+
+namespace {
+
+constexpr size_t kMaxIncludeDepth = 64;
+constexpr size_t kMaxAttributeDepth = 10000;
+
+class Parser {
+ public:
+  Parser(SceneBuilder& b, std::string base_dir) : b_(b), base_dir_(std::move(base_dir)) {}
+
+  void run(std::unique_ptr<Tokenizer> root) {
+    files_.push_back(std::move(root));
+    for (;;) {
+      Token t = next();
+      if (t.kind == TokenKind::End) break;
+      if (t.kind != TokenKind::Identifier) fail(t, std::string("expected a directive name, found ") + token_kind_name(t.kind) + describe(t));
+      directive(t);
+    }
+    if (!stack_.empty()) throw InputError(stack_where_.back(), "AttributeBegin without a matching AttributeEnd");
+  }
+
+ private:
+  // --- tokens ------------------------------------------------------------
+  Token next() {
+    if (peeked_) {
+      Token t = *peeked_;
+      peeked_.reset();
+      return t;
+    }
+    while (!files_.empty()) {
+      Token t = files_.back()->next();
+      if (t.kind != TokenKind::End) {
+        current_ = files_.back().get();
+        return t;
+      }
+      if (files_.size() == 1) {
+        current_ = files_.back().get();
+        return t;
+      }
+      files_.pop_back();
+    }
+    return Token{};
+  }
+  Token peek() {
+    if (!peeked_) peeked_ = next();
+    return *peeked_;
+  }
+  SourceLocation loc(const Token& t) const { return current_->location(t); }
+  [[noreturn]] void fail(const Token& t, const std::string& what) const { throw InputError(loc(t), what); }
+  static std::string describe(const Token& t) {
+    if (t.kind == TokenKind::End) return "";
+    return " \"" + std::string(t.text.substr(0, 40)) + (t.text.size() > 40 ? "...\"" : "\"");
+  }
+
+  std::string expect_string(const char* what) {
+    Token t = next();
+    if (t.kind != TokenKind::String)
+      fail(t, std::string("expected ") + what + " (a quoted string), found " + token_kind_name(t.kind) + describe(t));
+    return unescape(t.text);
+  }
+  double to_number(const Token& t) {
+    double v = 0.0;
+    const char* b = t.text.data();
+    const char* e = b + t.text.size();
+    if (*b == '+') ++b;
+    auto [ptr, ec] = std::from_chars(b, e, v);
+    if (ec != std::errc() || ptr != e) fail(t, "malformed number" + describe(t));
+    return v;
+  }
+  std::vector<double> numbers(size_t n, const char* what) {
+    std::vector<double> v;
+    Token t = peek();
+    bool bracket = t.kind == TokenKind::OpenBracket;
+    if (bracket) next();
+    for (size_t i = 0; i < n; ++i) {
+      Token x = next();
+      if (x.kind != TokenKind::Number)
+        fail(x, std::string(what) + " expects " + std::to_string(n) + " numbers; found " + token_kind_name(x.kind) + describe(x));
+      v.push_back(to_number(x));
+    }
+    if (bracket) {
+      Token c = next();
+      if (c.kind != TokenKind::CloseBracket) fail(c, std::string(what) + ": expected ']' after " + std::to_string(n) + " numbers");
+    }
+    return v;
+  }
+
+  // --- parameter lists ---------------------------------------------------
+  ParamSet params(const Token& at, const std::string& directive) {
+    ParamSet ps;
+    ps.where = loc(at);
+    ps.directive = directive;
+    ps.warn = &warn_sink_;
+    while (peek().kind == TokenKind::String) {
+      Token decl = next();
+      Param p;
+      p.where = loc(decl);
+      std::string s = unescape(decl.text);
+      size_t a = s.find_first_not_of(" \t"), sp = s.find_first_of(" \t", a);
+      size_t c = sp == std::string::npos ? sp : s.find_first_not_of(" \t", sp);
+      if (a == std::string::npos || c == std::string::npos)
+        fail(decl, "expected a parameter declaration \"type name\", found \"" + s.substr(0, 40) + "\"");
+      p.type = s.substr(a, sp - a);
+      p.name = s.substr(c, s.find_last_not_of(" \t") - c + 1);
+      static const char* kTypes[] = {"integer", "float",  "point2", "vector2", "point3",    "vector3", "normal",
+                                     "normal3", "point",  "vector", "color",   "rgb",       "spectrum", "blackbody",
+                                     "bool",    "string", "texture"};
+      bool known = false;
+      for (const char* k : kTypes) known |= p.type == k;
+      if (!known) fail(decl, "unknown parameter type \"" + p.type + "\" in \"" + s + "\"");
+      values(p, decl);
+      for (const Param& q : ps.params)
+        if (q.name == p.name) fail(decl, "parameter \"" + p.name + "\" is given twice");
+      ps.params.push_back(std::move(p));
+    }
+    return ps;
+  }
+
+  void value(Param& p, const Token& v) {
+    bool stringy = p.type == "string" || p.type == "texture" || p.type == "bool" || p.type == "spectrum";
+    if (v.kind == TokenKind::Number) {
+      if (p.type == "string" || p.type == "texture" || p.type == "bool")
+        fail(v, "parameter \"" + p.name + "\" of type \"" + p.type + "\" expects quoted strings, found a number");
+      p.numbers.push_back(to_number(v));
+    } else if (v.kind == TokenKind::String || (p.type == "bool" && v.kind == TokenKind::Identifier)) {
+      if (!stringy) fail(v, "parameter \"" + p.name + "\" of type \"" + p.type + "\" expects numbers, found a string" + describe(v));
+      std::string s = unescape(v.text);
+      if (p.type == "bool") {
+        if (s != "true" && s != "false") fail(v, "parameter \"" + p.name + "\" expects true or false, found \"" + s + "\"");
+        p.bools.push_back(s == "true");
+      } else {
+        p.strings.push_back(std::move(s));
+      }
+    } else {
+      fail(v, "expected a value for parameter \"" + p.name + "\", found " + token_kind_name(v.kind) + describe(v));
+    }
+  }
+
+  void values(Param& p, const Token& decl) {
+    Token t = next();
+    if (t.kind != TokenKind::OpenBracket) {
+      value(p, t);
+      return;
+    }
+    for (;;) {
+      Token v = next();
+      if (v.kind == TokenKind::CloseBracket) break;
+      if (v.kind == TokenKind::End) fail(decl, "the file ended inside the value list of \"" + p.name + "\" (missing ']')");
+      value(p, v);
+    }
+  }
+
+  // --- directives --------------------------------------------------------
+  void directive(const Token& t) {
+    const std::string_view d = t.text;
+    auto world_only = [&] {
+      if (!in_world_) fail(t, std::string(d) + " is only allowed after WorldBegin");
+    };
+    auto options_only = [&] {
+      if (in_world_) fail(t, std::string(d) + " is only allowed before WorldBegin");
+    };
+    Mat4& ctm = gs_.ctm;
+    if (d == "Translate") {
+      auto v = numbers(3, "Translate");
+      ctm = glm::translate(ctm, Vec3(float(v[0]), float(v[1]), float(v[2])));
+    } else if (d == "Scale") {
+      auto v = numbers(3, "Scale");
+      ctm = glm::scale(ctm, Vec3(float(v[0]), float(v[1]), float(v[2])));
+    } else if (d == "Rotate") {
+      auto v = numbers(4, "Rotate");
+      Vec3 axis{float(v[1]), float(v[2]), float(v[3])};
+      if (glm::length(axis) == 0.f) fail(t, "Rotate: the axis must not be zero");
+      ctm = glm::rotate(ctm, glm::radians(float(v[0])), glm::normalize(axis));
+    } else if (d == "LookAt") {
+      auto v = numbers(9, "LookAt");
+      ctm = ctm * look_at(t, Vec3(v[0], v[1], v[2]), Vec3(v[3], v[4], v[5]), Vec3(v[6], v[7], v[8]));
+    } else if (d == "Transform" || d == "ConcatTransform") {
+      auto v = numbers(16, std::string(d).c_str());
+      Mat4 m;
+      for (int i = 0; i < 16; ++i) m[i / 4][i % 4] = float(v[size_t(i)]);
+      ctm = d == "Transform" ? m : ctm * m;
+    } else if (d == "Identity") {
+      ctm = Mat4(1.f);
+    } else if (d == "CoordinateSystem") {
+      named_cs_[expect_string("a coordinate system name")] = ctm;
+    } else if (d == "CoordSysTransform") {
+      std::string n = expect_string("a coordinate system name");
+      auto it = named_cs_.find(n);
+      if (it == named_cs_.end()) b_.warn(loc(t), "unknown coordinate system \"" + n + "\" ignored");
+      else ctm = it->second;
+    } else if (d == "ReverseOrientation") {
+      gs_.reverse_orientation = !gs_.reverse_orientation;
+    } else if (d == "AttributeBegin" || d == "TransformBegin") {
+      if (stack_.size() >= kMaxAttributeDepth) fail(t, "AttributeBegin nested deeper than " + std::to_string(kMaxAttributeDepth));
+      stack_.push_back(gs_);
+      stack_where_.push_back(loc(t));
+      transform_only_.push_back(d == "TransformBegin");
+    } else if (d == "AttributeEnd" || d == "TransformEnd") {
+      if (stack_.empty()) fail(t, std::string(d) + " without a matching " + (d == "AttributeEnd" ? "AttributeBegin" : "TransformBegin"));
+      if (transform_only_.back()) {
+        gs_.ctm = stack_.back().ctm;
+      } else {
+        gs_ = stack_.back();
+      }
+      stack_.pop_back();
+      stack_where_.pop_back();
+      transform_only_.pop_back();
+    } else if (d == "WorldBegin") {
+      options_only();
+      in_world_ = true;
+      ctm = Mat4(1.f);
+      named_cs_["world"] = ctm;
+    } else if (d == "WorldEnd") {
+      world_only();
+    } else if (d == "Camera") {
+      options_only();
+      std::string type = expect_string("a camera type");
+      ParamSet ps = params(t, "Camera \"" + type + "\"");
+      b_.camera(type, ps, ctm);
+      named_cs_["camera"] = glm::inverse(ctm);
+      ps.warn_unused();
+    } else if (d == "Film" || d == "Sampler" || d == "Integrator" || d == "PixelFilter" || d == "Accelerator" ||
+               d == "ColorSpace" || d == "Option") {
+      options_only();
+      std::string type = expect_string("a type name");
+      if (d == "Option") {
+        peek().kind == TokenKind::OpenBracket ? (void)values_skip() : (void)next();
+        b_.warn(loc(t), "Option \"" + type + "\" is not supported and was ignored");
+        return;
+      }
+      ParamSet ps = params(t, std::string(d) + " \"" + type + "\"");
+      if (d == "Film") b_.film(type, ps);
+      else if (d == "Sampler") b_.sampler(type, ps);
+      else if (d == "Integrator") b_.integrator(type, ps);
+      else if (d == "PixelFilter") b_.pixel_filter(type, ps);
+      else if (d == "ColorSpace" && type != "srgb") b_.warn(loc(t), "colour space \"" + type + "\" is not supported; using sRGB");
+      if (d != "Accelerator") ps.warn_unused();
+    } else if (d == "Include" || d == "Import") {
+      include(t, expect_string("a file name"));
+    } else if (d == "Material") {
+      world_only();
+      std::string type = expect_string("a material type");
+      ParamSet ps = params(t, "Material \"" + type + "\"");
+      gs_.material = b_.material(type, ps);
+      ps.warn_unused();
+    } else if (d == "MakeNamedMaterial") {
+      world_only();
+      std::string name = expect_string("a material name");
+      ParamSet ps = params(t, "MakeNamedMaterial \"" + name + "\"");
+      std::string type = ps.get_string("type", "");
+      if (type.empty()) ps.fail("needs a \"string type\" parameter");
+      if (named_materials_.count(name)) b_.warn(loc(t), "material \"" + name + "\" redefined");
+      named_materials_[name] = b_.material(type, ps);
+      ps.warn_unused();
+    } else if (d == "NamedMaterial") {
+      world_only();
+      std::string name = expect_string("a material name");
+      auto it = named_materials_.find(name);
+      if (it == named_materials_.end()) fail(t, "NamedMaterial \"" + name + "\" was never defined with MakeNamedMaterial");
+      gs_.material = it->second;
+    } else if (d == "Texture") {
+      world_only();
+      std::string name = expect_string("a texture name");
+      std::string vtype = expect_string("a texture value type");
+      std::string cls = expect_string("a texture class");
+      ParamSet ps = params(t, "Texture \"" + name + "\"");
+      b_.texture(name, vtype, cls, ps, base_dir_);
+      ps.warn_unused();
+    } else if (d == "LightSource") {
+      world_only();
+      std::string type = expect_string("a light type");
+      ParamSet ps = params(t, "LightSource \"" + type + "\"");
+      b_.light(type, ps, ctm, base_dir_);
+      ps.warn_unused();
+    } else if (d == "AreaLightSource") {
+      world_only();
+      std::string type = expect_string("an area light type");
+      ParamSet ps = params(t, "AreaLightSource \"" + type + "\"");
+      if (type != "diffuse") ps.fail("area light type \"" + type + "\" is not supported; expected \"diffuse\"");
+      gs_.area_light = std::move(ps);
+    } else if (d == "Shape") {
+      world_only();
+      std::string type = expect_string("a shape type");
+      ParamSet ps = params(t, "Shape \"" + type + "\"");
+      b_.shape(type, ps, gs_, base_dir_);
+      ps.warn_unused();
+    } else if (d == "MakeNamedMedium" || d == "MediumInterface" || d == "Attribute") {
+      std::string first = expect_string("a name");
+      if (d == "MediumInterface" && peek().kind == TokenKind::String) next();
+      if (d == "Attribute" || d == "MakeNamedMedium") params(t, std::string(d));
+      b_.warn(loc(t), std::string(d) + " is not supported (participating media are not rendered); ignored");
+    } else if (d == "ObjectBegin" || d == "ObjectEnd" || d == "ObjectInstance") {
+      fail(t, std::string(d) + ": object instancing is not supported yet");
+    } else if (d == "ActiveTransform" || d == "TransformTimes") {
+      if (d == "ActiveTransform") next();
+      else numbers(2, "TransformTimes");
+      b_.warn(loc(t), std::string(d) + " is not supported (no motion blur); ignored");
+    } else {
+      fail(t, "unknown directive \"" + std::string(d.substr(0, 40)) + "\"");
+    }
+  }
+
+  void values_skip() {
+    next();
+    for (Token v = next(); v.kind != TokenKind::CloseBracket; v = next())
+      if (v.kind == TokenKind::End) fail(v, "the file ended inside a value list (missing ']')");
+  }
+
+  // pbrt's LookAt: the camera-from-world matrix of a left-handed camera.
+  Mat4 look_at(const Token& t, Vec3 pos, Vec3 look, Vec3 up) {
+    Vec3 dir = look - pos;
+    if (glm::length(dir) == 0.f) fail(t, "LookAt: eye and look-at point coincide");
+    dir = glm::normalize(dir);
+    Vec3 right = glm::cross(glm::normalize(up), dir);
+    if (glm::length(right) == 0.f) fail(t, "LookAt: the up vector is parallel to the viewing direction");
+    right = glm::normalize(right);
+    Vec3 new_up = glm::cross(dir, right);
+    Mat4 world_from_camera(Vec4(right, 0.f), Vec4(new_up, 0.f), Vec4(dir, 0.f), Vec4(pos, 1.f));
+    return glm::inverse(world_from_camera);
+  }
+
+  void include(const Token& t, const std::string& file) {
+    std::filesystem::path p(file);
+    if (!p.is_absolute() && !base_dir_.empty()) p = std::filesystem::path(base_dir_) / p;
+    std::error_code ec;
+    std::string canon = std::filesystem::weakly_canonical(p, ec).string();
+    for (const auto& f : files_)
+      if (std::filesystem::weakly_canonical(f->filename(), ec).string() == canon)
+        fail(t, "Include cycle: \"" + file + "\" is already being read");
+    if (files_.size() >= kMaxIncludeDepth) fail(t, "Include nested deeper than " + std::to_string(kMaxIncludeDepth) + " files");
+    if (peeked_) fail(t, "internal: Include with a pending token");
+    files_.push_back(Tokenizer::from_file(p.string(), loc(t)));
+  }
+
+  SceneBuilder& b_;
+  std::string base_dir_;
+  WarningSink warn_sink_ = [this](const std::string& s) { b_.warn_line(s); };
+  std::vector<std::unique_ptr<Tokenizer>> files_;
+  Tokenizer* current_ = nullptr;
+  std::optional<Token> peeked_;
+  GraphicsState gs_;
+  std::vector<GraphicsState> stack_;
+  std::vector<SourceLocation> stack_where_;
+  std::vector<bool> transform_only_;
+  std::map<std::string, Mat4> named_cs_;
+  std::map<std::string, MaterialHandle> named_materials_;
+  bool in_world_ = false;
+};
+
+}  // namespace
+
+void parse_file(const std::string& path, SceneBuilder& builder) {
+  std::string dir = std::filesystem::path(path).parent_path().string();
+  Parser p(builder, dir);
+  p.run(Tokenizer::from_file(path, SourceLocation{path, 0, 0}));
+}
+
+void parse_string(const std::string& text, const std::string& name, const std::string& base_dir, SceneBuilder& builder) {
+  Parser p(builder, base_dir);
+  p.run(std::make_unique<Tokenizer>(text, name));
+}
+
+}  // namespace lantern::pbrt

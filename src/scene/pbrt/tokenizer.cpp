@@ -1,0 +1,119 @@
+#include "scene/pbrt/tokenizer.h"
+
+#include <fstream>
+#include <sstream>
+
+namespace lantern::pbrt {
+
+Tokenizer::Tokenizer(std::string text, std::string filename)
+    : text_(std::move(text)), filename_(std::move(filename)) {}
+
+std::unique_ptr<Tokenizer> Tokenizer::from_file(const std::string& path, const SourceLocation& from) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(from, "cannot open scene file \"" + path + "\"");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw InputError(from, "cannot read scene file \"" + path + "\"");
+  return std::make_unique<Tokenizer>(ss.str(), path);
+}
+
+void Tokenizer::fail(int line, int col, const std::string& what) const {
+  throw InputError({filename_, line, col}, what);
+}
+
+static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }
+static bool is_delimiter(char c) { return is_space(c) || c == '"' || c == '[' || c == ']' || c == '#'; }
+
+Token Tokenizer::next() {
+  const size_t n = text_.size();
+  for (;;) {
+    while (pos_ < n && is_space(text_[pos_])) {
+      if (text_[pos_] == '\n') {
+        ++line_;
+        line_start_ = pos_ + 1;
+      }
+      ++pos_;
+    }
+    if (pos_ < n && text_[pos_] == '#') {
+      while (pos_ < n && text_[pos_] != '\n') ++pos_;
+      continue;
+    }
+    break;
+  }
+  Token t;
+  t.line = line_;
+  t.column = int(pos_ - line_start_) + 1;
+  if (pos_ >= n) return t;
+
+  char c = text_[pos_];
+  if (c == '[' || c == ']') {
+    t.kind = c == '[' ? TokenKind::OpenBracket : TokenKind::CloseBracket;
+    t.text = std::string_view(text_).substr(pos_, 1);
+    ++pos_;
+    return t;
+  }
+  if (c == '"') {
+    size_t start = ++pos_;
+    while (pos_ < n && text_[pos_] != '"') {
+      if (text_[pos_] == '\n') fail(t.line, t.column, "unterminated string: a newline came before the closing '\"'");
+      if (text_[pos_] == '\\') ++pos_;
+      ++pos_;
+    }
+    if (pos_ >= n) fail(t.line, t.column, "unterminated string: the file ended before the closing '\"'");
+    t.kind = TokenKind::String;
+    t.text = std::string_view(text_).substr(start, pos_ - start);
+    ++pos_;
+    return t;
+  }
+  size_t start = pos_;
+  while (pos_ < n && !is_delimiter(text_[pos_])) ++pos_;
+  t.text = std::string_view(text_).substr(start, pos_ - start);
+  char f = t.text[0];
+  bool numeric = (f >= '0' && f <= '9') || f == '-' || f == '+' || f == '.';
+  t.kind = numeric ? TokenKind::Number : TokenKind::Identifier;
+  if (!numeric) {
+    for (char ch : t.text) {
+      bool ok = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '_';
+      if (!ok) {
+        std::string shown = std::string(t.text.substr(0, 40));
+        fail(t.line, t.column, "unexpected characters \"" + shown + "\": expected a directive name, a number, a quoted string or '[' / ']'");
+      }
+    }
+  }
+  return t;
+}
+
+std::string unescape(std::string_view s) {
+  std::string out;
+  out.reserve(s.size());
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (s[i] != '\\' || i + 1 == s.size()) {
+      out += s[i];
+      continue;
+    }
+    char e = s[++i];
+    switch (e) {
+      case 'n': out += '\n'; break;
+      case 't': out += '\t'; break;
+      case 'b': out += '\b'; break;
+      case 'f': out += '\f'; break;
+      case 'r': out += '\r'; break;
+      default: out += e; break;
+    }
+  }
+  return out;
+}
+
+const char* token_kind_name(TokenKind k) {
+  switch (k) {
+    case TokenKind::Identifier: return "a directive name";
+    case TokenKind::String: return "a quoted string";
+    case TokenKind::Number: return "a number";
+    case TokenKind::OpenBracket: return "'['";
+    case TokenKind::CloseBracket: return "']'";
+    case TokenKind::End: return "the end of the file";
+  }
+  return "?";
+}
+
+}  // namespace lantern::pbrt

@@ -1,0 +1,36 @@
+// The scene at run time: settings, the camera, and one dense pool per
+// component kind. A pool that no entity uses is empty and costs nothing.
+#pragma once
+
+#include <memory>
+
+#include "accel/embree_scene.h"
+#include "camera/camera.h"
+#include "lantern/scene.h"
+#include "light/lights.h"
+#include "material/material.h"
+#include "scene/shapes.h"
+#include "scene/texture.h"
+
+namespace lantern {
+
+struct PixelFilter {
+  enum class Type { Box, Triangle, Gaussian } type = Type::Gaussian;
+  Vec2 radius{1.5f};
+  float sigma = 0.5f;
+};
+
+struct Scene {
+  SceneSettings settings;
+  CameraDesc camera;
+  PixelFilter filter;
+  ShapePools shapes;
+  MaterialPools materials;
+  TexturePools textures;
+  LightPools lights;
+  std::unique_ptr<EmbreeScene> accel;
+  Vec3 bounds_lo{0.f}, bounds_hi{0.f};
+  size_t triangle_count = 0;
+};
+
+}  // namespace lantern

@@ -1,0 +1,76 @@
+// A point on a shape with its oriented normals, reconstructed the same way
+// for ray hits and for light samples (pbrt's orientation rules: a mesh with
+// per-vertex N faces its geometric normal towards N; otherwise the winding
+// normal, flipped by ReverseOrientation or a handedness-swapping transform).
+#pragma once
+
+#include "scene/shapes.h"
+
+namespace lantern {
+
+struct SurfacePoint {
+  Vec3 p;
+  Vec3 ng;  // oriented geometric normal (unit)
+  Vec3 ns;  // shading normal (unit), on the same side as ng
+  Vec2 uv;
+  float error_scale;  // magnitude the position's rounding error scales with
+};
+
+inline SurfacePoint triangle_point(const TriangleMesh& m, uint32_t prim, float b1, float b2) {
+  const glm::uvec3 t = m.triangles[prim];
+  const Vec3 &p0 = m.positions[t.x], &p1 = m.positions[t.y], &p2 = m.positions[t.z];
+  float b0 = 1.f - b1 - b2;
+  SurfacePoint sp;
+  sp.p = b0 * p0 + b1 * p1 + b2 * p2;
+  Vec3 n = glm::cross(p1 - p0, p2 - p0);
+  float len = glm::length(n);
+  n = len > 0.f ? n / len : Vec3(0, 0, 1);
+  if (!m.normals.empty()) {
+    Vec3 ns = b0 * m.normals[t.x] + b1 * m.normals[t.y] + b2 * m.normals[t.z];
+    float l2 = glm::dot(ns, ns);
+    ns = l2 > 0.f ? ns / std::sqrt(l2) : n;
+    if (glm::dot(n, ns) < 0.f) n = -n;
+    sp.ns = ns;
+  } else {
+    if (m.flip_normal) n = -n;
+    sp.ns = n;
+  }
+  sp.ng = n;
+  sp.uv = m.uvs.empty() ? Vec2(b1, b2) : b0 * m.uvs[t.x] + b1 * m.uvs[t.y] + b2 * m.uvs[t.z];
+  sp.error_scale = std::fmax(max_abs_component(sp.p),
+                             std::fmax(max_abs_component(p0), std::fmax(max_abs_component(p1), max_abs_component(p2))));
+  return sp;
+}
+
+inline float triangle_area(const TriangleMesh& m, uint32_t prim) {
+  const glm::uvec3 t = m.triangles[prim];
+  return 0.5f * glm::length(glm::cross(m.positions[t.y] - m.positions[t.x], m.positions[t.z] - m.positions[t.x]));
+}
+
+// `p` is any point near the surface; it is projected onto the sphere.
+inline SurfacePoint sphere_point(const Sphere& s, const Vec3& p) {
+  Vec3 d = p - s.center;
+  float len = glm::length(d);
+  Vec3 n = len > 0.f ? d / len : Vec3(0, 0, 1);
+  SurfacePoint sp;
+  sp.p = s.center + s.radius * n;
+  sp.ng = sp.ns = s.flip_normal ? -n : n;
+  Vec3 po = Vec3(s.object_from_world * Vec4(sp.p, 1.f));
+  float phi = std::atan2(po.y, po.x);
+  if (phi < 0.f) phi += 2.f * kPi;
+  float cz = glm::clamp(po.z / glm::length(po), -1.f, 1.f);
+  sp.uv = Vec2(phi * kInv2Pi, (std::acos(cz) - kPi) / -kPi);
+  sp.error_scale = max_abs_component(s.center) + s.radius;
+  return sp;
+}
+
+// Offsets a ray origin off the surface along the geometric normal, on the
+// side `w` leaves towards. The offset is relative to the magnitude of the
+// coordinates, so a scene scaled by 1e-4 or 1e5 behaves alike.
+inline constexpr float kRayOffsetScale = 1.0e-5f;
+inline Vec3 offset_ray_origin(const Vec3& p, const Vec3& ng, float error_scale, const Vec3& w) {
+  float d = kRayOffsetScale * error_scale;
+  return glm::dot(w, ng) < 0.f ? p - d * ng : p + d * ng;
+}
+
+}  // namespace lantern
