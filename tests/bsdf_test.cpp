@@ -1,0 +1,206 @@
+// Every BSDF: sampled directions follow the reported pdf (chi-square over a
+// binned sphere), no energy is created (white furnace), and the adjoint
+// relation f(wo, wi) in radiance mode equals f(wi, wo) in importance mode.
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <string>
+
+#include "material/bsdf_kernel.h"
+#include "material/fresnel.h"
+#include "math/rng.h"
+
+namespace lantern {
+namespace {
+
+Vec3 dir_from_angles(float theta_deg, float phi_deg) {
+  float t = glm::radians(theta_deg), p = glm::radians(phi_deg);
+  return Vec3(std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t));
+}
+
+// Wilson-Hilferty approximation of the chi-square quantile for p = 1e-6.
+double chi2_critical(int dof) {
+  double k = dof, z = 4.75;
+  double a = 1.0 - 2.0 / (9.0 * k) + z * std::sqrt(2.0 / (9.0 * k));
+  return k * a * a * a;
+}
+
+template <class BSDF>
+void expect_sampling_matches_pdf(const BSDF& bsdf, const Vec3& wo, TransportMode mode, const std::string& what) {
+  constexpr int kTheta = 16, kPhi = 32;
+  constexpr int kSamples = 400000;
+  std::vector<double> observed(kTheta * kPhi + 1, 0.0), expected(kTheta * kPhi + 1, 0.0);
+  PathSampler s = PathSampler::make(7, 0, 0);
+  auto bin_of = [&](const Vec3& w) {
+    float theta = std::acos(glm::clamp(w.z, -1.f, 1.f));
+    int bt = std::min(kTheta - 1, int(theta * kInvPi * kTheta));  // uniform in theta
+    float phi = std::atan2(w.y, w.x);
+    if (phi < 0.f) phi += 2.f * kPi;
+    int bp = std::min(kPhi - 1, int(phi * kInv2Pi * kPhi));
+    return bt * kPhi + bp;
+  };
+  for (int i = 0; i < kSamples; ++i) {
+    float uc = s.get1d();
+    Vec2 u = s.get2d();
+    auto bs = bsdf.sample_f(wo, uc, u, mode);
+    if (!bs || bs->pdf == 0.f) {
+      observed[kTheta * kPhi] += 1;  // the "no sample" outcome
+      continue;
+    }
+    ASSERT_FALSE(bs->specular) << what;
+    observed[size_t(bin_of(bs->wi))] += 1;
+  }
+  // Expected counts: integrate the pdf over each bin (midpoint rule, 32x32
+  // points per bin, d(omega) = sin(theta) d(theta) d(phi)).
+  double total = 0.0;
+  for (int bt = 0; bt < kTheta; ++bt)
+    for (int bp = 0; bp < kPhi; ++bp) {
+      double sum = 0.0;
+      constexpr int kSub = 32;
+      for (int a = 0; a < kSub; ++a)
+        for (int b = 0; b < kSub; ++b) {
+          float theta = kPi * (float(bt) + (a + 0.5f) / kSub) / kTheta;
+          float phi = 2.f * kPi * (float(bp) + (b + 0.5f) / kSub) / kPhi;
+          float r = std::sin(theta);
+          sum += r * bsdf.pdf(wo, Vec3(r * std::cos(phi), r * std::sin(phi), std::cos(theta)), mode);
+        }
+      double cell = (kPi / kTheta) * (2.0 * kPi / kPhi) / (kSub * kSub);
+      expected[size_t(bt * kPhi + bp)] = sum * cell * kSamples;
+      total += sum * cell;
+    }
+  expected[kTheta * kPhi] = std::max(0.0, 1.0 - total) * kSamples;
+  EXPECT_LT(total, 1.02) << what << ": the pdf integrates to more than 1";
+  // Pool bins with small expectations so the statistic stays chi-square.
+  double chi2 = 0.0, pool_o = 0.0, pool_e = 0.0;
+  int dof = 0;
+  for (size_t i = 0; i < observed.size(); ++i) {
+    if (expected[i] < 20.0) {
+      pool_o += observed[i];
+      pool_e += expected[i];
+      continue;
+    }
+    chi2 += sqr(float(observed[i] - expected[i])) / expected[i];
+    ++dof;
+  }
+  if (pool_e > 20.0) {
+    chi2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e;
+    ++dof;
+  } else {
+    EXPECT_LT(pool_o, 40.0 + 10.0 * pool_e) << what << ": samples where the pdf is ~0";
+  }
+  ASSERT_GT(dof, 1) << what;
+  EXPECT_LT(chi2, chi2_critical(dof - 1)) << what << " (dof " << dof - 1 << ")";
+}
+
+template <class BSDF>
+double albedo(const BSDF& bsdf, const Vec3& wo, TransportMode mode, double* std_error) {
+  PathSampler s = PathSampler::make(11, 1, 0);
+  const int n = 200000;
+  double sum = 0.0, sum2 = 0.0;
+  for (int i = 0; i < n; ++i) {
+    float uc = s.get1d();
+    Vec2 u = s.get2d();
+    double v = 0.0;
+    if (auto bs = bsdf.sample_f(wo, uc, u, mode); bs && bs->pdf > 0.f)
+      v = double(luminance(bs->f)) * std::fabs(bs->wi.z) / bs->pdf;
+    sum += v;
+    sum2 += v * v;
+  }
+  double mean = sum / n;
+  *std_error = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
+  return mean;
+}
+
+template <class BSDF>
+void expect_adjoint_reciprocity(const BSDF& bsdf, const std::string& what) {
+  PathSampler s = PathSampler::make(3, 2, 0);
+  int checked = 0;
+  for (int i = 0; i < 2000; ++i) {
+    Vec3 a = glm::normalize(Vec3(2.f * s.get1d() - 1.f, 2.f * s.get1d() - 1.f, 2.f * s.get1d() - 1.f));
+    Vec3 b = glm::normalize(Vec3(2.f * s.get1d() - 1.f, 2.f * s.get1d() - 1.f, 2.f * s.get1d() - 1.f));
+    RGB f1 = bsdf.f(a, b, TransportMode::Radiance), f2 = bsdf.f(b, a, TransportMode::Importance);
+    for (int c = 0; c < 3; ++c) {
+      float scale = std::max({std::fabs(f1[c]), std::fabs(f2[c]), 1e-6f});
+      ASSERT_NEAR(f1[c] / scale, f2[c] / scale, 1e-2f) << what << " wo=" << a.x << "," << a.y << "," << a.z;
+    }
+    checked += !is_black(f1);
+  }
+  EXPECT_GT(checked, 100) << what << ": the BSDF was almost never non-zero";
+}
+
+const float kAngles[] = {5.f, 40.f, 75.f, 85.f};
+
+TEST(BSDF, DiffuseSamplingMatchesPdf) {
+  DiffuseBSDF d{RGB(0.5f)};
+  for (float t : kAngles) expect_sampling_matches_pdf(d, dir_from_angles(t, 30.f), TransportMode::Radiance, "diffuse");
+  expect_sampling_matches_pdf(d, dir_from_angles(130.f, 30.f), TransportMode::Radiance, "diffuse from below");
+}
+
+TEST(BSDF, RoughConductorSamplingMatchesPdf) {
+  for (float alpha : {0.1f, 0.3f, 0.8f}) {
+    ConductorBSDF c{{alpha, alpha * 0.5f}, RGB(0.2f, 0.9f, 1.1f), RGB(3.9f, 2.4f, 2.1f), RGB(1.f), false};
+    for (float t : kAngles)
+      expect_sampling_matches_pdf(c, dir_from_angles(t, 60.f), TransportMode::Radiance, "conductor a=" + std::to_string(alpha) + " theta=" + std::to_string(t));
+  }
+}
+
+TEST(BSDF, RoughDielectricSamplingMatchesPdf) {
+  for (float alpha : {0.1f, 0.5f})
+    for (float eta : {1.5f, 1.f / 1.33f}) {
+      DielectricBSDF d{{alpha, alpha}, eta};
+      for (float t : {5.f, 40.f, 75.f, 130.f, 170.f})
+        for (TransportMode m : {TransportMode::Radiance, TransportMode::Importance})
+          expect_sampling_matches_pdf(d, dir_from_angles(t, 10.f), m,
+                                      "dielectric a=" + std::to_string(alpha) + " eta=" + std::to_string(eta));
+    }
+}
+
+TEST(BSDF, CoatedDiffuseSamplingMatchesPdf) {
+  for (float alpha : {0.1f, 0.4f}) {
+    CoatedDiffuseBSDF c{{alpha, alpha}, RGB(0.6f, 0.3f, 0.1f), 1.5f, diffuse_fresnel_reflectance(1.f / 1.5f)};
+    for (float t : kAngles) expect_sampling_matches_pdf(c, dir_from_angles(t, 0.f), TransportMode::Radiance, "coated a=" + std::to_string(alpha) + " theta=" + std::to_string(t));
+  }
+}
+
+TEST(BSDF, WhiteFurnaceNoEnergyGain) {
+  for (float t : kAngles) {
+    Vec3 wo = dir_from_angles(t, 20.f);
+    double se;
+    double a = albedo(DiffuseBSDF{RGB(1.f)}, wo, TransportMode::Radiance, &se);
+    EXPECT_NEAR(a, 1.0, 1e-3) << "a white Lambertian reflects everything";
+    for (float alpha : {0.f, 0.01f, 0.2f, 0.7f}) {
+      // A perfect reflector: microfacet models lose energy, never gain it.
+      ConductorBSDF c{{alpha, alpha}, RGB(1.f), RGB(0.f), RGB(1.f), true};
+      a = albedo(c, wo, TransportMode::Radiance, &se);
+      EXPECT_LT(a, 1.0 + 4 * se + 1e-4) << "conductor alpha " << alpha << " theta " << t;
+      if (alpha == 0.f) EXPECT_NEAR(a, 1.0, 1e-5);
+      for (float eta : {1.5f, 1.f / 1.5f}) {
+        DielectricBSDF d{{alpha, alpha}, eta};
+        a = albedo(d, wo, TransportMode::Importance, &se);
+        EXPECT_LT(a, 1.0 + 4 * se + 1e-4) << "dielectric alpha " << alpha << " eta " << eta;
+        if (alpha == 0.f) EXPECT_NEAR(a, 1.0, 4 * se + 1e-3) << "smooth glass neither absorbs nor creates";
+      }
+      CoatedDiffuseBSDF cd{{alpha, alpha}, RGB(1.f), 1.5f, diffuse_fresnel_reflectance(1.f / 1.5f)};
+      a = albedo(cd, wo, TransportMode::Radiance, &se);
+      EXPECT_LT(a, 1.0 + 4 * se + 1e-4) << "coated diffuse alpha " << alpha;
+    }
+  }
+}
+
+TEST(BSDF, AdjointReciprocity) {
+  expect_adjoint_reciprocity(DiffuseBSDF{RGB(0.7f)}, "diffuse");
+  expect_adjoint_reciprocity(ConductorBSDF{{0.3f, 0.1f}, RGB(0.2f), RGB(3.f), RGB(1.f), false}, "conductor");
+  expect_adjoint_reciprocity(DielectricBSDF{{0.3f, 0.3f}, 1.5f}, "rough dielectric");
+  expect_adjoint_reciprocity(CoatedDiffuseBSDF{{0.2f, 0.2f}, RGB(0.5f), 1.5f, diffuse_fresnel_reflectance(1.f / 1.5f)},
+                             "coated diffuse");
+}
+
+TEST(Fresnel, DielectricLimits) {
+  EXPECT_NEAR(fr_dielectric(1.f, 1.5f), 0.04f, 1e-4f);
+  EXPECT_FLOAT_EQ(fr_dielectric(0.1f, 1.f / 1.5f), 1.f);  // total internal reflection
+  EXPECT_NEAR(fr_dielectric(0.7f, 1.f), 0.f, 1e-7f);
+  EXPECT_NEAR(fr_complex(1.f, 1.5f, 0.f), 0.04f, 1e-4f);
+}
+
+}  // namespace
+}  // namespace lantern
