@@ -120,8 +120,13 @@ void finalize_lights(LightPools& L, const ShapePools& shapes, const TexturePools
   L.selection = Distribution1D(std::move(power));
 }
 
+// sin^2 of the half angle the sphere subtends from p, or 1 when p is inside
+// or on the sphere. Points on the surface (a sphere lighting itself from
+// within) must count as inside whatever the rounding of p, so the test
+// has a relative margin; sampling and pdf share it and stay consistent.
 static float sphere_cone_sin2_max(const Sphere& s, const Vec3& p) {
-  return sqr(s.radius) / glm::dot(p - s.center, p - s.center);
+  float s2 = sqr(s.radius) / glm::dot(p - s.center, p - s.center);
+  return s2 >= 1.f - 1e-3f ? 1.f : s2;
 }
 
 static std::optional<LightSample> sample_area(const LightPools& L, const ShapePools& shapes, const AreaLight& a,
