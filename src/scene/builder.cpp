@@ -259,7 +259,7 @@ void SceneBuilder::add_mesh(TriangleMesh mesh, const GraphicsState& gs, const Pa
   uint32_t prims = uint32_t(mesh.triangles.size());
   ShapePools& s = scene_.shapes;
   s.meshes.push_back(std::move(mesh));
-  s.geometries.push_back({ShapeKind::Mesh, uint32_t(s.meshes.size() - 1), gs.material.value_or(default_material()), -1});
+  s.geometries.push_back({ShapeKind::Mesh, uint32_t(s.meshes.size() - 1), gs.material ? *gs.material : default_material(), -1});
   add_area_lights(uint32_t(s.geometries.size() - 1), prims, gs);
 }
 
@@ -312,7 +312,7 @@ void SceneBuilder::shape(const std::string& type, const ParamSet& ps, const Grap
     if (!is_finite(s.center) || !std::isfinite(s.radius)) ps.fail("the sphere's centre or radius is not finite");
     ShapePools& p = scene_.shapes;
     p.spheres.push_back(s);
-    p.geometries.push_back({ShapeKind::Sphere, uint32_t(p.spheres.size() - 1), gs.material.value_or(default_material()), -1});
+    p.geometries.push_back({ShapeKind::Sphere, uint32_t(p.spheres.size() - 1), gs.material ? *gs.material : default_material(), -1});
     add_area_lights(uint32_t(p.geometries.size() - 1), 1, gs);
   } else {
     ps.fail("shape \"" + type + "\" is not supported; expected trianglemesh, plymesh, sphere or bilinearmesh");

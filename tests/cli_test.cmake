@@ -1,0 +1,35 @@
+# End-to-end checks of the lantern command: a render writes its image, bad
+# input exits non-zero with file:line:column, SIGINT writes what was rendered.
+function(expect_run)
+  cmake_parse_arguments(E "" "EXIT;MATCH;NAME" "ARGS" ${ARGN})
+  execute_process(COMMAND ${LANTERN} ${E_ARGS} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
+  if(NOT rc STREQUAL E_EXIT)
+    message(FATAL_ERROR "${E_NAME}: exit code ${rc}, expected ${E_EXIT}\n${out}${err}")
+  endif()
+  if(E_MATCH AND NOT "${out}${err}" MATCHES "${E_MATCH}")
+    message(FATAL_ERROR "${E_NAME}: output does not match '${E_MATCH}':\n${out}${err}")
+  endif()
+endfunction()
+
+file(REMOVE ${OUT}/cli.exr ${OUT}/cli.png)
+expect_run(NAME render-exr EXIT 0 ARGS render ${SRC}/scenes/cornell-box.pbrt --spp 2 --resolution 32 32 -o ${OUT}/cli.exr)
+expect_run(NAME render-png EXIT 0 ARGS render ${SRC}/scenes/cornell-box.pbrt --spp 1 --resolution 16 16 --quiet -o ${OUT}/cli.png)
+foreach(f cli.exr cli.png)
+  if(NOT EXISTS ${OUT}/${f})
+    message(FATAL_ERROR "render did not write ${f}")
+  endif()
+endforeach()
+expect_run(NAME help EXIT 0 MATCH "--spp" ARGS render --help)
+expect_run(NAME missing-scene EXIT 2 MATCH "cannot open scene file" ARGS render ${OUT}/no-such-scene.pbrt -o ${OUT}/x.png)
+file(WRITE ${OUT}/broken.pbrt "WorldBegin\nShape \"sphere\" \"float radius\" [ 1\n")
+expect_run(NAME syntax-error EXIT 2 MATCH "broken.pbrt:2:.*error: .*missing" ARGS render ${OUT}/broken.pbrt -o ${OUT}/x.png)
+expect_run(NAME bad-flag EXIT 105 ARGS render ${SRC}/scenes/cornell-box.pbrt --spp -3)
+
+# SIGINT during a long render: exit 130 and an image with the samples so far.
+file(REMOVE ${OUT}/interrupted.exr)
+execute_process(COMMAND sh -c "${LANTERN} render ${SRC}/scenes/cornell-box.pbrt --spp 100000 --resolution 64 64 --quiet -o ${OUT}/interrupted.exr & pid=$!; sleep 2; kill -INT $pid; wait $pid"
+                RESULT_VARIABLE rc ERROR_VARIABLE err TIMEOUT 60)
+if(NOT rc EQUAL 130 OR NOT EXISTS ${OUT}/interrupted.exr)
+  message(FATAL_ERROR "SIGINT: exit ${rc}, image written: ${OUT}/interrupted.exr\n${err}")
+endif()
+message(STATUS "cli end-to-end: all checks passed")

@@ -1,0 +1,172 @@
+// The pbrt importer: every supported directive lands in the right component
+// pool, and every kind of malformed input gets a clear error with its place.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "scene/scene.h"
+
+namespace lantern {
+namespace {
+
+std::shared_ptr<Scene> load(const std::string& text, std::vector<std::string>* warnings = nullptr) {
+  LoadOptions o;
+  o.warn = [warnings](const std::string& w) {
+    if (warnings) warnings->push_back(w);
+  };
+  return load_scene_from_string(text, "t.pbrt", o);
+}
+
+// Loads and expects an InputError whose message contains every fragment.
+void expect_error(const std::string& text, std::initializer_list<const char*> fragments) {
+  try {
+    load(text);
+    ADD_FAILURE() << "no error for:\n" << text;
+  } catch (const InputError& e) {
+    std::string msg = e.what();
+    for (const char* f : fragments) EXPECT_NE(msg.find(f), std::string::npos) << "message \"" << msg << "\" lacks \"" << f << "\"";
+  }
+}
+
+const char* kEverything = R"(
+# comment
+Film "rgb" "integer xresolution" [ 64 ] "integer yresolution" 32 "string filename" "x.exr"
+Sampler "sobol" "integer pixelsamples" 8
+Integrator "path" "integer maxdepth" [ 7 ]
+PixelFilter "triangle" "float xradius" 1 "float yradius" 1
+Scale -1 1 1
+LookAt 0 0 -5  0 0 0  0 1 0
+Camera "perspective" "float fov" 45 "float lensradius" 0.1 "float focaldistance" 5
+WorldBegin
+Texture "checks" "spectrum" "constant" "rgb value" [0.2 0.3 0.4]
+Texture "rough" "float" "constant" "float value" 0.2
+MakeNamedMaterial "red" "string type" "diffuse" "rgb reflectance" [0.8 0.1 0.1]
+MakeNamedMaterial "gold" "string type" "conductor" "spectrum eta" "metal-Au-eta" "spectrum k" "metal-Au-k" "texture roughness" "rough"
+MakeNamedMaterial "glass" "string type" "dielectric" "float eta" 1.33
+MakeNamedMaterial "plastic" "string type" "coateddiffuse" "texture reflectance" "checks" "float roughness" 0.1
+Material "matte" "rgb Kd" [0.5 0.5 0.5]
+Material "plastic" "rgb Kd" [0.5 0.5 0.5] "float roughness" 0.05
+Material "mirror"
+Material "metal"
+Material "glass"
+AttributeBegin
+  Translate 1 2 3
+  Rotate 90 0 1 0
+  ConcatTransform [1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1]
+  CoordinateSystem "mine"
+  NamedMaterial "red"
+  Shape "trianglemesh" "point3 P" [0 0 0 1 0 0 0 1 0] "integer indices" [0 1 2] "normal N" [0 0 1 0 0 1 0 0 1] "point2 uv" [0 0 1 0 0 1]
+AttributeEnd
+AttributeBegin
+  Identity
+  CoordSysTransform "mine"
+  Transform [1 0 0 0 0 1 0 0 0 0 1 0 0 0 4 1]
+  NamedMaterial "gold"
+  ReverseOrientation
+  AreaLightSource "diffuse" "rgb L" [4 4 4] "bool twosided" true
+  Shape "sphere" "float radius" 0.5
+AttributeEnd
+NamedMaterial "glass"
+Shape "bilinearmesh" "point3 P" [0 0 0 1 0 0 0 1 0 1 1 0] "integer indices" [0 1 2 3]
+NamedMaterial "plastic"
+Shape "trianglemesh" "point3 P" [0 0 0 1 0 0 0 1 0]
+LightSource "point" "rgb I" [1 1 1] "point3 from" [0 5 0]
+LightSource "spot" "blackbody I" 3000 "point3 from" [0 5 0] "point3 to" [0 0 0] "float coneangle" 20
+LightSource "distant" "rgb L" [1 1 1] "point3 from" [0 1 0] "point3 to" [0 0 0]
+LightSource "infinite" "rgb L" [0.1 0.1 0.1]
+WorldEnd
+)";
+
+TEST(Parser, EveryDirectiveLandsInItsPool) {
+  std::vector<std::string> warnings;
+  auto s = load(kEverything, &warnings);
+  EXPECT_EQ(s->settings.width, 64);
+  EXPECT_EQ(s->settings.height, 32);
+  EXPECT_EQ(s->settings.spp, 8);
+  EXPECT_EQ(s->settings.maxdepth, 7);
+  EXPECT_EQ(s->settings.output, "x.exr");
+  EXPECT_EQ(s->filter.type, PixelFilter::Type::Triangle);
+  EXPECT_FLOAT_EQ(s->camera.fov_degrees, 45.f);
+  EXPECT_FLOAT_EQ(s->camera.lens_radius, 0.1f);
+  EXPECT_EQ(s->shapes.meshes.size(), 3u);
+  EXPECT_EQ(s->shapes.spheres.size(), 1u);
+  EXPECT_EQ(s->shapes.meshes[1].triangles.size(), 2u) << "a bilinear patch is two triangles";
+  EXPECT_EQ(s->materials.diffuse.size(), 2u);
+  EXPECT_EQ(s->materials.conductor.size(), 3u);
+  EXPECT_EQ(s->materials.dielectric.size(), 2u);
+  EXPECT_EQ(s->materials.coated_diffuse.size(), 2u);
+  EXPECT_NEAR(s->materials.conductor[0].alpha_x, std::sqrt(0.2f), 1e-6f) << "roughness from a float texture, remapped";
+  EXPECT_EQ(s->lights.area.size(), 1u);
+  EXPECT_TRUE(s->lights.area[0].two_sided);
+  EXPECT_EQ(s->lights.point.size(), 1u);
+  EXPECT_EQ(s->lights.spot.size(), 1u);
+  EXPECT_EQ(s->lights.distant.size(), 1u);
+  EXPECT_EQ(s->lights.infinite.size(), 1u);
+  // The sphere went through CoordSysTransform then Transform: centre (0,0,4).
+  EXPECT_NEAR(s->shapes.spheres[0].center.z, 4.f, 1e-5f);
+  EXPECT_TRUE(s->shapes.spheres[0].flip_normal);
+  // The first mesh: Translate(1,2,3) then Rotate: vertex 0 lands at (1,2,3).
+  EXPECT_NEAR(glm::length(s->shapes.meshes[0].positions[0] - Vec3(1, 2, 3)), 0.f, 1e-5f);
+  for (const auto& w : warnings) ADD_FAILURE() << "unexpected warning: " << w;
+}
+
+TEST(Parser, UnusedAndUnsupportedThingsWarnWithTheirPlace) {
+  std::vector<std::string> warnings;
+  load("WorldBegin\nShape \"sphere\" \"float radius\" 1 \"float wobble\" 3\nMakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n"
+       "LightSource \"point\"\n", &warnings);
+  ASSERT_EQ(warnings.size(), 2u);
+  EXPECT_NE(warnings[0].find("t.pbrt:2:"), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[0].find("wobble"), std::string::npos);
+  EXPECT_NE(warnings[1].find("MakeNamedMedium"), std::string::npos);
+}
+
+TEST(Parser, MalformedInputGivesClearErrors) {
+  expect_error("WorldBegin\nFrobnicate 3\n", {"t.pbrt:2:1", "unknown directive \"Frobnicate\""});
+  expect_error("WorldBegin\nShape \"sphere\" \"float radius\" [ 1 ] @\n", {"t.pbrt:2:", "unexpected characters"});
+  expect_error("Include \"does-not-exist.pbrt\"\n", {"t.pbrt:1:1", "cannot open scene file"});
+  expect_error("WorldBegin\nShape \"sphere\" \"float radius\" \"big\"\n", {"t.pbrt:2:", "expects numbers"});
+  expect_error("WorldBegin\nShape \"sphere\" \"string radius\" \"big\"\n", {"radius", "expected \"float\""});
+  expect_error("WorldBegin\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0\n", {"t.pbrt:2:", "missing ']'"});
+  expect_error("WorldBegin\nShape \"sphere\" \"float radius", {"t.pbrt:2:16", "unterminated string"});
+  expect_error("WorldBegin\nAttributeBegin\nShape \"sphere\"\n", {"t.pbrt:2:1", "AttributeBegin without a matching AttributeEnd"});
+  expect_error("WorldBegin\nAttributeEnd\n", {"t.pbrt:2:1", "without a matching"});
+  expect_error("WorldBegin\nNamedMaterial \"nope\"\n", {"never defined"});
+  expect_error("WorldBegin\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 5]\n",
+               {"t.pbrt:2:1", "out of range"});
+  expect_error("WorldBegin\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 nan] \"integer indices\" [0 1 2]\n",
+               {"t.pbrt:2:50", "found a directive name \"nan\""});
+  expect_error("WorldBegin\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 1e39] \"integer indices\" [0 1 2]\n",
+               {"Shape \"trianglemesh\"", "NaN or infinite"});
+  expect_error("WorldBegin\nShape \"disk\"\n", {"shape \"disk\" is not supported"});
+  expect_error("WorldBegin\nMaterial \"hair\"\n", {"material type \"hair\" is not supported"});
+  expect_error("WorldBegin\nCamera \"perspective\"\n", {"only allowed before WorldBegin"});
+  expect_error("Camera \"orthographic\"\n", {"camera type \"orthographic\" is not supported"});
+  expect_error("WorldBegin\nScale -1 2 1\nShape \"sphere\"\n", {"non-uniformly scaled sphere"});
+  expect_error("WorldBegin\nShape \"sphere\" \"float radius\" 1 \"float radius\" 2\n", {"given twice"});
+  expect_error("WorldBegin\nShape \"plymesh\" \"string filename\" \"missing.ply\"\n", {"missing.ply", "cannot open PLY"});
+}
+
+TEST(Parser, IncludeCyclesAreReported) {
+  auto dir = std::filesystem::temp_directory_path() / "lantern-parser-test";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "a.pbrt") << "Include \"b.pbrt\"\n";
+  std::ofstream(dir / "b.pbrt") << "\n\nInclude \"a.pbrt\"\n";
+  try {
+    load_scene((dir / "a.pbrt").string());
+    ADD_FAILURE() << "cycle not detected";
+  } catch (const InputError& e) {
+    std::string msg = e.what();
+    EXPECT_NE(msg.find("b.pbrt:3:1"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("Include cycle"), std::string::npos) << msg;
+  }
+}
+
+TEST(Parser, DeepNestingIsBounded) {
+  std::string s = "WorldBegin\n";
+  for (int i = 0; i < 20000; ++i) s += "AttributeBegin\n";
+  EXPECT_THROW(load(s), InputError);
+}
+
+}  // namespace
+}  // namespace lantern
