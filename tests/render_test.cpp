@@ -129,9 +129,12 @@ Shape "trianglemesh" "point3 P" [-10 0 -10  10 0 -10  10 0 10  -10 0 10]
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(px[c], expected[c], 1e-3f * expected[c]);
 }
 
+std::shared_ptr<Scene> shipped_cornell_box() {
+  return load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
+}
+
 TEST(Render, SameSeedSameImageWithOneOrTwoThreads) {
-  std::string path = std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt";
-  auto scene = load_scene(path);
+  auto scene = shipped_cornell_box();
   RenderOptions o;
   o.spp = 4;
   o.width = o.height = 48;
@@ -148,8 +151,7 @@ TEST(Render, SameSeedSameImageWithOneOrTwoThreads) {
 }
 
 TEST(Render, RayBackendsAgree) {
-  std::string path = std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt";
-  auto scene = load_scene(path);
+  auto scene = shipped_cornell_box();
   RenderOptions o;
   o.spp = 8;
   o.width = o.height = 32;

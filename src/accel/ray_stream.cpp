@@ -83,9 +83,11 @@ void RayStream::intersect(RayBatch& b, RayKind kind) {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   ctx.flags = kind == RayKind::Camera ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-  for (uint32_t i = 0; i < b.count; ++i) b.geom_id[i] = b.inst_id[i] = RTC_INVALID_GEOMETRY_ID;
   switch (backend_) {
     case RayBackend::StreamNp: {
+      // Embree writes hits in place: misses must read as invalid already.
+      // The other back ends reset their own AoS copies.
+      for (uint32_t i = 0; i < b.count; ++i) b.geom_id[i] = b.inst_id[i] = RTC_INVALID_GEOMETRY_ID;
       RTCRayHitNp r = soa_view(b);
       rtcIntersectNp(scene_, &ctx, &r, b.count);
       break;
