@@ -18,7 +18,8 @@ struct RenderProgress {
 };
 
 struct RenderOptions {
-  std::string integrator = "path";
+  std::string integrator = "path";  // path, bdpt or lt (light tracing)
+  std::string mis = "power";        // bdpt's heuristic: power (beta = 2) or balance
   int spp = 16;
   double time_limit_seconds = 0.0;  // > 0: render passes until the time is up (spp is then ignored)
   int maxdepth = 5;
@@ -29,12 +30,13 @@ struct RenderOptions {
   int wave_size = 4096;  // paths per wave
   std::function<void(const RenderProgress&)> progress;
   const std::atomic<bool>* cancel = nullptr;  // set it to stop after the waves in flight
+  bool debug_unit_mis_weights = false;  // tests only: weight every bdpt strategy 1 (a deliberately biased estimator)
 };
 
 struct RenderStats {
   double seconds = 0.0;
   uint64_t samples = 0;
-  uint64_t camera_rays = 0, extension_rays = 0, shadow_rays = 0;
+  uint64_t camera_rays = 0, extension_rays = 0, light_rays = 0, shadow_rays = 0;
   uint64_t nonfinite_samples = 0;  // produced NaN/Inf; counted and discarded, never on the film
   uint32_t min_spp = 0;            // samples in the least-sampled pixel
 };

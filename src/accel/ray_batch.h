@@ -3,6 +3,7 @@
 // arrays straight through.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -26,8 +27,10 @@ struct RayBatch {
   }
   size_t capacity() const { return org_x.size(); }
 
-  // Appends a ray; d need not be unit length (t is then in units of |d|).
+  // Appends a ray, growing the arrays when full; d need not be unit length
+  // (t is then in units of |d|).
   uint32_t push(const Vec3& o, const Vec3& d, float t_min, float t_max) {
+    if (count == org_x.size()) reserve(std::max<size_t>(64, 2 * org_x.size()));
     uint32_t i = count++;
     org_x[i] = o.x, org_y[i] = o.y, org_z[i] = o.z;
     dir_x[i] = d.x, dir_y[i] = d.y, dir_z[i] = d.z;

@@ -79,7 +79,13 @@ static void load_packet(Packet& p, const RayBatch& b, uint32_t base, int* valid)
 
 void RayStream::intersect(RayBatch& b, RayKind kind) {
   if (b.count == 0) return;
-  if (counters_) (kind == RayKind::Camera ? counters_->camera : counters_->extension) += b.count;
+  if (counters_) {
+    switch (kind) {
+      case RayKind::Camera: counters_->camera += b.count; break;
+      case RayKind::LightExtension: counters_->light += b.count; break;
+      default: counters_->extension += b.count; break;
+    }
+  }
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   ctx.flags = kind == RayKind::Camera ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;

@@ -19,10 +19,10 @@ enum class RayBackend { StreamNp, Stream1M, Single, Packet16 };
 RayBackend parse_ray_backend(const std::string& name);  // throws std::invalid_argument
 const char* ray_backend_name(RayBackend b);
 
-enum class RayKind { Camera, Extension, Shadow };
+enum class RayKind { Camera, Extension, LightExtension, Shadow };
 
 struct RayCounters {
-  std::atomic<uint64_t> camera{0}, extension{0}, shadow{0};
+  std::atomic<uint64_t> camera{0}, extension{0}, light{0}, shadow{0};
 };
 
 class RayStream {

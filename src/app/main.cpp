@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "film/image_metrics.h"
 #include "lantern/render.h"
 #include "lantern/scene.h"
 
@@ -29,7 +30,7 @@ std::string hms(double s) {
 }
 
 struct RenderArgs {
-  std::string scene, output, integrator, rays = "stream";
+  std::string scene, output, integrator, rays = "stream", mis = "power";
   int spp = 0, maxdepth = -1, threads = 0, wave_size = 4096;
   double time = 0.0;
   uint64_t seed = 0;
@@ -48,6 +49,7 @@ int run_render(const RenderArgs& a) {
 
   RenderOptions o;
   o.integrator = a.integrator.empty() ? ss.integrator : a.integrator;
+  o.mis = a.mis;
   o.spp = a.spp > 0 ? a.spp : ss.spp;
   o.time_limit_seconds = a.time;
   o.maxdepth = a.maxdepth >= 0 ? a.maxdepth : ss.maxdepth;
@@ -102,6 +104,24 @@ int run_render(const RenderArgs& a) {
   return 0;
 }
 
+struct CompareArgs {
+  std::string a, ref, error_image;
+  double error_scale = 1.0;
+};
+
+// Prints the metrics as "name value" lines, easy to read and to parse.
+int run_compare(const CompareArgs& c) {
+  lantern::Image a = lantern::read_image(c.a), ref = lantern::read_image(c.ref);
+  lantern::ImageComparison m = lantern::compare_images(a, ref);
+  std::printf("mse %.9g\nrelmse %.9g\nmae %.9g\n", m.mse, m.relmse, m.mae);
+  std::printf("mean %.9g %.9g %.9g\nmean_ref %.9g %.9g %.9g\nratio %.9g %.9g %.9g\nnonfinite_pixels %zu\n",
+              m.mean_a[0], m.mean_a[1], m.mean_a[2], m.mean_ref[0], m.mean_ref[1], m.mean_ref[2], m.ratio[0],
+              m.ratio[1], m.ratio[2], m.nonfinite);
+  if (!c.error_image.empty())
+    lantern::write_image(c.error_image, lantern::relative_error_image(a, ref, c.error_scale), {});
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -113,7 +133,11 @@ int main(int argc, char** argv) {
   render->add_option("-o,--output", a.output, "Output image (.exr linear float, .png sRGB); default: the scene's Film filename");
   auto* spp = render->add_option("--spp", a.spp, "Samples per pixel (default: the scene's Sampler pixelsamples)")->check(CLI::PositiveNumber);
   render->add_option("--time", a.time, "Render for this many seconds instead of a sample count")->check(CLI::PositiveNumber)->excludes(spp);
-  render->add_option("--integrator", a.integrator, "Integrator: path (default: the scene's Integrator)")->check(CLI::IsMember({"path"}));
+  render->add_option("--integrator", a.integrator,
+                     "Integrator: path, bdpt or lt (light tracing); default: the scene's Integrator")
+      ->check(CLI::IsMember({"path", "bdpt", "lt"}));
+  render->add_option("--mis", a.mis, "bdpt's MIS heuristic: power or balance")
+      ->check(CLI::IsMember({"power", "balance"}));
   render->add_option("--maxdepth", a.maxdepth, "Maximum path depth, as pbrt defines it (default: the scene's)")->check(CLI::NonNegativeNumber);
   render->add_option("--threads", a.threads, "Worker threads (default: all cores)")->check(CLI::PositiveNumber);
   render->add_option("--seed", a.seed, "Random seed");
@@ -122,8 +146,16 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"stream", "stream-1m", "single", "packet16"}));
   render->add_option("--wave-size", a.wave_size, "Paths per wave")->check(CLI::Range(1, 1 << 22));
   render->add_flag("-q,--quiet", a.quiet, "No progress line or summary");
+  CompareArgs ca;
+  CLI::App* compare = app.add_subcommand("compare", "Error metrics of an image against a reference");
+  compare->add_option("image", ca.a, "Image to measure")->required()->check(CLI::ExistingFile);
+  compare->add_option("reference", ca.ref, "Reference image")->required()->check(CLI::ExistingFile);
+  compare->add_option("--error-image", ca.error_image, "Write a false-colour map of the relative squared error");
+  compare->add_option("--error-scale", ca.error_scale, "Relative squared error shown as full red")
+      ->check(CLI::PositiveNumber);
   CLI11_PARSE(app, argc, argv);
   try {
+    if (compare->parsed()) return run_compare(ca);
     return run_render(a);
   } catch (const lantern::InputError& e) {
     std::cerr << e.what() << "\n";

@@ -2,6 +2,8 @@
 // left-handed camera space; raster x grows with camera x, raster y downwards.
 #pragma once
 
+#include <optional>
+
 #include "math/common.h"
 #include "math/sampling.h"
 
@@ -20,20 +22,48 @@ struct CameraRay {
   Vec3 o, d;  // d is unit length
 };
 
+// A point on the lens chosen to see a reference point (pbrt's Sample_Wi):
+// what light tracing needs to connect a light vertex to the camera.
+struct CameraSample {
+  Vec3 p_lens;     // world-space point on the lens
+  Vec3 wi;         // unit direction from the reference point to p_lens
+  float dist = 0.f;
+  float pdf = 0.f;  // solid angle density at the reference point
+  float We = 0.f;   // importance of the ray from p_lens towards the reference point
+  Vec2 p_raster{0.f};
+};
+
 class PerspectiveCamera {
  public:
   PerspectiveCamera() = default;
-  PerspectiveCamera(const CameraDesc& desc, int width, int height);
+  // film_margin: how far (in pixels) past the image edges samples may land,
+  // i.e. the pixel filter's radius; light tracing must reach as far.
+  PerspectiveCamera(const CameraDesc& desc, int width, int height, Vec2 film_margin = Vec2(0.f));
 
   // p_raster in [0, width) x [0, height).
   CameraRay generate_ray(Vec2 p_raster, Vec2 u_lens) const;
+  // Importance (pbrt's We) of a ray leaving the lens in world direction d,
+  // normalised over the whole film: 1 / (A * lens_area * cos^4).
+  // Returns 0 when the ray misses the film; p_raster receives where it lands.
+  float We(const Vec3& p_lens, const Vec3& d, Vec2* p_raster) const;
+  // Solid-angle density of camera ray directions over the whole film
+  // (1 / (A cos^3)); the lens position density is 1 / lens_area.
+  float pdf_dir(const Vec3& d) const;
+  float lens_area() const { return lens_radius_ > 0.f ? kPi * lens_radius_ * lens_radius_ : 1.f; }
+  std::optional<CameraSample> sample_wi(const Vec3& ref, Vec2 u_lens) const;
+
   int width() const { return width_; }
   int height() const { return height_; }
   Vec3 position() const { return Vec3(world_from_camera_[3]); }
 
  private:
-  Mat4 world_from_camera_{1.f};
+  float cos_theta(const Vec3& d) const { return glm::dot(d, forward_); }
+
+  Mat4 world_from_camera_{1.f}, camera_from_world_{1.f};
+  Vec3 forward_{0, 0, 1};
+  float film_area_ = 4.f;  // of the image rectangle on the plane z = 1
   int width_ = 1, height_ = 1;
+  Vec2 margin_{0.f};
   float sx0_ = -1, sx1_ = 1, sy0_ = -1, sy1_ = 1;
   float tan_half_ = 1.f;
   float lens_radius_ = 0.f, focal_distance_ = 1e6f;

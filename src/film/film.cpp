@@ -3,20 +3,71 @@
 #include <algorithm>
 #include <numeric>
 
+#include "film/pixel_filter.h"
+
 namespace lantern {
 
-Film::Film(int width, int height)
-    : width_(width), height_(height), sum_(3 * size_t(width) * size_t(height), 0.0),
+Film::Film(int width, int height, const PixelFilter& filter)
+    : width_(width), height_(height), filter_(filter), sum_(3 * size_t(width) * size_t(height), 0.0),
       count_(size_t(width) * size_t(height), 0) {}
+
+void Film::merge(const WaveOutput& out) {
+  for (const FilmSample& s : out.samples) {
+    if (!is_finite(s.L)) {
+      ++nonfinite_;
+    } else {
+      double* d = &sum_[3 * size_t(s.pixel)];
+      d[0] += double(s.L.x);
+      d[1] += double(s.L.y);
+      d[2] += double(s.L.z);
+    }
+    ++count_[s.pixel];
+  }
+  if (!out.splats.empty() && splat_.empty()) splat_.assign(sum_.size(), 0.0);
+  for (const Splat& s : out.splats) {
+    if (!is_finite(s.L)) {
+      ++nonfinite_;
+      continue;
+    }
+    add_splat(s);
+  }
+  light_paths_ += out.light_paths;
+}
+
+// Every pixel whose filter support covers the point gets the splat times the
+// filter density at its offset: the same weight with which that pixel's own
+// camera samples would have landed there.
+void Film::add_splat(const Splat& s) {
+  int x0 = std::max(0, int(std::ceil(s.p_raster.x - 0.5f - filter_.radius.x)));
+  int x1 = std::min(width_ - 1, int(std::floor(s.p_raster.x - 0.5f + filter_.radius.x)));
+  int y0 = std::max(0, int(std::ceil(s.p_raster.y - 0.5f - filter_.radius.y)));
+  int y1 = std::min(height_ - 1, int(std::floor(s.p_raster.y - 0.5f + filter_.radius.y)));
+  for (int y = y0; y <= y1; ++y) {
+    float wy = pixel_filter_density_1d(filter_, s.p_raster.y - (float(y) + 0.5f), filter_.radius.y);
+    if (wy == 0.f) continue;
+    for (int x = x0; x <= x1; ++x) {
+      float w = wy * pixel_filter_density_1d(filter_, s.p_raster.x - (float(x) + 0.5f), filter_.radius.x);
+      if (w == 0.f) continue;
+      double* d = &splat_[3 * (size_t(y) * size_t(width_) + size_t(x))];
+      d[0] += double(w * s.L.x);
+      d[1] += double(w * s.L.y);
+      d[2] += double(w * s.L.z);
+    }
+  }
+}
 
 Image Film::resolve() const {
   Image img;
   img.width = width_;
   img.height = height_;
   img.rgb.resize(sum_.size());
+  double splat_scale = light_paths_ ? double(width_) * double(height_) / double(light_paths_) : 0.0;
   for (size_t i = 0; i < count_.size(); ++i) {
     double inv = count_[i] ? 1.0 / double(count_[i]) : 0.0;
-    for (int c = 0; c < 3; ++c) img.rgb[3 * i + size_t(c)] = float(sum_[3 * i + size_t(c)] * inv);
+    for (int c = 0; c < 3; ++c) {
+      size_t k = 3 * i + size_t(c);
+      img.rgb[k] = float(sum_[k] * inv + (splat_.empty() ? 0.0 : splat_[k] * splat_scale));
+    }
   }
   return img;
 }

@@ -1,5 +1,10 @@
-// Accumulates radiance samples per pixel. Each pixel keeps its own sample
-// count, so a render stopped between waves still yields an unbiased image.
+// Accumulates radiance per pixel. Camera samples land in the pixel they were
+// taken for; light-tracing splats land wherever a light vertex projects and
+// are spread over the pixels whose filter covers that point.
+//
+// Waves write into a WaveOutput of their own; the renderer merges outputs
+// into the film one at a time in wave order, so every sum is formed in the
+// same order whatever the thread count (bit-identical images).
 #pragma once
 
 #include <atomic>
@@ -8,41 +13,57 @@
 
 #include "lantern/image.h"
 #include "math/common.h"
+#include "scene/scene.h"
 
 namespace lantern {
 
+struct FilmSample {
+  uint32_t pixel;
+  RGB L;
+};
+struct Splat {
+  Vec2 p_raster;
+  RGB L;  // contribution, already divided by nothing: the film normalises by the light-path count
+};
+
+struct WaveOutput {
+  std::vector<FilmSample> samples;
+  std::vector<Splat> splats;
+  uint64_t light_paths = 0;
+  void clear() {
+    samples.clear();
+    splats.clear();
+    light_paths = 0;
+  }
+};
+
 class Film {
  public:
-  Film(int width, int height);
+  Film(int width, int height, const PixelFilter& filter);
 
   int width() const { return width_; }
   int height() const { return height_; }
 
-  // Adds a sample to a pixel. Only the task that owns the pixel's wave may
-  // call it during a pass, so there is no race and the order of additions per
-  // pixel is fixed by the sample index.
-  void add_sample(uint32_t pixel, const RGB& L) {
-    if (!is_finite(L)) {
-      nonfinite_.fetch_add(1, std::memory_order_relaxed);
-    } else {
-      double* s = &sum_[3 * size_t(pixel)];
-      s[0] += double(L.x);
-      s[1] += double(L.y);
-      s[2] += double(L.z);
-    }
-    ++count_[pixel];
-  }
+  // Adds a wave's camera samples and splats. Not thread-safe: call in order.
+  void merge(const WaveOutput& out);
 
+  // pixel = (sum of its samples) / (its sample count)
+  //       + (width * height / light paths) * (splats filtered onto it)
   Image resolve() const;
-  uint64_t nonfinite_samples() const { return nonfinite_.load(); }
+  uint64_t nonfinite_samples() const { return nonfinite_; }
   uint64_t total_samples() const;
+  uint64_t light_paths() const { return light_paths_; }
   uint32_t min_samples_per_pixel() const;
 
  private:
+  void add_splat(const Splat& s);
+
   int width_, height_;
-  std::vector<double> sum_;
+  PixelFilter filter_;
+  std::vector<double> sum_, splat_;
   std::vector<uint32_t> count_;
-  std::atomic<uint64_t> nonfinite_{0};
+  uint64_t nonfinite_ = 0;
+  uint64_t light_paths_ = 0;
 };
 
 }  // namespace lantern

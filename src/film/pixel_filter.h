@@ -31,4 +31,23 @@ inline Vec2 sample_pixel_filter(const PixelFilter& f, Vec2 u) {
   return Vec2(0.f);
 }
 
+// The density sample_pixel_filter draws offsets from, per axis: what a
+// light-tracing splat must weight each pixel with to estimate the same
+// pixel integral as the camera samples.
+inline float pixel_filter_density_1d(const PixelFilter& f, float x, float r) {
+  if (std::fabs(x) >= r) return 0.f;
+  switch (f.type) {
+    case PixelFilter::Type::Box: return 0.5f / r;
+    case PixelFilter::Type::Triangle: return (r - std::fabs(x)) / (r * r);
+    case PixelFilter::Type::Gaussian: {
+      float norm = std::erf(r / (f.sigma * std::sqrt(2.f)));  // mass of the normal inside [-r, r]
+      return std::exp(-x * x / (2.f * f.sigma * f.sigma)) / (f.sigma * std::sqrt(2.f * kPi) * norm);
+    }
+  }
+  return 0.f;
+}
+inline float pixel_filter_density(const PixelFilter& f, Vec2 offset) {
+  return pixel_filter_density_1d(f, offset.x, f.radius.x) * pixel_filter_density_1d(f, offset.y, f.radius.y);
+}
+
 }  // namespace lantern

@@ -176,7 +176,7 @@ void PathTracer::compact(PathWave& w) const {
   }
 }
 
-void PathTracer::trace(const WaveDesc& wave, PathWave& w, Film& film) const {
+void PathTracer::trace(const WaveDesc& wave, PathWave& w, WaveOutput& out) const {
   generate_camera_rays(wave, w);
   w.depth = 0;
   w.stream.intersect(w.rays, RayKind::Camera);
@@ -189,7 +189,7 @@ void PathTracer::trace(const WaveDesc& wave, PathWave& w, Film& film) const {
     ++w.depth;
     w.stream.intersect(w.rays, RayKind::Extension);
   }
-  for (uint32_t slot = 0; slot < wave.size(); ++slot) film.add_sample(w.pixel[slot], w.L[slot]);
+  for (uint32_t slot = 0; slot < wave.size(); ++slot) out.samples.push_back({w.pixel[slot], w.L[slot]});
 }
 
 }  // namespace lantern

@@ -24,8 +24,8 @@ class PathTracer {
   PathTracer(const Scene& scene, const PathTracerSettings& settings);
 
   std::unique_ptr<PathWave, void (*)(PathWave*)> make_wave_state(uint32_t capacity, RayStream stream) const;
-  // Traces all paths of the wave and adds one sample per slot to the film.
-  void trace(const WaveDesc& wave, PathWave& state, Film& film) const;
+  // Traces all paths of the wave and records one sample per slot.
+  void trace(const WaveDesc& wave, PathWave& state, WaveOutput& out) const;
 
  private:
   void generate_camera_rays(const WaveDesc& wave, PathWave& w) const;

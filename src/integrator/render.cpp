@@ -1,13 +1,14 @@
 // Splits the image into waves and runs them in parallel with oneTBB.
 //
 // Determinism: a pass covers a fixed range of sample indices for every
-// pixel; within a pass each pixel belongs to exactly one wave, and a wave
-// adds its samples in slot order. So every pixel sums its samples in sample
-// index order whatever the thread count, and random numbers depend only on
-// (seed, pixel, sample index, dimension).
+// pixel; waves record their samples and splats in slot order, and the film
+// merges whole waves in wave order. So every sum is formed in the same order
+// whatever the thread count, and random numbers depend only on (seed, pixel,
+// sample index, dimension).
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
+#include <tbb/parallel_pipeline.h>
+#include <tbb/task_arena.h>
 
 #include <chrono>
 #include <condition_variable>
@@ -16,6 +17,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "integrator/bdpt.h"
+#include "integrator/bdpt_wave.h"
 #include "integrator/path_tracer.h"
 #include "integrator/path_wave.h"
 #include "lantern/render.h"
@@ -66,11 +69,75 @@ class ProgressReporter {
   std::thread thread_;
 };
 
+// Runs one integrator over all passes. Waves flow through a pipeline whose
+// last stage merges their output into the film serially and in wave order.
+template <class Tracer>
+bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& opt, RayBackend backend,
+                RayCounters& counters, Film& film, Clock::time_point start, std::atomic<uint64_t>& done) {
+  const std::vector<uint32_t> order = tile_order(film.width(), film.height());
+  const bool timed = opt.time_limit_seconds > 0;
+  const uint32_t total_spp = timed ? 0xFFFFFFFFu : uint32_t(opt.spp);
+  const uint32_t pass_spp = timed ? 1u : std::min<uint32_t>(total_spp, 16u);
+  const uint32_t pixels_per_wave = std::max<uint32_t>(1, uint32_t(opt.wave_size) / pass_spp);
+  const uint32_t capacity = pixels_per_wave * pass_spp;
+  const uint32_t waves = uint32_t((order.size() + pixels_per_wave - 1) / pixels_per_wave);
+
+  using State = typename decltype(tracer.make_wave_state(0, RayStream(nullptr, backend, nullptr)))::element_type;
+  tbb::enumerable_thread_specific<std::unique_ptr<State, void (*)(State*)>> states(
+      [&] { return tracer.make_wave_state(capacity, RayStream(scene.accel->handle(), backend, &counters)); });
+  // At most `tokens` waves are in flight and they retire in order, so wave
+  // i's output slot (i mod tokens) is free again when wave i + tokens starts.
+  const size_t tokens = 2 * size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
+  std::vector<WaveOutput> outputs(tokens);
+
+  std::atomic<bool> stop{false};
+  auto should_stop = [&] {
+    return (opt.cancel && opt.cancel->load()) ||
+           (timed && std::chrono::duration<double>(Clock::now() - start).count() >= opt.time_limit_seconds);
+  };
+  for (uint32_t first = 0; first < total_spp && !stop; first += pass_spp) {
+    const uint32_t samples = std::min(pass_spp, total_spp - first);
+    uint32_t next = 0;
+    tbb::parallel_pipeline(
+        tokens,
+        tbb::make_filter<void, uint32_t>(tbb::filter_mode::serial_in_order,
+                                         [&](tbb::flow_control& fc) -> uint32_t {
+                                           if (next == waves || stop || should_stop()) {
+                                             if (next != waves) stop = true;
+                                             fc.stop();
+                                             return 0;
+                                           }
+                                           return next++;
+                                         }) &
+            tbb::make_filter<uint32_t, uint32_t>(tbb::filter_mode::parallel,
+                                                 [&](uint32_t wi) {
+                                                   WaveDesc wave{order.data() + size_t(wi) * pixels_per_wave,
+                                                                 uint32_t(std::min<size_t>(
+                                                                     pixels_per_wave,
+                                                                     order.size() - size_t(wi) * pixels_per_wave)),
+                                                                 first, samples};
+                                                   WaveOutput& out = outputs[wi % tokens];
+                                                   out.clear();
+                                                   tracer.trace(wave, *states.local(), out);
+                                                   return wi;
+                                                 }) &
+            tbb::make_filter<uint32_t, void>(tbb::filter_mode::serial_in_order, [&](uint32_t wi) {
+              const WaveOutput& out = outputs[wi % tokens];
+              film.merge(out);
+              done += out.samples.size();
+            }));
+  }
+  return stop;
+}
+
 }  // namespace
 
 RenderResult render(const Scene& scene, const RenderOptions& opt) {
-  if (opt.integrator != "path")
-    throw std::invalid_argument("unknown integrator \"" + opt.integrator + "\"; available: path");
+  const bool bidirectional = opt.integrator == "bdpt" || opt.integrator == "lt";
+  if (opt.integrator != "path" && !bidirectional)
+    throw std::invalid_argument("unknown integrator \"" + opt.integrator + "\"; available: path, bdpt, lt");
+  if (opt.mis != "power" && opt.mis != "balance")
+    throw std::invalid_argument("unknown MIS heuristic \"" + opt.mis + "\"; available: power, balance");
   if (opt.spp <= 0 && opt.time_limit_seconds <= 0) throw std::invalid_argument("--spp must be positive");
   if (opt.maxdepth < 0) throw std::invalid_argument("--maxdepth must be >= 0");
   if (opt.wave_size < 1 || opt.wave_size > (1 << 22)) throw std::invalid_argument("--wave-size must lie in [1, 4194304]");
@@ -79,49 +146,33 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
   std::optional<tbb::global_control> limit;
   if (opt.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(opt.threads));
 
-  PathTracerSettings ps;
-  ps.maxdepth = opt.maxdepth;
-  ps.seed = opt.seed;
-  ps.width = opt.width > 0 ? opt.width : scene.settings.width;
-  ps.height = opt.height > 0 ? opt.height : scene.settings.height;
-  PathTracer tracer(scene, ps);
-  Film film(ps.width, ps.height);
-  std::vector<uint32_t> order = tile_order(ps.width, ps.height);
-
-  const bool timed = opt.time_limit_seconds > 0;
-  const uint32_t total_spp = timed ? 0xFFFFFFFFu : uint32_t(opt.spp);
-  const uint32_t pass_spp = timed ? 1u : std::min<uint32_t>(total_spp, 16u);
-  const uint32_t pixels_per_wave = std::max<uint32_t>(1, uint32_t(opt.wave_size) / pass_spp);
-  const uint32_t capacity = pixels_per_wave * pass_spp;
-
+  const int width = opt.width > 0 ? opt.width : scene.settings.width;
+  const int height = opt.height > 0 ? opt.height : scene.settings.height;
+  Film film(width, height, scene.filter);
   RayCounters counters;
-  tbb::enumerable_thread_specific<std::unique_ptr<PathWave, void (*)(PathWave*)>> states(
-      [&] { return tracer.make_wave_state(capacity, RayStream(scene.accel->handle(), backend, &counters)); });
-
   const auto start = Clock::now();
   std::atomic<uint64_t> done{0};
-  std::atomic<bool> stop{false};
   bool interrupted = false;
   {
-    ProgressReporter reporter(opt, start, done, uint64_t(order.size()) * (timed ? 1 : total_spp));
-    const uint32_t waves = uint32_t((order.size() + pixels_per_wave - 1) / pixels_per_wave);
-    for (uint32_t first = 0; first < total_spp && !stop; first += pass_spp) {
-      uint32_t samples = std::min(pass_spp, total_spp - first);
-      tbb::parallel_for(tbb::blocked_range<uint32_t>(0, waves, 1), [&](const tbb::blocked_range<uint32_t>& r) {
-        for (uint32_t wi = r.begin(); wi != r.end(); ++wi) {
-          if (stop.load(std::memory_order_relaxed)) return;
-          if ((opt.cancel && opt.cancel->load()) ||
-              (timed && std::chrono::duration<double>(Clock::now() - start).count() >= opt.time_limit_seconds)) {
-            stop = true;
-            return;
-          }
-          WaveDesc wave{order.data() + size_t(wi) * pixels_per_wave,
-                        uint32_t(std::min<size_t>(pixels_per_wave, order.size() - size_t(wi) * pixels_per_wave)), first,
-                        samples};
-          tracer.trace(wave, *states.local(), film);
-          done += wave.size();
-        }
-      });
+    const uint64_t total = uint64_t(width) * uint64_t(height) * (opt.time_limit_seconds > 0 ? 1 : uint64_t(opt.spp));
+    ProgressReporter reporter(opt, start, done, total);
+    if (bidirectional) {
+      BdptSettings bs;
+      bs.maxdepth = opt.maxdepth;
+      bs.seed = opt.seed;
+      bs.width = width;
+      bs.height = height;
+      bs.mis_beta = opt.mis == "balance" ? 1.f : 2.f;
+      bs.light_tracing_only = opt.integrator == "lt";
+      bs.unit_weights = opt.debug_unit_mis_weights;
+      run_passes(Bdpt(scene, bs), scene, opt, backend, counters, film, start, done);
+    } else {
+      PathTracerSettings ps;
+      ps.maxdepth = opt.maxdepth;
+      ps.seed = opt.seed;
+      ps.width = width;
+      ps.height = height;
+      run_passes(PathTracer(scene, ps), scene, opt, backend, counters, film, start, done);
     }
     interrupted = opt.cancel && opt.cancel->load();
   }
@@ -134,6 +185,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
   st.samples = film.total_samples();
   st.camera_rays = counters.camera;
   st.extension_rays = counters.extension;
+  st.light_rays = counters.light;
   st.shadow_rays = counters.shadow;
   st.nonfinite_samples = film.nonfinite_samples();
   st.min_spp = film.min_samples_per_pixel();

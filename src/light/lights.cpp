@@ -185,12 +185,8 @@ static std::optional<LightSample> sample_area(const LightPools& L, const ShapePo
   return ls;
 }
 
-std::optional<LightSample> sample_light(const LightPools& L, const ShapePools& shapes, const TexturePools& tex,
-                                        const Vec3& p, float u_select, Vec2 u) {
-  if (L.all.empty()) return std::nullopt;
-  float pmf;
-  size_t i = L.selection.sample_discrete(u_select, &pmf);
-  if (pmf == 0.f) return std::nullopt;
+std::optional<LightSample> sample_light_from(const LightPools& L, const ShapePools& shapes, const TexturePools& tex,
+                                             uint32_t i, const Vec3& p, Vec2 u) {
   const LightRef r = L.all[i];
   std::optional<LightSample> ls;
   switch (r.kind) {
@@ -249,7 +245,18 @@ std::optional<LightSample> sample_light(const LightPools& L, const ShapePools& s
     }
   }
   if (!ls || ls->pdf == 0.f) return std::nullopt;
-  ls->pdf *= pmf;
+  ls->light = i;
+  return ls;
+}
+
+std::optional<LightSample> sample_light(const LightPools& L, const ShapePools& shapes, const TexturePools& tex,
+                                        const Vec3& p, float u_select, Vec2 u) {
+  if (L.all.empty()) return std::nullopt;
+  float pmf;
+  size_t i = L.selection.sample_discrete(u_select, &pmf);
+  if (pmf == 0.f) return std::nullopt;
+  auto ls = sample_light_from(L, shapes, tex, uint32_t(i), p, u);
+  if (ls) ls->pdf *= pmf;
   return ls;
 }
 
@@ -286,24 +293,20 @@ RGB infinite_lights_Le(const LightPools& L, const TexturePools& tex, const Vec3&
   return sum;
 }
 
+float infinite_light_pdf(const LightPools& L, const TexturePools& tex, uint32_t index, const Vec3& w) {
+  const InfiniteLight& e = L.infinite[index];
+  if (e.image < 0) return uniform_sphere_pdf();
+  Vec3 wl = glm::normalize(e.light_from_world * w);
+  if (e.equal_area) return e.distribution.pdf(equal_area_sphere_to_square(wl)) / (4.f * kPi);
+  Vec2 uv = dir_to_latlong(wl);
+  float sin_theta = std::sin(uv.y * kPi);
+  return sin_theta > 0.f ? e.distribution.pdf(uv) / (2.f * kPi * kPi * sin_theta) : 0.f;
+}
+
 float infinite_lights_pdf(const LightPools& L, const TexturePools& tex, const Vec3& w) {
   float pdf = 0.f;
-  for (size_t i = 0; i < L.infinite.size(); ++i) {
-    const InfiniteLight& e = L.infinite[i];
-    float pmf = L.selection.discrete_pmf(L.infinite_to_all[i]);
-    if (e.image < 0) {
-      pdf += pmf * uniform_sphere_pdf();
-      continue;
-    }
-    Vec3 wl = glm::normalize(e.light_from_world * w);
-    if (e.equal_area) {
-      pdf += pmf * e.distribution.pdf(equal_area_sphere_to_square(wl)) / (4.f * kPi);
-    } else {
-      Vec2 uv = dir_to_latlong(wl);
-      float sin_theta = std::sin(uv.y * kPi);
-      if (sin_theta > 0.f) pdf += pmf * e.distribution.pdf(uv) / (2.f * kPi * kPi * sin_theta);
-    }
-  }
+  for (uint32_t i = 0; i < L.infinite.size(); ++i)
+    pdf += L.selection.discrete_pmf(L.infinite_to_all[i]) * infinite_light_pdf(L, tex, i, w);
   return pdf;
 }
 

@@ -76,6 +76,7 @@ struct LightSample {
   float error_scale = 0.f;
   bool delta = false;
   bool infinite = false;  // no end point: the shadow ray is unbounded
+  uint32_t light = 0;     // index into LightPools::all
 };
 
 // Builds the selection distribution (proportional to emitted power) and the
@@ -97,8 +98,14 @@ inline RGB area_light_Le(const AreaLight& l, const Vec3& n, const Vec3& w) {
 
 // Radiance from infinite lights along a ray leaving the scene in direction w.
 RGB infinite_lights_Le(const LightPools& lights, const TexturePools& tex, const Vec3& w);
+// The same for one given light (index into `all`), without the selection pmf.
+std::optional<LightSample> sample_light_from(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex,
+                                             uint32_t light, const Vec3& p, Vec2 u);
+
 // Density (times selection pmf) that sample_light produces direction w from the infinite lights.
 float infinite_lights_pdf(const LightPools& lights, const TexturePools& tex, const Vec3& w);
+// Solid-angle density of direction w for infinite light `index` alone (no pmf).
+float infinite_light_pdf(const LightPools& lights, const TexturePools& tex, uint32_t index, const Vec3& w);
 
 // The equal-area mapping between the unit square and the sphere used by
 // pbrt-v4 environment maps (Clarberg 2008).

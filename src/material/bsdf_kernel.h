@@ -46,4 +46,25 @@ void for_each_bsdf(MaterialKind kind, const MaterialPools& pools, const TextureP
   }
 }
 
+// Calls fn(bsdf) for one material: a switch, not a virtual call. For the
+// scattered lookups of connections, where hits of one kind are not binned.
+template <class Fn>
+decltype(auto) with_bsdf(MaterialHandle m, const MaterialPools& pools, const TexturePools& tex, Vec2 uv, Fn&& fn) {
+  switch (m.kind()) {
+    case MaterialKind::Diffuse: return fn(make_bsdf(pools.diffuse[m.index()], uv, tex));
+    case MaterialKind::Conductor: return fn(make_bsdf(pools.conductor[m.index()], uv, tex));
+    case MaterialKind::Dielectric: return fn(make_bsdf(pools.dielectric[m.index()], uv, tex));
+    case MaterialKind::CoatedDiffuse: break;
+  }
+  return fn(make_bsdf(pools.coated_diffuse[m.index()], uv, tex));
+}
+
+// pbrt's correction for shading normals when importance is transported
+// (Veach 1997, sec. 5.3): keeps light tracing consistent with camera paths.
+// wo points back along the subpath, wi onward; both in world space.
+inline float shading_normal_correction(const Vec3& wo, const Vec3& wi, const Vec3& ng, const Vec3& ns) {
+  float denom = std::fabs(glm::dot(wo, ng)) * std::fabs(glm::dot(wi, ns));
+  return denom > 0.f ? std::fabs(glm::dot(wo, ns)) * std::fabs(glm::dot(wi, ng)) / denom : 0.f;
+}
+
 }  // namespace lantern

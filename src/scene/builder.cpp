@@ -62,13 +62,16 @@ void SceneBuilder::integrator(const std::string& type, const ParamSet& ps) {
   int maxdepth = ps.get_int("maxdepth", 5);
   if (maxdepth < 0) ps.fail("\"maxdepth\" must be >= 0");
   scene_.settings.maxdepth = maxdepth;
-  if (type == "path") {
-    scene_.settings.integrator = "path";
+  if (type == "path" || type == "bdpt") {
+    scene_.settings.integrator = type;
+  } else if (type == "lightpath") {
+    scene_.settings.integrator = "lt";
   } else {
     warn(ps.where, "integrator \"" + type + "\" is not available; using \"path\" (choose with --integrator)");
     scene_.settings.integrator = "path";
   }
-  for (const char* p : {"regularize", "lightsampler"}) ps.find(p);  // affect noise only
+  for (const char* p : {"regularize", "lightsampler", "visualizestrategies", "visualizeweights"})
+    ps.find(p);  // affect noise or debug output only
 }
 
 void SceneBuilder::pixel_filter(const std::string& type, const ParamSet& ps) {

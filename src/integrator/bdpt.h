@@ -1,0 +1,66 @@
+// Bidirectional path tracing (Veach 1997; Lafortune & Willems 1993) with all
+// strategies weighted by MIS in its recursive form (integrator/bdpt_mis.h),
+// run as wavefront stages over structure-of-arrays pools. With
+// light_tracing_only it is a pure light tracer (t = 1 strategies only,
+// unweighted): a cross-check for the other integrators.
+//
+// Per wave: (1) light subpaths: emission, then bounce by bounce a surface
+// stage, a scatter stage that stores connectible vertices and prepares the
+// t = 1 camera connections, and one occlusion stream for those; (2) the light
+// vertices are grouped by slot; (3) eye subpaths: camera rays, then bounce by
+// bounce a surface stage (s = 0 emission), a shade stage that prepares the
+// s = 1 and s >= 2 connections and scatters, and one occlusion stream.
+#pragma once
+
+#include <memory>
+
+#include "accel/ray_stream.h"
+#include "camera/camera.h"
+#include "film/film.h"
+#include "integrator/bdpt_mis.h"
+#include "integrator/wave.h"
+#include "scene/scene.h"
+
+namespace lantern {
+
+struct BdptSettings {
+  int maxdepth = 5;
+  uint64_t seed = 0;
+  int width = 0, height = 0;
+  float mis_beta = 2.f;             // 2: power heuristic, 1: balance heuristic
+  bool light_tracing_only = false;  // the `lt` integrator
+  bool unit_weights = false;        // every strategy weighted 1: deliberately wrong, for tests only
+};
+
+struct BdptWave;
+
+class Bdpt {
+ public:
+  Bdpt(const Scene& scene, const BdptSettings& settings);
+
+  std::unique_ptr<BdptWave, void (*)(BdptWave*)> make_wave_state(uint32_t capacity, RayStream stream) const;
+  void trace(const WaveDesc& wave, BdptWave& state, WaveOutput& out) const;
+
+ private:
+  // light subpaths (bdpt_light.cpp)
+  void start_light_subpaths(const WaveDesc& wave, BdptWave& w) const;
+  void light_surface_stage(BdptWave& w) const;
+  void light_scatter_stage(BdptWave& w) const;
+  void splat_stage(BdptWave& w, WaveOutput& out) const;
+  void group_light_vertices(BdptWave& w) const;
+  // eye subpaths (bdpt.cpp)
+  void start_eye_subpaths(const WaveDesc& wave, BdptWave& w) const;
+  void eye_surface_stage(BdptWave& w) const;
+  void eye_shade_stage(BdptWave& w) const;
+  void connection_stage(BdptWave& w) const;
+  void compact(BdptWave& w) const;
+
+  float weight(float w) const { return settings_.unit_weights ? 1.f : w; }
+
+  const Scene& scene_;
+  BdptSettings settings_;
+  PerspectiveCamera camera_;
+  MisPower mis_;
+};
+
+}  // namespace lantern

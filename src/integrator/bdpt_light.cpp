@@ -1,0 +1,216 @@
+// Light subpaths of the bidirectional tracer: emission, bounces, the stored
+// light vertices, and the t = 1 strategies (light tracing onto the film).
+#include "integrator/bdpt.h"
+#include "integrator/bdpt_wave.h"
+#include "integrator/hit.h"
+#include "light/emission.h"
+#include "material/bsdf_kernel.h"
+
+namespace lantern {
+
+namespace {
+
+// Shadow ray from a point on a surface (or a point light when ng = 0) to the lens.
+void push_camera_ray(BdptWave& w, uint32_t slot, const Vec3& p, const Vec3& ng, float error_scale,
+                     const CameraSample& cs, const RGB& contrib) {
+  Vec3 o = ng == Vec3(0.f) ? p : offset_ray_origin(p, ng, error_scale, cs.wi);
+  w.shadow.push(o, cs.p_lens - o, 1.f, slot, contrib, cs.p_raster);
+}
+
+}  // namespace
+
+void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
+  const LightPools& lights = scene_.lights;
+  w.rays.count = 0;
+  w.shadow.rays.count = 0;
+  w.vertices.clear();
+  for (uint32_t slot = 0; slot < wave.size(); ++slot) {
+    uint32_t pixel = wave.pixels[slot / wave.samples];
+    PathSampler s = PathSampler::make(settings_.seed, pixel, wave.first_sample + slot % wave.samples);
+    float u_select = s.get1d();
+    Vec2 u_pos = s.get2d(), u_dir = s.get2d(), u_lens = s.get2d();
+    w.pixel[slot] = pixel;
+    w.L[slot] = RGB(0.f);
+    w.sampler[slot] = s;
+    auto es = sample_le(lights, scene_.shapes, scene_.textures, u_select, u_pos, u_dir);
+    if (!es) continue;
+    const bool on_surface = es->n != Vec3(0.f);
+    const float cos_light = on_surface ? std::fabs(glm::dot(es->n, es->d)) : 1.f;
+    const float emission_pdf_W = es->pdf_pos * es->pdf_dir;
+    const float pmf = lights.selection.discrete_pmf(es->light);
+    LightOriginPool& o = w.origin;
+    o.light[slot] = es->light;
+    o.n[slot] = es->n;
+    o.emission_pdf_W[slot] = emission_pdf_W;
+    o.cos_light[slot] = cos_light;
+    o.delta[slot] = es->delta_pos || es->delta_dir;
+    o.infinite[slot] = es->infinite;
+    // Next-event estimation's density of this light point: for area lights it
+    // depends on where it is seen from, so it waits for the first hit.
+    LightKind kind = lights.all[es->light].kind;
+    o.direct_pdf_A[slot] = kind == LightKind::Area ? -1.f : kind == LightKind::Infinite ? pmf * es->pdf_dir : pmf;
+    RGB beta = es->Le * (cos_light / emission_pdf_W);
+    w.light.beta[slot] = beta;
+    w.light.rr_scale[slot] = max_component(beta) > 0.f ? 1.f / max_component(beta) : 0.f;
+    w.light.prev_p[slot] = es->p;
+
+    // s = 1, t = 1: the light's own point seen by the camera.
+    if (!es->infinite) {
+      if (auto cs = camera_.sample_wi(es->p, u_lens)) {
+        float cos_l = on_surface ? std::fabs(glm::dot(es->n, cs->wi)) : 1.f;
+        RGB Le = emitted(lights, es->light, es->n, cs->wi);
+        if (!is_black(Le) && cos_l > 0.f) {
+          float wt = 1.f;
+          if (!settings_.light_tracing_only) {
+            float camera_pdf_A = camera_.pdf_dir(-cs->wi) * cos_l / sqr(cs->dist);
+            wt = weight(mis_weight_light_origin(camera_pdf_A, es->pdf_pos, es->delta_pos, mis_));
+          }
+          RGB c = Le * (cos_l * cs->We * wt / (cs->pdf * es->pdf_pos));
+          push_camera_ray(w, slot, es->p, es->n, es->error_scale, *cs, c);
+        }
+      }
+    }
+    if (settings_.maxdepth == 0) continue;
+    Vec3 origin = on_surface ? offset_ray_origin(es->p, es->n, es->error_scale, es->d) : es->p;
+    w.active[w.rays.count] = slot;
+    w.rays.push(origin, es->d, 0.f, kInfinity);
+  }
+}
+
+// Finishes the MIS quantities of each hit and bins the hits by material.
+void Bdpt::light_surface_stage(BdptWave& w) const {
+  for (auto& b : w.hits.bins) b.clear();
+  const LightPools& lights = scene_.lights;
+  for (uint32_t i = 0; i < w.rays.count; ++i) {
+    uint32_t slot = w.active[i];
+    w.hits.alive[i] = 0;
+    if (!w.rays.hit(i)) continue;
+    SurfacePoint sp = hit_point(scene_.shapes, w.rays, i);
+    Vec3 d = glm::normalize(w.rays.direction(i));
+    Vec3 prev = w.light.prev_p[slot];
+    float dist2 = glm::dot(sp.p - prev, sp.p - prev);
+    float cos_in = std::fabs(glm::dot(sp.ng, d));
+    if (!(cos_in > 0.f) || !(dist2 > 0.f)) continue;
+    MisState& m = w.light.mis[slot];
+    if (w.depth == 1) {
+      const LightOriginPool& o = w.origin;
+      float direct = o.direct_pdf_A[slot];
+      if (direct < 0.f)
+        direct = area_light_direct_pdf_area(lights, scene_.shapes, lights.all[o.light[slot]].index, sp.p, prev,
+                                            o.n[slot]);
+      m = mis_light_start(direct, o.emission_pdf_W[slot], o.cos_light[slot], o.delta[slot] != 0, mis_);
+      mis_after_hit(m, dist2, cos_in, !o.infinite[slot], mis_);
+    } else {
+      mis_after_hit(m, dist2, cos_in, true, mis_);
+    }
+    const Geometry& g = scene_.shapes.geometries[w.rays.geom_id[i]];
+    HitPool& h = w.hits;
+    h.p[i] = sp.p;
+    h.ng[i] = sp.ng;
+    h.ns[i] = glm::dot(sp.ns, sp.ng) < 0.f ? -sp.ns : sp.ns;
+    h.uv[i] = sp.uv;
+    h.wo[i] = -d;
+    h.error_scale[i] = sp.error_scale;
+    h.material[i] = g.material;
+    h.material_index[i] = g.material.index();
+    h.bins[size_t(g.material.kind())].push_back(i);
+  }
+}
+
+// Stores connectible vertices, prepares their camera connections (t = 1)
+// and samples the next direction with importance transport.
+void Bdpt::light_scatter_stage(BdptWave& w) const {
+  const Scene& sc = scene_;
+  const uint32_t depth = w.depth;
+  const uint32_t maxdepth = uint32_t(settings_.maxdepth);
+  for (int k = 0; k < kMaterialKindCount; ++k) {
+    const auto& bin = w.hits.bins[size_t(k)];
+    if (bin.empty()) continue;
+    for_each_bsdf(MaterialKind(k), sc.materials, sc.textures, bin.data(), bin.size(), w.hits.material_index.data(),
+                  w.hits.uv.data(), [&](uint32_t i, const auto& bsdf) {
+      const uint32_t slot = w.active[i];
+      PathSampler& s = w.sampler[slot];
+      const HitPool& h = w.hits;
+      const Frame frame = Frame::from_z(h.ns[i]);
+      const Vec3 wo = frame.to_local(h.wo[i]);
+      Vec2 u_lens = s.get2d();
+      float uc = s.get1d();
+      Vec2 u2 = s.get2d();
+      float u_rr = s.get1d();
+      RGB& beta = w.light.beta[slot];
+      MisState& m = w.light.mis[slot];
+      if (!bsdf.is_specular()) {
+        if (!settings_.light_tracing_only && depth < maxdepth) {  // s >= 2 connections need t >= 2
+          LightVertexPool& v = w.vertices;
+          v.slot.push_back(slot);
+          v.depth.push_back(depth);
+          v.p.push_back(h.p[i]);
+          v.ng.push_back(h.ng[i]);
+          v.ns.push_back(h.ns[i]);
+          v.wo.push_back(h.wo[i]);
+          v.uv.push_back(h.uv[i]);
+          v.error_scale.push_back(h.error_scale[i]);
+          v.beta.push_back(beta);
+          v.mis.push_back(m);
+          v.material.push_back(h.material[i]);
+        }
+        auto cs = depth <= maxdepth ? camera_.sample_wi(h.p[i], u_lens) : std::nullopt;
+        if (cs) {  // t = 1
+          Vec3 wi = frame.to_local(cs->wi);
+          RGB f = bsdf.f(wo, wi, TransportMode::Importance) *
+                  (std::fabs(wi.z) * shading_normal_correction(h.wo[i], cs->wi, h.ng[i], h.ns[i]));
+          if (!is_black(f)) {
+            float wt = 1.f;
+            if (!settings_.light_tracing_only) {
+              float camera_pdf_A = camera_.pdf_dir(-cs->wi) * std::fabs(glm::dot(h.ng[i], cs->wi)) / sqr(cs->dist);
+              wt = weight(mis_weight_light_trace(m, camera_pdf_A, bsdf.pdf(wi, wo, TransportMode::Radiance), mis_));
+            }
+            push_camera_ray(w, slot, h.p[i], h.ng[i], h.error_scale[i], *cs, beta * f * (cs->We * wt / cs->pdf));
+          }
+        }
+      }
+      if (depth >= maxdepth) return;  // deeper vertices would only make paths longer than maxdepth
+      auto bs = bsdf.sample_f(wo, uc, u2, TransportMode::Importance);
+      if (!bs || bs->pdf == 0.f || is_black(bs->f)) return;
+      Vec3 wi = frame.from_local(bs->wi);
+      beta *= bs->f * (std::fabs(bs->wi.z) / bs->pdf * shading_normal_correction(h.wo[i], wi, h.ng[i], h.ns[i]));
+      float pdf_rev = bs->specular ? bs->pdf : bsdf.pdf(bs->wi, wo, TransportMode::Radiance);
+      mis_after_scatter(m, std::fabs(glm::dot(h.ng[i], wi)), bs->pdf, pdf_rev, bs->specular, mis_);
+      // Russian roulette relative to the power the subpath started with.
+      float rr = max_component(beta) * w.light.rr_scale[slot];
+      if (rr < 1.f && depth >= 2) {
+        float q = std::fmax(0.f, 1.f - rr);
+        if (u_rr < q) return;
+        beta /= 1.f - q;
+      }
+      if (!is_finite(beta)) return;
+      w.hits.alive[i] = 1;
+      w.light.prev_p[slot] = h.p[i];
+      w.hits.next_o[i] = offset_ray_origin(h.p[i], h.ng[i], h.error_scale[i], wi);
+      w.hits.next_d[i] = wi;
+    });
+  }
+}
+
+void Bdpt::splat_stage(BdptWave& w, WaveOutput& out) const {
+  ConnectionPool& c = w.shadow;
+  w.stream.occluded(c.rays);
+  for (uint32_t r = 0; r < c.rays.count; ++r)
+    if (!c.rays.occluded(r)) out.splats.push_back({c.p_raster[r], c.contrib[r]});
+  c.rays.count = 0;
+}
+
+// Counting sort by slot, stable, so each slot's vertices stay in depth order.
+void Bdpt::group_light_vertices(BdptWave& w) const {
+  LightVertexPool& v = w.vertices;
+  const uint32_t slots = uint32_t(v.begin.size() - 1);
+  std::fill(v.begin.begin(), v.begin.end(), 0u);
+  for (uint32_t s : v.slot) ++v.begin[s + 1];
+  for (uint32_t s = 0; s < slots; ++s) v.begin[s + 1] += v.begin[s];
+  v.order.resize(v.size());
+  std::vector<uint32_t>& next = w.active;  // free until the eye subpaths start
+  std::copy(v.begin.begin(), v.begin.end() - 1, next.begin());
+  for (uint32_t j = 0; j < v.size(); ++j) v.order[next[v.slot[j]]++] = j;
+}
+
+}  // namespace lantern

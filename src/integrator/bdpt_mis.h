@@ -1,0 +1,124 @@
+// Bidirectional MIS in the recursive form of Georgiev 2012 ("Implementing
+// Vertex Connection and Merging", merging left out): each subpath carries two
+// running quantities, so the weight of any connection costs O(1) instead of a
+// walk over both subpaths (Veach 1997, sec. 10.2).
+//
+// For a subpath vertex x_i reached from x_{i-1}, with p->(x) the area density
+// of generating x from its own side and p<-(x) from the other side:
+//   dVCM_i = Mis( 1 / p->(x_i) )                    (before the cos/dist update: 1 / solid-angle pdf)
+//   dVC_i  = Mis( p<-(x_{i-1}) / p->(x_i) ) * (dVC_{i-1} * Mis(pdf_rev_{i-1}) + dVCM_{i-1})
+// so that the weight of a strategy is 1 / (1 + sum of the other strategies'
+// density ratios), each sum collected by these two numbers. Mis(x) = x^beta:
+// beta = 2 is Veach's power heuristic, beta = 1 the balance heuristic.
+//
+// Conventions kept by every caller (they must agree for the weights of all
+// strategies of one path to sum to 1):
+//  - solid angle -> area conversions use the geometric normal's cosine;
+//  - the camera's direction density is pbrt's whole-film 1 / (A cos^3), and
+//    there is one light subpath per camera sample, so light tracing and
+//    camera sampling compare with a subpath-count ratio of 1;
+//  - Russian roulette is left out of the densities (as in pbrt): weights stay
+//    a partition of unity, only slightly less optimal;
+//  - a specular (delta) vertex is never connected: sampling through it sets
+//    dVCM = 0, and dVC carries the chain on.
+#pragma once
+
+#include "math/common.h"
+
+namespace lantern {
+
+struct MisPower {
+  float beta = 2.f;
+  float operator()(float x) const { return beta == 2.f ? x * x : x; }
+};
+
+struct MisState {
+  float dVCM = 0.f;
+  float dVC = 0.f;
+};
+
+// Eye subpath from a camera ray whose direction has (whole-film) solid-angle
+// density pdf_dir_W.
+inline MisState mis_camera_start(float pdf_dir_W, MisPower mis) { return {mis(1.f / pdf_dir_W), 0.f}; }
+
+// Light subpath leaving the light: direct_pdf_A is the density with which
+// next-event estimation would pick the same light point (as seen from the
+// first hit), emission_pdf_W = p_pos * p_dir * pmf, cos_light at the light
+// (1 for lights at infinity). Delta lights cannot be hit by eye subpaths.
+inline MisState mis_light_start(float direct_pdf_A, float emission_pdf_W, float cos_light, bool delta_light,
+                                MisPower mis) {
+  return {mis(direct_pdf_A / emission_pdf_W), delta_light ? 0.f : mis(cos_light / emission_pdf_W)};
+}
+
+// After a ray of squared length dist2 hits a surface at cosine cos_in. The
+// first segment of a light subpath from infinity has no length (its
+// positional density is already per area on the disk): apply_dist = false.
+inline void mis_after_hit(MisState& m, float dist2, float cos_in, bool apply_dist, MisPower mis) {
+  if (apply_dist) m.dVCM *= mis(dist2);
+  m.dVCM /= mis(cos_in);
+  m.dVC /= mis(cos_in);
+}
+
+// After sampling a direction with density pdf_fwd (pdf_rev: the density of
+// the opposite sampling) leaving at cosine cos_out.
+inline void mis_after_scatter(MisState& m, float cos_out, float pdf_fwd, float pdf_rev, bool specular, MisPower mis) {
+  if (specular) {
+    m.dVCM = 0.f;
+    m.dVC *= mis(cos_out);  // pdf_fwd == pdf_rev for every delta lobe here
+  } else {
+    m.dVC = mis(cos_out / pdf_fwd) * (m.dVC * mis(pdf_rev) + m.dVCM);
+    m.dVCM = mis(1.f / pdf_fwd);
+  }
+}
+
+// s = 0: the eye subpath hit an emitter. direct_pdf_A: next-event density of
+// that light point from the previous eye vertex; emission_pdf_W: density of
+// the light emitting towards the previous eye vertex.
+inline float mis_weight_hit_light(const MisState& eye, float direct_pdf_A, float emission_pdf_W, MisPower mis) {
+  return 1.f / (1.f + mis(direct_pdf_A) * eye.dVCM + mis(emission_pdf_W) * eye.dVC);
+}
+
+// s = 0 for a light seen straight from the camera: the only other strategy
+// is light tracing from the light's own vertex (s = 1, t = 1), whose density
+// is the light's positional one.
+inline float mis_weight_hit_light_direct(const MisState& eye, float emission_pos_pdf_A, MisPower mis) {
+  return 1.f / (1.f + mis(emission_pos_pdf_A) * eye.dVCM);
+}
+
+// s = 1: next-event estimation. light_pdf_W: the light sample's solid-angle
+// density (0 for delta lights, which BSDF sampling cannot hit); bsdf_pdf_W:
+// BSDF density of the same direction; emission_fwd_A: the light's emission
+// density towards the eye vertex, per area there; direct_pdf_A: the light
+// sample's density per area on the light; eye_rev_W: BSDF density from the
+// light direction back to the previous eye vertex.
+inline float mis_weight_next_event(const MisState& eye, float light_pdf_W, float bsdf_pdf_W, float emission_fwd_A,
+                                   float direct_pdf_A, float eye_rev_W, MisPower mis) {
+  float w_light = light_pdf_W > 0.f ? mis(bsdf_pdf_W / light_pdf_W) : 0.f;
+  float w_eye = mis(emission_fwd_A / direct_pdf_A) * (eye.dVCM + eye.dVC * mis(eye_rev_W));
+  return 1.f / (w_light + 1.f + w_eye);
+}
+
+// s, t >= 2: connection of an eye vertex and a light vertex. eye_fwd_A: the
+// eye vertex's BSDF density towards the light vertex, per area there;
+// light_fwd_A likewise the other way; *_rev_W: each vertex's density from
+// the connection back to its own subpath's previous vertex.
+inline float mis_weight_connect(const MisState& eye, const MisState& light, float eye_fwd_A, float eye_rev_W,
+                                float light_fwd_A, float light_rev_W, MisPower mis) {
+  float w_light = mis(eye_fwd_A) * (light.dVCM + light.dVC * mis(light_rev_W));
+  float w_eye = mis(light_fwd_A) * (eye.dVCM + eye.dVC * mis(eye_rev_W));
+  return 1.f / (w_light + 1.f + w_eye);
+}
+
+// t = 1: a light vertex connected to the camera. camera_pdf_A: the camera's
+// direction density towards it, per area there.
+inline float mis_weight_light_trace(const MisState& light, float camera_pdf_A, float light_rev_W, MisPower mis) {
+  return 1.f / (1.f + mis(camera_pdf_A) * (light.dVCM + light.dVC * mis(light_rev_W)));
+}
+
+// s = 1, t = 1: the light's own vertex connected to the camera; the other
+// strategy is the camera ray hitting the light (impossible for delta lights).
+inline float mis_weight_light_origin(float camera_pdf_A, float emission_pos_pdf_A, bool delta_pos, MisPower mis) {
+  return delta_pos ? 1.f : 1.f / (1.f + mis(camera_pdf_A / emission_pos_pdf_A));
+}
+
+}  // namespace lantern

@@ -1,0 +1,149 @@
+// Structure-of-arrays pools of the bidirectional tracer's wave. Per-slot
+// arrays hold the state of one sample's eye and light subpaths; per-ray
+// arrays hold the hits of the current bounce (ray i belongs to active[i]);
+// the light vertex pool holds every connectible light vertex of the wave.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "accel/ray_stream.h"
+#include "integrator/bdpt_mis.h"
+#include "material/material.h"
+#include "math/rng.h"
+
+namespace lantern {
+
+// State of one subpath per slot, used once for the light and once for the
+// eye subpaths.
+struct SubpathPool {
+  std::vector<RGB> beta;
+  std::vector<MisState> mis;
+  std::vector<Vec3> prev_p;  // origin of the ray that found the current vertex
+  std::vector<float> eta_scale, rr_scale;
+  void resize(uint32_t n) {
+    beta.resize(n);
+    mis.resize(n);
+    prev_p.resize(n);
+    eta_scale.resize(n);
+    rr_scale.resize(n);
+  }
+};
+
+// Where each light subpath started: what the first hit needs to finish the
+// light's MIS quantities.
+struct LightOriginPool {
+  std::vector<uint32_t> light;  // index into LightPools::all
+  std::vector<Vec3> n;
+  std::vector<float> emission_pdf_W, cos_light, direct_pdf_A;  // direct_pdf_A < 0: compute at the first hit
+  std::vector<uint8_t> delta, infinite;
+  void resize(uint32_t n_) {
+    light.resize(n_);
+    n.resize(n_);
+    emission_pdf_W.resize(n_);
+    cos_light.resize(n_);
+    direct_pdf_A.resize(n_);
+    delta.resize(n_);
+    infinite.resize(n_);
+  }
+};
+
+// Connectible (non-specular) light vertices, appended bounce by bounce and
+// then grouped by slot: the vertices of slot s are order[begin[s] .. begin[s+1]).
+struct LightVertexPool {
+  std::vector<uint32_t> slot, depth;
+  std::vector<Vec3> p, ng, ns, wo;
+  std::vector<Vec2> uv;
+  std::vector<float> error_scale;
+  std::vector<RGB> beta;
+  std::vector<MisState> mis;
+  std::vector<MaterialHandle> material;
+  std::vector<uint32_t> begin, order;
+
+  size_t size() const { return slot.size(); }
+  void clear() {
+    for (auto* v : {&slot, &depth, &order}) v->clear();
+    for (auto* v : {&p, &ng, &ns, &wo}) v->clear();
+    uv.clear();
+    error_scale.clear();
+    beta.clear();
+    mis.clear();
+    material.clear();
+  }
+};
+
+// The hits of one bounce, per ray.
+struct HitPool {
+  std::vector<Vec3> p, ng, ns, wo;
+  std::vector<Vec2> uv;
+  std::vector<float> error_scale;
+  std::vector<uint32_t> material_index;
+  std::vector<MaterialHandle> material;
+  std::vector<uint8_t> alive;  // the subpath continues past this bounce
+  std::vector<Vec3> next_o, next_d;
+  std::array<std::vector<uint32_t>, kMaterialKindCount> bins;
+  void resize(uint32_t n) {
+    for (auto* v : {&p, &ng, &ns, &wo, &next_o, &next_d}) v->resize(n);
+    uv.resize(n);
+    error_scale.resize(n);
+    material_index.resize(n);
+    material.resize(n);
+    alive.resize(n);
+    for (auto& b : bins) b.reserve(n);
+  }
+};
+
+// Shadow rays of one stage and what each carries if it is unoccluded.
+struct ConnectionPool {
+  RayBatch rays;
+  std::vector<uint32_t> slot;
+  std::vector<RGB> contrib;
+  std::vector<Vec2> p_raster;  // light tracing: where the contribution lands on the film
+  uint32_t push(const Vec3& o, const Vec3& d, float t_max, uint32_t s, const RGB& c, Vec2 raster = Vec2(0.f)) {
+    uint32_t i = rays.push(o, d, 0.f, t_max);
+    if (slot.size() <= i) {
+      slot.resize(rays.capacity());
+      contrib.resize(rays.capacity());
+      p_raster.resize(rays.capacity());
+    }
+    slot[i] = s;
+    contrib[i] = c;
+    p_raster[i] = raster;
+    return i;
+  }
+};
+
+struct BdptWave {
+  BdptWave(uint32_t capacity, RayStream s) : stream(std::move(s)) {
+    pixel.resize(capacity);
+    sampler.resize(capacity);
+    L.resize(capacity);
+    eye.resize(capacity);
+    light.resize(capacity);
+    origin.resize(capacity);
+    active.resize(capacity);
+    hits.resize(capacity);
+    rays.reserve(capacity);
+    shadow.rays.reserve(capacity);
+    vertices.begin.resize(capacity + 1);
+  }
+
+  // per slot
+  std::vector<uint32_t> pixel;
+  std::vector<PathSampler> sampler;
+  std::vector<RGB> L;
+  SubpathPool eye, light;
+  LightOriginPool origin;
+  uint32_t depth = 0;  // bounce of the current phase
+
+  // per ray of the current bounce
+  std::vector<uint32_t> active;
+  RayBatch rays;
+  HitPool hits;
+
+  ConnectionPool shadow;
+  LightVertexPool vertices;
+  RayStream stream;
+};
+
+}  // namespace lantern

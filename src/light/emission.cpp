@@ -1,0 +1,162 @@
+#include "light/emission.h"
+
+#include "math/sampling.h"
+#include "scene/surface.h"
+
+namespace lantern {
+
+namespace {
+
+float area_dir_pdf(const AreaLight& a, const Vec3& n, const Vec3& w) {
+  float c = glm::dot(n, w);
+  if (!a.two_sided && c <= 0.f) return 0.f;
+  return cosine_hemisphere_pdf(std::fabs(c)) * (a.two_sided ? 0.5f : 1.f);
+}
+
+float spot_falloff(const SpotLight& s, const Vec3& w) {
+  return glm::smoothstep(s.cos_falloff_end, s.cos_falloff_start, glm::dot(w, s.frame.n));
+}
+
+float disk_pdf(const LightPools& L) { return 1.f / (kPi * sqr(L.scene_radius)); }
+
+// A ray from a light at infinity: it starts on a disk facing the scene
+// (radius of the scene's bounding sphere), outside the scene.
+void start_on_disk(const LightPools& L, Vec2 u, EmissionSample* es) {
+  Frame f = Frame::from_z(es->d);
+  Vec2 disk = sample_uniform_disk_concentric(u);
+  es->p = L.scene_center + L.scene_radius * (disk.x * f.s + disk.y * f.t - es->d);
+  es->pdf_pos *= disk_pdf(L);
+  es->error_scale = max_abs_component(es->p);
+  es->infinite = true;
+}
+
+}  // namespace
+
+std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& shapes, const TexturePools& tex,
+                                        float u_select, Vec2 u_pos, Vec2 u_dir) {
+  if (L.all.empty()) return std::nullopt;
+  float pmf;
+  size_t i = L.selection.sample_discrete(u_select, &pmf);
+  if (pmf == 0.f) return std::nullopt;
+  const LightRef r = L.all[i];
+  EmissionSample es;
+  es.light = uint32_t(i);
+  es.pdf_pos = pmf;
+  es.pdf_dir = 1.f;
+  switch (r.kind) {
+    case LightKind::Area: {
+      const AreaLight& a = L.area[r.index];
+      const Geometry& g = shapes.geometries[a.geometry];
+      SurfacePoint sp;
+      if (g.kind == ShapeKind::Mesh) {
+        Vec2 b = sample_uniform_triangle(u_pos);
+        sp = triangle_point(shapes.meshes[g.index], a.primitive, b.y, 1.f - b.x - b.y);
+      } else {
+        const Sphere& s = shapes.spheres[g.index];
+        sp = sphere_point(s, s.center + s.radius * sample_uniform_sphere(u_pos));
+      }
+      // Cosine-weighted about the normal; a two-sided light picks a side.
+      bool back = false;
+      if (a.two_sided) {
+        back = u_dir.x < 0.5f;
+        u_dir.x = back ? 2.f * u_dir.x : 2.f * u_dir.x - 1.f;
+      }
+      Vec3 wl = sample_cosine_hemisphere(u_dir);
+      Frame f = Frame::from_z(back ? -sp.ng : sp.ng);
+      es.p = sp.p;
+      es.n = sp.ng;
+      es.d = f.from_local(wl);
+      es.pdf_pos *= 1.f / a.area;
+      es.pdf_dir = area_dir_pdf(a, sp.ng, es.d);
+      es.Le = area_light_Le(a, sp.ng, es.d);
+      es.error_scale = sp.error_scale;
+      break;
+    }
+    case LightKind::Point: {
+      const PointLight& pl = L.point[r.index];
+      es.p = pl.p;
+      es.d = sample_uniform_sphere(u_dir);
+      es.pdf_dir = uniform_sphere_pdf();
+      es.Le = pl.I;
+      es.error_scale = max_abs_component(pl.p);
+      es.delta_pos = true;
+      break;
+    }
+    case LightKind::Spot: {
+      const SpotLight& s = L.spot[r.index];
+      es.p = s.p;
+      es.d = s.frame.from_local(sample_uniform_cone(u_dir, s.cos_falloff_end));
+      es.pdf_dir = uniform_cone_pdf(s.cos_falloff_end);
+      es.Le = s.I * spot_falloff(s, es.d);
+      es.error_scale = max_abs_component(s.p);
+      es.delta_pos = true;
+      break;
+    }
+    case LightKind::Distant: {
+      const DistantLight& dl = L.distant[r.index];
+      es.d = -dl.w;
+      es.Le = dl.L;
+      es.delta_dir = true;
+      start_on_disk(L, u_pos, &es);
+      break;
+    }
+    case LightKind::Infinite: {
+      // The direction is drawn exactly as next-event estimation draws it.
+      auto ls = sample_light_from(L, shapes, tex, uint32_t(i), Vec3(0.f), u_dir);
+      if (!ls || ls->pdf == 0.f) return std::nullopt;
+      es.d = -ls->wi;
+      es.Le = ls->L;
+      es.pdf_dir = ls->pdf;
+      start_on_disk(L, u_pos, &es);
+      break;
+    }
+  }
+  if (!(es.pdf_pos > 0.f) || !(es.pdf_dir > 0.f) || is_black(es.Le)) return std::nullopt;
+  return es;
+}
+
+float area_emission_pdf(const LightPools& L, uint32_t area_index, const Vec3& n, const Vec3& w) {
+  const AreaLight& a = L.area[area_index];
+  return L.selection.discrete_pmf(L.area_to_all[area_index]) / a.area * area_dir_pdf(a, n, w);
+}
+
+float infinite_emission_pdf(const LightPools& L, const TexturePools& tex, const Vec3& w_to_light) {
+  return infinite_lights_pdf(L, tex, w_to_light) * disk_pdf(L);
+}
+
+float emission_pdf(const LightPools& L, const TexturePools& tex, uint32_t light, const Vec3& n, const Vec3& w) {
+  const LightRef r = L.all[light];
+  float pmf = L.selection.discrete_pmf(light);
+  switch (r.kind) {
+    case LightKind::Area: return area_emission_pdf(L, r.index, n, w);
+    case LightKind::Point: return pmf * uniform_sphere_pdf();
+    case LightKind::Spot: return pmf * uniform_cone_pdf(L.spot[r.index].cos_falloff_end);
+    case LightKind::Distant: return pmf * disk_pdf(L);
+    case LightKind::Infinite: {
+      auto pdf = infinite_light_pdf(L, tex, r.index, -w);
+      return pmf * pdf * disk_pdf(L);
+    }
+  }
+  return 0.f;
+}
+
+RGB emitted(const LightPools& L, uint32_t light, const Vec3& n, const Vec3& w) {
+  const LightRef r = L.all[light];
+  switch (r.kind) {
+    case LightKind::Area: return area_light_Le(L.area[r.index], n, w);
+    case LightKind::Point: return L.point[r.index].I;
+    case LightKind::Spot: return L.spot[r.index].I * spot_falloff(L.spot[r.index], w);
+    default: return RGB(0.f);
+  }
+}
+
+float area_light_direct_pdf_area(const LightPools& L, const ShapePools& shapes, uint32_t area_index, const Vec3& p,
+                                 const Vec3& p_light, const Vec3& n_light) {
+  Vec3 d = p_light - p;
+  float dist2 = glm::dot(d, d);
+  if (!(dist2 > 0.f)) return 0.f;
+  float cos_l = std::fabs(glm::dot(n_light, d)) / std::sqrt(dist2);
+  return area_light_pdf(L, shapes, area_index, p, p_light, n_light) * cos_l / dist2;
+}
+
+}  // namespace lantern

@@ -1,0 +1,46 @@
+// Emission sampling (pbrt's Sample_Le / PDF_Le): where light subpaths start,
+// and the densities bidirectional MIS needs to compare a light subpath's
+// first vertex and direction against the other strategies.
+#pragma once
+
+#include <optional>
+
+#include "light/lights.h"
+
+namespace lantern {
+
+struct EmissionSample {
+  Vec3 p{0.f};       // origin: on the light, or on a disk outside the scene for lights at infinity
+  Vec3 n{0.f};       // surface normal of an area light; zero otherwise
+  Vec3 d{0.f};       // unit direction of emission
+  RGB Le{0.f};       // radiance (area, infinite, distant) or intensity (point, spot) along d
+  float pdf_pos = 0.f;  // area density of p times the selection pmf (delta position: the pmf)
+  float pdf_dir = 0.f;  // solid-angle density of d (delta direction: 1)
+  float error_scale = 0.f;
+  uint32_t light = 0;   // index into LightPools::all
+  bool delta_pos = false, delta_dir = false, infinite = false;
+};
+
+// Chooses a light by power, a point on it and a direction leaving it.
+std::optional<EmissionSample> sample_le(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex,
+                                        float u_select, Vec2 u_pos, Vec2 u_dir);
+
+// Emission density (pos incl. the selection pmf, times dir) with which
+// sample_le would start at p_light with normal n_light and leave in w.
+// For lights at infinity, w is the direction the light travels.
+float emission_pdf(const LightPools& lights, const TexturePools& tex, uint32_t light, const Vec3& n_light,
+                   const Vec3& w);
+// Same for the area light hit by a ray: area_index indexes LightPools::area.
+float area_emission_pdf(const LightPools& lights, uint32_t area_index, const Vec3& n_light, const Vec3& w);
+// Emission density of the infinite lights (summed) sending light along -w_to_light.
+float infinite_emission_pdf(const LightPools& lights, const TexturePools& tex, const Vec3& w_to_light);
+
+// Radiance or intensity a light with finite position emits from (p, n) in w.
+RGB emitted(const LightPools& lights, uint32_t light, const Vec3& n, const Vec3& w);
+
+// Area density (times the pmf) with which sample_light picks p_light when
+// called from p: next-event estimation's density of a light vertex.
+float area_light_direct_pdf_area(const LightPools& lights, const ShapePools& shapes, uint32_t area_index,
+                                 const Vec3& p, const Vec3& p_light, const Vec3& n_light);
+
+}  // namespace lantern
