@@ -1,0 +1,144 @@
+// The recursive MIS weights of integrator/bdpt_mis.h against weights built
+// from scratch out of the full path densities (Veach 1997, eq. 10.9): on
+// random paths, each strategy's weight must equal p_s^beta / sum_i p_i^beta,
+// and the weights of all strategies must sum to one.
+#include <gtest/gtest.h>
+
+#include <random>
+#include <vector>
+
+#include "integrator/bdpt_mis.h"
+
+namespace lantern {
+namespace {
+
+// A random path x0 (on an area light) ... xk (a pinhole camera) through
+// Lambertian vertices, with every density the strategies use.
+struct RandomPath {
+  std::vector<Vec3> x, n;  // n[0]: light normal; n[k] unused (camera)
+  Vec3 forward;            // camera axis
+  float film_area = 1.3f;
+  float emission_pos_A = 0.8f;  // light's positional density (pmf included)
+  float direct_pdf_A = 2.7f;    // next-event density of x0, deliberately unlike emission_pos_A
+  int k() const { return int(x.size()) - 1; }
+
+  Vec3 dir(int from, int to) const { return glm::normalize(x[size_t(to)] - x[size_t(from)]); }
+  float dist2(int a, int b) const { return glm::dot(x[size_t(a)] - x[size_t(b)], x[size_t(a)] - x[size_t(b)]); }
+  float cos_at(int i, int other) const { return std::fabs(glm::dot(n[size_t(i)], dir(i, other))); }
+  // Lambertian density at vertex i of leaving towards `to` (whatever it came from).
+  float bsdf_pdf(int i, int to) const { return cos_at(i, to) / kPi; }
+  float emission_dir_W(int to) const { return cos_at(0, to) / kPi; }
+  float camera_dir_W(int to) const {
+    float c = glm::dot(dir(k(), to), forward);
+    return 1.f / (film_area * c * c * c);
+  }
+  // Area density of vertex i generated from neighbour j's side (j = i +- 1).
+  float area_pdf(int i, int j) const {
+    float solid;
+    if (j == k()) solid = camera_dir_W(i);
+    else if (j == 0) solid = emission_dir_W(i);
+    else solid = bsdf_pdf(j, i);
+    return solid * cos_at(i, j) / dist2(i, j);
+  }
+};
+
+RandomPath make_path(int k, std::mt19937& rng) {
+  std::uniform_real_distribution<float> u(-1.f, 1.f);
+  RandomPath p;
+  p.forward = Vec3(0, 0, 1);
+  for (int i = 0; i <= k; ++i) {
+    p.x.push_back(Vec3(u(rng), u(rng), u(rng)) * 2.f);
+    p.n.push_back(glm::normalize(Vec3(u(rng), u(rng), u(rng)) + Vec3(0.f, 0.f, 0.01f)));
+  }
+  // The camera looks at every vertex from in front: put it behind them all.
+  p.x[size_t(k)] = Vec3(0.f, 0.f, -6.f);
+  return p;
+}
+
+// p_s: light subpath x0..x_{s-1}, eye subpath x_s..x_k.
+double explicit_pdf(const RandomPath& p, int s) {
+  const int k = p.k();
+  const int t = k + 1 - s;
+  double pdf = 1.0;
+  if (s >= 1) pdf *= (s == 1 && t >= 2) ? p.direct_pdf_A : p.emission_pos_A;
+  for (int i = 1; i <= s - 1; ++i) pdf *= p.area_pdf(i, i - 1);
+  for (int i = s; i <= k - 1; ++i) pdf *= p.area_pdf(i, i + 1);
+  return pdf;
+}
+
+// Replays what the integrator computes for strategy s.
+float recursive_weight(const RandomPath& p, int s, MisPower mis) {
+  const int k = p.k();
+  const int t = k + 1 - s;
+  auto emission_W = [&](int to) { return p.emission_pos_A * p.emission_dir_W(to); };
+  MisState light, eye;
+  if (s >= 2) {  // light subpath up to x_{s-1}
+    light = mis_light_start(p.direct_pdf_A, emission_W(1), p.cos_at(0, 1), false, mis);
+    mis_after_hit(light, p.dist2(0, 1), p.cos_at(1, 0), true, mis);
+    for (int i = 1; i <= s - 2; ++i) {
+      mis_after_scatter(light, p.cos_at(i, i + 1), p.bsdf_pdf(i, i + 1), p.bsdf_pdf(i, i - 1), false, mis);
+      mis_after_hit(light, p.dist2(i, i + 1), p.cos_at(i + 1, i), true, mis);
+    }
+  }
+  if (t >= 2) {  // eye subpath down to x_s
+    eye = mis_camera_start(p.camera_dir_W(k - 1), mis);
+    mis_after_hit(eye, p.dist2(k, k - 1), p.cos_at(k - 1, k), true, mis);
+    for (int i = k - 1; i >= std::max(s, 1) + 1; --i) {
+      mis_after_scatter(eye, p.cos_at(i, i - 1), p.bsdf_pdf(i, i - 1), p.bsdf_pdf(i, i + 1), false, mis);
+      mis_after_hit(eye, p.dist2(i, i - 1), p.cos_at(i - 1, i), true, mis);
+    }
+  }
+  if (s == 0) {  // the eye subpath hits the light at x0
+    if (k == 1) return mis_weight_hit_light_direct(eye, p.emission_pos_A, mis);
+    // eye is at x1; one more bounce to x0
+    mis_after_scatter(eye, p.cos_at(1, 0), p.bsdf_pdf(1, 0), p.bsdf_pdf(1, 2), false, mis);
+    mis_after_hit(eye, p.dist2(1, 0), p.cos_at(0, 1), true, mis);
+    return mis_weight_hit_light(eye, p.direct_pdf_A, emission_W(1), mis);
+  }
+  if (s == 1 && t == 1)
+    return mis_weight_light_origin(p.camera_dir_W(0) * p.cos_at(0, 1) / p.dist2(0, 1), p.emission_pos_A, false, mis);
+  if (s == 1) {  // next-event estimation from x1
+    float light_pdf_W = p.direct_pdf_A * p.dist2(0, 1) / p.cos_at(0, 1);
+    float emission_fwd_A = emission_W(1) * p.cos_at(1, 0) / p.dist2(0, 1);
+    return mis_weight_next_event(eye, light_pdf_W, p.bsdf_pdf(1, 0), emission_fwd_A, p.direct_pdf_A,
+                                 p.bsdf_pdf(1, 2), mis);
+  }
+  if (t == 1) {  // light tracing from x_{k-1}
+    float camera_pdf_A = p.camera_dir_W(k - 1) * p.cos_at(k - 1, k) / p.dist2(k - 1, k);
+    return mis_weight_light_trace(light, camera_pdf_A, p.bsdf_pdf(k - 1, k - 2), mis);
+  }
+  // connection between x_{s-1} (light) and x_s (eye)
+  const int l = s - 1, e = s;
+  float d2 = p.dist2(l, e);
+  float eye_fwd_A = p.bsdf_pdf(e, l) * p.cos_at(l, e) / d2;
+  float light_fwd_A = p.bsdf_pdf(l, e) * p.cos_at(e, l) / d2;
+  return mis_weight_connect(eye, light, eye_fwd_A, p.bsdf_pdf(e, e + 1), light_fwd_A, p.bsdf_pdf(l, l - 1), mis);
+}
+
+class MisWeights : public ::testing::TestWithParam<float> {};
+
+TEST_P(MisWeights, MatchExplicitPathDensitiesAndSumToOne) {
+  const MisPower mis{GetParam()};
+  std::mt19937 rng(12345);
+  for (int trial = 0; trial < 300; ++trial) {
+    const int k = 1 + trial % 6;  // path lengths 1 .. 6 edges
+    RandomPath p = make_path(k, rng);
+    std::vector<double> pdf(size_t(k) + 1);
+    double sum = 0.0;
+    for (int s = 0; s <= k; ++s) sum += std::pow(pdf[size_t(s)] = explicit_pdf(p, s), double(mis.beta));
+    double total = 0.0;
+    for (int s = 0; s <= k; ++s) {
+      double expected = std::pow(pdf[size_t(s)], double(mis.beta)) / sum;
+      double w = recursive_weight(p, s, mis);
+      EXPECT_NEAR(w, expected, 1e-3 * std::max(1.0, expected)) << "k=" << k << " s=" << s << " trial " << trial;
+      total += w;
+    }
+    EXPECT_NEAR(total, 1.0, 1e-3) << "k=" << k << " trial " << trial;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Heuristics, MisWeights, ::testing::Values(1.f, 2.f),
+                         [](const auto& info) { return info.param == 1.f ? "Balance" : "Power"; });
+
+}  // namespace
+}  // namespace lantern
