@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 
 #include "lantern/render.h"
 #include "lantern/scene.h"
@@ -177,6 +178,82 @@ TEST(Bdpt, BalanceHeuristicAgreesWithPower) {
       }
   }
   EXPECT_LT(max_z(balance, power), kMaxZ);
+}
+
+// Stats over runs of a per-run value per region and channel.
+RegionStats stats_of(const std::vector<Image>& runs, const std::vector<Region>& regions,
+                     const std::vector<Image>* minus = nullptr) {
+  const size_t n = runs.size();
+  RegionStats st;
+  st.mean.assign(regions.size(), {});
+  st.std_error.assign(regions.size(), {});
+  for (size_t g = 0; g < regions.size(); ++g)
+    for (int c = 0; c < 3; ++c) {
+      double sum = 0.0, sum2 = 0.0;
+      for (size_t r = 0; r < n; ++r) {
+        const Region& reg = regions[g];
+        double v = 0.0;
+        for (int y = reg.y0; y < reg.y0 + reg.h; ++y)
+          for (int x = reg.x0; x < reg.x0 + reg.w; ++x)
+            v += runs[r].at(x, y)[c] - (minus ? (*minus)[r].at(x, y)[c] : 0.f);
+        v /= double(reg.w * reg.h);
+        sum += v;
+        sum2 += v * v;
+      }
+      double m = sum / double(n);
+      st.mean[g][size_t(c)] = m;
+      st.std_error[g][size_t(c)] = std::sqrt(std::max(0.0, (sum2 - double(n) * m * m) / double(n - 1)) / double(n));
+    }
+  return st;
+}
+
+// Each strategy alone, unweighted, estimates every path it can sample. In
+// the Cornell box (all diffuse, an area light, a pinhole camera) every
+// strategy can sample every path, so each (s, t) image must agree with the
+// path tracer's light at exactly that depth: path(maxdepth = k) minus
+// path(maxdepth = k - 1).
+TEST(Bdpt, EachStrategyUnweightedAgreesWithPathAtItsDepth) {
+  auto scene = shipped("cornell-box.pbrt");
+  constexpr int kMaxDepth = 3, kSize = 16, kRunsHere = 24;
+  const std::vector<Region> regions = {{0, 0, 16, 16}, {0, 0, 8, 8}, {8, 0, 8, 8}, {0, 8, 8, 8}, {8, 8, 8, 8}};
+  RenderOptions o;
+  o.width = o.height = kSize;
+  std::vector<std::vector<Image>> path(kMaxDepth + 1);  // path[k][run]
+  o.integrator = "path";
+  o.spp = 256;
+  for (int k = 0; k <= kMaxDepth; ++k) {
+    o.maxdepth = k;
+    for (int r = 0; r < kRunsHere; ++r) {
+      o.seed = 100 * uint64_t(k) + uint64_t(r);
+      path[size_t(k)].push_back(render(*scene, o).image);
+    }
+  }
+  std::map<std::pair<int, int>, std::vector<Image>> strategy;  // unweighted, per run
+  o.integrator = "bdpt";
+  o.spp = 64;
+  o.maxdepth = kMaxDepth;
+  o.strategies = true;
+  for (int r = 0; r < kRunsHere; ++r) {
+    o.seed = 7000 + uint64_t(r);
+    RenderResult res = render(*scene, o);
+    for (StrategyImage& im : res.strategies) strategy[{im.s, im.t}].push_back(std::move(im.unweighted));
+  }
+  for (int k = 0; k <= kMaxDepth; ++k) {
+    Image black;
+    black.width = black.height = kSize;
+    black.rgb.assign(3 * kSize * kSize, 0.f);
+    std::vector<Image> zero(kRunsHere, black);
+    RegionStats expected = stats_of(path[size_t(k)], regions, k > 0 ? &path[size_t(k - 1)] : &zero);
+    for (int s = 0; s <= k + 1; ++s) {
+      const int t = k + 2 - s;
+      auto it = strategy.find({s, t});
+      ASSERT_NE(it, strategy.end()) << "no image for s=" << s << " t=" << t;
+      ASSERT_EQ(it->second.size(), size_t(kRunsHere));
+      RegionStats got = stats_of(it->second, regions);
+      std::printf("  depth %d, s=%d t=%d: ", k, s, t);
+      EXPECT_LT(max_z(got, expected), kMaxZ) << "s=" << s << " t=" << t;
+    }
+  }
 }
 
 TEST(Bdpt, SameImageWithOneOrTwoThreads) {

@@ -1,5 +1,6 @@
 # End-to-end checks of the lantern command: a render writes its image, bad
-# input exits non-zero with file:line:column, SIGINT writes what was rendered.
+# input exits non-zero with file:line:column, SIGINT writes what was rendered,
+# the bidirectional integrators and `lantern compare` run.
 function(expect_run)
   cmake_parse_arguments(E "" "EXIT;MATCH;NAME" "ARGS" ${ARGN})
   execute_process(COMMAND ${LANTERN} ${E_ARGS} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
@@ -25,11 +26,31 @@ file(WRITE ${OUT}/broken.pbrt "WorldBegin\nShape \"sphere\" \"float radius\" [ 1
 expect_run(NAME syntax-error EXIT 2 MATCH "broken.pbrt:2:.*error: .*missing" ARGS render ${OUT}/broken.pbrt -o ${OUT}/x.png)
 expect_run(NAME bad-flag EXIT 105 ARGS render ${SRC}/scenes/cornell-box.pbrt --spp -3)
 
-# SIGINT during a long render: exit 130 and an image with the samples so far.
-file(REMOVE ${OUT}/interrupted.exr)
-execute_process(COMMAND sh -c "${LANTERN} render ${SRC}/scenes/cornell-box.pbrt --spp 100000 --resolution 64 64 --quiet -o ${OUT}/interrupted.exr & pid=$!; sleep 2; kill -INT $pid; wait $pid"
-                RESULT_VARIABLE rc ERROR_VARIABLE err TIMEOUT 60)
-if(NOT rc EQUAL 130 OR NOT EXISTS ${OUT}/interrupted.exr)
-  message(FATAL_ERROR "SIGINT: exit ${rc}, image written: ${OUT}/interrupted.exr\n${err}")
-endif()
+# The bidirectional integrators, per-strategy images, and compare.
+file(REMOVE_RECURSE ${OUT}/strategies)
+expect_run(NAME bdpt EXIT 0 MATCH "light extension" ARGS render ${SRC}/scenes/cornell-box.pbrt --integrator bdpt --spp 2
+           --resolution 16 16 --maxdepth 2 --strategies ${OUT}/strategies -o ${OUT}/bdpt.exr)
+foreach(f s0_t2_weighted.exr s1_t1_unweighted.exr s2_t2_weighted.exr s3_t1_unweighted.exr)
+  if(NOT EXISTS ${OUT}/strategies/${f})
+    message(FATAL_ERROR "--strategies did not write ${f}")
+  endif()
+endforeach()
+expect_run(NAME lt EXIT 0 ARGS render ${SRC}/scenes/cornell-box.pbrt --integrator lt --spp 2 --resolution 16 16 --quiet
+           -o ${OUT}/lt.exr)
+expect_run(NAME strategies-need-bdpt EXIT 1 MATCH "need --integrator bdpt" ARGS render ${SRC}/scenes/cornell-box.pbrt
+           --integrator path --spp 1 --resolution 8 8 --strategies ${OUT}/strategies -o ${OUT}/x.exr)
+expect_run(NAME compare EXIT 0 MATCH "relmse [0-9.e+-]+\nmae" ARGS compare ${OUT}/lt.exr ${OUT}/bdpt.exr)
+expect_run(NAME compare-size-mismatch EXIT 1 MATCH "sizes differ" ARGS compare ${OUT}/cli.exr ${OUT}/bdpt.exr)
+expect_run(NAME bad-mis EXIT 105 ARGS render ${SRC}/scenes/cornell-box.pbrt --mis nonsense)
+
+# SIGINT during a long render: exit 130 and an image with the samples so far,
+# for the path tracer and for bdpt (whose splats go through the same merge).
+foreach(integrator path bdpt)
+  file(REMOVE ${OUT}/interrupted.exr)
+  execute_process(COMMAND sh -c "${LANTERN} render ${SRC}/scenes/cornell-box.pbrt --integrator ${integrator} --spp 100000 --resolution 64 64 --quiet -o ${OUT}/interrupted.exr & pid=$!; sleep 2; kill -INT $pid; wait $pid"
+                  RESULT_VARIABLE rc ERROR_VARIABLE err TIMEOUT 60)
+  if(NOT rc EQUAL 130 OR NOT EXISTS ${OUT}/interrupted.exr)
+    message(FATAL_ERROR "SIGINT (${integrator}): exit ${rc}, image written: ${OUT}/interrupted.exr\n${err}")
+  endif()
+endforeach()
 message(STATUS "cli end-to-end: all checks passed")

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "lantern/image.h"
 #include "lantern/scene.h"
@@ -30,6 +31,7 @@ struct RenderOptions {
   int wave_size = 4096;  // paths per wave
   std::function<void(const RenderProgress&)> progress;
   const std::atomic<bool>* cancel = nullptr;  // set it to stop after the waves in flight
+  bool strategies = false;  // bdpt: also produce one weighted and one unweighted image per (s, t)
   bool debug_unit_mis_weights = false;  // tests only: weight every bdpt strategy 1 (a deliberately biased estimator)
 };
 
@@ -41,8 +43,16 @@ struct RenderStats {
   uint32_t min_spp = 0;            // samples in the least-sampled pixel
 };
 
+// The contributions of one bidirectional strategy: s light vertices, t eye
+// vertices (t = 1: light tracing). The weighted images sum to the image.
+struct StrategyImage {
+  int s, t;
+  Image weighted, unweighted;
+};
+
 struct RenderResult {
   Image image;
+  std::vector<StrategyImage> strategies;  // with RenderOptions::strategies
   RenderStats stats;
   bool interrupted = false;
 };

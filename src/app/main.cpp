@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <csignal>
+#include <filesystem>
 #include <cstdio>
 #include <iostream>
 
@@ -30,13 +31,23 @@ std::string hms(double s) {
 }
 
 struct RenderArgs {
-  std::string scene, output, integrator, rays = "stream", mis = "power";
+  std::string scene, output, integrator, rays = "stream", mis = "power", strategies;
   int spp = 0, maxdepth = -1, threads = 0, wave_size = 4096;
   double time = 0.0;
   uint64_t seed = 0;
   std::vector<int> resolution;
   bool quiet = false;
 };
+
+void write_strategy_images(const std::string& dir, const std::vector<lantern::StrategyImage>& images,
+                           const lantern::ImageMetadata& md) {
+  std::filesystem::create_directories(dir);
+  for (const lantern::StrategyImage& im : images) {
+    std::string base = dir + "/s" + std::to_string(im.s) + "_t" + std::to_string(im.t);
+    lantern::write_image(base + "_weighted.exr", im.weighted, md);
+    lantern::write_image(base + "_unweighted.exr", im.unweighted, md);
+  }
+}
 
 int run_render(const RenderArgs& a) {
   using namespace lantern;
@@ -50,6 +61,7 @@ int run_render(const RenderArgs& a) {
   RenderOptions o;
   o.integrator = a.integrator.empty() ? ss.integrator : a.integrator;
   o.mis = a.mis;
+  o.strategies = !a.strategies.empty();
   o.spp = a.spp > 0 ? a.spp : ss.spp;
   o.time_limit_seconds = a.time;
   o.maxdepth = a.maxdepth >= 0 ? a.maxdepth : ss.maxdepth;
@@ -86,15 +98,18 @@ int run_render(const RenderArgs& a) {
                       {"lantern:interrupted", r.interrupted ? "true" : "false"},
                       {"lantern:scene", a.scene}};
   write_image(out, r.image, md);
+  if (!a.strategies.empty()) write_strategy_images(a.strategies, r.strategies, md);
   if (!a.quiet) {
     const RenderStats& s = r.stats;
-    double rays = double(s.camera_rays + s.extension_rays + s.shadow_rays);
+    double rays = double(s.camera_rays + s.extension_rays + s.light_rays + s.shadow_rays);
     std::fprintf(stderr,
                  "%s: %dx%d, %u spp (min), %.2f s render, %.2f s load; %.3f Msamples/s, %.2f Mrays/s "
-                 "(camera %.1fM, extension %.1fM, shadow %.1fM); non-finite samples discarded: %llu\n",
-                 out.c_str(), r.image.width, r.image.height, s.min_spp, s.seconds, load_s, double(s.samples) / s.seconds * 1e-6,
-                 rays / s.seconds * 1e-6, double(s.camera_rays) * 1e-6, double(s.extension_rays) * 1e-6,
-                 double(s.shadow_rays) * 1e-6, (unsigned long long)s.nonfinite_samples);
+                 "(camera %.1fM, eye extension %.1fM, light extension %.1fM, shadow/connection %.1fM); "
+                 "non-finite samples discarded: %llu\n",
+                 out.c_str(), r.image.width, r.image.height, s.min_spp, s.seconds, load_s,
+                 double(s.samples) / s.seconds * 1e-6, rays / s.seconds * 1e-6, double(s.camera_rays) * 1e-6,
+                 double(s.extension_rays) * 1e-6, double(s.light_rays) * 1e-6, double(s.shadow_rays) * 1e-6,
+                 (unsigned long long)s.nonfinite_samples);
   }
   if (r.interrupted) {
     std::fprintf(stderr, "interrupted: wrote the %llu samples rendered so far to %s\n",
@@ -138,6 +153,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"path", "bdpt", "lt"}));
   render->add_option("--mis", a.mis, "bdpt's MIS heuristic: power or balance")
       ->check(CLI::IsMember({"power", "balance"}));
+  render->add_option("--strategies", a.strategies,
+                     "bdpt: write DIR/s<s>_t<t>_{weighted,unweighted}.exr, one pair per strategy");
   render->add_option("--maxdepth", a.maxdepth, "Maximum path depth, as pbrt defines it (default: the scene's)")->check(CLI::NonNegativeNumber);
   render->add_option("--threads", a.threads, "Worker threads (default: all cores)")->check(CLI::PositiveNumber);
   render->add_option("--seed", a.seed, "Random seed");

@@ -38,22 +38,12 @@ void Film::merge(const WaveOutput& out) {
 // filter density at its offset: the same weight with which that pixel's own
 // camera samples would have landed there.
 void Film::add_splat(const Splat& s) {
-  int x0 = std::max(0, int(std::ceil(s.p_raster.x - 0.5f - filter_.radius.x)));
-  int x1 = std::min(width_ - 1, int(std::floor(s.p_raster.x - 0.5f + filter_.radius.x)));
-  int y0 = std::max(0, int(std::ceil(s.p_raster.y - 0.5f - filter_.radius.y)));
-  int y1 = std::min(height_ - 1, int(std::floor(s.p_raster.y - 0.5f + filter_.radius.y)));
-  for (int y = y0; y <= y1; ++y) {
-    float wy = pixel_filter_density_1d(filter_, s.p_raster.y - (float(y) + 0.5f), filter_.radius.y);
-    if (wy == 0.f) continue;
-    for (int x = x0; x <= x1; ++x) {
-      float w = wy * pixel_filter_density_1d(filter_, s.p_raster.x - (float(x) + 0.5f), filter_.radius.x);
-      if (w == 0.f) continue;
-      double* d = &splat_[3 * (size_t(y) * size_t(width_) + size_t(x))];
-      d[0] += double(w * s.L.x);
-      d[1] += double(w * s.L.y);
-      d[2] += double(w * s.L.z);
-    }
-  }
+  for_each_splat_pixel(filter_, width_, height_, s.p_raster, [&](size_t pixel, float w) {
+    double* d = &splat_[3 * pixel];
+    d[0] += double(w * s.L.x);
+    d[1] += double(w * s.L.y);
+    d[2] += double(w * s.L.z);
+  });
 }
 
 Image Film::resolve() const {

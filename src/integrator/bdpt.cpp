@@ -60,7 +60,7 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
         float wt = w.depth == 1 ? 1.f
                                 : mis_weight_hit_light(m, infinite_lights_pdf(lights, scene_.textures, d),
                                                        infinite_emission_pdf(lights, scene_.textures, d), mis_);
-        w.L[slot] += w.eye.beta[slot] * weight(wt) * Le;
+        add_emission(w, slot, w.eye.beta[slot] * Le, weight(wt));
       }
       continue;
     }
@@ -82,7 +82,7 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
           wt = mis_weight_hit_light(m, area_light_direct_pdf_area(lights, shapes, a, prev, sp.p, sp.ng),
                                     area_emission_pdf(lights, a, sp.ng, -d), mis_);
         }
-        w.L[slot] += w.eye.beta[slot] * weight(wt) * Le;
+        add_emission(w, slot, w.eye.beta[slot] * Le, weight(wt));
       }
     }
     if (last) continue;
@@ -137,15 +137,16 @@ void Bdpt::eye_shade_stage(BdptWave& w) const {
             float wt = mis_weight_next_event(m, ls->delta ? 0.f : ls->pdf, bsdf.pdf(wo, wi, TransportMode::Radiance),
                                              emission_fwd_A, direct_pdf_A,
                                              bsdf.pdf(wi, wo, TransportMode::Importance), mis_);
-            RGB c = beta * f * ls->L * (weight(wt) / ls->pdf);
+            RGB u = beta * f * ls->L / ls->pdf;
+            StrategyTag tag{1, uint8_t(depth + 1), u};
             Vec3 o = offset_ray_origin(h.p[i], h.ng[i], h.error_scale[i], ls->wi);
             if (ls->infinite) {
-              w.shadow.push(o, ls->wi, kInfinity, slot, c);
+              w.shadow.push(o, ls->wi, kInfinity, slot, u * weight(wt), Vec2(0.f), tag);
             } else {
               Vec3 target = ls->n_light == Vec3(0.f)
                                 ? ls->p_light
                                 : offset_ray_origin(ls->p_light, ls->n_light, ls->error_scale, -ls->wi);
-              w.shadow.push(o, target - o, 1.f, slot, c);
+              w.shadow.push(o, target - o, 1.f, slot, u * weight(wt), Vec2(0.f), tag);
             }
           }
         }
@@ -178,7 +179,8 @@ void Bdpt::eye_shade_stage(BdptWave& w) const {
                                         light_fwd_A, light_rev_W, mis_);
           Vec3 o = offset_ray_origin(h.p[i], h.ng[i], h.error_scale[i], wi_w);
           Vec3 target = offset_ray_origin(v.p[j], v.ng[j], v.error_scale[j], -wi_w);
-          w.shadow.push(o, target - o, 1.f, slot, c * weight(wt));
+          w.shadow.push(o, target - o, 1.f, slot, c * weight(wt), Vec2(0.f),
+                        {uint8_t(v.depth[j] + 1), uint8_t(depth + 1), c});
         }
         if (w.shadow.rays.count >= kMaxPendingConnections) connection_stage(w);
       }
@@ -208,9 +210,21 @@ void Bdpt::eye_shade_stage(BdptWave& w) const {
 void Bdpt::connection_stage(BdptWave& w) const {
   ConnectionPool& c = w.shadow;
   w.stream.occluded(c.rays);
-  for (uint32_t r = 0; r < c.rays.count; ++r)
-    if (!c.rays.occluded(r)) w.L[c.slot[r]] += c.contrib[r];
+  for (uint32_t r = 0; r < c.rays.count; ++r) {
+    if (c.rays.occluded(r)) continue;
+    w.L[c.slot[r]] += c.contrib[r];
+    if (c.record)
+      w.out->strategies.push_back(
+          {w.pixel[c.slot[r]], Vec2(0.f), c.tags[r].s, c.tags[r].t, c.contrib[r], c.tags[r].unweighted});
+  }
   c.rays.count = 0;
+}
+
+// s = 0: emission the eye subpath found at its current depth.
+void Bdpt::add_emission(BdptWave& w, uint32_t slot, const RGB& unweighted, float weight) const {
+  w.L[slot] += unweighted * weight;
+  if (settings_.record_strategies)
+    w.out->strategies.push_back({w.pixel[slot], Vec2(0.f), 0, uint8_t(w.depth + 1), unweighted * weight, unweighted});
 }
 
 void Bdpt::compact(BdptWave& w) const {
@@ -225,13 +239,15 @@ void Bdpt::compact(BdptWave& w) const {
 }
 
 void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
+  w.out = &out;
+  w.shadow.record = settings_.record_strategies;
   start_light_subpaths(wave, w);
-  splat_stage(w, out);
+  splat_stage(w);
   for (w.depth = 1; w.rays.count > 0; ++w.depth) {
     w.stream.intersect(w.rays, RayKind::LightExtension);
     light_surface_stage(w);
     light_scatter_stage(w);
-    splat_stage(w, out);
+    splat_stage(w);
     compact(w);
   }
   if (!settings_.light_tracing_only) {

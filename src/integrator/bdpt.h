@@ -30,6 +30,7 @@ struct BdptSettings {
   float mis_beta = 2.f;             // 2: power heuristic, 1: balance heuristic
   bool light_tracing_only = false;  // the `lt` integrator
   bool unit_weights = false;        // every strategy weighted 1: deliberately wrong, for tests only
+  bool record_strategies = false;   // per-(s, t) contributions into WaveOutput::strategies
 };
 
 struct BdptWave;
@@ -46,13 +47,14 @@ class Bdpt {
   void start_light_subpaths(const WaveDesc& wave, BdptWave& w) const;
   void light_surface_stage(BdptWave& w) const;
   void light_scatter_stage(BdptWave& w) const;
-  void splat_stage(BdptWave& w, WaveOutput& out) const;
+  void splat_stage(BdptWave& w) const;
   void group_light_vertices(BdptWave& w) const;
   // eye subpaths (bdpt.cpp)
   void start_eye_subpaths(const WaveDesc& wave, BdptWave& w) const;
   void eye_surface_stage(BdptWave& w) const;
   void eye_shade_stage(BdptWave& w) const;
   void connection_stage(BdptWave& w) const;
+  void add_emission(BdptWave& w, uint32_t slot, const RGB& unweighted, float weight) const;
   void compact(BdptWave& w) const;
 
   float weight(float w) const { return settings_.unit_weights ? 1.f : w; }

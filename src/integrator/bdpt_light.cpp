@@ -12,9 +12,9 @@ namespace {
 
 // Shadow ray from a point on a surface (or a point light when ng = 0) to the lens.
 void push_camera_ray(BdptWave& w, uint32_t slot, const Vec3& p, const Vec3& ng, float error_scale,
-                     const CameraSample& cs, const RGB& contrib) {
+                     const CameraSample& cs, const RGB& unweighted, float weight, uint32_t s) {
   Vec3 o = ng == Vec3(0.f) ? p : offset_ray_origin(p, ng, error_scale, cs.wi);
-  w.shadow.push(o, cs.p_lens - o, 1.f, slot, contrib, cs.p_raster);
+  w.shadow.push(o, cs.p_lens - o, 1.f, slot, unweighted * weight, cs.p_raster, {uint8_t(s), 1, unweighted});
 }
 
 }  // namespace
@@ -65,8 +65,8 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
             float camera_pdf_A = camera_.pdf_dir(-cs->wi) * cos_l / sqr(cs->dist);
             wt = weight(mis_weight_light_origin(camera_pdf_A, es->pdf_pos, es->delta_pos, mis_));
           }
-          RGB c = Le * (cos_l * cs->We * wt / (cs->pdf * es->pdf_pos));
-          push_camera_ray(w, slot, es->p, es->n, es->error_scale, *cs, c);
+          RGB c = Le * (cos_l * cs->We / (cs->pdf * es->pdf_pos));
+          push_camera_ray(w, slot, es->p, es->n, es->error_scale, *cs, c, wt, 1);
         }
       }
     }
@@ -165,7 +165,8 @@ void Bdpt::light_scatter_stage(BdptWave& w) const {
               float camera_pdf_A = camera_.pdf_dir(-cs->wi) * std::fabs(glm::dot(h.ng[i], cs->wi)) / sqr(cs->dist);
               wt = weight(mis_weight_light_trace(m, camera_pdf_A, bsdf.pdf(wi, wo, TransportMode::Radiance), mis_));
             }
-            push_camera_ray(w, slot, h.p[i], h.ng[i], h.error_scale[i], *cs, beta * f * (cs->We * wt / cs->pdf));
+            push_camera_ray(w, slot, h.p[i], h.ng[i], h.error_scale[i], *cs, beta * f * (cs->We / cs->pdf), wt,
+                            depth + 1);
           }
         }
       }
@@ -192,11 +193,14 @@ void Bdpt::light_scatter_stage(BdptWave& w) const {
   }
 }
 
-void Bdpt::splat_stage(BdptWave& w, WaveOutput& out) const {
+void Bdpt::splat_stage(BdptWave& w) const {
   ConnectionPool& c = w.shadow;
   w.stream.occluded(c.rays);
-  for (uint32_t r = 0; r < c.rays.count; ++r)
-    if (!c.rays.occluded(r)) out.splats.push_back({c.p_raster[r], c.contrib[r]});
+  for (uint32_t r = 0; r < c.rays.count; ++r) {
+    if (c.rays.occluded(r)) continue;
+    w.out->splats.push_back({c.p_raster[r], c.contrib[r]});
+    if (c.record) w.out->strategies.push_back({0, c.p_raster[r], c.tags[r].s, 1, c.contrib[r], c.tags[r].unweighted});
+  }
   c.rays.count = 0;
 }
 

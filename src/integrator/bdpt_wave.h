@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "accel/ray_stream.h"
+#include "film/film.h"
 #include "integrator/bdpt_mis.h"
 #include "material/material.h"
 #include "math/rng.h"
@@ -93,22 +94,34 @@ struct HitPool {
   }
 };
 
+// The (s, t) strategy of a contribution and its value before the MIS
+// weight: recorded only for per-strategy images.
+struct StrategyTag {
+  uint8_t s, t;
+  RGB unweighted;
+};
+
 // Shadow rays of one stage and what each carries if it is unoccluded.
 struct ConnectionPool {
   RayBatch rays;
   std::vector<uint32_t> slot;
   std::vector<RGB> contrib;
-  std::vector<Vec2> p_raster;  // light tracing: where the contribution lands on the film
-  uint32_t push(const Vec3& o, const Vec3& d, float t_max, uint32_t s, const RGB& c, Vec2 raster = Vec2(0.f)) {
+  std::vector<Vec2> p_raster;     // light tracing: where the contribution lands on the film
+  std::vector<StrategyTag> tags;  // filled only when strategies are recorded
+  bool record = false;
+  uint32_t push(const Vec3& o, const Vec3& d, float t_max, uint32_t s, const RGB& c, Vec2 raster,
+                const StrategyTag& tag) {
     uint32_t i = rays.push(o, d, 0.f, t_max);
     if (slot.size() <= i) {
       slot.resize(rays.capacity());
       contrib.resize(rays.capacity());
       p_raster.resize(rays.capacity());
+      if (record) tags.resize(rays.capacity());
     }
     slot[i] = s;
     contrib[i] = c;
     p_raster[i] = raster;
+    if (record) tags[i] = tag;
     return i;
   }
 };
@@ -144,6 +157,7 @@ struct BdptWave {
   ConnectionPool shadow;
   LightVertexPool vertices;
   RayStream stream;
+  WaveOutput* out = nullptr;  // of the wave being traced
 };
 
 }  // namespace lantern

@@ -17,6 +17,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "film/strategy_film.h"
 #include "integrator/bdpt.h"
 #include "integrator/bdpt_wave.h"
 #include "integrator/path_tracer.h"
@@ -73,7 +74,8 @@ class ProgressReporter {
 // last stage merges their output into the film serially and in wave order.
 template <class Tracer>
 bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& opt, RayBackend backend,
-                RayCounters& counters, Film& film, Clock::time_point start, std::atomic<uint64_t>& done) {
+                RayCounters& counters, Film& film, StrategyFilm* strategies, Clock::time_point start,
+                std::atomic<uint64_t>& done) {
   const std::vector<uint32_t> order = tile_order(film.width(), film.height());
   const bool timed = opt.time_limit_seconds > 0;
   const uint32_t total_spp = timed ? 0xFFFFFFFFu : uint32_t(opt.spp);
@@ -124,6 +126,7 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
             tbb::make_filter<uint32_t, void>(tbb::filter_mode::serial_in_order, [&](uint32_t wi) {
               const WaveOutput& out = outputs[wi % tokens];
               film.merge(out);
+              if (strategies) strategies->merge(out.strategies);
               done += out.samples.size();
             }));
   }
@@ -140,6 +143,8 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
     throw std::invalid_argument("unknown MIS heuristic \"" + opt.mis + "\"; available: power, balance");
   if (opt.spp <= 0 && opt.time_limit_seconds <= 0) throw std::invalid_argument("--spp must be positive");
   if (opt.maxdepth < 0) throw std::invalid_argument("--maxdepth must be >= 0");
+  if (opt.strategies && opt.integrator != "bdpt")
+    throw std::invalid_argument("per-strategy images need --integrator bdpt");
   if (opt.wave_size < 1 || opt.wave_size > (1 << 22)) throw std::invalid_argument("--wave-size must lie in [1, 4194304]");
   RayBackend backend = parse_ray_backend(opt.ray_backend);
 
@@ -149,6 +154,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
   const int width = opt.width > 0 ? opt.width : scene.settings.width;
   const int height = opt.height > 0 ? opt.height : scene.settings.height;
   Film film(width, height, scene.filter);
+  std::optional<StrategyFilm> strategy_film;
   RayCounters counters;
   const auto start = Clock::now();
   std::atomic<uint64_t> done{0};
@@ -165,20 +171,24 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
       bs.mis_beta = opt.mis == "balance" ? 1.f : 2.f;
       bs.light_tracing_only = opt.integrator == "lt";
       bs.unit_weights = opt.debug_unit_mis_weights;
-      run_passes(Bdpt(scene, bs), scene, opt, backend, counters, film, start, done);
+      bs.record_strategies = opt.strategies;
+      if (opt.strategies) strategy_film.emplace(width, height, scene.filter);
+      run_passes(Bdpt(scene, bs), scene, opt, backend, counters, film, strategy_film ? &*strategy_film : nullptr, start,
+                 done);
     } else {
       PathTracerSettings ps;
       ps.maxdepth = opt.maxdepth;
       ps.seed = opt.seed;
       ps.width = width;
       ps.height = height;
-      run_passes(PathTracer(scene, ps), scene, opt, backend, counters, film, start, done);
+      run_passes(PathTracer(scene, ps), scene, opt, backend, counters, film, nullptr, start, done);
     }
     interrupted = opt.cancel && opt.cancel->load();
   }
 
   RenderResult res;
   res.image = film.resolve();
+  if (strategy_film) res.strategies = strategy_film->resolve(film);
   res.interrupted = interrupted;
   RenderStats& st = res.stats;
   st.seconds = std::chrono::duration<double>(Clock::now() - start).count();

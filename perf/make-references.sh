@@ -1,0 +1,14 @@
+#!/bin/sh
+# Renders the reference images the equal-time benchmarks compare against:
+# bdpt for a fixed time at a modest resolution, stored as half-float EXR.
+# Usage: perf/make-references.sh [seconds per scene]   (from the repository root)
+set -eu
+secs=${1:-150}
+lantern=${LANTERN:-build/lantern}
+mkdir -p perf/references
+for s in cornell-box lantern door-ajar; do
+  res="240 180"; [ "$s" = cornell-box ] && res="256 256"
+  "$lantern" render "scenes/$s.pbrt" --integrator bdpt --time "$secs" --seed 424242 --resolution $res -q \
+    -o "/tmp/ref-$s.exr"
+  oiiotool "/tmp/ref-$s.exr" -d half --compression zip -o "perf/references/$s.exr"
+done

@@ -1,0 +1,62 @@
+#include "film/strategy_film.h"
+
+#include <algorithm>
+
+namespace lantern {
+
+StrategyFilm::Sums& StrategyFilm::sums(int s, int t) {
+  for (Sums& x : strategies_)
+    if (x.s == s && x.t == t) return x;
+  Sums& x = strategies_.emplace_back();
+  x.s = s;
+  x.t = t;
+  x.weighted.assign(3 * size_t(width_) * size_t(height_), 0.0);
+  x.unweighted.assign(x.weighted.size(), 0.0);
+  return x;
+}
+
+void StrategyFilm::merge(const std::vector<StrategyRecord>& records) {
+  for (const StrategyRecord& r : records) {
+    if (!is_finite(r.weighted) || !is_finite(r.unweighted)) continue;
+    Sums& x = sums(r.s, r.t);
+    auto add = [&](size_t pixel, float w) {
+      for (size_t c = 0; c < 3; ++c) {
+        x.weighted[3 * pixel + c] += double(w * r.weighted[int(c)]);
+        x.unweighted[3 * pixel + c] += double(w * r.unweighted[int(c)]);
+      }
+    };
+    if (r.t == 1)
+      for_each_splat_pixel(filter_, width_, height_, r.p_raster, add);
+    else
+      add(r.pixel, 1.f);
+  }
+}
+
+std::vector<StrategyImage> StrategyFilm::resolve(const Film& film) const {
+  std::vector<StrategyImage> out;
+  const size_t n = size_t(width_) * size_t(height_);
+  const double splat_scale = film.light_paths() ? double(n) / double(film.light_paths()) : 0.0;
+  for (const Sums& x : strategies_) {
+    StrategyImage img{x.s, x.t, {}, {}};
+    for (Image* im : {&img.weighted, &img.unweighted}) {
+      im->width = width_;
+      im->height = height_;
+      im->rgb.assign(3 * n, 0.f);
+    }
+    for (size_t i = 0; i < n; ++i) {
+      uint32_t count = film.sample_count(i);
+      double scale = x.t == 1 ? splat_scale : (count ? 1.0 / double(count) : 0.0);
+      for (size_t c = 0; c < 3; ++c) {
+        img.weighted.rgb[3 * i + c] = float(x.weighted[3 * i + c] * scale);
+        img.unweighted.rgb[3 * i + c] = float(x.unweighted[3 * i + c] * scale);
+      }
+    }
+    out.push_back(std::move(img));
+  }
+  std::sort(out.begin(), out.end(), [](const StrategyImage& a, const StrategyImage& b) {
+    return a.s + a.t != b.s + b.t ? a.s + a.t < b.s + b.t : a.s < b.s;
+  });
+  return out;
+}
+
+}  // namespace lantern
