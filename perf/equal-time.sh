@@ -1,0 +1,31 @@
+#!/bin/sh
+# Equal-time error of path vs bdpt on the shipped scenes: each integrator
+# renders for the same wall time at the reference's resolution, and
+# `lantern compare` measures relMSE against perf/references/<scene>.exr
+# (made by perf/make-references.sh). Prints a Markdown table.
+# Usage: perf/equal-time.sh [seconds] [scenes...]   (from the repository root)
+set -eu
+secs=${1:-20}
+shift 2>/dev/null || true
+scenes=${*:-"cornell-box lantern door-ajar"}
+lantern=${LANTERN:-build/lantern}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+echo "| scene | integrator | time (s) | Msamples/s | Mrays/s | relMSE | relMSE path / bdpt |"
+echo "|---|---|---|---|---|---|---|"
+for s in $scenes; do
+  ref="perf/references/$s.exr"
+  res="240 180"; [ "$s" = cornell-box ] && res="256 256"
+  path_err=""
+  for i in path bdpt; do
+    "$lantern" render "scenes/$s.pbrt" --integrator "$i" --time "$secs" --seed 7 --resolution $res \
+      -o "$tmp/$s-$i.exr" 2> "$tmp/log"
+    summary=$(tail -n 1 "$tmp/log")
+    sps=$(echo "$summary" | sed -n 's/.* \([0-9.]*\) Msamples\/s.*/\1/p')
+    rps=$(echo "$summary" | sed -n 's/.* \([0-9.]*\) Mrays\/s.*/\1/p')
+    err=$("$lantern" compare "$tmp/$s-$i.exr" "$ref" | sed -n 's/^relmse //p')
+    ratio=""
+    if [ "$i" = path ]; then path_err=$err; else ratio=$(awk "BEGIN { printf \"%.1f\", $path_err / $err }"); fi
+    echo "| $s | $i | $secs | $sps | $rps | $err | $ratio |"
+  done
+done
