@@ -132,6 +132,55 @@ TEST(Bdpt, AgreesWithPathAndLightTracingOnCaustics) {
   EXPECT_LT(max_z(bdpt_floor, lt_floor), kMaxZ);
 }
 
+// Every other light kind, one per scene so that an error in its densities
+// is not diluted by the others, with materials whose importance transport
+// differs from radiance transport (rough glass) or that layer two lobes
+// (coated diffuse). The floor's tilted vertex normals make shading and
+// geometric normals differ, which light subpaths must correct for. The
+// camera sees only the floor and the spheres, so the light tracer sees all.
+class BdptLightKinds : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(BdptLightKinds, AgreesWithPathOnRoughGlassAndShadingNormals) {
+  auto scene = load_scene_from_string(std::string(R"(
+LookAt 0 3 -3  0 0.3 0  0 1 0
+Camera "perspective" "float fov" [ 30 ]
+Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
+PixelFilter "gaussian"
+WorldBegin
+)") + GetParam() + R"(
+Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
+Shape "trianglemesh" "point3 P" [ -20 0 -20 20 0 -20 20 0 20 -20 0 20 ] "integer indices" [ 0 1 2 0 2 3 ]
+    "normal N" [ 1 1 0  -1 1 0.5  0 1 -1  0.5 1 1 ]
+AttributeBegin
+  Material "dielectric" "float eta" [ 1.5 ] "float roughness" [ 0.3 ]
+  Translate -0.6 0.4 0
+  Shape "sphere" "float radius" [ 0.4 ]
+AttributeEnd
+AttributeBegin
+  Material "coateddiffuse" "rgb reflectance" [ 0.6 0.2 0.1 ] "float roughness" [ 0.1 ]
+  Translate 0.6 0.4 0.2
+  Shape "sphere" "float radius" [ 0.4 ]
+AttributeEnd
+)",
+                                      "lights.pbrt");
+  const std::vector<Region> regions = {{0, 0, 24, 24}, {0, 0, 8, 8}, {8, 8, 8, 8}, {16, 8, 8, 8}, {0, 16, 8, 8}};
+  auto path = render_stats(*scene, "path", 24, 24, 128, kRuns, regions);
+  auto bdpt = render_stats(*scene, "bdpt", 24, 24, 32, kRuns, regions);
+  auto lt = render_stats(*scene, "lt", 24, 24, 64, kRuns, regions);
+  EXPECT_LT(max_z(bdpt, path), kMaxZ);
+  EXPECT_LT(max_z(lt, path), kMaxZ);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Lights, BdptLightKinds,
+    ::testing::Values(R"(LightSource "point" "rgb I" [ 4 3 2 ] "point3 from" [ 1 2 -1 ])",
+                      R"(LightSource "spot" "rgb I" [ 10 12 15 ] "point3 from" [ -1.5 3 0 ] "point3 to" [ 0 0 0 ]
+                         "float coneangle" [ 25 ] "float conedeltaangle" [ 10 ])",
+                      R"(LightSource "distant" "rgb L" [ 0.6 0.6 0.5 ] "point3 from" [ 1 2 1 ] "point3 to" [ 0 0 0 ])",
+                      R"(LightSource "infinite" "rgb L" [ 0.2 0.25 0.3 ])"),
+    [](const auto& info) { return std::string(info.index == 0 ? "Point" : info.index == 1 ? "Spot"
+                                              : info.index == 2 ? "Distant" : "Infinite"); });
+
 // The negative control: weighting every strategy 1 counts each path several
 // times. The comparison above must see it.
 TEST(Bdpt, UnitWeightsAreCaught) {
