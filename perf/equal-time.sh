@@ -15,7 +15,7 @@ echo "| scene | integrator | time (s) | Msamples/s | Mrays/s | relMSE | relMSE p
 echo "|---|---|---|---|---|---|---|"
 for s in $scenes; do
   ref="perf/references/$s.exr"
-  res="240 180"; [ "$s" = cornell-box ] && res="256 256"
+  res="240 180"; case "$s" in cornell-box*) res="256 256" ;; esac
   path_err=""
   for i in path bdpt; do
     "$lantern" render "scenes/$s.pbrt" --integrator "$i" --time "$secs" --seed 7 --resolution $res \

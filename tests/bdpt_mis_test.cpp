@@ -2,12 +2,12 @@
 // from scratch out of the full path densities (Veach 1997, eq. 10.9): on
 // random paths, each strategy's weight must equal p_s^beta / sum_i p_i^beta,
 // and the weights of all strategies must sum to one.
+#include "integrator/bdpt_mis.h"
+
 #include <gtest/gtest.h>
 
 #include <random>
 #include <vector>
-
-#include "integrator/bdpt_mis.h"
 
 namespace lantern {
 namespace {
@@ -35,9 +35,12 @@ struct RandomPath {
   // Area density of vertex i generated from neighbour j's side (j = i +- 1).
   float area_pdf(int i, int j) const {
     float solid;
-    if (j == k()) solid = camera_dir_W(i);
-    else if (j == 0) solid = emission_dir_W(i);
-    else solid = bsdf_pdf(j, i);
+    if (j == k())
+      solid = camera_dir_W(i);
+    else if (j == 0)
+      solid = emission_dir_W(i);
+    else
+      solid = bsdf_pdf(j, i);
     return solid * cos_at(i, j) / dist2(i, j);
   }
 };
@@ -100,8 +103,8 @@ float recursive_weight(const RandomPath& p, int s, MisPower mis) {
   if (s == 1) {  // next-event estimation from x1
     float light_pdf_W = p.direct_pdf_A * p.dist2(0, 1) / p.cos_at(0, 1);
     float emission_fwd_A = emission_W(1) * p.cos_at(1, 0) / p.dist2(0, 1);
-    return mis_weight_next_event(eye, light_pdf_W, p.bsdf_pdf(1, 0), emission_fwd_A, p.direct_pdf_A,
-                                 p.bsdf_pdf(1, 2), mis);
+    return mis_weight_next_event(eye, light_pdf_W, p.bsdf_pdf(1, 0), emission_fwd_A, p.direct_pdf_A, p.bsdf_pdf(1, 2),
+                                 mis);
   }
   if (t == 1) {  // light tracing from x_{k-1}
     float camera_pdf_A = p.camera_dir_W(k - 1) * p.cos_at(k - 1, k) / p.dist2(k - 1, k);

@@ -17,49 +17,60 @@ struct Region {
   int x0, y0, w, h;
 };
 
-// Mean and standard error over `runs` independent renders of the mean
-// radiance in each region and channel.
+// Mean and standard error, over independent renders, of the mean radiance
+// in each region and channel (of runs[r] - minus[r] when minus is given).
 struct RegionStats {
   std::vector<std::array<double, 3>> mean, std_error;
 };
 
-RegionStats render_stats(const Scene& scene, const std::string& integrator, int width, int height, int spp, int runs,
-                         const std::vector<Region>& regions, bool unit_weights = false) {
-  std::vector<std::array<double, 3>> sum(regions.size()), sum2(regions.size());
-  for (int r = 0; r < runs; ++r) {
-    RenderOptions o;
-    o.integrator = integrator;
-    o.spp = spp;
-    o.maxdepth = 6;
-    o.width = width;
-    o.height = height;
-    o.seed = 1000 + uint64_t(r);
-    o.debug_unit_mis_weights = unit_weights;
-    RenderResult res = render(scene, o);
-    EXPECT_EQ(res.stats.nonfinite_samples, 0u);
-    for (size_t g = 0; g < regions.size(); ++g) {
-      const Region& reg = regions[g];
-      for (int c = 0; c < 3; ++c) {
-        double s = 0.0;
-        for (int y = reg.y0; y < reg.y0 + reg.h; ++y)
-          for (int x = reg.x0; x < reg.x0 + reg.w; ++x) s += res.image.at(x, y)[c];
-        s /= double(reg.w * reg.h);
-        sum[g][size_t(c)] += s;
-        sum2[g][size_t(c)] += s * s;
-      }
-    }
-  }
+RegionStats stats_of(const std::vector<Image>& runs, const std::vector<Region>& regions,
+                     const std::vector<Image>* minus = nullptr) {
+  const size_t n = runs.size();
   RegionStats st;
-  st.mean.resize(regions.size());
-  st.std_error.resize(regions.size());
+  st.mean.assign(regions.size(), {});
+  st.std_error.assign(regions.size(), {});
   for (size_t g = 0; g < regions.size(); ++g)
-    for (size_t c = 0; c < 3; ++c) {
-      double m = sum[g][c] / runs;
-      double var = std::max(0.0, (sum2[g][c] - runs * m * m) / (runs - 1));
-      st.mean[g][c] = m;
-      st.std_error[g][c] = std::sqrt(var / runs);
+    for (int c = 0; c < 3; ++c) {
+      double sum = 0.0, sum2 = 0.0;
+      for (size_t r = 0; r < n; ++r) {
+        const Region& reg = regions[g];
+        double v = 0.0;
+        for (int y = reg.y0; y < reg.y0 + reg.h; ++y)
+          for (int x = reg.x0; x < reg.x0 + reg.w; ++x)
+            v += runs[r].at(x, y)[c] - (minus ? (*minus)[r].at(x, y)[c] : 0.f);
+        v /= double(reg.w * reg.h);
+        sum += v;
+        sum2 += v * v;
+      }
+      double m = sum / double(n);
+      st.mean[g][size_t(c)] = m;
+      st.std_error[g][size_t(c)] = std::sqrt(std::max(0.0, (sum2 - double(n) * m * m) / double(n - 1)) / double(n));
     }
   return st;
+}
+
+// `runs` renders with seeds first_seed, first_seed + 1, ...
+std::vector<Image> render_runs(const Scene& scene, RenderOptions o, int runs, uint64_t first_seed) {
+  std::vector<Image> images;
+  for (int r = 0; r < runs; ++r) {
+    o.seed = first_seed + uint64_t(r);
+    RenderResult res = render(scene, o);
+    EXPECT_EQ(res.stats.nonfinite_samples, 0u);
+    images.push_back(std::move(res.image));
+  }
+  return images;
+}
+
+RegionStats render_stats(const Scene& scene, const std::string& integrator, int width, int height, int spp, int runs,
+                         const std::vector<Region>& regions, bool unit_weights = false) {
+  RenderOptions o;
+  o.integrator = integrator;
+  o.spp = spp;
+  o.maxdepth = 6;
+  o.width = width;
+  o.height = height;
+  o.debug_unit_mis_weights = unit_weights;
+  return stats_of(render_runs(scene, o, runs, 1000), regions);
 }
 
 // Largest |difference| / (combined standard error) over regions and channels.
@@ -90,7 +101,8 @@ std::shared_ptr<Scene> shipped(const std::string& name) {
 constexpr double kMaxZ = 5.0;
 constexpr int kRuns = 16;
 
-const std::vector<Region> kCornellRegions = {{0, 0, 32, 32}, {0, 0, 8, 8}, {12, 4, 8, 8}, {4, 20, 8, 8}, {20, 20, 8, 8}};
+const std::vector<Region> kCornellRegions = {
+    {0, 0, 32, 32}, {0, 0, 8, 8}, {12, 4, 8, 8}, {4, 20, 8, 8}, {20, 20, 8, 8}};
 
 TEST(Bdpt, AgreesWithPathAndLightTracingOnCornellBox) {
   auto scene = shipped("cornell-box.pbrt");
@@ -178,8 +190,12 @@ INSTANTIATE_TEST_SUITE_P(
                          "float coneangle" [ 25 ] "float conedeltaangle" [ 10 ])",
                       R"(LightSource "distant" "rgb L" [ 0.6 0.6 0.5 ] "point3 from" [ 1 2 1 ] "point3 to" [ 0 0 0 ])",
                       R"(LightSource "infinite" "rgb L" [ 0.2 0.25 0.3 ])"),
-    [](const auto& info) { return std::string(info.index == 0 ? "Point" : info.index == 1 ? "Spot"
-                                              : info.index == 2 ? "Distant" : "Infinite"); });
+    [](const auto& info) {
+      return std::string(info.index == 0   ? "Point"
+                         : info.index == 1 ? "Spot"
+                         : info.index == 2 ? "Distant"
+                                           : "Infinite");
+    });
 
 // The negative control: weighting every strategy 1 counts each path several
 // times. The comparison above must see it.
@@ -193,67 +209,14 @@ TEST(Bdpt, UnitWeightsAreCaught) {
 TEST(Bdpt, BalanceHeuristicAgreesWithPower) {
   auto scene = shipped("cornell-box-tiny-light.pbrt");
   auto power = render_stats(*scene, "bdpt", 32, 32, 16, kRuns, kCornellRegions);
-  RegionStats balance;
-  {
-    // Same statistic with the balance heuristic.
-    std::vector<std::array<double, 3>> sum(kCornellRegions.size()), sum2(kCornellRegions.size());
-    RenderOptions o;
-    o.integrator = "bdpt";
-    o.mis = "balance";
-    o.spp = 16;
-    o.maxdepth = 6;
-    o.width = o.height = 32;
-    balance.mean.resize(kCornellRegions.size());
-    balance.std_error.resize(kCornellRegions.size());
-    for (int r = 0; r < kRuns; ++r) {
-      o.seed = 5000 + uint64_t(r);
-      Image img = render(*scene, o).image;
-      for (size_t g = 0; g < kCornellRegions.size(); ++g)
-        for (int c = 0; c < 3; ++c) {
-          const Region& reg = kCornellRegions[g];
-          double s = 0.0;
-          for (int y = reg.y0; y < reg.y0 + reg.h; ++y)
-            for (int x = reg.x0; x < reg.x0 + reg.w; ++x) s += img.at(x, y)[c];
-          s /= double(reg.w * reg.h);
-          sum[g][size_t(c)] += s;
-          sum2[g][size_t(c)] += s * s;
-        }
-    }
-    for (size_t g = 0; g < kCornellRegions.size(); ++g)
-      for (size_t c = 0; c < 3; ++c) {
-        double m = sum[g][c] / kRuns;
-        balance.mean[g][c] = m;
-        balance.std_error[g][c] = std::sqrt(std::max(0.0, (sum2[g][c] - kRuns * m * m) / (kRuns - 1)) / kRuns);
-      }
-  }
+  RenderOptions o;
+  o.integrator = "bdpt";
+  o.mis = "balance";
+  o.spp = 16;
+  o.maxdepth = 6;
+  o.width = o.height = 32;
+  auto balance = stats_of(render_runs(*scene, o, kRuns, 5000), kCornellRegions);
   EXPECT_LT(max_z(balance, power), kMaxZ);
-}
-
-// Stats over runs of a per-run value per region and channel.
-RegionStats stats_of(const std::vector<Image>& runs, const std::vector<Region>& regions,
-                     const std::vector<Image>* minus = nullptr) {
-  const size_t n = runs.size();
-  RegionStats st;
-  st.mean.assign(regions.size(), {});
-  st.std_error.assign(regions.size(), {});
-  for (size_t g = 0; g < regions.size(); ++g)
-    for (int c = 0; c < 3; ++c) {
-      double sum = 0.0, sum2 = 0.0;
-      for (size_t r = 0; r < n; ++r) {
-        const Region& reg = regions[g];
-        double v = 0.0;
-        for (int y = reg.y0; y < reg.y0 + reg.h; ++y)
-          for (int x = reg.x0; x < reg.x0 + reg.w; ++x)
-            v += runs[r].at(x, y)[c] - (minus ? (*minus)[r].at(x, y)[c] : 0.f);
-        v /= double(reg.w * reg.h);
-        sum += v;
-        sum2 += v * v;
-      }
-      double m = sum / double(n);
-      st.mean[g][size_t(c)] = m;
-      st.std_error[g][size_t(c)] = std::sqrt(std::max(0.0, (sum2 - double(n) * m * m) / double(n - 1)) / double(n));
-    }
-  return st;
 }
 
 // Each strategy alone, unweighted, estimates every path it can sample. In
@@ -272,10 +235,7 @@ TEST(Bdpt, EachStrategyUnweightedAgreesWithPathAtItsDepth) {
   o.spp = 256;
   for (int k = 0; k <= kMaxDepth; ++k) {
     o.maxdepth = k;
-    for (int r = 0; r < kRunsHere; ++r) {
-      o.seed = 100 * uint64_t(k) + uint64_t(r);
-      path[size_t(k)].push_back(render(*scene, o).image);
-    }
+    path[size_t(k)] = render_runs(*scene, o, kRunsHere, 100 * uint64_t(k));
   }
   std::map<std::pair<int, int>, std::vector<Image>> strategy;  // unweighted, per run
   o.integrator = "bdpt";

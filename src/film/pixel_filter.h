@@ -31,6 +31,13 @@ inline Vec2 sample_pixel_filter(const PixelFilter& f, Vec2 u) {
   return Vec2(0.f);
 }
 
+// A raster position for one camera sample of `pixel` (y * width + x): the
+// pixel centre plus an offset drawn from the filter.
+inline Vec2 sample_raster_position(const PixelFilter& f, uint32_t pixel, uint32_t width, Vec2 u) {
+  Vec2 offset = sample_pixel_filter(f, u);
+  return Vec2(float(pixel % width) + 0.5f + offset.x, float(pixel / width) + 0.5f + offset.y);
+}
+
 // The density sample_pixel_filter draws offsets from, per axis: what a
 // light-tracing splat must weight each pixel with to estimate the same
 // pixel integral as the camera samples.

@@ -6,8 +6,8 @@
 #include "film/pixel_filter.h"
 #include "integrator/bdpt_wave.h"
 #include "integrator/hit.h"
+#include "integrator/shade.h"
 #include "light/emission.h"
-#include "material/bsdf_kernel.h"
 
 namespace lantern {
 
@@ -31,8 +31,7 @@ void Bdpt::start_eye_subpaths(const WaveDesc& wave, BdptWave& w) const {
   for (uint32_t slot = 0; slot < wave.size(); ++slot) {
     PathSampler& s = w.sampler[slot];
     uint32_t pixel = w.pixel[slot];
-    Vec2 offset = sample_pixel_filter(scene_.filter, s.get2d());
-    Vec2 p_raster(float(pixel % width) + 0.5f + offset.x, float(pixel / width) + 0.5f + offset.y);
+    Vec2 p_raster = sample_raster_position(scene_.filter, pixel, width, s.get2d());
     CameraRay r = camera_.generate_ray(p_raster, s.get2d());
     w.eye.beta[slot] = RGB(1.f);
     w.eye.mis[slot] = mis_camera_start(camera_.pdf_dir(r.d), mis_);
@@ -45,7 +44,7 @@ void Bdpt::start_eye_subpaths(const WaveDesc& wave, BdptWave& w) const {
 
 // s = 0: emission found by the eye subpath; then hits are binned by material.
 void Bdpt::eye_surface_stage(BdptWave& w) const {
-  for (auto& b : w.hits.bins) b.clear();
+  w.hits.clear_bins();
   const ShapePools& shapes = scene_.shapes;
   const LightPools& lights = scene_.lights;
   const bool last = int(w.depth) == settings_.maxdepth + 1;  // only emission counts this deep
@@ -86,17 +85,7 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
       }
     }
     if (last) continue;
-    const Geometry& g = shapes.geometries[w.rays.geom_id[i]];
-    HitPool& h = w.hits;
-    h.p[i] = sp.p;
-    h.ng[i] = sp.ng;
-    h.ns[i] = glm::dot(sp.ns, sp.ng) < 0.f ? -sp.ns : sp.ns;
-    h.uv[i] = sp.uv;
-    h.wo[i] = -d;
-    h.error_scale[i] = sp.error_scale;
-    h.material[i] = g.material;
-    h.material_index[i] = g.material.index();
-    h.bins[size_t(g.material.kind())].push_back(i);
+    w.hits.store(i, sp, d, scene_.shapes.geometries[w.rays.geom_id[i]].material);
   }
 }
 
@@ -106,105 +95,86 @@ void Bdpt::eye_shade_stage(BdptWave& w) const {
   const Scene& sc = scene_;
   const uint32_t depth = w.depth;
   const uint32_t maxdepth = uint32_t(settings_.maxdepth);
-  for (int k = 0; k < kMaterialKindCount; ++k) {
-    const auto& bin = w.hits.bins[size_t(k)];
-    if (bin.empty()) continue;
-    for_each_bsdf(MaterialKind(k), sc.materials, sc.textures, bin.data(), bin.size(), w.hits.material_index.data(),
-                  w.hits.uv.data(), [&](uint32_t i, const auto& bsdf) {
-      const uint32_t slot = w.active[i];
-      PathSampler& s = w.sampler[slot];
-      const HitPool& h = w.hits;
-      const Frame frame = Frame::from_z(h.ns[i]);
-      const Vec3 wo = frame.to_local(h.wo[i]);
-      float u_light = s.get1d();
-      Vec2 u_light2 = s.get2d();
-      float uc = s.get1d();
-      Vec2 u2 = s.get2d();
-      float u_rr = s.get1d();
-      RGB& beta = w.eye.beta[slot];
-      MisState& m = w.eye.mis[slot];
-      if (!bsdf.is_specular() && depth <= maxdepth) {
-        if (auto ls = sample_light(sc.lights, sc.shapes, sc.textures, h.p[i], u_light, u_light2);
-            ls && !is_black(ls->L)) {  // s = 1
-          Vec3 wi = frame.to_local(ls->wi);
-          RGB f = bsdf.f(wo, wi, TransportMode::Radiance) * std::fabs(wi.z);
-          if (!is_black(f)) {
-            float dist2 = ls->infinite ? 1.f : glm::dot(ls->p_light - h.p[i], ls->p_light - h.p[i]);
-            bool area = sc.lights.all[ls->light].kind == LightKind::Area;
-            float direct_pdf_A = area ? ls->pdf * std::fabs(glm::dot(ls->n_light, ls->wi)) / dist2 : ls->pdf;
-            float emission_fwd_A = emission_pdf(sc.lights, sc.textures, ls->light, ls->n_light, -ls->wi) *
-                                   std::fabs(glm::dot(h.ng[i], ls->wi)) / dist2;
-            float wt = mis_weight_next_event(m, ls->delta ? 0.f : ls->pdf, bsdf.pdf(wo, wi, TransportMode::Radiance),
-                                             emission_fwd_A, direct_pdf_A,
-                                             bsdf.pdf(wi, wo, TransportMode::Importance), mis_);
-            RGB u = beta * f * ls->L / ls->pdf;
-            StrategyTag tag{1, uint8_t(depth + 1), u};
-            Vec3 o = offset_ray_origin(h.p[i], h.ng[i], h.error_scale[i], ls->wi);
-            if (ls->infinite) {
-              w.shadow.push(o, ls->wi, kInfinity, slot, u * weight(wt), Vec2(0.f), tag);
-            } else {
-              Vec3 target = ls->n_light == Vec3(0.f)
-                                ? ls->p_light
-                                : offset_ray_origin(ls->p_light, ls->n_light, ls->error_scale, -ls->wi);
-              w.shadow.push(o, target - o, 1.f, slot, u * weight(wt), Vec2(0.f), tag);
-            }
+  for_each_binned_bsdf(w.hits, sc, [&](uint32_t i, const auto& bsdf) {
+    const uint32_t slot = w.active[i];
+    PathSampler& s = w.sampler[slot];
+    const HitPool& h = w.hits;
+    const Frame frame = Frame::from_z(h.ns[i]);
+    const Vec3 wo = frame.to_local(h.wo[i]);
+    float u_light = s.get1d();
+    Vec2 u_light2 = s.get2d();
+    float uc = s.get1d();
+    Vec2 u2 = s.get2d();
+    float u_rr = s.get1d();
+    RGB& beta = w.eye.beta[slot];
+    MisState& m = w.eye.mis[slot];
+    if (!bsdf.is_specular() && depth <= maxdepth) {
+      if (auto ls = sample_light(sc.lights, sc.shapes, sc.textures, h.p[i], u_light, u_light2);
+          ls && !is_black(ls->L)) {  // s = 1
+        Vec3 wi = frame.to_local(ls->wi);
+        RGB f = bsdf.f(wo, wi, TransportMode::Radiance) * std::fabs(wi.z);
+        float dist2 = ls->infinite ? 1.f : glm::dot(ls->p_light - h.p[i], ls->p_light - h.p[i]);
+        bool area = sc.lights.all[ls->light].kind == LightKind::Area;
+        float direct_pdf_A = area ? ls->pdf * std::fabs(glm::dot(ls->n_light, ls->wi)) / dist2 : ls->pdf;
+        // A point exactly on a sphere light's silhouette (reached only through
+        // rounding: a set of measure zero) has zero density per area, and its
+        // MIS ratios would be 0/0.
+        if (!is_black(f) && direct_pdf_A > 0.f) {
+          float emission_fwd_A = emission_pdf(sc.lights, sc.textures, ls->light, ls->n_light, -ls->wi) *
+                                 std::fabs(glm::dot(h.ng[i], ls->wi)) / dist2;
+          float wt =
+              mis_weight_next_event(m, ls->delta ? 0.f : ls->pdf, bsdf.pdf(wo, wi, TransportMode::Radiance),
+                                    emission_fwd_A, direct_pdf_A, bsdf.pdf(wi, wo, TransportMode::Importance), mis_);
+          RGB u = beta * f * ls->L / ls->pdf;
+          StrategyTag tag{1, uint8_t(depth + 1), u};
+          Vec3 o = offset_ray_origin(h.p[i], h.ng[i], h.error_scale[i], ls->wi);
+          if (ls->infinite) {
+            w.shadow.push(o, ls->wi, kInfinity, slot, u * weight(wt), Vec2(0.f), tag);
+          } else {
+            Vec3 target = ls->n_light == Vec3(0.f)
+                              ? ls->p_light
+                              : offset_ray_origin(ls->p_light, ls->n_light, ls->error_scale, -ls->wi);
+            w.shadow.push(o, target - o, 1.f, slot, u * weight(wt), Vec2(0.f), tag);
           }
         }
-        const LightVertexPool& v = w.vertices;
-        for (uint32_t n = v.begin[slot]; n < v.begin[slot + 1]; ++n) {  // s >= 2
-          const uint32_t j = v.order[n];
-          if (v.depth[j] + depth > maxdepth) break;  // in depth order: the rest are deeper
-          Vec3 dir = v.p[j] - h.p[i];
-          float dist2 = glm::dot(dir, dir);
-          if (!(dist2 > 0.f)) continue;
-          Vec3 wi_w = dir / std::sqrt(dist2);
-          Vec3 wi = frame.to_local(wi_w);
-          RGB f_eye = bsdf.f(wo, wi, TransportMode::Radiance) * std::fabs(wi.z);
-          if (is_black(f_eye)) continue;
-          RGB f_light;
-          float light_fwd_W, light_rev_W;
-          with_bsdf(v.material[j], sc.materials, sc.textures, v.uv[j], [&](const auto& lb) {
-            Frame lf = Frame::from_z(v.ns[j]);
-            Vec3 lwo = lf.to_local(v.wo[j]), lwi = lf.to_local(-wi_w);
-            f_light = lb.f(lwo, lwi, TransportMode::Importance) *
-                      (std::fabs(lwi.z) * shading_normal_correction(v.wo[j], -wi_w, v.ng[j], v.ns[j]));
-            light_fwd_W = lb.pdf(lwo, lwi, TransportMode::Importance);
-            light_rev_W = lb.pdf(lwi, lwo, TransportMode::Radiance);
-          });
-          RGB c = beta * f_eye * f_light * v.beta[j] / dist2;
-          if (is_black(c)) continue;
-          float eye_fwd_A = bsdf.pdf(wo, wi, TransportMode::Radiance) * std::fabs(glm::dot(v.ng[j], wi_w)) / dist2;
-          float light_fwd_A = light_fwd_W * std::fabs(glm::dot(h.ng[i], wi_w)) / dist2;
-          float wt = mis_weight_connect(m, v.mis[j], eye_fwd_A, bsdf.pdf(wi, wo, TransportMode::Importance),
-                                        light_fwd_A, light_rev_W, mis_);
-          Vec3 o = offset_ray_origin(h.p[i], h.ng[i], h.error_scale[i], wi_w);
-          Vec3 target = offset_ray_origin(v.p[j], v.ng[j], v.error_scale[j], -wi_w);
-          w.shadow.push(o, target - o, 1.f, slot, c * weight(wt), Vec2(0.f),
-                        {uint8_t(v.depth[j] + 1), uint8_t(depth + 1), c});
-        }
-        if (w.shadow.rays.count >= kMaxPendingConnections) connection_stage(w);
       }
-      // Continue the eye subpath.
-      auto bs = bsdf.sample_f(wo, uc, u2, TransportMode::Radiance);
-      if (!bs || bs->pdf == 0.f || is_black(bs->f)) return;
-      Vec3 wi = frame.from_local(bs->wi);
-      beta *= bs->f * (std::fabs(bs->wi.z) / bs->pdf);
-      float pdf_rev = bs->specular ? bs->pdf : bsdf.pdf(bs->wi, wo, TransportMode::Importance);
-      mis_after_scatter(m, std::fabs(glm::dot(h.ng[i], wi)), bs->pdf, pdf_rev, bs->specular, mis_);
-      if (bs->transmission) w.eye.eta_scale[slot] *= sqr(bs->etap);
-      float rr = max_component(beta * w.eye.eta_scale[slot]);
-      if (rr < 1.f && depth >= 2) {
-        float q = std::fmax(0.f, 1.f - rr);
-        if (u_rr < q) return;
-        beta /= 1.f - q;
+      const LightVertexPool& v = w.vertices;
+      for (uint32_t n = v.begin[slot]; n < v.begin[slot + 1]; ++n) {  // s >= 2
+        const uint32_t j = v.order[n];
+        if (v.depth[j] + depth > maxdepth) break;  // in depth order: the rest are deeper
+        Vec3 dir = v.p[j] - h.p[i];
+        float dist2 = glm::dot(dir, dir);
+        if (!(dist2 > 0.f)) continue;
+        Vec3 wi_w = dir / std::sqrt(dist2);
+        Vec3 wi = frame.to_local(wi_w);
+        RGB f_eye = bsdf.f(wo, wi, TransportMode::Radiance) * std::fabs(wi.z);
+        if (is_black(f_eye)) continue;
+        RGB f_light;
+        float light_fwd_W, light_rev_W;
+        with_bsdf(v.material[j], sc.materials, sc.textures, v.uv[j], [&](const auto& lb) {
+          Frame lf = Frame::from_z(v.ns[j]);
+          Vec3 lwo = lf.to_local(v.wo[j]), lwi = lf.to_local(-wi_w);
+          f_light = lb.f(lwo, lwi, TransportMode::Importance) *
+                    (std::fabs(lwi.z) * shading_normal_correction(v.wo[j], -wi_w, v.ng[j], v.ns[j]));
+          light_fwd_W = lb.pdf(lwo, lwi, TransportMode::Importance);
+          light_rev_W = lb.pdf(lwi, lwo, TransportMode::Radiance);
+        });
+        RGB c = beta * f_eye * f_light * v.beta[j] / dist2;
+        if (is_black(c)) continue;
+        float eye_fwd_A = bsdf.pdf(wo, wi, TransportMode::Radiance) * std::fabs(glm::dot(v.ng[j], wi_w)) / dist2;
+        float light_fwd_A = light_fwd_W * std::fabs(glm::dot(h.ng[i], wi_w)) / dist2;
+        float wt = mis_weight_connect(m, v.mis[j], eye_fwd_A, bsdf.pdf(wi, wo, TransportMode::Importance), light_fwd_A,
+                                      light_rev_W, mis_);
+        Vec3 o = offset_ray_origin(h.p[i], h.ng[i], h.error_scale[i], wi_w);
+        Vec3 target = offset_ray_origin(v.p[j], v.ng[j], v.error_scale[j], -wi_w);
+        w.shadow.push(o, target - o, 1.f, slot, c * weight(wt), Vec2(0.f),
+                      {uint8_t(v.depth[j] + 1), uint8_t(depth + 1), c});
       }
-      if (!is_finite(beta)) return;
-      w.hits.alive[i] = 1;
-      w.eye.prev_p[slot] = h.p[i];
-      w.hits.next_o[i] = offset_ray_origin(h.p[i], h.ng[i], h.error_scale[i], wi);
-      w.hits.next_d[i] = wi;
-    });
-  }
+      if (w.shadow.rays.count >= kMaxPendingConnections) connection_stage(w);
+    }
+    continue_subpath(bsdf, TransportMode::Radiance, w.hits, i, frame, wo, uc, u2, u_rr, depth,
+                     {beta, m, w.eye.prev_p[slot], w.eye.eta_scale[slot], 1.f}, mis_);
+  });
 }
 
 void Bdpt::connection_stage(BdptWave& w) const {
@@ -227,17 +197,6 @@ void Bdpt::add_emission(BdptWave& w, uint32_t slot, const RGB& unweighted, float
     w.out->strategies.push_back({w.pixel[slot], Vec2(0.f), 0, uint8_t(w.depth + 1), unweighted * weight, unweighted});
 }
 
-void Bdpt::compact(BdptWave& w) const {
-  uint32_t n = 0;
-  const uint32_t count = w.rays.count;
-  w.rays.count = 0;
-  for (uint32_t i = 0; i < count; ++i) {
-    if (!w.hits.alive[i]) continue;
-    w.active[n++] = w.active[i];
-    w.rays.push(w.hits.next_o[i], w.hits.next_d[i], 0.f, kInfinity);
-  }
-}
-
 void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
   w.out = &out;
   w.shadow.record = settings_.record_strategies;
@@ -248,7 +207,7 @@ void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
     light_surface_stage(w);
     light_scatter_stage(w);
     splat_stage(w);
-    compact(w);
+    w.hits.compact(w.rays, w.active);
   }
   if (!settings_.light_tracing_only) {
     group_light_vertices(w);
@@ -258,7 +217,7 @@ void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
       eye_surface_stage(w);
       eye_shade_stage(w);
       connection_stage(w);
-      compact(w);
+      w.hits.compact(w.rays, w.active);
     }
   }
   for (uint32_t slot = 0; slot < wave.size(); ++slot) out.samples.push_back({w.pixel[slot], w.L[slot]});

@@ -55,7 +55,6 @@ class Bdpt {
   void eye_shade_stage(BdptWave& w) const;
   void connection_stage(BdptWave& w) const;
   void add_emission(BdptWave& w, uint32_t slot, const RGB& unweighted, float weight) const;
-  void compact(BdptWave& w) const;
 
   float weight(float w) const { return settings_.unit_weights ? 1.f : w; }
 

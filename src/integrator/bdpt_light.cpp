@@ -3,8 +3,8 @@
 #include "integrator/bdpt.h"
 #include "integrator/bdpt_wave.h"
 #include "integrator/hit.h"
+#include "integrator/shade.h"
 #include "light/emission.h"
-#include "material/bsdf_kernel.h"
 
 namespace lantern {
 
@@ -52,6 +52,7 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
     RGB beta = es->Le * (cos_light / emission_pdf_W);
     w.light.beta[slot] = beta;
     w.light.rr_scale[slot] = max_component(beta) > 0.f ? 1.f / max_component(beta) : 0.f;
+    w.light.eta_scale[slot] = 1.f;
     w.light.prev_p[slot] = es->p;
 
     // s = 1, t = 1: the light's own point seen by the camera.
@@ -79,7 +80,7 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
 
 // Finishes the MIS quantities of each hit and bins the hits by material.
 void Bdpt::light_surface_stage(BdptWave& w) const {
-  for (auto& b : w.hits.bins) b.clear();
+  w.hits.clear_bins();
   const LightPools& lights = scene_.lights;
   for (uint32_t i = 0; i < w.rays.count; ++i) {
     uint32_t slot = w.active[i];
@@ -96,24 +97,14 @@ void Bdpt::light_surface_stage(BdptWave& w) const {
       const LightOriginPool& o = w.origin;
       float direct = o.direct_pdf_A[slot];
       if (direct < 0.f)
-        direct = area_light_direct_pdf_area(lights, scene_.shapes, lights.all[o.light[slot]].index, sp.p, prev,
-                                            o.n[slot]);
+        direct =
+            area_light_direct_pdf_area(lights, scene_.shapes, lights.all[o.light[slot]].index, sp.p, prev, o.n[slot]);
       m = mis_light_start(direct, o.emission_pdf_W[slot], o.cos_light[slot], o.delta[slot] != 0, mis_);
       mis_after_hit(m, dist2, cos_in, !o.infinite[slot], mis_);
     } else {
       mis_after_hit(m, dist2, cos_in, true, mis_);
     }
-    const Geometry& g = scene_.shapes.geometries[w.rays.geom_id[i]];
-    HitPool& h = w.hits;
-    h.p[i] = sp.p;
-    h.ng[i] = sp.ng;
-    h.ns[i] = glm::dot(sp.ns, sp.ng) < 0.f ? -sp.ns : sp.ns;
-    h.uv[i] = sp.uv;
-    h.wo[i] = -d;
-    h.error_scale[i] = sp.error_scale;
-    h.material[i] = g.material;
-    h.material_index[i] = g.material.index();
-    h.bins[size_t(g.material.kind())].push_back(i);
+    w.hits.store(i, sp, d, scene_.shapes.geometries[w.rays.geom_id[i]].material);
   }
 }
 
@@ -123,74 +114,53 @@ void Bdpt::light_scatter_stage(BdptWave& w) const {
   const Scene& sc = scene_;
   const uint32_t depth = w.depth;
   const uint32_t maxdepth = uint32_t(settings_.maxdepth);
-  for (int k = 0; k < kMaterialKindCount; ++k) {
-    const auto& bin = w.hits.bins[size_t(k)];
-    if (bin.empty()) continue;
-    for_each_bsdf(MaterialKind(k), sc.materials, sc.textures, bin.data(), bin.size(), w.hits.material_index.data(),
-                  w.hits.uv.data(), [&](uint32_t i, const auto& bsdf) {
-      const uint32_t slot = w.active[i];
-      PathSampler& s = w.sampler[slot];
-      const HitPool& h = w.hits;
-      const Frame frame = Frame::from_z(h.ns[i]);
-      const Vec3 wo = frame.to_local(h.wo[i]);
-      Vec2 u_lens = s.get2d();
-      float uc = s.get1d();
-      Vec2 u2 = s.get2d();
-      float u_rr = s.get1d();
-      RGB& beta = w.light.beta[slot];
-      MisState& m = w.light.mis[slot];
-      if (!bsdf.is_specular()) {
-        if (!settings_.light_tracing_only && depth < maxdepth) {  // s >= 2 connections need t >= 2
-          LightVertexPool& v = w.vertices;
-          v.slot.push_back(slot);
-          v.depth.push_back(depth);
-          v.p.push_back(h.p[i]);
-          v.ng.push_back(h.ng[i]);
-          v.ns.push_back(h.ns[i]);
-          v.wo.push_back(h.wo[i]);
-          v.uv.push_back(h.uv[i]);
-          v.error_scale.push_back(h.error_scale[i]);
-          v.beta.push_back(beta);
-          v.mis.push_back(m);
-          v.material.push_back(h.material[i]);
-        }
-        auto cs = depth <= maxdepth ? camera_.sample_wi(h.p[i], u_lens) : std::nullopt;
-        if (cs) {  // t = 1
-          Vec3 wi = frame.to_local(cs->wi);
-          RGB f = bsdf.f(wo, wi, TransportMode::Importance) *
-                  (std::fabs(wi.z) * shading_normal_correction(h.wo[i], cs->wi, h.ng[i], h.ns[i]));
-          if (!is_black(f)) {
-            float wt = 1.f;
-            if (!settings_.light_tracing_only) {
-              float camera_pdf_A = camera_.pdf_dir(-cs->wi) * std::fabs(glm::dot(h.ng[i], cs->wi)) / sqr(cs->dist);
-              wt = weight(mis_weight_light_trace(m, camera_pdf_A, bsdf.pdf(wi, wo, TransportMode::Radiance), mis_));
-            }
-            push_camera_ray(w, slot, h.p[i], h.ng[i], h.error_scale[i], *cs, beta * f * (cs->We / cs->pdf), wt,
-                            depth + 1);
+  for_each_binned_bsdf(w.hits, sc, [&](uint32_t i, const auto& bsdf) {
+    const uint32_t slot = w.active[i];
+    PathSampler& s = w.sampler[slot];
+    const HitPool& h = w.hits;
+    const Frame frame = Frame::from_z(h.ns[i]);
+    const Vec3 wo = frame.to_local(h.wo[i]);
+    Vec2 u_lens = s.get2d();
+    float uc = s.get1d();
+    Vec2 u2 = s.get2d();
+    float u_rr = s.get1d();
+    RGB& beta = w.light.beta[slot];
+    MisState& m = w.light.mis[slot];
+    if (!bsdf.is_specular()) {
+      if (!settings_.light_tracing_only && depth < maxdepth) {  // s >= 2 connections need t >= 2
+        LightVertexPool& v = w.vertices;
+        v.slot.push_back(slot);
+        v.depth.push_back(depth);
+        v.p.push_back(h.p[i]);
+        v.ng.push_back(h.ng[i]);
+        v.ns.push_back(h.ns[i]);
+        v.wo.push_back(h.wo[i]);
+        v.uv.push_back(h.uv[i]);
+        v.error_scale.push_back(h.error_scale[i]);
+        v.beta.push_back(beta);
+        v.mis.push_back(m);
+        v.material.push_back(h.material[i]);
+      }
+      auto cs = depth <= maxdepth ? camera_.sample_wi(h.p[i], u_lens) : std::nullopt;
+      if (cs) {  // t = 1
+        Vec3 wi = frame.to_local(cs->wi);
+        RGB f = bsdf.f(wo, wi, TransportMode::Importance) *
+                (std::fabs(wi.z) * shading_normal_correction(h.wo[i], cs->wi, h.ng[i], h.ns[i]));
+        if (!is_black(f)) {
+          float wt = 1.f;
+          if (!settings_.light_tracing_only) {
+            float camera_pdf_A = camera_.pdf_dir(-cs->wi) * std::fabs(glm::dot(h.ng[i], cs->wi)) / sqr(cs->dist);
+            wt = weight(mis_weight_light_trace(m, camera_pdf_A, bsdf.pdf(wi, wo, TransportMode::Radiance), mis_));
           }
+          push_camera_ray(w, slot, h.p[i], h.ng[i], h.error_scale[i], *cs, beta * f * (cs->We / cs->pdf), wt,
+                          depth + 1);
         }
       }
-      if (depth >= maxdepth) return;  // deeper vertices would only make paths longer than maxdepth
-      auto bs = bsdf.sample_f(wo, uc, u2, TransportMode::Importance);
-      if (!bs || bs->pdf == 0.f || is_black(bs->f)) return;
-      Vec3 wi = frame.from_local(bs->wi);
-      beta *= bs->f * (std::fabs(bs->wi.z) / bs->pdf * shading_normal_correction(h.wo[i], wi, h.ng[i], h.ns[i]));
-      float pdf_rev = bs->specular ? bs->pdf : bsdf.pdf(bs->wi, wo, TransportMode::Radiance);
-      mis_after_scatter(m, std::fabs(glm::dot(h.ng[i], wi)), bs->pdf, pdf_rev, bs->specular, mis_);
-      // Russian roulette relative to the power the subpath started with.
-      float rr = max_component(beta) * w.light.rr_scale[slot];
-      if (rr < 1.f && depth >= 2) {
-        float q = std::fmax(0.f, 1.f - rr);
-        if (u_rr < q) return;
-        beta /= 1.f - q;
-      }
-      if (!is_finite(beta)) return;
-      w.hits.alive[i] = 1;
-      w.light.prev_p[slot] = h.p[i];
-      w.hits.next_o[i] = offset_ray_origin(h.p[i], h.ng[i], h.error_scale[i], wi);
-      w.hits.next_d[i] = wi;
-    });
-  }
+    }
+    if (depth >= maxdepth) return;  // deeper vertices would only make paths longer than maxdepth
+    continue_subpath(bsdf, TransportMode::Importance, w.hits, i, frame, wo, uc, u2, u_rr, depth,
+                     {beta, m, w.light.prev_p[slot], w.light.eta_scale[slot], w.light.rr_scale[slot]}, mis_);
+  });
 }
 
 void Bdpt::splat_stage(BdptWave& w) const {

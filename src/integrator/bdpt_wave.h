@@ -4,12 +4,12 @@
 // the light vertex pool holds every connectible light vertex of the wave.
 #pragma once
 
-#include <array>
 #include <vector>
 
 #include "accel/ray_stream.h"
 #include "film/film.h"
 #include "integrator/bdpt_mis.h"
+#include "integrator/hit.h"
 #include "material/material.h"
 #include "math/rng.h"
 
@@ -70,27 +70,6 @@ struct LightVertexPool {
     beta.clear();
     mis.clear();
     material.clear();
-  }
-};
-
-// The hits of one bounce, per ray.
-struct HitPool {
-  std::vector<Vec3> p, ng, ns, wo;
-  std::vector<Vec2> uv;
-  std::vector<float> error_scale;
-  std::vector<uint32_t> material_index;
-  std::vector<MaterialHandle> material;
-  std::vector<uint8_t> alive;  // the subpath continues past this bounce
-  std::vector<Vec3> next_o, next_d;
-  std::array<std::vector<uint32_t>, kMaterialKindCount> bins;
-  void resize(uint32_t n) {
-    for (auto* v : {&p, &ng, &ns, &wo, &next_o, &next_d}) v->resize(n);
-    uv.resize(n);
-    error_scale.resize(n);
-    material_index.resize(n);
-    material.resize(n);
-    alive.resize(n);
-    for (auto& b : bins) b.reserve(n);
   }
 };
 

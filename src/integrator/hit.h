@@ -1,8 +1,13 @@
-// Reconstructing the surface point of a ray hit from the ray batch: the same
-// for every integrator and every kind of subpath.
+// The hits of one bounce: reconstructing the surface point of a ray hit from
+// the ray batch, and the per-ray pool the shading stages read, the same for
+// every integrator and every kind of subpath.
 #pragma once
 
+#include <array>
+#include <vector>
+
 #include "accel/ray_batch.h"
+#include "material/material.h"
 #include "scene/surface.h"
 
 namespace lantern {
@@ -20,5 +25,54 @@ inline int64_t hit_area_light(const ShapePools& shapes, const RayBatch& rays, ui
   if (g.light_offset < 0) return -1;
   return int64_t(g.light_offset) + (g.kind == ShapeKind::Mesh ? int64_t(rays.prim_id[i]) : 0);
 }
+
+// The hits of one bounce, per ray, binned by material kind for shading.
+struct HitPool {
+  std::vector<Vec3> p, ng, ns, wo;
+  std::vector<Vec2> uv;
+  std::vector<float> error_scale;
+  std::vector<uint32_t> material_index;
+  std::vector<MaterialHandle> material;
+  std::vector<uint8_t> alive;  // the path continues past this bounce
+  std::vector<Vec3> next_o, next_d;
+  std::array<std::vector<uint32_t>, kMaterialKindCount> bins;
+
+  void resize(uint32_t n) {
+    for (auto* v : {&p, &ng, &ns, &wo, &next_o, &next_d}) v->resize(n);
+    uv.resize(n);
+    error_scale.resize(n);
+    material_index.resize(n);
+    material.resize(n);
+    alive.resize(n);
+    for (auto& b : bins) b.reserve(n);
+  }
+  void clear_bins() {
+    for (auto& b : bins) b.clear();
+  }
+  // Records hit i (reached travelling along d) and puts it in its material's bin.
+  void store(uint32_t i, const SurfacePoint& sp, const Vec3& d, MaterialHandle m) {
+    p[i] = sp.p;
+    ng[i] = sp.ng;
+    ns[i] = glm::dot(sp.ns, sp.ng) < 0.f ? -sp.ns : sp.ns;  // shading normal on the geometric one's side
+    uv[i] = sp.uv;
+    wo[i] = -d;
+    error_scale[i] = sp.error_scale;
+    material[i] = m;
+    material_index[i] = m.index();
+    bins[size_t(m.kind())].push_back(i);
+  }
+  // The next rays of the bounce's surviving paths, in order; active[] is
+  // compacted alongside.
+  void compact(RayBatch& rays, std::vector<uint32_t>& active) const {
+    uint32_t n = 0;
+    const uint32_t count = rays.count;
+    rays.count = 0;
+    for (uint32_t i = 0; i < count; ++i) {
+      if (!alive[i]) continue;
+      active[n++] = active[i];
+      rays.push(next_o[i], next_d[i], 0.f, kInfinity);
+    }
+  }
+};
 
 }  // namespace lantern

@@ -1,8 +1,9 @@
 #include "integrator/path_tracer.h"
 
 #include "film/pixel_filter.h"
+#include "integrator/hit.h"
 #include "integrator/path_wave.h"
-#include "material/bsdf_kernel.h"
+#include "integrator/shade.h"
 #include "scene/surface.h"
 
 namespace lantern {
@@ -13,7 +14,8 @@ std::vector<uint32_t> tile_order(int width, int height, int tile) {
   for (int ty = 0; ty < height; ty += tile)
     for (int tx = 0; tx < width; tx += tile)
       for (int y = ty; y < std::min(ty + tile, height); ++y)
-        for (int x = tx; x < std::min(tx + tile, width); ++x) order.push_back(uint32_t(y) * uint32_t(width) + uint32_t(x));
+        for (int x = tx; x < std::min(tx + tile, width); ++x)
+          order.push_back(uint32_t(y) * uint32_t(width) + uint32_t(x));
   return order;
 }
 
@@ -31,8 +33,7 @@ void PathTracer::generate_camera_rays(const WaveDesc& wave, PathWave& w) const {
     uint32_t pixel = wave.pixels[slot / wave.samples];
     uint32_t sample_index = wave.first_sample + slot % wave.samples;
     PathSampler s = PathSampler::make(settings_.seed, pixel, sample_index);
-    Vec2 offset = sample_pixel_filter(scene_.filter, s.get2d());
-    Vec2 p_raster(float(pixel % width) + 0.5f + offset.x, float(pixel / width) + 0.5f + offset.y);
+    Vec2 p_raster = sample_raster_position(scene_.filter, pixel, width, s.get2d());
     CameraRay r = camera_.generate_ray(p_raster, s.get2d());
     w.pixel[slot] = pixel;
     w.sampler[slot] = s;
@@ -49,30 +50,28 @@ void PathTracer::generate_camera_rays(const WaveDesc& wave, PathWave& w) const {
 
 // Hit reconstruction, emission with MIS, maxdepth, and binning by material.
 void PathTracer::surface_stage(PathWave& w) const {
-  for (auto& b : w.bins) b.clear();
+  w.hits.clear_bins();
   const ShapePools& shapes = scene_.shapes;
   const LightPools& lights = scene_.lights;
   const bool last = int(w.depth) == settings_.maxdepth;
   for (uint32_t i = 0; i < w.rays.count; ++i) {
     uint32_t slot = w.active[i];
-    w.alive[i] = 0;
+    w.hits.alive[i] = 0;
     Vec3 d = glm::normalize(w.rays.direction(i));
     bool unweighted = w.prev_specular[slot] != 0;
     if (!w.rays.hit(i)) {
       if (!lights.infinite.empty()) {
         RGB Le = infinite_lights_Le(lights, scene_.textures, d);
-        float weight = unweighted ? 1.f : power_heuristic(w.prev_pdf[slot], infinite_lights_pdf(lights, scene_.textures, d));
+        float weight =
+            unweighted ? 1.f : power_heuristic(w.prev_pdf[slot], infinite_lights_pdf(lights, scene_.textures, d));
         w.L[slot] += w.beta[slot] * weight * Le;
       }
       continue;
     }
     const Geometry& g = shapes.geometries[w.rays.geom_id[i]];
-    uint32_t prim = w.rays.prim_id[i];
-    SurfacePoint sp = g.kind == ShapeKind::Mesh
-                          ? triangle_point(shapes.meshes[g.index], prim, w.rays.u[i], w.rays.v[i])
-                          : sphere_point(shapes.spheres[g.index], w.rays.origin(i) + w.rays.tfar[i] * w.rays.direction(i));
-    if (g.light_offset >= 0) {
-      uint32_t light = uint32_t(g.light_offset) + (g.kind == ShapeKind::Mesh ? prim : 0);
+    SurfacePoint sp = hit_point(shapes, w.rays, i);
+    if (int64_t area = hit_area_light(shapes, w.rays, i); area >= 0) {
+      uint32_t light = uint32_t(area);
       RGB Le = area_light_Le(lights.area[light], sp.ng, -d);
       if (!is_black(Le)) {
         float weight = unweighted ? 1.f
@@ -82,15 +81,7 @@ void PathTracer::surface_stage(PathWave& w) const {
       }
     }
     if (last) continue;
-    w.p[i] = sp.p;
-    w.ng[i] = sp.ng;
-    // Shading normal on the side of the geometric one.
-    w.ns[i] = glm::dot(sp.ns, sp.ng) < 0.f ? -sp.ns : sp.ns;
-    w.uv[i] = sp.uv;
-    w.wo[i] = -d;
-    w.error_scale[i] = sp.error_scale;
-    w.material_index[i] = g.material.index();
-    w.bins[size_t(g.material.kind())].push_back(i);
+    w.hits.store(i, sp, d, g.material);
   }
 }
 
@@ -98,82 +89,67 @@ void PathTracer::surface_stage(PathWave& w) const {
 void PathTracer::shade_stage(PathWave& w) const {
   w.shadow.count = 0;
   const Scene& sc = scene_;
-  for (int k = 0; k < kMaterialKindCount; ++k) {
-    const auto& bin = w.bins[size_t(k)];
-    if (bin.empty()) continue;
-    for_each_bsdf(MaterialKind(k), sc.materials, sc.textures, bin.data(), bin.size(), w.material_index.data(),
-                  w.uv.data(), [&](uint32_t i, const auto& bsdf) {
-      uint32_t slot = w.active[i];
-      PathSampler& s = w.sampler[slot];
-      Frame frame = Frame::from_z(w.ns[i]);
-      Vec3 wo = frame.to_local(w.wo[i]);
-      // Next-event estimation towards one light chosen by power.
-      float u_light = s.get1d();
-      Vec2 u_light2 = s.get2d();
-      if (!bsdf.is_specular()) {
-        if (auto ls = sample_light(sc.lights, sc.shapes, sc.textures, w.p[i], u_light, u_light2); ls && !is_black(ls->L)) {
-          Vec3 wi = frame.to_local(ls->wi);
-          RGB f = bsdf.f(wo, wi, TransportMode::Radiance) * std::fabs(wi.z);
-          if (!is_black(f)) {
-            float weight = ls->delta ? 1.f : power_heuristic(ls->pdf, bsdf.pdf(wo, wi, TransportMode::Radiance));
-            RGB contrib = w.beta[slot] * f * ls->L * (weight / ls->pdf);
-            Vec3 o = offset_ray_origin(w.p[i], w.ng[i], w.error_scale[i], ls->wi);
-            uint32_t r;
-            if (ls->infinite) {
-              r = w.shadow.push(o, ls->wi, 0.f, kInfinity);
-            } else {
-              Vec3 target = ls->n_light == Vec3(0.f)
-                                ? ls->p_light
-                                : offset_ray_origin(ls->p_light, ls->n_light, ls->error_scale, -ls->wi);
-              r = w.shadow.push(o, target - o, 0.f, 1.f);
-            }
-            w.shadow_slot[r] = slot;
-            w.shadow_contrib[r] = contrib;
+  for_each_binned_bsdf(w.hits, sc, [&](uint32_t i, const auto& bsdf) {
+    uint32_t slot = w.active[i];
+    PathSampler& s = w.sampler[slot];
+    Frame frame = Frame::from_z(w.hits.ns[i]);
+    Vec3 wo = frame.to_local(w.hits.wo[i]);
+    // Next-event estimation towards one light chosen by power.
+    float u_light = s.get1d();
+    Vec2 u_light2 = s.get2d();
+    if (!bsdf.is_specular()) {
+      if (auto ls = sample_light(sc.lights, sc.shapes, sc.textures, w.hits.p[i], u_light, u_light2);
+          ls && !is_black(ls->L)) {
+        Vec3 wi = frame.to_local(ls->wi);
+        RGB f = bsdf.f(wo, wi, TransportMode::Radiance) * std::fabs(wi.z);
+        if (!is_black(f)) {
+          float weight = ls->delta ? 1.f : power_heuristic(ls->pdf, bsdf.pdf(wo, wi, TransportMode::Radiance));
+          RGB contrib = w.beta[slot] * f * ls->L * (weight / ls->pdf);
+          Vec3 o = offset_ray_origin(w.hits.p[i], w.hits.ng[i], w.hits.error_scale[i], ls->wi);
+          uint32_t r;
+          if (ls->infinite) {
+            r = w.shadow.push(o, ls->wi, 0.f, kInfinity);
+          } else {
+            Vec3 target = ls->n_light == Vec3(0.f)
+                              ? ls->p_light
+                              : offset_ray_origin(ls->p_light, ls->n_light, ls->error_scale, -ls->wi);
+            r = w.shadow.push(o, target - o, 0.f, 1.f);
           }
+          w.shadow_slot[r] = slot;
+          w.shadow_contrib[r] = contrib;
         }
       }
-      // Continue the path by sampling the BSDF.
-      float uc = s.get1d();
-      Vec2 u2 = s.get2d();
-      float u_rr = s.get1d();
-      auto bs = bsdf.sample_f(wo, uc, u2, TransportMode::Radiance);
-      if (!bs || bs->pdf == 0.f || is_black(bs->f)) return;
-      Vec3 wi = frame.from_local(bs->wi);
-      w.beta[slot] *= bs->f * (std::fabs(bs->wi.z) / bs->pdf);
-      w.prev_pdf[slot] = bs->pdf;
-      w.prev_specular[slot] = bs->specular;
-      if (bs->transmission) w.eta_scale[slot] *= sqr(bs->etap);
-      // Russian roulette on the throughput with refraction's scaling undone.
-      float rr = max_component(w.beta[slot] * w.eta_scale[slot]);
-      if (rr < 1.f && w.depth >= 1) {
-        float q = std::fmax(0.f, 1.f - rr);
-        if (u_rr < q) return;
-        w.beta[slot] /= 1.f - q;
-      }
-      if (!is_finite(w.beta[slot])) return;
-      w.alive[i] = 1;
-      w.prev_p[slot] = w.p[i];
-      w.next_o[i] = offset_ray_origin(w.p[i], w.ng[i], w.error_scale[i], wi);
-      w.next_d[i] = wi;
-    });
-  }
+    }
+    // Continue the path by sampling the BSDF.
+    float uc = s.get1d();
+    Vec2 u2 = s.get2d();
+    float u_rr = s.get1d();
+    auto bs = bsdf.sample_f(wo, uc, u2, TransportMode::Radiance);
+    if (!bs || bs->pdf == 0.f || is_black(bs->f)) return;
+    Vec3 wi = frame.from_local(bs->wi);
+    w.beta[slot] *= bs->f * (std::fabs(bs->wi.z) / bs->pdf);
+    w.prev_pdf[slot] = bs->pdf;
+    w.prev_specular[slot] = bs->specular;
+    if (bs->transmission) w.eta_scale[slot] *= sqr(bs->etap);
+    // Russian roulette on the throughput with refraction's scaling undone.
+    float rr = max_component(w.beta[slot] * w.eta_scale[slot]);
+    if (rr < 1.f && w.depth >= 1) {
+      float q = std::fmax(0.f, 1.f - rr);
+      if (u_rr < q) return;
+      w.beta[slot] /= 1.f - q;
+    }
+    if (!is_finite(w.beta[slot])) return;
+    w.hits.alive[i] = 1;
+    w.prev_p[slot] = w.hits.p[i];
+    w.hits.next_o[i] = offset_ray_origin(w.hits.p[i], w.hits.ng[i], w.hits.error_scale[i], wi);
+    w.hits.next_d[i] = wi;
+  });
 }
 
 void PathTracer::shadow_stage(PathWave& w) const {
   w.stream.occluded(w.shadow);
   for (uint32_t r = 0; r < w.shadow.count; ++r)
     if (!w.shadow.occluded(r)) w.L[w.shadow_slot[r]] += w.shadow_contrib[r];
-}
-
-void PathTracer::compact(PathWave& w) const {
-  uint32_t n = 0;
-  uint32_t count = w.rays.count;
-  w.rays.count = 0;
-  for (uint32_t i = 0; i < count; ++i) {
-    if (!w.alive[i]) continue;
-    w.active[n++] = w.active[i];
-    w.rays.push(w.next_o[i], w.next_d[i], 0.f, kInfinity);
-  }
 }
 
 void PathTracer::trace(const WaveDesc& wave, PathWave& w, WaveOutput& out) const {
@@ -184,7 +160,7 @@ void PathTracer::trace(const WaveDesc& wave, PathWave& w, WaveOutput& out) const
     surface_stage(w);
     shade_stage(w);
     shadow_stage(w);
-    compact(w);
+    w.hits.compact(w.rays, w.active);
     if (w.rays.count == 0) break;
     ++w.depth;
     w.stream.intersect(w.rays, RayKind::Extension);

@@ -32,7 +32,6 @@ class PathTracer {
   void surface_stage(PathWave& w) const;
   void shade_stage(PathWave& w) const;
   void shadow_stage(PathWave& w) const;
-  void compact(PathWave& w) const;
 
   const Scene& scene_;
   PathTracerSettings settings_;

@@ -3,10 +3,10 @@
 // the active paths (ray i belongs to slot active[i]).
 #pragma once
 
-#include <array>
 #include <vector>
 
 #include "accel/ray_stream.h"
+#include "integrator/hit.h"
 #include "material/material.h"
 #include "math/rng.h"
 
@@ -27,13 +27,7 @@ struct PathWave {
   // per ray of the current bounce
   std::vector<uint32_t> active;
   RayBatch rays;
-  std::vector<Vec3> p, ng, ns, wo;
-  std::vector<Vec2> uv;
-  std::vector<float> error_scale;
-  std::vector<uint32_t> material_index;
-  std::vector<uint8_t> alive;  // the path continues past this bounce
-  std::vector<Vec3> next_o, next_d;
-  std::array<std::vector<uint32_t>, kMaterialKindCount> bins;
+  HitPool hits;
 
   // next-event estimation
   RayBatch shadow;
@@ -43,15 +37,13 @@ struct PathWave {
   RayStream stream;
 
   void resize(uint32_t n) {
-    for (auto* v : {&pixel, &active, &material_index, &shadow_slot}) v->resize(n);
+    for (auto* v : {&pixel, &active, &shadow_slot}) v->resize(n);
     sampler.resize(n);
     for (auto* v : {&beta, &L, &shadow_contrib}) v->resize(n);
-    for (auto* v : {&prev_pdf, &eta_scale, &error_scale}) v->resize(n);
-    for (auto* v : {&prev_p, &p, &ng, &ns, &wo, &next_o, &next_d}) v->resize(n);
-    uv.resize(n);
+    for (auto* v : {&prev_pdf, &eta_scale}) v->resize(n);
+    prev_p.resize(n);
     prev_specular.resize(n);
-    alive.resize(n);
-    for (auto& b : bins) b.reserve(n);
+    hits.resize(n);
     rays.reserve(n);
     shadow.reserve(n);
   }

@@ -128,10 +128,14 @@ float emission_pdf(const LightPools& L, const TexturePools& tex, uint32_t light,
   const LightRef r = L.all[light];
   float pmf = L.selection.discrete_pmf(light);
   switch (r.kind) {
-    case LightKind::Area: return area_emission_pdf(L, r.index, n, w);
-    case LightKind::Point: return pmf * uniform_sphere_pdf();
-    case LightKind::Spot: return pmf * uniform_cone_pdf(L.spot[r.index].cos_falloff_end);
-    case LightKind::Distant: return pmf * disk_pdf(L);
+    case LightKind::Area:
+      return area_emission_pdf(L, r.index, n, w);
+    case LightKind::Point:
+      return pmf * uniform_sphere_pdf();
+    case LightKind::Spot:
+      return pmf * uniform_cone_pdf(L.spot[r.index].cos_falloff_end);
+    case LightKind::Distant:
+      return pmf * disk_pdf(L);
     case LightKind::Infinite: {
       auto pdf = infinite_light_pdf(L, tex, r.index, -w);
       return pmf * pdf * disk_pdf(L);
@@ -143,10 +147,14 @@ float emission_pdf(const LightPools& L, const TexturePools& tex, uint32_t light,
 RGB emitted(const LightPools& L, uint32_t light, const Vec3& n, const Vec3& w) {
   const LightRef r = L.all[light];
   switch (r.kind) {
-    case LightKind::Area: return area_light_Le(L.area[r.index], n, w);
-    case LightKind::Point: return L.point[r.index].I;
-    case LightKind::Spot: return L.spot[r.index].I * spot_falloff(L.spot[r.index], w);
-    default: return RGB(0.f);
+    case LightKind::Area:
+      return area_light_Le(L.area[r.index], n, w);
+    case LightKind::Point:
+      return L.point[r.index].I;
+    case LightKind::Spot:
+      return L.spot[r.index].I * spot_falloff(L.spot[r.index], w);
+    default:
+      return RGB(0.f);
   }
 }
 

@@ -10,14 +10,14 @@
 namespace lantern {
 
 struct EmissionSample {
-  Vec3 p{0.f};       // origin: on the light, or on a disk outside the scene for lights at infinity
-  Vec3 n{0.f};       // surface normal of an area light; zero otherwise
-  Vec3 d{0.f};       // unit direction of emission
-  RGB Le{0.f};       // radiance (area, infinite, distant) or intensity (point, spot) along d
+  Vec3 p{0.f};          // origin: on the light, or on a disk outside the scene for lights at infinity
+  Vec3 n{0.f};          // surface normal of an area light; zero otherwise
+  Vec3 d{0.f};          // unit direction of emission
+  RGB Le{0.f};          // radiance (area, infinite, distant) or intensity (point, spot) along d
   float pdf_pos = 0.f;  // area density of p times the selection pmf (delta position: the pmf)
   float pdf_dir = 0.f;  // solid-angle density of d (delta direction: 1)
   float error_scale = 0.f;
-  uint32_t light = 0;   // index into LightPools::all
+  uint32_t light = 0;  // index into LightPools::all
   bool delta_pos = false, delta_dir = false, infinite = false;
 };
 
@@ -40,7 +40,7 @@ RGB emitted(const LightPools& lights, uint32_t light, const Vec3& n, const Vec3&
 
 // Area density (times the pmf) with which sample_light picks p_light when
 // called from p: next-event estimation's density of a light vertex.
-float area_light_direct_pdf_area(const LightPools& lights, const ShapePools& shapes, uint32_t area_index,
-                                 const Vec3& p, const Vec3& p_light, const Vec3& n_light);
+float area_light_direct_pdf_area(const LightPools& lights, const ShapePools& shapes, uint32_t area_index, const Vec3& p,
+                                 const Vec3& p_light, const Vec3& n_light);
 
 }  // namespace lantern

@@ -1,0 +1,63 @@
+// Shading every hit of a bounce with its concrete BSDF, and continuing a
+// subpath by sampling that BSDF: the steps all wavefront integrators share.
+#pragma once
+
+#include "integrator/bdpt_mis.h"
+#include "integrator/hit.h"
+#include "material/bsdf_kernel.h"
+#include "scene/scene.h"
+
+namespace lantern {
+
+// Calls fn(i, bsdf) for every binned hit i, one loop per material kind.
+template <class Fn>
+void for_each_binned_bsdf(const HitPool& hits, const Scene& scene, Fn&& fn) {
+  for (int k = 0; k < kMaterialKindCount; ++k) {
+    const auto& bin = hits.bins[size_t(k)];
+    if (!bin.empty())
+      for_each_bsdf(MaterialKind(k), scene.materials, scene.textures, bin.data(), bin.size(),
+                    hits.material_index.data(), hits.uv.data(), fn);
+  }
+}
+
+// The state a bidirectional subpath carries from vertex to vertex.
+struct SubpathRef {
+  RGB& beta;
+  MisState& mis;
+  Vec3& prev_p;
+  float& eta_scale;  // radiance's 1/eta^2 factors, undone for Russian roulette
+  float rr_scale;    // 1 / the throughput the subpath started with
+};
+
+// Samples the BSDF at hit i to continue a subpath (mode: radiance for eye
+// subpaths, importance for light subpaths), updates throughput and MIS
+// quantities, plays Russian roulette from the third vertex on, and sets the
+// hit's next ray. Leaves hits.alive[i] at 0 when the subpath ends.
+template <class BSDF>
+void continue_subpath(const BSDF& bsdf, TransportMode mode, HitPool& hits, uint32_t i, const Frame& frame,
+                      const Vec3& wo, float uc, Vec2 u2, float u_rr, uint32_t depth, SubpathRef sub, MisPower mis) {
+  auto bs = bsdf.sample_f(wo, uc, u2, mode);
+  if (!bs || bs->pdf == 0.f || is_black(bs->f)) return;
+  const Vec3 wi = frame.from_local(bs->wi);
+  const bool importance = mode == TransportMode::Importance;
+  float scale = std::fabs(bs->wi.z) / bs->pdf;
+  if (importance) scale *= shading_normal_correction(hits.wo[i], wi, hits.ng[i], hits.ns[i]);
+  sub.beta *= bs->f * scale;
+  const TransportMode reverse = importance ? TransportMode::Radiance : TransportMode::Importance;
+  float pdf_rev = bs->specular ? bs->pdf : bsdf.pdf(bs->wi, wo, reverse);
+  mis_after_scatter(sub.mis, std::fabs(glm::dot(hits.ng[i], wi)), bs->pdf, pdf_rev, bs->specular, mis);
+  if (!importance && bs->transmission) sub.eta_scale *= sqr(bs->etap);
+  float rr = max_component(sub.beta * sub.eta_scale) * sub.rr_scale;
+  if (rr < 1.f && depth >= 2) {
+    float q = std::fmax(0.f, 1.f - rr);
+    if (u_rr < q) return;
+    sub.beta /= 1.f - q;
+  }
+  if (!is_finite(sub.beta)) return;
+  hits.alive[i] = 1;
+  sub.prev_p = hits.p[i];
+  hits.next_o[i] = offset_ray_origin(hits.p[i], hits.ng[i], hits.error_scale[i], wi);
+  hits.next_d[i] = wi;
+}
+
+}  // namespace lantern
