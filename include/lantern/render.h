@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lantern/image.h"
@@ -31,6 +32,7 @@ struct RenderOptions {
   int wave_size = 4096;  // paths per wave
   std::function<void(const RenderProgress&)> progress;
   const std::atomic<bool>* cancel = nullptr;  // set it to stop after the waves in flight
+  bool collect_stats = false;  // time stages and ray queries (two clock reads per stage and batch)
   bool strategies = false;  // bdpt: also produce one weighted and one unweighted image per (s, t)
   bool debug_unit_mis_weights = false;  // tests only: weight every bdpt strategy 1 (a deliberately biased estimator)
 };
@@ -38,9 +40,25 @@ struct RenderOptions {
 struct RenderStats {
   double seconds = 0.0;
   uint64_t samples = 0;
+  uint64_t light_paths = 0;  // bdpt, lt: light subpaths traced
   uint64_t camera_rays = 0, extension_rays = 0, light_rays = 0, shadow_rays = 0;
   uint64_t nonfinite_samples = 0;  // produced NaN/Inf; counted and discarded, never on the film
   uint32_t min_spp = 0;            // samples in the least-sampled pixel
+
+  // Subpath vertices on surfaces, and why subpaths ended (escaped, absorbed,
+  // roulette, maxdepth), summed over all samples.
+  uint64_t eye_vertices = 0, light_vertices = 0;
+  std::vector<std::pair<std::string, uint64_t>> eye_ends, light_ends;
+  size_t wave_pool_bytes = 0;  // structure-of-arrays pools of all threads
+  int threads = 0;
+
+  // With RenderOptions::collect_stats: thread-seconds per stage (summed over
+  // threads), in Embree queries per ray kind, and wall seconds merging waves
+  // into the film (one thread).
+  bool timed = false;
+  std::vector<std::pair<std::string, double>> stage_seconds;
+  double camera_ray_seconds = 0.0, extension_ray_seconds = 0.0, light_ray_seconds = 0.0, shadow_ray_seconds = 0.0;
+  double film_seconds = 0.0;
 };
 
 // The contributions of one bidirectional strategy: s light vertices, t eye

@@ -29,4 +29,14 @@ std::shared_ptr<Scene> load_scene_from_string(const std::string& text, const std
                                               const LoadOptions& options = {});
 const SceneSettings& scene_settings(const Scene& scene);
 
+// What a loaded scene holds and what building it cost.
+struct SceneInfo {
+  size_t triangles = 0, spheres = 0, lights = 0;
+  double bvh_build_seconds = 0.0;
+  int64_t bvh_bytes = 0;        // Embree's own memory after the build
+  int64_t bvh_peak_bytes = 0;   // including the builder's temporaries
+  size_t geometry_bytes = 0;    // the scene's vertex, index, normal and uv pools
+};
+SceneInfo scene_info(const Scene& scene);
+
 }  // namespace lantern

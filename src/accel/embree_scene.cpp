@@ -1,5 +1,6 @@
 #include "accel/embree_scene.h"
 
+#include <chrono>
 #include <stdexcept>
 #include <string>
 #include <mutex>
@@ -21,10 +22,20 @@ void EmbreeScene::check(const char* what) {
     throw std::runtime_error(std::string("while ") + what + ": " + (error_.empty() ? "unknown Embree error" : error_));
 }
 
+bool EmbreeScene::on_memory(void* user, ssize_t bytes, bool) {
+  auto* self = static_cast<EmbreeScene*>(user);
+  int64_t now = self->bytes_.fetch_add(int64_t(bytes)) + int64_t(bytes);
+  int64_t peak = self->peak_bytes_.load();
+  while (now > peak && !self->peak_bytes_.compare_exchange_weak(peak, now)) {
+  }
+  return true;  // never refuse an allocation
+}
+
 EmbreeScene::EmbreeScene(const ShapePools& shapes) {
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("cannot create the Embree device");
   rtcSetDeviceErrorFunction(device_, on_error, this);
+  rtcSetDeviceMemoryMonitorFunction(device_, on_memory, this);
   scene_ = rtcNewScene(device_);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
 
@@ -51,7 +62,9 @@ EmbreeScene::EmbreeScene(const ShapePools& shapes) {
     rtcReleaseGeometry(geom);
     check("adding geometry to the Embree scene");
   }
+  auto t0 = std::chrono::steady_clock::now();
   rtcCommitScene(scene_);
+  build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   check("building the Embree BVH");
 }
 

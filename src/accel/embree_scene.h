@@ -4,6 +4,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <atomic>
 #include <mutex>
 #include <string>
 
@@ -19,17 +20,25 @@ class EmbreeScene {
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
   RTCScene handle() const { return scene_; }
+  double build_seconds() const { return build_seconds_; }
+  // Bytes Embree holds (BVH and its own buffers), as its memory monitor
+  // reports them; shared geometry buffers belong to the scene's pools.
+  int64_t bytes() const { return bytes_.load(); }
+  int64_t peak_bytes() const { return peak_bytes_.load(); }
   // Bounds of everything in the scene.
   void bounds(Vec3* lo, Vec3* hi) const;
 
  private:
   static void on_error(void* user, RTCError code, const char* str);
+  static bool on_memory(void* user, ssize_t bytes, bool post);
   void check(const char* what);
 
   std::mutex error_mutex_;
   std::string error_;
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
+  double build_seconds_ = 0.0;
+  std::atomic<int64_t> bytes_{0}, peak_bytes_{0};
 };
 
 }  // namespace lantern

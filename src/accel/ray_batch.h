@@ -11,6 +11,11 @@
 
 namespace lantern {
 
+template <class T>
+size_t vector_bytes(const std::vector<T>& v) {
+  return v.capacity() * sizeof(T);
+}
+
 inline constexpr uint32_t kInvalidGeometry = 0xFFFFFFFFu;  // RTC_INVALID_GEOMETRY_ID
 
 struct RayBatch {
@@ -26,6 +31,7 @@ struct RayBatch {
     for (auto* a : {&mask, &id, &flags, &prim_id, &geom_id, &inst_id}) a->resize(n);
   }
   size_t capacity() const { return org_x.size(); }
+  size_t memory_bytes() const { return capacity() * (14 * sizeof(float) + 6 * sizeof(uint32_t)); }
 
   // Appends a ray, growing the arrays when full; d need not be unit length
   // (t is then in units of |d|).

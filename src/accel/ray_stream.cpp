@@ -1,5 +1,7 @@
 #include "accel/ray_stream.h"
 
+#include <chrono>
+
 #include <stdexcept>
 
 namespace lantern {
@@ -86,6 +88,13 @@ void RayStream::intersect(RayBatch& b, RayKind kind) {
       default: counters_->extension += b.count; break;
     }
   }
+  if (!timing_) return run_intersect(b, kind);
+  auto t0 = std::chrono::steady_clock::now();
+  run_intersect(b, kind);
+  seconds_[size_t(kind)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void RayStream::run_intersect(RayBatch& b, RayKind kind) {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   ctx.flags = kind == RayKind::Camera ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
@@ -141,6 +150,13 @@ void RayStream::intersect(RayBatch& b, RayKind kind) {
 void RayStream::occluded(RayBatch& b) {
   if (b.count == 0) return;
   if (counters_) counters_->shadow += b.count;
+  if (!timing_) return run_occluded(b);
+  auto t0 = std::chrono::steady_clock::now();
+  run_occluded(b);
+  seconds_[size_t(RayKind::Shadow)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void RayStream::run_occluded(RayBatch& b) {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;

@@ -6,6 +6,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <array>
 #include <atomic>
 #include <string>
 #include <vector>
@@ -34,12 +35,22 @@ class RayStream {
   // Any hit: afterwards batch.occluded(i) says whether ray i was blocked.
   void occluded(RayBatch& batch);
 
+  // Wall time spent in Embree queries by this stream, per RayKind; kept
+  // only when timing is on (a clock read per batch, not per ray).
+  void set_timing(bool on) { timing_ = on; }
+  const std::array<double, 4>& seconds() const { return seconds_; }
+
  private:
+  void run_intersect(RayBatch& batch, RayKind kind);
+  void run_occluded(RayBatch& batch);
+
   RTCScene scene_;
   RayBackend backend_;
   RayCounters* counters_;
   std::vector<RTCRayHit> aos_;   // scratch for the 1M back end
   std::vector<RTCRay> aos_rays_;
+  bool timing_ = false;
+  std::array<double, 4> seconds_{};
 };
 
 }  // namespace lantern

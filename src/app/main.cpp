@@ -5,9 +5,11 @@
 #include <atomic>
 #include <csignal>
 #include <filesystem>
+#include <fstream>
 #include <cstdio>
 #include <iostream>
 
+#include "app/stats_report.h"
 #include "film/image_metrics.h"
 #include "lantern/render.h"
 #include "lantern/scene.h"
@@ -31,7 +33,7 @@ std::string hms(double s) {
 }
 
 struct RenderArgs {
-  std::string scene, output, integrator, rays = "stream", mis = "power", strategies;
+  std::string scene, output, integrator, rays = "stream", mis = "power", strategies, stats;
   int spp = 0, maxdepth = -1, threads = 0, wave_size = 4096;
   double time = 0.0;
   uint64_t seed = 0;
@@ -49,6 +51,17 @@ void write_strategy_images(const std::string& dir, const std::vector<lantern::St
   }
 }
 
+// Written to a temporary name and renamed, like the images.
+void write_text_atomically(const std::string& path, const std::string& text) {
+  std::string tmp = path + ".tmp";
+  {
+    std::ofstream f(tmp, std::ios::binary);
+    f << text;
+    if (!f.flush()) throw std::runtime_error("cannot write " + tmp);
+  }
+  std::filesystem::rename(tmp, path);
+}
+
 int run_render(const RenderArgs& a) {
   using namespace lantern;
   LoadOptions lo;
@@ -62,6 +75,7 @@ int run_render(const RenderArgs& a) {
   o.integrator = a.integrator.empty() ? ss.integrator : a.integrator;
   o.mis = a.mis;
   o.strategies = !a.strategies.empty();
+  o.collect_stats = !a.stats.empty();
   o.spp = a.spp > 0 ? a.spp : ss.spp;
   o.time_limit_seconds = a.time;
   o.maxdepth = a.maxdepth >= 0 ? a.maxdepth : ss.maxdepth;
@@ -110,6 +124,12 @@ int run_render(const RenderArgs& a) {
                  double(s.samples) / s.seconds * 1e-6, rays / s.seconds * 1e-6, double(s.camera_rays) * 1e-6,
                  double(s.extension_rays) * 1e-6, double(s.light_rays) * 1e-6, double(s.shadow_rays) * 1e-6,
                  (unsigned long long)s.nonfinite_samples);
+    if (s.timed) print_stage_summary(s);
+  }
+  if (!a.stats.empty()) {
+    RunInfo run{a.scene, o.integrator, out, o.ray_backend, r.image.width, r.image.height, o.wave_size, load_s,
+                scene_info(*scene)};
+    write_text_atomically(a.stats, stats_json(run, r.stats).dump(2) + "\n");
   }
   if (r.interrupted) {
     std::fprintf(stderr, "interrupted: wrote the %llu samples rendered so far to %s\n",
@@ -153,6 +173,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"path", "bdpt", "lt"}));
   render->add_option("--mis", a.mis, "bdpt's MIS heuristic: power or balance")
       ->check(CLI::IsMember({"power", "balance"}));
+  render->add_option("--stats", a.stats,
+                     "Write measurements as JSON: time per stage, rays by kind, subpath lengths, memory");
   render->add_option("--strategies", a.strategies,
                      "bdpt: write DIR/s<s>_t<t>_{weighted,unweighted}.exr, one pair per strategy");
   render->add_option("--maxdepth", a.maxdepth, "Maximum path depth, as pbrt defines it (default: the scene's)")->check(CLI::NonNegativeNumber);

@@ -54,6 +54,7 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
     Vec3 d = glm::normalize(w.rays.direction(i));
     MisState& m = w.eye.mis[slot];
     if (!w.rays.hit(i)) {
+      ++w.stats.eye_ends[size_t(PathEnd::Escaped)];
       if (!lights.infinite.empty()) {
         RGB Le = infinite_lights_Le(lights, scene_.textures, d);
         float wt = w.depth == 1 ? 1.f
@@ -63,6 +64,7 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
       }
       continue;
     }
+    ++w.stats.eye_vertices;
     SurfacePoint sp = hit_point(shapes, w.rays, i);
     Vec3 prev = w.eye.prev_p[slot];
     float dist2 = glm::dot(sp.p - prev, sp.p - prev);
@@ -84,31 +86,31 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
         add_emission(w, slot, w.eye.beta[slot] * Le, weight(wt));
       }
     }
-    if (last) continue;
+    if (last) {
+      ++w.stats.eye_ends[size_t(PathEnd::MaxDepth)];
+      continue;
+    }
     w.hits.store(i, sp, d, scene_.shapes.geometries[w.rays.geom_id[i]].material);
   }
 }
 
-// Prepares the s = 1 and s >= 2 connections of every eye vertex, then
-// samples the next direction.
-void Bdpt::eye_shade_stage(BdptWave& w) const {
+// Prepares the s = 1 and s >= 2 connections of every eye vertex.
+void Bdpt::eye_connect_stage(BdptWave& w) const {
   const Scene& sc = scene_;
   const uint32_t depth = w.depth;
   const uint32_t maxdepth = uint32_t(settings_.maxdepth);
   for_each_binned_bsdf(w.hits, sc, [&](uint32_t i, const auto& bsdf) {
     const uint32_t slot = w.active[i];
     PathSampler& s = w.sampler[slot];
+    float u_light = s.get1d();
+    Vec2 u_light2 = s.get2d();
+    if (bsdf.is_specular() || depth > maxdepth) return;
     const HitPool& h = w.hits;
     const Frame frame = Frame::from_z(h.ns[i]);
     const Vec3 wo = frame.to_local(h.wo[i]);
-    float u_light = s.get1d();
-    Vec2 u_light2 = s.get2d();
-    float uc = s.get1d();
-    Vec2 u2 = s.get2d();
-    float u_rr = s.get1d();
-    RGB& beta = w.eye.beta[slot];
-    MisState& m = w.eye.mis[slot];
-    if (!bsdf.is_specular() && depth <= maxdepth) {
+    const RGB& beta = w.eye.beta[slot];
+    const MisState& m = w.eye.mis[slot];
+    {
       if (auto ls = sample_light(sc.lights, sc.shapes, sc.textures, h.p[i], u_light, u_light2);
           ls && !is_black(ls->L)) {  // s = 1
         Vec3 wi = frame.to_local(ls->wi);
@@ -172,14 +174,31 @@ void Bdpt::eye_shade_stage(BdptWave& w) const {
       }
       if (w.shadow.rays.count >= kMaxPendingConnections) connection_stage(w);
     }
-    continue_subpath(bsdf, TransportMode::Radiance, w.hits, i, frame, wo, uc, u2, u_rr, depth,
-                     {beta, m, w.eye.prev_p[slot], w.eye.eta_scale[slot], 1.f}, mis_);
   });
 }
 
+// Samples each eye subpath's next direction.
+void Bdpt::eye_scatter_stage(BdptWave& w) const {
+  const uint32_t depth = w.depth;
+  for_each_binned_bsdf(w.hits, scene_, [&](uint32_t i, const auto& bsdf) {
+    const uint32_t slot = w.active[i];
+    PathSampler& s = w.sampler[slot];
+    float uc = s.get1d();
+    Vec2 u2 = s.get2d();
+    float u_rr = s.get1d();
+    const Frame frame = Frame::from_z(w.hits.ns[i]);
+    PathEnd end =
+        continue_subpath(bsdf, TransportMode::Radiance, w.hits, i, frame, frame.to_local(w.hits.wo[i]), uc, u2, u_rr,
+                         depth, {w.eye.beta[slot], w.eye.mis[slot], w.eye.prev_p[slot], w.eye.eta_scale[slot], 1.f},
+                         mis_);
+    if (end != PathEnd::Count) ++w.stats.eye_ends[size_t(end)];
+  });
+}
+
+// Adds the contributions of the unoccluded connections (after the stream's
+// occlusion query).
 void Bdpt::connection_stage(BdptWave& w) const {
   ConnectionPool& c = w.shadow;
-  w.stream.occluded(c.rays);
   for (uint32_t r = 0; r < c.rays.count; ++r) {
     if (c.rays.occluded(r)) continue;
     w.L[c.slot[r]] += c.contrib[r];
@@ -200,24 +219,41 @@ void Bdpt::add_emission(BdptWave& w, uint32_t slot, const RGB& unweighted, float
 void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
   w.out = &out;
   w.shadow.record = settings_.record_strategies;
-  start_light_subpaths(wave, w);
-  splat_stage(w);
+  WaveStats& st = w.stats;
+  auto timed = [&](Stage stage, auto&& fn) {
+    StageTimer t(st, stage);
+    fn();
+  };
+  timed(Stage::Generate, [&] { start_light_subpaths(wave, w); });
+  w.stream.occluded(w.shadow.rays);
+  timed(Stage::Accumulate, [&] { splat_stage(w); });
   for (w.depth = 1; w.rays.count > 0; ++w.depth) {
     w.stream.intersect(w.rays, RayKind::LightExtension);
-    light_surface_stage(w);
-    light_scatter_stage(w);
-    splat_stage(w);
-    w.hits.compact(w.rays, w.active);
+    timed(Stage::Surface, [&] { light_surface_stage(w); });
+    timed(Stage::Connect, [&] { light_connect_stage(w); });
+    timed(Stage::Scatter, [&] {
+      light_scatter_stage(w);
+      w.hits.compact(w.rays, w.active);
+    });
+    w.stream.occluded(w.shadow.rays);
+    timed(Stage::Accumulate, [&] { splat_stage(w); });
   }
   if (!settings_.light_tracing_only) {
-    group_light_vertices(w);
-    start_eye_subpaths(wave, w);
+    timed(Stage::Generate, [&] {
+      group_light_vertices(w);
+      start_eye_subpaths(wave, w);
+    });
     for (w.depth = 1; w.rays.count > 0; ++w.depth) {
       w.stream.intersect(w.rays, w.depth == 1 ? RayKind::Camera : RayKind::Extension);
-      eye_surface_stage(w);
-      eye_shade_stage(w);
-      connection_stage(w);
-      w.hits.compact(w.rays, w.active);
+      timed(Stage::Surface, [&] { eye_surface_stage(w); });
+      // (a flush of a full connection pool inside this stage is counted in it)
+      timed(Stage::Connect, [&] { eye_connect_stage(w); });
+      timed(Stage::Scatter, [&] {
+        eye_scatter_stage(w);
+        w.hits.compact(w.rays, w.active);
+      });
+      w.stream.occluded(w.shadow.rays);
+      timed(Stage::Accumulate, [&] { connection_stage(w); });
     }
   }
   for (uint32_t slot = 0; slot < wave.size(); ++slot) out.samples.push_back({w.pixel[slot], w.L[slot]});

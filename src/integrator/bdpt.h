@@ -46,13 +46,15 @@ class Bdpt {
   // light subpaths (bdpt_light.cpp)
   void start_light_subpaths(const WaveDesc& wave, BdptWave& w) const;
   void light_surface_stage(BdptWave& w) const;
+  void light_connect_stage(BdptWave& w) const;
   void light_scatter_stage(BdptWave& w) const;
   void splat_stage(BdptWave& w) const;
   void group_light_vertices(BdptWave& w) const;
   // eye subpaths (bdpt.cpp)
   void start_eye_subpaths(const WaveDesc& wave, BdptWave& w) const;
   void eye_surface_stage(BdptWave& w) const;
-  void eye_shade_stage(BdptWave& w) const;
+  void eye_connect_stage(BdptWave& w) const;
+  void eye_scatter_stage(BdptWave& w) const;
   void connection_stage(BdptWave& w) const;
   void add_emission(BdptWave& w, uint32_t slot, const RGB& unweighted, float weight) const;
 

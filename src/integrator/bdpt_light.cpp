@@ -85,7 +85,11 @@ void Bdpt::light_surface_stage(BdptWave& w) const {
   for (uint32_t i = 0; i < w.rays.count; ++i) {
     uint32_t slot = w.active[i];
     w.hits.alive[i] = 0;
-    if (!w.rays.hit(i)) continue;
+    if (!w.rays.hit(i)) {
+      ++w.stats.light_ends[size_t(PathEnd::Escaped)];
+      continue;
+    }
+    ++w.stats.light_vertices;
     SurfacePoint sp = hit_point(scene_.shapes, w.rays, i);
     Vec3 d = glm::normalize(w.rays.direction(i));
     Vec3 prev = w.light.prev_p[slot];
@@ -108,25 +112,20 @@ void Bdpt::light_surface_stage(BdptWave& w) const {
   }
 }
 
-// Stores connectible vertices, prepares their camera connections (t = 1)
-// and samples the next direction with importance transport.
-void Bdpt::light_scatter_stage(BdptWave& w) const {
-  const Scene& sc = scene_;
+// Stores connectible vertices and prepares their camera connections (t = 1).
+void Bdpt::light_connect_stage(BdptWave& w) const {
   const uint32_t depth = w.depth;
   const uint32_t maxdepth = uint32_t(settings_.maxdepth);
-  for_each_binned_bsdf(w.hits, sc, [&](uint32_t i, const auto& bsdf) {
+  for_each_binned_bsdf(w.hits, scene_, [&](uint32_t i, const auto& bsdf) {
     const uint32_t slot = w.active[i];
-    PathSampler& s = w.sampler[slot];
+    Vec2 u_lens = w.sampler[slot].get2d();
+    if (bsdf.is_specular()) return;
     const HitPool& h = w.hits;
     const Frame frame = Frame::from_z(h.ns[i]);
     const Vec3 wo = frame.to_local(h.wo[i]);
-    Vec2 u_lens = s.get2d();
-    float uc = s.get1d();
-    Vec2 u2 = s.get2d();
-    float u_rr = s.get1d();
-    RGB& beta = w.light.beta[slot];
-    MisState& m = w.light.mis[slot];
-    if (!bsdf.is_specular()) {
+    const RGB& beta = w.light.beta[slot];
+    const MisState& m = w.light.mis[slot];
+    {
       if (!settings_.light_tracing_only && depth < maxdepth) {  // s >= 2 connections need t >= 2
         LightVertexPool& v = w.vertices;
         v.slot.push_back(slot);
@@ -157,15 +156,35 @@ void Bdpt::light_scatter_stage(BdptWave& w) const {
         }
       }
     }
-    if (depth >= maxdepth) return;  // deeper vertices would only make paths longer than maxdepth
-    continue_subpath(bsdf, TransportMode::Importance, w.hits, i, frame, wo, uc, u2, u_rr, depth,
-                     {beta, m, w.light.prev_p[slot], w.light.eta_scale[slot], w.light.rr_scale[slot]}, mis_);
   });
 }
 
+// Samples each light subpath's next direction, with importance transport.
+void Bdpt::light_scatter_stage(BdptWave& w) const {
+  const uint32_t depth = w.depth;
+  for_each_binned_bsdf(w.hits, scene_, [&](uint32_t i, const auto& bsdf) {
+    const uint32_t slot = w.active[i];
+    PathSampler& s = w.sampler[slot];
+    float uc = s.get1d();
+    Vec2 u2 = s.get2d();
+    float u_rr = s.get1d();
+    if (depth >= uint32_t(settings_.maxdepth)) {  // deeper vertices would only make paths longer than maxdepth
+      ++w.stats.light_ends[size_t(PathEnd::MaxDepth)];
+      return;
+    }
+    const Frame frame = Frame::from_z(w.hits.ns[i]);
+    PathEnd end = continue_subpath(
+        bsdf, TransportMode::Importance, w.hits, i, frame, frame.to_local(w.hits.wo[i]), uc, u2, u_rr, depth,
+        {w.light.beta[slot], w.light.mis[slot], w.light.prev_p[slot], w.light.eta_scale[slot], w.light.rr_scale[slot]},
+        mis_);
+    if (end != PathEnd::Count) ++w.stats.light_ends[size_t(end)];
+  });
+}
+
+// Records the splats of the unoccluded camera connections (after the
+// stream's occlusion query).
 void Bdpt::splat_stage(BdptWave& w) const {
   ConnectionPool& c = w.shadow;
-  w.stream.occluded(c.rays);
   for (uint32_t r = 0; r < c.rays.count; ++r) {
     if (c.rays.occluded(r)) continue;
     w.out->splats.push_back({c.p_raster[r], c.contrib[r]});

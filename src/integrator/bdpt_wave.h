@@ -10,6 +10,7 @@
 #include "film/film.h"
 #include "integrator/bdpt_mis.h"
 #include "integrator/hit.h"
+#include "integrator/wave_stats.h"
 #include "material/material.h"
 #include "math/rng.h"
 
@@ -137,6 +138,25 @@ struct BdptWave {
   LightVertexPool vertices;
   RayStream stream;
   WaveOutput* out = nullptr;  // of the wave being traced
+  WaveStats stats;
+
+  size_t memory_bytes() const {
+    const SubpathPool* subpaths[] = {&eye, &light};
+    size_t b = vector_bytes(pixel) + vector_bytes(sampler) + vector_bytes(L) + vector_bytes(active) +
+               rays.memory_bytes() + hits.memory_bytes() + shadow.rays.memory_bytes() + vector_bytes(shadow.slot) +
+               vector_bytes(shadow.contrib) + vector_bytes(shadow.p_raster) + vector_bytes(shadow.tags);
+    for (const SubpathPool* p : subpaths)
+      b += vector_bytes(p->beta) + vector_bytes(p->mis) + vector_bytes(p->prev_p) + vector_bytes(p->eta_scale) +
+           vector_bytes(p->rr_scale);
+    const LightOriginPool& o = origin;
+    b += vector_bytes(o.light) + vector_bytes(o.n) + vector_bytes(o.emission_pdf_W) + vector_bytes(o.cos_light) +
+         vector_bytes(o.direct_pdf_A) + vector_bytes(o.delta) + vector_bytes(o.infinite);
+    const LightVertexPool& v = vertices;
+    b += vector_bytes(v.slot) + vector_bytes(v.depth) + vector_bytes(v.p) + vector_bytes(v.ng) + vector_bytes(v.ns) +
+         vector_bytes(v.wo) + vector_bytes(v.uv) + vector_bytes(v.error_scale) + vector_bytes(v.beta) +
+         vector_bytes(v.mis) + vector_bytes(v.material) + vector_bytes(v.begin) + vector_bytes(v.order);
+    return b;
+  }
 };
 
 }  // namespace lantern

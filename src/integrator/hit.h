@@ -46,6 +46,13 @@ struct HitPool {
     alive.resize(n);
     for (auto& b : bins) b.reserve(n);
   }
+  size_t memory_bytes() const {
+    size_t b = vector_bytes(p) + vector_bytes(ng) + vector_bytes(ns) + vector_bytes(wo) + vector_bytes(uv) +
+               vector_bytes(error_scale) + vector_bytes(material_index) + vector_bytes(material) +
+               vector_bytes(alive) + vector_bytes(next_o) + vector_bytes(next_d);
+    for (const auto& bin : bins) b += vector_bytes(bin);
+    return b;
+  }
   void clear_bins() {
     for (auto& b : bins) b.clear();
   }

@@ -60,6 +60,7 @@ void PathTracer::surface_stage(PathWave& w) const {
     Vec3 d = glm::normalize(w.rays.direction(i));
     bool unweighted = w.prev_specular[slot] != 0;
     if (!w.rays.hit(i)) {
+      ++w.stats.eye_ends[size_t(PathEnd::Escaped)];
       if (!lights.infinite.empty()) {
         RGB Le = infinite_lights_Le(lights, scene_.textures, d);
         float weight =
@@ -68,6 +69,7 @@ void PathTracer::surface_stage(PathWave& w) const {
       }
       continue;
     }
+    ++w.stats.eye_vertices;
     const Geometry& g = shapes.geometries[w.rays.geom_id[i]];
     SurfacePoint sp = hit_point(shapes, w.rays, i);
     if (int64_t area = hit_area_light(shapes, w.rays, i); area >= 0) {
@@ -80,12 +82,46 @@ void PathTracer::surface_stage(PathWave& w) const {
         w.L[slot] += w.beta[slot] * weight * Le;
       }
     }
-    if (last) continue;
+    if (last) {
+      ++w.stats.eye_ends[size_t(PathEnd::MaxDepth)];
+      continue;
+    }
     w.hits.store(i, sp, d, g.material);
   }
 }
 
-// Next-event estimation and BSDF sampling, one batch kernel per material kind.
+namespace {
+
+// Next-event estimation from hit i towards one light chosen by power:
+// appends a shadow ray with its MIS-weighted contribution.
+template <class BSDF>
+void next_event(const Scene& sc, PathWave& w, uint32_t i, uint32_t slot, const BSDF& bsdf, const Frame& frame,
+                const Vec3& wo, float u_light, Vec2 u_light2) {
+  auto ls = sample_light(sc.lights, sc.shapes, sc.textures, w.hits.p[i], u_light, u_light2);
+  if (!ls || is_black(ls->L)) return;
+  Vec3 wi = frame.to_local(ls->wi);
+  RGB f = bsdf.f(wo, wi, TransportMode::Radiance) * std::fabs(wi.z);
+  if (is_black(f)) return;
+  float weight = ls->delta ? 1.f : power_heuristic(ls->pdf, bsdf.pdf(wo, wi, TransportMode::Radiance));
+  RGB contrib = w.beta[slot] * f * ls->L * (weight / ls->pdf);
+  Vec3 o = offset_ray_origin(w.hits.p[i], w.hits.ng[i], w.hits.error_scale[i], ls->wi);
+  uint32_t r;
+  if (ls->infinite) {
+    r = w.shadow.push(o, ls->wi, 0.f, kInfinity);
+  } else {
+    Vec3 target = ls->n_light == Vec3(0.f) ? ls->p_light
+                                           : offset_ray_origin(ls->p_light, ls->n_light, ls->error_scale, -ls->wi);
+    r = w.shadow.push(o, target - o, 0.f, 1.f);
+  }
+  w.shadow_slot[r] = slot;
+  w.shadow_contrib[r] = contrib;
+}
+
+}  // namespace
+
+// Next-event estimation and BSDF sampling in one loop per material kind.
+// (Two loops, as bdpt has, would let the stats tell them apart, but cost 3%
+// of the path tracer's throughput: docs/performance.md.)
 void PathTracer::shade_stage(PathWave& w) const {
   w.shadow.count = 0;
   const Scene& sc = scene_;
@@ -94,38 +130,18 @@ void PathTracer::shade_stage(PathWave& w) const {
     PathSampler& s = w.sampler[slot];
     Frame frame = Frame::from_z(w.hits.ns[i]);
     Vec3 wo = frame.to_local(w.hits.wo[i]);
-    // Next-event estimation towards one light chosen by power.
     float u_light = s.get1d();
     Vec2 u_light2 = s.get2d();
-    if (!bsdf.is_specular()) {
-      if (auto ls = sample_light(sc.lights, sc.shapes, sc.textures, w.hits.p[i], u_light, u_light2);
-          ls && !is_black(ls->L)) {
-        Vec3 wi = frame.to_local(ls->wi);
-        RGB f = bsdf.f(wo, wi, TransportMode::Radiance) * std::fabs(wi.z);
-        if (!is_black(f)) {
-          float weight = ls->delta ? 1.f : power_heuristic(ls->pdf, bsdf.pdf(wo, wi, TransportMode::Radiance));
-          RGB contrib = w.beta[slot] * f * ls->L * (weight / ls->pdf);
-          Vec3 o = offset_ray_origin(w.hits.p[i], w.hits.ng[i], w.hits.error_scale[i], ls->wi);
-          uint32_t r;
-          if (ls->infinite) {
-            r = w.shadow.push(o, ls->wi, 0.f, kInfinity);
-          } else {
-            Vec3 target = ls->n_light == Vec3(0.f)
-                              ? ls->p_light
-                              : offset_ray_origin(ls->p_light, ls->n_light, ls->error_scale, -ls->wi);
-            r = w.shadow.push(o, target - o, 0.f, 1.f);
-          }
-          w.shadow_slot[r] = slot;
-          w.shadow_contrib[r] = contrib;
-        }
-      }
-    }
+    if (!bsdf.is_specular()) next_event(sc, w, i, slot, bsdf, frame, wo, u_light, u_light2);
     // Continue the path by sampling the BSDF.
     float uc = s.get1d();
     Vec2 u2 = s.get2d();
     float u_rr = s.get1d();
     auto bs = bsdf.sample_f(wo, uc, u2, TransportMode::Radiance);
-    if (!bs || bs->pdf == 0.f || is_black(bs->f)) return;
+    if (!bs || bs->pdf == 0.f || is_black(bs->f)) {
+      ++w.stats.eye_ends[size_t(PathEnd::Absorbed)];
+      return;
+    }
     Vec3 wi = frame.from_local(bs->wi);
     w.beta[slot] *= bs->f * (std::fabs(bs->wi.z) / bs->pdf);
     w.prev_pdf[slot] = bs->pdf;
@@ -135,10 +151,16 @@ void PathTracer::shade_stage(PathWave& w) const {
     float rr = max_component(w.beta[slot] * w.eta_scale[slot]);
     if (rr < 1.f && w.depth >= 1) {
       float q = std::fmax(0.f, 1.f - rr);
-      if (u_rr < q) return;
+      if (u_rr < q) {
+        ++w.stats.eye_ends[size_t(PathEnd::Roulette)];
+        return;
+      }
       w.beta[slot] /= 1.f - q;
     }
-    if (!is_finite(w.beta[slot])) return;
+    if (!is_finite(w.beta[slot])) {
+      ++w.stats.eye_ends[size_t(PathEnd::Absorbed)];
+      return;
+    }
     w.hits.alive[i] = 1;
     w.prev_p[slot] = w.hits.p[i];
     w.hits.next_o[i] = offset_ray_origin(w.hits.p[i], w.hits.ng[i], w.hits.error_scale[i], wi);
@@ -147,20 +169,36 @@ void PathTracer::shade_stage(PathWave& w) const {
 }
 
 void PathTracer::shadow_stage(PathWave& w) const {
-  w.stream.occluded(w.shadow);
   for (uint32_t r = 0; r < w.shadow.count; ++r)
     if (!w.shadow.occluded(r)) w.L[w.shadow_slot[r]] += w.shadow_contrib[r];
 }
 
 void PathTracer::trace(const WaveDesc& wave, PathWave& w, WaveOutput& out) const {
-  generate_camera_rays(wave, w);
+  WaveStats& st = w.stats;
+  {
+    StageTimer t(st, Stage::Generate);
+    generate_camera_rays(wave, w);
+  }
   w.depth = 0;
   w.stream.intersect(w.rays, RayKind::Camera);
   for (;;) {
-    surface_stage(w);
-    shade_stage(w);
-    shadow_stage(w);
-    w.hits.compact(w.rays, w.active);
+    {
+      StageTimer t(st, Stage::Surface);
+      surface_stage(w);
+    }
+    {
+      StageTimer t(st, Stage::Shade);
+      shade_stage(w);
+    }
+    w.stream.occluded(w.shadow);
+    {
+      StageTimer t(st, Stage::Accumulate);
+      shadow_stage(w);
+    }
+    {
+      StageTimer t(st, Stage::Shade);
+      w.hits.compact(w.rays, w.active);
+    }
     if (w.rays.count == 0) break;
     ++w.depth;
     w.stream.intersect(w.rays, RayKind::Extension);

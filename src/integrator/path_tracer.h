@@ -24,7 +24,8 @@ class PathTracer {
   PathTracer(const Scene& scene, const PathTracerSettings& settings);
 
   std::unique_ptr<PathWave, void (*)(PathWave*)> make_wave_state(uint32_t capacity, RayStream stream) const;
-  // Traces all paths of the wave and records one sample per slot.
+  // Traces all paths of the wave and records one sample per slot; the wave
+  // state's stats and ray stream keep the measurements.
   void trace(const WaveDesc& wave, PathWave& state, WaveOutput& out) const;
 
  private:

@@ -7,6 +7,7 @@
 
 #include "accel/ray_stream.h"
 #include "integrator/hit.h"
+#include "integrator/wave_stats.h"
 #include "material/material.h"
 #include "math/rng.h"
 
@@ -35,6 +36,14 @@ struct PathWave {
   std::vector<RGB> shadow_contrib;
 
   RayStream stream;
+  WaveStats stats;
+
+  size_t memory_bytes() const {
+    return vector_bytes(pixel) + vector_bytes(sampler) + vector_bytes(beta) + vector_bytes(L) + vector_bytes(prev_pdf) +
+           vector_bytes(eta_scale) + vector_bytes(prev_p) + vector_bytes(prev_specular) + vector_bytes(active) +
+           rays.memory_bytes() + hits.memory_bytes() + shadow.memory_bytes() + vector_bytes(shadow_slot) +
+           vector_bytes(shadow_contrib);
+  }
 
   void resize(uint32_t n) {
     for (auto* v : {&pixel, &active, &shadow_slot}) v->resize(n);

@@ -22,6 +22,7 @@
 #include "integrator/bdpt_wave.h"
 #include "integrator/path_tracer.h"
 #include "integrator/path_wave.h"
+#include "integrator/wave_stats.h"
 #include "lantern/render.h"
 
 namespace lantern {
@@ -70,12 +71,40 @@ class ProgressReporter {
   std::thread thread_;
 };
 
+// Sums what the threads' wave states measured.
+template <class States>
+void gather_stats(States& states, double film_seconds, RenderStats& st) {
+  WaveStats total;
+  std::array<double, 4> ray_seconds{};
+  for (auto& state : states) {
+    total += state->stats;
+    for (size_t k = 0; k < 4; ++k) ray_seconds[k] += state->stream.seconds()[k];
+    st.wave_pool_bytes += state->memory_bytes();
+    ++st.threads;
+  }
+  st.eye_vertices = total.eye_vertices;
+  st.light_vertices = total.light_vertices;
+  for (int e = 0; e < kPathEndCount; ++e) {
+    st.eye_ends.emplace_back(path_end_name(PathEnd(e)), total.eye_ends[size_t(e)]);
+    st.light_ends.emplace_back(path_end_name(PathEnd(e)), total.light_ends[size_t(e)]);
+  }
+  st.timed = states.begin() != states.end() && (*states.begin())->stats.timing;
+  if (!st.timed) return;
+  for (int k = 0; k < kStageCount; ++k)  // the stages this integrator has
+    if (total.seconds[size_t(k)] > 0.0) st.stage_seconds.emplace_back(stage_name(Stage(k)), total.seconds[size_t(k)]);
+  st.camera_ray_seconds = ray_seconds[size_t(RayKind::Camera)];
+  st.extension_ray_seconds = ray_seconds[size_t(RayKind::Extension)];
+  st.light_ray_seconds = ray_seconds[size_t(RayKind::LightExtension)];
+  st.shadow_ray_seconds = ray_seconds[size_t(RayKind::Shadow)];
+  st.film_seconds = film_seconds;
+}
+
 // Runs one integrator over all passes. Waves flow through a pipeline whose
 // last stage merges their output into the film serially and in wave order.
 template <class Tracer>
 bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& opt, RayBackend backend,
                 RayCounters& counters, Film& film, StrategyFilm* strategies, Clock::time_point start,
-                std::atomic<uint64_t>& done) {
+                std::atomic<uint64_t>& done, RenderStats& stats) {
   const std::vector<uint32_t> order = tile_order(film.width(), film.height());
   const bool timed = opt.time_limit_seconds > 0;
   const uint32_t total_spp = timed ? 0xFFFFFFFFu : uint32_t(opt.spp);
@@ -85,8 +114,13 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
   const uint32_t waves = uint32_t((order.size() + pixels_per_wave - 1) / pixels_per_wave);
 
   using State = typename decltype(tracer.make_wave_state(0, RayStream(nullptr, backend, nullptr)))::element_type;
-  tbb::enumerable_thread_specific<std::unique_ptr<State, void (*)(State*)>> states(
-      [&] { return tracer.make_wave_state(capacity, RayStream(scene.accel->handle(), backend, &counters)); });
+  tbb::enumerable_thread_specific<std::unique_ptr<State, void (*)(State*)>> states([&] {
+    auto state = tracer.make_wave_state(capacity, RayStream(scene.accel->handle(), backend, &counters));
+    state->stats.timing = opt.collect_stats;
+    state->stream.set_timing(opt.collect_stats);
+    return state;
+  });
+  double film_seconds = 0.0;
   // At most `tokens` waves are in flight and they retire in order, so wave
   // i's output slot (i mod tokens) is free again when wave i + tokens starts.
   const size_t tokens = 2 * size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
@@ -125,11 +159,14 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
                                                  }) &
             tbb::make_filter<uint32_t, void>(tbb::filter_mode::serial_in_order, [&](uint32_t wi) {
               const WaveOutput& out = outputs[wi % tokens];
+              auto t0 = opt.collect_stats ? Clock::now() : Clock::time_point();
               film.merge(out);
               if (strategies) strategies->merge(out.strategies);
+              if (opt.collect_stats) film_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
               done += out.samples.size();
             }));
   }
+  gather_stats(states, film_seconds, stats);
   return stop;
 }
 
@@ -156,6 +193,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
   Film film(width, height, scene.filter);
   std::optional<StrategyFilm> strategy_film;
   RayCounters counters;
+  RenderResult res;
   const auto start = Clock::now();
   std::atomic<uint64_t> done{0};
   bool interrupted = false;
@@ -174,25 +212,25 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
       bs.record_strategies = opt.strategies;
       if (opt.strategies) strategy_film.emplace(width, height, scene.filter);
       run_passes(Bdpt(scene, bs), scene, opt, backend, counters, film, strategy_film ? &*strategy_film : nullptr, start,
-                 done);
+                 done, res.stats);
     } else {
       PathTracerSettings ps;
       ps.maxdepth = opt.maxdepth;
       ps.seed = opt.seed;
       ps.width = width;
       ps.height = height;
-      run_passes(PathTracer(scene, ps), scene, opt, backend, counters, film, nullptr, start, done);
+      run_passes(PathTracer(scene, ps), scene, opt, backend, counters, film, nullptr, start, done, res.stats);
     }
     interrupted = opt.cancel && opt.cancel->load();
   }
 
-  RenderResult res;
   res.image = film.resolve();
   if (strategy_film) res.strategies = strategy_film->resolve(film);
   res.interrupted = interrupted;
   RenderStats& st = res.stats;
   st.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   st.samples = film.total_samples();
+  st.light_paths = film.light_paths();
   st.camera_rays = counters.camera;
   st.extension_rays = counters.extension;
   st.light_rays = counters.light;

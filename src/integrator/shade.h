@@ -4,6 +4,7 @@
 
 #include "integrator/bdpt_mis.h"
 #include "integrator/hit.h"
+#include "integrator/wave_stats.h"
 #include "material/bsdf_kernel.h"
 #include "scene/scene.h"
 
@@ -32,12 +33,13 @@ struct SubpathRef {
 // Samples the BSDF at hit i to continue a subpath (mode: radiance for eye
 // subpaths, importance for light subpaths), updates throughput and MIS
 // quantities, plays Russian roulette from the third vertex on, and sets the
-// hit's next ray. Leaves hits.alive[i] at 0 when the subpath ends.
+// hit's next ray. Returns why the subpath ended (hits.alive[i] stays 0), or
+// PathEnd::Count when it goes on.
 template <class BSDF>
-void continue_subpath(const BSDF& bsdf, TransportMode mode, HitPool& hits, uint32_t i, const Frame& frame,
+PathEnd continue_subpath(const BSDF& bsdf, TransportMode mode, HitPool& hits, uint32_t i, const Frame& frame,
                       const Vec3& wo, float uc, Vec2 u2, float u_rr, uint32_t depth, SubpathRef sub, MisPower mis) {
   auto bs = bsdf.sample_f(wo, uc, u2, mode);
-  if (!bs || bs->pdf == 0.f || is_black(bs->f)) return;
+  if (!bs || bs->pdf == 0.f || is_black(bs->f)) return PathEnd::Absorbed;
   const Vec3 wi = frame.from_local(bs->wi);
   const bool importance = mode == TransportMode::Importance;
   float scale = std::fabs(bs->wi.z) / bs->pdf;
@@ -50,14 +52,15 @@ void continue_subpath(const BSDF& bsdf, TransportMode mode, HitPool& hits, uint3
   float rr = max_component(sub.beta * sub.eta_scale) * sub.rr_scale;
   if (rr < 1.f && depth >= 2) {
     float q = std::fmax(0.f, 1.f - rr);
-    if (u_rr < q) return;
+    if (u_rr < q) return PathEnd::Roulette;
     sub.beta /= 1.f - q;
   }
-  if (!is_finite(sub.beta)) return;
+  if (!is_finite(sub.beta)) return PathEnd::Absorbed;
   hits.alive[i] = 1;
   sub.prev_p = hits.p[i];
   hits.next_o[i] = offset_ray_origin(hits.p[i], hits.ng[i], hits.error_scale[i], wi);
   hits.next_d[i] = wi;
+  return PathEnd::Count;
 }
 
 }  // namespace lantern

@@ -24,4 +24,20 @@ std::shared_ptr<Scene> load_scene_from_string(const std::string& text, const std
 
 const SceneSettings& scene_settings(const Scene& scene) { return scene.settings; }
 
+SceneInfo scene_info(const Scene& scene) {
+  SceneInfo info;
+  info.triangles = scene.triangle_count;
+  info.spheres = scene.shapes.spheres.size();
+  info.lights = scene.lights.all.size();
+  if (scene.accel) {
+    info.bvh_build_seconds = scene.accel->build_seconds();
+    info.bvh_bytes = scene.accel->bytes();
+    info.bvh_peak_bytes = scene.accel->peak_bytes();
+  }
+  for (const TriangleMesh& m : scene.shapes.meshes)
+    info.geometry_bytes += m.positions.capacity() * sizeof(Vec3) + m.triangles.capacity() * sizeof(glm::uvec3) +
+                           m.normals.capacity() * sizeof(Vec3) + m.uvs.capacity() * sizeof(Vec2);
+  return info;
+}
+
 }  // namespace lantern

@@ -1,0 +1,96 @@
+#include "app/stats_report.h"
+
+#include <sys/resource.h>
+
+#include <cstdio>
+
+namespace lantern {
+
+size_t peak_rss_bytes() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return size_t(u.ru_maxrss) * 1024;  // Linux reports kilobytes
+}
+
+namespace {
+
+double per_second(double count, double seconds) { return seconds > 0.0 ? count / seconds : 0.0; }
+
+nlohmann::json ray_entry(uint64_t count, double render_seconds, double query_seconds, bool timed) {
+  nlohmann::json j = {{"count", count}, {"per_second", per_second(double(count), render_seconds)}};
+  if (timed) {
+    j["query_thread_seconds"] = query_seconds;
+    j["per_query_thread_second"] = per_second(double(count), query_seconds);
+  }
+  return j;
+}
+
+nlohmann::json subpath_entry(uint64_t vertices, uint64_t paths, const std::vector<std::pair<std::string, uint64_t>>& ends) {
+  nlohmann::json ended = nlohmann::json::object();
+  for (const auto& [name, n] : ends) ended[name] = n;
+  return {{"vertices", vertices}, {"mean_vertices", paths ? double(vertices) / double(paths) : 0.0}, {"ended", ended}};
+}
+
+}  // namespace
+
+nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
+  nlohmann::json j;
+  j["scene"] = run.scene;
+  j["output"] = run.output;
+  j["integrator"] = run.integrator;
+  j["ray_backend"] = run.ray_backend;
+  j["resolution"] = {run.width, run.height};
+  j["wave_size"] = run.wave_size;
+  j["threads"] = s.threads;
+  j["samples"] = s.samples;
+  j["min_spp"] = s.min_spp;
+  j["light_paths"] = s.light_paths;
+  j["seconds"] = {{"load", run.load_seconds}, {"bvh_build", run.scene_info.bvh_build_seconds}, {"render", s.seconds}};
+  j["samples_per_second"] = per_second(double(s.samples), s.seconds);
+  const uint64_t total = s.camera_rays + s.extension_rays + s.light_rays + s.shadow_rays;
+  j["rays"] = {{"camera", ray_entry(s.camera_rays, s.seconds, s.camera_ray_seconds, s.timed)},
+               {"eye_extension", ray_entry(s.extension_rays, s.seconds, s.extension_ray_seconds, s.timed)},
+               {"light_extension", ray_entry(s.light_rays, s.seconds, s.light_ray_seconds, s.timed)},
+               {"shadow_connection", ray_entry(s.shadow_rays, s.seconds, s.shadow_ray_seconds, s.timed)},
+               {"total", {{"count", total}, {"per_second", per_second(double(total), s.seconds)}}}};
+  if (s.timed) {
+    nlohmann::json stages = nlohmann::json::object();
+    double sum = 0.0;
+    for (const auto& [name, sec] : s.stage_seconds) {
+      stages[name] = sec;
+      sum += sec;
+    }
+    double rays = s.camera_ray_seconds + s.extension_ray_seconds + s.light_ray_seconds + s.shadow_ray_seconds;
+    stages["ray_queries"] = rays;
+    j["stage_thread_seconds"] = stages;
+    j["film_merge_seconds"] = s.film_seconds;
+  }
+  j["subpaths"] = {{"eye", subpath_entry(s.eye_vertices, s.samples, s.eye_ends)},
+                   {"light", subpath_entry(s.light_vertices, s.light_paths, s.light_ends)}};
+  j["nonfinite_samples"] = s.nonfinite_samples;
+  j["memory"] = {{"peak_rss_bytes", peak_rss_bytes()},
+                 {"wave_pools_bytes", s.wave_pool_bytes},
+                 {"bvh_bytes", run.scene_info.bvh_bytes},
+                 {"bvh_peak_bytes", run.scene_info.bvh_peak_bytes},
+                 {"geometry_bytes", run.scene_info.geometry_bytes}};
+  j["scene_contents"] = {{"triangles", run.scene_info.triangles},
+                         {"spheres", run.scene_info.spheres},
+                         {"lights", run.scene_info.lights}};
+  return j;
+}
+
+void print_stage_summary(const RenderStats& s) {
+  double rays = s.camera_ray_seconds + s.extension_ray_seconds + s.light_ray_seconds + s.shadow_ray_seconds;
+  double total = rays;
+  for (const auto& st : s.stage_seconds) total += st.second;
+  if (total <= 0.0) return;
+  std::fprintf(stderr, "thread time: ray queries %.0f%%", 100.0 * rays / total);
+  for (const auto& [name, sec] : s.stage_seconds) std::fprintf(stderr, ", %s %.0f%%", name.c_str(), 100.0 * sec / total);
+  std::fprintf(stderr, "; film merge %.2f s\n", s.film_seconds);
+  std::fprintf(stderr, "subpaths: eye %.2f vertices", s.samples ? double(s.eye_vertices) / double(s.samples) : 0.0);
+  if (s.light_paths)
+    std::fprintf(stderr, ", light %.2f vertices", double(s.light_vertices) / double(s.light_paths));
+  std::fprintf(stderr, " on average\n");
+}
+
+}  // namespace lantern

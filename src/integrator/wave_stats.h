@@ -1,0 +1,71 @@
+// What a thread's waves measure about themselves: time per stage and how
+// subpaths end. Plain per-thread counters (no atomics); the renderer sums
+// them over threads at the end. With timing off a StageTimer reads no clock.
+#pragma once
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+
+namespace lantern {
+
+// CPU stages of a wave, outside the ray queries (which RayStream times).
+enum class Stage : uint8_t {
+  Generate,    // camera rays, light emission
+  Surface,     // hit reconstruction, emission found by eye subpaths, binning
+  Connect,     // next-event estimation, connections, light tracing: densities, MIS, shadow rays
+  Scatter,     // BSDF sampling, throughput, Russian roulette, next rays
+  Accumulate,  // adding unoccluded contributions, splat records
+  Shade,       // the path tracer's fused Connect + Scatter loop
+  Count
+};
+inline constexpr int kStageCount = int(Stage::Count);
+inline const char* stage_name(Stage s) {
+  static const char* names[] = {"generate", "surface", "connect", "scatter", "accumulate", "shade"};
+  return names[int(s)];
+}
+
+// Why a subpath ended.
+enum class PathEnd : uint8_t { Escaped, Absorbed, Roulette, MaxDepth, Count };
+inline constexpr int kPathEndCount = int(PathEnd::Count);
+inline const char* path_end_name(PathEnd e) {
+  static const char* names[] = {"escaped", "absorbed", "roulette", "maxdepth"};
+  return names[int(e)];
+}
+
+struct WaveStats {
+  bool timing = false;
+  std::array<double, kStageCount> seconds{};
+  uint64_t eye_vertices = 0, light_vertices = 0;  // surface hits of each kind of subpath
+  std::array<uint64_t, kPathEndCount> eye_ends{}, light_ends{};
+
+  void operator+=(const WaveStats& o) {
+    for (int i = 0; i < kStageCount; ++i) seconds[size_t(i)] += o.seconds[size_t(i)];
+    eye_vertices += o.eye_vertices;
+    light_vertices += o.light_vertices;
+    for (int i = 0; i < kPathEndCount; ++i) {
+      eye_ends[size_t(i)] += o.eye_ends[size_t(i)];
+      light_ends[size_t(i)] += o.light_ends[size_t(i)];
+    }
+  }
+};
+
+class StageTimer {
+ public:
+  StageTimer(WaveStats& s, Stage stage) : stats_(s), stage_(stage) {
+    if (s.timing) start_ = std::chrono::steady_clock::now();
+  }
+  ~StageTimer() {
+    if (stats_.timing)
+      stats_.seconds[size_t(stage_)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  StageTimer(const StageTimer&) = delete;
+  StageTimer& operator=(const StageTimer&) = delete;
+
+ private:
+  WaveStats& stats_;
+  Stage stage_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace lantern

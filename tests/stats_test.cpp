@@ -1,0 +1,71 @@
+// The render's own measurements against counts they must equal: in a closed
+// scene every ray hits, so vertices equal rays; every subpath ends exactly
+// once; timing is reported only when asked for.
+#include <gtest/gtest.h>
+
+
+#include "lantern/render.h"
+#include "lantern/scene.h"
+
+namespace lantern {
+namespace {
+
+uint64_t sum_ends(const std::vector<std::pair<std::string, uint64_t>>& ends) {
+  uint64_t n = 0;
+  for (const auto& e : ends) n += e.second;
+  return n;
+}
+
+TEST(RenderStats, CountsAgreeInAClosedScene) {
+  auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/lantern.pbrt");
+  for (const char* integrator : {"path", "bdpt", "lt"}) {
+    RenderOptions o;
+    o.integrator = integrator;
+    o.spp = 2;
+    o.width = 40;
+    o.height = 30;
+    o.maxdepth = 6;
+    o.collect_stats = true;
+    RenderStats s = render(*scene, o).stats;
+    const bool eye = std::string(integrator) != "lt", light = std::string(integrator) != "path";
+    EXPECT_EQ(s.samples, 40u * 30u * 2u) << integrator;
+    EXPECT_EQ(s.eye_vertices, eye ? s.camera_rays + s.extension_rays : 0u) << integrator;
+    EXPECT_EQ(sum_ends(s.eye_ends), eye ? s.samples : 0u) << integrator;
+    EXPECT_EQ(s.light_paths, light ? s.samples : 0u) << integrator;
+    EXPECT_EQ(s.light_vertices, s.light_rays) << integrator;
+    // Light subpaths that never left the light (no emission sample) end nowhere.
+    EXPECT_LE(sum_ends(s.light_ends), s.light_paths) << integrator;
+    if (light) EXPECT_GT(sum_ends(s.light_ends), s.light_paths * 9 / 10) << integrator;
+    EXPECT_TRUE(s.timed);
+    double stage_sum = 0.0;
+    for (const auto& st : s.stage_seconds) stage_sum += st.second;
+    EXPECT_GT(stage_sum, 0.0) << integrator;
+    EXPECT_GT(s.camera_ray_seconds + s.light_ray_seconds, 0.0) << integrator;
+    EXPECT_GT(s.wave_pool_bytes, 0u);
+    EXPECT_GE(s.threads, 1);
+  }
+}
+
+TEST(RenderStats, NoTimingUnlessAsked) {
+  auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
+  RenderOptions o;
+  o.spp = 1;
+  o.width = o.height = 16;
+  RenderStats s = render(*scene, o).stats;
+  EXPECT_FALSE(s.timed);
+  EXPECT_TRUE(s.stage_seconds.empty());
+  EXPECT_EQ(s.camera_ray_seconds, 0.0);
+}
+
+TEST(SceneInfo, ReportsContentsAndBvh) {
+  auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
+  SceneInfo info = scene_info(*scene);
+  EXPECT_GT(info.triangles, 10u);
+  EXPECT_EQ(info.lights, 2u);  // the quad light's two triangles
+  EXPECT_GT(info.bvh_bytes, 0);
+  EXPECT_GE(info.bvh_peak_bytes, info.bvh_bytes);
+  EXPECT_GT(info.geometry_bytes, info.triangles * 12);
+}
+
+}  // namespace
+}  // namespace lantern
