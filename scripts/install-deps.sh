@@ -9,6 +9,7 @@ packages=(
   libembree-dev libtbb-dev libopenimageio-dev libglm-dev
   libcli11-dev nlohmann-json3-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  gnuplot-nox  # perf/run-all.sh plots error against time
 )
 
 missing=()
