@@ -15,10 +15,8 @@ int backends(const Common& c, const std::string& name, const std::string& integr
   std::map<std::string, std::vector<double>> sps, rps;
   for (int r = 0; r < rounds; ++r)
     for (const char* b : kinds) {
-      lantern::RenderOptions o;
-      o.integrator = integrator;
+      lantern::RenderOptions o = scene_options(c, *scene, integrator);
       o.spp = spp;
-      o.threads = c.threads;
       o.ray_backend = b;
       lantern::RenderStats s = render_stats(*scene, o);
       sps[b].push_back(double(s.samples) / s.seconds);
@@ -39,8 +37,7 @@ int backends(const Common& c, const std::string& name, const std::string& integr
 int scaling(const Common& c, const std::string& name, const std::string& integrator, int spp) {
   auto scene = load(c, name);
   auto run = [&](int threads, int wave) {
-    lantern::RenderOptions o;
-    o.integrator = integrator;
+    lantern::RenderOptions o = scene_options(c, *scene, integrator);
     o.spp = spp;
     o.threads = threads;
     o.wave_size = wave;

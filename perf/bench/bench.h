@@ -17,6 +17,9 @@ struct Common {
 };
 
 std::shared_ptr<lantern::Scene> load(const Common& c, const std::string& scene);
+// Render options as the command line would set them for this scene: its
+// own maxdepth (references are rendered with it), the chosen threads.
+lantern::RenderOptions scene_options(const Common& c, const lantern::Scene& scene, const std::string& integrator);
 lantern::RenderStats render_stats(const lantern::Scene& scene, lantern::RenderOptions o);
 double median(std::vector<double> v);
 

@@ -13,6 +13,14 @@ std::shared_ptr<lantern::Scene> load(const Common& c, const std::string& scene) 
   return lantern::load_scene(c.scenes_dir + "/" + scene + ".pbrt", lo);
 }
 
+lantern::RenderOptions scene_options(const Common& c, const lantern::Scene& scene, const std::string& integrator) {
+  lantern::RenderOptions o;
+  o.integrator = integrator;
+  o.maxdepth = lantern::scene_settings(scene).maxdepth;
+  o.threads = c.threads;
+  return o;
+}
+
 lantern::RenderStats render_stats(const lantern::Scene& scene, lantern::RenderOptions o) {
   return lantern::render(scene, o).stats;
 }

@@ -45,12 +45,10 @@ int convergence(const Common& c, const std::string& name, const std::string& ref
   const char* integrators[] = {"path", "lt", "bdpt"};
   for (const char* integrator : integrators) {
     for (double budget = max_seconds / 32.0; budget <= max_seconds * 1.001; budget *= 2.0) {
-      lantern::RenderOptions o;
-      o.integrator = integrator;
+      lantern::RenderOptions o = scene_options(c, *scene, integrator);
       o.time_limit_seconds = budget;
       o.width = reference.width;
       o.height = reference.height;
-      o.threads = c.threads;
       o.seed = 99;
       lantern::RenderResult r = lantern::render(*scene, o);
       double err = lantern::compare_images(r.image, reference).relmse;

@@ -22,12 +22,10 @@ int throughput(const Common& c, const std::vector<std::string>& scenes, int spp,
   for (const std::string& name : scenes) {
     auto scene = load(c, name);
     for (const char* integrator : {"path", "bdpt", "lt"}) {
-      lantern::RenderOptions o;
-      o.integrator = integrator;
+      lantern::RenderOptions o = scene_options(c, *scene, integrator);
       o.spp = spp;
       o.width = width;
       o.height = height;
-      o.threads = c.threads;
       o.collect_stats = true;
       lantern::RenderStats s = render_stats(*scene, o);
       double rays_t = s.camera_ray_seconds + s.extension_ray_seconds + s.light_ray_seconds + s.shadow_ray_seconds;
