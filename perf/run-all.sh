@@ -50,6 +50,13 @@ for s in cornell-box lantern door-ajar; do
     echo "gnuplot not installed: no plot (scripts/install-deps.sh installs it)" >&2
   fi
 done
+say "ray replay"
+tmp=$(mktemp -d)
+"$build/lantern" render scenes/lantern.pbrt --integrator bdpt --spp 2 --resolution 240 180 -q -o "$tmp/r.exr" \
+  --stats "$dir/raybench-render-stats.json" --dump-rays "$tmp/rays.bin"
+"$build/perf/lantern-raybench" scenes/lantern.pbrt "$tmp/rays.bin" --benchmark_min_time=0.3 \
+  --benchmark_out="$dir/raybench.json" --benchmark_out_format=json > "$dir/raybench.txt" 2>&1
+rm -rf "$tmp"
 say "equal time"
 LANTERN="$build/lantern" perf/equal-time.sh 20 cornell-box cornell-box-tiny-light lantern door-ajar caustics \
   > "$dir/equal-time.md"

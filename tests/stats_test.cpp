@@ -4,6 +4,10 @@
 #include <gtest/gtest.h>
 
 
+#include <cstdio>
+
+#include "accel/ray_dump.h"
+#include "accel/ray_stream.h"
 #include "lantern/render.h"
 #include "lantern/scene.h"
 
@@ -44,6 +48,27 @@ TEST(RenderStats, CountsAgreeInAClosedScene) {
     EXPECT_GT(s.wave_pool_bytes, 0u);
     EXPECT_GE(s.threads, 1);
   }
+}
+
+// The rays actually handed to Embree, read back from a `--dump-rays` file,
+// per kind, against the render's counters.
+TEST(RenderStats, RayCountsMatchTheRaysGivenToEmbree) {
+  auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
+  const std::string path = ::testing::TempDir() + "/rays.bin";
+  RenderOptions o;
+  o.integrator = "bdpt";
+  o.spp = 2;
+  o.width = o.height = 24;
+  o.dump_rays = path;
+  RenderStats s = render(*scene, o).stats;
+  uint64_t count[4] = {0, 0, 0, 0};
+  for (const DumpedBatch& b : read_ray_dump(path)) count[b.kind] += b.rays.count;
+  EXPECT_EQ(count[size_t(RayKind::Camera)], s.camera_rays);
+  EXPECT_EQ(count[size_t(RayKind::Extension)], s.extension_rays);
+  EXPECT_EQ(count[size_t(RayKind::LightExtension)], s.light_rays);
+  EXPECT_EQ(count[size_t(RayKind::Shadow)], s.shadow_rays);
+  EXPECT_GT(s.shadow_rays, 0u);
+  std::remove(path.c_str());
 }
 
 TEST(RenderStats, NoTimingUnlessAsked) {

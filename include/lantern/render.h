@@ -32,7 +32,8 @@ struct RenderOptions {
   int wave_size = 4096;  // paths per wave
   std::function<void(const RenderProgress&)> progress;
   const std::atomic<bool>* cancel = nullptr;  // set it to stop after the waves in flight
-  bool collect_stats = false;  // time stages and ray queries (two clock reads per stage and batch)
+  bool collect_stats = false;
+  std::string dump_rays;  // when set: write every ray batch given to Embree to this file (perf/ replays it)  // time stages and ray queries (two clock reads per stage and batch)
   bool strategies = false;  // bdpt: also produce one weighted and one unweighted image per (s, t)
   bool debug_unit_mis_weights = false;  // tests only: weight every bdpt strategy 1 (a deliberately biased estimator)
 };

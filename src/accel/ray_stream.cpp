@@ -2,6 +2,8 @@
 
 #include <chrono>
 
+#include "accel/ray_dump.h"
+
 #include <stdexcept>
 
 namespace lantern {
@@ -88,6 +90,7 @@ void RayStream::intersect(RayBatch& b, RayKind kind) {
       default: counters_->extension += b.count; break;
     }
   }
+  if (dump_) dump_->write(kind, b);
   if (!timing_) return run_intersect(b, kind);
   auto t0 = std::chrono::steady_clock::now();
   run_intersect(b, kind);
@@ -150,6 +153,7 @@ void RayStream::run_intersect(RayBatch& b, RayKind kind) {
 void RayStream::occluded(RayBatch& b) {
   if (b.count == 0) return;
   if (counters_) counters_->shadow += b.count;
+  if (dump_) dump_->write(RayKind::Shadow, b);
   if (!timing_) return run_occluded(b);
   auto t0 = std::chrono::steady_clock::now();
   run_occluded(b);

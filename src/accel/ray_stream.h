@@ -38,6 +38,8 @@ class RayStream {
   // Wall time spent in Embree queries by this stream, per RayKind; kept
   // only when timing is on (a clock read per batch, not per ray).
   void set_timing(bool on) { timing_ = on; }
+  // Every batch is also written here before it is queried (`--dump-rays`).
+  void set_dump(class RayDump* dump) { dump_ = dump; }
   const std::array<double, 4>& seconds() const { return seconds_; }
 
  private:
@@ -50,6 +52,7 @@ class RayStream {
   std::vector<RTCRayHit> aos_;   // scratch for the 1M back end
   std::vector<RTCRay> aos_rays_;
   bool timing_ = false;
+  class RayDump* dump_ = nullptr;
   std::array<double, 4> seconds_{};
 };
 

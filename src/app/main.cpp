@@ -33,7 +33,7 @@ std::string hms(double s) {
 }
 
 struct RenderArgs {
-  std::string scene, output, integrator, rays = "stream", mis = "power", strategies, stats;
+  std::string scene, output, integrator, rays = "stream", mis = "power", strategies, stats, dump_rays;
   int spp = 0, maxdepth = -1, threads = 0, wave_size = 4096;
   double time = 0.0;
   uint64_t seed = 0;
@@ -76,6 +76,7 @@ int run_render(const RenderArgs& a) {
   o.mis = a.mis;
   o.strategies = !a.strategies.empty();
   o.collect_stats = !a.stats.empty();
+  o.dump_rays = a.dump_rays;
   o.spp = a.spp > 0 ? a.spp : ss.spp;
   o.time_limit_seconds = a.time;
   o.maxdepth = a.maxdepth >= 0 ? a.maxdepth : ss.maxdepth;
@@ -175,6 +176,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"power", "balance"}));
   render->add_option("--stats", a.stats,
                      "Write measurements as JSON: time per stage, rays by kind, subpath lengths, memory");
+  render->add_option("--dump-rays", a.dump_rays,
+                     "Write every ray batch given to Embree to FILE (32 bytes a ray; for perf/'s ray benchmark)");
   render->add_option("--strategies", a.strategies,
                      "bdpt: write DIR/s<s>_t<t>_{weighted,unweighted}.exr, one pair per strategy");
   render->add_option("--maxdepth", a.maxdepth, "Maximum path depth, as pbrt defines it (default: the scene's)")->check(CLI::NonNegativeNumber);

@@ -17,6 +17,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "accel/ray_dump.h"
 #include "film/strategy_film.h"
 #include "integrator/bdpt.h"
 #include "integrator/bdpt_wave.h"
@@ -104,7 +105,7 @@ void gather_stats(States& states, double film_seconds, RenderStats& st) {
 template <class Tracer>
 bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& opt, RayBackend backend,
                 RayCounters& counters, Film& film, StrategyFilm* strategies, Clock::time_point start,
-                std::atomic<uint64_t>& done, RenderStats& stats) {
+                std::atomic<uint64_t>& done, RenderStats& stats, RayDump* dump) {
   const std::vector<uint32_t> order = tile_order(film.width(), film.height());
   const bool timed = opt.time_limit_seconds > 0;
   const uint32_t total_spp = timed ? 0xFFFFFFFFu : uint32_t(opt.spp);
@@ -118,6 +119,7 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
     auto state = tracer.make_wave_state(capacity, RayStream(scene.accel->handle(), backend, &counters));
     state->stats.timing = opt.collect_stats;
     state->stream.set_timing(opt.collect_stats);
+    state->stream.set_dump(dump);
     return state;
   });
   double film_seconds = 0.0;
@@ -194,6 +196,8 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
   std::optional<StrategyFilm> strategy_film;
   RayCounters counters;
   RenderResult res;
+  std::unique_ptr<RayDump> dump;
+  if (!opt.dump_rays.empty()) dump = std::make_unique<RayDump>(opt.dump_rays);
   const auto start = Clock::now();
   std::atomic<uint64_t> done{0};
   bool interrupted = false;
@@ -212,14 +216,14 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
       bs.record_strategies = opt.strategies;
       if (opt.strategies) strategy_film.emplace(width, height, scene.filter);
       run_passes(Bdpt(scene, bs), scene, opt, backend, counters, film, strategy_film ? &*strategy_film : nullptr, start,
-                 done, res.stats);
+                 done, res.stats, dump.get());
     } else {
       PathTracerSettings ps;
       ps.maxdepth = opt.maxdepth;
       ps.seed = opt.seed;
       ps.width = width;
       ps.height = height;
-      run_passes(PathTracer(scene, ps), scene, opt, backend, counters, film, nullptr, start, done, res.stats);
+      run_passes(PathTracer(scene, ps), scene, opt, backend, counters, film, nullptr, start, done, res.stats, dump.get());
     }
     interrupted = opt.cancel && opt.cancel->load();
   }
