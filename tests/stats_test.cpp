@@ -54,7 +54,7 @@ TEST(RenderStats, CountsAgreeInAClosedScene) {
 // per kind, against the render's counters.
 TEST(RenderStats, RayCountsMatchTheRaysGivenToEmbree) {
   auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
-  const std::string path = ::testing::TempDir() + "/rays.bin";
+  const std::string path = ::testing::TempDir() + "/lantern_stats_test_rays.bin";
   RenderOptions o;
   o.integrator = "bdpt";
   o.spp = 2;
