@@ -31,7 +31,6 @@ struct HitPool {
   std::vector<Vec3> p, ng, ns, wo;
   std::vector<Vec2> uv;
   std::vector<float> error_scale;
-  std::vector<uint32_t> material_index;
   std::vector<MaterialHandle> material;
   std::vector<uint8_t> alive;  // the path continues past this bounce
   std::vector<Vec3> next_o, next_d;
@@ -41,14 +40,13 @@ struct HitPool {
     for (auto* v : {&p, &ng, &ns, &wo, &next_o, &next_d}) v->resize(n);
     uv.resize(n);
     error_scale.resize(n);
-    material_index.resize(n);
     material.resize(n);
     alive.resize(n);
     for (auto& b : bins) b.reserve(n);
   }
   size_t memory_bytes() const {
     size_t b = vector_bytes(p) + vector_bytes(ng) + vector_bytes(ns) + vector_bytes(wo) + vector_bytes(uv) +
-               vector_bytes(error_scale) + vector_bytes(material_index) + vector_bytes(material) +
+               vector_bytes(error_scale) + vector_bytes(material) +
                vector_bytes(alive) + vector_bytes(next_o) + vector_bytes(next_d);
     for (const auto& bin : bins) b += vector_bytes(bin);
     return b;
@@ -65,7 +63,6 @@ struct HitPool {
     wo[i] = -d;
     error_scale[i] = sp.error_scale;
     material[i] = m;
-    material_index[i] = m.index();
     bins[size_t(m.kind())].push_back(i);
   }
   // The next rays of the bounce's surviving paths, in order; active[] is

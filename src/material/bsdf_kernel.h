@@ -28,14 +28,14 @@ inline CoatedDiffuseBSDF make_bsdf(const CoatedDiffuseMaterial& m, Vec2 uv, cons
 }
 
 // Calls fn(slot, bsdf) for every slot in `bin`; all slots share `kind`.
-// material_index[slot] and uv[slot] describe the hit in that slot.
+// material[slot] and uv[slot] describe the hit in that slot.
 template <class Fn>
 void for_each_bsdf(MaterialKind kind, const MaterialPools& pools, const TexturePools& tex, const uint32_t* bin,
-                   size_t count, const uint32_t* material_index, const Vec2* uv, Fn&& fn) {
+                   size_t count, const MaterialHandle* material, const Vec2* uv, Fn&& fn) {
   auto run = [&](const auto& pool) {
     for (size_t j = 0; j < count; ++j) {
       uint32_t slot = bin[j];
-      fn(slot, make_bsdf(pool[material_index[slot]], uv[slot], tex));
+      fn(slot, make_bsdf(pool[material[slot].index()], uv[slot], tex));
     }
   };
   switch (kind) {
