@@ -10,6 +10,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox  # perf/run-all.sh plots error against time
+  clang libclang-rt-14-dev  # scripts/check-sanitized.sh: sanitizers and libFuzzer
 )
 
 missing=()

@@ -120,8 +120,11 @@ void expect_adjoint_reciprocity(const BSDF& bsdf, const std::string& what) {
     Vec3 b = glm::normalize(Vec3(2.f * s.get1d() - 1.f, 2.f * s.get1d() - 1.f, 2.f * s.get1d() - 1.f));
     RGB f1 = bsdf.f(a, b, TransportMode::Radiance), f2 = bsdf.f(b, a, TransportMode::Importance);
     for (int c = 0; c < 3; ++c) {
-      float scale = std::max({std::fabs(f1[c]), std::fabs(f2[c]), 1e-6f});
-      ASSERT_NEAR(f1[c] / scale, f2[c] / scale, 1e-2f) << what << " wo=" << a.x << "," << a.y << "," << a.z;
+      // Relative to the value, but not below 1e-4: far in the tails of a
+      // rough transmission lobe (f ~ 1e-5) the two half-vector computations
+      // round differently by about 1% from one compiler to another.
+      float scale = std::max({std::fabs(f1[c]), std::fabs(f2[c]), 1e-4f});
+      ASSERT_NEAR(f1[c] / scale, f2[c] / scale, 1e-2f) << what << " wo=" << a.x << "," << a.y << "," << a.z << " wi=" << b.x << "," << b.y << "," << b.z << " f=" << f1[c] << " " << f2[c];
     }
     checked += !is_black(f1);
   }

@@ -4,6 +4,7 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace lantern {
 
@@ -30,5 +31,25 @@ class InputError : public std::runtime_error {
 };
 
 using WarningSink = std::function<void(const std::string&)>;
+
+// Input bytes as they may appear in a message: at most max_chars of them,
+// with control and non-ASCII bytes written as \xNN, so a message about a
+// binary or mis-encoded file is itself readable text.
+inline std::string printable(std::string_view bytes, size_t max_chars = 40) {
+  static const char* hex = "0123456789abcdef";
+  std::string out;
+  for (size_t i = 0; i < bytes.size() && i < max_chars; ++i) {
+    unsigned char c = (unsigned char)bytes[i];
+    if (c >= 0x20 && c < 0x7f) {
+      out += char(c);
+    } else {
+      out += "\\x";
+      out += hex[c >> 4];
+      out += hex[c & 15];
+    }
+  }
+  if (bytes.size() > max_chars) out += "...";
+  return out;
+}
 
 }  // namespace lantern

@@ -4,6 +4,7 @@
 
 #include <bit>
 #include <cstring>
+#include <filesystem>
 #include <sstream>
 
 #include "lantern/error.h"
@@ -89,7 +90,7 @@ class Reader {
     const char* start = d_.data() + pos_;
     char* end = nullptr;
     double v = std::strtod(start, &end);
-    if (end == start) fail("expected a number in the ASCII data, found \"" + std::string(start, std::min<size_t>(16, remaining())) + "\"");
+    if (end == start) fail("expected a number in the ASCII data, found \"" + printable(std::string_view(start, std::min<size_t>(16, remaining()))) + "\"");
     pos_ += size_t(end - start);
     return v;
   }
@@ -100,6 +101,9 @@ class Reader {
 };
 
 std::string read_whole_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw InputError({path, 0, 0}, "PLY file is not a regular file");
   // gzread passes uncompressed files through unchanged.
   gzFile f = gzopen(path.c_str(), "rb");
   if (!f) throw InputError({path, 0, 0}, "cannot open PLY file");
@@ -150,7 +154,7 @@ PlyMesh parse_ply(const std::string& data, const std::string& name) {
       if (f == "ascii") format = Format::Ascii;
       else if (f == "binary_little_endian") format = Format::BinaryLE;
       else if (f == "binary_big_endian") format = Format::BinaryBE;
-      else fail(lineno, "unknown format \"" + f + "\"; expected ascii, binary_little_endian or binary_big_endian");
+      else fail(lineno, "unknown format \"" + printable(f) + "\"; expected ascii, binary_little_endian or binary_big_endian");
       have_format = true;
     } else if (kw == "element") {
       Element e;
@@ -169,16 +173,16 @@ PlyMesh parse_ply(const std::string& data, const std::string& name) {
         ls >> ct >> it >> p.name;
         p.count_type = parse_scalar(ct);
         p.type = parse_scalar(it);
-        if (p.count_type == Scalar::None || p.type == Scalar::None) fail(lineno, "bad list property types \"" + ct + " " + it + "\"");
+        if (p.count_type == Scalar::None || p.type == Scalar::None) fail(lineno, "bad list property types \"" + printable(ct + " " + it) + "\"");
       } else {
         p.type = parse_scalar(t);
         ls >> p.name;
-        if (p.type == Scalar::None) fail(lineno, "unknown property type \"" + t + "\"");
+        if (p.type == Scalar::None) fail(lineno, "unknown property type \"" + printable(t) + "\"");
       }
       if (p.name.empty()) fail(lineno, "property without a name");
       elements.back().props.push_back(p);
     } else {
-      fail(lineno, "unexpected keyword \"" + kw.substr(0, 40) + "\"");
+      fail(lineno, "unexpected keyword \"" + printable(kw) + "\"");
     }
   }
   if (!have_format) fail(0, "no \"format\" line");
@@ -190,7 +194,7 @@ PlyMesh parse_ply(const std::string& data, const std::string& name) {
     for (const Property& p : e.props) min_bytes += format == Format::Ascii ? 0 : scalar_size(p.count_type != Scalar::None ? p.count_type : p.type);
     if (min_bytes == 0) min_bytes = 1;
     if (e.count > available / min_bytes + 1)
-      fail(0, "element \"" + e.name + "\" claims " + std::to_string(e.count) + " entries but the file holds only " +
+      fail(0, "element \"" + printable(e.name) + "\" claims " + std::to_string(e.count) + " entries but the file holds only " +
                   std::to_string(available) + " bytes of data");
   }
 
@@ -227,7 +231,7 @@ PlyMesh parse_ply(const std::string& data, const std::string& name) {
           continue;
         }
         double c = r.read(p.count_type);
-        if (!(c >= 0.0) || c > 1e6 || c != std::floor(c)) r.fail("bad list length " + std::to_string(c) + " in element \"" + e.name + "\"");
+        if (!(c >= 0.0) || c > 1e6 || c != std::floor(c)) r.fail("bad list length " + std::to_string(c) + " in element \"" + printable(e.name) + "\"");
         size_t n = size_t(c);
         if (!(is_face && k == iidx)) {
           for (size_t j = 0; j < n; ++j) r.read(p.type);

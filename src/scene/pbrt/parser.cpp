@@ -59,7 +59,7 @@ class Parser {
   [[noreturn]] void fail(const Token& t, const std::string& what) const { throw InputError(loc(t), what); }
   static std::string describe(const Token& t) {
     if (t.kind == TokenKind::End) return "";
-    return " \"" + std::string(t.text.substr(0, 40)) + (t.text.size() > 40 ? "...\"" : "\"");
+    return " \"" + printable(t.text) + "\"";
   }
 
   std::string expect_string(const char* what) {
@@ -109,7 +109,7 @@ class Parser {
       size_t a = s.find_first_not_of(" \t"), sp = s.find_first_of(" \t", a);
       size_t c = sp == std::string::npos ? sp : s.find_first_not_of(" \t", sp);
       if (a == std::string::npos || c == std::string::npos)
-        fail(decl, "expected a parameter declaration \"type name\", found \"" + s.substr(0, 40) + "\"");
+        fail(decl, "expected a parameter declaration \"type name\", found \"" + printable(s) + "\"");
       p.type = s.substr(a, sp - a);
       p.name = s.substr(c, s.find_last_not_of(" \t") - c + 1);
       static const char* kTypes[] = {"integer", "float",  "point2", "vector2", "point3",    "vector3", "normal",
@@ -306,7 +306,7 @@ class Parser {
       else numbers(2, "TransformTimes");
       b_.warn(loc(t), std::string(d) + " is not supported (no motion blur); ignored");
     } else {
-      fail(t, "unknown directive \"" + std::string(d.substr(0, 40)) + "\"");
+      fail(t, "unknown directive \"" + printable(d) + "\"");
     }
   }
 

@@ -1,5 +1,6 @@
 #include "scene/pbrt/tokenizer.h"
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -9,6 +10,10 @@ Tokenizer::Tokenizer(std::string text, std::string filename)
     : text_(std::move(text)), filename_(std::move(filename)) {}
 
 std::unique_ptr<Tokenizer> Tokenizer::from_file(const std::string& path, const SourceLocation& from) {
+  // Only regular files: a name such as /dev/zero or a FIFO would never end.
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw InputError(from, "scene file \"" + path + "\" is not a regular file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(from, "cannot open scene file \"" + path + "\"");
   std::ostringstream ss;
@@ -75,8 +80,7 @@ Token Tokenizer::next() {
     for (char ch : t.text) {
       bool ok = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '_';
       if (!ok) {
-        std::string shown = std::string(t.text.substr(0, 40));
-        fail(t.line, t.column, "unexpected characters \"" + shown + "\": expected a directive name, a number, a quoted string or '[' / ']'");
+        fail(t.line, t.column, "unexpected characters \"" + printable(t.text) + "\": expected a directive name, a number, a quoted string or '[' / ']'");
       }
     }
   }

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# The whole test suite under AddressSanitizer + UndefinedBehaviorSanitizer
+# (and LeakSanitizer), built with clang in a build folder of its own, then
+# each libFuzzer target for a bounded time.
+#   scripts/check-sanitized.sh [BUILD_DIR] [FUZZ_SECONDS_PER_TARGET]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build="${1:-build-san}"
+seconds="${2:-30}"
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+  -DLANTERN_SANITIZE=ON -DLANTERN_FUZZ=ON -DLANTERN_BUILD_PERF=OFF
+cmake --build "$build"
+# Any report fails the test that triggered it.
+export ASAN_OPTIONS=halt_on_error=1:detect_leaks=1
+export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
+ctest --test-dir "$build" --output-on-failure -j2
+tests/fuzz/run.sh "$build" "$seconds"

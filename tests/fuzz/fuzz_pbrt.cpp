@@ -1,0 +1,7 @@
+// libFuzzer target: pbrt scene text through the parser and the scene builder.
+#include "fuzz_entry.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  lantern::fuzz::load_pbrt(data, size);
+  return 0;
+}
