@@ -23,5 +23,7 @@ using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
 // truncated image. Throws std::runtime_error with the reason.
 void write_image(const std::string& path, const Image& image, const ImageMetadata& metadata);
 Image read_image(const std::string& path);
+// The string attributes of an image's header whose names start with prefix.
+ImageMetadata read_image_metadata(const std::string& path, const std::string& prefix = "lantern:");
 
 }  // namespace lantern

@@ -32,10 +32,23 @@ struct RenderOptions {
   int wave_size = 4096;  // paths per wave
   std::function<void(const RenderProgress&)> progress;
   const std::atomic<bool>* cancel = nullptr;  // set it to stop after the waves in flight
-  bool collect_stats = false;
-  std::string dump_rays;  // when set: write every ray batch given to Embree to this file (perf/ replays it)  // time stages and ray queries (two clock reads per stage and batch)
+  bool collect_stats = false;  // time stages and ray queries (two clock reads per stage and batch)
+  std::string dump_rays;       // when set: write every ray batch given to Embree to this file (perf/ replays it)
   bool strategies = false;  // bdpt: also produce one weighted and one unweighted image per (s, t)
   bool debug_unit_mis_weights = false;  // tests only: weight every bdpt strategy 1 (a deliberately biased estimator)
+
+  // Checkpoints. With checkpoint_path set, the film's sums and the position
+  // in the sample sequence are written there (atomically) every
+  // checkpoint_seconds (0: never periodically) and when the render is
+  // cancelled; a render that completes deletes the file. With resume, the
+  // render first restores that file and continues where it stopped: the
+  // result equals, bit for bit, a render that ran straight through. A time
+  // budget counts the time of every run. Not with strategies.
+  std::string checkpoint_path;
+  double checkpoint_seconds = 0.0;
+  bool resume = false;
+  std::string checkpoint_key;  // identifies the scene; a checkpoint made for another key is refused
+  std::function<void()> checkpoint_written;  // called after each checkpoint (from the merging thread)
 };
 
 struct RenderStats {
@@ -74,6 +87,8 @@ struct RenderResult {
   std::vector<StrategyImage> strategies;  // with RenderOptions::strategies
   RenderStats stats;
   bool interrupted = false;
+  uint64_t resumed_samples = 0;     // samples restored from a checkpoint (included in stats.samples)
+  double total_render_seconds = 0;  // this run plus the runs before a resume
 };
 
 // Throws std::invalid_argument for bad options.

@@ -33,10 +33,11 @@ std::string hms(double s) {
 }
 
 struct RenderArgs {
-  std::string scene, output, integrator, rays = "stream", mis = "power", strategies, stats, dump_rays;
+  std::string scene, output, integrator, rays = "stream", mis = "power", strategies, stats, dump_rays, checkpoint_file;
   int spp = 0, maxdepth = -1, threads = 0, wave_size = 4096;
-  double time = 0.0;
+  double time = 0.0, checkpoint = 0.0;
   uint64_t seed = 0;
+  bool resume = false;
   std::vector<int> resolution;
   bool quiet = false;
 };
@@ -49,6 +50,20 @@ void write_strategy_images(const std::string& dir, const std::vector<lantern::St
     lantern::write_image(base + "_weighted.exr", im.weighted, md);
     lantern::write_image(base + "_unweighted.exr", im.unweighted, md);
   }
+}
+
+// What a checkpoint must agree with: the scene file's name and bytes (FNV-1a)
+// and what was loaded from it, so that an edited scene is not resumed.
+std::string scene_key(const std::string& path, const lantern::SceneInfo& info) {
+  std::ifstream in(path, std::ios::binary);
+  uint64_t h = 0xcbf29ce484222325ull;
+  char buf[1 << 16];
+  while (in.read(buf, sizeof buf) || in.gcount() > 0)
+    for (std::streamsize i = 0; i < in.gcount(); ++i) h = (h ^ (unsigned char)buf[i]) * 0x100000001b3ull;
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)h);
+  return std::filesystem::path(path).filename().string() + " " + hex + " triangles " + std::to_string(info.triangles) +
+         " spheres " + std::to_string(info.spheres) + " lights " + std::to_string(info.lights);
 }
 
 // Written to a temporary name and renamed, like the images.
@@ -89,6 +104,13 @@ int run_render(const RenderArgs& a) {
   o.ray_backend = a.rays;
   o.wave_size = a.wave_size;
   o.cancel = &g_cancel;
+  std::string out = a.output.empty() ? ss.output : a.output;
+  if (a.checkpoint > 0 || a.resume) {
+    o.checkpoint_path = a.checkpoint_file.empty() ? out + ".ckpt" : a.checkpoint_file;
+    o.checkpoint_seconds = a.checkpoint;
+    o.resume = a.resume;
+    o.checkpoint_key = scene_key(a.scene, scene_info(*scene));
+  }
   if (!a.quiet && isatty(STDERR_FILENO)) {
     o.progress = [](const RenderProgress& p) {
       double eta = p.fraction > 0 ? p.elapsed_seconds * (1.0 - p.fraction) / p.fraction : 0.0;
@@ -103,13 +125,13 @@ int run_render(const RenderArgs& a) {
   RenderResult r = render(*scene, o);
   if (o.progress) std::fprintf(stderr, "\n");
 
-  std::string out = a.output.empty() ? ss.output : a.output;
   ImageMetadata md = {{"lantern:integrator", o.integrator},
                       {"lantern:spp", std::to_string(r.stats.min_spp)},
                       {"lantern:samples", std::to_string(r.stats.samples)},
                       {"lantern:seed", std::to_string(o.seed)},
                       {"lantern:maxdepth", std::to_string(o.maxdepth)},
-                      {"lantern:render_seconds", std::to_string(r.stats.seconds)},
+                      {"lantern:render_seconds", std::to_string(r.total_render_seconds)},
+                      {"lantern:resumed_samples", std::to_string(r.resumed_samples)},
                       {"lantern:interrupted", r.interrupted ? "true" : "false"},
                       {"lantern:scene", a.scene}};
   write_image(out, r.image, md);
@@ -122,7 +144,7 @@ int run_render(const RenderArgs& a) {
                  "(camera %.1fM, eye extension %.1fM, light extension %.1fM, shadow/connection %.1fM); "
                  "non-finite samples discarded: %llu\n",
                  out.c_str(), r.image.width, r.image.height, s.min_spp, s.seconds, load_s,
-                 double(s.samples) / s.seconds * 1e-6, rays / s.seconds * 1e-6, double(s.camera_rays) * 1e-6,
+                 double(s.samples - r.resumed_samples) / s.seconds * 1e-6, rays / s.seconds * 1e-6, double(s.camera_rays) * 1e-6,
                  double(s.extension_rays) * 1e-6, double(s.light_rays) * 1e-6, double(s.shadow_rays) * 1e-6,
                  (unsigned long long)s.nonfinite_samples);
     if (s.timed) print_stage_summary(s);
@@ -135,6 +157,8 @@ int run_render(const RenderArgs& a) {
   if (r.interrupted) {
     std::fprintf(stderr, "interrupted: wrote the %llu samples rendered so far to %s\n",
                  (unsigned long long)r.stats.samples, out.c_str());
+    if (!o.checkpoint_path.empty())
+      std::fprintf(stderr, "checkpoint: %s (continue with --resume)\n", o.checkpoint_path.c_str());
     return 130;
   }
   return 0;
@@ -155,6 +179,14 @@ int run_compare(const CompareArgs& c) {
               m.ratio[1], m.ratio[2], m.nonfinite);
   if (!c.error_image.empty())
     lantern::write_image(c.error_image, lantern::relative_error_image(a, ref, c.error_scale), {});
+  return 0;
+}
+
+// "name value" lines: the size and the render settings an image was made with.
+int run_info(const std::string& path) {
+  lantern::Image img = lantern::read_image(path);
+  std::printf("resolution %d %d\n", img.width, img.height);
+  for (const auto& [k, v] : lantern::read_image_metadata(path)) std::printf("%s %s\n", k.c_str(), v.c_str());
   return 0;
 }
 
@@ -187,6 +219,12 @@ int main(int argc, char** argv) {
   render->add_option("--rays", a.rays, "Ray query back end: stream (Embree Np streams), stream-1m, single, packet16")
       ->check(CLI::IsMember({"stream", "stream-1m", "single", "packet16"}));
   render->add_option("--wave-size", a.wave_size, "Paths per wave")->check(CLI::Range(1, 1 << 22));
+  render->add_option("--checkpoint", a.checkpoint,
+                     "Write the render's state every SECONDS (and on Ctrl-C/SIGTERM) to OUTPUT.ckpt")
+      ->check(CLI::PositiveNumber);
+  render->add_option("--checkpoint-file", a.checkpoint_file, "Checkpoint file (default: the output's name + .ckpt)");
+  render->add_flag("--resume", a.resume,
+                   "Continue from the checkpoint; the result equals an uninterrupted render with the same settings");
   render->add_flag("-q,--quiet", a.quiet, "No progress line or summary");
   CompareArgs ca;
   CLI::App* compare = app.add_subcommand("compare", "Error metrics of an image against a reference");
@@ -195,9 +233,13 @@ int main(int argc, char** argv) {
   compare->add_option("--error-image", ca.error_image, "Write a false-colour map of the relative squared error");
   compare->add_option("--error-scale", ca.error_scale, "Relative squared error shown as full red")
       ->check(CLI::PositiveNumber);
+  std::string info_image;
+  CLI::App* info = app.add_subcommand("info", "Print an image's size and the settings it was rendered with");
+  info->add_option("image", info_image, "Image written by lantern render")->required()->check(CLI::ExistingFile);
   CLI11_PARSE(app, argc, argv);
   try {
     if (compare->parsed()) return run_compare(ca);
+    if (info->parsed()) return run_info(info_image);
     return run_render(a);
   } catch (const lantern::InputError& e) {
     std::cerr << e.what() << "\n";

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 
 #include "film/pixel_filter.h"
 
@@ -60,6 +62,37 @@ Image Film::resolve() const {
     }
   }
   return img;
+}
+
+void Film::write_state(StateWriter& out) const {
+  const int32_t size[2] = {width_, height_};
+  out.write(size, sizeof size);
+  out.write(&nonfinite_, sizeof nonfinite_);
+  out.write(&light_paths_, sizeof light_paths_);
+  const uint8_t has_splats = splat_.empty() ? 0 : 1;
+  out.write(&has_splats, 1);
+  out.write(sum_.data(), sum_.size() * sizeof(double));
+  out.write(count_.data(), count_.size() * sizeof(uint32_t));
+  if (has_splats) out.write(splat_.data(), splat_.size() * sizeof(double));
+}
+
+void Film::read_state(StateReader& in) {
+  int32_t size[2];
+  in.read(size, sizeof size);
+  if (size[0] != width_ || size[1] != height_)
+    throw std::runtime_error("film state is " + std::to_string(size[0]) + "x" + std::to_string(size[1]) +
+                             ", this film is " + std::to_string(width_) + "x" + std::to_string(height_));
+  in.read(&nonfinite_, sizeof nonfinite_);
+  in.read(&light_paths_, sizeof light_paths_);
+  uint8_t has_splats = 0;
+  in.read(&has_splats, 1);
+  in.read(sum_.data(), sum_.size() * sizeof(double));
+  in.read(count_.data(), count_.size() * sizeof(uint32_t));
+  splat_.clear();
+  if (has_splats) {
+    splat_.assign(sum_.size(), 0.0);
+    in.read(splat_.data(), splat_.size() * sizeof(double));
+  }
 }
 
 uint64_t Film::total_samples() const {

@@ -55,6 +55,22 @@ struct WaveOutput {
 template <class Fn>
 void for_each_splat_pixel(const PixelFilter& f, int width, int height, Vec2 p, Fn&& fn);
 
+// Byte sinks and sources for Film::write_state / read_state (checkpoints).
+class StateWriter {
+ public:
+  virtual void write(const void* bytes, size_t n) = 0;
+
+ protected:
+  ~StateWriter() = default;
+};
+class StateReader {
+ public:
+  virtual void read(void* bytes, size_t n) = 0;  // throws if the source ends early
+
+ protected:
+  ~StateReader() = default;
+};
+
 class Film {
  public:
   Film(int width, int height, const PixelFilter& filter);
@@ -73,6 +89,11 @@ class Film {
   uint64_t light_paths() const { return light_paths_; }
   uint32_t min_samples_per_pixel() const;
   uint32_t sample_count(size_t pixel) const { return count_[pixel]; }
+
+  // The raw sums and counts, bit for bit: a film restored from them goes on
+  // accumulating exactly as the one that wrote them would have.
+  void write_state(StateWriter& out) const;
+  void read_state(StateReader& in);  // the film must have the same size
 
  private:
   void add_splat(const Splat& s);

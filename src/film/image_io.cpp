@@ -75,4 +75,16 @@ Image read_image(const std::string& path) {
   return img;
 }
 
+ImageMetadata read_image_metadata(const std::string& path, const std::string& prefix) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw std::runtime_error("cannot read \"" + path + "\": " + OIIO::geterror());
+  ImageMetadata md;
+  for (const OIIO::ParamValue& p : in->spec().extra_attribs) {
+    std::string name = p.name().string();
+    if (name.compare(0, prefix.size(), prefix) == 0 && p.type() == OIIO::TypeDesc::STRING)
+      md.emplace_back(name, p.get_string());
+  }
+  return md;
+}
+
 }  // namespace lantern

@@ -12,12 +12,14 @@
 
 #include <chrono>
 #include <condition_variable>
+#include <filesystem>
 #include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <thread>
 
 #include "accel/ray_dump.h"
+#include "film/checkpoint.h"
 #include "film/strategy_film.h"
 #include "integrator/bdpt.h"
 #include "integrator/bdpt_wave.h"
@@ -100,14 +102,62 @@ void gather_stats(States& states, double film_seconds, RenderStats& st) {
   st.film_seconds = film_seconds;
 }
 
+// Writes checkpoints from the merge stage: the one place that sees the film
+// between two waves, with every earlier wave in it and no later one.
+class Checkpointer {
+ public:
+  Checkpointer(const RenderOptions& o, std::string fingerprint, double prior_seconds, Clock::time_point start)
+      : opt_(o), start_(start), last_(start), prior_seconds_(prior_seconds) {
+    info_.fingerprint = std::move(fingerprint);
+  }
+  bool enabled() const { return !opt_.checkpoint_path.empty(); }
+  double elapsed() const { return prior_seconds_ + std::chrono::duration<double>(Clock::now() - start_).count(); }
+  void maybe_write(const Film& film, SequencePosition pos) {
+    if (enabled() && opt_.checkpoint_seconds > 0 &&
+        std::chrono::duration<double>(Clock::now() - last_).count() >= opt_.checkpoint_seconds)
+      write(film, pos);
+  }
+  void write(const Film& film, SequencePosition pos) {
+    info_.position = pos;
+    info_.elapsed_seconds = elapsed();
+    write_checkpoint(opt_.checkpoint_path, info_, film);
+    last_ = Clock::now();
+    if (opt_.checkpoint_written) opt_.checkpoint_written();
+  }
+
+ private:
+  const RenderOptions& opt_;
+  CheckpointInfo info_;
+  Clock::time_point start_, last_;
+  double prior_seconds_;
+};
+
+// Everything that decides which samples a render takes and the order the
+// film sums them in: a checkpoint continues only a render that agrees on
+// all of it. Thread count is not here: it changes neither.
+std::string sequence_fingerprint(const RenderOptions& o, int width, int height) {
+  std::string f;
+  auto line = [&](const std::string& k, const std::string& v) { f += k + "=" + v + "\n"; };
+  line("scene", o.checkpoint_key);
+  line("integrator", o.integrator);
+  if (o.integrator != "path") line("mis", o.mis);
+  line("maxdepth", std::to_string(o.maxdepth));
+  line("seed", std::to_string(o.seed));
+  line("resolution", std::to_string(width) + "x" + std::to_string(height));
+  line("budget", o.time_limit_seconds > 0 ? std::string("time") : "spp " + std::to_string(o.spp));
+  line("wave-size", std::to_string(o.wave_size));
+  line("rays", o.ray_backend);
+  return f;
+}
+
 // Runs one integrator over all passes. Waves flow through a pipeline whose
 // last stage merges their output into the film serially and in wave order.
 template <class Tracer>
 bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& opt, RayBackend backend,
-                RayCounters& counters, Film& film, StrategyFilm* strategies, Clock::time_point start,
-                std::atomic<uint64_t>& done, RenderStats& stats, RayDump* dump) {
+                RayCounters& counters, Film& film, StrategyFilm* strategies, std::atomic<uint64_t>& done, RenderStats& stats, RayDump* dump, Checkpointer& checkpoints,
+                SequencePosition& position) {
   const std::vector<uint32_t> order = tile_order(film.width(), film.height());
-  const bool timed = opt.time_limit_seconds > 0;
+  const bool timed = opt.time_limit_seconds > 0;  // the budget counts earlier runs too
   const uint32_t total_spp = timed ? 0xFFFFFFFFu : uint32_t(opt.spp);
   const uint32_t pass_spp = timed ? 1u : std::min<uint32_t>(total_spp, 16u);
   const uint32_t pixels_per_wave = std::max<uint32_t>(1, uint32_t(opt.wave_size) / pass_spp);
@@ -131,11 +181,12 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
   std::atomic<bool> stop{false};
   auto should_stop = [&] {
     return (opt.cancel && opt.cancel->load()) ||
-           (timed && std::chrono::duration<double>(Clock::now() - start).count() >= opt.time_limit_seconds);
+           (timed && checkpoints.elapsed() >= opt.time_limit_seconds);
   };
-  for (uint32_t first = 0; first < total_spp && !stop; first += pass_spp) {
+  if (position.wave >= waves) throw std::invalid_argument("checkpoint position lies past the last wave");
+  for (uint32_t first = position.pass_first; first < total_spp && !stop; first += pass_spp) {
     const uint32_t samples = std::min(pass_spp, total_spp - first);
-    uint32_t next = 0;
+    uint32_t next = first == position.pass_first ? position.wave : 0;
     tbb::parallel_pipeline(
         tokens,
         tbb::make_filter<void, uint32_t>(tbb::filter_mode::serial_in_order,
@@ -166,6 +217,8 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
               if (strategies) strategies->merge(out.strategies);
               if (opt.collect_stats) film_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
               done += out.samples.size();
+              position = wi + 1 < waves ? SequencePosition{first, wi + 1} : SequencePosition{first + pass_spp, 0};
+              checkpoints.maybe_write(film, position);
             }));
   }
   gather_stats(states, film_seconds, stats);
@@ -185,6 +238,9 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
   if (opt.strategies && opt.integrator != "bdpt")
     throw std::invalid_argument("per-strategy images need --integrator bdpt");
   if (opt.wave_size < 1 || opt.wave_size > (1 << 22)) throw std::invalid_argument("--wave-size must lie in [1, 4194304]");
+  if (opt.strategies && !opt.checkpoint_path.empty())
+    throw std::invalid_argument("per-strategy images cannot be checkpointed or resumed");
+  if (opt.resume && opt.checkpoint_path.empty()) throw std::invalid_argument("resume needs a checkpoint path");
   RayBackend backend = parse_ray_backend(opt.ray_backend);
 
   std::optional<tbb::global_control> limit;
@@ -198,8 +254,18 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
   RenderResult res;
   std::unique_ptr<RayDump> dump;
   if (!opt.dump_rays.empty()) dump = std::make_unique<RayDump>(opt.dump_rays);
+  const std::string fingerprint = sequence_fingerprint(opt, width, height);
+  SequencePosition position;
+  double prior_seconds = 0.0;
+  if (opt.resume) {
+    CheckpointInfo saved = read_checkpoint(opt.checkpoint_path, fingerprint, film);
+    position = saved.position;
+    prior_seconds = saved.elapsed_seconds;
+    res.resumed_samples = film.total_samples();
+  }
   const auto start = Clock::now();
-  std::atomic<uint64_t> done{0};
+  Checkpointer checkpoints(opt, fingerprint, prior_seconds, start);
+  std::atomic<uint64_t> done{res.resumed_samples};
   bool interrupted = false;
   {
     const uint64_t total = uint64_t(width) * uint64_t(height) * (opt.time_limit_seconds > 0 ? 1 : uint64_t(opt.spp));
@@ -215,17 +281,26 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
       bs.unit_weights = opt.debug_unit_mis_weights;
       bs.record_strategies = opt.strategies;
       if (opt.strategies) strategy_film.emplace(width, height, scene.filter);
-      run_passes(Bdpt(scene, bs), scene, opt, backend, counters, film, strategy_film ? &*strategy_film : nullptr, start,
-                 done, res.stats, dump.get());
+      run_passes(Bdpt(scene, bs), scene, opt, backend, counters, film, strategy_film ? &*strategy_film : nullptr,
+                 done, res.stats, dump.get(), checkpoints, position);
     } else {
       PathTracerSettings ps;
       ps.maxdepth = opt.maxdepth;
       ps.seed = opt.seed;
       ps.width = width;
       ps.height = height;
-      run_passes(PathTracer(scene, ps), scene, opt, backend, counters, film, nullptr, start, done, res.stats, dump.get());
+      run_passes(PathTracer(scene, ps), scene, opt, backend, counters, film, nullptr, done, res.stats, dump.get(),
+                 checkpoints, position);
     }
     interrupted = opt.cancel && opt.cancel->load();
+  }
+  if (checkpoints.enabled()) {
+    if (interrupted) {
+      checkpoints.write(film, position);
+    } else {
+      std::error_code ec;
+      std::filesystem::remove(opt.checkpoint_path, ec);  // done: nothing left to resume
+    }
   }
 
   res.image = film.resolve();
@@ -233,6 +308,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
   res.interrupted = interrupted;
   RenderStats& st = res.stats;
   st.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  res.total_render_seconds = prior_seconds + st.seconds;
   st.samples = film.total_samples();
   st.light_paths = film.light_paths();
   st.camera_rays = counters.camera;

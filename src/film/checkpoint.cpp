@@ -1,0 +1,131 @@
+#include "film/checkpoint.h"
+
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "lantern/error.h"
+
+namespace lantern {
+
+namespace {
+
+constexpr char kMagic[8] = {'L', 'N', 'T', 'N', 'C', 'K', 'P', 'T'};
+constexpr uint32_t kVersion = 1;
+
+// FNV-1a, 64 bit: cheap, and enough to tell a damaged file from a good one.
+struct Fnv1a {
+  uint64_t h = 0xcbf29ce484222325ull;
+  void add(const void* p, size_t n) {
+    const unsigned char* b = static_cast<const unsigned char*>(p);
+    for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 0x100000001b3ull;
+  }
+};
+
+class HashingWriter final : public StateWriter {
+ public:
+  explicit HashingWriter(std::ofstream& out) : out_(out) {}
+  void write(const void* p, size_t n) override {
+    hash.add(p, n);
+    out_.write(static_cast<const char*>(p), std::streamsize(n));
+  }
+  template <class T>
+  void put(const T& v) { write(&v, sizeof v); }
+  Fnv1a hash;
+
+ private:
+  std::ofstream& out_;
+};
+
+class HashingReader final : public StateReader {
+ public:
+  HashingReader(std::ifstream& in, const std::string& path) : in_(in), path_(path) {}
+  void read(void* p, size_t n) override {
+    if (!in_.read(static_cast<char*>(p), std::streamsize(n)))
+      throw InputError({path_, 0, 0}, "checkpoint is truncated");
+    hash.add(p, n);
+  }
+  template <class T>
+  T get() {
+    T v;
+    read(&v, sizeof v);
+    return v;
+  }
+  Fnv1a hash;
+
+ private:
+  std::ifstream& in_;
+  const std::string& path_;
+};
+
+// The first key=value line of `a` that `b` does not have, as a message.
+std::string first_difference(const std::string& saved, const std::string& now) {
+  std::istringstream sa(saved), sb(now);
+  std::string la, lb;
+  while (true) {
+    bool ga = bool(std::getline(sa, la)), gb = bool(std::getline(sb, lb));
+    if (!ga && !gb) return "";
+    if (la != lb || ga != gb)
+      return "it was made with \"" + (ga ? la : std::string("(nothing)")) + "\" but this render has \"" +
+             (gb ? lb : std::string("(nothing)")) + "\"";
+  }
+}
+
+}  // namespace
+
+void write_checkpoint(const std::string& path, const CheckpointInfo& info, const Film& film) {
+  std::string tmp = path + ".partial";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw std::runtime_error("cannot write checkpoint \"" + tmp + "\"");
+    HashingWriter w(out);
+    w.write(kMagic, sizeof kMagic);
+    w.put(kVersion);
+    w.put(uint32_t(info.fingerprint.size()));
+    w.write(info.fingerprint.data(), info.fingerprint.size());
+    w.put(info.position.pass_first);
+    w.put(info.position.wave);
+    w.put(info.elapsed_seconds);
+    film.write_state(w);
+    uint64_t h = w.hash.h;
+    out.write(reinterpret_cast<const char*>(&h), sizeof h);
+    if (!out.flush()) {
+      std::remove(tmp.c_str());
+      throw std::runtime_error("cannot write checkpoint \"" + tmp + "\" (disk full?)");
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) throw std::runtime_error("cannot move checkpoint to \"" + path + "\": " + ec.message());
+}
+
+CheckpointInfo read_checkpoint(const std::string& path, const std::string& expected, Film& film) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError({path, 0, 0}, "cannot open checkpoint (nothing to resume)");
+  HashingReader r(in, path);
+  char magic[sizeof kMagic];
+  r.read(magic, sizeof magic);
+  if (std::memcmp(magic, kMagic, sizeof kMagic) != 0) throw InputError({path, 0, 0}, "not a Lantern checkpoint");
+  if (uint32_t v = r.get<uint32_t>(); v != kVersion)
+    throw InputError({path, 0, 0}, "checkpoint version " + std::to_string(v) + " is not " + std::to_string(kVersion));
+  CheckpointInfo info;
+  uint32_t n = r.get<uint32_t>();
+  if (n > (1u << 20)) throw InputError({path, 0, 0}, "checkpoint is damaged (fingerprint length)");
+  info.fingerprint.resize(n);
+  r.read(info.fingerprint.data(), n);
+  if (info.fingerprint != expected)
+    throw InputError({path, 0, 0}, "checkpoint belongs to another render: " + first_difference(info.fingerprint, expected));
+  info.position.pass_first = r.get<uint32_t>();
+  info.position.wave = r.get<uint32_t>();
+  info.elapsed_seconds = r.get<double>();
+  film.read_state(r);
+  uint64_t computed = r.hash.h, stored = 0;
+  if (!in.read(reinterpret_cast<char*>(&stored), sizeof stored)) throw InputError({path, 0, 0}, "checkpoint is truncated");
+  if (stored != computed) throw InputError({path, 0, 0}, "checkpoint is damaged (checksum mismatch)");
+  if (in.peek() != std::ifstream::traits_type::eof()) throw InputError({path, 0, 0}, "checkpoint has trailing bytes");
+  return info;
+}
+
+}  // namespace lantern

@@ -1,0 +1,144 @@
+// Checkpoints: a render stopped any number of times and resumed, on any
+// thread count, ends bit for bit where a straight render ends; a checkpoint
+// that does not belong to the render, or is damaged, is refused by name.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "lantern/render.h"
+#include "lantern/scene.h"
+
+namespace lantern {
+namespace {
+
+const std::string kCheckpoint = ::testing::TempDir() + "/lantern_checkpoint_test.ckpt";
+
+RenderOptions small_render(const std::string& integrator) {
+  RenderOptions o;
+  o.integrator = integrator;
+  o.spp = 40;  // three passes of up to 16
+  o.width = 48;
+  o.height = 36;
+  o.maxdepth = 6;
+  o.wave_size = 512;  // many waves, so stops fall in the middle of passes
+  o.seed = 7;
+  return o;
+}
+
+bool same_bits(const Image& a, const Image& b) {
+  return a.width == b.width && a.height == b.height &&
+         std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)) == 0;
+}
+
+class CheckpointResume : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(CheckpointResume, StopsAndResumesBitForBit) {
+  auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/lantern.pbrt");
+  RenderResult straight = render(*scene, small_render(GetParam()));
+
+  std::remove(kCheckpoint.c_str());
+  std::atomic<bool> cancel{false};
+  int written = 0, runs = 0, stop_after = 1;
+  RenderOptions o = small_render(GetParam());
+  o.checkpoint_path = kCheckpoint;
+  o.checkpoint_seconds = 1e-9;  // after every wave
+  o.cancel = &cancel;
+  o.checkpoint_written = [&] {
+    if (++written == stop_after) cancel = true;
+  };
+  RenderResult r;
+  do {
+    written = 0;
+    cancel = false;
+    o.threads = 1 + runs % 2;
+    stop_after = 3 + 5 * runs;  // a different stop point each run
+    r = render(*scene, o);
+    o.resume = true;
+    ASSERT_LT(++runs, 50) << "never finished";
+    if (r.interrupted) {
+      EXPECT_TRUE(std::filesystem::exists(kCheckpoint));
+      EXPECT_LT(r.stats.samples, straight.stats.samples);
+    }
+  } while (r.interrupted);
+  EXPECT_GE(runs, 3) << "the render should have been stopped at least twice";
+  EXPECT_GT(r.resumed_samples, 0u);
+  EXPECT_EQ(r.stats.samples, straight.stats.samples);
+  EXPECT_EQ(r.stats.light_paths, straight.stats.light_paths);
+  EXPECT_TRUE(same_bits(r.image, straight.image)) << "the resumed image differs from the straight one";
+  EXPECT_FALSE(std::filesystem::exists(kCheckpoint)) << "a finished render leaves no checkpoint";
+}
+
+INSTANTIATE_TEST_SUITE_P(Integrators, CheckpointResume, ::testing::Values("path", "bdpt", "lt"));
+
+// Makes a checkpoint by cancelling a render after its first wave.
+void make_checkpoint(const Scene& scene, RenderOptions o) {
+  std::atomic<bool> cancel{false};
+  o.checkpoint_path = kCheckpoint;
+  o.checkpoint_seconds = 1e-9;
+  o.cancel = &cancel;
+  o.checkpoint_written = [&] { cancel = true; };
+  ASSERT_TRUE(render(scene, o).interrupted);
+}
+
+std::string resume_error(const Scene& scene, RenderOptions o) {
+  o.checkpoint_path = kCheckpoint;
+  o.resume = true;
+  try {
+    render(scene, o);
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(kCheckpoint), std::string::npos) << e.what();
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(Checkpoint, RefusesACheckpointOfAnotherRender) {
+  auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
+  RenderOptions o = small_render("path");
+  make_checkpoint(*scene, o);
+  RenderOptions other = o;
+  other.seed = 8;
+  EXPECT_NE(resume_error(*scene, other).find("seed=7"), std::string::npos);
+  other = o;
+  other.integrator = "bdpt";
+  EXPECT_NE(resume_error(*scene, other).find("integrator=path"), std::string::npos);
+  other = o;
+  other.spp = 41;
+  EXPECT_NE(resume_error(*scene, other).find("budget=spp 40"), std::string::npos);
+  other = o;
+  other.checkpoint_key = "another scene";
+  EXPECT_NE(resume_error(*scene, other).find("another render"), std::string::npos);
+}
+
+TEST(Checkpoint, RefusesDamagedAndMissingFiles) {
+  auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
+  RenderOptions o = small_render("path");
+  std::remove(kCheckpoint.c_str());
+  EXPECT_NE(resume_error(*scene, o).find("nothing to resume"), std::string::npos);
+
+  make_checkpoint(*scene, o);
+  std::string bytes;
+  {
+    std::ifstream in(kCheckpoint, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  auto rewrite = [&](const std::string& b) { std::ofstream(kCheckpoint, std::ios::binary) << b; };
+  std::string flipped = bytes;
+  flipped[flipped.size() / 2] ^= 0x10;
+  rewrite(flipped);
+  EXPECT_NE(resume_error(*scene, o).find("checksum"), std::string::npos);
+  rewrite(bytes.substr(0, bytes.size() - 100));
+  EXPECT_NE(resume_error(*scene, o).find("truncated"), std::string::npos);
+  rewrite("not a checkpoint at all");
+  EXPECT_NE(resume_error(*scene, o).find("not a Lantern checkpoint"), std::string::npos);
+  rewrite(bytes);
+  o.checkpoint_path = kCheckpoint;
+  o.resume = true;
+  EXPECT_FALSE(render(*scene, o).interrupted);  // the intact file still resumes
+}
+
+}  // namespace
+}  // namespace lantern
