@@ -106,7 +106,7 @@ RGBTexture SceneBuilder::rgb_texture(const ParamSet& ps, const std::string& name
   }
   RGBTexture t;
   t.value = ps.get_rgb(name, ColorUsage::Reflectance).value_or(def);
-  if (const pbrt::Param* p = ps.find(name); p && p->type == "float") t.value = RGB(float(p->numbers.at(0)));
+  if (const pbrt::Param* p = ps.find(name); p && p->type == "float") t.value = RGB(ps.get_float(name, 0.f));
   return t;
 }
 
@@ -133,7 +133,7 @@ static float eta_param(const ParamSet& ps, float def) {
   const pbrt::Param* p = ps.find("eta");
   if (!p) p = ps.find("index");
   if (!p) return def;
-  float eta = p->type == "float" ? float(p->numbers.at(0)) : ps.get_rgb(p->name, ColorUsage::Unbounded)->x;
+  float eta = p->type == "float" ? ps.get_float(p->name, def) : ps.get_rgb(p->name, ColorUsage::Unbounded)->x;
   if (!(eta > 0.f)) ps.fail(*p, "index of refraction must be positive");
   return eta;
 }

@@ -2,6 +2,7 @@
 
 #include <zlib.h>
 
+#include <algorithm>
 #include <bit>
 #include <cstring>
 #include <filesystem>
@@ -247,7 +248,8 @@ PlyMesh parse_ply(const std::string& data, const std::string& name) {
         for (size_t j = 1; j + 1 < n; ++j) mesh.triangles.emplace_back(poly[0], poly[j], poly[j + 1]);
       }
       if (is_vertex) {
-        if (ix >= 32 || iy >= 32 || iz >= 32) r.fail("too many vertex properties");
+        if (std::max({ix, iy, iz, inx, iny, inz, iu, iv}) >= 32)
+          r.fail("x, y, z, normals and uvs must be among the first 32 vertex properties");
         mesh.positions.emplace_back(float(vals[ix]), float(vals[iy]), float(vals[iz]));
         if (has_n) mesh.normals.emplace_back(float(vals[inx]), float(vals[iny]), float(vals[inz]));
         if (has_uv) mesh.uvs.emplace_back(float(vals[iu]), float(vals[iv]));
