@@ -12,11 +12,17 @@
 
 namespace lantern {
 
+// Sphere hits take their normal from Embree's Ng (hit point minus centre,
+// formed in the ray's frame): origin + t * direction would lose a small
+// sphere's shape far from the origin.
 inline SurfacePoint hit_point(const ShapePools& shapes, const RayBatch& rays, uint32_t i) {
   const Geometry& g = shapes.geometries[rays.geom_id[i]];
-  return g.kind == ShapeKind::Mesh
-             ? triangle_point(shapes.meshes[g.index], rays.prim_id[i], rays.u[i], rays.v[i])
-             : sphere_point(shapes.spheres[g.index], rays.origin(i) + rays.tfar[i] * rays.direction(i));
+  if (g.kind == ShapeKind::Mesh) return triangle_point(shapes.meshes[g.index], rays.prim_id[i], rays.u[i], rays.v[i]);
+  const Sphere& s = shapes.spheres[g.index];
+  Vec3 ng(rays.ng_x[i], rays.ng_y[i], rays.ng_z[i]);
+  float len = glm::length(ng);
+  if (!(len > 0.f) || !std::isfinite(len)) return sphere_point(s, rays.origin(i) + rays.tfar[i] * rays.direction(i));
+  return sphere_point_at_normal(s, ng / len);
 }
 
 // Index into LightPools::area of the emitter that was hit, or -1.

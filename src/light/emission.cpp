@@ -53,7 +53,7 @@ std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& s
         sp = triangle_point(shapes.meshes[g.index], a.primitive, b.y, 1.f - b.x - b.y);
       } else {
         const Sphere& s = shapes.spheres[g.index];
-        sp = sphere_point(s, s.center + s.radius * sample_uniform_sphere(u_pos));
+        sp = sphere_point_at_normal(s, sample_uniform_sphere(u_pos));
       }
       // Cosine-weighted about the normal; a two-sided light picks a side.
       bool back = false;

@@ -145,7 +145,7 @@ static std::optional<LightSample> sample_area(const LightPools& L, const ShapePo
     const Sphere& s = shapes.spheres[g.index];
     float sin2_max = sphere_cone_sin2_max(s, p);
     if (sin2_max >= 1.f) {  // inside: uniform area sampling
-      sp = sphere_point(s, s.center + s.radius * sample_uniform_sphere(u));
+      sp = sphere_point_at_normal(s, sample_uniform_sphere(u));
       Vec3 d = sp.p - p;
       float dist2 = glm::dot(d, d);
       float cos_l = std::fabs(glm::dot(sp.ng, d)) / std::sqrt(dist2);
@@ -168,7 +168,7 @@ static std::optional<LightSample> sample_area(const LightPools& L, const ShapePo
       Vec3 w(sin_alpha * std::cos(phi), sin_alpha * std::sin(phi), cos_alpha);
       Frame f = Frame::from_z(glm::normalize(s.center - p));
       Vec3 n = f.from_local(-w);
-      sp = sphere_point(s, s.center + s.radius * n);
+      sp = sphere_point_at_normal(s, n);
       pdf = 1.f / (2.f * kPi * one_minus_cos_max);
     }
   }

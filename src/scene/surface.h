@@ -48,20 +48,28 @@ inline float triangle_area(const TriangleMesh& m, uint32_t prim) {
 }
 
 // `p` is any point near the surface; it is projected onto the sphere.
-inline SurfacePoint sphere_point(const Sphere& s, const Vec3& p) {
-  Vec3 d = p - s.center;
-  float len = glm::length(d);
-  Vec3 n = len > 0.f ? d / len : Vec3(0, 0, 1);
+// The point of the sphere whose outward unit normal is n. Prefer it to
+// sphere_point whenever n is known more precisely than a position: for a
+// sphere far smaller than its distance from the origin (a 1e-5 light at
+// 1e4), p - center keeps almost none of its bits.
+inline SurfacePoint sphere_point_at_normal(const Sphere& s, const Vec3& n) {
   SurfacePoint sp;
   sp.p = s.center + s.radius * n;
   sp.ng = sp.ns = s.flip_normal ? -n : n;
-  Vec3 po = Vec3(s.object_from_world * Vec4(sp.p, 1.f));
-  float phi = std::atan2(po.y, po.x);
+  Vec3 dl = glm::mat3(s.object_from_world) * n;  // direction in the sphere's own frame
+  float len = glm::length(dl);
+  dl = len > 0.f ? dl / len : Vec3(0, 0, 1);
+  float phi = std::atan2(dl.y, dl.x);
   if (phi < 0.f) phi += 2.f * kPi;
-  float cz = glm::clamp(po.z / glm::length(po), -1.f, 1.f);
-  sp.uv = Vec2(phi * kInv2Pi, (std::acos(cz) - kPi) / -kPi);
+  sp.uv = Vec2(phi * kInv2Pi, (std::acos(glm::clamp(dl.z, -1.f, 1.f)) - kPi) / -kPi);
   sp.error_scale = max_abs_component(s.center) + s.radius;
   return sp;
+}
+
+inline SurfacePoint sphere_point(const Sphere& s, const Vec3& p) {
+  Vec3 d = p - s.center;
+  float len = glm::length(d);
+  return sphere_point_at_normal(s, len > 0.f ? d / len : Vec3(0, 0, 1));
 }
 
 // Offsets a ray origin off the surface along the geometric normal, on the
