@@ -9,87 +9,10 @@
 
 #include "lantern/render.h"
 #include "lantern/scene.h"
+#include "stat_compare.h"
 
 namespace lantern {
 namespace {
-
-struct Region {
-  int x0, y0, w, h;
-};
-
-// Mean and standard error, over independent renders, of the mean radiance
-// in each region and channel (of runs[r] - minus[r] when minus is given).
-struct RegionStats {
-  std::vector<std::array<double, 3>> mean, std_error;
-};
-
-RegionStats stats_of(const std::vector<Image>& runs, const std::vector<Region>& regions,
-                     const std::vector<Image>* minus = nullptr) {
-  const size_t n = runs.size();
-  RegionStats st;
-  st.mean.assign(regions.size(), {});
-  st.std_error.assign(regions.size(), {});
-  for (size_t g = 0; g < regions.size(); ++g)
-    for (int c = 0; c < 3; ++c) {
-      double sum = 0.0, sum2 = 0.0;
-      for (size_t r = 0; r < n; ++r) {
-        const Region& reg = regions[g];
-        double v = 0.0;
-        for (int y = reg.y0; y < reg.y0 + reg.h; ++y)
-          for (int x = reg.x0; x < reg.x0 + reg.w; ++x)
-            v += runs[r].at(x, y)[c] - (minus ? (*minus)[r].at(x, y)[c] : 0.f);
-        v /= double(reg.w * reg.h);
-        sum += v;
-        sum2 += v * v;
-      }
-      double m = sum / double(n);
-      st.mean[g][size_t(c)] = m;
-      st.std_error[g][size_t(c)] = std::sqrt(std::max(0.0, (sum2 - double(n) * m * m) / double(n - 1)) / double(n));
-    }
-  return st;
-}
-
-// `runs` renders with seeds first_seed, first_seed + 1, ...
-std::vector<Image> render_runs(const Scene& scene, RenderOptions o, int runs, uint64_t first_seed) {
-  std::vector<Image> images;
-  for (int r = 0; r < runs; ++r) {
-    o.seed = first_seed + uint64_t(r);
-    RenderResult res = render(scene, o);
-    EXPECT_EQ(res.stats.nonfinite_samples, 0u);
-    images.push_back(std::move(res.image));
-  }
-  return images;
-}
-
-RegionStats render_stats(const Scene& scene, const std::string& integrator, int width, int height, int spp, int runs,
-                         const std::vector<Region>& regions, bool unit_weights = false) {
-  RenderOptions o;
-  o.integrator = integrator;
-  o.spp = spp;
-  o.maxdepth = 6;
-  o.width = width;
-  o.height = height;
-  o.debug_unit_mis_weights = unit_weights;
-  return stats_of(render_runs(scene, o, runs, 1000), regions);
-}
-
-// Largest |difference| / (combined standard error) over regions and channels.
-double max_z_of(const RegionStats& a, const RegionStats& b) {
-  double z = 0.0;
-  for (size_t g = 0; g < a.mean.size(); ++g)
-    for (size_t c = 0; c < 3; ++c) {
-      double se = std::sqrt(a.std_error[g][c] * a.std_error[g][c] + b.std_error[g][c] * b.std_error[g][c]);
-      double d = std::fabs(a.mean[g][c] - b.mean[g][c]);
-      z = std::max(z, se > 0.0 ? d / se : (d > 1e-12 ? 1e9 : 0.0));
-    }
-  return z;
-}
-// Prints the statistic, so a log shows how much margin each check has.
-#define max_z(a, b) print_z(#a " vs " #b, max_z_of(a, b))
-double print_z(const char* what, double z) {
-  std::printf("  z(%s) = %.2f\n", what, z);
-  return z;
-}
 
 std::shared_ptr<Scene> shipped(const std::string& name) {
   return load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/" + name);
