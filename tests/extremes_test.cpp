@@ -310,5 +310,199 @@ TEST(NearSpecular, RendersOfNearlySmoothMetalAndGlassAreFinite) {
   }
 }
 
+// ---------------------------------------------------------------------------
+// Degenerate and hostile geometry, empty and closed scenes
+
+const char* const kFloorAndCamera =
+    "LookAt 0 2 3  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 60 ]\nWorldBegin\n"
+    "Shape \"trianglemesh\" \"point3 P\" [ -3 0 -3  3 0 -3  3 0 3  -3 0 3 ] \"integer indices\" [ 0 2 1 0 3 2 ]\n";
+
+// A quad light made of two good triangles, alone and together with
+// zero-area ones (a repeated vertex, three collinear points, a triangle
+// with all three vertices the same), both as emitters and as occluders.
+TEST(ExtremeGeometry, DegenerateTrianglesChangeNothing) {
+  const std::string good = "-0.5 1 -0.5  0.5 1 -0.5  0.5 1 0.5  -0.5 1 0.5";
+  const std::string bad = "  0 0.5 0  1 0.5 0  2 0.5 0";  // collinear points 4, 5, 6
+  auto light = [&](bool degenerate) {
+    return std::string(kFloorAndCamera) + "AttributeBegin\n AreaLightSource \"diffuse\" \"rgb L\" [ 4 4 4 ]\n" +
+           " Shape \"trianglemesh\" \"point3 P\" [ " + good + (degenerate ? bad : "") + " ] \"integer indices\" [ 0 1 2  0 2 3" +
+           (degenerate ? "  0 0 1  4 5 6  2 2 2  5 5 6" : "") + " ]\nAttributeEnd\n" +
+           (degenerate ? " Shape \"trianglemesh\" \"point3 P\" [ 0 0.3 0  1 0.3 0  0.5 0.3 0 ] \"integer indices\" [ 0 1 2 ]\n" : "");
+  };
+  auto clean = scene_from(light(false)), degenerate = scene_from(light(true));
+  const std::vector<Region> regions = {{0, 0, 16, 16}, {0, 0, 8, 8}, {8, 8, 8, 8}};
+  for (const char* integrator : kIntegrators) {
+    SCOPED_TRACE(integrator);
+    RenderOptions o = options(integrator, 16, 16, 8);
+    auto a = stats_of(render_runs(*clean, o, 10, 1), regions);
+    auto b = stats_of(render_runs(*degenerate, o, 10, 1), regions);
+    EXPECT_LT(max_z(a, b), 5.0);
+  }
+}
+
+std::string load_error(const std::string& text) {
+  try {
+    scene_from(text);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(loaded without error)";
+}
+
+TEST(ExtremeGeometry, NonFiniteVerticesAreRejectedNamingTheShape) {
+  // pbrt text has no NaN literal ("nan" is a parse error at its column);
+  // a number beyond float's range is infinite.
+  for (const char* v : {"1e39", "-1e39"}) {
+    std::string msg = load_error(std::string(kFloorAndCamera) + "\n\nShape \"trianglemesh\" \"point3 P\" [ 0 0 0  1 0 0  0 " + v +
+                                 " 0 ] \"integer indices\" [ 0 1 2 ]\n");
+    EXPECT_NE(msg.find("extremes.pbrt:7:1"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("\"trianglemesh\""), std::string::npos) << msg;
+    EXPECT_NE(msg.find("vertex 2"), std::string::npos) << msg;
+  }
+  std::string nan_msg = load_error(std::string(kFloorAndCamera) + "Shape \"trianglemesh\" \"point3 P\" [ 0 0 nan ]");
+  EXPECT_NE(nan_msg.find("extremes.pbrt:5:39"), std::string::npos) << nan_msg;
+  // A PLY file: the message names the file.
+  const std::string ply = ::testing::TempDir() + "/lantern_nan_vertex.ply";
+  std::ofstream(ply) << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                        "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n";
+  std::string msg = load_error(std::string(kFloorAndCamera) + "Shape \"plymesh\" \"string filename\" \"" + ply + "\"\n");
+  EXPECT_NE(msg.find("lantern_nan_vertex.ply"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("vertex 1"), std::string::npos) << msg;
+  // A transform that overflows a finite vertex is caught after the transform.
+  msg = load_error(std::string(kFloorAndCamera) + "Scale 1e30 1e30 1e30\nShape \"trianglemesh\" \"point3 P\" [ 0 0 0  1e10 0 0  0 1 0 ]"
+                   " \"integer indices\" [ 0 1 2 ]\n");
+  EXPECT_NE(msg.find("vertex 1"), std::string::npos) << msg;
+}
+
+// Scenes whose image is black by construction: exactly 0 everywhere.
+TEST(ExtremeGeometry, BlackByConstruction) {
+  const std::string room = "Shape \"trianglemesh\" \"point3 P\" [ -3 0 -3  3 0 -3  3 0 3  -3 0 3 ] \"integer indices\" [ 0 2 1 0 3 2 ]\n";
+  const std::vector<std::pair<std::string, std::string>> scenes = {
+      {"no lights", std::string(kFloorAndCamera) + "Shape \"sphere\"\n"},
+      {"the only light faces away",
+       std::string(kFloorAndCamera) + "AttributeBegin\n AreaLightSource \"diffuse\" \"rgb L\" [ 10 10 10 ]\n"
+                                      " Shape \"trianglemesh\" \"point3 P\" [ -1 4 -1  1 4 -1  1 4 1  -1 4 1 ] \"integer indices\" [ 0 2 1 0 3 2 ]\n"
+                                      "AttributeEnd\n"},
+      {"camera inside a closed sphere, light outside",
+       "LookAt 0 0 0  0 0 -1  0 1 0\nCamera \"perspective\"\nWorldBegin\nShape \"sphere\" \"float radius\" [ 1 ]\n"
+       "LightSource \"point\" \"rgb I\" [ 10 10 10 ] \"point3 from\" [ 0 3 0 ]\n"
+       "AttributeBegin\n AreaLightSource \"diffuse\" \"rgb L\" [ 5 5 5 ]\n Translate 0 0 -4\n Shape \"sphere\" \"float radius\" [ 0.5 ]\nAttributeEnd\n"
+       "LightSource \"distant\" \"rgb L\" [ 3 3 3 ]\n"},
+  };
+  for (const auto& [what, text] : scenes) {
+    auto scene = scene_from(text);
+    for (const char* integrator : kIntegrators) {
+      RenderResult r = render_checked(*scene, options(integrator, 8, 8, 4));
+      EXPECT_EQ(channel_sum(r.image, 0) + channel_sum(r.image, 1) + channel_sum(r.image, 2), 0.0) << what << ", " << integrator;
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------
+// Extreme depths and resolutions
+
+// maxdepth 0 is emission seen directly: a pixel fully on the light is L,
+// a pixel fully off it is 0, with every integrator.
+TEST(ExtremeSettings, MaxDepthZeroIsDirectEmissionOnly) {
+  auto scene = scene_from("LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 30 ]\nWorldBegin\n"
+                          "Shape \"trianglemesh\" \"point3 P\" [ -9 -9 -1  9 -9 -1  9 9 -1  -9 9 -1 ] \"integer indices\" [ 0 1 2 0 2 3 ]\n"
+                          "AttributeBegin\n AreaLightSource \"diffuse\" \"rgb L\" [ 2 3 4 ]\n"
+                          " Shape \"trianglemesh\" \"point3 P\" [ -0.5 -0.5 0  0.5 -0.5 0  0.5 0.5 0  -0.5 0.5 0 ]"
+                          " \"integer indices\" [ 0 1 2 0 2 3 ]\nAttributeEnd\n");
+  // The path tracer sees the light directly: exact.
+  RenderResult path = render_checked(*scene, options("path", 16, 16, 16, 0));
+  EXPECT_NEAR(path.image.at(8, 8)[0], 2.f, 1e-4f);
+  EXPECT_NEAR(path.image.at(8, 8)[2], 4.f, 1e-4f);
+  EXPECT_EQ(path.image.at(1, 1)[1], 0.f);
+  // bdpt adds the light's own points splatted onto the lens (s = 1, t = 1),
+  // and light tracing has only those: unbiased estimates of the same values.
+  for (const char* integrator : {"bdpt", "lt"}) {
+    std::vector<Image> runs = render_runs(*scene, options(integrator, 16, 16, 16, 0), 10, 1);
+    RegionStats st = stats_of(runs, {{7, 7, 2, 2}, {0, 0, 3, 3}});
+    for (int c = 0; c < 3; ++c)
+      EXPECT_LT(std::fabs(st.mean[0][size_t(c)] - (2.0 + c)), 5.0 * st.std_error[0][size_t(c)] + 1e-6) << integrator;
+    EXPECT_EQ(st.mean[1][1], 0.0) << integrator;
+  }
+}
+
+// Depth 1 and 1000 in a closed white room (reflectance 0.95): long paths
+// end by roulette, every integrator finishes, the pools do not grow with
+// the depth bound, and the three agree.
+TEST(ExtremeSettings, MaxDepthOneAndOneThousand) {
+  std::string room = "LookAt 0 1 0.9  0 0.8 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 70 ]\nWorldBegin\n"
+                     "Material \"diffuse\" \"rgb reflectance\" [ 0.95 0.95 0.95 ]\n"
+                     "Shape \"trianglemesh\" \"point3 P\" [ -1 0 -1  1 0 -1  1 0 1  -1 0 1   -1 2 -1  1 2 -1  1 2 1  -1 2 1 ]\n"
+                     "  \"integer indices\" [ 0 2 1 0 3 2   4 5 6 4 6 7   0 1 5 0 5 4   3 7 6 3 6 2   0 4 7 0 7 3   1 2 6 1 6 5 ]\n"
+                     "AttributeBegin\n AreaLightSource \"diffuse\" \"rgb L\" [ 5 5 5 ]\n Translate 0 1.5 0\n"
+                     " Shape \"sphere\" \"float radius\" [ 0.1 ]\nAttributeEnd\n";
+  auto scene = scene_from(room);
+  const std::vector<Region> regions = {{0, 0, 12, 12}};
+  std::map<std::string, size_t> pool_at_depth_10;
+  for (const char* integrator : kIntegrators) {
+    RenderOptions o = options(integrator, 12, 12, 4, 10);
+    o.threads = 1;
+    pool_at_depth_10[integrator] = render_checked(*scene, o).stats.wave_pool_bytes;
+  }
+  for (int depth : {1, 1000}) {
+    std::map<std::string, RegionStats> st;
+    for (const char* integrator : kIntegrators) {
+      RenderOptions o = options(integrator, 12, 12, 4, depth);
+      o.threads = 1;
+      RenderResult r = render_checked(*scene, o);
+      std::printf("  %s maxdepth %d: %.2f vertices a sample, pools %zu bytes (%zu at maxdepth 10)\n", integrator, depth,
+                  double(r.stats.eye_vertices + r.stats.light_vertices) / double(r.stats.samples), r.stats.wave_pool_bytes,
+                  pool_at_depth_10[integrator]);
+      // Light vertices are stored per bounce actually made, not per bounce allowed.
+      EXPECT_LE(r.stats.wave_pool_bytes, 2 * pool_at_depth_10[integrator]) << integrator << " maxdepth " << depth;
+      st[integrator] = stats_of(render_runs(*scene, options(integrator, 12, 12, 4, depth), 10, 50), regions);
+    }
+    SCOPED_TRACE("maxdepth " + std::to_string(depth));
+    EXPECT_LT(max_z(st["bdpt"], st["path"]), 5.0);
+    EXPECT_LT(max_z(st["lt"], st["path"]), 5.0);
+  }
+}
+
+// Peak resident memory of this process (each ctest case runs alone).
+size_t peak_rss_bytes() {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("VmHWM:", 0) == 0) return size_t(std::stoull(line.substr(6))) * 1024;
+  return 0;
+}
+
+TEST(ExtremeSettings, OnePixelImage) {
+  auto scene = scene_from(std::string(kFloorAndCamera) + "LightSource \"point\" \"rgb I\" [ 5 5 5 ] \"point3 from\" [ 0 2 0 ]\n");
+  for (const char* integrator : kIntegrators) {
+    RenderResult r = render_checked(*scene, options(integrator, 1, 1, 64));
+    EXPECT_EQ(r.stats.samples, 64u) << integrator;
+    EXPECT_GT(r.image.rgb[1], 0.f) << integrator;
+  }
+}
+
+// 8192 x 8192 for one second: memory is the film (sums, counts, splats)
+// plus the image, and the wave pools are the same as for a tiny image:
+// nothing grows with the number of samples or pixels in flight. The path
+// tracer only: on this VM first-touching a GiB costs ~3 s, and bdpt's film
+// differs only by its splat sums, which the bound counts anyway.
+TEST(ExtremeSettings, EightKSquaredStaysWithinFilmPlusPools) {
+  auto scene = scene_from(std::string(kFloorAndCamera) + "LightSource \"point\" \"rgb I\" [ 5 5 5 ] \"point3 from\" [ 0 2 0 ]\n");
+  for (const char* integrator : {"path"}) {
+    RenderOptions small = options(integrator, 64, 64, 1);
+    small.threads = 1;
+    size_t small_pools = render_checked(*scene, small).stats.wave_pool_bytes;
+    RenderOptions big = options(integrator, 8192, 8192, 1);
+    big.threads = 1;
+    big.time_limit_seconds = 1.0;
+    RenderResult r = render_checked(*scene, big);
+    EXPECT_GT(r.stats.samples, 0u) << integrator;
+    // Pools grow only with the paths a wave actually made; allow for that.
+    EXPECT_LE(r.stats.wave_pool_bytes, 2 * small_pools) << integrator;
+    const size_t pixels = size_t(8192) * 8192;
+    const size_t film = pixels * (3 * sizeof(double) * 2 + sizeof(uint32_t)), image = pixels * 3 * sizeof(float);
+    EXPECT_LT(peak_rss_bytes(), film + image + (size_t(1) << 30)) << integrator;
+  }
+}
+
 }  // namespace
 }  // namespace lantern

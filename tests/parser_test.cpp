@@ -137,7 +137,7 @@ TEST(Parser, MalformedInputGivesClearErrors) {
   expect_error("WorldBegin\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 nan] \"integer indices\" [0 1 2]\n",
                {"t.pbrt:2:50", "found a directive name \"nan\""});
   expect_error("WorldBegin\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 1e39] \"integer indices\" [0 1 2]\n",
-               {"Shape \"trianglemesh\"", "NaN or infinite"});
+               {"Shape \"trianglemesh\"", "vertex 2 at (0, 1, inf) is not finite"});
   expect_error("WorldBegin\nShape \"disk\"\n", {"shape \"disk\" is not supported"});
   expect_error("WorldBegin\nMaterial \"hair\"\n", {"material type \"hair\" is not supported"});
   expect_error("WorldBegin\nCamera \"perspective\"\n", {"only allowed before WorldBegin"});

@@ -3,22 +3,29 @@
 // pixel with weight 1 and no splatting between neighbours is needed.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include "math/sampling.h"
 #include "scene/scene.h"
 
 namespace lantern {
 
+// Inverse CDF of the normal truncated to [-radius, radius]. The CDF is
+// (erf(x / (sigma sqrt 2)) + m) / 2m with m = erf(radius / (sigma sqrt 2)),
+// so x = sigma sqrt(2) erfinv((2u - 1) m). Winitzki's closed-form erfinv
+// (relative error ~2e-3) is polished by two Newton steps on erf: offsets
+// then follow pixel_filter_density to float precision, which light-tracing
+// splats rely on, for 3 erf calls instead of a bisection's 26.
 inline float sample_gaussian_offset(float u, float radius, float sigma) {
-  // Inverse CDF of the truncated normal by bisection on the error function:
-  // exact to float precision and cheap next to tracing a path.
-  auto cdf = [&](float x) { return 0.5f * (1.f + std::erf(x / (sigma * std::sqrt(2.f)))); };
-  float lo = -radius, hi = radius, c0 = cdf(-radius), c1 = cdf(radius);
-  float target = c0 + u * (c1 - c0);
-  for (int i = 0; i < 24; ++i) {
-    float mid = 0.5f * (lo + hi);
-    (cdf(mid) < target ? lo : hi) = mid;
-  }
-  return 0.5f * (lo + hi);
+  const float s2 = sigma * std::sqrt(2.f);
+  const float y = (2.f * u - 1.f) * std::erf(radius / s2);
+  constexpr float a = 0.147f;
+  const float ln = std::log(std::max(1.f - y * y, 1e-30f));
+  const float t = 2.f / (kPi * a) + 0.5f * ln;
+  float z = std::copysign(std::sqrt(std::max(0.f, std::sqrt(t * t - ln / a) - t)), y);
+  for (int i = 0; i < 2; ++i) z -= (std::erf(z) - y) / (1.1283791671f * std::exp(-z * z));  // 2/sqrt(pi) e^(-z^2)
+  return std::clamp(z * s2, -radius, radius);
 }
 
 inline Vec2 sample_pixel_filter(const PixelFilter& f, Vec2 u) {

@@ -179,6 +179,7 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
   std::vector<WaveOutput> outputs(tokens);
 
   std::atomic<bool> stop{false};
+  bool issued = false;  // a wave was started in this run
   auto should_stop = [&] {
     return (opt.cancel && opt.cancel->load()) ||
            (timed && checkpoints.elapsed() >= opt.time_limit_seconds);
@@ -191,11 +192,15 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
         tokens,
         tbb::make_filter<void, uint32_t>(tbb::filter_mode::serial_in_order,
                                          [&](tbb::flow_control& fc) -> uint32_t {
-                                           if (next == waves || stop || should_stop()) {
+                                           // A time budget shorter than the set-up still
+                                           // renders one wave, so every run adds samples.
+                                           bool cancelled = opt.cancel && opt.cancel->load();
+                                           if (next == waves || stop || cancelled || (issued && should_stop())) {
                                              if (next != waves) stop = true;
                                              fc.stop();
                                              return 0;
                                            }
+                                           issued = true;
                                            return next++;
                                          }) &
             tbb::make_filter<uint32_t, uint32_t>(tbb::filter_mode::parallel,

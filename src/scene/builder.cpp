@@ -1,5 +1,6 @@
 #include "scene/builder.h"
 
+#include <cstdio>
 #include <filesystem>
 #include <glm/gtc/matrix_inverse.hpp>
 
@@ -232,12 +233,19 @@ void SceneBuilder::texture(const std::string& name, const std::string& value_typ
 
 static bool swaps_handedness(const Mat4& m) { return glm::determinant(glm::mat3(m)) < 0.f; }
 
-void SceneBuilder::add_mesh(TriangleMesh mesh, const GraphicsState& gs, const ParamSet& ps) {
+void SceneBuilder::add_mesh(TriangleMesh mesh, const GraphicsState& gs, const ParamSet& ps, const std::string& source) {
   const Mat4& M = gs.ctm;
   glm::mat3 N = glm::inverseTranspose(glm::mat3(M));
-  for (Vec3& p : mesh.positions) {
+  for (size_t i = 0; i < mesh.positions.size(); ++i) {
+    Vec3& p = mesh.positions[i];
+    Vec3 before = p;
     p = Vec3(M * Vec4(p, 1.f));
-    if (!is_finite(p)) ps.fail("a vertex position is NaN or infinite (after the transform)");
+    if (!is_finite(p)) {
+      char xyz[96];
+      std::snprintf(xyz, sizeof xyz, "(%g, %g, %g)", double(before.x), double(before.y), double(before.z));
+      ps.fail("vertex " + std::to_string(i) + (source.empty() ? "" : " of \"" + source + "\"") + " at " + xyz +
+              (is_finite(before) ? " is not finite after the transform" : " is not finite"));
+    }
   }
   for (Vec3& n : mesh.normals) {
     n = N * n;
@@ -291,7 +299,7 @@ void SceneBuilder::shape(const std::string& type, const ParamSet& ps, const Grap
       }
     }
     for (const char* p : {"S", "faceIndices"}) ps.find(p);
-    add_mesh(std::move(m), gs, ps);
+    add_mesh(std::move(m), gs, ps, "");
   } else if (type == "plymesh") {
     std::string file = ps.get_string("filename", "");
     if (file.empty()) ps.fail("plymesh needs a \"filename\"");
@@ -301,7 +309,7 @@ void SceneBuilder::shape(const std::string& type, const ParamSet& ps, const Grap
     m.normals = std::move(ply.normals);
     m.uvs = std::move(ply.uvs);
     m.triangles = std::move(ply.triangles);
-    add_mesh(std::move(m), gs, ps);
+    add_mesh(std::move(m), gs, ps, resolve_path(base_dir, file));
   } else if (type == "sphere") {
     float r = ps.get_float("radius", 1.f);
     float zmin = ps.get_float("zmin", -r), zmax = ps.get_float("zmax", r), phimax = ps.get_float("phimax", 360.f);

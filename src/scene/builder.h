@@ -47,7 +47,8 @@ class SceneBuilder {
   float float_param(const pbrt::ParamSet& ps, const std::string& name, float def);
   void roughness(const pbrt::ParamSet& ps, float* ax, float* ay, float def);
   MaterialHandle default_material();
-  void add_mesh(TriangleMesh mesh, const GraphicsState& gs, const pbrt::ParamSet& ps);
+  // source: the PLY file the mesh came from, or empty; named in errors.
+  void add_mesh(TriangleMesh mesh, const GraphicsState& gs, const pbrt::ParamSet& ps, const std::string& source);
   void add_area_lights(uint32_t geometry, uint32_t primitives, const GraphicsState& gs);
 
   Scene& scene_;
