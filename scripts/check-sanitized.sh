@@ -13,5 +13,5 @@ cmake --build "$build"
 # Any report fails the test that triggered it.
 export ASAN_OPTIONS=halt_on_error=1:detect_leaks=1
 export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
-ctest --test-dir "$build" --output-on-failure -j2
+ctest --test-dir "$build" --output-on-failure -j"$(nproc)"
 tests/fuzz/run.sh "$build" "$seconds"

@@ -14,7 +14,14 @@
 namespace lantern {
 namespace {
 
-const std::string kCheckpoint = ::testing::TempDir() + "/lantern_checkpoint_test.ckpt";
+// A file per test: ctest runs tests in parallel processes.
+std::string checkpoint_file() {
+  const ::testing::TestInfo* t = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string name = std::string(t->test_suite_name()) + "_" + t->name();
+  for (char& c : name)
+    if (c == '/') c = '_';
+  return ::testing::TempDir() + "/lantern_" + name + ".ckpt";
+}
 
 RenderOptions small_render(const std::string& integrator) {
   RenderOptions o;
@@ -39,6 +46,7 @@ TEST_P(CheckpointResume, StopsAndResumesBitForBit) {
   auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/lantern.pbrt");
   RenderResult straight = render(*scene, small_render(GetParam()));
 
+  const std::string kCheckpoint = checkpoint_file();
   std::remove(kCheckpoint.c_str());
   std::atomic<bool> cancel{false};
   int written = 0, runs = 0, stop_after = 1;
@@ -76,7 +84,7 @@ INSTANTIATE_TEST_SUITE_P(Integrators, CheckpointResume, ::testing::Values("path"
 // Makes a checkpoint by cancelling a render after its first wave.
 void make_checkpoint(const Scene& scene, RenderOptions o) {
   std::atomic<bool> cancel{false};
-  o.checkpoint_path = kCheckpoint;
+  o.checkpoint_path = checkpoint_file();
   o.checkpoint_seconds = 1e-9;
   o.cancel = &cancel;
   o.checkpoint_written = [&] { cancel = true; };
@@ -84,6 +92,7 @@ void make_checkpoint(const Scene& scene, RenderOptions o) {
 }
 
 std::string resume_error(const Scene& scene, RenderOptions o) {
+  const std::string kCheckpoint = checkpoint_file();
   o.checkpoint_path = kCheckpoint;
   o.resume = true;
   try {
@@ -116,6 +125,7 @@ TEST(Checkpoint, RefusesACheckpointOfAnotherRender) {
 TEST(Checkpoint, RefusesDamagedAndMissingFiles) {
   auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
   RenderOptions o = small_render("path");
+  const std::string kCheckpoint = checkpoint_file();
   std::remove(kCheckpoint.c_str());
   EXPECT_NE(resume_error(*scene, o).find("nothing to resume"), std::string::npos);
 

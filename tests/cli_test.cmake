@@ -54,20 +54,21 @@ foreach(integrator path bdpt)
   endif()
 endforeach()
 # SIGTERM, then SIGINT, each writing the image so far (its header giving the
-# true sample count) and a checkpoint; --resume twice then finishes the
-# render, which must equal a straight one exactly.
-set(ck_args render ${SRC}/scenes/cornell-box.pbrt --integrator bdpt --spp 2000 --resolution 32 32 --quiet)
+# true sample count) and a checkpoint; --resume then finishes the render,
+# which must equal a straight one exactly. Each signal is sent once the run
+# has written a checkpoint of its own, so a slow start (a sanitizer build, a
+# loaded machine) cannot make it arrive before the render began.
+set(ck_args render ${SRC}/scenes/cornell-box.pbrt --integrator bdpt --spp 1500 --resolution 24 24 --quiet)
 string(JOIN " " ck_line ${ck_args})
 file(REMOVE ${OUT}/straight.exr ${OUT}/stopped.exr ${OUT}/stopped.exr.ckpt)
 execute_process(COMMAND ${LANTERN} ${ck_args} -o ${OUT}/straight.exr RESULT_VARIABLE rc TIMEOUT 300)
-foreach(step "--checkpoint;0.2;TERM" "--resume --threads;1;INT")
-  list(GET step 0 flag)
-  list(GET step 1 value)
-  list(GET step 2 signal)
-  execute_process(COMMAND sh -c "${LANTERN} ${ck_line} -o ${OUT}/stopped.exr ${flag} ${value} 2>&1 & pid=$!; sleep 1; kill -${signal} $pid; wait $pid"
+foreach(step "--checkpoint 0.1;TERM" "--checkpoint 0.1 --resume --threads 1;INT")
+  list(GET step 0 flags)
+  list(GET step 1 signal)
+  execute_process(COMMAND sh -c "touch ${OUT}/marker; ${LANTERN} ${ck_line} -o ${OUT}/stopped.exr ${flags} 2>&1 & pid=$!; i=0; while [ $i -lt 1200 ] && [ -z \"$(find ${OUT}/stopped.exr.ckpt -newer ${OUT}/marker 2>/dev/null)\" ]; do sleep 0.05; i=$((i+1)); done; kill -${signal} $pid; wait $pid"
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out TIMEOUT 300)
   if(NOT rc EQUAL 130 OR NOT EXISTS ${OUT}/stopped.exr.ckpt)
-    message(FATAL_ERROR "SIG${signal} with ${flag}: exit ${rc}, checkpoint ${OUT}/stopped.exr.ckpt\n${out}")
+    message(FATAL_ERROR "SIG${signal} with ${flags}: exit ${rc}, checkpoint ${OUT}/stopped.exr.ckpt\n${out}")
   endif()
   string(REGEX MATCH "wrote the ([0-9]+) samples" _ "${out}")
   set(told ${CMAKE_MATCH_1})
