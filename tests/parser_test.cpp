@@ -165,7 +165,41 @@ TEST(Parser, IncludeCyclesAreReported) {
 TEST(Parser, DeepNestingIsBounded) {
   std::string s = "WorldBegin\n";
   for (int i = 0; i < 20000; ++i) s += "AttributeBegin\n";
-  EXPECT_THROW(load(s), InputError);
+  expect_error(s, {"t.pbrt:10002:1", "nested deeper than 10000"});
+}
+
+// Binary garbage, mis-encoded text and megabyte tokens: a message that is
+// short, printable, and still points at the place.
+TEST(Parser, HostileBytesGiveShortPrintableErrors) {
+  auto message = [](const std::string& text) -> std::string {
+    try {
+      load(text);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "(no error)";
+  };
+  auto printable = [](const std::string& m) {
+    for (unsigned char c : m)
+      if (c < 0x20 || c >= 0x7f) return false;
+    return true;
+  };
+  std::string latin1 = message("WorldBegin\nSh\xe9pe \"sphere\"\n");  // not UTF-8
+  EXPECT_NE(latin1.find("t.pbrt:2:1"), std::string::npos) << latin1;
+  EXPECT_NE(latin1.find("Sh\\xe9pe"), std::string::npos) << latin1;
+  EXPECT_TRUE(printable(latin1)) << latin1;
+  std::string nul = message(std::string("WorldBegin\n\0\x01\xff", 14));
+  EXPECT_TRUE(printable(nul)) << nul;
+  EXPECT_NE(nul.find("t.pbrt:2:1"), std::string::npos) << nul;
+  std::string huge = message("WorldBegin\n" + std::string(4 << 20, 'A') + "\n");
+  EXPECT_NE(huge.find("unknown directive"), std::string::npos) << huge.substr(0, 200);
+  EXPECT_LT(huge.size(), 200u);
+  std::string long_string = message("WorldBegin\nShape \"" + std::string(4 << 20, 'x') + "\"\n");
+  EXPECT_LT(long_string.size(), 300u);
+  // Special files are refused, not read forever.
+  EXPECT_NE(message("Include \"/dev/zero\"\n").find("not a regular file"), std::string::npos);
+  EXPECT_NE(message("WorldBegin\nShape \"plymesh\" \"string filename\" \"/dev/zero\"\n").find("not a regular file"),
+            std::string::npos);
 }
 
 }  // namespace

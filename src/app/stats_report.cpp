@@ -55,11 +55,7 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
                {"total", {{"count", total}, {"per_second", per_second(double(total), s.seconds)}}}};
   if (s.timed) {
     nlohmann::json stages = nlohmann::json::object();
-    double sum = 0.0;
-    for (const auto& [name, sec] : s.stage_seconds) {
-      stages[name] = sec;
-      sum += sec;
-    }
+    for (const auto& [name, sec] : s.stage_seconds) stages[name] = sec;
     double rays = s.camera_ray_seconds + s.extension_ray_seconds + s.light_ray_seconds + s.shadow_ray_seconds;
     stages["ray_queries"] = rays;
     j["stage_thread_seconds"] = stages;

@@ -24,7 +24,7 @@ static std::string resolve_path(const std::string& base_dir, const std::string& 
 
 void SceneBuilder::camera(const std::string& type, const ParamSet& ps, const Mat4& camera_from_world) {
   if (type != "perspective")
-    ps.fail("camera type \"" + type + "\" is not supported; expected \"perspective\"");
+    ps.fail("camera type \"" + printable(type) + "\" is not supported; expected \"perspective\"");
   CameraDesc& c = scene_.camera;
   c.world_from_camera = glm::inverse(camera_from_world);
   c.fov_degrees = ps.get_float("fov", 90.f);
@@ -42,7 +42,7 @@ void SceneBuilder::camera(const std::string& type, const ParamSet& ps, const Mat
 
 void SceneBuilder::film(const std::string& type, const ParamSet& ps) {
   if (type != "rgb" && type != "gbuffer" && type != "spectral" && type != "image")
-    warn(ps.where, "film type \"" + type + "\" is not supported; rendering an RGB film");
+    warn(ps.where, "film type \"" + printable(type) + "\" is not supported; rendering an RGB film");
   SceneSettings& s = scene_.settings;
   s.width = ps.get_int("xresolution", 1280);
   s.height = ps.get_int("yresolution", 720);
@@ -68,7 +68,7 @@ void SceneBuilder::integrator(const std::string& type, const ParamSet& ps) {
   } else if (type == "lightpath") {
     scene_.settings.integrator = "lt";
   } else {
-    warn(ps.where, "integrator \"" + type + "\" is not available; using \"path\" (choose with --integrator)");
+    warn(ps.where, "integrator \"" + printable(type) + "\" is not available; using \"path\" (choose with --integrator)");
     scene_.settings.integrator = "path";
   }
   for (const char* p : {"regularize", "lightsampler", "visualizestrategies", "visualizeweights"})
@@ -89,7 +89,7 @@ void SceneBuilder::pixel_filter(const std::string& type, const ParamSet& ps) {
     def_r = 1.5f;
     f.sigma = ps.get_float("sigma", 0.5f);
   } else {
-    warn(ps.where, "pixel filter \"" + type + "\" is not supported; using a gaussian of radius 1.5");
+    warn(ps.where, "pixel filter \"" + printable(type) + "\" is not supported; using a gaussian of radius 1.5");
     f.type = PixelFilter::Type::Gaussian;
     for (const char* p : {"B", "C", "tau", "xradius", "yradius"}) ps.find(p);
     f.radius = Vec2(1.5f);
@@ -102,7 +102,7 @@ void SceneBuilder::pixel_filter(const std::string& type, const ParamSet& ps) {
 RGBTexture SceneBuilder::rgb_texture(const ParamSet& ps, const std::string& name, RGB def) {
   if (auto tex = ps.get_texture(name)) {
     auto it = rgb_textures_.find(*tex);
-    if (it == rgb_textures_.end()) ps.fail(*ps.find(name), "no spectrum texture named \"" + *tex + "\" was defined");
+    if (it == rgb_textures_.end()) ps.fail(*ps.find(name), "no spectrum texture named \"" + printable(*tex) + "\" was defined");
     return it->second;
   }
   RGBTexture t;
@@ -115,7 +115,7 @@ float SceneBuilder::float_param(const ParamSet& ps, const std::string& name, flo
   if (auto tex = ps.get_texture(name)) {
     auto it = float_textures_.find(*tex);
     if (it == float_textures_.end())
-      ps.fail(*ps.find(name), "\"" + *tex + "\" is not a constant float texture (only those are supported here)");
+      ps.fail(*ps.find(name), "\"" + printable(*tex) + "\" is not a constant float texture (only those are supported here)");
     return it->second;
   }
   return ps.get_float(name, def);
@@ -201,9 +201,9 @@ void SceneBuilder::texture(const std::string& name, const std::string& value_typ
                            const ParamSet& ps, const std::string& base_dir) {
   bool is_float = value_type == "float";
   if (!is_float && value_type != "spectrum" && value_type != "color" && value_type != "rgb")
-    ps.fail("texture value type \"" + value_type + "\" is unknown; expected \"spectrum\" or \"float\"");
+    ps.fail("texture value type \"" + printable(value_type) + "\" is unknown; expected \"spectrum\" or \"float\"");
   if (is_float) {
-    if (cls != "constant") ps.fail("float texture class \"" + cls + "\" is not supported; only \"constant\"");
+    if (cls != "constant") ps.fail("float texture class \"" + printable(cls) + "\" is not supported; only \"constant\"");
     float_textures_[name] = ps.get_float("value", 1.f);
     return;
   }
@@ -226,7 +226,7 @@ void SceneBuilder::texture(const std::string& name, const std::string& value_typ
     t.dv = ps.get_float("vdelta", 0.f);
     for (const char* p : {"filter", "maxanisotropy", "wrap"}) ps.find(p);
   } else {
-    ps.fail("texture class \"" + cls + "\" is not supported; expected \"constant\" or \"imagemap\"");
+    ps.fail("texture class \"" + printable(cls) + "\" is not supported; expected \"constant\" or \"imagemap\"");
   }
   rgb_textures_[name] = t;
 }
@@ -326,7 +326,7 @@ void SceneBuilder::shape(const std::string& type, const ParamSet& ps, const Grap
     p.geometries.push_back({ShapeKind::Sphere, uint32_t(p.spheres.size() - 1), gs.material ? *gs.material : default_material(), -1});
     add_area_lights(uint32_t(p.geometries.size() - 1), 1, gs);
   } else {
-    ps.fail("shape \"" + type + "\" is not supported; expected trianglemesh, plymesh, sphere or bilinearmesh");
+    ps.fail("shape \"" + printable(type) + "\" is not supported; expected trianglemesh, plymesh, sphere or bilinearmesh");
   }
 }
 

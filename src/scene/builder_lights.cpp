@@ -45,9 +45,9 @@ void SceneBuilder::light(const std::string& type, const ParamSet& ps, const Mat4
         e.equal_area = true;
       } else if (img.width == 2 * img.height) {
         e.equal_area = false;
-        warn(ps.where, "environment map \"" + file + "\" is not square: read as latitude-longitude (pbrt-v3 layout)");
+        warn(ps.where, "environment map \"" + printable(file) + "\" is not square: read as latitude-longitude (pbrt-v3 layout)");
       } else {
-        ps.fail("environment map \"" + file + "\" is " + std::to_string(img.width) + "x" + std::to_string(img.height) +
+        ps.fail("environment map \"" + printable(file) + "\" is " + std::to_string(img.width) + "x" + std::to_string(img.height) +
                 ": expected a square equal-area image (pbrt-v4) or a 2:1 latitude-longitude one");
       }
       e.image = int32_t(scene_.textures.images.size());
@@ -55,7 +55,7 @@ void SceneBuilder::light(const std::string& type, const ParamSet& ps, const Mat4
     }
     L.infinite.push_back(std::move(e));
   } else {
-    ps.fail("light type \"" + type + "\" is not supported; expected point, spot, distant or infinite");
+    ps.fail("light type \"" + printable(type) + "\" is not supported; expected point, spot, distant or infinite");
   }
 }
 

@@ -14,7 +14,7 @@ const Param* ParamSet::find(const std::string& name) const {
 }
 
 void ParamSet::fail(const Param& p, const std::string& what) const {
-  throw InputError(p.where, directive + ": parameter \"" + p.name + "\": " + what);
+  throw InputError(p.where, directive + ": parameter \"" + printable(p.name) + "\": " + what);
 }
 void ParamSet::fail(const std::string& what) const { throw InputError(where, directive + ": " + what); }
 
@@ -22,14 +22,14 @@ void ParamSet::warn_unused() const {
   if (!warn || !*warn) return;
   for (const Param& p : params)
     if (!p.used)
-      (*warn)(p.where.str() + ": warning: " + directive + ": parameter \"" + p.type + " " + p.name +
+      (*warn)(p.where.str() + ": warning: " + directive + ": parameter \"" + printable(p.type + " " + p.name) +
               "\" is not supported and was ignored");
 }
 
 const Param& ParamSet::expect(const Param& p, std::initializer_list<const char*> types, const char* expected) const {
   for (const char* t : types)
     if (p.type == t) return p;
-  fail(p, "has type \"" + p.type + "\", expected " + expected);
+  fail(p, "has type \"" + printable(p.type) + "\", expected " + expected);
 }
 
 static void expect_count(const ParamSet& ps, const Param& p, size_t have, size_t multiple) {
@@ -136,7 +136,7 @@ std::optional<RGB> ParamSet::get_rgb(const std::string& name, ColorUsage usage) 
     RGB c(float(p->numbers[0]), float(p->numbers[1]), float(p->numbers[2]));
     if (c.x < 0.f || c.y < 0.f || c.z < 0.f) fail(*p, "RGB values must not be negative");
     if (usage == ColorUsage::Reflectance && max_component(c) > 1.f && warn && *warn)
-      (*warn)(p->where.str() + ": warning: " + directive + ": reflectance \"" + name + "\" exceeds 1 and was clamped");
+      (*warn)(p->where.str() + ": warning: " + directive + ": reflectance \"" + printable(name) + "\" exceeds 1 and was clamped");
     if (usage == ColorUsage::Reflectance) c = glm::min(c, RGB(1.f));
     return c;
   }

@@ -117,10 +117,10 @@ class Parser {
                                      "bool",    "string", "texture"};
       bool known = false;
       for (const char* k : kTypes) known |= p.type == k;
-      if (!known) fail(decl, "unknown parameter type \"" + p.type + "\" in \"" + s + "\"");
+      if (!known) fail(decl, "unknown parameter type \"" + p.type + "\" in \"" + printable(s) + "\"");
       values(p, decl);
       for (const Param& q : ps.params)
-        if (q.name == p.name) fail(decl, "parameter \"" + p.name + "\" is given twice");
+        if (q.name == p.name) fail(decl, "parameter \"" + printable(p.name) + "\" is given twice");
       ps.params.push_back(std::move(p));
     }
     return ps;
@@ -130,19 +130,19 @@ class Parser {
     bool stringy = p.type == "string" || p.type == "texture" || p.type == "bool" || p.type == "spectrum";
     if (v.kind == TokenKind::Number) {
       if (p.type == "string" || p.type == "texture" || p.type == "bool")
-        fail(v, "parameter \"" + p.name + "\" of type \"" + p.type + "\" expects quoted strings, found a number");
+        fail(v, "parameter \"" + printable(p.name) + "\" of type \"" + p.type + "\" expects quoted strings, found a number");
       p.numbers.push_back(to_number(v));
     } else if (v.kind == TokenKind::String || (p.type == "bool" && v.kind == TokenKind::Identifier)) {
-      if (!stringy) fail(v, "parameter \"" + p.name + "\" of type \"" + p.type + "\" expects numbers, found a string" + describe(v));
+      if (!stringy) fail(v, "parameter \"" + printable(p.name) + "\" of type \"" + p.type + "\" expects numbers, found a string" + describe(v));
       std::string s = unescape(v.text);
       if (p.type == "bool") {
-        if (s != "true" && s != "false") fail(v, "parameter \"" + p.name + "\" expects true or false, found \"" + s + "\"");
+        if (s != "true" && s != "false") fail(v, "parameter \"" + printable(p.name) + "\" expects true or false, found \"" + printable(s) + "\"");
         p.bools.push_back(s == "true");
       } else {
         p.strings.push_back(std::move(s));
       }
     } else {
-      fail(v, "expected a value for parameter \"" + p.name + "\", found " + token_kind_name(v.kind) + describe(v));
+      fail(v, "expected a value for parameter \"" + printable(p.name) + "\", found " + token_kind_name(v.kind) + describe(v));
     }
   }
 
@@ -155,7 +155,7 @@ class Parser {
     for (;;) {
       Token v = next();
       if (v.kind == TokenKind::CloseBracket) break;
-      if (v.kind == TokenKind::End) fail(decl, "the file ended inside the value list of \"" + p.name + "\" (missing ']')");
+      if (v.kind == TokenKind::End) fail(decl, "the file ended inside the value list of \"" + printable(p.name) + "\" (missing ']')");
       value(p, v);
     }
   }
@@ -196,7 +196,7 @@ class Parser {
     } else if (d == "CoordSysTransform") {
       std::string n = expect_string("a coordinate system name");
       auto it = named_cs_.find(n);
-      if (it == named_cs_.end()) b_.warn(loc(t), "unknown coordinate system \"" + n + "\" ignored");
+      if (it == named_cs_.end()) b_.warn(loc(t), "unknown coordinate system \"" + printable(n) + "\" ignored");
       else ctm = it->second;
     } else if (d == "ReverseOrientation") {
       gs_.reverse_orientation = !gs_.reverse_orientation;
@@ -225,7 +225,7 @@ class Parser {
     } else if (d == "Camera") {
       options_only();
       std::string type = expect_string("a camera type");
-      ParamSet ps = params(t, "Camera \"" + type + "\"");
+      ParamSet ps = params(t, "Camera \"" + printable(type) + "\"");
       b_.camera(type, ps, ctm);
       named_cs_["camera"] = glm::inverse(ctm);
       ps.warn_unused();
@@ -235,63 +235,63 @@ class Parser {
       std::string type = expect_string("a type name");
       if (d == "Option") {
         peek().kind == TokenKind::OpenBracket ? (void)values_skip() : (void)next();
-        b_.warn(loc(t), "Option \"" + type + "\" is not supported and was ignored");
+        b_.warn(loc(t), "Option \"" + printable(type) + "\" is not supported and was ignored");
         return;
       }
-      ParamSet ps = params(t, std::string(d) + " \"" + type + "\"");
+      ParamSet ps = params(t, std::string(d) + " \"" + printable(type) + "\"");
       if (d == "Film") b_.film(type, ps);
       else if (d == "Sampler") b_.sampler(type, ps);
       else if (d == "Integrator") b_.integrator(type, ps);
       else if (d == "PixelFilter") b_.pixel_filter(type, ps);
-      else if (d == "ColorSpace" && type != "srgb") b_.warn(loc(t), "colour space \"" + type + "\" is not supported; using sRGB");
+      else if (d == "ColorSpace" && type != "srgb") b_.warn(loc(t), "colour space \"" + printable(type) + "\" is not supported; using sRGB");
       if (d != "Accelerator") ps.warn_unused();
     } else if (d == "Include" || d == "Import") {
       include(t, expect_string("a file name"));
     } else if (d == "Material") {
       world_only();
       std::string type = expect_string("a material type");
-      ParamSet ps = params(t, "Material \"" + type + "\"");
+      ParamSet ps = params(t, "Material \"" + printable(type) + "\"");
       gs_.material = b_.material(type, ps);
       ps.warn_unused();
     } else if (d == "MakeNamedMaterial") {
       world_only();
       std::string name = expect_string("a material name");
-      ParamSet ps = params(t, "MakeNamedMaterial \"" + name + "\"");
+      ParamSet ps = params(t, "MakeNamedMaterial \"" + printable(name) + "\"");
       std::string type = ps.get_string("type", "");
       if (type.empty()) ps.fail("needs a \"string type\" parameter");
-      if (named_materials_.count(name)) b_.warn(loc(t), "material \"" + name + "\" redefined");
+      if (named_materials_.count(name)) b_.warn(loc(t), "material \"" + printable(name) + "\" redefined");
       named_materials_[name] = b_.material(type, ps);
       ps.warn_unused();
     } else if (d == "NamedMaterial") {
       world_only();
       std::string name = expect_string("a material name");
       auto it = named_materials_.find(name);
-      if (it == named_materials_.end()) fail(t, "NamedMaterial \"" + name + "\" was never defined with MakeNamedMaterial");
+      if (it == named_materials_.end()) fail(t, "NamedMaterial \"" + printable(name) + "\" was never defined with MakeNamedMaterial");
       gs_.material = it->second;
     } else if (d == "Texture") {
       world_only();
       std::string name = expect_string("a texture name");
       std::string vtype = expect_string("a texture value type");
       std::string cls = expect_string("a texture class");
-      ParamSet ps = params(t, "Texture \"" + name + "\"");
+      ParamSet ps = params(t, "Texture \"" + printable(name) + "\"");
       b_.texture(name, vtype, cls, ps, base_dir_);
       ps.warn_unused();
     } else if (d == "LightSource") {
       world_only();
       std::string type = expect_string("a light type");
-      ParamSet ps = params(t, "LightSource \"" + type + "\"");
+      ParamSet ps = params(t, "LightSource \"" + printable(type) + "\"");
       b_.light(type, ps, ctm, base_dir_);
       ps.warn_unused();
     } else if (d == "AreaLightSource") {
       world_only();
       std::string type = expect_string("an area light type");
-      ParamSet ps = params(t, "AreaLightSource \"" + type + "\"");
-      if (type != "diffuse") ps.fail("area light type \"" + type + "\" is not supported; expected \"diffuse\"");
+      ParamSet ps = params(t, "AreaLightSource \"" + printable(type) + "\"");
+      if (type != "diffuse") ps.fail("area light type \"" + printable(type) + "\" is not supported; expected \"diffuse\"");
       gs_.area_light = std::move(ps);
     } else if (d == "Shape") {
       world_only();
       std::string type = expect_string("a shape type");
-      ParamSet ps = params(t, "Shape \"" + type + "\"");
+      ParamSet ps = params(t, "Shape \"" + printable(type) + "\"");
       b_.shape(type, ps, gs_, base_dir_);
       ps.warn_unused();
     } else if (d == "MakeNamedMedium" || d == "MediumInterface" || d == "Attribute") {
@@ -336,7 +336,7 @@ class Parser {
     std::string canon = std::filesystem::weakly_canonical(p, ec).string();
     for (const auto& f : files_)
       if (std::filesystem::weakly_canonical(f->filename(), ec).string() == canon)
-        fail(t, "Include cycle: \"" + file + "\" is already being read");
+        fail(t, "Include cycle: \"" + printable(file) + "\" is already being read");
     if (files_.size() >= kMaxIncludeDepth) fail(t, "Include nested deeper than " + std::to_string(kMaxIncludeDepth) + " files");
     if (peeked_) fail(t, "internal: Include with a pending token");
     files_.push_back(Tokenizer::from_file(p.string(), loc(t)));

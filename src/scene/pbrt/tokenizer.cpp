@@ -13,12 +13,12 @@ std::unique_ptr<Tokenizer> Tokenizer::from_file(const std::string& path, const S
   // Only regular files: a name such as /dev/zero or a FIFO would never end.
   std::error_code ec;
   if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
-    throw InputError(from, "scene file \"" + path + "\" is not a regular file");
+    throw InputError(from, "scene file \"" + printable(path, 200) + "\" is not a regular file");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(from, "cannot open scene file \"" + path + "\"");
+  if (!in) throw InputError(from, "cannot open scene file \"" + printable(path, 200) + "\"");
   std::ostringstream ss;
   ss << in.rdbuf();
-  if (in.bad()) throw InputError(from, "cannot read scene file \"" + path + "\"");
+  if (in.bad()) throw InputError(from, "cannot read scene file \"" + printable(path, 200) + "\"");
   return std::make_unique<Tokenizer>(ss.str(), path);
 }
 
