@@ -31,7 +31,9 @@ const SceneSettings& scene_settings(const Scene& scene);
 
 // What a loaded scene holds and what building it cost.
 struct SceneInfo {
-  size_t triangles = 0, spheres = 0, lights = 0;
+  size_t triangles = 0, spheres = 0, lights = 0;  // stored once each
+  size_t instances = 0;            // ObjectInstance placements
+  size_t instanced_triangles = 0;  // triangles as traced: outside objects once, inside once per instance
   double bvh_build_seconds = 0.0;
   int64_t bvh_bytes = 0;        // Embree's own memory after the build
   int64_t bvh_peak_bytes = 0;   // including the builder's temporaries

@@ -31,6 +31,31 @@ bool EmbreeScene::on_memory(void* user, ssize_t bytes, bool) {
   return true;  // never refuse an allocation
 }
 
+// Attaches geometry `id` of the pools to `scene` as Embree geometry
+// `embree_id`; the scene keeps the only reference.
+void EmbreeScene::attach(RTCScene scene, const ShapePools& shapes, uint32_t id, uint32_t embree_id) {
+  const Geometry& g = shapes.geometries[id];
+  RTCGeometry geom;
+  if (g.kind == ShapeKind::Mesh) {
+    const TriangleMesh& m = shapes.meshes[g.index];
+    geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    // Shared buffers: Embree reads the pool's own arrays, no second copy.
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.positions.data(), 0,
+                               sizeof(Vec3), m.vertex_count);
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.triangles.data(), 0,
+                               sizeof(glm::uvec3), m.triangles.size());
+  } else {
+    const Sphere& s = shapes.spheres[g.index];
+    geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+    auto* v = static_cast<float*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+    v[0] = s.center.x, v[1] = s.center.y, v[2] = s.center.z, v[3] = s.radius;
+  }
+  rtcCommitGeometry(geom);
+  rtcAttachGeometryByID(scene, geom, embree_id);
+  rtcReleaseGeometry(geom);
+}
+
 EmbreeScene::EmbreeScene(const ShapePools& shapes) {
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("cannot create the Embree device");
@@ -39,30 +64,41 @@ EmbreeScene::EmbreeScene(const ShapePools& shapes) {
   scene_ = rtcNewScene(device_);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
 
-  for (uint32_t id = 0; id < shapes.geometries.size(); ++id) {
-    const Geometry& g = shapes.geometries[id];
-    RTCGeometry geom;
-    if (g.kind == ShapeKind::Mesh) {
-      const TriangleMesh& m = shapes.meshes[g.index];
-      geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-      // Shared buffers: Embree reads the pool's own arrays, no second copy.
-      rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.positions.data(), 0,
-                                 sizeof(Vec3), m.vertex_count);
-      rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.triangles.data(), 0,
-                                 sizeof(glm::uvec3), m.triangles.size());
-    } else {
-      const Sphere& s = shapes.spheres[g.index];
-      geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
-      auto* v = static_cast<float*>(
-          rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
-      v[0] = s.center.x, v[1] = s.center.y, v[2] = s.center.z, v[3] = s.radius;
-    }
-    rtcCommitGeometry(geom);
-    rtcAttachGeometryByID(scene_, geom, id);
-    rtcReleaseGeometry(geom);
+  auto t0 = std::chrono::steady_clock::now();
+  // Geometries traced directly keep their index as Embree geomID; those of
+  // a prototype go into the prototype's own scene, numbered from 0. An
+  // instance is geomID base + k in the top scene, and RayStream rewrites
+  // its hits back to (geometry index, instance k) with instance_first().
+  const uint32_t n = uint32_t(shapes.geometries.size());
+  for (uint32_t id = 0; id < n; ++id) {
+    if (id < shapes.in_prototype.size() && shapes.in_prototype[id]) continue;
+    attach(scene_, shapes, id, id);
     check("adding geometry to the Embree scene");
   }
-  auto t0 = std::chrono::steady_clock::now();
+  std::vector<RTCScene> prototypes(shapes.prototypes.size(), nullptr);
+  instance_base_ = n;
+  for (uint32_t k = 0; k < shapes.instances.size(); ++k) {
+    const Instance& inst = shapes.instances[k];
+    const Prototype& proto = shapes.prototypes[inst.prototype];
+    RTCScene& ps = prototypes[inst.prototype];
+    if (!ps) {  // built once, on first use
+      ps = rtcNewScene(device_);
+      rtcSetSceneBuildQuality(ps, RTC_BUILD_QUALITY_HIGH);
+      for (uint32_t j = 0; j < proto.count; ++j) attach(ps, shapes, proto.first + j, j);
+      rtcCommitScene(ps);
+      check("building an object's BVH");
+    }
+    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(g, ps);
+    rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &inst.world_from_object[0][0]);
+    rtcCommitGeometry(g);
+    rtcAttachGeometryByID(scene_, g, n + k);
+    rtcReleaseGeometry(g);
+    check("adding an instance to the Embree scene");
+    instance_first_.push_back(proto.first);
+  }
+  for (RTCScene ps : prototypes)
+    if (ps) rtcReleaseScene(ps);  // the instances hold their own references
   rtcCommitScene(scene_);
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   check("building the Embree BVH");

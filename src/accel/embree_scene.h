@@ -1,5 +1,6 @@
-// The Embree device and the scene built from the geometry pools. Geometry ID
-// i in Embree is entry i of ShapePools::geometries.
+// The Embree device and the scene built from the geometry pools: top-level
+// geometries keep their pool index as Embree geomID; each instanced
+// prototype is an Embree scene of its own, placed by instance geometries.
 #pragma once
 
 #include <embree3/rtcore.h>
@@ -7,6 +8,7 @@
 #include <atomic>
 #include <mutex>
 #include <string>
+#include <vector>
 
 #include "scene/shapes.h"
 
@@ -27,8 +29,13 @@ class EmbreeScene {
   int64_t peak_bytes() const { return peak_bytes_.load(); }
   // Bounds of everything in the scene.
   void bounds(Vec3* lo, Vec3* hi) const;
+  // Instance k is Embree geomID instance_base() + k; its prototype's
+  // geometries start at pool index instance_first()[k].
+  uint32_t instance_base() const { return instance_base_; }
+  const std::vector<uint32_t>& instance_first() const { return instance_first_; }
 
  private:
+  void attach(RTCScene scene, const ShapePools& shapes, uint32_t id, uint32_t embree_id);
   static void on_error(void* user, RTCError code, const char* str);
   static bool on_memory(void* user, ssize_t bytes, bool post);
   void check(const char* what);
@@ -38,6 +45,8 @@ class EmbreeScene {
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   double build_seconds_ = 0.0;
+  uint32_t instance_base_ = 0;
+  std::vector<uint32_t> instance_first_;
   std::atomic<int64_t> bytes_{0}, peak_bytes_{0};
 };
 

@@ -91,10 +91,24 @@ void RayStream::intersect(RayBatch& b, RayKind kind) {
     }
   }
   if (dump_) dump_->write(kind, b);
-  if (!timing_) return run_intersect(b, kind);
-  auto t0 = std::chrono::steady_clock::now();
-  run_intersect(b, kind);
-  seconds_[size_t(kind)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!timing_) {
+    run_intersect(b, kind);
+  } else {
+    auto t0 = std::chrono::steady_clock::now();
+    run_intersect(b, kind);
+    seconds_[size_t(kind)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  if (instance_first_) remap_instance_hits(b);
+}
+
+void RayStream::remap_instance_hits(RayBatch& b) const {
+  const std::vector<uint32_t>& first = *instance_first_;
+  for (uint32_t i = 0; i < b.count; ++i) {
+    if (b.inst_id[i] == RTC_INVALID_GEOMETRY_ID) continue;
+    uint32_t k = b.inst_id[i] - instance_base_;
+    b.geom_id[i] += first[k];
+    b.inst_id[i] = k;
+  }
 }
 
 void RayStream::run_intersect(RayBatch& b, RayKind kind) {

@@ -30,8 +30,14 @@ class RayStream {
  public:
   RayStream(RTCScene scene, RayBackend backend, RayCounters* counters);
 
-  // Closest hits for all rays of the batch.
+  // Closest hits for all rays of the batch. With instances set, a hit on
+  // instance k leaves geom_id = the pool index of the prototype geometry
+  // hit and inst_id = k; other hits keep inst_id invalid.
   void intersect(RayBatch& batch, RayKind kind);
+  void set_instances(uint32_t base, const std::vector<uint32_t>* first) {
+    instance_base_ = base;
+    instance_first_ = first && !first->empty() ? first : nullptr;
+  }
   // Any hit: afterwards batch.occluded(i) says whether ray i was blocked.
   void occluded(RayBatch& batch);
 
@@ -46,7 +52,11 @@ class RayStream {
   void run_intersect(RayBatch& batch, RayKind kind);
   void run_occluded(RayBatch& batch);
 
+  void remap_instance_hits(RayBatch& batch) const;
+
   RTCScene scene_;
+  uint32_t instance_base_ = 0;
+  const std::vector<uint32_t>* instance_first_ = nullptr;
   RayBackend backend_;
   RayCounters* counters_;
   std::vector<RTCRayHit> aos_;   // scratch for the 1M back end

@@ -12,17 +12,43 @@
 
 namespace lantern {
 
-// Sphere hits take their normal from Embree's Ng (hit point minus centre,
-// formed in the ray's frame): origin + t * direction would lose a small
-// sphere's shape far from the origin.
-inline SurfacePoint hit_point(const ShapePools& shapes, const RayBatch& rays, uint32_t i) {
+// The surface point of hit i in the space of the geometry that was hit:
+// the world, or an instanced prototype's own space. Sphere hits take their
+// normal from Embree's Ng (hit point minus centre, formed in the ray's
+// frame): origin + t * direction would lose a small sphere's shape far from
+// the origin.
+inline SurfacePoint local_hit_point(const ShapePools& shapes, const RayBatch& rays, uint32_t i, const Instance* inst) {
   const Geometry& g = shapes.geometries[rays.geom_id[i]];
   if (g.kind == ShapeKind::Mesh) return triangle_point(shapes.meshes[g.index], rays.prim_id[i], rays.u[i], rays.v[i]);
   const Sphere& s = shapes.spheres[g.index];
   Vec3 ng(rays.ng_x[i], rays.ng_y[i], rays.ng_z[i]);
   float len = glm::length(ng);
-  if (!(len > 0.f) || !std::isfinite(len)) return sphere_point(s, rays.origin(i) + rays.tfar[i] * rays.direction(i));
-  return sphere_point_at_normal(s, ng / len);
+  if (len > 0.f && std::isfinite(len)) return sphere_point_at_normal(s, ng / len);
+  Vec3 p = rays.origin(i) + rays.tfar[i] * rays.direction(i);  // the world hit point
+  if (inst) p = Vec3(glm::inverse(inst->world_from_object) * Vec4(p, 1.f));
+  return sphere_point(s, p);
+}
+
+// Carries a prototype-space surface point into the world. The offset scale
+// follows the world coordinates or the object's own error times its largest
+// stretch, whichever is larger.
+inline SurfacePoint to_world(const Instance& inst, const SurfacePoint& local) {
+  const Mat4& M = inst.world_from_object;
+  SurfacePoint sp = local;
+  sp.p = Vec3(M * Vec4(local.p, 1.f));
+  sp.ng = glm::normalize(inst.normal_to_world * local.ng);
+  sp.ns = glm::normalize(inst.normal_to_world * local.ns);
+  float stretch = std::fmax(glm::length(Vec3(M[0])), std::fmax(glm::length(Vec3(M[1])), glm::length(Vec3(M[2]))));
+  sp.error_scale = std::fmax(max_abs_component(sp.p), local.error_scale * stretch + max_abs_component(Vec3(M[3])));
+  return sp;
+}
+
+inline SurfacePoint hit_point(const ShapePools& shapes, const RayBatch& rays, uint32_t i) {
+  const uint32_t inst = rays.inst_id[i];
+  if (inst == kInvalidGeometry) return local_hit_point(shapes, rays, i, nullptr);
+  // Embree reports an instance hit's u, v and Ng in the prototype's space.
+  const Instance& in = shapes.instances[inst];
+  return to_world(in, local_hit_point(shapes, rays, i, &in));
 }
 
 // Index into LightPools::area of the emitter that was hit, or -1.

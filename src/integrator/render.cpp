@@ -170,6 +170,7 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
     state->stats.timing = opt.collect_stats;
     state->stream.set_timing(opt.collect_stats);
     state->stream.set_dump(dump);
+    state->stream.set_instances(scene.accel->instance_base(), &scene.accel->instance_first());
     return state;
   });
   double film_seconds = 0.0;

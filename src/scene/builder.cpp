@@ -271,6 +271,7 @@ void SceneBuilder::add_mesh(TriangleMesh mesh, const GraphicsState& gs, const Pa
   ShapePools& s = scene_.shapes;
   s.meshes.push_back(std::move(mesh));
   s.geometries.push_back({ShapeKind::Mesh, uint32_t(s.meshes.size() - 1), gs.material ? *gs.material : default_material(), -1});
+  note_geometry(prims, ps);
   add_area_lights(uint32_t(s.geometries.size() - 1), prims, gs);
 }
 
@@ -324,6 +325,7 @@ void SceneBuilder::shape(const std::string& type, const ParamSet& ps, const Grap
     ShapePools& p = scene_.shapes;
     p.spheres.push_back(s);
     p.geometries.push_back({ShapeKind::Sphere, uint32_t(p.spheres.size() - 1), gs.material ? *gs.material : default_material(), -1});
+    note_geometry(0, ps);
     add_area_lights(uint32_t(p.geometries.size() - 1), 1, gs);
   } else {
     ps.fail("shape \"" + printable(type) + "\" is not supported; expected trianglemesh, plymesh, sphere or bilinearmesh");
@@ -332,6 +334,9 @@ void SceneBuilder::shape(const std::string& type, const ParamSet& ps, const Grap
 
 void SceneBuilder::add_area_lights(uint32_t geometry, uint32_t primitives, const GraphicsState& gs) {
   if (!gs.area_light) return;
+  if (object_)
+    gs.area_light->fail("area lights inside ObjectBegin/ObjectEnd are not supported (nor are they in pbrt-v4); "
+                        "define the emitter outside the object");
   const ParamSet& ps = *gs.area_light;
   RGB L = ps.get_rgb("L", ColorUsage::Illuminant).value_or(RGB(1.f)) * ps.get_float("scale", 1.f);
   bool two_sided = ps.get_bool("twosided", false);
@@ -352,6 +357,55 @@ void SceneBuilder::add_area_lights(uint32_t geometry, uint32_t primitives, const
       for (uint32_t i = 0; i < primitives; ++i) scene_.lights.area[size_t(g.light_offset) + i].L *= power / k;
   }
   ps.warn_unused();
+}
+
+// Geometry just appended: it belongs to the object being defined, if any.
+void SceneBuilder::note_geometry(size_t triangles, const ParamSet& ps) {
+  ShapePools& s = scene_.shapes;
+  s.in_prototype.push_back(object_ ? 1 : 0);
+  if (!object_) return;
+  Prototype& proto = s.prototypes[object_->prototype];
+  if (proto.count == 0) proto.first = uint32_t(s.geometries.size() - 1);
+  ++proto.count;
+  object_->triangles += triangles;
+  scene_.prototype_triangle_count += triangles;
+}
+
+void SceneBuilder::begin_object(const std::string& name, const SourceLocation& where) {
+  if (object_) throw InputError(where, "ObjectBegin \"" + printable(name) + "\" inside ObjectBegin \"" +
+                                            printable(object_->name) + "\": objects cannot nest");
+  if (objects_.count(name)) throw InputError(where, "object \"" + printable(name) + "\" is defined twice");
+  scene_.shapes.prototypes.push_back({});
+  object_ = OpenObject{name, uint32_t(scene_.shapes.prototypes.size() - 1), 0};
+  object_where_ = where;
+}
+
+void SceneBuilder::end_object(const SourceLocation& where) {
+  if (!object_) throw InputError(where, "ObjectEnd without ObjectBegin");
+  objects_[object_->name] = {object_->prototype, object_->triangles};
+  object_.reset();
+}
+
+void SceneBuilder::object_instance(const std::string& name, const Mat4& world_from_object, const SourceLocation& where) {
+  if (object_)
+    throw InputError(where, "ObjectInstance inside ObjectBegin \"" + printable(object_->name) +
+                                "\": nested instancing is not supported (nor is it in pbrt-v4)");
+  auto it = objects_.find(name);
+  if (it == objects_.end())
+    throw InputError(where, "ObjectInstance \"" + printable(name) + "\": no object of that name was defined with ObjectBegin");
+  const Mat4& M = world_from_object;
+  for (int c = 0; c < 4; ++c)
+    if (!is_finite(Vec3(M[c])) || !std::isfinite(M[c][3]))
+      throw InputError(where, "ObjectInstance \"" + printable(name) + "\": the transform is not finite");
+  if (std::fabs(glm::determinant(glm::mat3(M))) < 1e-30f)
+    throw InputError(where, "ObjectInstance \"" + printable(name) + "\": the transform is singular");
+  if (scene_.shapes.prototypes[it->second.prototype].count == 0) return;  // an empty object: nothing to trace
+  scene_.shapes.instances.push_back({it->second.prototype, M, glm::inverseTranspose(glm::mat3(M))});
+  scene_.instanced_triangle_count += it->second.triangles;
+}
+
+void SceneBuilder::check_objects_closed() const {
+  if (object_) throw InputError(object_where_, "ObjectBegin \"" + printable(object_->name) + "\" without ObjectEnd");
 }
 
 }  // namespace lantern

@@ -39,6 +39,12 @@ class SceneBuilder {
   void shape(const std::string& type, const pbrt::ParamSet& ps, const GraphicsState& gs, const std::string& base_dir);
   void light(const std::string& type, const pbrt::ParamSet& ps, const Mat4& ctm, const std::string& base_dir);
 
+  // Object instancing: shapes between begin_object and end_object form a
+  // prototype; object_instance places it with a transform.
+  void begin_object(const std::string& name, const SourceLocation& where);
+  void end_object(const SourceLocation& where);
+  void object_instance(const std::string& name, const Mat4& world_from_object, const SourceLocation& where);
+
   // Builds the acceleration structure and light tables.
   void finish();
 
@@ -50,6 +56,21 @@ class SceneBuilder {
   // source: the PLY file the mesh came from, or empty; named in errors.
   void add_mesh(TriangleMesh mesh, const GraphicsState& gs, const pbrt::ParamSet& ps, const std::string& source);
   void add_area_lights(uint32_t geometry, uint32_t primitives, const GraphicsState& gs);
+  void note_geometry(size_t triangles, const pbrt::ParamSet& ps);
+  void check_objects_closed() const;
+
+  struct OpenObject {
+    std::string name;
+    uint32_t prototype;
+    size_t triangles;
+  };
+  struct DefinedObject {
+    uint32_t prototype;
+    size_t triangles;
+  };
+  std::optional<OpenObject> object_;
+  SourceLocation object_where_;
+  std::map<std::string, DefinedObject> objects_;
 
   Scene& scene_;
   WarningSink warn_;

@@ -60,11 +60,12 @@ void SceneBuilder::light(const std::string& type, const ParamSet& ps, const Mat4
 }
 
 void SceneBuilder::finish() {
+  check_objects_closed();
   scene_.accel = std::make_unique<EmbreeScene>(scene_.shapes);
   scene_.accel->bounds(&scene_.bounds_lo, &scene_.bounds_hi);
   Vec3 center(0.f);
   float radius = 1.f;
-  if (!scene_.shapes.geometries.empty()) {
+  if (glm::all(glm::lessThanEqual(scene_.bounds_lo, scene_.bounds_hi))) {  // something is traced
     center = 0.5f * (scene_.bounds_lo + scene_.bounds_hi);
     radius = std::fmax(glm::length(scene_.bounds_hi - center), 1e-6f);
   }

@@ -29,6 +29,8 @@ SceneInfo scene_info(const Scene& scene) {
   info.triangles = scene.triangle_count;
   info.spheres = scene.shapes.spheres.size();
   info.lights = scene.lights.all.size();
+  info.instances = scene.shapes.instances.size();
+  info.instanced_triangles = scene.triangle_count - scene.prototype_triangle_count + scene.instanced_triangle_count;
   if (scene.accel) {
     info.bvh_build_seconds = scene.accel->build_seconds();
     info.bvh_bytes = scene.accel->bytes();

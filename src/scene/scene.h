@@ -30,7 +30,9 @@ struct Scene {
   LightPools lights;
   std::unique_ptr<EmbreeScene> accel;
   Vec3 bounds_lo{0.f}, bounds_hi{0.f};
-  size_t triangle_count = 0;
+  size_t triangle_count = 0;            // unique: stored once each
+  size_t prototype_triangle_count = 0;  // of those, the ones inside ObjectBegin/ObjectEnd
+  size_t instanced_triangle_count = 0;  // each ObjectInstance counts its prototype's triangles
 };
 
 }  // namespace lantern

@@ -1,7 +1,7 @@
 // Geometry component pools. Each Shape directive becomes an entity whose
-// geometry lives in exactly one pool; the Embree geometry ID indexes the
-// `geometries` table, which points into the pools: a table lookup, no
-// virtual call.
+// geometry lives in exactly one pool; the `geometries` table points into the
+// pools: a table lookup, no virtual call. Instancing adds prototypes (ranges
+// of that table) and instances (a prototype and a transform).
 #pragma once
 
 #include <glm/gtc/type_precision.hpp>
@@ -39,10 +39,32 @@ struct Geometry {
   int32_t light_offset = -1;  // area light of primitive i is lights.area[light_offset + i]
 };
 
+// A named object (pbrt's ObjectBegin/ObjectEnd): the geometries
+// [first, first + count), in the object's own space, built once into an
+// Embree scene of their own.
+struct Prototype {
+  uint32_t first = 0, count = 0;
+};
+
+// One ObjectInstance: a prototype placed by a transform. Embree traces it
+// as an instance; hits come back in the prototype's space and are carried
+// into the world with these matrices.
+struct Instance {
+  uint32_t prototype;
+  Mat4 world_from_object;
+  glm::mat3 normal_to_world;  // inverse transpose of the upper 3x3
+};
+
 struct ShapePools {
   std::vector<TriangleMesh> meshes;
   std::vector<Sphere> spheres;
-  std::vector<Geometry> geometries;  // indexed by Embree geomID
+  // Top-level geometries and prototypes' geometries alike: a hit's geomID
+  // is rewritten to this index (see RayStream), so shading never asks
+  // which kind of geometry it was.
+  std::vector<Geometry> geometries;
+  std::vector<uint8_t> in_prototype;  // per geometry: 1 if it belongs to a prototype (not traced directly)
+  std::vector<Prototype> prototypes;
+  std::vector<Instance> instances;
 };
 
 }  // namespace lantern

@@ -207,6 +207,8 @@ class Parser {
       transform_only_.push_back(d == "TransformBegin");
     } else if (d == "AttributeEnd" || d == "TransformEnd") {
       if (stack_.empty()) fail(t, std::string(d) + " without a matching " + (d == "AttributeEnd" ? "AttributeBegin" : "TransformBegin"));
+      if (!object_depth_.empty() && object_depth_.back() == stack_.size())
+        fail(t, std::string(d) + " would close an ObjectBegin; close it with ObjectEnd");
       if (transform_only_.back()) {
         gs_.ctm = stack_.back().ctm;
       } else {
@@ -299,8 +301,32 @@ class Parser {
       if (d == "MediumInterface" && peek().kind == TokenKind::String) next();
       if (d == "Attribute" || d == "MakeNamedMedium") params(t, std::string(d));
       b_.warn(loc(t), std::string(d) + " is not supported (participating media are not rendered); ignored");
-    } else if (d == "ObjectBegin" || d == "ObjectEnd" || d == "ObjectInstance") {
-      fail(t, std::string(d) + ": object instancing is not supported yet");
+    } else if (d == "ObjectBegin") {
+      // As in pbrt: an object's shapes keep the transform current at their
+      // definition, and ObjectBegin/End also push and pop the attributes.
+      world_only();
+      std::string name = expect_string("an object name");
+      if (stack_.size() >= kMaxAttributeDepth) fail(t, "AttributeBegin nested deeper than " + std::to_string(kMaxAttributeDepth));
+      b_.begin_object(name, loc(t));
+      stack_.push_back(gs_);
+      stack_where_.push_back(loc(t));
+      transform_only_.push_back(false);
+      object_depth_.push_back(stack_.size());
+    } else if (d == "ObjectEnd") {
+      world_only();
+      if (object_depth_.empty()) fail(t, "ObjectEnd without ObjectBegin");
+      if (object_depth_.back() != stack_.size())
+        fail(t, "ObjectEnd does not close the innermost ObjectBegin (an AttributeBegin inside it is still open?)");
+      b_.end_object(loc(t));
+      gs_ = stack_.back();
+      stack_.pop_back();
+      stack_where_.pop_back();
+      transform_only_.pop_back();
+      object_depth_.pop_back();
+    } else if (d == "ObjectInstance") {
+      world_only();
+      std::string name = expect_string("an object name");
+      b_.object_instance(name, ctm, loc(t));
     } else if (d == "ActiveTransform" || d == "TransformTimes") {
       if (d == "ActiveTransform") next();
       else numbers(2, "TransformTimes");
@@ -355,6 +381,7 @@ class Parser {
   std::map<std::string, Mat4> named_cs_;
   std::map<std::string, MaterialHandle> named_materials_;
   bool in_world_ = false;
+  std::vector<size_t> object_depth_;  // stack_ size just after each open ObjectBegin
 };
 
 }  // namespace
