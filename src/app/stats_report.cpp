@@ -71,7 +71,9 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
                  {"geometry_bytes", run.scene_info.geometry_bytes}};
   j["scene_contents"] = {{"triangles", run.scene_info.triangles},
                          {"spheres", run.scene_info.spheres},
-                         {"lights", run.scene_info.lights}};
+                         {"lights", run.scene_info.lights},
+                         {"instances", run.scene_info.instances},
+                         {"instanced_triangles", run.scene_info.instanced_triangles}};
   return j;
 }
 
