@@ -2,7 +2,10 @@
 // errors for wrong headers, truncated data and inconsistent counts.
 #include <gtest/gtest.h>
 
+#include <zlib.h>
+
 #include <cstring>
+#include <fstream>
 
 #include "lantern/error.h"
 #include "scene/ply.h"
@@ -51,6 +54,56 @@ TEST(Ply, BinaryBothEndiannessesAndQuads) {
     EXPECT_EQ(m.positions[2], Vec3(1, 1, 0));
     EXPECT_EQ(m.uvs[3], Vec2(0, 1));
   }
+}
+
+// The bulk path (native byte order, float vertices, byte-count faces) and
+// the value-by-value path (the other byte order; a double-precision copy)
+// must read the same mesh, polygons included.
+TEST(Ply, BulkAndGeneralReadersAgree) {
+  const int n = 50;
+  for (bool be : {false, true}) {
+    for (bool doubles : {false, true}) {
+      std::string s = std::string("ply\nformat ") + (be ? "binary_big_endian" : "binary_little_endian") +
+                      " 1.0\nelement vertex " + std::to_string(n) + "\nproperty " + (doubles ? "double" : "float") +
+                      " x\nproperty float y\nproperty float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+                      "element face " + std::to_string(n - 4) + "\nproperty list uchar uint vertex_indices\nend_header\n";
+      for (int i = 0; i < n; ++i) {
+        if (doubles) put(s, double(i) * 0.25, be);
+        else put(s, float(i) * 0.25f, be);
+        for (float f : {float(i % 7), -1.5f * float(i), 0.f, 1.f, 0.f}) put(s, f, be);
+      }
+      for (int f = 0; f < n - 4; ++f) {
+        int count = 3 + f % 3;  // triangles, quads and pentagons
+        s += char(count);
+        for (int j = 0; j < count; ++j) put(s, uint32_t(f + j), be);
+      }
+      PlyMesh m = parse_ply(s, "agree.ply");
+      SCOPED_TRACE(std::string(be ? "big" : "little") + (doubles ? ", double x" : ", float"));
+      ASSERT_EQ(m.positions.size(), size_t(n));
+      ASSERT_EQ(m.normals.size(), size_t(n));
+      EXPECT_EQ(m.positions[10], Vec3(2.5f, 3.f, -15.f));
+      EXPECT_EQ(m.normals[10], Vec3(0.f, 1.f, 0.f));
+      size_t expected = 0;
+      for (int f = 0; f < n - 4; ++f) expected += size_t(1 + f % 3);
+      ASSERT_EQ(m.triangles.size(), expected);
+      EXPECT_EQ(m.triangles[2], glm::uvec3(1, 3, 4));  // the quad 1 2 3 4, fan-split
+    }
+  }
+}
+
+// .ply.gz, as pbrt-v4 scenes ship them, reads like the plain file.
+TEST(Ply, GzipCompressedFilesRead) {
+  const std::string plain = ::testing::TempDir() + "/lantern_quad.ply", packed = plain + ".gz";
+  std::string data = binary_quad(false);
+  std::ofstream(plain, std::ios::binary) << data;
+  gzFile f = gzopen(packed.c_str(), "wb");
+  ASSERT_TRUE(f);
+  gzwrite(f, data.data(), unsigned(data.size()));
+  gzclose(f);
+  PlyMesh a = read_ply(plain), b = read_ply(packed);
+  EXPECT_EQ(a.positions, b.positions);
+  EXPECT_EQ(a.triangles, b.triangles);
+  EXPECT_EQ(b.triangles.size(), 2u);
 }
 
 void expect_error(const std::string& data, const char* fragment) {

@@ -3,9 +3,11 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "lantern/error.h"
@@ -82,6 +84,17 @@ class Reader {
     return 0.0;
   }
   size_t remaining() const { return d_.size() - pos_; }
+  // The next n bytes of binary data, or nullptr (nothing consumed) if the
+  // data ends first.
+  const char* take(size_t n) {
+    if (n > remaining()) return nullptr;
+    const char* p = d_.data() + pos_;
+    pos_ += n;
+    return p;
+  }
+  bool native_binary() const {
+    return format_ != Format::Ascii && (format_ == Format::BinaryLE) == (std::endian::native == std::endian::little);
+  }
   [[noreturn]] void fail(const std::string& what) const { throw InputError({name_, 0, 0}, "PLY: " + what); }
 
  private:
@@ -105,9 +118,25 @@ std::string read_whole_file(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
     throw InputError({path, 0, 0}, "PLY file is not a regular file");
-  // gzread passes uncompressed files through unchanged.
+  // Uncompressed: one read into a buffer of the file's size.
+  {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError({path, 0, 0}, "cannot open PLY file");
+    char magic[2] = {0, 0};
+    in.read(magic, 2);
+    if (!(magic[0] == '\x1f' && magic[1] == '\x8b')) {
+      std::string out(std::filesystem::file_size(path, ec), '\0');
+      if (ec) throw InputError({path, 0, 0}, "cannot read PLY file: " + ec.message());
+      in.clear();
+      in.seekg(0);
+      if (!in.read(out.data(), std::streamsize(out.size()))) throw InputError({path, 0, 0}, "cannot read PLY file");
+      return out;
+    }
+  }
+  // gzip (.ply.gz): zlib, in chunks, the uncompressed size being unknown.
   gzFile f = gzopen(path.c_str(), "rb");
   if (!f) throw InputError({path, 0, 0}, "cannot open PLY file");
+  gzbuffer(f, 1 << 20);
   std::string out;
   char buf[1 << 16];
   for (;;) {
@@ -123,6 +152,54 @@ std::string read_whole_file(const std::string& path) {
   }
   gzclose(f);
   return out;
+}
+
+// Bulk path for an element "vertex" whose properties are all float32 in the
+// machine's byte order: one memcpy per row. Returns false (nothing read) for
+// any other layout.
+bool read_float_vertices(Reader& r, const Element& e, std::array<int, 3> p, std::array<int, 3> n, std::array<int, 2> uv,
+                         PlyMesh& mesh) {
+  if (!r.native_binary() || e.props.size() > 32) return false;
+  for (const Property& q : e.props)
+    if (q.count_type != Scalar::None || q.type != Scalar::F32) return false;
+  const size_t row = 4 * e.props.size();
+  const char* data = r.take(row * e.count);
+  if (!data) r.fail("the binary data ends early (truncated file?)");
+  float v[32];
+  for (uint64_t i = 0; i < e.count; ++i) {
+    std::memcpy(v, data + i * row, row);
+    mesh.positions.emplace_back(v[p[0]], v[p[1]], v[p[2]]);
+    if (n[0] >= 0) mesh.normals.emplace_back(v[n[0]], v[n[1]], v[n[2]]);
+    if (uv[0] >= 0) mesh.uvs.emplace_back(v[uv[0]], v[uv[1]]);
+  }
+  return true;
+}
+
+// Bulk path for an element "face" with the single property
+// `list uchar int|uint vertex_indices` in the machine's byte order.
+// Triangles are copied directly; other polygons are fan-split.
+bool read_triangle_faces(Reader& r, const Element& e, PlyMesh& mesh) {
+  if (!r.native_binary() || e.props.size() != 1) return false;
+  const Property& q = e.props[0];
+  if ((q.count_type != Scalar::U8 && q.count_type != Scalar::I8) || (q.type != Scalar::I32 && q.type != Scalar::U32) ||
+      (q.name != "vertex_indices" && q.name != "vertex_index"))
+    return false;
+  mesh.triangles.reserve(mesh.triangles.size() + e.count);
+  uint32_t poly[255];
+  for (uint64_t i = 0; i < e.count; ++i) {
+    const char* c = r.take(1);
+    if (!c) r.fail("the binary data ends early (truncated file?)");
+    const int count = q.count_type == Scalar::U8 ? int((unsigned char)*c) : int((signed char)*c);
+    if (count < 3) r.fail("face " + std::to_string(i) + " has fewer than 3 vertices");
+    const char* idx = r.take(4 * size_t(count));
+    if (!idx) r.fail("the binary data ends early (truncated file?)");
+    std::memcpy(poly, idx, 4 * size_t(count));
+    if (q.type == Scalar::I32)
+      for (int j = 0; j < count; ++j)
+        if (int32_t(poly[j]) < 0) r.fail("face " + std::to_string(i) + " has an invalid vertex index");
+    for (int j = 1; j + 1 < count; ++j) mesh.triangles.emplace_back(poly[0], poly[j], poly[j + 1]);
+  }
+  return true;
 }
 
 }  // namespace
@@ -217,10 +294,17 @@ PlyMesh parse_ply(const std::string& data, const std::string& name) {
     if (is_face && (iidx < 0 || e.props[size_t(iidx)].count_type == Scalar::None))
       r.fail("element \"face\" lacks a vertex_indices list");
     if (is_vertex) {
-      mesh.positions.reserve(e.count);
+      mesh.positions.reserve(e.count + 1);  // + 1: the padding vertex the scene adds for Embree
       if (has_n) mesh.normals.reserve(e.count);
       if (has_uv) mesh.uvs.reserve(e.count);
     }
+    // The layouts nearly every binary PLY uses take a bulk path: vertices
+    // of float properties only, and faces of one list with a byte count and
+    // 32-bit indices.
+    if (is_vertex && read_float_vertices(r, e, {ix, iy, iz}, has_n ? std::array{inx, iny, inz} : std::array{-1, -1, -1},
+                                         has_uv ? std::array{iu, iv} : std::array{-1, -1}, mesh))
+      continue;
+    if (is_face && read_triangle_faces(r, e, mesh)) continue;
     double vals[32];
     std::vector<uint32_t> poly;
     for (uint64_t i = 0; i < e.count; ++i) {
