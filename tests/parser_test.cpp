@@ -168,6 +168,34 @@ TEST(Parser, DeepNestingIsBounded) {
   expect_error(s, {"t.pbrt:10002:1", "nested deeper than 10000"});
 }
 
+// PLY meshes are read in parallel after parsing; what they report must not
+// depend on thread timing: the first bad mesh in file order is named, and
+// an empty one is skipped with a warning at its own line.
+TEST(Parser, ParallelPlyReadsReportInFileOrder) {
+  const std::string dir = ::testing::TempDir();
+  auto write = [&](const std::string& name, const std::string& body) { std::ofstream(dir + "/" + name) << body; };
+  const std::string head = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+  write("good.ply", head + "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 1 0 0 0 1 0 3 0 1 2\n");
+  write("empty.ply", head + "element face 0\nproperty list uchar int vertex_indices\nend_header\n0 0 0 1 0 0 0 1 0\n");
+  write("bad1.ply", head + "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 1 0 0 0 1 0 3 0 1 9\n");
+  write("bad2.ply", "plx\n");
+  auto shapes = [&](std::initializer_list<const char*> files) {
+    std::string s = "WorldBegin\n";
+    for (const char* f : files) s += std::string("Shape \"plymesh\" \"string filename\" \"") + dir + "/" + f + "\"\n";
+    return s;
+  };
+  for (int round = 0; round < 5; ++round) {
+    expect_error(shapes({"good.ply", "good.ply", "bad1.ply", "good.ply", "bad2.ply"}), {"bad1.ply: error: PLY", "vertex 9"});
+    expect_error(shapes({"bad2.ply", "bad1.ply"}), {"bad2.ply", "does not start with \"ply\""});
+  }
+  std::vector<std::string> warnings;
+  auto scene = load(shapes({"good.ply", "empty.ply", "good.ply"}), &warnings);
+  EXPECT_EQ(scene_info(*scene).triangles, 2u);
+  bool warned = false;
+  for (const std::string& w : warnings) warned = warned || (w.find("t.pbrt:3:1") != std::string::npos && w.find("no triangles") != std::string::npos);
+  EXPECT_TRUE(warned);
+}
+
 // Binary garbage, mis-encoded text and megabyte tokens: a message that is
 // short, printable, and still points at the place.
 TEST(Parser, HostileBytesGiveShortPrintableErrors) {

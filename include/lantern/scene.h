@@ -1,6 +1,7 @@
 // Loading a scene in pbrt-v4 format.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -21,6 +22,7 @@ struct SceneSettings {
 
 struct LoadOptions {
   WarningSink warn;  // receives "file:line:col: warning: ..." lines
+  std::function<void(const std::string&)> progress;  // receives the stage being entered ("reading 25 PLY meshes", ...)
 };
 
 // Throws InputError for anything wrong with the input.

@@ -35,6 +35,7 @@ bool EmbreeScene::on_memory(void* user, ssize_t bytes, bool) {
 // `embree_id`; the scene keeps the only reference.
 void EmbreeScene::attach(RTCScene scene, const ShapePools& shapes, uint32_t id, uint32_t embree_id) {
   const Geometry& g = shapes.geometries[id];
+  if (g.kind == ShapeKind::Mesh && shapes.meshes[g.index].triangles.empty()) return;  // an empty PLY: nothing to trace
   RTCGeometry geom;
   if (g.kind == ShapeKind::Mesh) {
     const TriangleMesh& m = shapes.meshes[g.index];

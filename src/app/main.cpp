@@ -80,10 +80,25 @@ void write_text_atomically(const std::string& path, const std::string& text) {
 int run_render(const RenderArgs& a) {
   using namespace lantern;
   LoadOptions lo;
-  lo.warn = [](const std::string& w) { std::cerr << w << "\n"; };
+  const bool show_progress = !a.quiet && isatty(STDERR_FILENO);
   auto t0 = std::chrono::steady_clock::now();
+  // A progress line while loading: the stage and the time so far.
+  bool progress_shown = false;
+  lo.warn = [&](const std::string& w) {
+    if (progress_shown) std::fprintf(stderr, "\n");
+    progress_shown = false;
+    std::cerr << w << "\n";
+  };
+  if (show_progress)
+    lo.progress = [&](const std::string& stage) {
+      double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      std::fprintf(stderr, "\r\033[K[load %6.1f s] %s", s, stage.c_str());
+      std::fflush(stderr);
+      progress_shown = true;
+    };
   std::shared_ptr<Scene> scene = load_scene(a.scene, lo);
   double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (progress_shown) std::fprintf(stderr, "\r\033[K[load %6.1f s] done\n", load_s);
   const SceneSettings& ss = scene_settings(*scene);
 
   RenderOptions o;

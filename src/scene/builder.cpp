@@ -1,6 +1,9 @@
 #include "scene/builder.h"
 
+#include <tbb/parallel_for.h>
+
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <glm/gtc/matrix_inverse.hpp>
 
@@ -233,8 +236,10 @@ void SceneBuilder::texture(const std::string& name, const std::string& value_typ
 
 static bool swaps_handedness(const Mat4& m) { return glm::determinant(glm::mat3(m)) < 0.f; }
 
-void SceneBuilder::add_mesh(TriangleMesh mesh, const GraphicsState& gs, const ParamSet& ps, const std::string& source) {
-  const Mat4& M = gs.ctm;
+// Carries a mesh into the space it is stored in and checks it. It touches
+// nothing but the mesh, so PLY meshes are prepared on any thread.
+static void prepare_mesh(TriangleMesh& mesh, const Mat4& M, bool reverse_orientation, const ParamSet& ps,
+                         const std::string& source) {
   glm::mat3 N = glm::inverseTranspose(glm::mat3(M));
   for (size_t i = 0; i < mesh.positions.size(); ++i) {
     Vec3& p = mesh.positions[i];
@@ -243,13 +248,13 @@ void SceneBuilder::add_mesh(TriangleMesh mesh, const GraphicsState& gs, const Pa
     if (!is_finite(p)) {
       char xyz[96];
       std::snprintf(xyz, sizeof xyz, "(%g, %g, %g)", double(before.x), double(before.y), double(before.z));
-      ps.fail("vertex " + std::to_string(i) + (source.empty() ? "" : " of \"" + source + "\"") + " at " + xyz +
-              (is_finite(before) ? " is not finite after the transform" : " is not finite"));
+      ps.fail("vertex " + std::to_string(i) + (source.empty() ? "" : " of \"" + printable(source, 1024) + "\"") + " at " +
+              xyz + (is_finite(before) ? " is not finite after the transform" : " is not finite"));
     }
   }
   for (Vec3& n : mesh.normals) {
     n = N * n;
-    if (gs.reverse_orientation) n = -n;
+    if (reverse_orientation) n = -n;
   }
   if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size())
     ps.fail("\"N\" has " + std::to_string(mesh.normals.size()) + " normals for " + std::to_string(mesh.positions.size()) + " vertices");
@@ -259,20 +264,85 @@ void SceneBuilder::add_mesh(TriangleMesh mesh, const GraphicsState& gs, const Pa
     if (std::max({t.x, t.y, t.z}) >= mesh.positions.size())
       ps.fail("index " + std::to_string(std::max({t.x, t.y, t.z})) + " is out of range: there are " +
               std::to_string(mesh.positions.size()) + " vertices");
+  mesh.flip_normal = reverse_orientation != swaps_handedness(M);
+  mesh.vertex_count = uint32_t(mesh.positions.size());
+  if (!mesh.triangles.empty()) mesh.positions.push_back(Vec3(0.f));  // Embree's 16-byte read of the last vertex
+}
+
+static TriangleMesh from_ply(PlyMesh ply) {
+  TriangleMesh m;
+  m.positions = std::move(ply.positions);
+  m.normals = std::move(ply.normals);
+  m.uvs = std::move(ply.uvs);
+  m.triangles = std::move(ply.triangles);
+  return m;
+}
+
+void SceneBuilder::add_mesh(TriangleMesh mesh, const GraphicsState& gs, const ParamSet& ps, const std::string& source) {
+  prepare_mesh(mesh, gs.ctm, gs.reverse_orientation, ps, source);
   if (mesh.triangles.empty()) {
     warn(ps.where, ps.directive + " has no triangles and was skipped");
     return;
   }
-  mesh.flip_normal = gs.reverse_orientation != swaps_handedness(M);
-  mesh.vertex_count = uint32_t(mesh.positions.size());
-  mesh.positions.push_back(Vec3(0.f));  // Embree's 16-byte read of the last vertex
-  scene_.triangle_count += mesh.triangles.size();
   uint32_t prims = uint32_t(mesh.triangles.size());
   ShapePools& s = scene_.shapes;
   s.meshes.push_back(std::move(mesh));
   s.geometries.push_back({ShapeKind::Mesh, uint32_t(s.meshes.size() - 1), gs.material ? *gs.material : default_material(), -1});
-  note_geometry(prims, ps);
+  note_geometry();
   add_area_lights(uint32_t(s.geometries.size() - 1), prims, gs);
+}
+
+// A PLY mesh that does not emit is given its place in the pools now and is
+// read later, with all the others in parallel (load_pending_meshes); an
+// emitter needs its triangles at once, for the light table.
+void SceneBuilder::add_ply_mesh(const std::string& path, const GraphicsState& gs, const ParamSet& ps) {
+  if (gs.area_light) return add_mesh(from_ply(read_ply(path)), gs, ps, path);
+  ShapePools& s = scene_.shapes;
+  s.meshes.emplace_back();
+  s.geometries.push_back({ShapeKind::Mesh, uint32_t(s.meshes.size() - 1), gs.material ? *gs.material : default_material(), -1});
+  note_geometry();
+  pending_.push_back({uint32_t(s.meshes.size() - 1), path, gs.ctm, gs.reverse_orientation, ps});
+}
+
+void SceneBuilder::load_pending_meshes() {
+  if (pending_.empty()) return;
+  if (progress_) progress_("reading " + std::to_string(pending_.size()) + " PLY meshes");
+  // Errors are kept per mesh and the first in file order is reported, so
+  // the message does not depend on thread timing.
+  std::vector<std::exception_ptr> errors(pending_.size());
+  tbb::parallel_for(size_t(0), pending_.size(), [&](size_t i) {
+    const PendingMesh& p = pending_[i];
+    try {
+      TriangleMesh m = from_ply(read_ply(p.path));
+      prepare_mesh(m, p.ctm, p.reverse_orientation, p.ps, p.path);
+      scene_.shapes.meshes[p.mesh] = std::move(m);
+    } catch (...) {
+      errors[i] = std::current_exception();
+    }
+  });
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
+  for (const PendingMesh& p : pending_)
+    if (scene_.shapes.meshes[p.mesh].triangles.empty()) warn(p.ps.where, p.ps.directive + " has no triangles and was skipped");
+  pending_.clear();
+}
+
+// Triangle counts, once every mesh is in: stored, inside objects, and as
+// traced (objects once per instance).
+void SceneBuilder::count_triangles() {
+  const ShapePools& s = scene_.shapes;
+  auto tris = [&](uint32_t g) {
+    return s.geometries[g].kind == ShapeKind::Mesh ? s.meshes[s.geometries[g].index].triangles.size() : size_t(0);
+  };
+  scene_.triangle_count = scene_.prototype_triangle_count = scene_.instanced_triangle_count = 0;
+  for (uint32_t g = 0; g < s.geometries.size(); ++g) {
+    scene_.triangle_count += tris(g);
+    if (g < s.in_prototype.size() && s.in_prototype[g]) scene_.prototype_triangle_count += tris(g);
+  }
+  std::vector<size_t> per_prototype(s.prototypes.size(), 0);
+  for (size_t p = 0; p < s.prototypes.size(); ++p)
+    for (uint32_t j = 0; j < s.prototypes[p].count; ++j) per_prototype[p] += tris(s.prototypes[p].first + j);
+  for (const Instance& inst : s.instances) scene_.instanced_triangle_count += per_prototype[inst.prototype];
 }
 
 void SceneBuilder::shape(const std::string& type, const ParamSet& ps, const GraphicsState& gs, const std::string& base_dir) {
@@ -304,13 +374,7 @@ void SceneBuilder::shape(const std::string& type, const ParamSet& ps, const Grap
   } else if (type == "plymesh") {
     std::string file = ps.get_string("filename", "");
     if (file.empty()) ps.fail("plymesh needs a \"filename\"");
-    PlyMesh ply = read_ply(resolve_path(base_dir, file));
-    TriangleMesh m;
-    m.positions = std::move(ply.positions);
-    m.normals = std::move(ply.normals);
-    m.uvs = std::move(ply.uvs);
-    m.triangles = std::move(ply.triangles);
-    add_mesh(std::move(m), gs, ps, resolve_path(base_dir, file));
+    add_ply_mesh(resolve_path(base_dir, file), gs, ps);
   } else if (type == "sphere") {
     float r = ps.get_float("radius", 1.f);
     float zmin = ps.get_float("zmin", -r), zmax = ps.get_float("zmax", r), phimax = ps.get_float("phimax", 360.f);
@@ -325,7 +389,7 @@ void SceneBuilder::shape(const std::string& type, const ParamSet& ps, const Grap
     ShapePools& p = scene_.shapes;
     p.spheres.push_back(s);
     p.geometries.push_back({ShapeKind::Sphere, uint32_t(p.spheres.size() - 1), gs.material ? *gs.material : default_material(), -1});
-    note_geometry(0, ps);
+    note_geometry();
     add_area_lights(uint32_t(p.geometries.size() - 1), 1, gs);
   } else {
     ps.fail("shape \"" + printable(type) + "\" is not supported; expected trianglemesh, plymesh, sphere or bilinearmesh");
@@ -360,15 +424,13 @@ void SceneBuilder::add_area_lights(uint32_t geometry, uint32_t primitives, const
 }
 
 // Geometry just appended: it belongs to the object being defined, if any.
-void SceneBuilder::note_geometry(size_t triangles, const ParamSet& ps) {
+void SceneBuilder::note_geometry() {
   ShapePools& s = scene_.shapes;
   s.in_prototype.push_back(object_ ? 1 : 0);
   if (!object_) return;
   Prototype& proto = s.prototypes[object_->prototype];
   if (proto.count == 0) proto.first = uint32_t(s.geometries.size() - 1);
   ++proto.count;
-  object_->triangles += triangles;
-  scene_.prototype_triangle_count += triangles;
 }
 
 void SceneBuilder::begin_object(const std::string& name, const SourceLocation& where) {
@@ -376,13 +438,13 @@ void SceneBuilder::begin_object(const std::string& name, const SourceLocation& w
                                             printable(object_->name) + "\": objects cannot nest");
   if (objects_.count(name)) throw InputError(where, "object \"" + printable(name) + "\" is defined twice");
   scene_.shapes.prototypes.push_back({});
-  object_ = OpenObject{name, uint32_t(scene_.shapes.prototypes.size() - 1), 0};
+  object_ = OpenObject{name, uint32_t(scene_.shapes.prototypes.size() - 1)};
   object_where_ = where;
 }
 
 void SceneBuilder::end_object(const SourceLocation& where) {
   if (!object_) throw InputError(where, "ObjectEnd without ObjectBegin");
-  objects_[object_->name] = {object_->prototype, object_->triangles};
+  objects_[object_->name] = object_->prototype;
   object_.reset();
 }
 
@@ -399,9 +461,8 @@ void SceneBuilder::object_instance(const std::string& name, const Mat4& world_fr
       throw InputError(where, "ObjectInstance \"" + printable(name) + "\": the transform is not finite");
   if (std::fabs(glm::determinant(glm::mat3(M))) < 1e-30f)
     throw InputError(where, "ObjectInstance \"" + printable(name) + "\": the transform is singular");
-  if (scene_.shapes.prototypes[it->second.prototype].count == 0) return;  // an empty object: nothing to trace
-  scene_.shapes.instances.push_back({it->second.prototype, M, glm::inverseTranspose(glm::mat3(M))});
-  scene_.instanced_triangle_count += it->second.triangles;
+  if (scene_.shapes.prototypes[it->second].count == 0) return;  // an empty object: nothing to trace
+  scene_.shapes.instances.push_back({it->second, M, glm::inverseTranspose(glm::mat3(M))});
 }
 
 void SceneBuilder::check_objects_closed() const {

@@ -1,6 +1,7 @@
 // Turns parsed pbrt directives into entities and component pools.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -20,7 +21,8 @@ struct GraphicsState {
 
 class SceneBuilder {
  public:
-  SceneBuilder(Scene& scene, WarningSink warn) : scene_(scene), warn_(std::move(warn)) {}
+  SceneBuilder(Scene& scene, WarningSink warn, std::function<void(const std::string&)> progress = nullptr)
+      : scene_(scene), warn_(std::move(warn)), progress_(std::move(progress)) {}
 
   void warn(const SourceLocation& where, const std::string& what) const;
   void warn_line(const std::string& line) const {
@@ -56,21 +58,30 @@ class SceneBuilder {
   // source: the PLY file the mesh came from, or empty; named in errors.
   void add_mesh(TriangleMesh mesh, const GraphicsState& gs, const pbrt::ParamSet& ps, const std::string& source);
   void add_area_lights(uint32_t geometry, uint32_t primitives, const GraphicsState& gs);
-  void note_geometry(size_t triangles, const pbrt::ParamSet& ps);
+  void add_ply_mesh(const std::string& path, const GraphicsState& gs, const pbrt::ParamSet& ps);
+  void load_pending_meshes();
+  void count_triangles();
+  void note_geometry();
   void check_objects_closed() const;
 
   struct OpenObject {
     std::string name;
     uint32_t prototype;
-    size_t triangles;
-  };
-  struct DefinedObject {
-    uint32_t prototype;
-    size_t triangles;
   };
   std::optional<OpenObject> object_;
   SourceLocation object_where_;
-  std::map<std::string, DefinedObject> objects_;
+  std::map<std::string, uint32_t> objects_;  // name -> prototype
+
+  // PLY meshes whose place in the pools is taken, read at finish().
+  struct PendingMesh {
+    uint32_t mesh;
+    std::string path;
+    Mat4 ctm;
+    bool reverse_orientation;
+    pbrt::ParamSet ps;  // for messages
+  };
+  std::vector<PendingMesh> pending_;
+  std::function<void(const std::string&)> progress_;
 
   Scene& scene_;
   WarningSink warn_;

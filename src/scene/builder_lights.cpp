@@ -61,6 +61,9 @@ void SceneBuilder::light(const std::string& type, const ParamSet& ps, const Mat4
 
 void SceneBuilder::finish() {
   check_objects_closed();
+  load_pending_meshes();
+  count_triangles();
+  if (progress_) progress_("building the BVH");
   scene_.accel = std::make_unique<EmbreeScene>(scene_.shapes);
   scene_.accel->bounds(&scene_.bounds_lo, &scene_.bounds_hi);
   Vec3 center(0.f);

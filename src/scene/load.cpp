@@ -8,7 +8,8 @@ namespace lantern {
 
 std::shared_ptr<Scene> load_scene(const std::string& path, const LoadOptions& options) {
   auto scene = std::make_shared<Scene>();
-  SceneBuilder b(*scene, options.warn);
+  SceneBuilder b(*scene, options.warn, options.progress);
+  if (options.progress) options.progress("parsing " + path);
   pbrt::parse_file(path, b);
   b.finish();
   return scene;
