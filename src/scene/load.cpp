@@ -37,6 +37,8 @@ SceneInfo scene_info(const Scene& scene) {
     info.bvh_bytes = scene.accel->bytes();
     info.bvh_peak_bytes = scene.accel->peak_bytes();
   }
+  info.geometry_bytes += scene.shapes.instances.capacity() * sizeof(Instance) +
+                         scene.shapes.geometries.capacity() * sizeof(Geometry);
   for (const TriangleMesh& m : scene.shapes.meshes)
     info.geometry_bytes += m.positions.capacity() * sizeof(Vec3) + m.triangles.capacity() * sizeof(glm::uvec3) +
                            m.normals.capacity() * sizeof(Vec3) + m.uvs.capacity() * sizeof(Vec2);
