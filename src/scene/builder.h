@@ -81,10 +81,10 @@ class SceneBuilder {
     pbrt::ParamSet ps;  // for messages
   };
   std::vector<PendingMesh> pending_;
-  std::function<void(const std::string&)> progress_;
 
   Scene& scene_;
   WarningSink warn_;
+  std::function<void(const std::string&)> progress_;
   std::map<std::string, RGBTexture> rgb_textures_;
   std::map<std::string, float> float_textures_;
   std::optional<MaterialHandle> default_material_;
