@@ -113,10 +113,13 @@ int main(int argc, char** argv) {
   std::string out;
   double instanced = 1e6, unique = 1e6;
   uint32_t seed = 1;
+  int variants = 1;
   app.add_option("out", out, "Output folder (scene.pbrt and meshes/)")->required();
   app.add_option("--instanced-triangles", instanced, "Triangles traced through instances (e.g. 1e9)");
   app.add_option("--unique-triangles", unique, "Triangles stored once, in terrain tiles (e.g. 2e7)");
   app.add_option("--seed", seed, "Placement seed");
+  app.add_option("--tree-variants", variants, "Distinct tree objects (each its own prototype and BVH)")
+      ->check(CLI::Range(1, 100000));
   CLI11_PARSE(app, argc, argv);
   namespace fs = std::filesystem;
   fs::create_directories(fs::path(out) / "meshes");
@@ -144,36 +147,41 @@ int main(int argc, char** argv) {
     }
   s << "AttributeEnd\n";
 
-  // Prototypes.
-  Mesh tree, bush, rock;
-  add_cylinder(tree, {0, -0.2f, 0}, 0.25f, 4.f, 24);
-  add_blob(tree, {0, 5.f, 0}, {2.f, 2.6f, 2.f}, 64, 70, 0.12f, 3);
+  // Prototypes: `variants` distinct trees, a bush and a rock.
+  std::vector<Mesh> trees(static_cast<size_t>(variants));
+  for (int v = 0; v < variants; ++v) {
+    add_cylinder(trees[size_t(v)], {0, -0.2f, 0}, 0.25f, 4.f, 24);
+    add_blob(trees[size_t(v)], {0, 5.f, 0}, {2.f, 2.6f, 2.f}, 64, 70, 0.12f, uint32_t(3 + v));
+    std::string name = variants == 1 ? "tree" : "tree" + std::to_string(v);
+    write_ply(fs::path(out) / "meshes" / (name + ".ply"), trees[size_t(v)]);
+    s << "ObjectBegin \"" << name << "\"\nMaterial \"diffuse\" \"rgb reflectance\" [ 0.1 0.3 0.08 ]\n"
+      << "Shape \"plymesh\" \"string filename\" \"meshes/" << name << ".ply\"\nObjectEnd\n";
+  }
+  Mesh bush, rock;
   add_blob(bush, {0, 0.5f, 0}, {1.2f, 0.8f, 1.2f}, 30, 34, 0.2f, 5);
   add_blob(rock, {0, 0.2f, 0}, {0.8f, 0.5f, 0.6f}, 20, 26, 0.3f, 7);
-  write_ply(fs::path(out) / "meshes" / "tree.ply", tree);
   write_ply(fs::path(out) / "meshes" / "bush.ply", bush);
   write_ply(fs::path(out) / "meshes" / "rock.ply", rock);
-  s << "ObjectBegin \"tree\"\nMaterial \"diffuse\" \"rgb reflectance\" [ 0.1 0.3 0.08 ]\n"
-       "Shape \"plymesh\" \"string filename\" \"meshes/tree.ply\"\nObjectEnd\n"
-       "ObjectBegin \"bush\"\nMaterial \"coateddiffuse\" \"rgb reflectance\" [ 0.15 0.35 0.1 ] \"float roughness\" [ 0.3 ]\n"
+  s << "ObjectBegin \"bush\"\nMaterial \"coateddiffuse\" \"rgb reflectance\" [ 0.15 0.35 0.1 ] \"float roughness\" [ 0.3 ]\n"
        "Shape \"plymesh\" \"string filename\" \"meshes/bush.ply\"\nObjectEnd\n"
        "ObjectBegin \"rock\"\nMaterial \"conductor\" \"rgb reflectance\" [ 0.4 0.4 0.4 ] \"float roughness\" [ 0.4 ]\n"
        "Shape \"plymesh\" \"string filename\" \"meshes/rock.ply\"\nObjectEnd\n";
 
-  // Placements: trees, bushes and rocks in the ratio 6 : 3 : 1 by count.
+  // Placements: trees, bushes and rocks in the ratio 6 : 3 : 1 by count;
+  // each tree is a variant drawn uniformly.
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> U(0.f, 1.f);
   size_t traced = 0, count[3] = {0, 0, 0};
-  const Mesh* protos[3] = {&tree, &bush, &rock};
-  const char* names[3] = {"tree", "bush", "rock"};
   while (traced < size_t(instanced)) {
     float pick = U(rng);
     int k = pick < 0.6f ? 0 : pick < 0.9f ? 1 : 2;
     float x = (U(rng) - 0.5f) * L * 0.98f, z = (U(rng) - 0.5f) * L * 0.98f;
+    int v = std::min(variants - 1, int(U(rng) * float(variants)));
+    std::string name = k == 1 ? "bush" : k == 2 ? "rock" : variants == 1 ? "tree" : "tree" + std::to_string(v);
     s << "AttributeBegin Translate " << x << " " << terrain_height(x, z) << " " << z << " Rotate " << 360.f * U(rng)
       << " 0 1 0 Scale " << 0.7f + 0.6f * U(rng) << " " << 0.7f + 0.6f * U(rng) << " " << 0.7f + 0.6f * U(rng)
-      << " ObjectInstance \"" << names[k] << "\" AttributeEnd\n";
-    traced += protos[k]->triangles();
+      << " ObjectInstance \"" << name << "\" AttributeEnd\n";
+    traced += k == 0 ? trees[size_t(v)].triangles() : k == 1 ? bush.triangles() : rock.triangles();
     ++count[k];
   }
   // Lanterns: small warm sphere lights near the camera's path.

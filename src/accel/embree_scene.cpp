@@ -1,5 +1,7 @@
 #include "accel/embree_scene.h"
 
+#include <tbb/parallel_for.h>
+
 #include <chrono>
 #include <stdexcept>
 #include <string>
@@ -76,27 +78,33 @@ EmbreeScene::EmbreeScene(const ShapePools& shapes) {
     attach(scene_, shapes, id, id);
     check("adding geometry to the Embree scene");
   }
+  // Every prototype an instance uses becomes a scene of its own; their
+  // BVHs are built side by side (each build is parallel inside Embree too,
+  // but a small object's build is not).
   std::vector<RTCScene> prototypes(shapes.prototypes.size(), nullptr);
+  std::vector<uint32_t> used;
+  for (const Instance& inst : shapes.instances) {
+    RTCScene& ps = prototypes[inst.prototype];
+    if (ps) continue;
+    ps = rtcNewScene(device_);
+    rtcSetSceneBuildQuality(ps, RTC_BUILD_QUALITY_HIGH);
+    const Prototype& proto = shapes.prototypes[inst.prototype];
+    for (uint32_t j = 0; j < proto.count; ++j) attach(ps, shapes, proto.first + j, j);
+    used.push_back(inst.prototype);
+  }
+  tbb::parallel_for(size_t(0), used.size(), [&](size_t i) { rtcCommitScene(prototypes[used[i]]); });
+  check("building the objects' BVHs");
   instance_base_ = n;
   for (uint32_t k = 0; k < shapes.instances.size(); ++k) {
     const Instance& inst = shapes.instances[k];
-    const Prototype& proto = shapes.prototypes[inst.prototype];
-    RTCScene& ps = prototypes[inst.prototype];
-    if (!ps) {  // built once, on first use
-      ps = rtcNewScene(device_);
-      rtcSetSceneBuildQuality(ps, RTC_BUILD_QUALITY_HIGH);
-      for (uint32_t j = 0; j < proto.count; ++j) attach(ps, shapes, proto.first + j, j);
-      rtcCommitScene(ps);
-      check("building an object's BVH");
-    }
     RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
-    rtcSetGeometryInstancedScene(g, ps);
+    rtcSetGeometryInstancedScene(g, prototypes[inst.prototype]);
     rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &inst.world_from_object[0][0]);
     rtcCommitGeometry(g);
     rtcAttachGeometryByID(scene_, g, n + k);
     rtcReleaseGeometry(g);
     check("adding an instance to the Embree scene");
-    instance_first_.push_back(proto.first);
+    instance_first_.push_back(shapes.prototypes[inst.prototype].first);
   }
   for (RTCScene ps : prototypes)
     if (ps) rtcReleaseScene(ps);  // the instances hold their own references
