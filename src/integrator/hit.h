@@ -38,8 +38,7 @@ inline SurfacePoint to_world(const Instance& inst, const SurfacePoint& local) {
   sp.p = Vec3(M * Vec4(local.p, 1.f));
   sp.ng = glm::normalize(inst.normal_to_world * local.ng);
   sp.ns = glm::normalize(inst.normal_to_world * local.ns);
-  float stretch = std::fmax(glm::length(Vec3(M[0])), std::fmax(glm::length(Vec3(M[1])), glm::length(Vec3(M[2]))));
-  sp.error_scale = std::fmax(max_abs_component(sp.p), local.error_scale * stretch + max_abs_component(Vec3(M[3])));
+  sp.error_scale = std::fmax(max_abs_component(sp.p), local.error_scale * inst.stretch + inst.offset);
   return sp;
 }
 

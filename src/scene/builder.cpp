@@ -462,7 +462,9 @@ void SceneBuilder::object_instance(const std::string& name, const Mat4& world_fr
   if (std::fabs(glm::determinant(glm::mat3(M))) < 1e-30f)
     throw InputError(where, "ObjectInstance \"" + printable(name) + "\": the transform is singular");
   if (scene_.shapes.prototypes[it->second].count == 0) return;  // an empty object: nothing to trace
-  scene_.shapes.instances.push_back({it->second, M, glm::inverseTranspose(glm::mat3(M))});
+  float stretch = std::fmax(glm::length(Vec3(M[0])), std::fmax(glm::length(Vec3(M[1])), glm::length(Vec3(M[2]))));
+  scene_.shapes.instances.push_back(
+      {it->second, M, glm::inverseTranspose(glm::mat3(M)), stretch, max_abs_component(Vec3(M[3]))});
 }
 
 void SceneBuilder::check_objects_closed() const {

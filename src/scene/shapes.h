@@ -53,6 +53,8 @@ struct Instance {
   uint32_t prototype;
   Mat4 world_from_object;
   glm::mat3 normal_to_world;  // inverse transpose of the upper 3x3
+  float stretch;              // the largest length an object-space unit vector takes in the world
+  float offset;               // the largest coordinate of the translation
 };
 
 struct ShapePools {
