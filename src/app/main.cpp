@@ -11,6 +11,7 @@
 
 #include "app/stats_report.h"
 #include "film/image_metrics.h"
+#include "math/fnv1a.h"
 #include "lantern/render.h"
 #include "lantern/scene.h"
 
@@ -56,12 +57,11 @@ void write_strategy_images(const std::string& dir, const std::vector<lantern::St
 // and what was loaded from it, so that an edited scene is not resumed.
 std::string scene_key(const std::string& path, const lantern::SceneInfo& info) {
   std::ifstream in(path, std::ios::binary);
-  uint64_t h = 0xcbf29ce484222325ull;
+  lantern::Fnv1a hash;
   char buf[1 << 16];
-  while (in.read(buf, sizeof buf) || in.gcount() > 0)
-    for (std::streamsize i = 0; i < in.gcount(); ++i) h = (h ^ (unsigned char)buf[i]) * 0x100000001b3ull;
+  while (in.read(buf, sizeof buf) || in.gcount() > 0) hash.add(buf, size_t(in.gcount()));
   char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)h);
+  std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)hash.h);
   return std::filesystem::path(path).filename().string() + " " + hex + " triangles " + std::to_string(info.triangles) +
          " spheres " + std::to_string(info.spheres) + " lights " + std::to_string(info.lights);
 }

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "lantern/error.h"
+#include "math/fnv1a.h"
 
 namespace lantern {
 
@@ -14,15 +15,6 @@ namespace {
 
 constexpr char kMagic[8] = {'L', 'N', 'T', 'N', 'C', 'K', 'P', 'T'};
 constexpr uint32_t kVersion = 1;
-
-// FNV-1a, 64 bit: cheap, and enough to tell a damaged file from a good one.
-struct Fnv1a {
-  uint64_t h = 0xcbf29ce484222325ull;
-  void add(const void* p, size_t n) {
-    const unsigned char* b = static_cast<const unsigned char*>(p);
-    for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 0x100000001b3ull;
-  }
-};
 
 class HashingWriter final : public StateWriter {
  public:

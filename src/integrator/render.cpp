@@ -181,10 +181,7 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
 
   std::atomic<bool> stop{false};
   bool issued = false;  // a wave was started in this run
-  auto should_stop = [&] {
-    return (opt.cancel && opt.cancel->load()) ||
-           (timed && checkpoints.elapsed() >= opt.time_limit_seconds);
-  };
+  auto time_is_up = [&] { return timed && checkpoints.elapsed() >= opt.time_limit_seconds; };
   if (position.wave >= waves) throw std::invalid_argument("checkpoint position lies past the last wave");
   for (uint32_t first = position.pass_first; first < total_spp && !stop; first += pass_spp) {
     const uint32_t samples = std::min(pass_spp, total_spp - first);
@@ -196,7 +193,7 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
                                            // A time budget shorter than the set-up still
                                            // renders one wave, so every run adds samples.
                                            bool cancelled = opt.cancel && opt.cancel->load();
-                                           if (next == waves || stop || cancelled || (issued && should_stop())) {
+                                           if (next == waves || stop || cancelled || (issued && time_is_up())) {
                                              if (next != waves) stop = true;
                                              fc.stop();
                                              return 0;
