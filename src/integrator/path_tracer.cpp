@@ -144,7 +144,7 @@ void PathTracer::shade_stage(PathWave& w) const {
     }
     Vec3 wi = frame.from_local(bs->wi);
     w.beta[slot] *= bs->f * (std::fabs(bs->wi.z) / bs->pdf);
-    w.prev_pdf[slot] = bs->pdf;
+    w.prev_pdf[slot] = bs->pdf_is_proportional ? bsdf.pdf(wo, bs->wi, TransportMode::Radiance) : bs->pdf;
     w.prev_specular[slot] = bs->specular;
     if (bs->transmission) w.eta_scale[slot] *= sqr(bs->etap);
     // Russian roulette on the throughput with refraction's scaling undone.

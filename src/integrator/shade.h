@@ -46,8 +46,9 @@ PathEnd continue_subpath(const BSDF& bsdf, TransportMode mode, HitPool& hits, ui
   if (importance) scale *= shading_normal_correction(hits.wo[i], wi, hits.ng[i], hits.ns[i]);
   sub.beta *= bs->f * scale;
   const TransportMode reverse = importance ? TransportMode::Radiance : TransportMode::Importance;
+  float pdf_fwd = bs->pdf_is_proportional ? bsdf.pdf(wo, bs->wi, mode) : bs->pdf;
   float pdf_rev = bs->specular ? bs->pdf : bsdf.pdf(bs->wi, wo, reverse);
-  mis_after_scatter(sub.mis, std::fabs(glm::dot(hits.ng[i], wi)), bs->pdf, pdf_rev, bs->specular, mis);
+  mis_after_scatter(sub.mis, std::fabs(glm::dot(hits.ng[i], wi)), pdf_fwd, pdf_rev, bs->specular, mis);
   if (!importance && bs->transmission) sub.eta_scale *= sqr(bs->etap);
   float rr = max_component(sub.beta * sub.eta_scale) * sub.rr_scale;
   if (rr < 1.f && depth >= 2) {

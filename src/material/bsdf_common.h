@@ -11,6 +11,14 @@ namespace lantern {
 // Radiance flows from lights to the camera along eye paths; importance flows
 // the other way along light paths. Refraction scales them differently.
 enum class TransportMode : uint8_t { Radiance, Importance };
+inline TransportMode adjoint(TransportMode m) {
+  return m == TransportMode::Radiance ? TransportMode::Importance : TransportMode::Radiance;
+}
+
+// Which lobes a sample or density may use: layered BSDFs ask an interface
+// for its reflection or its transmission alone.
+enum class Lobes : uint8_t { Reflection = 1, Transmission = 2, All = 3 };
+inline bool has(Lobes set, Lobes l) { return (uint8_t(set) & uint8_t(l)) != 0; }
 
 struct BSDFSample {
   RGB f{0.f};
@@ -19,6 +27,10 @@ struct BSDFSample {
   float etap = 1.f;  // relative index of refraction along wi (1 for reflection)
   bool specular = false;
   bool transmission = false;
+  // f and pdf are the product along a random walk (layered BSDFs): their
+  // ratio is the right weight, but pdf is not the density of wi. MIS must
+  // ask the BSDF's pdf() instead.
+  bool pdf_is_proportional = false;
 };
 
 }  // namespace lantern

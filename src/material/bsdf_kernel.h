@@ -24,7 +24,13 @@ inline DielectricBSDF make_bsdf(const DielectricMaterial& m, Vec2, const Texture
   return DielectricBSDF{{m.alpha_x, m.alpha_y}, m.eta};
 }
 inline CoatedDiffuseBSDF make_bsdf(const CoatedDiffuseMaterial& m, Vec2 uv, const TexturePools& tex) {
-  return CoatedDiffuseBSDF{{m.alpha_x, m.alpha_y}, tex.evaluate(m.reflectance, uv), m.eta, m.fdr_internal};
+  return CoatedDiffuseBSDF{DielectricBSDF{{m.alpha_x, m.alpha_y}, m.eta},
+                           DiffuseBSDF{tex.evaluate(m.reflectance, uv)},
+                           m.thickness,
+                           tex.evaluate(m.albedo, uv),
+                           m.g,
+                           m.max_depth,
+                           m.n_samples};
 }
 
 // Calls fn(slot, bsdf) for every slot in `bin`; all slots share `kind`.

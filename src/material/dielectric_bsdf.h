@@ -1,6 +1,8 @@
 // Glass-like interface: smooth (delta reflection and refraction) or rough
 // (Walter et al. 2007 with GGX visible-normal sampling). Radiance crossing the
 // interface is scaled by 1/eta^2; importance is not (Veach 1997, ch. 5).
+// `lobes` restricts sampling and density to reflection or transmission (the
+// probabilities of the other lobe become 0), as layered BSDFs need.
 #pragma once
 
 #include "material/bsdf_common.h"
@@ -15,9 +17,10 @@ struct DielectricBSDF {
 
   bool is_specular() const { return eta == 1.f || distrib.effectively_smooth(); }
 
-  std::optional<BSDFSample> sample_f(const Vec3& wo, float uc, Vec2 u, TransportMode mode) const {
+  std::optional<BSDFSample> sample_f(const Vec3& wo, float uc, Vec2 u, TransportMode mode,
+                                     Lobes lobes = Lobes::All) const {
     if (wo.z == 0.f) return std::nullopt;
-    return is_specular() ? sample_smooth(wo, uc, mode) : sample_rough(wo, uc, u, mode);
+    return is_specular() ? sample_smooth(wo, uc, mode, lobes) : sample_rough(wo, uc, u, mode, lobes);
   }
 
   RGB f(const Vec3& wo, const Vec3& wi, TransportMode mode) const {
@@ -35,21 +38,30 @@ struct DielectricBSDF {
     return RGB(ft);
   }
 
-  float pdf(const Vec3& wo, const Vec3& wi, TransportMode) const {
+  float pdf(const Vec3& wo, const Vec3& wi, TransportMode, Lobes lobes = Lobes::All) const {
     if (is_specular()) return 0.f;
     float etap;
     Vec3 wm;
     if (!half_vector(wo, wi, &wm, &etap)) return 0.f;
-    float R = fr_dielectric(glm::dot(wo, wm), eta), T = 1.f - R;
+    float pr, pt;
+    if (!lobe_probabilities(fr_dielectric(glm::dot(wo, wm), eta), lobes, &pr, &pt)) return 0.f;
     Vec3 wo_up = wo.z < 0.f ? -wo : wo;
     if (cos_theta(wo) * cos_theta(wi) > 0.f)
-      return distrib.pdf(wo_up, wm) / (4.f * std::fabs(glm::dot(wo, wm))) * R / (R + T);
+      return distrib.pdf(wo_up, wm) / (4.f * std::fabs(glm::dot(wo, wm))) * pr / (pr + pt);
     float denom = sqr(glm::dot(wi, wm) + glm::dot(wo, wm) / etap);
     float dwm_dwi = std::fabs(glm::dot(wi, wm)) / denom;
-    return distrib.pdf(wo_up, wm) * dwm_dwi * T / (R + T);
+    return distrib.pdf(wo_up, wm) * dwm_dwi * pt / (pr + pt);
   }
 
  private:
+  // Probabilities of choosing reflection and transmission given the Fresnel
+  // reflectance R; false when no allowed lobe has any.
+  static bool lobe_probabilities(float R, Lobes lobes, float* pr, float* pt) {
+    *pr = has(lobes, Lobes::Reflection) ? R : 0.f;
+    *pt = has(lobes, Lobes::Transmission) ? 1.f - R : 0.f;
+    return *pr + *pt > 0.f;
+  }
+
   // The generalised half vector of a reflection or refraction pair, facing
   // +z; false for configurations no microfacet can produce.
   bool half_vector(const Vec3& wo, const Vec3& wi, Vec3* wm, float* etap) const {
@@ -66,14 +78,16 @@ struct DielectricBSDF {
     return true;
   }
 
-  std::optional<BSDFSample> sample_smooth(const Vec3& wo, float uc, TransportMode mode) const {
+  std::optional<BSDFSample> sample_smooth(const Vec3& wo, float uc, TransportMode mode, Lobes lobes) const {
     float R = fr_dielectric(cos_theta(wo), eta), T = 1.f - R;
+    float pr, pt;
+    if (!lobe_probabilities(R, lobes, &pr, &pt)) return std::nullopt;
     BSDFSample s;
     s.specular = true;
-    if (uc < R / (R + T)) {
+    if (uc < pr / (pr + pt)) {
       s.wi = Vec3(-wo.x, -wo.y, wo.z);
       s.f = RGB(R / abs_cos_theta(s.wi));
-      s.pdf = R / (R + T);
+      s.pdf = pr / (pr + pt);
       return s;
     }
     float etap;
@@ -83,21 +97,23 @@ struct DielectricBSDF {
     if (mode == TransportMode::Radiance) ft /= sqr(etap);
     s.wi = wi;
     s.f = RGB(ft);
-    s.pdf = T / (R + T);
+    s.pdf = pt / (pr + pt);
     s.etap = etap;
     s.transmission = true;
     return s;
   }
 
-  std::optional<BSDFSample> sample_rough(const Vec3& wo, float uc, Vec2 u, TransportMode mode) const {
+  std::optional<BSDFSample> sample_rough(const Vec3& wo, float uc, Vec2 u, TransportMode mode, Lobes lobes) const {
     Vec3 wo_up = wo.z < 0.f ? -wo : wo;
     Vec3 wm = distrib.sample_wm(wo_up, u);
     float R = fr_dielectric(glm::dot(wo, wm), eta), T = 1.f - R;
+    float pr, pt;
+    if (!lobe_probabilities(R, lobes, &pr, &pt)) return std::nullopt;
     BSDFSample s;
-    if (uc < R / (R + T)) {
+    if (uc < pr / (pr + pt)) {
       Vec3 wi = reflect(wo, wm);
       if (!same_hemisphere(wo, wi)) return std::nullopt;
-      s.pdf = distrib.pdf(wo_up, wm) / (4.f * std::fabs(glm::dot(wo, wm))) * R / (R + T);
+      s.pdf = distrib.pdf(wo_up, wm) / (4.f * std::fabs(glm::dot(wo, wm))) * pr / (pr + pt);
       s.f = RGB(distrib.D(wm) * distrib.G(wo, wi) * R / (4.f * cos_theta(wi) * cos_theta(wo)));
       s.wi = wi;
     } else {
@@ -107,7 +123,7 @@ struct DielectricBSDF {
       if (!ok || same_hemisphere(wo, wi) || wi.z == 0.f) return std::nullopt;
       float denom = sqr(glm::dot(wi, wm) + glm::dot(wo, wm) / etap);
       float dwm_dwi = std::fabs(glm::dot(wi, wm)) / denom;
-      s.pdf = distrib.pdf(wo_up, wm) * dwm_dwi * T / (R + T);
+      s.pdf = distrib.pdf(wo_up, wm) * dwm_dwi * pt / (pr + pt);
       float ft = T * distrib.D(wm) * distrib.G(wo, wi) *
                  std::fabs(glm::dot(wi, wm) * glm::dot(wo, wm) / (cos_theta(wi) * cos_theta(wo) * denom));
       if (mode == TransportMode::Radiance) ft /= sqr(etap);

@@ -15,7 +15,9 @@ struct DiffuseBSDF {
   RGB f(const Vec3& wo, const Vec3& wi, TransportMode) const {
     return same_hemisphere(wo, wi) ? R * kInvPi : RGB(0.f);
   }
-  std::optional<BSDFSample> sample_f(const Vec3& wo, float, Vec2 u, TransportMode mode) const {
+  std::optional<BSDFSample> sample_f(const Vec3& wo, float, Vec2 u, TransportMode mode,
+                                     Lobes lobes = Lobes::All) const {
+    if (!has(lobes, Lobes::Reflection)) return std::nullopt;
     Vec3 wi = sample_cosine_hemisphere(u);
     if (wo.z < 0.f) wi.z = -wi.z;
     float pdf = cosine_hemisphere_pdf(std::fabs(wi.z));
@@ -26,7 +28,8 @@ struct DiffuseBSDF {
     s.pdf = pdf;
     return s;
   }
-  float pdf(const Vec3& wo, const Vec3& wi, TransportMode) const {
+  float pdf(const Vec3& wo, const Vec3& wi, TransportMode, Lobes lobes = Lobes::All) const {
+    if (!has(lobes, Lobes::Reflection)) return 0.f;
     return same_hemisphere(wo, wi) ? cosine_hemisphere_pdf(std::fabs(wi.z)) : 0.f;
   }
 };

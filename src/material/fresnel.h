@@ -41,17 +41,4 @@ inline RGB fr_complex(float cos_i, const RGB& eta, const RGB& k) {
   return RGB(fr_complex(cos_i, eta.x, k.x), fr_complex(cos_i, eta.y, k.y), fr_complex(cos_i, eta.z, k.z));
 }
 
-// Hemispherical average of fr_dielectric weighted by cosine, for light
-// arriving from the side whose relative index is `eta`. Computed once per
-// material by quadrature.
-inline float diffuse_fresnel_reflectance(float eta) {
-  const int n = 512;
-  double sum = 0.0;
-  for (int i = 0; i < n; ++i) {
-    float mu = (float(i) + 0.5f) / float(n);  // cos theta
-    sum += double(fr_dielectric(mu, eta)) * 2.0 * mu / n;
-  }
-  return float(sum);
-}
-
 }  // namespace lantern

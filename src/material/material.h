@@ -37,11 +37,16 @@ struct DielectricMaterial {
   float alpha_x = 0.f, alpha_y = 0.f;
 };
 
+// pbrt-v4's parameters and defaults.
 struct CoatedDiffuseMaterial {
   RGBTexture reflectance;
+  RGBTexture albedo;  // of the medium between coat and base
   float eta = 1.5f;
   float alpha_x = 0.f, alpha_y = 0.f;
-  float fdr_internal = 0.f;  // diffuse Fresnel reflectance seen from inside the coat
+  float thickness = 0.01f;
+  float g = 0.f;
+  int max_depth = 10;
+  int n_samples = 1;
 };
 
 struct MaterialPools {

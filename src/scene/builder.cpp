@@ -133,6 +133,22 @@ void SceneBuilder::roughness(const ParamSet& ps, float* ax, float* ay, float def
   *ay = remap ? roughness_to_alpha(v) : v;
 }
 
+// The layer parameters pbrt-v4's coated materials share, with its defaults.
+void SceneBuilder::coat_layer(const ParamSet& ps, CoatedDiffuseMaterial* c) {
+  c->albedo = rgb_texture(ps, "albedo", RGB(0.f));
+  c->thickness = float_param(ps, "thickness", 0.01f);
+  if (!(c->thickness >= 0.f) || !std::isfinite(c->thickness))
+    ps.fail(*ps.find("thickness"), "thickness must be a finite number >= 0");
+  c->thickness = std::fmax(c->thickness, std::numeric_limits<float>::min());
+  float g = float_param(ps, "g", 0.f);
+  if (!std::isfinite(g)) ps.fail(*ps.find("g"), "g must be finite");
+  c->g = glm::clamp(g, -0.999f, 0.999f);  // pbrt clamps to [-1, 1]; +-1 is a delta
+  c->max_depth = ps.get_int("maxdepth", 10);
+  if (c->max_depth < 0 || c->max_depth > 1000) ps.fail(*ps.find("maxdepth"), "maxdepth must be in [0, 1000]");
+  c->n_samples = ps.get_int("nsamples", 1);
+  if (c->n_samples < 1 || c->n_samples > 1000) ps.fail(*ps.find("nsamples"), "nsamples must be in [1, 1000]");
+}
+
 static float eta_param(const ParamSet& ps, float def) {
   const pbrt::Param* p = ps.find("eta");
   if (!p) p = ps.find("index");
@@ -184,7 +200,7 @@ MaterialHandle SceneBuilder::material(const std::string& type, const ParamSet& p
     if (v3 && ps.has("Ks")) ps.find("Ks");
     c.eta = eta_param(ps, 1.5f);
     roughness(ps, &c.alpha_x, &c.alpha_y, v3 ? 0.1f : 0.f);
-    c.fdr_internal = diffuse_fresnel_reflectance(1.f / c.eta);
+    coat_layer(ps, &c);
     m.coated_diffuse.push_back(c);
     return MaterialHandle::make(MaterialKind::CoatedDiffuse, uint32_t(m.coated_diffuse.size() - 1));
   }

@@ -54,6 +54,7 @@ class SceneBuilder {
   RGBTexture rgb_texture(const pbrt::ParamSet& ps, const std::string& name, RGB def);
   float float_param(const pbrt::ParamSet& ps, const std::string& name, float def);
   void roughness(const pbrt::ParamSet& ps, float* ax, float* ay, float def);
+  void coat_layer(const pbrt::ParamSet& ps, CoatedDiffuseMaterial* c);
   MaterialHandle default_material();
   // source: the PLY file the mesh came from, or empty; named in errors.
   void add_mesh(TriangleMesh mesh, const GraphicsState& gs, const pbrt::ParamSet& ps, const std::string& source);
