@@ -16,7 +16,7 @@ for rough in 0 0.1 0.3; do
   for refl in "0.8 0.4 0.1" "0.5 0.5 0.5"; do
     for theta in 0 45 75; do
       name="r${rough}_$(echo "$refl" | tr ' ' '-')_t${theta}"
-      read -r cx cz < <(awk -v t="$theta" 'BEGIN{r=t*3.14159265358979/180; printf "%.6f %.6f", 5*sin(r), 5*cos(r)}')
+      read -r cx cz < <(awk -v t="$theta" 'BEGIN{r=t*3.14159265358979/180; printf "%.6f %.6f\n", 5*sin(r), 5*cos(r)}')
       up="0 0 1"; [ "$theta" = 0 ] && up="0 1 0"
       cat > "$OUT/$name.pbrt" <<SCENE
 LookAt $cx 0 $cz  0 0 0  $up
