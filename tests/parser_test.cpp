@@ -96,7 +96,10 @@ TEST(Parser, EveryDirectiveLandsInItsPool) {
   EXPECT_EQ(s->materials.conductor.size(), 3u);
   EXPECT_EQ(s->materials.dielectric.size(), 2u);
   EXPECT_EQ(s->materials.coated_diffuse.size(), 2u);
-  EXPECT_NEAR(s->materials.conductor[0].alpha_x, std::sqrt(0.2f), 1e-6f) << "roughness from a float texture, remapped";
+  {
+    TrowbridgeReitz d = s->materials.conductor[0].roughness.distribution(s->textures, TextureContext{});
+    EXPECT_NEAR(d.alpha_x, std::sqrt(0.2f), 1e-6f) << "roughness from a float texture, remapped";
+  }
   EXPECT_EQ(s->lights.area.size(), 1u);
   EXPECT_TRUE(s->lights.area[0].two_sided);
   EXPECT_EQ(s->lights.point.size(), 1u);

@@ -2,7 +2,7 @@
 
 #include "math/sampling.h"
 #include "scene/surface.h"
-#include "scene/texture.h"
+#include "texture/texture.h"
 
 namespace lantern {
 

@@ -14,34 +14,51 @@
 
 namespace lantern {
 
-inline DiffuseBSDF make_bsdf(const DiffuseMaterial& m, Vec2 uv, const TexturePools& tex) {
-  return DiffuseBSDF{tex.evaluate(m.reflectance, uv)};
+inline DiffuseBSDF make_bsdf(const DiffuseMaterial& m, const TextureContext& c, const TexturePools& tex) {
+  return DiffuseBSDF{tex.evaluate_reflectance(m.reflectance, c)};
 }
-inline ConductorBSDF make_bsdf(const ConductorMaterial& m, Vec2, const TexturePools&) {
-  return ConductorBSDF{{m.alpha_x, m.alpha_y}, m.eta, m.k, m.mirror_reflectance, m.mirror};
+inline ConductorBSDF make_bsdf(const ConductorMaterial& m, const TextureContext& c, const TexturePools& tex) {
+  if (m.mirror) return ConductorBSDF{{0.f, 0.f}, RGB(1.f), RGB(0.f), tex.evaluate_reflectance(m.mirror_reflectance, c), true};
+  TrowbridgeReitz d = m.roughness.distribution(tex, c);
+  if (m.by_reflectance) {
+    // pbrt-v4: eta = 1 and the k that gives reflectance r head-on.
+    RGB r = glm::clamp(tex.evaluate(m.reflectance, c), RGB(0.f), RGB(0.9999f));
+    return ConductorBSDF{d, RGB(1.f), 2.f * glm::sqrt(r) / glm::sqrt(RGB(1.f) - r), RGB(1.f), false};
+  }
+  return ConductorBSDF{d, tex.evaluate(m.eta, c), tex.evaluate(m.k, c), RGB(1.f), false};
 }
-inline DielectricBSDF make_bsdf(const DielectricMaterial& m, Vec2, const TexturePools&) {
-  return DielectricBSDF{{m.alpha_x, m.alpha_y}, m.eta};
+inline DielectricBSDF make_bsdf(const DielectricMaterial& m, const TextureContext& c, const TexturePools& tex) {
+  float eta = tex.evaluate_float(m.eta, c);
+  return DielectricBSDF{m.roughness.distribution(tex, c), eta > 0.f ? eta : 1.f};
 }
-inline CoatedDiffuseBSDF make_bsdf(const CoatedDiffuseMaterial& m, Vec2 uv, const TexturePools& tex) {
-  return CoatedDiffuseBSDF{DielectricBSDF{{m.alpha_x, m.alpha_y}, m.eta},
-                           DiffuseBSDF{tex.evaluate(m.reflectance, uv)},
-                           m.thickness,
-                           tex.evaluate(m.albedo, uv),
-                           m.g,
+inline CoatedDiffuseBSDF make_bsdf(const CoatedDiffuseMaterial& m, const TextureContext& c, const TexturePools& tex) {
+  return CoatedDiffuseBSDF{DielectricBSDF{m.roughness.distribution(tex, c), m.eta},
+                           DiffuseBSDF{tex.evaluate_reflectance(m.reflectance, c)},
+                           std::fmax(tex.evaluate_float(m.thickness, c), std::numeric_limits<float>::min()),
+                           tex.evaluate_reflectance(m.albedo, c),
+                           glm::clamp(tex.evaluate_float(m.g, c), -0.999f, 0.999f),
                            m.max_depth,
                            m.n_samples};
 }
 
+// The surface attributes textures read, one array per attribute, indexed by
+// the slots in a bin.
+struct SurfaceAttributes {
+  const Vec3* p;
+  const Vec3* ns;
+  const Vec2* uv;
+  TextureContext at(uint32_t slot) const { return TextureContext{p[slot], ns[slot], uv[slot]}; }
+};
+
 // Calls fn(slot, bsdf) for every slot in `bin`; all slots share `kind`.
-// material[slot] and uv[slot] describe the hit in that slot.
+// material[slot] and surface.at(slot) describe the hit in that slot.
 template <class Fn>
 void for_each_bsdf(MaterialKind kind, const MaterialPools& pools, const TexturePools& tex, const uint32_t* bin,
-                   size_t count, const MaterialHandle* material, const Vec2* uv, Fn&& fn) {
+                   size_t count, const MaterialHandle* material, const SurfaceAttributes& surface, Fn&& fn) {
   auto run = [&](const auto& pool) {
     for (size_t j = 0; j < count; ++j) {
       uint32_t slot = bin[j];
-      fn(slot, make_bsdf(pool[material[slot].index()], uv[slot], tex));
+      fn(slot, make_bsdf(pool[material[slot].index()], surface.at(slot), tex));
     }
   };
   switch (kind) {
@@ -55,14 +72,15 @@ void for_each_bsdf(MaterialKind kind, const MaterialPools& pools, const TextureP
 // Calls fn(bsdf) for one material: a switch, not a virtual call. For the
 // scattered lookups of connections, where hits of one kind are not binned.
 template <class Fn>
-decltype(auto) with_bsdf(MaterialHandle m, const MaterialPools& pools, const TexturePools& tex, Vec2 uv, Fn&& fn) {
+decltype(auto) with_bsdf(MaterialHandle m, const MaterialPools& pools, const TexturePools& tex,
+                         const TextureContext& c, Fn&& fn) {
   switch (m.kind()) {
-    case MaterialKind::Diffuse: return fn(make_bsdf(pools.diffuse[m.index()], uv, tex));
-    case MaterialKind::Conductor: return fn(make_bsdf(pools.conductor[m.index()], uv, tex));
-    case MaterialKind::Dielectric: return fn(make_bsdf(pools.dielectric[m.index()], uv, tex));
+    case MaterialKind::Diffuse: return fn(make_bsdf(pools.diffuse[m.index()], c, tex));
+    case MaterialKind::Conductor: return fn(make_bsdf(pools.conductor[m.index()], c, tex));
+    case MaterialKind::Dielectric: return fn(make_bsdf(pools.dielectric[m.index()], c, tex));
     case MaterialKind::CoatedDiffuse: break;
   }
-  return fn(make_bsdf(pools.coated_diffuse[m.index()], uv, tex));
+  return fn(make_bsdf(pools.coated_diffuse[m.index()], c, tex));
 }
 
 // pbrt's correction for shading normals when importance is transported

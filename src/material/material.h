@@ -7,7 +7,8 @@
 #include <vector>
 
 #include "math/common.h"
-#include "scene/texture.h"
+#include "material/microfacet.h"
+#include "texture/texture.h"
 
 namespace lantern {
 
@@ -21,30 +22,46 @@ struct MaterialHandle {
   uint32_t index() const { return bits & 0xFFFFFFu; }
 };
 
+// pbrt's roughness parameters: uroughness / vroughness (textures), mapped
+// to GGX alphas by sqrt when remaproughness is true.
+struct RoughnessParams {
+  TextureRef u = TextureRef::constant(0.f), v = TextureRef::constant(0.f);
+  bool remap = true;
+
+  TrowbridgeReitz distribution(const TexturePools& tex, const TextureContext& c) const {
+    float ru = std::fmax(tex.evaluate_float(u, c), 0.f), rv = std::fmax(tex.evaluate_float(v, c), 0.f);
+    return remap ? TrowbridgeReitz{std::sqrt(ru), std::sqrt(rv)} : TrowbridgeReitz{ru, rv};
+  }
+};
+
 struct DiffuseMaterial {
-  RGBTexture reflectance;
+  TextureRef reflectance;
 };
 
 struct ConductorMaterial {
-  RGB eta{1.f}, k{0.f};
-  RGB mirror_reflectance{1.f};  // used when `mirror` (pbrt's "mirror": constant reflectance)
+  TextureRef eta = TextureRef::constant(1.f), k = TextureRef::constant(0.f);
+  // pbrt-v4's conductor given by its reflectance at normal incidence, when
+  // that is a texture (a constant one is turned into eta and k at load).
+  TextureRef reflectance;
+  bool by_reflectance = false;
+  TextureRef mirror_reflectance = TextureRef::constant(1.f);  // pbrt's "mirror" (Kr)
   bool mirror = false;
-  float alpha_x = 0.f, alpha_y = 0.f;
+  RoughnessParams roughness;
 };
 
 struct DielectricMaterial {
-  float eta = 1.5f;
-  float alpha_x = 0.f, alpha_y = 0.f;
+  TextureRef eta = TextureRef::constant(1.5f);
+  RoughnessParams roughness;
 };
 
 // pbrt-v4's parameters and defaults.
 struct CoatedDiffuseMaterial {
-  RGBTexture reflectance;
-  RGBTexture albedo;  // of the medium between coat and base
+  TextureRef reflectance = TextureRef::constant(0.5f);
+  TextureRef albedo = TextureRef::constant(0.f);  // of the medium between coat and base
+  TextureRef thickness = TextureRef::constant(0.01f);
+  TextureRef g = TextureRef::constant(0.f);
   float eta = 1.5f;
-  float alpha_x = 0.f, alpha_y = 0.f;
-  float thickness = 0.01f;
-  float g = 0.f;
+  RoughnessParams roughness;
   int max_depth = 10;
   int n_samples = 1;
 };
@@ -66,7 +83,5 @@ struct MaterialPools {
   }
 };
 
-// pbrt's roughness remapping: alpha = sqrt(roughness) when remaproughness.
-inline float roughness_to_alpha(float r) { return std::sqrt(std::fmax(r, 0.f)); }
 
 }  // namespace lantern

@@ -11,6 +11,9 @@
 
 namespace lantern {
 
+// file, relative to the including scene file's folder unless absolute.
+std::string resolve_path(const std::string& base_dir, const std::string& file);
+
 // The part of pbrt's graphics state that shapes and lights read.
 struct GraphicsState {
   Mat4 ctm{1.f};
@@ -37,7 +40,7 @@ class SceneBuilder {
 
   MaterialHandle material(const std::string& type, const pbrt::ParamSet& ps);
   void texture(const std::string& name, const std::string& value_type, const std::string& cls, const pbrt::ParamSet& ps,
-               const std::string& base_dir);
+               const Mat4& ctm, const std::string& base_dir);
   void shape(const std::string& type, const pbrt::ParamSet& ps, const GraphicsState& gs, const std::string& base_dir);
   void light(const std::string& type, const pbrt::ParamSet& ps, const Mat4& ctm, const std::string& base_dir);
 
@@ -51,9 +54,18 @@ class SceneBuilder {
   void finish();
 
  private:
-  RGBTexture rgb_texture(const pbrt::ParamSet& ps, const std::string& name, RGB def);
-  float float_param(const pbrt::ParamSet& ps, const std::string& name, float def);
-  void roughness(const pbrt::ParamSet& ps, float* ax, float* ay, float def);
+  // A material or texture parameter that may name a texture (builder_textures.cpp).
+  TextureRef rgb_texture(const pbrt::ParamSet& ps, const std::string& name, RGB def,
+                         pbrt::ColorUsage usage = pbrt::ColorUsage::Reflectance);
+  TextureRef float_texture(const pbrt::ParamSet& ps, const std::string& name, float def);
+  TextureMapping texture_mapping(const pbrt::ParamSet& ps, const Mat4& ctm, bool two_d);
+  int32_t texture_image(const pbrt::ParamSet& ps, const std::string& path, ColorEncoding encoding);
+  TextureRef add_texture_node(TextureNode n);
+  // Material parameters (builder_materials.cpp).
+  RoughnessParams roughness(const pbrt::ParamSet& ps, float def);
+  // "eta" (or pbrt-v3's "index"): a number, a named or RGB spectrum (its
+  // first channel), or a float texture.
+  TextureRef eta_param(const pbrt::ParamSet& ps, float def);
   void coat_layer(const pbrt::ParamSet& ps, CoatedDiffuseMaterial* c);
   MaterialHandle default_material();
   // source: the PLY file the mesh came from, or empty; named in errors.
@@ -86,8 +98,9 @@ class SceneBuilder {
   Scene& scene_;
   WarningSink warn_;
   std::function<void(const std::string&)> progress_;
-  std::map<std::string, RGBTexture> rgb_textures_;
-  std::map<std::string, float> float_textures_;
+  std::map<std::string, TextureRef> rgb_textures_;
+  std::map<std::string, TextureRef> float_textures_;
+  std::map<std::string, int32_t> images_;  // "encoding|path" -> TexturePools::images
   std::optional<MaterialHandle> default_material_;
 };
 

@@ -40,7 +40,7 @@ void SceneBuilder::light(const std::string& type, const ParamSet& ps, const Mat4
     if (!file.empty() && Lc) ps.fail("give either \"L\" or \"filename\", not both");
     e.scale = Lc.value_or(RGB(1.f)) * scale;
     if (!file.empty()) {
-      TextureImage img = load_texture_image((std::filesystem::path(base_dir) / file).string(), false, false);
+      TextureImage img = load_texture_image((std::filesystem::path(base_dir) / file).string(), ColorEncoding{ColorEncoding::SRGB});
       if (img.width == img.height) {
         e.equal_area = true;
       } else if (img.width == 2 * img.height) {

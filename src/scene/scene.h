@@ -10,7 +10,7 @@
 #include "light/lights.h"
 #include "material/material.h"
 #include "scene/shapes.h"
-#include "scene/texture.h"
+#include "texture/texture.h"
 
 namespace lantern {
 

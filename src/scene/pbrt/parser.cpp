@@ -276,7 +276,7 @@ class Parser {
       std::string vtype = expect_string("a texture value type");
       std::string cls = expect_string("a texture class");
       ParamSet ps = params(t, "Texture \"" + printable(name) + "\"");
-      b_.texture(name, vtype, cls, ps, base_dir_);
+      b_.texture(name, vtype, cls, ps, ctm, base_dir_);
       ps.warn_unused();
     } else if (d == "LightSource") {
       world_only();

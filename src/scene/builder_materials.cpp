@@ -1,0 +1,110 @@
+// Materials from pbrt-v4's parameter lists (and pbrt-v3's names of the
+// common ones): every parameter pbrt-v4 lets be a texture may be one.
+#include "scene/builder.h"
+
+namespace lantern {
+
+using pbrt::ColorUsage;
+using pbrt::ParamSet;
+
+RoughnessParams SceneBuilder::roughness(const ParamSet& ps, float def) {
+  RoughnessParams r;
+  TextureRef both = float_texture(ps, "roughness", def);
+  r.u = ps.has("uroughness") ? float_texture(ps, "uroughness", def) : both;
+  r.v = ps.has("vroughness") ? float_texture(ps, "vroughness", def) : both;
+  for (const char* name : {"roughness", "uroughness", "vroughness"})
+    if (const pbrt::Param* p = ps.find(name); p && p->type != "texture" && !(ps.get_float(name, 0.f) >= 0.f))
+      ps.fail(*p, "roughness must be a number >= 0");
+  r.remap = ps.get_bool("remaproughness", true);
+  return r;
+}
+
+// The layer parameters of pbrt-v4's coated materials, with its defaults.
+void SceneBuilder::coat_layer(const ParamSet& ps, CoatedDiffuseMaterial* c) {
+  c->albedo = rgb_texture(ps, "albedo", RGB(0.f));
+  c->thickness = float_texture(ps, "thickness", 0.01f);
+  if (c->thickness.is_constant() && !(c->thickness.value.x >= 0.f && std::isfinite(c->thickness.value.x)))
+    ps.fail(*ps.find("thickness"), "thickness must be a finite number >= 0");
+  c->g = float_texture(ps, "g", 0.f);
+  if (c->g.is_constant() && !std::isfinite(c->g.value.x)) ps.fail(*ps.find("g"), "g must be finite");
+  c->max_depth = ps.get_int("maxdepth", 10);
+  if (c->max_depth < 0 || c->max_depth > 1000) ps.fail(*ps.find("maxdepth"), "maxdepth must be in [0, 1000]");
+  c->n_samples = ps.get_int("nsamples", 1);
+  if (c->n_samples < 1 || c->n_samples > 1000) ps.fail(*ps.find("nsamples"), "nsamples must be in [1, 1000]");
+}
+
+TextureRef SceneBuilder::eta_param(const ParamSet& ps, float def) {
+  const pbrt::Param* p = ps.find("eta");
+  if (!p) p = ps.find("index");
+  if (!p) return TextureRef::constant(def);
+  if (p->type == "texture") return float_texture(ps, p->name, def);
+  float eta = p->type == "float" ? ps.get_float(p->name, def) : ps.get_rgb(p->name, ColorUsage::Unbounded)->x;
+  if (!(eta > 0.f)) ps.fail(*p, "index of refraction must be positive");
+  return TextureRef::constant(eta);
+}
+
+MaterialHandle SceneBuilder::material(const std::string& type, const ParamSet& ps) {
+  MaterialPools& m = scene_.materials;
+  if (type == "diffuse" || type == "matte") {
+    m.diffuse.push_back({rgb_texture(ps, ps.has("Kd") ? "Kd" : "reflectance", RGB(0.5f))});
+    ps.find("sigma");
+    return MaterialHandle::make(MaterialKind::Diffuse, uint32_t(m.diffuse.size() - 1));
+  }
+  if (type == "conductor" || type == "metal" || type == "mirror") {
+    ConductorMaterial c;
+    if (type == "mirror") {
+      c.mirror = true;
+      c.mirror_reflectance = rgb_texture(ps, "Kr", RGB(0.9f));
+    } else {
+      c.eta = rgb_texture(ps, "eta", *pbrt::named_spectrum_rgb("metal-Cu-eta"), ColorUsage::Unbounded);
+      c.k = rgb_texture(ps, "k", *pbrt::named_spectrum_rgb("metal-Cu-k"), ColorUsage::Unbounded);
+      if (ps.has("reflectance")) {
+        c.reflectance = rgb_texture(ps, "reflectance", RGB(0.f));
+        c.by_reflectance = true;
+        if (c.reflectance.is_constant()) {
+          // pbrt-v4: a conductor given by its reflectance at normal incidence.
+          RGB r = glm::clamp(c.reflectance.value, RGB(0.f), RGB(0.9999f));
+          c.eta = TextureRef::constant(RGB(1.f));
+          c.k = TextureRef::constant(2.f * glm::sqrt(r) / glm::sqrt(RGB(1.f) - r));
+          c.by_reflectance = false;
+        }
+      }
+      c.roughness = roughness(ps, type == "metal" ? 0.01f : 0.f);
+    }
+    m.conductor.push_back(c);
+    return MaterialHandle::make(MaterialKind::Conductor, uint32_t(m.conductor.size() - 1));
+  }
+  if (type == "dielectric" || type == "glass") {
+    DielectricMaterial d;
+    d.eta = eta_param(ps, 1.5f);
+    d.roughness = roughness(ps, 0.f);
+    for (const char* p : {"Kr", "Kt"}) ps.find(p);
+    m.dielectric.push_back(d);
+    return MaterialHandle::make(MaterialKind::Dielectric, uint32_t(m.dielectric.size() - 1));
+  }
+  if (type == "coateddiffuse" || type == "plastic") {
+    CoatedDiffuseMaterial c;
+    bool v3 = type == "plastic";
+    c.reflectance = rgb_texture(ps, v3 ? "Kd" : "reflectance", RGB(v3 ? 0.25f : 0.5f));
+    if (v3 && ps.has("Ks")) ps.find("Ks");
+    TextureRef eta = eta_param(ps, 1.5f);
+    if (!eta.is_constant()) ps.fail(*ps.find("eta"), "coateddiffuse's eta is a spectrum in pbrt-v4, not a texture");
+    c.eta = eta.value.x;
+    c.roughness = roughness(ps, v3 ? 0.1f : 0.f);
+    coat_layer(ps, &c);
+    m.coated_diffuse.push_back(c);
+    return MaterialHandle::make(MaterialKind::CoatedDiffuse, uint32_t(m.coated_diffuse.size() - 1));
+  }
+  ps.fail("material type \"" + type +
+          "\" is not supported; expected diffuse, conductor, dielectric, coateddiffuse (or matte, metal, glass, plastic, mirror)");
+}
+
+MaterialHandle SceneBuilder::default_material() {
+  if (!default_material_) {
+    scene_.materials.diffuse.push_back({TextureRef::constant(0.5f)});
+    default_material_ = MaterialHandle::make(MaterialKind::Diffuse, uint32_t(scene_.materials.diffuse.size() - 1));
+  }
+  return *default_material_;
+}
+
+}  // namespace lantern

@@ -1,0 +1,209 @@
+// The Texture directive and texture-valued parameters, with pbrt-v4's
+// classes, parameter names and defaults. Float and spectrum textures have
+// separate names, as in pbrt-v4.
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include "scene/builder.h"
+
+namespace lantern {
+
+using pbrt::ColorUsage;
+using pbrt::ParamSet;
+
+TextureRef SceneBuilder::rgb_texture(const ParamSet& ps, const std::string& name, RGB def, ColorUsage usage) {
+  if (auto tex = ps.get_texture(name)) {
+    if (auto it = rgb_textures_.find(*tex); it != rgb_textures_.end()) return it->second;
+    if (float_textures_.count(*tex))
+      ps.fail(*ps.find(name), "\"" + printable(*tex) + "\" is a float texture; \"" + name + "\" needs a spectrum texture");
+    ps.fail(*ps.find(name), "no spectrum texture named \"" + printable(*tex) + "\" was defined");
+  }
+  if (const pbrt::Param* p = ps.find(name); p && p->type == "float") return TextureRef::constant(ps.get_float(name, 0.f));
+  return TextureRef::constant(ps.get_rgb(name, usage).value_or(def));
+}
+
+TextureRef SceneBuilder::float_texture(const ParamSet& ps, const std::string& name, float def) {
+  if (auto tex = ps.get_texture(name)) {
+    if (auto it = float_textures_.find(*tex); it != float_textures_.end()) return it->second;
+    if (rgb_textures_.count(*tex))
+      ps.fail(*ps.find(name), "\"" + printable(*tex) + "\" is a spectrum texture; \"" + name + "\" needs a float texture");
+    ps.fail(*ps.find(name), "no float texture named \"" + printable(*tex) + "\" was defined");
+  }
+  float v = ps.get_float(name, def);
+  if (!std::isfinite(v)) ps.fail(*ps.find(name), "must be finite");
+  return TextureRef::constant(v);
+}
+
+TextureRef SceneBuilder::add_texture_node(TextureNode n) {
+  scene_.textures.nodes.push_back(std::move(n));
+  return TextureRef{RGB(0.f), int32_t(scene_.textures.nodes.size() - 1)};
+}
+
+TextureMapping SceneBuilder::texture_mapping(const ParamSet& ps, const Mat4& ctm, bool two_d) {
+  TextureMapping m;
+  std::string kind = two_d ? ps.get_string("mapping", "uv") : "point";
+  if (kind != "uv") {
+    if (!(std::fabs(glm::determinant(ctm)) > 0.f)) ps.fail("the texture's transform is singular");
+    m.texture_from_world = glm::inverse(ctm);
+  }
+  if (kind == "uv") {
+    m.kind = TextureMapping::UV;
+    m.su = ps.get_float("uscale", 1.f);
+    m.sv = ps.get_float("vscale", 1.f);
+    m.du = ps.get_float("udelta", 0.f);
+    m.dv = ps.get_float("vdelta", 0.f);
+  } else if (kind == "spherical") {
+    m.kind = TextureMapping::Spherical;
+  } else if (kind == "cylindrical") {
+    m.kind = TextureMapping::Cylindrical;
+  } else if (kind == "planar") {
+    m.kind = TextureMapping::Planar;
+    m.v1 = ps.get_point3("v1", Vec3(1, 0, 0));
+    m.v2 = ps.get_point3("v2", Vec3(0, 1, 0));
+    m.du = ps.get_float("udelta", 0.f);
+    m.dv = ps.get_float("vdelta", 0.f);
+  } else if (kind != "point") {
+    ps.fail(*ps.find("mapping"), "texture mapping \"" + printable(kind) +
+                                     "\" is unknown; expected uv, spherical, cylindrical or planar");
+  }
+  return m;
+}
+
+int32_t SceneBuilder::texture_image(const ParamSet& ps, const std::string& path, ColorEncoding encoding) {
+  std::string key = std::to_string(int(encoding.kind)) + "/" + std::to_string(encoding.gamma) + "|" + path;
+  if (auto it = images_.find(key); it != images_.end()) return it->second;
+  TextureImage img;
+  try {
+    img = load_texture_image(path, encoding);
+  } catch (const InputError& e) {
+    ps.fail(*ps.find("filename"), e.what());
+  }
+  scene_.textures.images.push_back(std::move(img));
+  int32_t index = int32_t(scene_.textures.images.size() - 1);
+  images_[key] = index;
+  return index;
+}
+
+static ColorEncoding parse_encoding(const ParamSet& ps, const std::string& file) {
+  const pbrt::Param* p = ps.find("encoding");
+  if (!p) return default_texture_encoding(file);
+  std::string e = ps.get_string("encoding", "");
+  if (e == "sRGB") return ColorEncoding{ColorEncoding::SRGB};
+  if (e == "linear") return ColorEncoding{ColorEncoding::Linear};
+  if (e.rfind("gamma ", 0) == 0) {
+    char* end = nullptr;
+    float g = std::strtof(e.c_str() + 6, &end);
+    if (end != e.c_str() + 6 && *end == '\0' && g > 0.f && std::isfinite(g)) return ColorEncoding{ColorEncoding::Gamma, g};
+  }
+  ps.fail(*p, "encoding \"" + printable(e) + "\" is unknown; expected \"sRGB\", \"linear\" or \"gamma <value>\"");
+}
+
+static void parse_image_lookup(const ParamSet& ps, TextureNode* n) {
+  std::string filter = ps.get_string("filter", "bilinear");
+  // Without ray differentials every lookup has a zero footprint, where
+  // pbrt-v4's trilinear and EWA filters read the finest level bilinearly.
+  if (filter == "point") n->filter = ImageFilter::Point;
+  else if (filter == "bilinear" || filter == "trilinear" || filter == "ewa" || filter == "EWA") n->filter = ImageFilter::Bilinear;
+  else ps.fail(*ps.find("filter"), "filter \"" + printable(filter) + "\" is unknown; expected point, bilinear, trilinear or ewa");
+  ps.get_float("maxanisotropy", 8.f);
+  std::string wrap = ps.get_string("wrap", "repeat");
+  if (wrap == "repeat") n->wrap = WrapMode::Repeat;
+  else if (wrap == "black") n->wrap = WrapMode::Black;
+  else if (wrap == "clamp") n->wrap = WrapMode::Clamp;
+  else if (wrap == "octahedralsphere") n->wrap = WrapMode::OctahedralSphere;
+  else ps.fail(*ps.find("wrap"), "wrap mode \"" + printable(wrap) + "\" is unknown; expected repeat, black, clamp or octahedralsphere");
+  n->scale = ps.get_float("scale", 1.f);
+  n->invert = ps.get_bool("invert", false);
+}
+
+void SceneBuilder::texture(const std::string& name, const std::string& value_type, const std::string& cls,
+                           const ParamSet& ps, const Mat4& ctm, const std::string& base_dir) {
+  const bool is_float = value_type == "float";
+  if (!is_float && value_type != "spectrum" && value_type != "color" && value_type != "rgb")
+    ps.fail("texture value type \"" + printable(value_type) + "\" is unknown; expected \"spectrum\" or \"float\"");
+  auto child = [&](const char* p, float def) {
+    return is_float ? float_texture(ps, p, def) : rgb_texture(ps, p, RGB(def));
+  };
+  auto constant = [&](const char* p, float def) {
+    return is_float ? RGB(ps.get_float(p, def)) : ps.get_rgb(p, ColorUsage::Reflectance).value_or(RGB(def));
+  };
+  TextureNode n;
+  n.is_float = is_float;
+  TextureRef result;
+  if (cls == "constant") {
+    result = TextureRef::constant(constant("value", 1.f));
+  } else if (cls == "imagemap") {
+    std::string file = ps.get_string("filename", "");
+    if (file.empty()) ps.fail("imagemap texture needs a \"filename\"");
+    n.kind = TextureKind::Image;
+    n.mapping = texture_mapping(ps, ctm, true);
+    parse_image_lookup(ps, &n);
+    n.image = texture_image(ps, resolve_path(base_dir, file), parse_encoding(ps, file));
+    result = add_texture_node(n);
+  } else if (cls == "checkerboard") {
+    n.kind = TextureKind::Checkerboard;
+    n.dimension = ps.get_int("dimension", 2);
+    if (n.dimension != 2 && n.dimension != 3) ps.fail(*ps.find("dimension"), "checkerboard dimension must be 2 or 3");
+    n.mapping = texture_mapping(ps, ctm, n.dimension == 2);
+    n.tex1 = child("tex1", 1.f);
+    n.tex2 = child("tex2", 0.f);
+    result = add_texture_node(n);
+  } else if (cls == "dots") {
+    n.kind = TextureKind::Dots;
+    n.mapping = texture_mapping(ps, ctm, true);
+    n.tex1 = child("inside", 1.f);
+    n.tex2 = child("outside", 0.f);
+    result = add_texture_node(n);
+  } else if (cls == "scale") {
+    n.kind = TextureKind::Scale;
+    n.tex1 = child("tex", 1.f);
+    n.tex2 = float_texture(ps, "scale", 1.f);
+    result = n.tex1.is_constant() && n.tex2.is_constant() ? TextureRef::constant(n.tex1.value * n.tex2.value.x)
+                                                          : add_texture_node(n);
+  } else if (cls == "mix" || cls == "directionmix") {
+    n.kind = cls == "mix" ? TextureKind::Mix : TextureKind::DirectionMix;
+    n.tex1 = child("tex1", 0.f);
+    n.tex2 = child("tex2", 1.f);
+    if (cls == "mix") {
+      n.amount = float_texture(ps, "amount", 0.5f);
+    } else {
+      Vec3 d = glm::mat3(ctm) * ps.get_point3("dir", Vec3(0, 1, 0));
+      if (!(glm::length(d) > 0.f) || !is_finite(d)) ps.fail(*ps.find("dir"), "dir must be a non-zero direction");
+      n.dir = glm::normalize(d);
+    }
+    result = add_texture_node(n);
+  } else if (cls == "bilerp") {
+    n.kind = TextureKind::Bilerp;
+    n.mapping = texture_mapping(ps, ctm, true);
+    n.v00 = constant("v00", 0.f);
+    n.v01 = constant("v01", 1.f);
+    n.v10 = constant("v10", 0.f);
+    n.v11 = constant("v11", 1.f);
+    result = add_texture_node(n);
+  } else if ((is_float && (cls == "fbm" || cls == "wrinkled" || cls == "windy")) || (!is_float && cls == "marble")) {
+    n.kind = cls == "fbm" ? TextureKind::FBm : cls == "wrinkled" ? TextureKind::Wrinkled
+                          : cls == "windy" ? TextureKind::Windy : TextureKind::Marble;
+    n.mapping = texture_mapping(ps, ctm, false);
+    if (n.kind != TextureKind::Windy) {
+      n.octaves = ps.get_int("octaves", 8);
+      if (n.octaves < 0 || n.octaves > 64) ps.fail(*ps.find("octaves"), "octaves must be in [0, 64]");
+      n.roughness = ps.get_float("roughness", 0.5f);
+    }
+    if (n.kind == TextureKind::Marble) {
+      n.scale = ps.get_float("scale", 1.f);
+      n.variation = ps.get_float("variation", 0.2f);
+    }
+    result = add_texture_node(n);
+  } else if (cls == "ptex") {
+    ps.fail("ptex textures are not supported: Lantern reads images through OpenImageIO, whose Debian build has no Ptex");
+  } else {
+    ps.fail(std::string(is_float ? "float" : "spectrum") + " texture class \"" + printable(cls) +
+            "\" is not supported; expected " +
+            (is_float ? "constant, imagemap, checkerboard, dots, scale, mix, directionmix, bilerp, fbm, wrinkled or windy"
+                      : "constant, imagemap, checkerboard, dots, scale, mix, directionmix, bilerp or marble"));
+  }
+  auto& names = is_float ? float_textures_ : rgb_textures_;
+  if (names.count(name)) warn(ps.where, "texture \"" + printable(name) + "\" is redefined");
+  names[name] = result;
+}
+
+}  // namespace lantern

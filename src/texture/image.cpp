@@ -1,0 +1,143 @@
+#include "texture/image.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include "lantern/error.h"
+
+namespace lantern {
+
+float ColorEncoding::to_linear(float v) const {
+  switch (kind) {
+    case Linear: return v;
+    case Gamma: return std::pow(std::fmax(v, 0.f), gamma);
+    case SRGB: break;
+  }
+  return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+}
+
+RGB TextureImage::texel(int x, int y) const {
+  remap(&x, &y, WrapMode::Repeat);
+  return texels[size_t(y) * size_t(width) + size_t(x)];
+}
+
+RGB TextureImage::bilinear(Vec2 st) const { return lookup_rgb(st, ImageFilter::Bilinear, WrapMode::Repeat); }
+
+bool TextureImage::remap(int* x, int* y, WrapMode wrap) const {
+  switch (wrap) {
+    case WrapMode::Repeat:
+      *x %= width;
+      *y %= height;
+      if (*x < 0) *x += width;
+      if (*y < 0) *y += height;
+      return true;
+    case WrapMode::Clamp:
+      *x = glm::clamp(*x, 0, width - 1);
+      *y = glm::clamp(*y, 0, height - 1);
+      return true;
+    case WrapMode::Black:
+      return *x >= 0 && *x < width && *y >= 0 && *y < height;
+    case WrapMode::OctahedralSphere:
+      // Crossing an edge of the octahedral square lands on the mirrored
+      // edge, upside down.
+      if (*x < 0) {
+        *x = -*x - 1;
+        *y = height - 1 - *y;
+      } else if (*x >= width) {
+        *x = 2 * width - 1 - *x;
+        *y = height - 1 - *y;
+      }
+      if (*y < 0) {
+        *x = width - 1 - *x;
+        *y = -*y - 1;
+      } else if (*y >= height) {
+        *x = width - 1 - *x;
+        *y = 2 * height - 1 - *y;
+      }
+      *x = glm::clamp(*x, 0, width - 1);
+      *y = glm::clamp(*y, 0, height - 1);
+      return true;
+  }
+  return false;
+}
+
+RGB TextureImage::rgb_at(int x, int y, WrapMode wrap) const {
+  if (!remap(&x, &y, wrap)) return RGB(0.f);
+  return texels[size_t(y) * size_t(width) + size_t(x)];
+}
+
+float TextureImage::float_at(int x, int y, WrapMode wrap) const {
+  if (!remap(&x, &y, wrap)) return 0.f;
+  size_t i = size_t(y) * size_t(width) + size_t(x);
+  if (channels == 4) return alpha[i];
+  const RGB& c = texels[i];
+  return channels == 1 ? c.x : (c.x + c.y + c.z) / 3.f;
+}
+
+template <class T, class Fetch>
+T TextureImage::bilerp(Vec2 st, Fetch&& fetch) const {
+  float x = st.x * float(width) - 0.5f, y = st.y * float(height) - 0.5f;
+  float fx = std::floor(x), fy = std::floor(y);
+  if (!(std::fabs(fx) < 1e9f) || !(std::fabs(fy) < 1e9f)) return T(0.f);
+  int ix = int(fx), iy = int(fy);
+  float dx = x - fx, dy = y - fy;
+  return (1 - dx) * (1 - dy) * fetch(ix, iy) + dx * (1 - dy) * fetch(ix + 1, iy) + (1 - dx) * dy * fetch(ix, iy + 1) +
+         dx * dy * fetch(ix + 1, iy + 1);
+}
+
+RGB TextureImage::lookup_rgb(Vec2 st, ImageFilter filter, WrapMode wrap) const {
+  if (filter == ImageFilter::Point) {
+    float x = std::round(st.x * float(width) - 0.5f), y = std::round(st.y * float(height) - 0.5f);
+    if (!(std::fabs(x) < 1e9f) || !(std::fabs(y) < 1e9f)) return RGB(0.f);
+    return rgb_at(int(x), int(y), wrap);
+  }
+  return bilerp<RGB>(st, [&](int x, int y) { return rgb_at(x, y, wrap); });
+}
+
+float TextureImage::lookup_float(Vec2 st, ImageFilter filter, WrapMode wrap) const {
+  if (filter == ImageFilter::Point) {
+    // pbrt-v4 reads the first channel for point lookups.
+    float x = std::round(st.x * float(width) - 0.5f), y = std::round(st.y * float(height) - 0.5f);
+    if (!(std::fabs(x) < 1e9f) || !(std::fabs(y) < 1e9f)) return 0.f;
+    return rgb_at(int(x), int(y), wrap).x;
+  }
+  return bilerp<float>(st, [&](int x, int y) { return float_at(x, y, wrap); });
+}
+
+ColorEncoding default_texture_encoding(const std::string& filename) {
+  auto dot = filename.find_last_of('.');
+  std::string ext = dot == std::string::npos ? "" : filename.substr(dot + 1);
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ColorEncoding{ext == "png" ? ColorEncoding::SRGB : ColorEncoding::Linear};
+}
+
+TextureImage load_texture_image(const std::string& path, ColorEncoding encoding) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw InputError({path, 0, 0}, "cannot read image: " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || int64_t(spec.width) * spec.height > (int64_t(1) << 28))
+    throw InputError({path, 0, 0}, "image has an unsupported size " + std::to_string(spec.width) + "x" + std::to_string(spec.height));
+  int nc = spec.nchannels;
+  std::vector<float> data(size_t(spec.width) * size_t(spec.height) * size_t(nc));
+  if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, data.data()))
+    throw InputError({path, 0, 0}, "cannot decode image: " + in->geterror());
+  const bool integer = spec.format.basetype == OIIO::TypeDesc::UINT8 || spec.format.basetype == OIIO::TypeDesc::UINT16;
+  auto decode = [&](float v) { return integer ? encoding.to_linear(v) : v; };
+  TextureImage img;
+  img.filename = path;
+  img.width = spec.width;
+  img.height = spec.height;
+  img.channels = nc >= 4 ? 4 : nc >= 3 ? 3 : 1;
+  img.texels.resize(size_t(spec.width) * size_t(spec.height));
+  if (img.channels == 4) img.alpha.resize(img.texels.size());
+  for (size_t i = 0; i < img.texels.size(); ++i) {
+    const float* px = &data[i * size_t(nc)];
+    RGB c = nc >= 3 ? RGB(decode(px[0]), decode(px[1]), decode(px[2])) : RGB(decode(px[0]));
+    if (!is_finite(c)) throw InputError({path, 0, 0}, "image has a non-finite texel at (" + std::to_string(i % size_t(spec.width)) + ", " + std::to_string(i / size_t(spec.width)) + ")");
+    img.texels[i] = glm::max(c, RGB(0.f));
+    // pbrt-v4 decodes every channel of an integer file, alpha included.
+    if (img.channels == 4) img.alpha[i] = glm::clamp(decode(px[3]), 0.f, 1.f);
+  }
+  return img;
+}
+
+}  // namespace lantern

@@ -1,0 +1,57 @@
+// Images for textures and environment lights: linear RGB texels (plus the
+// alpha channel when the file has one), looked up with pbrt-v4's wrap modes
+// and point or bilinear filtering.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "math/common.h"
+
+namespace lantern {
+
+enum class WrapMode : uint8_t { Repeat, Black, Clamp, OctahedralSphere };
+enum class ImageFilter : uint8_t { Point, Bilinear };
+
+// How integer-valued (8- and 16-bit) files encode their values; float files
+// are always linear.
+struct ColorEncoding {
+  enum Kind : uint8_t { Linear, SRGB, Gamma } kind = SRGB;
+  float gamma = 2.2f;
+  float to_linear(float v) const;
+};
+
+struct TextureImage {
+  int width = 0, height = 0;
+  int channels = 3;         // in the file: 1 (grey), 3 (RGB) or 4 (RGBA)
+  std::vector<RGB> texels;  // linear RGB, row 0 at the top; grey files repeat it
+  std::vector<float> alpha; // RGBA files only
+  std::string filename;
+
+  RGB texel(int x, int y) const;   // wraps around (repeat)
+  RGB bilinear(Vec2 st) const;     // repeat; st in [0,1)^2, t = 0 at the top row
+
+  // pbrt-v4's lookups: st with t = 0 at the top row. A float lookup reads a
+  // grey file's value, the mean of RGB, or (filtered) an RGBA file's alpha.
+  RGB lookup_rgb(Vec2 st, ImageFilter filter, WrapMode wrap) const;
+  float lookup_float(Vec2 st, ImageFilter filter, WrapMode wrap) const;
+
+ private:
+  // Maps (x, y) into the image by the wrap mode; false where it is black.
+  bool remap(int* x, int* y, WrapMode wrap) const;
+  RGB rgb_at(int x, int y, WrapMode wrap) const;
+  float float_at(int x, int y, WrapMode wrap) const;
+  template <class T, class Fetch>
+  T bilerp(Vec2 st, Fetch&& fetch) const;
+};
+
+// Loads an image through OpenImageIO; `encoding` decodes integer formats.
+// Throws InputError naming the file for unreadable, empty, huge or
+// non-finite images.
+TextureImage load_texture_image(const std::string& path, ColorEncoding encoding);
+
+// pbrt-v4's default for an image texture without "encoding": sRGB for PNG
+// files, linear for every other format.
+ColorEncoding default_texture_encoding(const std::string& filename);
+
+}  // namespace lantern

@@ -1,0 +1,65 @@
+// Textures: every material parameter pbrt-v4 lets be a texture is a
+// TextureRef, a constant or a node in TexturePools. A constant is read from
+// the material's own pool entry with one branch, so a scene without
+// textures pays nothing more. Nodes are evaluated by kind (texture.cpp);
+// the families live in their own files: image (image.h), checkerboard and
+// dots (pattern.h), scale, mix, directionmix and bilerp (combine.h), and
+// the Perlin-noise family (noise.h).
+#pragma once
+
+#include <vector>
+
+#include "texture/image.h"
+#include "texture/mapping.h"
+
+namespace lantern {
+
+struct TextureRef {
+  RGB value{0.f};    // the constant, when node < 0
+  int32_t node = -1;  // index into TexturePools::nodes
+
+  static TextureRef constant(RGB v) { return TextureRef{v, -1}; }
+  static TextureRef constant(float v) { return TextureRef{RGB(v), -1}; }
+  bool is_constant() const { return node < 0; }
+};
+
+enum class TextureKind : uint8_t {
+  Image, Checkerboard, Dots, Scale, Mix, DirectionMix, Bilerp, FBm, Wrinkled, Windy, Marble
+};
+
+// One texture of a scene. Float textures hold their value in every channel.
+struct TextureNode {
+  TextureKind kind = TextureKind::Image;
+  bool is_float = false;
+  TextureMapping mapping;
+  TextureRef tex1, tex2;  // checkerboard, mix, directionmix; dots: inside, outside; scale: tex, scale
+  TextureRef amount;      // mix
+  Vec3 dir{0.f, 1.f, 0.f};  // directionmix, world space
+  RGB v00{0.f}, v01{1.f}, v10{0.f}, v11{1.f};  // bilerp
+  int dimension = 2;      // checkerboard
+  int octaves = 8;        // noise family
+  float roughness = 0.5f, variation = 0.2f, scale = 1.f;  // noise family; image: scale
+  int32_t image = -1;
+  ImageFilter filter = ImageFilter::Bilinear;
+  WrapMode wrap = WrapMode::Repeat;
+  bool invert = false;
+};
+
+struct TexturePools {
+  std::vector<TextureImage> images;
+  std::vector<TextureNode> nodes;
+
+  RGB evaluate(const TextureRef& t, const TextureContext& c) const {
+    return t.node < 0 ? t.value : evaluate_node(nodes[size_t(t.node)], c);
+  }
+  float evaluate_float(const TextureRef& t, const TextureContext& c) const { return evaluate(t, c).x; }
+  // Reflectances are clamped to [0, 1], as pbrt-v4's materials do.
+  RGB evaluate_reflectance(const TextureRef& t, const TextureContext& c) const {
+    return glm::clamp(evaluate(t, c), RGB(0.f), RGB(1.f));
+  }
+
+ private:
+  RGB evaluate_node(const TextureNode& n, const TextureContext& c) const;
+};
+
+}  // namespace lantern
