@@ -10,6 +10,7 @@
 #include "material/bsdf_kernel.h"
 #include "math/rng.h"
 #include "scene/scene.h"
+#include "scene/surface.h"
 #include "texture/noise.h"
 
 namespace lantern {
@@ -210,6 +211,25 @@ Texture "r1" "float" "checkerboard" "float tex1" 0.15 "float tex2" 0.15
     Image a = render(*textured, o).image, b = render(*constant, o).image;
     EXPECT_EQ(a.rgb, b.rgb) << integrator;
   }
+}
+
+// pbrt-v4's (u, v) where a shape has none: a triangle's vertices are (0,0),
+// (1,0), (1,1); a bilinear patch runs over [0,1]^2 from p00 to p11.
+TEST(Texture, DefaultSurfaceCoordinates) {
+  auto s = load(R"(WorldBegin
+Shape "trianglemesh" "point3 P" [0 0 0 1 0 0 0 1 0] "integer indices" [0 1 2]
+Shape "bilinearmesh" "point3 P" [0 0 0 1 0 0 0 1 0 1 1 0] "integer indices" [0 1 2 3]
+)");
+  const TriangleMesh& tri = s->shapes.meshes[0];
+  EXPECT_EQ(triangle_point(tri, 0, 0.f, 0.f).uv, Vec2(0, 0));
+  EXPECT_EQ(triangle_point(tri, 0, 1.f, 0.f).uv, Vec2(1, 0));
+  EXPECT_EQ(triangle_point(tri, 0, 0.f, 1.f).uv, Vec2(1, 1));
+  const TriangleMesh& patch = s->shapes.meshes[1];
+  for (uint32_t t = 0; t < 2; ++t)
+    for (Vec2 b : {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1), Vec2(0.3f, 0.3f)}) {
+      SurfacePoint sp = triangle_point(patch, t, b.x, b.y);
+      EXPECT_NEAR(glm::length(sp.uv - Vec2(sp.p.x, sp.p.y)), 0.f, 1e-6f) << "u, v follow x, y on this patch";
+    }
 }
 
 void expect_error(const std::string& text, std::initializer_list<const char*> fragments) {

@@ -229,6 +229,22 @@ void SceneBuilder::shape(const std::string& type, const ParamSet& ps, const Grap
       ps.fail("\"indices\" has " + std::to_string(idx.size()) + " values, expected a multiple of " + std::to_string(per));
     for (int i : idx)
       if (i < 0) ps.fail("\"indices\" contains a negative index");
+    if (per == 4 && m.uvs.empty()) {
+      // A patch's (u, v) runs over [0,1]^2 from p00 to p11 (pbrt-v4): each
+      // patch gets its own four corners to carry them.
+      for (int i : idx)
+        if (size_t(i) >= m.positions.size()) ps.fail("\"indices\" refers past the end of \"P\"");
+      bool with_n = m.normals.size() == m.positions.size();
+      TriangleMesh split;
+      for (size_t i = 0; i < idx.size(); ++i) {
+        split.positions.push_back(m.positions[size_t(idx[i])]);
+        if (with_n) split.normals.push_back(m.normals[size_t(idx[i])]);
+        split.uvs.emplace_back(float(i % 4 & 1), float(i % 4 >> 1));
+      }
+      if (!with_n) split.normals = std::move(m.normals);  // left for add_mesh to check
+      m = std::move(split);
+      for (size_t i = 0; i < idx.size(); ++i) idx[i] = int(i);
+    }
     for (size_t i = 0; i < idx.size(); i += per) {
       if (per == 3) {
         m.triangles.emplace_back(idx[i], idx[i + 1], idx[i + 2]);

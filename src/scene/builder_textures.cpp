@@ -150,8 +150,10 @@ void SceneBuilder::texture(const std::string& name, const std::string& value_typ
   } else if (cls == "dots") {
     n.kind = TextureKind::Dots;
     n.mapping = texture_mapping(ps, ctm, true);
-    n.tex1 = child("inside", 1.f);
-    n.tex2 = child("outside", 0.f);
+    // pbrt-v4 hands "inside" to the texture's outside-of-the-dots slot and
+    // "outside" to the dots themselves; scenes are made to look right in it.
+    n.tex1 = child("outside", 0.f);
+    n.tex2 = child("inside", 1.f);
     result = add_texture_node(n);
   } else if (cls == "scale") {
     n.kind = TextureKind::Scale;

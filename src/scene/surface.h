@@ -36,7 +36,8 @@ inline SurfacePoint triangle_point(const TriangleMesh& m, uint32_t prim, float b
     sp.ns = n;
   }
   sp.ng = n;
-  sp.uv = m.uvs.empty() ? Vec2(b1, b2) : b0 * m.uvs[t.x] + b1 * m.uvs[t.y] + b2 * m.uvs[t.z];
+  // Without uvs, pbrt-v4 gives a triangle's vertices (0,0), (1,0), (1,1).
+  sp.uv = m.uvs.empty() ? Vec2(b1 + b2, b2) : b0 * m.uvs[t.x] + b1 * m.uvs[t.y] + b2 * m.uvs[t.z];
   sp.error_scale = std::fmax(max_abs_component(sp.p),
                              std::fmax(max_abs_component(p0), std::fmax(max_abs_component(p1), max_abs_component(p2))));
   return sp;

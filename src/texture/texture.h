@@ -32,7 +32,7 @@ struct TextureNode {
   TextureKind kind = TextureKind::Image;
   bool is_float = false;
   TextureMapping mapping;
-  TextureRef tex1, tex2;  // checkerboard, mix, directionmix; dots: inside, outside; scale: tex, scale
+  TextureRef tex1, tex2;  // checkerboard, mix, directionmix; dots: off, on the dots; scale: tex, scale
   TextureRef amount;      // mix
   Vec3 dir{0.f, 1.f, 0.f};  // directionmix, world space
   RGB v00{0.f}, v01{1.f}, v10{0.f}, v11{1.f};  // bilerp
