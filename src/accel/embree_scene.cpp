@@ -54,12 +54,18 @@ void EmbreeScene::attach(RTCScene scene, const ShapePools& shapes, uint32_t id, 
         rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
     v[0] = s.center.x, v[1] = s.center.y, v[2] = s.center.z, v[3] = s.radius;
   }
+  if (g.alpha >= 0) {
+    alpha_data_.push_back(std::make_unique<AlphaFilterData>(AlphaFilterData{&shapes, textures_, id}));
+    rtcSetGeometryUserData(geom, alpha_data_.back().get());
+    rtcSetGeometryIntersectFilterFunction(geom, alpha_filter);
+    rtcSetGeometryOccludedFilterFunction(geom, alpha_filter);
+  }
   rtcCommitGeometry(geom);
   rtcAttachGeometryByID(scene, geom, embree_id);
   rtcReleaseGeometry(geom);
 }
 
-EmbreeScene::EmbreeScene(const ShapePools& shapes) {
+EmbreeScene::EmbreeScene(const ShapePools& shapes, const TexturePools& textures) : textures_(&textures) {
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("cannot create the Embree device");
   rtcSetDeviceErrorFunction(device_, on_error, this);

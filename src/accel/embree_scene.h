@@ -6,17 +6,20 @@
 #include <embree3/rtcore.h>
 
 #include <atomic>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
 
+#include "accel/alpha_filter.h"
 #include "scene/shapes.h"
 
 namespace lantern {
 
 class EmbreeScene {
  public:
-  explicit EmbreeScene(const ShapePools& shapes);  // throws std::runtime_error
+  // The pools must outlive the scene: alpha filters read them while tracing.
+  EmbreeScene(const ShapePools& shapes, const TexturePools& textures);  // throws std::runtime_error
   ~EmbreeScene();
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
@@ -47,6 +50,8 @@ class EmbreeScene {
   double build_seconds_ = 0.0;
   uint32_t instance_base_ = 0;
   std::vector<uint32_t> instance_first_;
+  const TexturePools* textures_ = nullptr;
+  std::vector<std::unique_ptr<AlphaFilterData>> alpha_data_;
   std::atomic<int64_t> bytes_{0}, peak_bytes_{0};
 };
 

@@ -214,6 +214,20 @@ void SceneBuilder::count_triangles() {
 }
 
 void SceneBuilder::shape(const std::string& type, const ParamSet& ps, const GraphicsState& gs, const std::string& base_dir) {
+  const size_t before = scene_.shapes.geometries.size();
+  add_shape(type, ps, gs, base_dir);
+  // pbrt's "alpha": a float or a float texture; 1 (the default) is opaque.
+  TextureRef alpha = float_texture(ps, "alpha", 1.f);
+  if (scene_.shapes.geometries.size() == before || (alpha.is_constant() && alpha.value.x >= 1.f)) return;
+  if (gs.area_light)
+    ps.fail(*ps.find("alpha"), "alpha on an emitting shape is not supported; cut the shape out of the light instead");
+  ShapePools& s = scene_.shapes;
+  s.geometries.back().alpha = int32_t(s.alpha_masks.size());
+  s.alpha_masks.push_back({alpha});
+}
+
+void SceneBuilder::add_shape(const std::string& type, const ParamSet& ps, const GraphicsState& gs,
+                             const std::string& base_dir) {
   if (type == "trianglemesh" || type == "bilinearmesh") {
     TriangleMesh m;
     m.positions = ps.get_point3s("P");

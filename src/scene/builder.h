@@ -68,6 +68,7 @@ class SceneBuilder {
   TextureRef eta_param(const pbrt::ParamSet& ps, float def);
   void coat_layer(const pbrt::ParamSet& ps, CoatedDiffuseMaterial* c);
   MaterialHandle default_material();
+  void add_shape(const std::string& type, const pbrt::ParamSet& ps, const GraphicsState& gs, const std::string& base_dir);
   // source: the PLY file the mesh came from, or empty; named in errors.
   void add_mesh(TriangleMesh mesh, const GraphicsState& gs, const pbrt::ParamSet& ps, const std::string& source);
   void add_area_lights(uint32_t geometry, uint32_t primitives, const GraphicsState& gs);

@@ -64,7 +64,7 @@ void SceneBuilder::finish() {
   load_pending_meshes();
   count_triangles();
   if (progress_) progress_("building the BVH");
-  scene_.accel = std::make_unique<EmbreeScene>(scene_.shapes);
+  scene_.accel = std::make_unique<EmbreeScene>(scene_.shapes, scene_.textures);
   scene_.accel->bounds(&scene_.bounds_lo, &scene_.bounds_hi);
   Vec3 center(0.f);
   float radius = 1.f;

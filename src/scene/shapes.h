@@ -37,6 +37,13 @@ struct Geometry {
   uint32_t index;            // into meshes or spheres
   MaterialHandle material;
   int32_t light_offset = -1;  // area light of primitive i is lights.area[light_offset + i]
+  int32_t alpha = -1;         // index into ShapePools::alpha_masks, or -1: opaque
+};
+
+// pbrt's shape parameter "alpha": where it is below 1 the surface is cut
+// out, fully (0) or stochastically (accel/alpha_filter.h).
+struct AlphaMask {
+  TextureRef alpha;
 };
 
 // A named object (pbrt's ObjectBegin/ObjectEnd): the geometries
@@ -64,6 +71,7 @@ struct ShapePools {
   // is rewritten to this index (see RayStream), so shading never asks
   // which kind of geometry it was.
   std::vector<Geometry> geometries;
+  std::vector<AlphaMask> alpha_masks;  // only for geometries with an alpha below 1
   std::vector<uint8_t> in_prototype;  // per geometry: 1 if it belongs to a prototype (not traced directly)
   std::vector<Prototype> prototypes;
   std::vector<Instance> instances;
