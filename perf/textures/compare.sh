@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Renders perf/textures/textures.pbrt (every texture class and mapping) with
+# Renders perf/textures/textures.pbrt (every texture class and mapping) and
+# cutouts.pbrt (alpha, mix, interface) with
 # Lantern and, if given, pbrt-v4, and prints both means and their ratio.
 #   perf/textures/compare.sh LANTERN [PBRT] [OUT_DIR]
 set -euo pipefail
@@ -8,13 +9,16 @@ HERE=$(cd "$(dirname "$0")" && pwd)
 mkdir -p "$OUT"
 # The image texture: the Cornell box, rendered small.
 "$LANTERN" render "$HERE/../../scenes/cornell-box.pbrt" --spp 16 --resolution 64 48 --quiet -o "$OUT/image.png" > /dev/null
-cp "$HERE/textures.pbrt" "$OUT/"
+cp "$HERE/textures.pbrt" "$HERE/cutouts.pbrt" "$OUT/"
 cd "$OUT"
-"$LANTERN" render textures.pbrt --quiet -o textures-lantern.exr > /dev/null
-"$LANTERN" render textures.pbrt --quiet -o textures-lantern.png > /dev/null
-if [ -n "$PBRT" ]; then
-  "$PBRT" --quiet textures.pbrt > /dev/null
-  "$LANTERN" compare textures-lantern.exr textures-pbrt.exr --error-image textures-error.exr | grep -E "^(mean|mean_ref|ratio|relmse) "
-else
-  "$LANTERN" compare textures-lantern.exr textures-lantern.exr | grep -E "^mean "
-fi
+for scene in textures cutouts; do
+  echo "== $scene"
+  "$LANTERN" render $scene.pbrt --quiet -o $scene-lantern.exr > /dev/null
+  "$LANTERN" render $scene.pbrt --quiet -o $scene-lantern.png > /dev/null
+  if [ -n "$PBRT" ]; then
+    "$PBRT" --quiet $scene.pbrt > /dev/null 2>&1
+    "$LANTERN" compare $scene-lantern.exr $scene-pbrt.exr --error-image $scene-error.exr | grep -E "^(mean|mean_ref|ratio|relmse) "
+  else
+    "$LANTERN" compare $scene-lantern.exr $scene-lantern.exr | grep -E "^mean "
+  fi
+done

@@ -8,6 +8,7 @@
 #include "integrator/hit.h"
 #include "integrator/shade.h"
 #include "light/emission.h"
+#include "material/mix.h"
 
 namespace lantern {
 
@@ -90,7 +91,7 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
       ++w.stats.eye_ends[size_t(PathEnd::MaxDepth)];
       continue;
     }
-    w.hits.store(i, sp, d, scene_.shapes.geometries[w.rays.geom_id[i]].material);
+    w.hits.store(i, sp, d, resolve_material(scene_.shapes.geometries[w.rays.geom_id[i]].material, scene_.materials, scene_.textures, TextureContext{sp.p, sp.ns, sp.uv}, -d));
   }
 }
 

@@ -5,6 +5,7 @@
 #include "integrator/hit.h"
 #include "integrator/shade.h"
 #include "light/emission.h"
+#include "material/mix.h"
 
 namespace lantern {
 
@@ -108,7 +109,7 @@ void Bdpt::light_surface_stage(BdptWave& w) const {
     } else {
       mis_after_hit(m, dist2, cos_in, true, mis_);
     }
-    w.hits.store(i, sp, d, scene_.shapes.geometries[w.rays.geom_id[i]].material);
+    w.hits.store(i, sp, d, resolve_material(scene_.shapes.geometries[w.rays.geom_id[i]].material, scene_.materials, scene_.textures, TextureContext{sp.p, sp.ns, sp.uv}, -d));
   }
 }
 

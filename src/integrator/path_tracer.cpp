@@ -4,6 +4,7 @@
 #include "integrator/hit.h"
 #include "integrator/path_wave.h"
 #include "integrator/shade.h"
+#include "material/mix.h"
 #include "scene/surface.h"
 
 namespace lantern {
@@ -86,7 +87,7 @@ void PathTracer::surface_stage(PathWave& w) const {
       ++w.stats.eye_ends[size_t(PathEnd::MaxDepth)];
       continue;
     }
-    w.hits.store(i, sp, d, g.material);
+    w.hits.store(i, sp, d, resolve_material(g.material, scene_.materials, scene_.textures, TextureContext{sp.p, sp.ns, sp.uv}, -d));
   }
 }
 

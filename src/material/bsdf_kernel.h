@@ -66,6 +66,9 @@ void for_each_bsdf(MaterialKind kind, const MaterialPools& pools, const TextureP
     case MaterialKind::Conductor: run(pools.conductor); break;
     case MaterialKind::Dielectric: run(pools.dielectric); break;
     case MaterialKind::CoatedDiffuse: run(pools.coated_diffuse); break;
+    case MaterialKind::Mix:        // resolved when the hit was stored
+    case MaterialKind::Interface:  // cut out of the scene
+      break;
   }
 }
 
@@ -78,7 +81,10 @@ decltype(auto) with_bsdf(MaterialHandle m, const MaterialPools& pools, const Tex
     case MaterialKind::Diffuse: return fn(make_bsdf(pools.diffuse[m.index()], c, tex));
     case MaterialKind::Conductor: return fn(make_bsdf(pools.conductor[m.index()], c, tex));
     case MaterialKind::Dielectric: return fn(make_bsdf(pools.dielectric[m.index()], c, tex));
-    case MaterialKind::CoatedDiffuse: break;
+    case MaterialKind::CoatedDiffuse:
+    case MaterialKind::Mix:        // never stored in a hit
+    case MaterialKind::Interface:
+      break;
   }
   return fn(make_bsdf(pools.coated_diffuse[m.index()], c, tex));
 }

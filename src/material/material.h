@@ -12,8 +12,12 @@
 
 namespace lantern {
 
-enum class MaterialKind : uint8_t { Diffuse = 0, Conductor, Dielectric, CoatedDiffuse };
-inline constexpr int kMaterialKindCount = 4;
+// The kinds with a BSDF, each with its pool and shading loop; then two
+// kinds that never reach shading: Mix is resolved to one of its materials
+// when a hit is stored (resolve_material), and Interface (a boundary with no
+// surface) is cut out of the scene like alpha 0.
+enum class MaterialKind : uint8_t { Diffuse = 0, Conductor, Dielectric, CoatedDiffuse, Mix, Interface };
+inline constexpr int kMaterialKindCount = 4;  // the kinds with a BSDF
 
 struct MaterialHandle {
   uint32_t bits = 0;
@@ -66,11 +70,19 @@ struct CoatedDiffuseMaterial {
   int n_samples = 1;
 };
 
+// pbrt-v4's mix: materials[1] with probability amount, materials[0]
+// otherwise, chosen per hit by a hash of the point and direction.
+struct MixMaterial {
+  MaterialHandle materials[2];
+  TextureRef amount = TextureRef::constant(0.5f);
+};
+
 struct MaterialPools {
   std::vector<DiffuseMaterial> diffuse;
   std::vector<ConductorMaterial> conductor;
   std::vector<DielectricMaterial> dielectric;
   std::vector<CoatedDiffuseMaterial> coated_diffuse;
+  std::vector<MixMaterial> mix;
 
   bool has(MaterialKind k) const {
     switch (k) {
@@ -78,6 +90,8 @@ struct MaterialPools {
       case MaterialKind::Conductor: return !conductor.empty();
       case MaterialKind::Dielectric: return !dielectric.empty();
       case MaterialKind::CoatedDiffuse: return !coated_diffuse.empty();
+      case MaterialKind::Mix: return !mix.empty();
+      case MaterialKind::Interface: return false;
     }
     return false;
   }

@@ -217,8 +217,13 @@ void SceneBuilder::shape(const std::string& type, const ParamSet& ps, const Grap
   const size_t before = scene_.shapes.geometries.size();
   add_shape(type, ps, gs, base_dir);
   // pbrt's "alpha": a float or a float texture; 1 (the default) is opaque.
+  // A shape of "interface" material has no surface: with media ignored, it
+  // is cut out entirely.
   TextureRef alpha = float_texture(ps, "alpha", 1.f);
+  const bool interface = gs.material && gs.material->kind() == MaterialKind::Interface;
+  if (interface) alpha = TextureRef::constant(0.f);
   if (scene_.shapes.geometries.size() == before || (alpha.is_constant() && alpha.value.x >= 1.f)) return;
+  if (gs.area_light && interface) ps.fail("an emitting shape cannot have the \"interface\" material");
   if (gs.area_light)
     ps.fail(*ps.find("alpha"), "alpha on an emitting shape is not supported; cut the shape out of the light instead");
   ShapePools& s = scene_.shapes;

@@ -38,7 +38,9 @@ class SceneBuilder {
   void integrator(const std::string& type, const pbrt::ParamSet& ps);
   void pixel_filter(const std::string& type, const pbrt::ParamSet& ps);
 
-  MaterialHandle material(const std::string& type, const pbrt::ParamSet& ps);
+  // named: the materials MakeNamedMaterial defined so far (for "mix").
+  MaterialHandle material(const std::string& type, const pbrt::ParamSet& ps,
+                          const std::map<std::string, MaterialHandle>& named);
   void texture(const std::string& name, const std::string& value_type, const std::string& cls, const pbrt::ParamSet& ps,
                const Mat4& ctm, const std::string& base_dir);
   void shape(const std::string& type, const pbrt::ParamSet& ps, const GraphicsState& gs, const std::string& base_dir);

@@ -43,8 +43,25 @@ TextureRef SceneBuilder::eta_param(const ParamSet& ps, float def) {
   return TextureRef::constant(eta);
 }
 
-MaterialHandle SceneBuilder::material(const std::string& type, const ParamSet& ps) {
+MaterialHandle SceneBuilder::material(const std::string& type, const ParamSet& ps,
+                                      const std::map<std::string, MaterialHandle>& named) {
   MaterialPools& m = scene_.materials;
+  if (type == "interface") return MaterialHandle::make(MaterialKind::Interface, 0);
+  if (type == "mix") {
+    const pbrt::Param* p = ps.find("materials");
+    if (!p || p->type != "string" || p->strings.size() != 2)
+      ps.fail("mix needs \"string materials\" with the names of two materials defined with MakeNamedMaterial");
+    MixMaterial mix;
+    for (int i = 0; i < 2; ++i) {
+      auto it = named.find(p->strings[size_t(i)]);
+      if (it == named.end()) ps.fail(*p, "no material named \"" + printable(p->strings[size_t(i)]) + "\" was defined");
+      if (it->second.kind() == MaterialKind::Interface) ps.fail(*p, "an \"interface\" material cannot be mixed");
+      mix.materials[i] = it->second;
+    }
+    mix.amount = float_texture(ps, "amount", 0.5f);
+    m.mix.push_back(mix);
+    return MaterialHandle::make(MaterialKind::Mix, uint32_t(m.mix.size() - 1));
+  }
   if (type == "diffuse" || type == "matte") {
     m.diffuse.push_back({rgb_texture(ps, ps.has("Kd") ? "Kd" : "reflectance", RGB(0.5f))});
     ps.find("sigma");
@@ -96,7 +113,8 @@ MaterialHandle SceneBuilder::material(const std::string& type, const ParamSet& p
     return MaterialHandle::make(MaterialKind::CoatedDiffuse, uint32_t(m.coated_diffuse.size() - 1));
   }
   ps.fail("material type \"" + type +
-          "\" is not supported; expected diffuse, conductor, dielectric, coateddiffuse (or matte, metal, glass, plastic, mirror)");
+          "\" is not supported; expected diffuse, conductor, dielectric, coateddiffuse, mix, interface (or matte, metal, "
+          "glass, plastic, mirror)");
 }
 
 MaterialHandle SceneBuilder::default_material() {
