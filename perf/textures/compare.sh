@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Renders perf/textures/textures.pbrt (every texture class and mapping) and
-# cutouts.pbrt (alpha, mix, interface) with
+# cutouts.pbrt (alpha, mix, interface) and bumps.pbrt (bump and normal maps) with
 # Lantern and, if given, pbrt-v4, and prints both means and their ratio.
 #   perf/textures/compare.sh LANTERN [PBRT] [OUT_DIR]
 set -euo pipefail
@@ -9,9 +9,10 @@ HERE=$(cd "$(dirname "$0")" && pwd)
 mkdir -p "$OUT"
 # The image texture: the Cornell box, rendered small.
 "$LANTERN" render "$HERE/../../scenes/cornell-box.pbrt" --spp 16 --resolution 64 48 --quiet -o "$OUT/image.png" > /dev/null
-cp "$HERE/textures.pbrt" "$HERE/cutouts.pbrt" "$OUT/"
+python3 "$HERE/make-normal-map.py" "$OUT/normals.pfm"
+cp "$HERE/textures.pbrt" "$HERE/cutouts.pbrt" "$HERE/bumps.pbrt" "$OUT/"
 cd "$OUT"
-for scene in textures cutouts; do
+for scene in textures cutouts bumps; do
   echo "== $scene"
   "$LANTERN" render $scene.pbrt --quiet -o $scene-lantern.exr > /dev/null
   "$LANTERN" render $scene.pbrt --quiet -o $scene-lantern.png > /dev/null

@@ -6,9 +6,9 @@
 #include "film/pixel_filter.h"
 #include "integrator/bdpt_wave.h"
 #include "integrator/hit.h"
+#include "integrator/hit_material.h"
 #include "integrator/shade.h"
 #include "light/emission.h"
-#include "material/mix.h"
 
 namespace lantern {
 
@@ -91,7 +91,7 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
       ++w.stats.eye_ends[size_t(PathEnd::MaxDepth)];
       continue;
     }
-    w.hits.store(i, sp, d, resolve_material(scene_.shapes.geometries[w.rays.geom_id[i]].material, scene_.materials, scene_.textures, TextureContext{sp.p, sp.ns, sp.uv}, -d));
+    w.hits.store(i, sp, d, hit_material(scene_, w.rays, i, d, &sp));
   }
 }
 

@@ -3,9 +3,9 @@
 #include "integrator/bdpt.h"
 #include "integrator/bdpt_wave.h"
 #include "integrator/hit.h"
+#include "integrator/hit_material.h"
 #include "integrator/shade.h"
 #include "light/emission.h"
-#include "material/mix.h"
 
 namespace lantern {
 
@@ -109,7 +109,7 @@ void Bdpt::light_surface_stage(BdptWave& w) const {
     } else {
       mis_after_hit(m, dist2, cos_in, true, mis_);
     }
-    w.hits.store(i, sp, d, resolve_material(scene_.shapes.geometries[w.rays.geom_id[i]].material, scene_.materials, scene_.textures, TextureContext{sp.p, sp.ns, sp.uv}, -d));
+    w.hits.store(i, sp, d, hit_material(scene_, w.rays, i, d, &sp));
   }
 }
 

@@ -2,9 +2,9 @@
 
 #include "film/pixel_filter.h"
 #include "integrator/hit.h"
+#include "integrator/hit_material.h"
 #include "integrator/path_wave.h"
 #include "integrator/shade.h"
-#include "material/mix.h"
 #include "scene/surface.h"
 
 namespace lantern {
@@ -71,7 +71,6 @@ void PathTracer::surface_stage(PathWave& w) const {
       continue;
     }
     ++w.stats.eye_vertices;
-    const Geometry& g = shapes.geometries[w.rays.geom_id[i]];
     SurfacePoint sp = hit_point(shapes, w.rays, i);
     if (int64_t area = hit_area_light(shapes, w.rays, i); area >= 0) {
       uint32_t light = uint32_t(area);
@@ -87,7 +86,7 @@ void PathTracer::surface_stage(PathWave& w) const {
       ++w.stats.eye_ends[size_t(PathEnd::MaxDepth)];
       continue;
     }
-    w.hits.store(i, sp, d, resolve_material(g.material, scene_.materials, scene_.textures, TextureContext{sp.p, sp.ns, sp.uv}, -d));
+    w.hits.store(i, sp, d, hit_material(scene_, w.rays, i, d, &sp));
   }
 }
 

@@ -40,6 +40,7 @@ struct RoughnessParams {
 
 struct DiffuseMaterial {
   TextureRef reflectance;
+  int32_t bump = -1;  // index into MaterialPools::bumps
 };
 
 struct ConductorMaterial {
@@ -51,11 +52,13 @@ struct ConductorMaterial {
   TextureRef mirror_reflectance = TextureRef::constant(1.f);  // pbrt's "mirror" (Kr)
   bool mirror = false;
   RoughnessParams roughness;
+  int32_t bump = -1;
 };
 
 struct DielectricMaterial {
   TextureRef eta = TextureRef::constant(1.5f);
   RoughnessParams roughness;
+  int32_t bump = -1;  // index into MaterialPools::bumps
 };
 
 // pbrt-v4's parameters and defaults.
@@ -68,6 +71,13 @@ struct CoatedDiffuseMaterial {
   RoughnessParams roughness;
   int max_depth = 10;
   int n_samples = 1;
+  int32_t bump = -1;
+};
+
+// A material's bump or normal map (applied by material/bump.h).
+struct BumpParams {
+  TextureRef displacement = TextureRef::constant(0.f);
+  int32_t normal_map = -1;  // index into TexturePools::images
 };
 
 // pbrt-v4's mix: materials[1] with probability amount, materials[0]
@@ -83,6 +93,21 @@ struct MaterialPools {
   std::vector<DielectricMaterial> dielectric;
   std::vector<CoatedDiffuseMaterial> coated_diffuse;
   std::vector<MixMaterial> mix;
+  std::vector<BumpParams> bumps;  // only for materials with a displacement or normal map
+
+  // The bump or normal map of a concrete material, or nullptr.
+  const BumpParams* bump(MaterialHandle m) const {
+    int32_t b = -1;
+    switch (m.kind()) {
+      case MaterialKind::Diffuse: b = diffuse[m.index()].bump; break;
+      case MaterialKind::Conductor: b = conductor[m.index()].bump; break;
+      case MaterialKind::Dielectric: b = dielectric[m.index()].bump; break;
+      case MaterialKind::CoatedDiffuse: b = coated_diffuse[m.index()].bump; break;
+      case MaterialKind::Mix:
+      case MaterialKind::Interface: break;
+    }
+    return b < 0 ? nullptr : &bumps[size_t(b)];
+  }
 
   bool has(MaterialKind k) const {
     switch (k) {

@@ -40,7 +40,7 @@ class SceneBuilder {
 
   // named: the materials MakeNamedMaterial defined so far (for "mix").
   MaterialHandle material(const std::string& type, const pbrt::ParamSet& ps,
-                          const std::map<std::string, MaterialHandle>& named);
+                          const std::map<std::string, MaterialHandle>& named, const std::string& base_dir);
   void texture(const std::string& name, const std::string& value_type, const std::string& cls, const pbrt::ParamSet& ps,
                const Mat4& ctm, const std::string& base_dir);
   void shape(const std::string& type, const pbrt::ParamSet& ps, const GraphicsState& gs, const std::string& base_dir);
@@ -61,13 +61,19 @@ class SceneBuilder {
                          pbrt::ColorUsage usage = pbrt::ColorUsage::Reflectance);
   TextureRef float_texture(const pbrt::ParamSet& ps, const std::string& name, float def);
   TextureMapping texture_mapping(const pbrt::ParamSet& ps, const Mat4& ctm, bool two_d);
-  int32_t texture_image(const pbrt::ParamSet& ps, const std::string& path, ColorEncoding encoding);
+  // The image at path, read once per encoding; errors name parameter `param`.
+  int32_t texture_image(const pbrt::ParamSet& ps, const std::string& path, ColorEncoding encoding,
+                        const char* param = "filename");
   TextureRef add_texture_node(TextureNode n);
   // Material parameters (builder_materials.cpp).
   RoughnessParams roughness(const pbrt::ParamSet& ps, float def);
   // "eta" (or pbrt-v3's "index"): a number, a named or RGB spectrum (its
   // first channel), or a float texture.
   TextureRef eta_param(const pbrt::ParamSet& ps, float def);
+  // "displacement" and "normalmap": an index into MaterialPools::bumps, or -1.
+  int32_t bump_map(const pbrt::ParamSet& ps, const std::string& base_dir);
+  MaterialHandle concrete_material(const std::string& type, const pbrt::ParamSet& ps);
+  MaterialHandle mix_material(const pbrt::ParamSet& ps, const std::map<std::string, MaterialHandle>& named);
   void coat_layer(const pbrt::ParamSet& ps, CoatedDiffuseMaterial* c);
   MaterialHandle default_material();
   void add_shape(const std::string& type, const pbrt::ParamSet& ps, const GraphicsState& gs, const std::string& base_dir);

@@ -43,25 +43,59 @@ TextureRef SceneBuilder::eta_param(const ParamSet& ps, float def) {
   return TextureRef::constant(eta);
 }
 
+int32_t SceneBuilder::bump_map(const ParamSet& ps, const std::string& base_dir) {
+  BumpParams b;
+  b.displacement = float_texture(ps, "displacement", 0.f);
+  std::string file = ps.get_string("normalmap", "");
+  if (!file.empty()) {
+    // pbrt-v4 reads normal maps linearly, whatever the format.
+    b.normal_map = texture_image(ps, resolve_path(base_dir, file), ColorEncoding{ColorEncoding::Linear}, "normalmap");
+    if (ps.has("displacement")) warn(ps.where, "both \"normalmap\" and \"displacement\" given: the normal map is used (as in pbrt-v4)");
+  }
+  if (b.normal_map < 0 && b.displacement.is_constant()) return -1;  // a constant displacement does not bend normals
+  scene_.materials.bumps.push_back(b);
+  return int32_t(scene_.materials.bumps.size() - 1);
+}
+
 MaterialHandle SceneBuilder::material(const std::string& type, const ParamSet& ps,
-                                      const std::map<std::string, MaterialHandle>& named) {
+                                      const std::map<std::string, MaterialHandle>& named, const std::string& base_dir) {
+  if (type == "mix") return mix_material(ps, named);  // its materials keep their own bump maps
+  MaterialHandle h = concrete_material(type, ps);
+  if (h.kind() == MaterialKind::Interface) return h;
+  if (int32_t b = bump_map(ps, base_dir); b >= 0) {
+    MaterialPools& m = scene_.materials;
+    switch (h.kind()) {
+      case MaterialKind::Diffuse: m.diffuse[h.index()].bump = b; break;
+      case MaterialKind::Conductor: m.conductor[h.index()].bump = b; break;
+      case MaterialKind::Dielectric: m.dielectric[h.index()].bump = b; break;
+      case MaterialKind::CoatedDiffuse: m.coated_diffuse[h.index()].bump = b; break;
+      case MaterialKind::Mix:
+      case MaterialKind::Interface: break;
+    }
+  }
+  return h;
+}
+
+MaterialHandle SceneBuilder::mix_material(const ParamSet& ps, const std::map<std::string, MaterialHandle>& named) {
+  MaterialPools& m = scene_.materials;
+  const pbrt::Param* p = ps.find("materials");
+  if (!p || p->type != "string" || p->strings.size() != 2)
+    ps.fail("mix needs \"string materials\" with the names of two materials defined with MakeNamedMaterial");
+  MixMaterial mix;
+  for (int i = 0; i < 2; ++i) {
+    auto it = named.find(p->strings[size_t(i)]);
+    if (it == named.end()) ps.fail(*p, "no material named \"" + printable(p->strings[size_t(i)]) + "\" was defined");
+    if (it->second.kind() == MaterialKind::Interface) ps.fail(*p, "an \"interface\" material cannot be mixed");
+    mix.materials[i] = it->second;
+  }
+  mix.amount = float_texture(ps, "amount", 0.5f);
+  m.mix.push_back(mix);
+  return MaterialHandle::make(MaterialKind::Mix, uint32_t(m.mix.size() - 1));
+}
+
+MaterialHandle SceneBuilder::concrete_material(const std::string& type, const ParamSet& ps) {
   MaterialPools& m = scene_.materials;
   if (type == "interface") return MaterialHandle::make(MaterialKind::Interface, 0);
-  if (type == "mix") {
-    const pbrt::Param* p = ps.find("materials");
-    if (!p || p->type != "string" || p->strings.size() != 2)
-      ps.fail("mix needs \"string materials\" with the names of two materials defined with MakeNamedMaterial");
-    MixMaterial mix;
-    for (int i = 0; i < 2; ++i) {
-      auto it = named.find(p->strings[size_t(i)]);
-      if (it == named.end()) ps.fail(*p, "no material named \"" + printable(p->strings[size_t(i)]) + "\" was defined");
-      if (it->second.kind() == MaterialKind::Interface) ps.fail(*p, "an \"interface\" material cannot be mixed");
-      mix.materials[i] = it->second;
-    }
-    mix.amount = float_texture(ps, "amount", 0.5f);
-    m.mix.push_back(mix);
-    return MaterialHandle::make(MaterialKind::Mix, uint32_t(m.mix.size() - 1));
-  }
   if (type == "diffuse" || type == "matte") {
     m.diffuse.push_back({rgb_texture(ps, ps.has("Kd") ? "Kd" : "reflectance", RGB(0.5f))});
     ps.find("sigma");

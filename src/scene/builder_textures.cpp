@@ -68,14 +68,15 @@ TextureMapping SceneBuilder::texture_mapping(const ParamSet& ps, const Mat4& ctm
   return m;
 }
 
-int32_t SceneBuilder::texture_image(const ParamSet& ps, const std::string& path, ColorEncoding encoding) {
+int32_t SceneBuilder::texture_image(const ParamSet& ps, const std::string& path, ColorEncoding encoding,
+                                    const char* param) {
   std::string key = std::to_string(int(encoding.kind)) + "/" + std::to_string(encoding.gamma) + "|" + path;
   if (auto it = images_.find(key); it != images_.end()) return it->second;
   TextureImage img;
   try {
     img = load_texture_image(path, encoding);
   } catch (const InputError& e) {
-    ps.fail(*ps.find("filename"), e.what());
+    ps.fail(*ps.find(param), e.what());
   }
   scene_.textures.images.push_back(std::move(img));
   int32_t index = int32_t(scene_.textures.images.size() - 1);

@@ -253,7 +253,7 @@ class Parser {
       world_only();
       std::string type = expect_string("a material type");
       ParamSet ps = params(t, "Material \"" + printable(type) + "\"");
-      gs_.material = b_.material(type, ps, named_materials_);
+      gs_.material = b_.material(type, ps, named_materials_, base_dir_);
       ps.warn_unused();
     } else if (d == "MakeNamedMaterial") {
       world_only();
@@ -262,7 +262,7 @@ class Parser {
       std::string type = ps.get_string("type", "");
       if (type.empty()) ps.fail("needs a \"string type\" parameter");
       if (named_materials_.count(name)) b_.warn(loc(t), "material \"" + printable(name) + "\" redefined");
-      named_materials_[name] = b_.material(type, ps, named_materials_);
+      named_materials_[name] = b_.material(type, ps, named_materials_, base_dir_);
       ps.warn_unused();
     } else if (d == "NamedMaterial") {
       world_only();

@@ -1,0 +1,43 @@
+// The material a stored hit is shaded with: a mix resolved to one of its
+// materials, and the shading normal perturbed by the material's bump or
+// normal map. Shared by every integrator and both kinds of subpath, so a
+// light vertex and an eye vertex at the same point shade alike.
+#pragma once
+
+#include "integrator/hit.h"
+#include "material/bump.h"
+#include "material/mix.h"
+#include "scene/scene.h"
+#include "scene/shading_geometry.h"
+
+namespace lantern {
+
+inline MaterialHandle hit_material(const Scene& scene, const RayBatch& rays, uint32_t i, const Vec3& d,
+                                   SurfacePoint* sp) {
+  const ShapePools& shapes = scene.shapes;
+  const Geometry& geo = shapes.geometries[rays.geom_id[i]];
+  MaterialHandle m = resolve_material(geo.material, scene.materials, scene.textures,
+                                      TextureContext{sp->p, sp->ns, sp->uv}, -d);
+  const BumpParams* bump = scene.materials.bump(m);
+  if (!bump) return m;
+  // Derivatives in the geometry's own space, carried to the world for an
+  // instance (the surface point already is).
+  const uint32_t inst = rays.inst_id[i];
+  const Instance* in = inst == kInvalidGeometry ? nullptr : &shapes.instances[inst];
+  SurfacePoint local = in ? local_hit_point(shapes, rays, i, in) : *sp;
+  ShadingGeometry g = geo.kind == ShapeKind::Mesh
+                          ? triangle_shading_geometry(shapes.meshes[geo.index], rays.prim_id[i], local)
+                          : sphere_shading_geometry(shapes.spheres[geo.index], local);
+  if (in) {
+    const glm::mat3 M(in->world_from_object);
+    g.dpdu = M * g.dpdu;
+    g.dpdv = M * g.dpdv;
+    g.dndu = in->normal_to_world * g.dndu;
+    g.dndv = in->normal_to_world * g.dndv;
+    g.n = sp->ns;
+  }
+  sp->ns = bumped_normal(*bump, scene.textures, *sp, g);
+  return m;
+}
+
+}  // namespace lantern
