@@ -169,13 +169,14 @@ Estimate sampled_albedo(const CoatedDiffuseBSDF& b, const Vec3& wo, TransportMod
 
 // The integral of the estimated f times the cosine over cosine-distributed
 // directions, plus the smooth coat's mirror reflection, which f() leaves out.
-Estimate evaluated_albedo(const CoatedDiffuseBSDF& b, const Vec3& wo, int n) {
+Estimate evaluated_albedo(const CoatedDiffuseBSDF& b, const Vec3& wo, int n,
+                          TransportMode mode = TransportMode::Radiance) {
   PathSampler s = PathSampler::make(29, 6, 0);
   double sum = 0.0, sum2 = 0.0;
   for (int i = 0; i < n; ++i) {
     Vec3 wi = sample_cosine_hemisphere(s.get2d());
     if (wi.z <= 0.f) continue;
-    double v = double(b.f(wo, wi, TransportMode::Radiance).x) * kPi;
+    double v = double(b.f(wo, wi, mode).x) * kPi;
     sum += v;
     sum2 += v * v;
   }
@@ -234,6 +235,7 @@ TEST(LayeredBSDF, ScatteringLayersMatchAnalogSimulation) {
       expect_agree(sampled_albedo(b, wo, TransportMode::Radiance, 100000), ref, what + " sampled");
       expect_agree(sampled_albedo(b, wo, TransportMode::Importance, 100000), ref, what + " sampled (importance)");
       expect_agree(evaluated_albedo(b, wo, 50000), ref, what + " evaluated");
+      expect_agree(evaluated_albedo(b, wo, 50000, TransportMode::Importance), ref, what + " evaluated (importance)");
     }
   }
 }
