@@ -73,7 +73,7 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
     if (!(cos_in > 0.f) || !(dist2 > 0.f)) continue;
     mis_after_hit(m, dist2, cos_in, true, mis_);
     if (int64_t light = hit_area_light(shapes, w.rays, i); light >= 0) {
-      RGB Le = area_light_Le(lights.area[size_t(light)], sp.ng, -d);
+      RGB Le = area_light_Le(lights.area[size_t(light)], scene_.textures, sp.ng, sp.uv, -d);
       if (!is_black(Le)) {
         uint32_t a = uint32_t(light);
         float wt;

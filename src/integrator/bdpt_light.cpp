@@ -60,7 +60,7 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
     if (!es->infinite) {
       if (auto cs = camera_.sample_wi(es->p, u_lens)) {
         float cos_l = on_surface ? std::fabs(glm::dot(es->n, cs->wi)) : 1.f;
-        RGB Le = emitted(lights, es->light, es->n, cs->wi);
+        RGB Le = emitted(lights, scene_.textures, es->light, es->n, es->uv, cs->wi);
         if (!is_black(Le) && cos_l > 0.f) {
           float wt = 1.f;
           if (!settings_.light_tracing_only) {

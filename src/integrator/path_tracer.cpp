@@ -74,7 +74,7 @@ void PathTracer::surface_stage(PathWave& w) const {
     SurfacePoint sp = hit_point(shapes, w.rays, i);
     if (int64_t area = hit_area_light(shapes, w.rays, i); area >= 0) {
       uint32_t light = uint32_t(area);
-      RGB Le = area_light_Le(lights.area[light], sp.ng, -d);
+      RGB Le = area_light_Le(lights.area[light], scene_.textures, sp.ng, sp.uv, -d);
       if (!is_black(Le)) {
         float weight = unweighted ? 1.f
                                   : power_heuristic(w.prev_pdf[slot],

@@ -65,10 +65,11 @@ std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& s
       Frame f = Frame::from_z(back ? -sp.ng : sp.ng);
       es.p = sp.p;
       es.n = sp.ng;
+      es.uv = sp.uv;
       es.d = f.from_local(wl);
       es.pdf_pos *= 1.f / a.area;
       es.pdf_dir = area_dir_pdf(a, sp.ng, es.d);
-      es.Le = area_light_Le(a, sp.ng, es.d);
+      es.Le = area_light_Le(a, tex, sp.ng, sp.uv, es.d);
       es.error_scale = sp.error_scale;
       break;
     }
@@ -144,11 +145,11 @@ float emission_pdf(const LightPools& L, const TexturePools& tex, uint32_t light,
   return 0.f;
 }
 
-RGB emitted(const LightPools& L, uint32_t light, const Vec3& n, const Vec3& w) {
+RGB emitted(const LightPools& L, const TexturePools& tex, uint32_t light, const Vec3& n, Vec2 uv, const Vec3& w) {
   const LightRef r = L.all[light];
   switch (r.kind) {
     case LightKind::Area:
-      return area_light_Le(L.area[r.index], n, w);
+      return area_light_Le(L.area[r.index], tex, n, uv, w);
     case LightKind::Point:
       return L.point[r.index].I;
     case LightKind::Spot:

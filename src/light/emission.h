@@ -12,6 +12,7 @@ namespace lantern {
 struct EmissionSample {
   Vec3 p{0.f};          // origin: on the light, or on a disk outside the scene for lights at infinity
   Vec3 n{0.f};          // surface normal of an area light; zero otherwise
+  Vec2 uv{0.f};         // surface coordinates of an area light's point
   Vec3 d{0.f};          // unit direction of emission
   RGB Le{0.f};          // radiance (area, infinite, distant) or intensity (point, spot) along d
   float pdf_pos = 0.f;  // area density of p times the selection pmf (delta position: the pmf)
@@ -36,7 +37,7 @@ float area_emission_pdf(const LightPools& lights, uint32_t area_index, const Vec
 float infinite_emission_pdf(const LightPools& lights, const TexturePools& tex, const Vec3& w_to_light);
 
 // Radiance or intensity a light with finite position emits from (p, n) in w.
-RGB emitted(const LightPools& lights, uint32_t light, const Vec3& n, const Vec3& w);
+RGB emitted(const LightPools& lights, const TexturePools& tex, uint32_t light, const Vec3& n, Vec2 uv, const Vec3& w);
 
 // Area density (times the pmf) with which sample_light picks p_light when
 // called from p: next-event estimation's density of a light vertex.

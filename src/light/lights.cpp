@@ -63,7 +63,8 @@ static float power_of(const LightPools& L, const LightRef& r, const TexturePools
   switch (r.kind) {
     case LightKind::Area: {
       const AreaLight& a = L.area[r.index];
-      return avg(a.L) * a.area * kPi * (a.two_sided ? 2.f : 1.f);
+      float mean = a.image < 0 ? 1.f : tex.image_mean(a.image);
+      return avg(a.L) * mean * a.area * kPi * (a.two_sided ? 2.f : 1.f);
     }
     case LightKind::Point: return 4.f * kPi * avg(L.point[r.index].I);
     case LightKind::Spot: {
@@ -129,7 +130,8 @@ static float sphere_cone_sin2_max(const Sphere& s, const Vec3& p) {
   return s2 >= 1.f - 1e-3f ? 1.f : s2;
 }
 
-static std::optional<LightSample> sample_area(const LightPools& L, const ShapePools& shapes, const AreaLight& a,
+static std::optional<LightSample> sample_area(const LightPools& L, const ShapePools& shapes, const TexturePools& tex,
+                                              const AreaLight& a,
                                               const Vec3& p, Vec2 u) {
   const Geometry& g = shapes.geometries[a.geometry];
   SurfacePoint sp;
@@ -177,7 +179,7 @@ static std::optional<LightSample> sample_area(const LightPools& L, const ShapePo
   if (!(dist2 > 0.f) || !std::isfinite(pdf) || pdf <= 0.f) return std::nullopt;
   LightSample ls;
   ls.wi = d / std::sqrt(dist2);
-  ls.L = area_light_Le(a, sp.ng, -ls.wi);
+  ls.L = area_light_Le(a, tex, sp.ng, sp.uv, -ls.wi);
   ls.pdf = pdf;
   ls.p_light = sp.p;
   ls.n_light = sp.ng;
@@ -190,7 +192,7 @@ std::optional<LightSample> sample_light_from(const LightPools& L, const ShapePoo
   const LightRef r = L.all[i];
   std::optional<LightSample> ls;
   switch (r.kind) {
-    case LightKind::Area: ls = sample_area(L, shapes, L.area[r.index], p, u); break;
+    case LightKind::Area: ls = sample_area(L, shapes, tex, L.area[r.index], p, u); break;
     case LightKind::Point: {
       const PointLight& pl = L.point[r.index];
       Vec3 d = pl.p - p;

@@ -8,11 +8,11 @@
 
 #include "math/distribution.h"
 #include "math/frame.h"
+#include "texture/texture.h"
 
 namespace lantern {
 
 struct ShapePools;
-struct TexturePools;
 
 enum class LightKind : uint8_t { Area, Point, Spot, Distant, Infinite };
 
@@ -22,6 +22,7 @@ struct AreaLight {  // one per emissive triangle or sphere
   RGB L;
   bool two_sided;
   float area;
+  int32_t image = -1;  // pbrt-v4's "filename": L scales this image, looked up by (u, v)
 };
 struct PointLight {
   Vec3 p;
@@ -92,8 +93,13 @@ std::optional<LightSample> sample_light(const LightPools& lights, const ShapePoo
 float area_light_pdf(const LightPools& lights, const ShapePools& shapes, uint32_t area_index, const Vec3& p,
                      const Vec3& p_light, const Vec3& n_light);
 
-inline RGB area_light_Le(const AreaLight& l, const Vec3& n, const Vec3& w) {
-  return (l.two_sided || glm::dot(n, w) > 0.f) ? l.L : RGB(0.f);
+// Radiance leaving an area light at a point of normal n and surface
+// coordinates uv, in direction w.
+inline RGB area_light_Le(const AreaLight& l, const TexturePools& tex, const Vec3& n, Vec2 uv, const Vec3& w) {
+  if (!l.two_sided && !(glm::dot(n, w) > 0.f)) return RGB(0.f);
+  if (l.image < 0) return l.L;
+  // As pbrt-v4: t flipped, bilinear, repeating.
+  return l.L * tex.images[size_t(l.image)].lookup_rgb(Vec2(uv.x, 1.f - uv.y), ImageFilter::Bilinear, WrapMode::Repeat);
 }
 
 // Radiance from infinite lights along a ray leaving the scene in direction w.

@@ -307,7 +307,12 @@ void SceneBuilder::add_area_lights(uint32_t geometry, uint32_t primitives, const
   const ParamSet& ps = *gs.area_light;
   RGB L = ps.get_rgb("L", ColorUsage::Illuminant).value_or(RGB(1.f)) * ps.get_float("scale", 1.f);
   bool two_sided = ps.get_bool("twosided", false);
-  if (ps.has("filename")) ps.fail("image-textured area lights are not supported");
+  int32_t image = -1;
+  if (std::string file = ps.get_string("filename", ""); !file.empty()) {
+    // pbrt-v4: the image's RGB is the radiance, times "scale"; not with "L".
+    if (ps.has("L")) ps.fail(*ps.find("L"), "give either \"L\" or \"filename\", not both");
+    image = texture_image(ps, resolve_path(gs.area_light_dir, file), ColorEncoding{ColorEncoding::SRGB});
+  }
   Geometry& g = scene_.shapes.geometries[geometry];
   g.light_offset = int32_t(scene_.lights.area.size());
   float total = 0.f;
@@ -315,11 +320,11 @@ void SceneBuilder::add_area_lights(uint32_t geometry, uint32_t primitives, const
     float area = g.kind == ShapeKind::Mesh ? triangle_area(scene_.shapes.meshes[g.index], i)
                                            : 4.f * kPi * sqr(scene_.shapes.spheres[g.index].radius);
     total += area;
-    scene_.lights.area.push_back({geometry, i, L, two_sided, area});
+    scene_.lights.area.push_back({geometry, i, L, two_sided, area, image});
   }
   if (ps.has("power")) {
     float power = ps.get_float("power", 0.f);
-    float k = (two_sided ? 2.f : 1.f) * total * kPi;
+    float k = (two_sided ? 2.f : 1.f) * total * kPi * (image < 0 ? 1.f : scene_.textures.image_mean(image));
     if (k > 0.f)
       for (uint32_t i = 0; i < primitives; ++i) scene_.lights.area[size_t(g.light_offset) + i].L *= power / k;
   }

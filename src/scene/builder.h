@@ -20,6 +20,7 @@ struct GraphicsState {
   bool reverse_orientation = false;
   std::optional<MaterialHandle> material;  // none yet: pbrt's default diffuse
   std::optional<pbrt::ParamSet> area_light;
+  std::string area_light_dir;  // folder of the file that gave the AreaLightSource (for its "filename")
 };
 
 class SceneBuilder {

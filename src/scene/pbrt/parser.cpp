@@ -290,6 +290,7 @@ class Parser {
       ParamSet ps = params(t, "AreaLightSource \"" + printable(type) + "\"");
       if (type != "diffuse") ps.fail("area light type \"" + printable(type) + "\" is not supported; expected \"diffuse\"");
       gs_.area_light = std::move(ps);
+      gs_.area_light_dir = base_dir_;
     } else if (d == "Shape") {
       world_only();
       std::string type = expect_string("a shape type");
