@@ -60,9 +60,9 @@ Texture "bumpscale" "float" "scale" "texture tex" "bumps" "float scale" [ 0.05 ]
 Material "coateddiffuse" "rgb reflectance" [ 0.5 0.3 0.2 ] "float roughness" [ 0.1 ] "texture displacement" "bumpscale")"),
       "bump.pbrt");
   const std::vector<Region> regions = {{0, 0, 24, 24}, {0, 0, 8, 8}, {8, 8, 8, 8}, {16, 8, 8, 8}, {0, 16, 8, 8}};
-  auto path = render_stats(*scene, "path", 24, 24, 128, 12, regions);
-  auto bdpt = render_stats(*scene, "bdpt", 24, 24, 32, 12, regions);
-  auto lt = render_stats(*scene, "lt", 24, 24, 64, 12, regions);
+  auto path = render_stats(*scene, "path", 24, 24, 64, 12, regions);
+  auto bdpt = render_stats(*scene, "bdpt", 24, 24, 16, 12, regions);
+  auto lt = render_stats(*scene, "lt", 24, 24, 32, 12, regions);
   EXPECT_LT(max_z(bdpt, path), 4.5);
   EXPECT_LT(max_z(lt, path), 4.5);
 }
