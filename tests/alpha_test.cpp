@@ -5,6 +5,7 @@
 // thread counts.
 #include <gtest/gtest.h>
 
+#include "expect_error.h"
 #include "stat_compare.h"
 
 namespace lantern {
@@ -79,12 +80,7 @@ TEST(Alpha, ZeroAlphaIsInvisible) {
   auto cut = scene_with(plane_with_alpha("0") + "\n" +
                         R"(Shape "trianglemesh" "point3 P" [ -1 0.3 -1  1 0.3 -1  1 0.3 1  -1 0.3 1 ]
   "integer indices" [ 0 1 2  0 2 3 ] "float alpha" [ 0 ])");
-  RenderOptions o;
-  o.spp = 4;
-  for (const char* integrator : {"path", "bdpt", "lt"}) {
-    o.integrator = integrator;
-    EXPECT_EQ(render(*open, o).image.rgb, render(*cut, o).image.rgb) << integrator;
-  }
+  expect_identical_renders(*open, *cut, {"path", "bdpt", "lt"});
 }
 
 TEST(Alpha, CheckerboardMapPassesItsOpenFraction) {
@@ -112,16 +108,8 @@ TEST(Alpha, BitIdenticalAcrossThreads) {
 }
 
 TEST(Alpha, OnAnEmitterIsAnError) {
-  try {
-    load_scene_from_string(R"(WorldBegin
-AreaLightSource "diffuse"
-Shape "sphere" "float alpha" 0.5
-)",
-                           "a.pbrt");
-    ADD_FAILURE() << "no error";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("a.pbrt:3"), std::string::npos) << e.what();
-  }
+  expect_load_error("WorldBegin\nAreaLightSource \"diffuse\"\nShape \"sphere\" \"float alpha\" 0.5\n", "a.pbrt",
+                    {"a.pbrt:3", "alpha on an emitting shape"});
 }
 
 }  // namespace

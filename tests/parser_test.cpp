@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "expect_error.h"
 #include "scene/scene.h"
 
 namespace lantern {
@@ -20,13 +21,7 @@ std::shared_ptr<Scene> load(const std::string& text, std::vector<std::string>* w
 
 // Loads and expects an InputError whose message contains every fragment.
 void expect_error(const std::string& text, std::initializer_list<const char*> fragments) {
-  try {
-    load(text);
-    ADD_FAILURE() << "no error for:\n" << text;
-  } catch (const InputError& e) {
-    std::string msg = e.what();
-    for (const char* f : fragments) EXPECT_NE(msg.find(f), std::string::npos) << "message \"" << msg << "\" lacks \"" << f << "\"";
-  }
+  expect_load_error(text, "t.pbrt", fragments);
 }
 
 const char* kEverything = R"(

@@ -76,6 +76,18 @@ inline RegionStats render_stats(const Scene& scene, const std::string& integrato
   return stats_of(render_runs(scene, o, runs, 1000), regions);
 }
 
+// Two scenes that must render the same image bit for bit (the same random
+// decisions on the same paths) with each integrator.
+inline void expect_identical_renders(const Scene& a, const Scene& b, std::initializer_list<const char*> integrators,
+                                     int spp = 4) {
+  RenderOptions o;
+  o.spp = spp;
+  for (const char* integrator : integrators) {
+    o.integrator = integrator;
+    EXPECT_EQ(render(a, o).image.rgb, render(b, o).image.rgb) << integrator;
+  }
+}
+
 // Largest |difference| / (combined standard error) over regions and channels.
 inline double max_z_of(const RegionStats& a, const RegionStats& b) {
   double z = 0.0;

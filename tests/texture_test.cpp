@@ -5,6 +5,8 @@
 
 #include <filesystem>
 
+#include "expect_error.h"
+#include "stat_compare.h"
 #include "lantern/image.h"
 #include "lantern/render.h"
 #include "material/bsdf_kernel.h"
@@ -204,13 +206,7 @@ Texture "r1" "float" "checkerboard" "float tex1" 0.15 "float tex2" 0.15
   auto textured = load(scene_head + R"(Material "conductor" "texture roughness" "r1")" + shape);
   auto constant = load(scene_head + R"(Material "conductor" "float roughness" 0.15)" + shape);
   ASSERT_FALSE(textured->materials.conductor[0].roughness.u.is_constant());
-  RenderOptions o;
-  o.spp = 4;
-  for (const char* integrator : {"path", "bdpt"}) {
-    o.integrator = integrator;
-    Image a = render(*textured, o).image, b = render(*constant, o).image;
-    EXPECT_EQ(a.rgb, b.rgb) << integrator;
-  }
+  expect_identical_renders(*textured, *constant, {"path", "bdpt"});
 }
 
 // pbrt-v4's (u, v) where a shape has none: a triangle's vertices are (0,0),
@@ -233,13 +229,7 @@ Shape "bilinearmesh" "point3 P" [0 0 0 1 0 0 0 1 0 1 1 0] "integer indices" [0 1
 }
 
 void expect_error(const std::string& text, std::initializer_list<const char*> fragments) {
-  try {
-    load(text);
-    ADD_FAILURE() << "no error for:\n" << text;
-  } catch (const InputError& e) {
-    std::string msg = e.what();
-    for (const char* f : fragments) EXPECT_NE(msg.find(f), std::string::npos) << "message \"" << msg << "\" lacks \"" << f << "\"";
-  }
+  expect_load_error(text, "t.pbrt", fragments);
 }
 
 TEST(Texture, MisuseIsAClearError) {
