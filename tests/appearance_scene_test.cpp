@@ -23,5 +23,22 @@ TEST(AppearanceScene, PathBdptAndLightTracingAgree) {
   EXPECT_LT(max_z(lt, path_low), 4.5);
 }
 
+// Textures, alpha, bump maps and mix decide everything from hashes of their
+// arguments, so the image does not depend on the thread count.
+TEST(AppearanceScene, BitIdenticalAcrossThreads) {
+  auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/appearance.pbrt");
+  RenderOptions o;
+  o.spp = 2;
+  o.width = 48;
+  o.height = 32;
+  for (const char* integrator : {"path", "bdpt"}) {
+    o.integrator = integrator;
+    o.threads = 1;
+    Image one = render(*scene, o).image;
+    o.threads = 2;
+    EXPECT_EQ(one.rgb, render(*scene, o).image.rgb) << integrator;
+  }
+}
+
 }  // namespace
 }  // namespace lantern
