@@ -27,10 +27,11 @@ void SceneBuilder::coat_layer(const ParamSet& ps, CoatedDiffuseMaterial* c) {
     ps.fail(*ps.find("thickness"), "thickness must be a finite number >= 0");
   c->g = float_texture(ps, "g", 0.f);
   if (c->g.is_constant() && !std::isfinite(c->g.value.x)) ps.fail(*ps.find("g"), "g must be finite");
+  // Bounded so that no scene can make one evaluation take seconds.
   c->max_depth = ps.get_int("maxdepth", 10);
-  if (c->max_depth < 0 || c->max_depth > 1000) ps.fail(*ps.find("maxdepth"), "maxdepth must be in [0, 1000]");
+  if (c->max_depth < 0 || c->max_depth > 100) ps.fail(*ps.find("maxdepth"), "maxdepth must be in [0, 100]");
   c->n_samples = ps.get_int("nsamples", 1);
-  if (c->n_samples < 1 || c->n_samples > 1000) ps.fail(*ps.find("nsamples"), "nsamples must be in [1, 1000]");
+  if (c->n_samples < 1 || c->n_samples > 100) ps.fail(*ps.find("nsamples"), "nsamples must be in [1, 100]");
 }
 
 TextureRef SceneBuilder::eta_param(const ParamSet& ps, float def) {

@@ -81,6 +81,7 @@ float windy(Vec3 p) {
 RGB marble(Vec3 p, float omega, int octaves, float scale, float variation) {
   p *= scale;
   float t = 0.5f + 0.5f * std::sin(p.y + variation * fbm(p, omega, octaves));
+  t = std::isfinite(t) ? glm::clamp(t, 0.f, 1.f) : 0.5f;
   // The control points of pbrt's marble colour spline (PBR, sec. 10.6.5),
   // cubic Bezier segments overlapping by three points.
   static const RGB c[] = {{.58f, .58f, .6f}, {.58f, .58f, .6f}, {.58f, .58f, .6f},
@@ -88,7 +89,6 @@ RGB marble(Vec3 p, float omega, int octaves, float scale, float variation) {
                           {.58f, .58f, .6f}, {.2f, .2f, .33f},  {.58f, .58f, .6f}};
   const int segments = 9 - 3;
   int first = std::min(int(std::floor(t * segments)), segments - 1);
-  first = std::max(first, 0);
   t = t * segments - float(first);
   const RGB* q = c + first;
   // de Casteljau

@@ -10,11 +10,12 @@
 namespace lantern {
 
 // The weight of the second texture: 0 on even cells (tex1), 1 on odd ones.
-inline float checkerboard_2d(Vec2 st) {
-  return float((int64_t(std::floor(st.x)) + int64_t(std::floor(st.y))) & 1);
-}
+// In doubles, so that no coordinate (huge, infinite or NaN: tex1) can
+// overflow an integer.
+inline float checker_parity(double cells) { return std::fabs(std::fmod(cells, 2.0)) == 1.0 ? 1.f : 0.f; }
+inline float checkerboard_2d(Vec2 st) { return checker_parity(std::floor(double(st.x)) + std::floor(double(st.y))); }
 inline float checkerboard_3d(Vec3 p) {
-  return float((int64_t(std::floor(p.x)) + int64_t(std::floor(p.y)) + int64_t(std::floor(p.z))) & 1);
+  return checker_parity(std::floor(double(p.x)) + std::floor(double(p.y)) + std::floor(double(p.z)));
 }
 
 // Whether st falls in a dot: cells of unit size centred on integers hold a
