@@ -13,7 +13,7 @@ float alpha_at(const ShapePools& shapes, const TexturePools& textures, uint32_t 
   if (a.is_constant()) return a.value.x;
   SurfacePoint sp = geo.kind == ShapeKind::Mesh ? triangle_point(shapes.meshes[geo.index], prim, b.x, b.y)
                                                 : sphere_point(shapes.spheres[geo.index], p);
-  return textures.evaluate_float(a, TextureContext{sp.p, sp.ns, sp.uv});
+  return textures.evaluate_float(a, TextureContext{sp.p, sp.ng, sp.uv});
 }
 
 static float hash_unit(std::initializer_list<float> floats, uint32_t prim) {

@@ -17,7 +17,7 @@ inline MaterialHandle hit_material(const Scene& scene, const RayBatch& rays, uin
   const ShapePools& shapes = scene.shapes;
   const Geometry& geo = shapes.geometries[rays.geom_id[i]];
   MaterialHandle m = resolve_material(geo.material, scene.materials, scene.textures,
-                                      TextureContext{sp->p, sp->ns, sp->uv}, -d);
+                                      TextureContext{sp->p, sp->ng, sp->uv}, -d);
   const BumpParams* bump = scene.materials.bump(m);
   if (!bump) return m;
   // Derivatives in the geometry's own space, carried to the world for an

@@ -45,9 +45,9 @@ inline CoatedDiffuseBSDF make_bsdf(const CoatedDiffuseMaterial& m, const Texture
 // the slots in a bin.
 struct SurfaceAttributes {
   const Vec3* p;
-  const Vec3* ns;
+  const Vec3* ng;
   const Vec2* uv;
-  TextureContext at(uint32_t slot) const { return TextureContext{p[slot], ns[slot], uv[slot]}; }
+  TextureContext at(uint32_t slot) const { return TextureContext{p[slot], ng[slot], uv[slot]}; }
 };
 
 // Calls fn(slot, bsdf) for every slot in `bin`; all slots share `kind`.

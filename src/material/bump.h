@@ -29,10 +29,10 @@ inline Vec3 bumped_normal(const BumpParams& b, const TexturePools& tex, const Su
     dpdv = glm::normalize(glm::cross(ns, dpdu)) * vlen;
   } else {
     const float du = 0.0005f, dv = 0.0005f;
-    TextureContext c{sp.p, g.n, sp.uv};
+    TextureContext c{sp.p, sp.ng, sp.uv};
     float d0 = tex.evaluate_float(b.displacement, c);
-    float d_u = tex.evaluate_float(b.displacement, TextureContext{sp.p + du * g.dpdu, g.n, sp.uv + Vec2(du, 0.f)});
-    float d_v = tex.evaluate_float(b.displacement, TextureContext{sp.p + dv * g.dpdv, g.n, sp.uv + Vec2(0.f, dv)});
+    float d_u = tex.evaluate_float(b.displacement, TextureContext{sp.p + du * g.dpdu, sp.ng, sp.uv + Vec2(du, 0.f)});
+    float d_v = tex.evaluate_float(b.displacement, TextureContext{sp.p + dv * g.dpdv, sp.ng, sp.uv + Vec2(0.f, dv)});
     dpdu = g.dpdu + (d_u - d0) / du * g.n + d0 * g.dndu;
     dpdv = g.dpdv + (d_v - d0) / dv * g.n + d0 * g.dndv;
   }

@@ -9,7 +9,7 @@
 namespace lantern {
 
 // Where a texture is evaluated: the surface point (world space), its
-// shading normal and its (u, v).
+// geometric normal (as pbrt-v4's texture context has it) and its (u, v).
 struct TextureContext {
   Vec3 p{0.f};
   Vec3 n{0.f, 0.f, 1.f};
