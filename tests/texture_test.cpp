@@ -154,7 +154,8 @@ TEST(Texture, EncodingsOfEightBitImages) {
     const char* encoding;
     float expected;
   } cases[] = {{"", srgb}, {"\"string encoding\" \"sRGB\"", srgb}, {"\"string encoding\" \"linear\"", byte},
-               {"\"string encoding\" \"gamma 2.2\"", std::pow(byte, 2.2f)}};
+               {"\"string encoding\" \"gamma 2.2\"", std::pow(byte, 2.2f)},
+               {"\"bool gamma\" false", byte}, {"\"bool gamma\" true", srgb}};  // pbrt-v3's form
   for (const Case& k : cases) {
     auto s = load(std::string("WorldBegin\nTexture \"t\" \"spectrum\" \"imagemap\" ") + k.encoding +
                   " \"string filename\" \"" + png + "\"\nMaterial \"diffuse\" \"texture reflectance\" \"t\"\n"

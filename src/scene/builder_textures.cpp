@@ -86,6 +86,8 @@ int32_t SceneBuilder::texture_image(const ParamSet& ps, const std::string& path,
 
 static ColorEncoding parse_encoding(const ParamSet& ps, const std::string& file) {
   const pbrt::Param* p = ps.find("encoding");
+  if (!p && ps.has("gamma"))  // pbrt-v3: "bool gamma", true for sRGB-encoded files
+    return ColorEncoding{ps.get_bool("gamma", false) ? ColorEncoding::SRGB : ColorEncoding::Linear};
   if (!p) return default_texture_encoding(file);
   std::string e = ps.get_string("encoding", "");
   if (e == "sRGB") return ColorEncoding{ColorEncoding::SRGB};
