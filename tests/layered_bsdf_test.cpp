@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "material/bsdf_kernel.h"
+#include "stat_compare.h"
 #include "math/rng.h"
 
 namespace lantern {
@@ -298,6 +299,44 @@ TEST(LayeredBSDF, MisDensityCoversTheBSDF) {
       EXPECT_GT(through, 20);
     }
   }
+}
+
+// In a scene: a smooth coat (a delta reflection and a diffuse walk), a rough
+// one, and one over a scattering layer, under a small light and a sky. The
+// MIS density bidirectional weights use is the closed form, so path, bdpt
+// and light tracing must agree on all three.
+TEST(LayeredBSDF, PathBdptAndLightTracingAgreeInAScene) {
+  auto scene = load_scene_from_string(R"(
+LookAt 0 2.2 -3  0 0.4 0  0 1 0
+Camera "perspective" "float fov" [ 35 ]
+Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 16 ]
+WorldBegin
+AttributeBegin
+  AreaLightSource "diffuse" "rgb L" [ 30 30 30 ]
+  Translate -1 2.5 -0.5
+  Shape "sphere" "float radius" [ 0.1 ]
+AttributeEnd
+Material "coateddiffuse" "rgb reflectance" [ 0.7 0.7 0.7 ] "float roughness" [ 0 ]
+Shape "trianglemesh" "point3 P" [ -4 0 -4  4 0 -4  4 0 4  -4 0 4 ] "integer indices" [ 0 1 2  0 2 3 ]
+AttributeBegin
+  Translate -0.7 0.4 0
+  Material "coateddiffuse" "rgb reflectance" [ 0.2 0.5 0.8 ] "float roughness" [ 0.2 ]
+  Shape "sphere" "float radius" [ 0.4 ]
+AttributeEnd
+AttributeBegin
+  Translate 0.7 0.4 0
+  Material "coateddiffuse" "rgb reflectance" [ 0.8 0.3 0.1 ] "float roughness" [ 0.05 ] "float thickness" [ 0.3 ]
+    "rgb albedo" [ 0.7 0.7 0.7 ] "float g" [ 0.4 ]
+  Shape "sphere" "float radius" [ 0.4 ]
+AttributeEnd
+)",
+                                      "coated.pbrt");
+  const std::vector<Region> regions = {{0, 0, 24, 16}, {2, 4, 8, 8}, {14, 4, 8, 8}, {0, 12, 24, 4}};
+  auto path = render_stats(*scene, "path", 24, 16, 64, 10, regions);
+  auto bdpt = render_stats(*scene, "bdpt", 24, 16, 16, 10, regions);
+  auto lt = render_stats(*scene, "lt", 24, 16, 32, 10, regions);
+  EXPECT_LT(max_z(bdpt, path), 4.5);
+  EXPECT_LT(max_z(lt, path), 4.5);
 }
 
 }  // namespace
