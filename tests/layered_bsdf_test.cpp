@@ -10,6 +10,8 @@
 #include <gtest/gtest.h>
 
 #include "material/bsdf_kernel.h"
+#include "scene/scene.h"
+#include "expect_error.h"
 #include "stat_compare.h"
 #include "math/rng.h"
 
@@ -24,8 +26,21 @@ struct Layer {
   float g;
   int max_depth = 10;
   float eta = 1.5f;
+  // A conductor base instead of the Lambertian one: its roughness and its
+  // complex index (relative to vacuum; it sits in the coat).
+  bool conductor = false;
+  float cond_roughness = 0.f, cond_eta = 0.2f, cond_k = 3.f;
   float alpha() const { return std::sqrt(roughness); }
+  float cond_alpha() const { return std::sqrt(cond_roughness); }
 };
+
+CoatedConductorBSDF make_coated_conductor(const Layer& l) {
+  return CoatedConductorBSDF{DielectricBSDF{{l.alpha(), l.alpha()}, l.eta},
+                             ConductorBSDF{{l.cond_alpha(), l.cond_alpha()}, RGB(l.cond_eta / l.eta),
+                                           RGB(l.cond_k / l.eta), RGB(1.f), false},
+                             std::fmax(l.thickness, std::numeric_limits<float>::min()),
+                             RGB(l.albedo), l.g, l.max_depth, 1};
+}
 
 CoatedDiffuseBSDF make_coated(const Layer& l) {
   return CoatedDiffuseBSDF{DielectricBSDF{{l.alpha(), l.alpha()}, l.eta}, DiffuseBSDF{RGB(l.R)},
@@ -53,7 +68,7 @@ double smith_lambda(const Vec3& w, double alpha) {
 
 class AnalogSlab {
  public:
-  explicit AnalogSlab(const Layer& l) : l_(l), mf_{l.alpha(), l.alpha()} {}
+  explicit AnalogSlab(const Layer& l) : l_(l), mf_{l.alpha(), l.alpha()}, base_mf_{l.cond_alpha(), l.cond_alpha()} {}
 
   // Mean energy leaving through the coat for particles arriving along -wo.
   double albedo(const Vec3& wo, int n, uint64_t seed, double* std_error) const {
@@ -129,8 +144,14 @@ class AnalogSlab {
         w = around(w, std::clamp(cos_t, -1.0, 1.0), 2.0 * kPi * s.get1d());
         continue;
       }
-      if (w.z < 0.f) {  // the Lambertian base
+      if (w.z < 0.f) {  // the base
         z = 0.0;
+        if (l_.conductor) {
+          Vec3 out;
+          if (!conductor_base(-w, s, &weight, &out)) return 0.0;
+          w = out;
+          continue;
+        }
         weight *= l_.R;
         w = around(Vec3(0, 0, 1), std::sqrt(double(s.get1d())), 2.0 * kPi * s.get1d());
         continue;
@@ -144,8 +165,25 @@ class AnalogSlab {
     return 0.0;
   }
 
+  // The conductor base, met from inside the coat along -v (v.z > 0).
+  bool conductor_base(const Vec3& v, PathSampler& s, double* weight, Vec3* out) const {
+    Vec3 m(0.f, 0.f, 1.f);
+    const bool rough = l_.cond_alpha() >= 1e-3f;
+    if (rough) m = base_mf_.sample_wm(v, s.get2d());
+    double cos_i = glm::dot(v, m);
+    if (cos_i <= 0.0) return false;
+    *out = float(2.0 * cos_i) * m - v;
+    if (out->z <= 0.f) return false;
+    *weight *= fr_complex(float(cos_i), l_.cond_eta / l_.eta, l_.cond_k / l_.eta);
+    if (rough) {
+      double lv = smith_lambda(v, l_.cond_alpha()), lo = smith_lambda(*out, l_.cond_alpha());
+      *weight *= (1.0 + lv) / (1.0 + lv + lo);
+    }
+    return true;
+  }
+
   Layer l_;
-  TrowbridgeReitz mf_;
+  TrowbridgeReitz mf_, base_mf_;
 };
 
 struct Estimate {
@@ -153,7 +191,8 @@ struct Estimate {
 };
 
 // E[f cos / pdf] over the BSDF's own samples.
-Estimate sampled_albedo(const CoatedDiffuseBSDF& b, const Vec3& wo, TransportMode mode, int n) {
+template <class BSDF>
+Estimate sampled_albedo(const BSDF& b, const Vec3& wo, TransportMode mode, int n) {
   PathSampler s = PathSampler::make(23, 5, 0);
   double sum = 0.0, sum2 = 0.0;
   for (int i = 0; i < n; ++i) {
@@ -170,8 +209,8 @@ Estimate sampled_albedo(const CoatedDiffuseBSDF& b, const Vec3& wo, TransportMod
 
 // The integral of the estimated f times the cosine over cosine-distributed
 // directions, plus the smooth coat's mirror reflection, which f() leaves out.
-Estimate evaluated_albedo(const CoatedDiffuseBSDF& b, const Vec3& wo, int n,
-                          TransportMode mode = TransportMode::Radiance) {
+template <class BSDF>
+Estimate evaluated_albedo(const BSDF& b, const Vec3& wo, int n, TransportMode mode = TransportMode::Radiance) {
   PathSampler s = PathSampler::make(29, 6, 0);
   double sum = 0.0, sum2 = 0.0;
   for (int i = 0; i < n; ++i) {
@@ -237,6 +276,39 @@ TEST(LayeredBSDF, ScatteringLayersMatchAnalogSimulation) {
       expect_agree(sampled_albedo(b, wo, TransportMode::Importance, 60000), ref, what + " sampled (importance)");
       expect_agree(evaluated_albedo(b, wo, 30000), ref, what + " evaluated");
       expect_agree(evaluated_albedo(b, wo, 30000, TransportMode::Importance), ref, what + " evaluated (importance)");
+    }
+  }
+}
+
+// coatedconductor: smooth and rough coats over smooth and rough conductors,
+// with and without a scattering layer. A smooth coat over a smooth conductor
+// is a mirror: no f to evaluate, only samples.
+TEST(LayeredBSDF, CoatedConductorAlbedoMatchesAnalogSimulation) {
+  auto conductor = [](float coat, float base, float thickness, float albedo, float g) {
+    Layer l{coat, 0.f, thickness, albedo, g};
+    l.conductor = true;
+    l.cond_roughness = base;
+    return l;
+  };
+  const Layer layers[] = {conductor(0.f, 0.f, 0.01f, 0.f, 0.f),  conductor(0.1f, 0.f, 0.01f, 0.f, 0.f),
+                          conductor(0.f, 0.2f, 0.01f, 0.f, 0.f), conductor(0.3f, 0.1f, 0.01f, 0.f, 0.f),
+                          conductor(0.05f, 0.3f, 0.5f, 0.7f, 0.3f)};
+  for (const Layer& l : layers) {
+    CoatedConductorBSDF b = make_coated_conductor(l);
+    for (float theta : {10.f, 60.f}) {
+      Vec3 wo = view(theta);
+      double se;
+      Estimate ref{AnalogSlab(l).albedo(wo, 60000, 5, &se), se};
+      std::string what = "coat " + std::to_string(l.roughness) + " conductor " + std::to_string(l.cond_roughness) +
+                         " albedo " + std::to_string(l.albedo) + " theta " + std::to_string(theta);
+      expect_agree(sampled_albedo(b, wo, TransportMode::Radiance, 60000), ref, what + " sampled");
+      expect_agree(sampled_albedo(b, wo, TransportMode::Importance, 60000), ref, what + " sampled (importance)");
+      if (b.is_specular()) {
+        EXPECT_TRUE(is_black(b.f(wo, glm::normalize(Vec3(0.2f, 0.1f, 0.9f)), TransportMode::Radiance))) << what;
+        EXPECT_EQ(b.pdf(wo, glm::normalize(Vec3(0.2f, 0.1f, 0.9f)), TransportMode::Radiance), 0.f) << what;
+        continue;
+      }
+      expect_agree(evaluated_albedo(b, wo, 30000), ref, what + " evaluated");
     }
   }
 }
@@ -337,6 +409,64 @@ AttributeEnd
   auto lt = render_stats(*scene, "lt", 24, 16, 32, 10, regions);
   EXPECT_LT(max_z(bdpt, path), 4.5);
   EXPECT_LT(max_z(lt, path), 4.5);
+}
+
+// Coated conductors in a scene: a rough coat over smooth gold, a smooth coat
+// over a rough metal given by its reflectance; path tracing and bdpt agree
+// (light tracing cannot see the smooth coat's mirror image of the light).
+TEST(LayeredBSDF, CoatedConductorsAgreeInAScene) {
+  auto scene = load_scene_from_string(R"(
+LookAt 0 2.2 -3  0 0.4 0  0 1 0
+Camera "perspective" "float fov" [ 35 ]
+Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 16 ]
+WorldBegin
+LightSource "infinite" "rgb L" [ 0.2 0.2 0.25 ]
+AttributeBegin
+  AreaLightSource "diffuse" "rgb L" [ 30 30 30 ]
+  Translate -1 2.5 -0.5
+  Shape "sphere" "float radius" [ 0.1 ]
+AttributeEnd
+Material "coatedconductor" "float interface.roughness" [ 0.2 ] "float conductor.roughness" [ 0 ]
+  "spectrum conductor.eta" "metal-Au-eta" "spectrum conductor.k" "metal-Au-k"
+Shape "trianglemesh" "point3 P" [ -4 0 -4  4 0 -4  4 0 4  -4 0 4 ] "integer indices" [ 0 1 2  0 2 3 ]
+AttributeBegin
+  Translate -0.7 0.4 0
+  Material "coatedconductor" "float interface.roughness" [ 0 ] "float conductor.roughness" [ 0.3 ]
+    "rgb reflectance" [ 0.9 0.5 0.3 ]
+  Shape "sphere" "float radius" [ 0.4 ]
+AttributeEnd
+)",
+                                      "coatedconductor.pbrt");
+  const std::vector<Region> regions = {{0, 0, 24, 16}, {2, 4, 8, 8}, {14, 4, 8, 8}, {0, 12, 24, 4}};
+  auto path = render_stats(*scene, "path", 24, 16, 64, 10, regions);
+  auto bdpt = render_stats(*scene, "bdpt", 24, 16, 16, 10, regions);
+  EXPECT_LT(max_z(bdpt, path), 4.5);
+}
+
+TEST(LayeredBSDF, CoatedConductorParameters) {
+  auto s = load_scene_from_string(R"(WorldBegin
+Material "coatedconductor" "float interface.uroughness" [ 0.1 ] "float interface.vroughness" [ 0.2 ]
+  "float interface.eta" [ 1.33 ] "float conductor.roughness" [ 0.04 ] "rgb reflectance" [ 0.5 0.6 0.7 ]
+  "float thickness" [ 0.2 ] "rgb albedo" [ 0.3 0.3 0.3 ] "float g" [ 0.5 ] "integer maxdepth" [ 7 ] "integer nsamples" [ 2 ]
+Shape "sphere"
+)",
+                                  "cc.pbrt");
+  const CoatedConductorMaterial& m = s->materials.coated_conductor.at(0);
+  EXPECT_FLOAT_EQ(m.interface_eta, 1.33f);
+  EXPECT_TRUE(m.by_reflectance);
+  EXPECT_EQ(m.layer.max_depth, 7);
+  EXPECT_EQ(m.layer.n_samples, 2);
+  CoatedConductorBSDF b = make_bsdf(m, TextureContext{}, s->textures);
+  EXPECT_NEAR(b.top.distrib.alpha_x, std::sqrt(0.1f), 1e-6f);
+  EXPECT_NEAR(b.top.distrib.alpha_y, std::sqrt(0.2f), 1e-6f);
+  EXPECT_NEAR(b.bottom.distrib.alpha_x, 0.2f, 1e-6f);
+  EXPECT_FLOAT_EQ(b.thickness, 0.2f);
+  // pbrt-v4: the conductor's index relative to the coat's.
+  EXPECT_NEAR(b.bottom.k.x, 2.f * std::sqrt(0.5f) / std::sqrt(0.5f) / 1.33f, 1e-5f);
+  expect_load_error(R"(WorldBegin
+Material "coatedconductor" "rgb reflectance" [ 0.5 0.5 0.5 ] "spectrum conductor.eta" "metal-Au-eta"
+)",
+                    "cc.pbrt", {"cc.pbrt:2", "either \"reflectance\""});
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 
+#include "material/coated_conductor_bsdf.h"
 #include "material/coated_diffuse_bsdf.h"
 #include "material/conductor_bsdf.h"
 #include "material/dielectric_bsdf.h"
@@ -31,14 +32,39 @@ inline DielectricBSDF make_bsdf(const DielectricMaterial& m, const TextureContex
   float eta = tex.evaluate_float(m.eta, c);
   return DielectricBSDF{m.roughness.distribution(tex, c), eta > 0.f ? eta : 1.f};
 }
+// The layer parameters of a coated material at a point, as pbrt-v4 clamps them.
+template <class Top, class Bottom>
+LayeredBSDF<Top, Bottom> make_layered(const Top& top, const Bottom& bottom, const CoatLayer& l, const TextureContext& c,
+                                      const TexturePools& tex) {
+  return LayeredBSDF<Top, Bottom>{top,
+                                  bottom,
+                                  std::fmax(tex.evaluate_float(l.thickness, c), std::numeric_limits<float>::min()),
+                                  tex.evaluate_reflectance(l.albedo, c),
+                                  glm::clamp(tex.evaluate_float(l.g, c), -0.999f, 0.999f),
+                                  l.max_depth,
+                                  l.n_samples};
+}
 inline CoatedDiffuseBSDF make_bsdf(const CoatedDiffuseMaterial& m, const TextureContext& c, const TexturePools& tex) {
-  return CoatedDiffuseBSDF{DielectricBSDF{m.roughness.distribution(tex, c), m.eta},
-                           DiffuseBSDF{tex.evaluate_reflectance(m.reflectance, c)},
-                           std::fmax(tex.evaluate_float(m.thickness, c), std::numeric_limits<float>::min()),
-                           tex.evaluate_reflectance(m.albedo, c),
-                           glm::clamp(tex.evaluate_float(m.g, c), -0.999f, 0.999f),
-                           m.max_depth,
-                           m.n_samples};
+  return make_layered(DielectricBSDF{m.roughness.distribution(tex, c), m.eta},
+                      DiffuseBSDF{tex.evaluate_reflectance(m.reflectance, c)}, m.layer, c, tex);
+}
+inline CoatedConductorBSDF make_bsdf(const CoatedConductorMaterial& m, const TextureContext& c,
+                                     const TexturePools& tex) {
+  RGB eta, k;
+  if (m.by_reflectance) {
+    // pbrt-v4: eta 1 and the k that gives reflectance r head-on.
+    RGB r = glm::clamp(tex.evaluate(m.reflectance, c), RGB(0.f), RGB(0.9999f));
+    eta = RGB(1.f);
+    k = 2.f * glm::sqrt(r) / glm::sqrt(RGB(1.f) - r);
+  } else {
+    eta = tex.evaluate(m.conductor_eta, c);
+    k = tex.evaluate(m.conductor_k, c);
+  }
+  // The conductor sits in the coat: its index relative to the coat's.
+  ConductorBSDF base{m.conductor_roughness.distribution(tex, c), eta / m.interface_eta, k / m.interface_eta, RGB(1.f),
+                     false};
+  return make_layered(DielectricBSDF{m.interface_roughness.distribution(tex, c), m.interface_eta}, base, m.layer, c,
+                      tex);
 }
 
 // The surface attributes textures read, one array per attribute, indexed by
@@ -66,6 +92,7 @@ void for_each_bsdf(MaterialKind kind, const MaterialPools& pools, const TextureP
     case MaterialKind::Conductor: run(pools.conductor); break;
     case MaterialKind::Dielectric: run(pools.dielectric); break;
     case MaterialKind::CoatedDiffuse: run(pools.coated_diffuse); break;
+    case MaterialKind::CoatedConductor: run(pools.coated_conductor); break;
     case MaterialKind::Mix:        // resolved when the hit was stored
     case MaterialKind::Interface:  // cut out of the scene
       break;
@@ -81,6 +108,7 @@ decltype(auto) with_bsdf(MaterialHandle m, const MaterialPools& pools, const Tex
     case MaterialKind::Diffuse: return fn(make_bsdf(pools.diffuse[m.index()], c, tex));
     case MaterialKind::Conductor: return fn(make_bsdf(pools.conductor[m.index()], c, tex));
     case MaterialKind::Dielectric: return fn(make_bsdf(pools.dielectric[m.index()], c, tex));
+    case MaterialKind::CoatedConductor: return fn(make_bsdf(pools.coated_conductor[m.index()], c, tex));
     case MaterialKind::CoatedDiffuse:
     case MaterialKind::Mix:        // never stored in a hit
     case MaterialKind::Interface:

@@ -27,8 +27,8 @@ struct ConductorBSDF {
     return distrib.D(wm) * F * distrib.G(wo, wi) / (4.f * cos_i * cos_o);
   }
 
-  std::optional<BSDFSample> sample_f(const Vec3& wo, float, Vec2 u, TransportMode) const {
-    if (wo.z == 0.f) return std::nullopt;
+  std::optional<BSDFSample> sample_f(const Vec3& wo, float, Vec2 u, TransportMode, Lobes lobes = Lobes::All) const {
+    if (wo.z == 0.f || !has(lobes, Lobes::Reflection)) return std::nullopt;
     BSDFSample s;
     if (distrib.effectively_smooth()) {
       s.wi = Vec3(-wo.x, -wo.y, wo.z);
@@ -51,8 +51,8 @@ struct ConductorBSDF {
     return s;
   }
 
-  float pdf(const Vec3& wo, const Vec3& wi, TransportMode) const {
-    if (!same_hemisphere(wo, wi) || distrib.effectively_smooth()) return 0.f;
+  float pdf(const Vec3& wo, const Vec3& wi, TransportMode, Lobes lobes = Lobes::All) const {
+    if (!same_hemisphere(wo, wi) || distrib.effectively_smooth() || !has(lobes, Lobes::Reflection)) return 0.f;
     Vec3 wm = wo + wi;
     if (glm::dot(wm, wm) == 0.f) return 0.f;
     wm = face_forward_z(glm::normalize(wm));

@@ -79,7 +79,9 @@ struct LayeredBSDF {
   int max_depth;    // scattering events a walk may have
   int n_samples;    // walks per evaluation of f
 
-  bool is_specular() const { return false; }
+  // Only when every interaction inside is a mirror (a smooth coat over a
+  // smooth conductor, nothing between): then f is 0 and every sample a delta.
+  bool is_specular() const { return top.is_specular() && bottom.is_specular() && !has_medium(); }
 
   RGB f(Vec3 wo, Vec3 wi, TransportMode mode) const {
     if (wo.z < 0.f) {
@@ -113,7 +115,7 @@ struct LayeredBSDF {
       wo = -wo;
       wi = -wi;
     }
-    if (!(wi.z > 0.f) || !(wo.z > 0.f)) return 0.f;
+    if (!(wi.z > 0.f) || !(wo.z > 0.f) || is_specular()) return 0.f;
     float pc = fr_dielectric(wo.z, top.eta);
     float p = (1.f - pc) * cosine_hemisphere_pdf(wi.z);
     if (!top.is_specular()) p += pc * top.pdf(wo, wi, mode, Lobes::Reflection);

@@ -16,8 +16,8 @@ namespace lantern {
 // kinds that never reach shading: Mix is resolved to one of its materials
 // when a hit is stored (resolve_material), and Interface (a boundary with no
 // surface) is cut out of the scene like alpha 0.
-enum class MaterialKind : uint8_t { Diffuse = 0, Conductor, Dielectric, CoatedDiffuse, Mix, Interface };
-inline constexpr int kMaterialKindCount = 4;  // the kinds with a BSDF
+enum class MaterialKind : uint8_t { Diffuse = 0, Conductor, Dielectric, CoatedDiffuse, CoatedConductor, Mix, Interface };
+inline constexpr int kMaterialKindCount = 5;  // the kinds with a BSDF
 
 struct MaterialHandle {
   uint32_t bits = 0;
@@ -61,16 +61,34 @@ struct DielectricMaterial {
   int32_t bump = -1;  // index into MaterialPools::bumps
 };
 
-// pbrt-v4's parameters and defaults.
-struct CoatedDiffuseMaterial {
-  TextureRef reflectance = TextureRef::constant(0.5f);
+// The layer between the coat and the base of pbrt-v4's coated materials,
+// with its defaults.
+struct CoatLayer {
   TextureRef albedo = TextureRef::constant(0.f);  // of the medium between coat and base
   TextureRef thickness = TextureRef::constant(0.01f);
   TextureRef g = TextureRef::constant(0.f);
-  float eta = 1.5f;
-  RoughnessParams roughness;
   int max_depth = 10;
   int n_samples = 1;
+};
+
+struct CoatedDiffuseMaterial {
+  TextureRef reflectance = TextureRef::constant(0.5f);
+  float eta = 1.5f;
+  RoughnessParams roughness;
+  CoatLayer layer;
+  int32_t bump = -1;
+};
+
+// pbrt-v4's coatedconductor: a dielectric coat ("interface.*") over a
+// conductor ("conductor.*", or "reflectance") that sits in the coat.
+struct CoatedConductorMaterial {
+  float interface_eta = 1.5f;
+  RoughnessParams interface_roughness;
+  TextureRef conductor_eta, conductor_k;
+  TextureRef reflectance;
+  bool by_reflectance = false;
+  RoughnessParams conductor_roughness;
+  CoatLayer layer;
   int32_t bump = -1;
 };
 
@@ -92,6 +110,7 @@ struct MaterialPools {
   std::vector<ConductorMaterial> conductor;
   std::vector<DielectricMaterial> dielectric;
   std::vector<CoatedDiffuseMaterial> coated_diffuse;
+  std::vector<CoatedConductorMaterial> coated_conductor;
   std::vector<MixMaterial> mix;
   std::vector<BumpParams> bumps;  // only for materials with a displacement or normal map
 
@@ -103,6 +122,7 @@ struct MaterialPools {
       case MaterialKind::Conductor: b = conductor[m.index()].bump; break;
       case MaterialKind::Dielectric: b = dielectric[m.index()].bump; break;
       case MaterialKind::CoatedDiffuse: b = coated_diffuse[m.index()].bump; break;
+      case MaterialKind::CoatedConductor: b = coated_conductor[m.index()].bump; break;
       case MaterialKind::Mix:
       case MaterialKind::Interface: break;
     }
@@ -115,6 +135,7 @@ struct MaterialPools {
       case MaterialKind::Conductor: return !conductor.empty();
       case MaterialKind::Dielectric: return !dielectric.empty();
       case MaterialKind::CoatedDiffuse: return !coated_diffuse.empty();
+      case MaterialKind::CoatedConductor: return !coated_conductor.empty();
       case MaterialKind::Mix: return !mix.empty();
       case MaterialKind::Interface: return false;
     }

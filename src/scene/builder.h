@@ -67,7 +67,8 @@ class SceneBuilder {
                         const char* param = "filename");
   TextureRef add_texture_node(TextureNode n);
   // Material parameters (builder_materials.cpp).
-  RoughnessParams roughness(const pbrt::ParamSet& ps, float def);
+  // pbrt's roughness, uroughness and vroughness (after prefix) and remaproughness.
+  RoughnessParams roughness(const pbrt::ParamSet& ps, float def, const std::string& prefix = "");
   // "eta" (or pbrt-v3's "index"): a number, a named or RGB spectrum (its
   // first channel), or a float texture.
   TextureRef eta_param(const pbrt::ParamSet& ps, float def);
@@ -75,7 +76,8 @@ class SceneBuilder {
   int32_t bump_map(const pbrt::ParamSet& ps, const std::string& base_dir);
   MaterialHandle concrete_material(const std::string& type, const pbrt::ParamSet& ps);
   MaterialHandle mix_material(const pbrt::ParamSet& ps, const std::map<std::string, MaterialHandle>& named);
-  void coat_layer(const pbrt::ParamSet& ps, CoatedDiffuseMaterial* c);
+  void coat_layer(const pbrt::ParamSet& ps, CoatLayer* c);
+  MaterialHandle coated_conductor(const pbrt::ParamSet& ps);
   MaterialHandle default_material();
   void add_shape(const std::string& type, const pbrt::ParamSet& ps, const GraphicsState& gs, const std::string& base_dir);
   // source: the PLY file the mesh came from, or empty; named in errors.

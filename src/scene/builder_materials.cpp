@@ -7,12 +7,13 @@ namespace lantern {
 using pbrt::ColorUsage;
 using pbrt::ParamSet;
 
-RoughnessParams SceneBuilder::roughness(const ParamSet& ps, float def) {
+RoughnessParams SceneBuilder::roughness(const ParamSet& ps, float def, const std::string& prefix) {
   RoughnessParams r;
-  TextureRef both = float_texture(ps, "roughness", def);
-  r.u = ps.has("uroughness") ? float_texture(ps, "uroughness", def) : both;
-  r.v = ps.has("vroughness") ? float_texture(ps, "vroughness", def) : both;
-  for (const char* name : {"roughness", "uroughness", "vroughness"})
+  const std::string names[3] = {prefix + "roughness", prefix + "uroughness", prefix + "vroughness"};
+  TextureRef both = float_texture(ps, names[0], def);
+  r.u = ps.has(names[1]) ? float_texture(ps, names[1], def) : both;
+  r.v = ps.has(names[2]) ? float_texture(ps, names[2], def) : both;
+  for (const std::string& name : names)
     if (const pbrt::Param* p = ps.find(name); p && p->type != "texture" && !(ps.get_float(name, 0.f) >= 0.f))
       ps.fail(*p, "roughness must be a number >= 0");
   r.remap = ps.get_bool("remaproughness", true);
@@ -20,7 +21,7 @@ RoughnessParams SceneBuilder::roughness(const ParamSet& ps, float def) {
 }
 
 // The layer parameters of pbrt-v4's coated materials, with its defaults.
-void SceneBuilder::coat_layer(const ParamSet& ps, CoatedDiffuseMaterial* c) {
+void SceneBuilder::coat_layer(const ParamSet& ps, CoatLayer* c) {
   c->albedo = rgb_texture(ps, "albedo", RGB(0.f));
   c->thickness = float_texture(ps, "thickness", 0.01f);
   if (c->thickness.is_constant() && !(c->thickness.value.x >= 0.f && std::isfinite(c->thickness.value.x)))
@@ -70,6 +71,7 @@ MaterialHandle SceneBuilder::material(const std::string& type, const ParamSet& p
       case MaterialKind::Conductor: m.conductor[h.index()].bump = b; break;
       case MaterialKind::Dielectric: m.dielectric[h.index()].bump = b; break;
       case MaterialKind::CoatedDiffuse: m.coated_diffuse[h.index()].bump = b; break;
+      case MaterialKind::CoatedConductor: m.coated_conductor[h.index()].bump = b; break;
       case MaterialKind::Mix:
       case MaterialKind::Interface: break;
     }
@@ -143,13 +145,39 @@ MaterialHandle SceneBuilder::concrete_material(const std::string& type, const Pa
     if (!eta.is_constant()) ps.fail(*ps.find("eta"), "coateddiffuse's eta is a spectrum in pbrt-v4, not a texture");
     c.eta = eta.value.x;
     c.roughness = roughness(ps, v3 ? 0.1f : 0.f);
-    coat_layer(ps, &c);
+    coat_layer(ps, &c.layer);
     m.coated_diffuse.push_back(c);
     return MaterialHandle::make(MaterialKind::CoatedDiffuse, uint32_t(m.coated_diffuse.size() - 1));
   }
+  if (type == "coatedconductor") return coated_conductor(ps);
   ps.fail("material type \"" + type +
-          "\" is not supported; expected diffuse, conductor, dielectric, coateddiffuse, mix, interface (or matte, metal, "
+          "\" is not supported; expected diffuse, conductor, dielectric, coateddiffuse, coatedconductor, mix, interface (or matte, metal, "
           "glass, plastic, mirror)");
+}
+
+// pbrt-v4's coatedconductor, with its parameter names and defaults.
+MaterialHandle SceneBuilder::coated_conductor(const ParamSet& ps) {
+  CoatedConductorMaterial c;
+  c.interface_roughness = roughness(ps, 0.f, "interface.");
+  c.conductor_roughness = roughness(ps, 0.f, "conductor.");
+  if (const pbrt::Param* p = ps.find("interface.eta")) {
+    float eta = p->type == "float" ? ps.get_float(p->name, 1.5f) : ps.get_rgb(p->name, ColorUsage::Unbounded)->x;
+    if (!(eta >= 0.f) || !std::isfinite(eta)) ps.fail(*p, "index of refraction must be a finite number >= 0");
+    c.interface_eta = eta == 0.f ? 1.f : eta;  // pbrt-v4 reads 0 as 1
+  }
+  if (ps.has("reflectance")) {
+    if (ps.has("conductor.eta") || ps.has("conductor.k"))
+      ps.fail(*ps.find("reflectance"), "give either \"reflectance\" or \"conductor.eta\" and \"conductor.k\", not both");
+    c.reflectance = rgb_texture(ps, "reflectance", RGB(0.f));
+    c.by_reflectance = true;
+  } else {
+    c.conductor_eta = rgb_texture(ps, "conductor.eta", *pbrt::named_spectrum_rgb("metal-Cu-eta"), ColorUsage::Unbounded);
+    c.conductor_k = rgb_texture(ps, "conductor.k", *pbrt::named_spectrum_rgb("metal-Cu-k"), ColorUsage::Unbounded);
+  }
+  coat_layer(ps, &c.layer);
+  MaterialPools& m = scene_.materials;
+  m.coated_conductor.push_back(c);
+  return MaterialHandle::make(MaterialKind::CoatedConductor, uint32_t(m.coated_conductor.size() - 1));
 }
 
 MaterialHandle SceneBuilder::default_material() {
