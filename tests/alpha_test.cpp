@@ -98,13 +98,7 @@ TEST(Alpha, BitIdenticalAcrossThreads) {
   auto half = scene_with(plane_with_alpha("0.5"));
   RenderOptions o;
   o.spp = 4;
-  for (const char* integrator : {"path", "bdpt"}) {
-    o.integrator = integrator;
-    o.threads = 1;
-    Image one = render(*half, o).image;
-    o.threads = 2;
-    EXPECT_EQ(one.rgb, render(*half, o).image.rgb) << integrator;
-  }
+  expect_thread_invariant(*half, o, {"path", "bdpt"});
 }
 
 TEST(Alpha, OnAnEmitterIsAnError) {

@@ -31,13 +31,7 @@ TEST(AppearanceScene, BitIdenticalAcrossThreads) {
   o.spp = 2;
   o.width = 48;
   o.height = 32;
-  for (const char* integrator : {"path", "bdpt"}) {
-    o.integrator = integrator;
-    o.threads = 1;
-    Image one = render(*scene, o).image;
-    o.threads = 2;
-    EXPECT_EQ(one.rgb, render(*scene, o).image.rgb) << integrator;
-  }
+  expect_thread_invariant(*scene, o, {"path", "bdpt"});
 }
 
 }  // namespace

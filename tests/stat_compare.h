@@ -88,6 +88,17 @@ inline void expect_identical_renders(const Scene& a, const Scene& b, std::initia
   }
 }
 
+// The same image bit for bit on 1 and 2 threads, with each integrator.
+inline void expect_thread_invariant(const Scene& scene, RenderOptions o, std::initializer_list<const char*> integrators) {
+  for (const char* integrator : integrators) {
+    o.integrator = integrator;
+    o.threads = 1;
+    Image one = render(scene, o).image;
+    o.threads = 2;
+    EXPECT_EQ(one.rgb, render(scene, o).image.rgb) << integrator;
+  }
+}
+
 // Largest |difference| / (combined standard error) over regions and channels.
 inline double max_z_of(const RegionStats& a, const RegionStats& b) {
   double z = 0.0;
