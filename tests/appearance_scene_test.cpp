@@ -17,7 +17,7 @@ TEST(AppearanceScene, PathBdptAndLightTracingAgree) {
   EXPECT_LT(max_z(bdpt, path), 4.5);
   // Light tracing cannot see the sky directly (its light subpaths start at
   // infinity): only regions where no sky shows, past the floor.s edges too.
-  const std::vector<Region> below_sky = {{3, 9, 8, 7}, {11, 9, 9, 7}, {6, 3, 12, 5}};
+  const std::vector<Region> below_sky = {{3, 13, 17, 3}, {6, 2, 12, 4}};
   auto path_low = render_stats(*scene, "path", w, h, 64, 12, below_sky);
   auto lt = render_stats(*scene, "lt", w, h, 32, 12, below_sky);
   EXPECT_LT(max_z(lt, path_low), 4.5);

@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <vector>
 
 #include "lantern/render.h"
@@ -52,8 +53,13 @@ inline RegionStats stats_of(const std::vector<Image>& runs, const std::vector<Re
   return st;
 }
 
-// `runs` renders with seeds first_seed, first_seed + 1, ...
+// `runs` renders with seeds first_seed, first_seed + 1, ... The sanitizer
+// suite (scripts/check-sanitized.sh) sets LANTERN_TEST_SPP_SCALE below 1:
+// the same comparisons on fewer samples, whose standard errors widen with
+// them, so the tolerances stay exact; the Release suite runs them in full.
 inline std::vector<Image> render_runs(const Scene& scene, RenderOptions o, int runs, uint64_t first_seed) {
+  if (const char* scale = std::getenv("LANTERN_TEST_SPP_SCALE"))
+    o.spp = std::max(1, int(std::lround(o.spp * std::atof(scale))));
   std::vector<Image> images;
   for (int r = 0; r < runs; ++r) {
     o.seed = first_seed + uint64_t(r);
