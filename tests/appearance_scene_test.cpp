@@ -16,11 +16,13 @@ TEST(AppearanceScene, PathBdptAndLightTracingAgree) {
   auto bdpt = render_stats(*scene, "bdpt", w, h, 16, 12, regions);
   EXPECT_LT(max_z(bdpt, path), 4.5);
   // Light tracing cannot see the sky directly (its light subpaths start at
-  // infinity): only regions where no sky shows, past the floor.s edges too.
-  const std::vector<Region> below_sky = {{3, 13, 17, 3}, {6, 2, 12, 4}};
-  auto path_low = render_stats(*scene, "path", w, h, 64, 12, below_sky);
-  auto lt = render_stats(*scene, "lt", w, h, 32, 12, below_sky);
-  EXPECT_LT(max_z(lt, path_low), 4.5);
+  // infinity), and its estimate of the balls' sun highlights is heavy-tailed
+  // (a z statistic over 12 runs is unreliable there): the floor's bottom rows
+  // and the middle of the wall.
+  const std::vector<Region> lt_regions = {{3, 13, 17, 3}, {6, 2, 12, 4}};
+  auto path_lt = render_stats(*scene, "path", w, h, 64, 12, lt_regions);
+  auto lt = render_stats(*scene, "lt", w, h, 32, 12, lt_regions);
+  EXPECT_LT(max_z(lt, path_lt), 4.5);
 }
 
 // Textures, alpha, bump maps and mix decide everything from hashes of their
