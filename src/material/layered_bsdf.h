@@ -106,7 +106,7 @@ struct LayeredBSDF {
       return bs;
     }
     HashedRng r{wo.x, wo.y, wo.z, uc, u.x, u.y};
-    return walk_sample(wo, *bs, mode, r, flip);
+    return walk_sample(*bs, mode, r, flip);
   }
 
   // The MIS density (see the header comment), in closed form.
@@ -224,8 +224,7 @@ struct LayeredBSDF {
 
   // Continues a sample that went through the coat along entry.wi until it
   // leaves through the coat again; f and pdf are products along the walk.
-  std::optional<BSDFSample> walk_sample(const Vec3& wo, const BSDFSample& entry, TransportMode mode, HashedRng& r,
-                                        bool flip) const {
+  std::optional<BSDFSample> walk_sample(const BSDFSample& entry, TransportMode mode, HashedRng& r, bool flip) const {
     const HenyeyGreenstein phase{g};
     Vec3 w = entry.wi;
     bool specular_path = entry.specular;

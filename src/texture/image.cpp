@@ -15,13 +15,6 @@ float ColorEncoding::to_linear(float v) const {
   return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
 }
 
-RGB TextureImage::texel(int x, int y) const {
-  remap(&x, &y, WrapMode::Repeat);
-  return texels[size_t(y) * size_t(width) + size_t(x)];
-}
-
-RGB TextureImage::bilinear(Vec2 st) const { return lookup_rgb(st, ImageFilter::Bilinear, WrapMode::Repeat); }
-
 bool TextureImage::remap(int* x, int* y, WrapMode wrap) const {
   switch (wrap) {
     case WrapMode::Repeat:
@@ -129,14 +122,17 @@ TextureImage load_texture_image(const std::string& path, ColorEncoding encoding)
   img.channels = nc >= 4 ? 4 : nc >= 3 ? 3 : 1;
   img.texels.resize(size_t(spec.width) * size_t(spec.height));
   if (img.channels == 4) img.alpha.resize(img.texels.size());
+  double sum = 0.0;
   for (size_t i = 0; i < img.texels.size(); ++i) {
     const float* px = &data[i * size_t(nc)];
     RGB c = nc >= 3 ? RGB(decode(px[0]), decode(px[1]), decode(px[2])) : RGB(decode(px[0]));
     if (!is_finite(c)) throw InputError({path, 0, 0}, "image has a non-finite texel at (" + std::to_string(i % size_t(spec.width)) + ", " + std::to_string(i / size_t(spec.width)) + ")");
     img.texels[i] = glm::max(c, RGB(0.f));
+    sum += double(img.texels[i].x + img.texels[i].y + img.texels[i].z) / 3.0;
     // pbrt-v4 decodes every channel of an integer file, alpha included.
     if (img.channels == 4) img.alpha[i] = glm::clamp(decode(px[3]), 0.f, 1.f);
   }
+  img.mean = float(sum / double(img.texels.size()));
   return img;
 }
 

@@ -27,9 +27,7 @@ struct TextureImage {
   std::vector<RGB> texels;  // linear RGB, row 0 at the top; grey files repeat it
   std::vector<float> alpha; // RGBA files only
   std::string filename;
-
-  RGB texel(int x, int y) const;   // wraps around (repeat)
-  RGB bilinear(Vec2 st) const;     // repeat; st in [0,1)^2, t = 0 at the top row
+  float mean = 0.f;         // of the texels over their channels (light power)
 
   // pbrt-v4's lookups: st with t = 0 at the top row. A float lookup reads a
   // grey file's value, the mean of RGB, or (filtered) an RGBA file's alpha.

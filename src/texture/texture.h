@@ -53,13 +53,7 @@ struct TexturePools {
     return t.node < 0 ? t.value : evaluate_node(nodes[size_t(t.node)], c);
   }
   float evaluate_float(const TextureRef& t, const TextureContext& c) const { return evaluate(t, c).x; }
-  // The mean of an image's texels over its channels (for light power).
-  float image_mean(int32_t image) const {
-    const TextureImage& img = images[size_t(image)];
-    double s = 0.0;
-    for (const RGB& c : img.texels) s += double(c.x + c.y + c.z) / 3.0;
-    return img.texels.empty() ? 0.f : float(s / double(img.texels.size()));
-  }
+  float image_mean(int32_t image) const { return images[size_t(image)].mean; }
   // Reflectances are clamped to [0, 1], as pbrt-v4's materials do.
   RGB evaluate_reflectance(const TextureRef& t, const TextureContext& c) const {
     return glm::clamp(evaluate(t, c), RGB(0.f), RGB(1.f));
