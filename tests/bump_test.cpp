@@ -115,7 +115,8 @@ TEST(Bump, NormalMapTangentSpace) {
     stream.intersect(rays, RayKind::Camera);
     ASSERT_TRUE(rays.hit(0));
     SurfacePoint sp = hit_point(s.shapes, rays, 0);
-    hit_material(s, rays, 0, Vec3(0, -1, 0), &sp);
+    Footprint fp;
+    hit_material(s, FootprintModel(), rays, 0, Vec3(0, -1, 0), &sp, &fp);
     EXPECT_NEAR(sp.ns.x, p.expected_sign * std::sqrt(0.5f), 1e-3f) << "x " << p.x;
     EXPECT_NEAR(std::fabs(sp.ns.y), std::sqrt(0.5f), 1e-3f);
     EXPECT_NEAR(sp.ns.z, 0.f, 1e-3f);

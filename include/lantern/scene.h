@@ -23,6 +23,11 @@ struct SceneSettings {
 struct LoadOptions {
   WarningSink warn;  // receives "file:line:col: warning: ..." lines
   std::function<void(const std::string&)> progress;  // receives the stage being entered ("reading 25 PLY meshes", ...)
+  // Image textures are read through a tile cache of at most this size, from
+  // tiled, MIP-mapped files prepared into texture_directory (empty: the
+  // user's cache folder) when the scene's own are not (docs/textures.md).
+  double texture_cache_mb = 1024.0;
+  std::string texture_directory;
 };
 
 // Throws InputError for anything wrong with the input.

@@ -35,8 +35,9 @@ std::string hms(double s) {
 
 struct RenderArgs {
   std::string scene, output, integrator, rays = "stream", mis = "power", strategies, stats, dump_rays, checkpoint_file;
+  std::string texture_dir;
   int spp = 0, maxdepth = -1, threads = 0, wave_size = 4096;
-  double time = 0.0, checkpoint = 0.0;
+  double time = 0.0, checkpoint = 0.0, texture_cache_mb = 1024.0;
   uint64_t seed = 0;
   bool resume = false;
   std::vector<int> resolution;
@@ -80,6 +81,8 @@ void write_text_atomically(const std::string& path, const std::string& text) {
 int run_render(const RenderArgs& a) {
   using namespace lantern;
   LoadOptions lo;
+  lo.texture_cache_mb = a.texture_cache_mb;
+  lo.texture_directory = a.texture_dir;
   const bool show_progress = !a.quiet && isatty(STDERR_FILENO);
   auto t0 = std::chrono::steady_clock::now();
   // A progress line while loading: the stage and the time so far.
@@ -240,6 +243,11 @@ int main(int argc, char** argv) {
   render->add_option("--checkpoint-file", a.checkpoint_file, "Checkpoint file (default: the output's name + .ckpt)");
   render->add_flag("--resume", a.resume,
                    "Continue from the checkpoint; the result equals an uninterrupted render with the same settings");
+  render->add_option("--texture-cache", a.texture_cache_mb,
+                     "Memory for image texture tiles, in MB (default: 1024); the image does not depend on it")
+      ->check(CLI::Range(1.0, 1048576.0));
+  render->add_option("--texture-dir", a.texture_dir,
+                     "Where images are prepared as tiled, MIP-mapped textures (default: ~/.cache/lantern/textures)");
   render->add_flag("-q,--quiet", a.quiet, "No progress line or summary");
   CompareArgs ca;
   CLI::App* compare = app.add_subcommand("compare", "Error metrics of an image against a reference");

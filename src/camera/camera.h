@@ -55,6 +55,7 @@ class PerspectiveCamera {
   int width() const { return width_; }
   int height() const { return height_; }
   Vec3 position() const { return Vec3(world_from_camera_[3]); }
+  Vec3 forward() const { return forward_; }
 
  private:
   float cos_theta(const Vec3& d) const { return glm::dot(d, forward_); }

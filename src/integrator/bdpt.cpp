@@ -19,7 +19,9 @@ constexpr uint32_t kMaxPendingConnections = 1u << 16;
 }  // namespace
 
 Bdpt::Bdpt(const Scene& scene, const BdptSettings& s)
-    : scene_(scene), settings_(s), camera_(scene.camera, s.width, s.height, scene.filter.radius), mis_{s.mis_beta} {}
+    : scene_(scene), settings_(s), camera_(scene.camera, s.width, s.height, scene.filter.radius), mis_{s.mis_beta} {
+  if (scene.textures.uses_footprint) footprints_ = FootprintModel(camera_, s.spp);
+}
 
 std::unique_ptr<BdptWave, void (*)(BdptWave*)> Bdpt::make_wave_state(uint32_t capacity, RayStream stream) const {
   return {new BdptWave(capacity, std::move(stream)), [](BdptWave* w) { delete w; }};
@@ -91,7 +93,9 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
       ++w.stats.eye_ends[size_t(PathEnd::MaxDepth)];
       continue;
     }
-    w.hits.store(i, sp, d, hit_material(scene_, w.rays, i, d, &sp));
+    Footprint fp;
+    MaterialHandle material = hit_material(scene_, footprints_, w.rays, i, d, &sp, &fp);
+    w.hits.store(i, sp, d, material, footprints_.enabled() ? &fp : nullptr);
   }
 }
 
@@ -154,7 +158,7 @@ void Bdpt::eye_connect_stage(BdptWave& w) const {
         if (is_black(f_eye)) continue;
         RGB f_light;
         float light_fwd_W, light_rev_W;
-        with_bsdf(v.material[j], sc.materials, sc.textures, TextureContext{v.p[j], v.ng[j], v.uv[j]}, [&](const auto& lb) {
+        with_bsdf(v.material[j], sc.materials, sc.textures, TextureContext{v.p[j], v.ng[j], v.uv[j], v.footprint.empty() ? Footprint{} : v.footprint[j]}, [&](const auto& lb) {
           Frame lf = Frame::from_z(v.ns[j]);
           Vec3 lwo = lf.to_local(v.wo[j]), lwi = lf.to_local(-wi_w);
           f_light = lb.f(lwo, lwi, TransportMode::Importance) *

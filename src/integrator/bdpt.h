@@ -16,6 +16,7 @@
 
 #include "accel/ray_stream.h"
 #include "camera/camera.h"
+#include "texture/footprint.h"
 #include "film/film.h"
 #include "integrator/bdpt_mis.h"
 #include "integrator/wave.h"
@@ -31,6 +32,7 @@ struct BdptSettings {
   bool light_tracing_only = false;  // the `lt` integrator
   bool unit_weights = false;        // every strategy weighted 1: deliberately wrong, for tests only
   bool record_strategies = false;   // per-(s, t) contributions into WaveOutput::strategies
+  int spp = 16;                     // the pixel footprint textures filter over shrinks with it
 };
 
 struct BdptWave;
@@ -63,6 +65,7 @@ class Bdpt {
   const Scene& scene_;
   BdptSettings settings_;
   PerspectiveCamera camera_;
+  FootprintModel footprints_;  // enabled when the scene's textures filter
   MisPower mis_;
 };
 

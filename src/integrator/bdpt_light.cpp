@@ -109,7 +109,9 @@ void Bdpt::light_surface_stage(BdptWave& w) const {
     } else {
       mis_after_hit(m, dist2, cos_in, true, mis_);
     }
-    w.hits.store(i, sp, d, hit_material(scene_, w.rays, i, d, &sp));
+    Footprint fp;
+    MaterialHandle material = hit_material(scene_, footprints_, w.rays, i, d, &sp, &fp);
+    w.hits.store(i, sp, d, material, footprints_.enabled() ? &fp : nullptr);
   }
 }
 
@@ -140,6 +142,7 @@ void Bdpt::light_connect_stage(BdptWave& w) const {
         v.beta.push_back(beta);
         v.mis.push_back(m);
         v.material.push_back(h.material[i]);
+        if (!h.footprint.empty()) v.footprint.push_back(h.footprint[i]);
       }
       auto cs = depth <= maxdepth ? camera_.sample_wi(h.p[i], u_lens) : std::nullopt;
       if (cs) {  // t = 1

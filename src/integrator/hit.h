@@ -9,6 +9,7 @@
 #include "accel/ray_batch.h"
 #include "material/material.h"
 #include "scene/surface.h"
+#include "texture/mapping.h"
 
 namespace lantern {
 
@@ -63,6 +64,7 @@ struct HitPool {
   std::vector<Vec2> uv;
   std::vector<float> error_scale;
   std::vector<MaterialHandle> material;
+  std::vector<Footprint> footprint;  // empty unless the scene's textures filter
   std::vector<uint8_t> alive;  // the path continues past this bounce
   std::vector<Vec3> next_o, next_d;
   std::array<std::vector<uint32_t>, kMaterialKindCount> bins;
@@ -77,7 +79,7 @@ struct HitPool {
   }
   size_t memory_bytes() const {
     size_t b = vector_bytes(p) + vector_bytes(ng) + vector_bytes(ns) + vector_bytes(wo) + vector_bytes(uv) +
-               vector_bytes(error_scale) + vector_bytes(material) +
+               vector_bytes(error_scale) + vector_bytes(material) + vector_bytes(footprint) +
                vector_bytes(alive) + vector_bytes(next_o) + vector_bytes(next_d);
     for (const auto& bin : bins) b += vector_bytes(bin);
     return b;
@@ -85,8 +87,13 @@ struct HitPool {
   void clear_bins() {
     for (auto& b : bins) b.clear();
   }
-  // Records hit i (reached travelling along d) and puts it in its material's bin.
-  void store(uint32_t i, const SurfacePoint& sp, const Vec3& d, MaterialHandle m) {
+  // Records hit i (reached travelling along d) and puts it in its material's
+  // bin; fp: its footprint, when the integrator computes them.
+  void store(uint32_t i, const SurfacePoint& sp, const Vec3& d, MaterialHandle m, const Footprint* fp) {
+    if (fp) {
+      if (footprint.size() != p.size()) footprint.resize(p.size());
+      footprint[i] = *fp;
+    }
     p[i] = sp.p;
     ng[i] = sp.ng;
     ns[i] = glm::dot(sp.ns, sp.ng) < 0.f ? -sp.ns : sp.ns;  // shading normal on the geometric one's side

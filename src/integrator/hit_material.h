@@ -9,22 +9,22 @@
 #include "material/mix.h"
 #include "scene/scene.h"
 #include "scene/shading_geometry.h"
+#include "texture/footprint.h"
+
+#include <optional>
 
 namespace lantern {
 
-inline MaterialHandle hit_material(const Scene& scene, const RayBatch& rays, uint32_t i, const Vec3& d,
-                                   SurfacePoint* sp) {
+// dp/du, dp/dv, dn/du, dn/dv and the shading normal of hit i, in the world.
+inline ShadingGeometry world_shading_geometry(const Scene& scene, const RayBatch& rays, uint32_t i,
+                                              const SurfacePoint& sp) {
   const ShapePools& shapes = scene.shapes;
   const Geometry& geo = shapes.geometries[rays.geom_id[i]];
-  MaterialHandle m = resolve_material(geo.material, scene.materials, scene.textures,
-                                      TextureContext{sp->p, sp->ng, sp->uv}, -d);
-  const BumpParams* bump = scene.materials.bump(m);
-  if (!bump) return m;
   // Derivatives in the geometry's own space, carried to the world for an
   // instance (the surface point already is).
   const uint32_t inst = rays.inst_id[i];
   const Instance* in = inst == kInvalidGeometry ? nullptr : &shapes.instances[inst];
-  SurfacePoint local = in ? local_hit_point(shapes, rays, i, in) : *sp;
+  SurfacePoint local = in ? local_hit_point(shapes, rays, i, in) : sp;
   ShadingGeometry g = geo.kind == ShapeKind::Mesh
                           ? triangle_shading_geometry(shapes.meshes[geo.index], rays.prim_id[i], local)
                           : sphere_shading_geometry(shapes.spheres[geo.index], local);
@@ -34,9 +34,29 @@ inline MaterialHandle hit_material(const Scene& scene, const RayBatch& rays, uin
     g.dpdv = M * g.dpdv;
     g.dndu = in->normal_to_world * g.dndu;
     g.dndv = in->normal_to_world * g.dndv;
-    g.n = sp->ns;
+    g.n = sp.ns;
   }
-  sp->ns = bumped_normal(*bump, scene.textures, *sp, g);
+  return g;
+}
+
+// The material hit i (reached along d) is shaded with. With footprints on,
+// *fp receives the pixel footprint there, which the material's textures,
+// its mix and its bump map are evaluated with.
+inline MaterialHandle hit_material(const Scene& scene, const FootprintModel& footprints, const RayBatch& rays,
+                                   uint32_t i, const Vec3& d, SurfacePoint* sp, Footprint* fp) {
+  const Geometry& geo = scene.shapes.geometries[rays.geom_id[i]];
+  std::optional<ShadingGeometry> g;
+  *fp = Footprint{};
+  if (footprints.enabled()) {
+    g = world_shading_geometry(scene, rays, i, *sp);
+    *fp = footprints.at(sp->p, sp->ng, g->dpdu, g->dpdv);
+  }
+  MaterialHandle m = resolve_material(geo.material, scene.materials, scene.textures,
+                                      TextureContext{sp->p, sp->ng, sp->uv, *fp}, -d);
+  const BumpParams* bump = scene.materials.bump(m);
+  if (!bump) return m;
+  if (!g) g = world_shading_geometry(scene, rays, i, *sp);
+  sp->ns = bumped_normal(*bump, scene.textures, *sp, *fp, *g);
   return m;
 }
 

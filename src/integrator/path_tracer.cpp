@@ -21,7 +21,9 @@ std::vector<uint32_t> tile_order(int width, int height, int tile) {
 }
 
 PathTracer::PathTracer(const Scene& scene, const PathTracerSettings& s)
-    : scene_(scene), settings_(s), camera_(scene.camera, s.width, s.height) {}
+    : scene_(scene), settings_(s), camera_(scene.camera, s.width, s.height) {
+  if (scene.textures.uses_footprint) footprints_ = FootprintModel(camera_, s.spp);
+}
 
 std::unique_ptr<PathWave, void (*)(PathWave*)> PathTracer::make_wave_state(uint32_t capacity, RayStream stream) const {
   return {new PathWave(capacity, std::move(stream)), [](PathWave* w) { delete w; }};
@@ -86,7 +88,9 @@ void PathTracer::surface_stage(PathWave& w) const {
       ++w.stats.eye_ends[size_t(PathEnd::MaxDepth)];
       continue;
     }
-    w.hits.store(i, sp, d, hit_material(scene_, w.rays, i, d, &sp));
+    Footprint fp;
+    MaterialHandle material = hit_material(scene_, footprints_, w.rays, i, d, &sp, &fp);
+    w.hits.store(i, sp, d, material, footprints_.enabled() ? &fp : nullptr);
   }
 }
 

@@ -8,6 +8,7 @@
 #include "film/film.h"
 #include "integrator/wave.h"
 #include "scene/scene.h"
+#include "texture/footprint.h"
 
 namespace lantern {
 
@@ -15,6 +16,7 @@ struct PathTracerSettings {
   int maxdepth = 5;
   uint64_t seed = 0;
   int width = 0, height = 0;
+  int spp = 16;  // the pixel footprint textures filter over shrinks with it
 };
 
 struct PathWave;  // the SoA pools, reused wave after wave by one thread
@@ -37,6 +39,7 @@ class PathTracer {
   const Scene& scene_;
   PathTracerSettings settings_;
   PerspectiveCamera camera_;
+  FootprintModel footprints_;  // enabled when the scene's textures filter
 };
 
 }  // namespace lantern

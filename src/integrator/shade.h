@@ -17,7 +17,10 @@ void for_each_binned_bsdf(const HitPool& hits, const Scene& scene, Fn&& fn) {
     const auto& bin = hits.bins[size_t(k)];
     if (!bin.empty())
       for_each_bsdf(MaterialKind(k), scene.materials, scene.textures, bin.data(), bin.size(),
-                    hits.material.data(), SurfaceAttributes{hits.p.data(), hits.ng.data(), hits.uv.data()}, fn);
+                    hits.material.data(),
+                    SurfaceAttributes{hits.p.data(), hits.ng.data(), hits.uv.data(),
+                                      hits.footprint.empty() ? nullptr : hits.footprint.data()},
+                    fn);
   }
 }
 

@@ -73,7 +73,10 @@ struct SurfaceAttributes {
   const Vec3* p;
   const Vec3* ng;
   const Vec2* uv;
-  TextureContext at(uint32_t slot) const { return TextureContext{p[slot], ng[slot], uv[slot]}; }
+  const Footprint* fp;  // null: no footprints
+  TextureContext at(uint32_t slot) const {
+    return TextureContext{p[slot], ng[slot], uv[slot], fp ? fp[slot] : Footprint{}};
+  }
 };
 
 // Calls fn(slot, bsdf) for every slot in `bin`; all slots share `kind`.

@@ -3,8 +3,8 @@
 // the shading normal, read linearly with t flipped and wrapping) perturbs
 // dp/du and dp/dv, and the shading normal becomes their cross product,
 // turned to the geometric normal's side. The normal map wins when both are
-// given, as in pbrt-v4. Without ray differentials the displacement's finite
-// differences use pbrt-v4's fallback step, 0.0005 in u and in v.
+// given, as in pbrt-v4. The displacement's finite differences step half the
+// pixel footprint in u and in v (pbrt-v4's 0.0005 where it is zero).
 #pragma once
 
 #include "material/material.h"
@@ -12,12 +12,11 @@
 
 namespace lantern {
 
-inline Vec3 bumped_normal(const BumpParams& b, const TexturePools& tex, const SurfacePoint& sp,
+inline Vec3 bumped_normal(const BumpParams& b, const TexturePools& tex, const SurfacePoint& sp, const Footprint& fp,
                           const ShadingGeometry& g) {
   Vec3 dpdu, dpdv;
   if (b.normal_map >= 0) {
-    const TextureImage& img = tex.images[size_t(b.normal_map)];
-    RGB c = img.lookup_rgb(Vec2(sp.uv.x, 1.f - sp.uv.y), ImageFilter::Bilinear, WrapMode::Repeat);
+    RGB c = tex.cache->lookup_rgb(b.normal_map, TextureLookup{Vec2(sp.uv.x, 1.f - sp.uv.y)});
     Vec3 nl = 2.f * c - Vec3(1.f);
     float len = glm::length(nl);
     if (!(len > 0.f)) return g.n;
@@ -28,11 +27,14 @@ inline Vec3 bumped_normal(const BumpParams& b, const TexturePools& tex, const Su
     dpdu = glm::normalize(g.dpdu - glm::dot(g.dpdu, ns) * ns) * ulen;
     dpdv = glm::normalize(glm::cross(ns, dpdu)) * vlen;
   } else {
-    const float du = 0.0005f, dv = 0.0005f;
-    TextureContext c{sp.p, sp.ng, sp.uv};
+    float du = 0.5f * (std::fabs(fp.duvdx.x) + std::fabs(fp.duvdy.x));
+    float dv = 0.5f * (std::fabs(fp.duvdx.y) + std::fabs(fp.duvdy.y));
+    if (!(du > 0.f)) du = 0.0005f;
+    if (!(dv > 0.f)) dv = 0.0005f;
+    TextureContext c{sp.p, sp.ng, sp.uv, fp};
     float d0 = tex.evaluate_float(b.displacement, c);
-    float d_u = tex.evaluate_float(b.displacement, TextureContext{sp.p + du * g.dpdu, sp.ng, sp.uv + Vec2(du, 0.f)});
-    float d_v = tex.evaluate_float(b.displacement, TextureContext{sp.p + dv * g.dpdv, sp.ng, sp.uv + Vec2(0.f, dv)});
+    float d_u = tex.evaluate_float(b.displacement, TextureContext{sp.p + du * g.dpdu, sp.ng, sp.uv + Vec2(du, 0.f), fp});
+    float d_v = tex.evaluate_float(b.displacement, TextureContext{sp.p + dv * g.dpdv, sp.ng, sp.uv + Vec2(0.f, dv), fp});
     dpdu = g.dpdu + (d_u - d0) / du * g.n + d0 * g.dndu;
     dpdv = g.dpdv + (d_v - d0) / dv * g.n + d0 * g.dndv;
   }

@@ -95,7 +95,7 @@ struct CoatedConductorMaterial {
 // A material's bump or normal map (applied by material/bump.h).
 struct BumpParams {
   TextureRef displacement = TextureRef::constant(0.f);
-  int32_t normal_map = -1;  // index into TexturePools::images
+  int32_t normal_map = -1;  // id in TexturePools::cache
 };
 
 // pbrt-v4's mix: materials[1] with probability amount, materials[0]

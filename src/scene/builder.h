@@ -29,6 +29,7 @@ class SceneBuilder {
       : scene_(scene), warn_(std::move(warn)), progress_(std::move(progress)) {}
 
   void warn(const SourceLocation& where, const std::string& what) const;
+  void set_texture_cache(const TextureCacheSettings& s) { texture_cache_ = s; }
   void warn_line(const std::string& line) const {
     if (warn_) warn_(line);
   }
@@ -65,6 +66,10 @@ class SceneBuilder {
   // The image at path, read once per encoding; errors name parameter `param`.
   int32_t texture_image(const pbrt::ParamSet& ps, const std::string& path, ColorEncoding encoding,
                         const char* param = "filename");
+  // The image at path as the texture cache reads it, prepared once per
+  // encoding, registered with n's filter and wrap.
+  int32_t cached_texture(const pbrt::ParamSet& ps, const std::string& path, ColorEncoding encoding,
+                         const TextureNode& n, const char* param = "filename");
   TextureRef add_texture_node(TextureNode n);
   // Material parameters (builder_materials.cpp).
   // pbrt's roughness, uroughness and vroughness (after prefix) and remaproughness.
@@ -113,6 +118,8 @@ class SceneBuilder {
   std::map<std::string, TextureRef> rgb_textures_;
   std::map<std::string, TextureRef> float_textures_;
   std::map<std::string, int32_t> images_;  // "encoding|path" -> TexturePools::images
+  std::map<std::string, PreparedTexture> prepared_;  // "encoding|path" -> its prepared file
+  TextureCacheSettings texture_cache_;
   std::optional<MaterialHandle> default_material_;
 };
 

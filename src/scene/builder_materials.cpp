@@ -50,11 +50,17 @@ int32_t SceneBuilder::bump_map(const ParamSet& ps, const std::string& base_dir) 
   b.displacement = float_texture(ps, "displacement", 0.f);
   std::string file = ps.get_string("normalmap", "");
   if (!file.empty()) {
-    // pbrt-v4 reads normal maps linearly, whatever the format.
-    b.normal_map = texture_image(ps, resolve_path(base_dir, file), ColorEncoding{ColorEncoding::Linear}, "normalmap");
+    // pbrt-v4 reads normal maps linearly, whatever the format, bilinearly
+    // at full resolution and repeating.
+    TextureNode lookup;
+    lookup.filter = ImageFilter::Bilinear;
+    lookup.wrap = WrapMode::Repeat;
+    b.normal_map = cached_texture(ps, resolve_path(base_dir, file), ColorEncoding{ColorEncoding::Linear}, lookup,
+                                  "normalmap");
     if (ps.has("displacement")) warn(ps.where, "both \"normalmap\" and \"displacement\" given: the normal map is used (as in pbrt-v4)");
   }
   if (b.normal_map < 0 && b.displacement.is_constant()) return -1;  // a constant displacement does not bend normals
+  if (b.normal_map < 0) scene_.textures.uses_footprint = true;  // the displacement's finite differences span it
   scene_.materials.bumps.push_back(b);
   return int32_t(scene_.materials.bumps.size() - 1);
 }

@@ -84,6 +84,27 @@ int32_t SceneBuilder::texture_image(const ParamSet& ps, const std::string& path,
   return index;
 }
 
+int32_t SceneBuilder::cached_texture(const ParamSet& ps, const std::string& path, ColorEncoding encoding,
+                                     const TextureNode& n, const char* param) {
+  TexturePools& pools = scene_.textures;
+  if (!pools.cache) pools.cache = std::make_shared<TextureCache>(texture_cache_);
+  std::string key = std::to_string(int(encoding.kind)) + "/" + std::to_string(encoding.gamma) + "|" + path;
+  auto it = prepared_.find(key);
+  if (it == prepared_.end()) {
+    try {
+      it = prepared_.emplace(key, prepare_texture(path, encoding, pools.cache->settings().directory)).first;
+      if (it->second.converted && progress_) progress_("prepared texture " + path);
+    } catch (const InputError& e) {
+      ps.fail(*ps.find(param), e.what());
+    }
+  }
+  try {
+    return pools.cache->add(it->second, n.filter, n.wrap, n.max_anisotropy);
+  } catch (const InputError& e) {
+    ps.fail(*ps.find(param), e.what());
+  }
+}
+
 static ColorEncoding parse_encoding(const ParamSet& ps, const std::string& file) {
   const pbrt::Param* p = ps.find("encoding");
   if (!p && ps.has("gamma"))  // pbrt-v3: "bool gamma", true for sRGB-encoded files
@@ -102,12 +123,14 @@ static ColorEncoding parse_encoding(const ParamSet& ps, const std::string& file)
 
 static void parse_image_lookup(const ParamSet& ps, TextureNode* n) {
   std::string filter = ps.get_string("filter", "bilinear");
-  // Without ray differentials every lookup has a zero footprint, where
-  // pbrt-v4's trilinear and EWA filters read the finest level bilinearly.
   if (filter == "point") n->filter = ImageFilter::Point;
-  else if (filter == "bilinear" || filter == "trilinear" || filter == "ewa" || filter == "EWA") n->filter = ImageFilter::Bilinear;
+  else if (filter == "bilinear") n->filter = ImageFilter::Bilinear;
+  else if (filter == "trilinear") n->filter = ImageFilter::Trilinear;
+  else if (filter == "ewa" || filter == "EWA") n->filter = ImageFilter::EWA;
   else ps.fail(*ps.find("filter"), "filter \"" + printable(filter) + "\" is unknown; expected point, bilinear, trilinear or ewa");
-  ps.get_float("maxanisotropy", 8.f);
+  n->max_anisotropy = ps.get_float("maxanisotropy", 8.f);
+  if (!(n->max_anisotropy >= 1.f && n->max_anisotropy <= 1024.f))
+    ps.fail(*ps.find("maxanisotropy"), "maxanisotropy must be in [1, 1024]");
   std::string wrap = ps.get_string("wrap", "repeat");
   if (wrap == "repeat") n->wrap = WrapMode::Repeat;
   else if (wrap == "black") n->wrap = WrapMode::Black;
@@ -140,7 +163,15 @@ void SceneBuilder::texture(const std::string& name, const std::string& value_typ
     n.kind = TextureKind::Image;
     n.mapping = texture_mapping(ps, ctm, true);
     parse_image_lookup(ps, &n);
-    n.image = texture_image(ps, resolve_path(base_dir, file), parse_encoding(ps, file));
+    const std::string path = resolve_path(base_dir, file);
+    // OpenImageIO has no octahedral wrap: such images stay resident and
+    // are read bilinearly (they are environment-sized, not scene-sized).
+    if (n.wrap == WrapMode::OctahedralSphere) {
+      n.image = texture_image(ps, path, parse_encoding(ps, file));
+    } else {
+      n.cached = cached_texture(ps, path, parse_encoding(ps, file), n);
+      if (n.filter == ImageFilter::Trilinear || n.filter == ImageFilter::EWA) scene_.textures.uses_footprint = true;
+    }
     result = add_texture_node(n);
   } else if (cls == "checkerboard") {
     n.kind = TextureKind::Checkerboard;
@@ -149,6 +180,7 @@ void SceneBuilder::texture(const std::string& name, const std::string& value_typ
     n.mapping = texture_mapping(ps, ctm, n.dimension == 2);
     n.tex1 = child("tex1", 1.f);
     n.tex2 = child("tex2", 0.f);
+    scene_.textures.uses_footprint = true;  // filtered over it
     result = add_texture_node(n);
   } else if (cls == "dots") {
     n.kind = TextureKind::Dots;
@@ -197,6 +229,7 @@ void SceneBuilder::texture(const std::string& name, const std::string& value_typ
       n.scale = ps.get_float("scale", 1.f);
       n.variation = ps.get_float("variation", 0.2f);
     }
+    scene_.textures.uses_footprint = true;  // octaves finer than it are left out
     result = add_texture_node(n);
   } else if (cls == "ptex") {
     ps.fail("ptex textures are not supported: Lantern reads images through OpenImageIO, whose Debian build has no Ptex");

@@ -9,6 +9,7 @@ namespace lantern {
 std::shared_ptr<Scene> load_scene(const std::string& path, const LoadOptions& options) {
   auto scene = std::make_shared<Scene>();
   SceneBuilder b(*scene, options.warn, options.progress);
+  b.set_texture_cache(TextureCacheSettings{options.texture_cache_mb, options.texture_directory});
   if (options.progress) options.progress("parsing " + path);
   pbrt::parse_file(path, b);
   b.finish();
@@ -18,6 +19,7 @@ std::shared_ptr<Scene> load_scene(const std::string& path, const LoadOptions& op
 std::shared_ptr<Scene> load_scene_from_string(const std::string& text, const std::string& name, const LoadOptions& options) {
   auto scene = std::make_shared<Scene>();
   SceneBuilder b(*scene, options.warn);
+  b.set_texture_cache(TextureCacheSettings{options.texture_cache_mb, options.texture_directory});
   pbrt::parse_string(text, name, std::filesystem::current_path().string(), b);
   b.finish();
   return scene;

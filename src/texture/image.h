@@ -11,7 +11,9 @@
 namespace lantern {
 
 enum class WrapMode : uint8_t { Repeat, Black, Clamp, OctahedralSphere };
-enum class ImageFilter : uint8_t { Point, Bilinear };
+// Trilinear and EWA filter over the footprint through the texture cache;
+// resident images read them as bilinear.
+enum class ImageFilter : uint8_t { Point, Bilinear, Trilinear, EWA };
 
 // How integer-valued (8- and 16-bit) files encode their values; float files
 // are always linear.

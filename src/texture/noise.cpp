@@ -50,37 +50,69 @@ float perlin_noise(Vec3 p) {
   return lerp(wz, y0, y1);
 }
 
-float fbm(Vec3 p, float omega, int octaves) {
+namespace {
+
+// How many octaves the footprint resolves, fractional: octave i has a
+// period of about 1.99^-i, and is kept while that exceeds the footprint's
+// length (pbrt-v4: n = -1 - log2(max |dp|^2) / 2, clamped to [0, octaves]).
+float resolved_octaves(Vec3 dpdx, Vec3 dpdy, int octaves) {
+  float len2 = std::fmax(glm::dot(dpdx, dpdx), glm::dot(dpdy, dpdy));
+  float n = -1.f - 0.5f * std::log2(len2);  // +inf for a zero footprint
+  return std::isnan(n) ? 0.f : glm::clamp(n, 0.f, float(octaves));
+}
+
+float smooth_step(float x, float a, float b) {
+  float t = glm::clamp((x - a) / (b - a), 0.f, 1.f);
+  return t * t * (3.f - 2.f * t);
+}
+
+}  // namespace
+
+float fbm(Vec3 p, Vec3 dpdx, Vec3 dpdy, float omega, int octaves) {
+  const float n = resolved_octaves(dpdx, dpdy, octaves);
+  const int whole = int(std::floor(n));
   float sum = 0.f, lambda = 1.f, o = 1.f;
-  for (int i = 0; i < octaves; ++i) {
+  for (int i = 0; i < whole; ++i) {
     sum += o * perlin_noise(lambda * p);
     lambda *= 1.99f;
+    o *= omega;
+  }
+  // The partly resolved octave fades in.
+  float fade_in = smooth_step(n - float(whole), 0.3f, 0.7f);
+  return fade_in > 0.f ? sum + o * fade_in * perlin_noise(lambda * p) : sum;
+}
+
+float turbulence(Vec3 p, Vec3 dpdx, Vec3 dpdy, float omega, int octaves) {
+  const float n = resolved_octaves(dpdx, dpdy, octaves);
+  const int whole = int(std::floor(n));
+  float sum = 0.f, lambda = 1.f, o = 1.f;
+  for (int i = 0; i < whole; ++i) {
+    sum += o * std::fabs(perlin_noise(lambda * p));
+    lambda *= 1.99f;
+    o *= omega;
+  }
+  // An unresolved octave of |noise| averages about 0.2: the partly resolved
+  // one blends from that to its value, and each unresolved octave adds 0.2
+  // at the partial octave's weight and on (pbrt-v4's sum, kept as it is).
+  float fade_in = smooth_step(n - float(whole), 0.3f, 0.7f);
+  float partial = fade_in > 0.f ? std::fabs(perlin_noise(lambda * p)) : 0.f;
+  sum += o * ((1.f - fade_in) * 0.2f + fade_in * partial);
+  for (int i = whole; i < octaves; ++i) {
+    sum += o * 0.2f;
     o *= omega;
   }
   return sum;
 }
 
-float turbulence(Vec3 p, float omega, int octaves) {
-  float sum = 0.f, lambda = 1.f, o = 1.f;
-  for (int i = 0; i < octaves; ++i) {
-    sum += o * std::fabs(perlin_noise(lambda * p));
-    lambda *= 1.99f;
-    o *= omega;
-  }
-  // pbrt-v4 stands in 0.2 per octave for the octaves past the footprint,
-  // and with a zero footprint still adds the first of them.
-  return sum + 0.2f * o;
-}
-
-float windy(Vec3 p) {
-  float strength = fbm(0.1f * p, 0.5f, 3);
-  float height = fbm(p, 0.5f, 6);
+float windy(Vec3 p, Vec3 dpdx, Vec3 dpdy) {
+  float strength = fbm(0.1f * p, 0.1f * dpdx, 0.1f * dpdy, 0.5f, 3);
+  float height = fbm(p, dpdx, dpdy, 0.5f, 6);
   return std::fabs(strength) * height;
 }
 
-RGB marble(Vec3 p, float omega, int octaves, float scale, float variation) {
+RGB marble(Vec3 p, Vec3 dpdx, Vec3 dpdy, float omega, int octaves, float scale, float variation) {
   p *= scale;
-  float t = 0.5f + 0.5f * std::sin(p.y + variation * fbm(p, omega, octaves));
+  float t = 0.5f + 0.5f * std::sin(p.y + variation * fbm(p, scale * dpdx, scale * dpdy, omega, octaves));
   t = std::isfinite(t) ? glm::clamp(t, 0.f, 1.f) : 0.5f;
   // The control points of pbrt's marble colour spline (PBR, sec. 10.6.5),
   // cubic Bezier segments overlapping by three points.

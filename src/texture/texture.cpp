@@ -10,20 +10,29 @@ namespace lantern {
 namespace {
 
 RGB image_value(const TexturePools& pools, const TextureNode& n, const TextureContext& c) {
-  Vec2 st = n.mapping.map(c);
-  st.y = 1.f - st.y;  // pbrt-v4: t = 0 is the bottom row of the image
-  const TextureImage& img = pools.images[size_t(n.image)];
-  RGB v = n.is_float ? RGB(img.lookup_float(st, n.filter, n.wrap)) : img.lookup_rgb(st, n.filter, n.wrap);
+  RGB v;
+  if (n.cached >= 0) {
+    TexCoord2D tc = n.mapping.map_filtered(c);
+    // pbrt-v4: t = 0 is the bottom row of the image.
+    TextureLookup q{Vec2(tc.st.x, 1.f - tc.st.y), Vec2(tc.dst_dx.x, -tc.dst_dx.y), Vec2(tc.dst_dy.x, -tc.dst_dy.y)};
+    v = n.is_float ? RGB(pools.cache->lookup_float(n.cached, q)) : pools.cache->lookup_rgb(n.cached, q);
+  } else {
+    Vec2 st = n.mapping.map(c);
+    st.y = 1.f - st.y;
+    const TextureImage& img = pools.images[size_t(n.image)];
+    v = n.is_float ? RGB(img.lookup_float(st, n.filter, n.wrap)) : img.lookup_rgb(st, n.filter, n.wrap);
+  }
   v *= n.scale;
   return n.invert ? glm::max(RGB(0.f), RGB(1.f) - v) : v;
 }
 
-// (1 - w) a + w b, skipping a side whose weight is zero.
+// (1 - w) a + w b, skipping a side whose weight is zero; as a + w (b - a),
+// which is exactly a where the two agree.
 RGB blend(const TexturePools& pools, float w, const TextureRef& a, const TextureRef& b, const TextureContext& c) {
-  RGB r(0.f);
-  if (w != 1.f) r += (1.f - w) * pools.evaluate(a, c);
-  if (w != 0.f) r += w * pools.evaluate(b, c);
-  return r;
+  if (w == 0.f) return pools.evaluate(a, c);
+  if (w == 1.f) return pools.evaluate(b, c);
+  RGB va = pools.evaluate(a, c);
+  return va + w * (pools.evaluate(b, c) - va);
 }
 
 }  // namespace
@@ -32,7 +41,7 @@ RGB TexturePools::evaluate_node(const TextureNode& n, const TextureContext& c) c
   switch (n.kind) {
     case TextureKind::Image: return image_value(*this, n, c);
     case TextureKind::Checkerboard: {
-      float w = n.dimension == 3 ? checkerboard_3d(n.mapping.point(c)) : checkerboard_2d(n.mapping.map(c));
+      float w = n.dimension == 3 ? checkerboard_3d(n.mapping.map3d(c)) : checkerboard_2d(n.mapping.map_filtered(c));
       return blend(*this, w, n.tex1, n.tex2, c);
     }
     case TextureKind::Dots: return evaluate(inside_polka_dot(n.mapping.map(c)) ? n.tex1 : n.tex2, c);
@@ -49,11 +58,22 @@ RGB TexturePools::evaluate_node(const TextureNode& n, const TextureContext& c) c
       return (1 - st.x) * (1 - st.y) * n.v00 + (1 - st.x) * st.y * n.v01 + st.x * (1 - st.y) * n.v10 +
              st.x * st.y * n.v11;
     }
-    case TextureKind::FBm: return RGB(fbm(n.mapping.point(c), n.roughness, n.octaves));
-    case TextureKind::Wrinkled: return RGB(turbulence(n.mapping.point(c), n.roughness, n.octaves));
-    case TextureKind::Windy: return RGB(windy(n.mapping.point(c)));
-    case TextureKind::Marble:
-      return glm::clamp(marble(n.mapping.point(c), n.roughness, n.octaves, n.scale, n.variation), RGB(0.f), RGB(1.f));
+    case TextureKind::FBm: {
+      TexCoord3D q = n.mapping.map3d(c);
+      return RGB(fbm(q.p, q.dpdx, q.dpdy, n.roughness, n.octaves));
+    }
+    case TextureKind::Wrinkled: {
+      TexCoord3D q = n.mapping.map3d(c);
+      return RGB(turbulence(q.p, q.dpdx, q.dpdy, n.roughness, n.octaves));
+    }
+    case TextureKind::Windy: {
+      TexCoord3D q = n.mapping.map3d(c);
+      return RGB(windy(q.p, q.dpdx, q.dpdy));
+    }
+    case TextureKind::Marble: {
+      TexCoord3D q = n.mapping.map3d(c);
+      return glm::clamp(marble(q.p, q.dpdx, q.dpdy, n.roughness, n.octaves, n.scale, n.variation), RGB(0.f), RGB(1.f));
+    }
   }
   return RGB(0.f);
 }

@@ -7,10 +7,12 @@
 // the Perlin-noise family (noise.h).
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "texture/image.h"
 #include "texture/mapping.h"
+#include "texture/texture_cache.h"
 
 namespace lantern {
 
@@ -39,8 +41,10 @@ struct TextureNode {
   int dimension = 2;      // checkerboard
   int octaves = 8;        // noise family
   float roughness = 0.5f, variation = 0.2f, scale = 1.f;  // noise family; image: scale
-  int32_t image = -1;
+  int32_t image = -1;   // image: resident (TexturePools::images), or
+  int32_t cached = -1;  // read through TexturePools::cache
   ImageFilter filter = ImageFilter::Bilinear;
+  float max_anisotropy = 8.f;
   WrapMode wrap = WrapMode::Repeat;
   bool invert = false;
 };
@@ -48,6 +52,10 @@ struct TextureNode {
 struct TexturePools {
   std::vector<TextureImage> images;
   std::vector<TextureNode> nodes;
+  std::shared_ptr<TextureCache> cache;  // made when the first image texture is
+  // Some texture filters over the pixel footprint (texture/footprint.h):
+  // only then do the integrators compute one per hit.
+  bool uses_footprint = false;
 
   RGB evaluate(const TextureRef& t, const TextureContext& c) const {
     return t.node < 0 ? t.value : evaluate_node(nodes[size_t(t.node)], c);
