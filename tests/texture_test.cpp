@@ -125,8 +125,7 @@ Shape "trianglemesh" "point3 P" [0 0 0 1 0 0 0 1 0] "integer indices" [0 1 2]
 Material "diffuse" "texture reflectance" "bil"
 Shape "trianglemesh" "point3 P" [0 0 0 1 0 0 0 1 0] "integer indices" [0 1 2]
 )");
-  ASSERT_TRUE(s->textures.cache);
-  EXPECT_TRUE(s->textures.images.empty()) << "read through the texture cache";
+  EXPECT_EQ(s->textures.images.size(), 1u) << "one small file, read once, resident";
   const auto& m = s->materials.diffuse;
   auto at = [&](int i, float u, float v) { return eval(*s, m[size_t(i)].reflectance, Vec2(u, v)); };
   EXPECT_EQ(at(0, 0.25f, 0.25f), RGB(0, 0, 1)) << "bottom left";

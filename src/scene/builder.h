@@ -70,6 +70,7 @@ class SceneBuilder {
   // encoding, registered with n's filter and wrap.
   int32_t cached_texture(const pbrt::ParamSet& ps, const std::string& path, ColorEncoding encoding,
                          const TextureNode& n, const char* param = "filename");
+  bool resident_fits(const pbrt::ParamSet& ps, const std::string& path, ImageFilter filter);
   TextureRef add_texture_node(TextureNode n);
   // Material parameters (builder_materials.cpp).
   // pbrt's roughness, uroughness and vroughness (after prefix) and remaproughness.
@@ -120,6 +121,9 @@ class SceneBuilder {
   std::map<std::string, int32_t> images_;  // "encoding|path" -> TexturePools::images
   std::map<std::string, PreparedTexture> prepared_;  // "encoding|path" -> its prepared file
   TextureCacheSettings texture_cache_;
+  // Small images (point or bilinear filtered) are resident up to a budget.
+  static constexpr int64_t kMaxResidentTexels = 256 * 256, kResidentTexelBudget = int64_t(4) << 20;  // 64 MB of float RGBA
+  int64_t resident_texels_ = 0;
   std::optional<MaterialHandle> default_material_;
 };
 

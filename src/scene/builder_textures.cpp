@@ -84,6 +84,20 @@ int32_t SceneBuilder::texture_image(const ParamSet& ps, const std::string& path,
   return index;
 }
 
+bool SceneBuilder::resident_fits(const ParamSet& ps, const std::string& path, ImageFilter filter) {
+  if (filter != ImageFilter::Point && filter != ImageFilter::Bilinear) return false;
+  std::pair<int, int> size;
+  try {
+    size = image_resolution(path);
+  } catch (const InputError& e) {
+    ps.fail(*ps.find("filename"), e.what());
+  }
+  const int64_t texels = int64_t(size.first) * size.second;
+  if (texels > kMaxResidentTexels || resident_texels_ + texels > kResidentTexelBudget) return false;
+  resident_texels_ += texels;
+  return true;
+}
+
 int32_t SceneBuilder::cached_texture(const ParamSet& ps, const std::string& path, ColorEncoding encoding,
                                      const TextureNode& n, const char* param) {
   TexturePools& pools = scene_.textures;
@@ -164,12 +178,16 @@ void SceneBuilder::texture(const std::string& name, const std::string& value_typ
     n.mapping = texture_mapping(ps, ctm, true);
     parse_image_lookup(ps, &n);
     const std::string path = resolve_path(base_dir, file);
+    const ColorEncoding encoding = parse_encoding(ps, file);
     // OpenImageIO has no octahedral wrap: such images stay resident and
     // are read bilinearly (they are environment-sized, not scene-sized).
-    if (n.wrap == WrapMode::OctahedralSphere) {
-      n.image = texture_image(ps, path, parse_encoding(ps, file));
+    // Small images read without MIP filtering stay resident too, within a
+    // fixed budget: a lookup there costs a quarter of the cache's
+    // (docs/performance.md), and the budget, not the cache size, bounds them.
+    if (n.wrap == WrapMode::OctahedralSphere || resident_fits(ps, path, n.filter)) {
+      n.image = texture_image(ps, path, encoding);
     } else {
-      n.cached = cached_texture(ps, path, parse_encoding(ps, file), n);
+      n.cached = cached_texture(ps, path, encoding, n);
       if (n.filter == ImageFilter::Trilinear || n.filter == ImageFilter::EWA) scene_.textures.uses_footprint = true;
     }
     result = add_texture_node(n);

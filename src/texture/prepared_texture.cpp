@@ -121,6 +121,12 @@ void convert(const std::string& source, ColorEncoding encoding, bool float_sourc
 
 }  // namespace
 
+std::pair<int, int> image_resolution(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw InputError({path, 0, 0}, "cannot read image: " + OIIO::geterror());
+  return {in->spec().width, in->spec().height};
+}
+
 std::string default_texture_directory() {
   if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return (fs::path(x) / "lantern" / "textures").string();
   if (const char* h = std::getenv("HOME"); h && *h) return (fs::path(h) / ".cache" / "lantern" / "textures").string();

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 
 #include "texture/image.h"
 
@@ -20,6 +21,10 @@ struct PreparedTexture {
   int width = 0, height = 0;
   bool converted = false;  // written into the texture directory by this call
 };
+
+// The resolution of an image file, read from its header; throws InputError
+// naming the file if it cannot be read.
+std::pair<int, int> image_resolution(const std::string& path);
 
 // The texture directory when none is given: $XDG_CACHE_HOME/lantern/textures,
 // else $HOME/.cache/lantern/textures, else a folder under /tmp.
