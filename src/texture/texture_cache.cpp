@@ -55,7 +55,9 @@ TextureCache::TextureCache(const TextureCacheSettings& settings) : settings_(set
   // A cache of its own, not the process-wide shared one: its limit is this scene's.
   impl_->ts = OIIO::TextureSystem::create(false);
   impl_->ts->attribute("max_memory_MB", float(settings_.max_memory_mb));
-  impl_->ts->attribute("max_open_files", 256);
+  // OpenImageIO's default: each open file holds buffers outside the tile
+  // limit, so this bounds that overhead too.
+  impl_->ts->attribute("max_open_files", 100);
   impl_->ts->attribute("automip", 0);
   impl_->ts->attribute("autotile", 0);
 }
