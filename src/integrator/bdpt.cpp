@@ -20,7 +20,7 @@ constexpr uint32_t kMaxPendingConnections = 1u << 16;
 
 Bdpt::Bdpt(const Scene& scene, const BdptSettings& s)
     : scene_(scene), settings_(s), camera_(scene.camera, s.width, s.height, scene.filter.radius), mis_{s.mis_beta} {
-  if (scene.textures.uses_footprint) footprints_ = FootprintModel(camera_, s.spp);
+  if (scene.textures.uses_footprint) footprints_ = FootprintModel(camera_, s.footprint_spp);
 }
 
 std::unique_ptr<BdptWave, void (*)(BdptWave*)> Bdpt::make_wave_state(uint32_t capacity, RayStream stream) const {

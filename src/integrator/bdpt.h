@@ -32,7 +32,9 @@ struct BdptSettings {
   bool light_tracing_only = false;  // the `lt` integrator
   bool unit_weights = false;        // every strategy weighted 1: deliberately wrong, for tests only
   bool record_strategies = false;   // per-(s, t) contributions into WaveOutput::strategies
-  int spp = 16;                     // the pixel footprint textures filter over shrinks with it
+  // The samples per pixel the texture filter footprint is scaled for: the
+  // scene's own, so that an image does not depend on --spp or --time.
+  int footprint_spp = 16;
 };
 
 struct BdptWave;

@@ -22,7 +22,7 @@ std::vector<uint32_t> tile_order(int width, int height, int tile) {
 
 PathTracer::PathTracer(const Scene& scene, const PathTracerSettings& s)
     : scene_(scene), settings_(s), camera_(scene.camera, s.width, s.height) {
-  if (scene.textures.uses_footprint) footprints_ = FootprintModel(camera_, s.spp);
+  if (scene.textures.uses_footprint) footprints_ = FootprintModel(camera_, s.footprint_spp);
 }
 
 std::unique_ptr<PathWave, void (*)(PathWave*)> PathTracer::make_wave_state(uint32_t capacity, RayStream stream) const {

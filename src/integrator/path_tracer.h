@@ -16,7 +16,9 @@ struct PathTracerSettings {
   int maxdepth = 5;
   uint64_t seed = 0;
   int width = 0, height = 0;
-  int spp = 16;  // the pixel footprint textures filter over shrinks with it
+  // The samples per pixel the texture filter footprint is scaled for: the
+  // scene's own, so that an image does not depend on --spp or --time.
+  int footprint_spp = 16;
 };
 
 struct PathWave;  // the SoA pools, reused wave after wave by one thread

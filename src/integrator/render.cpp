@@ -283,7 +283,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
       bs.light_tracing_only = opt.integrator == "lt";
       bs.unit_weights = opt.debug_unit_mis_weights;
       bs.record_strategies = opt.strategies;
-      bs.spp = opt.spp > 0 ? opt.spp : scene.settings.spp;
+      bs.footprint_spp = scene.settings.spp;
       if (opt.strategies) strategy_film.emplace(width, height, scene.filter);
       run_passes(Bdpt(scene, bs), scene, opt, backend, counters, film, strategy_film ? &*strategy_film : nullptr,
                  done, res.stats, dump.get(), checkpoints, position);
@@ -293,7 +293,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
       ps.seed = opt.seed;
       ps.width = width;
       ps.height = height;
-      ps.spp = opt.spp > 0 ? opt.spp : scene.settings.spp;
+      ps.footprint_spp = scene.settings.spp;
       run_passes(PathTracer(scene, ps), scene, opt, backend, counters, film, nullptr, done, res.stats, dump.get(),
                  checkpoints, position);
     }
