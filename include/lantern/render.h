@@ -66,6 +66,11 @@ struct RenderStats {
   size_t wave_pool_bytes = 0;  // structure-of-arrays pools of all threads
   int threads = 0;
 
+  // Image textures read through the texture cache (all 0 without any).
+  bool texture_cache = false;
+  int64_t texture_bytes_read = 0, texture_tiles_read = 0, texture_peak_tiles = 0, texture_cache_bytes = 0;
+  int64_t texture_failed_lookups = 0;  // a file unreadable during the render: read as 0
+
   // With RenderOptions::collect_stats: thread-seconds per stage (summed over
   // threads), in Embree queries per ray kind, and wall seconds merging waves
   // into the film (one thread).

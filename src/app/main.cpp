@@ -167,6 +167,9 @@ int run_render(const RenderArgs& a) {
                  (unsigned long long)s.nonfinite_samples);
     if (s.timed) print_stage_summary(s);
   }
+  if (r.stats.texture_failed_lookups > 0)
+    std::fprintf(stderr, "warning: %lld texture lookups failed (a texture file could not be read during the render); they read as 0\n",
+                 (long long)r.stats.texture_failed_lookups);
   if (!a.stats.empty()) {
     RunInfo run{a.scene, o.integrator, out, o.ray_backend, r.image.width, r.image.height, o.wave_size, load_s,
                 scene_info(*scene)};

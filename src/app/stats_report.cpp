@@ -69,6 +69,12 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
                  {"bvh_bytes", run.scene_info.bvh_bytes},
                  {"bvh_peak_bytes", run.scene_info.bvh_peak_bytes},
                  {"geometry_bytes", run.scene_info.geometry_bytes}};
+  if (s.texture_cache)
+    j["texture_cache"] = {{"bytes_read", s.texture_bytes_read},
+                          {"tiles_read", s.texture_tiles_read},
+                          {"peak_tiles", s.texture_peak_tiles},
+                          {"memory_bytes", s.texture_cache_bytes},
+                          {"failed_lookups", s.texture_failed_lookups}};
   j["scene_contents"] = {{"triangles", run.scene_info.triangles},
                          {"spheres", run.scene_info.spheres},
                          {"lights", run.scene_info.lights},

@@ -41,22 +41,23 @@ inline ShadingGeometry world_shading_geometry(const Scene& scene, const RayBatch
 
 // The material hit i (reached along d) is shaded with. With footprints on,
 // *fp receives the pixel footprint there, which the material's textures,
-// its mix and its bump map are evaluated with.
+// its mix and its bump map are evaluated with; off, fp is not touched.
 inline MaterialHandle hit_material(const Scene& scene, const FootprintModel& footprints, const RayBatch& rays,
                                    uint32_t i, const Vec3& d, SurfacePoint* sp, Footprint* fp) {
   const Geometry& geo = scene.shapes.geometries[rays.geom_id[i]];
   std::optional<ShadingGeometry> g;
-  *fp = Footprint{};
+  const Footprint* footprint = nullptr;
   if (footprints.enabled()) {
     g = world_shading_geometry(scene, rays, i, *sp);
     *fp = footprints.at(sp->p, sp->ng, g->dpdu, g->dpdv);
+    footprint = fp;
   }
   MaterialHandle m = resolve_material(geo.material, scene.materials, scene.textures,
-                                      TextureContext{sp->p, sp->ng, sp->uv, *fp}, -d);
+                                      TextureContext{sp->p, sp->ng, sp->uv, footprint}, -d);
   const BumpParams* bump = scene.materials.bump(m);
   if (!bump) return m;
   if (!g) g = world_shading_geometry(scene, rays, i, *sp);
-  sp->ns = bumped_normal(*bump, scene.textures, *sp, *fp, *g);
+  sp->ns = bumped_normal(*bump, scene.textures, *sp, footprint, *g);
   return m;
 }
 

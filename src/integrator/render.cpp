@@ -322,6 +322,15 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
   st.shadow_rays = counters.shadow;
   st.nonfinite_samples = film.nonfinite_samples();
   st.min_spp = film.min_samples_per_pixel();
+  if (scene.textures.cache) {
+    TextureCacheStats tc = scene.textures.cache->stats();
+    st.texture_cache = true;
+    st.texture_bytes_read = tc.bytes_read;
+    st.texture_tiles_read = tc.tiles_read;
+    st.texture_peak_tiles = tc.peak_tiles;
+    st.texture_cache_bytes = tc.memory_bytes;
+    st.texture_failed_lookups = tc.failed_lookups;
+  }
   return res;
 }
 

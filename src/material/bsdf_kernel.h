@@ -75,7 +75,7 @@ struct SurfaceAttributes {
   const Vec2* uv;
   const Footprint* fp;  // null: no footprints
   TextureContext at(uint32_t slot) const {
-    return TextureContext{p[slot], ng[slot], uv[slot], fp ? fp[slot] : Footprint{}};
+    return TextureContext{p[slot], ng[slot], uv[slot], fp ? &fp[slot] : nullptr};
   }
 };
 

@@ -12,7 +12,7 @@
 
 namespace lantern {
 
-inline Vec3 bumped_normal(const BumpParams& b, const TexturePools& tex, const SurfacePoint& sp, const Footprint& fp,
+inline Vec3 bumped_normal(const BumpParams& b, const TexturePools& tex, const SurfacePoint& sp, const Footprint* fp,
                           const ShadingGeometry& g) {
   Vec3 dpdu, dpdv;
   if (b.normal_map >= 0) {
@@ -27,8 +27,9 @@ inline Vec3 bumped_normal(const BumpParams& b, const TexturePools& tex, const Su
     dpdu = glm::normalize(g.dpdu - glm::dot(g.dpdu, ns) * ns) * ulen;
     dpdv = glm::normalize(glm::cross(ns, dpdu)) * vlen;
   } else {
-    float du = 0.5f * (std::fabs(fp.duvdx.x) + std::fabs(fp.duvdy.x));
-    float dv = 0.5f * (std::fabs(fp.duvdx.y) + std::fabs(fp.duvdy.y));
+    const Footprint& f = fp ? *fp : kNoFootprint;
+    float du = 0.5f * (std::fabs(f.duvdx.x) + std::fabs(f.duvdy.x));
+    float dv = 0.5f * (std::fabs(f.duvdx.y) + std::fabs(f.duvdy.y));
     if (!(du > 0.f)) du = 0.0005f;
     if (!(dv > 0.f)) dv = 0.0005f;
     TextureContext c{sp.p, sp.ng, sp.uv, fp};

@@ -15,14 +15,18 @@ struct Footprint {
   Vec2 duvdx{0.f}, duvdy{0.f};  // (du/dx, dv/dx), (du/dy, dv/dy)
 };
 
+inline const Footprint kNoFootprint{};
+
 // Where a texture is evaluated: the surface point (world space), its
 // geometric normal (as pbrt-v4's texture context has it), its (u, v) and
-// the pixel's footprint there.
+// the pixel's footprint there (by pointer: most scenes have none, and a
+// context is made for every BSDF).
 struct TextureContext {
   Vec3 p{0.f};
   Vec3 n{0.f, 0.f, 1.f};
   Vec2 uv{0.f};
-  Footprint fp{};
+  const Footprint* fp = nullptr;  // null: zero
+  const Footprint& footprint() const { return fp ? *fp : kNoFootprint; }
 };
 
 // (s, t) and their derivatives over a pixel step.
@@ -46,7 +50,7 @@ struct TextureMapping {
   Vec3 point(const TextureContext& c) const { return Vec3(texture_from_world * Vec4(c.p, 1.f)); }
   TexCoord3D map3d(const TextureContext& c) const {
     const glm::mat3 M(texture_from_world);
-    return TexCoord3D{point(c), M * c.fp.dpdx, M * c.fp.dpdy};
+    return TexCoord3D{point(c), M * c.footprint().dpdx, M * c.footprint().dpdy};
   }
 
   Vec2 map(const TextureContext& c) const {
@@ -78,8 +82,8 @@ struct TextureMapping {
     TexCoord2D r{map(c)};
     if (kind == UV) {
       const Vec2 scale(su, sv);
-      r.dst_dx = scale * c.fp.duvdx;
-      r.dst_dy = scale * c.fp.duvdy;
+      r.dst_dx = scale * c.footprint().duvdx;
+      r.dst_dy = scale * c.footprint().duvdy;
       return r;
     }
     const TexCoord3D q = map3d(c);
