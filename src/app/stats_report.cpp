@@ -69,12 +69,16 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
                  {"bvh_bytes", run.scene_info.bvh_bytes},
                  {"bvh_peak_bytes", run.scene_info.bvh_peak_bytes},
                  {"geometry_bytes", run.scene_info.geometry_bytes}};
-  if (s.texture_cache)
-    j["texture_cache"] = {{"bytes_read", s.texture_bytes_read},
+  if (s.texture_cache) {
+    j["texture_cache"] = {{"lookups", s.texture_lookups},
+                          {"bytes_read", s.texture_bytes_read},
                           {"tiles_read", s.texture_tiles_read},
                           {"peak_tiles", s.texture_peak_tiles},
                           {"memory_bytes", s.texture_cache_bytes},
                           {"failed_lookups", s.texture_failed_lookups}};
+    // Part of the shading stages' thread-seconds, not added to them.
+    if (s.timed) j["texture_cache"]["lookup_thread_seconds"] = s.texture_lookup_seconds;
+  }
   j["scene_contents"] = {{"triangles", run.scene_info.triangles},
                          {"spheres", run.scene_info.spheres},
                          {"lights", run.scene_info.lights},

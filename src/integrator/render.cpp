@@ -268,6 +268,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
   }
   const auto start = Clock::now();
   Checkpointer checkpoints(opt, fingerprint, prior_seconds, start);
+  if (scene.textures.cache) scene.textures.cache->reset_lookup_stats(opt.collect_stats);
   std::atomic<uint64_t> done{res.resumed_samples};
   bool interrupted = false;
   {
@@ -330,6 +331,8 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
     st.texture_peak_tiles = tc.peak_tiles;
     st.texture_cache_bytes = tc.memory_bytes;
     st.texture_failed_lookups = tc.failed_lookups;
+    st.texture_lookups = tc.lookups;
+    st.texture_lookup_seconds = tc.lookup_seconds;
   }
   return res;
 }

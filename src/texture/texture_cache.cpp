@@ -2,7 +2,10 @@
 
 #include <OpenImageIO/texture.h>
 
+#include <tbb/enumerable_thread_specific.h>
+
 #include <atomic>
+#include <chrono>
 #include <vector>
 
 #include "lantern/error.h"
@@ -16,16 +19,27 @@ struct TextureCache::Impl {
     int channels = 3;
     bool point = false;
   };
+  struct Counts {
+    int64_t lookups = 0;
+    double seconds = 0.0;
+  };
   OIIO::TextureSystem* ts = nullptr;
   std::vector<Entry> entries;
   mutable std::atomic<int64_t> failed{0};
+  mutable tbb::enumerable_thread_specific<Counts> counts;  // per thread: no shared counter on the hot path
+  bool timed = false;
 
   // One lookup of n channels from `first`; false if the file failed.
   bool texture(const Entry& e, const TextureLookup& q, int first, int n, float* out) const {
     OIIO::TextureOpt opt = e.opt;  // OpenImageIO takes it by non-const reference
     opt.firstchannel = first;
+    Counts& c = counts.local();
+    ++c.lookups;
+    using Clock = std::chrono::steady_clock;
+    const Clock::time_point t0 = timed ? Clock::now() : Clock::time_point();
     bool ok = ts->texture(e.handle, ts->get_perthread_info(), opt, q.st.x, q.st.y, q.dst_dx.x, q.dst_dx.y, q.dst_dy.x,
                           q.dst_dy.y, n, out);
+    if (timed) c.seconds += std::chrono::duration<double>(Clock::now() - t0).count();
     if (!ok) {
       failed.fetch_add(1, std::memory_order_relaxed);
       for (int i = 0; i < n; ++i) out[i] = 0.f;
@@ -137,7 +151,16 @@ TextureCacheStats TextureCache::stats() const {
   s.tiles_read = tiles;
   s.peak_tiles = peak;
   s.failed_lookups = impl_->failed.load();
+  for (const Impl::Counts& c : impl_->counts) {
+    s.lookups += c.lookups;
+    s.lookup_seconds += c.seconds;
+  }
   return s;
+}
+
+void TextureCache::reset_lookup_stats(bool timed) {
+  impl_->counts.clear();
+  impl_->timed = timed;
 }
 
 }  // namespace lantern

@@ -33,6 +33,8 @@ struct TextureCacheStats {
   int64_t peak_tiles = 0;      // held in the cache at once
   int64_t memory_bytes = 0;    // of tiles held in the cache now
   int64_t failed_lookups = 0;  // a file that could not be read during the render (read as 0)
+  int64_t lookups = 0;         // since the last reset
+  double lookup_seconds = 0.0; // thread-seconds in lookups, when timed
 };
 
 class TextureCache {
@@ -53,6 +55,9 @@ class TextureCache {
   float lookup_float(int32_t id, const TextureLookup& q) const;
 
   TextureCacheStats stats() const;
+  // Zeroes the lookup counts and, with timed, clocks every lookup (two
+  // clock reads each: for --stats only).
+  void reset_lookup_stats(bool timed);
 
  private:
   struct Impl;
