@@ -2,11 +2,13 @@
 # Runs the whole benchmark set and writes its tables, CSV files and plots to
 # perf/results/<UTC date>-<git revision>/, with the machine described in
 # machine.txt. About 10-12 minutes on 2 cores. Build first (the README's
-# commands); BUILD= names another build folder.
+# commands); this builds the benchmark drivers (target perf); BUILD= names
+# another build folder.
 # Usage: perf/run-all.sh            (from anywhere in the repository)
 set -eu
 cd "$(dirname "$0")/.."
 build=${BUILD:-build}
+cmake --build "$build" --target perf
 rev=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
 [ -z "$(git status --porcelain 2>/dev/null)" ] || rev="$rev-dirty"
 dir="perf/results/$(date -u +%Y%m%d-%H%M%S)-$rev"

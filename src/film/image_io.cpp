@@ -1,90 +1,18 @@
-#include <OpenImageIO/imageio.h>
-
-#include <algorithm>
-#include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <stdexcept>
-
+// Images in and out, through the image module (imageio/): OpenImageIO is
+// loaded the first time an image is read or written.
+#include "imageio/image_io_module.h"
 #include "lantern/image.h"
 
 namespace lantern {
 
-static std::string lower_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return ext;
-}
-
-static bool is_float_format(const std::string& ext) { return ext == ".exr" || ext == ".hdr" || ext == ".pfm"; }
-
-static unsigned char encode_srgb8(float v) {
-  if (!(v > 0.f)) return 0;
-  v = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.f / 2.4f) - 0.055f;
-  return (unsigned char)std::lround(std::clamp(v, 0.f, 1.f) * 255.f);
-}
-
 void write_image(const std::string& path, const Image& image, const ImageMetadata& metadata) {
-  std::string ext = lower_extension(path);
-  bool linear = is_float_format(ext);
-  // Keep the real extension on the temporary name: OpenImageIO picks the
-  // writer from it.
-  std::filesystem::path p(path);
-  std::string tmp = (p.parent_path() / ("." + p.stem().string() + ".partial" + p.extension().string())).string();
-  auto out = OIIO::ImageOutput::create(tmp);
-  if (!out) throw std::runtime_error("cannot write \"" + path + "\": no image writer for extension \"" + ext + "\"");
-  OIIO::ImageSpec spec(image.width, image.height, 3, linear ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-  for (const auto& [k, v] : metadata) spec.attribute(k, v);
-  if (!linear) spec.attribute("oiio:ColorSpace", "sRGB");
-  if (!out->open(tmp, spec)) throw std::runtime_error("cannot write \"" + path + "\": " + out->geterror());
-  bool ok;
-  if (linear) {
-    ok = out->write_image(OIIO::TypeDesc::FLOAT, image.rgb.data());
-  } else {
-    std::vector<unsigned char> px(image.rgb.size());
-    for (size_t i = 0; i < px.size(); ++i) px[i] = encode_srgb8(image.rgb[i]);
-    ok = out->write_image(OIIO::TypeDesc::UINT8, px.data());
-  }
-  std::string err = ok ? "" : out->geterror();
-  ok = out->close() && ok;
-  if (!ok) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error("cannot write \"" + path + "\": " + err);
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error("cannot move finished image to \"" + path + "\": " + ec.message());
-  }
+  image_io_module().write_image(path, image, metadata);
 }
 
-Image read_image(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw std::runtime_error("cannot read \"" + path + "\": " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
-  Image img;
-  img.width = spec.width;
-  img.height = spec.height;
-  std::vector<float> data(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data.data()))
-    throw std::runtime_error("cannot decode \"" + path + "\": " + in->geterror());
-  img.rgb.resize(size_t(spec.width) * size_t(spec.height) * 3);
-  for (size_t i = 0; i < size_t(spec.width) * size_t(spec.height); ++i)
-    for (int c = 0; c < 3; ++c) img.rgb[3 * i + size_t(c)] = data[i * size_t(spec.nchannels) + size_t(std::min(c, spec.nchannels - 1))];
-  return img;
-}
+Image read_image(const std::string& path) { return image_io_module().read_image(path); }
 
 ImageMetadata read_image_metadata(const std::string& path, const std::string& prefix) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw std::runtime_error("cannot read \"" + path + "\": " + OIIO::geterror());
-  ImageMetadata md;
-  for (const OIIO::ParamValue& p : in->spec().extra_attribs) {
-    std::string name = p.name().string();
-    if (name.compare(0, prefix.size(), prefix) == 0 && p.type() == OIIO::TypeDesc::STRING)
-      md.emplace_back(name, p.get_string());
-  }
-  return md;
+  return image_io_module().read_image_metadata(path, prefix);
 }
 
 }  // namespace lantern

@@ -1,19 +1,8 @@
 #include "texture/image.h"
 
-#include <OpenImageIO/imageio.h>
-
-#include "lantern/error.h"
+#include "imageio/image_io_module.h"
 
 namespace lantern {
-
-float ColorEncoding::to_linear(float v) const {
-  switch (kind) {
-    case Linear: return v;
-    case Gamma: return std::pow(std::fmax(v, 0.f), gamma);
-    case SRGB: break;
-  }
-  return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
-}
 
 bool TextureImage::remap(int* x, int* y, WrapMode wrap) const {
   switch (wrap) {
@@ -104,36 +93,7 @@ ColorEncoding default_texture_encoding(const std::string& filename) {
 }
 
 TextureImage load_texture_image(const std::string& path, ColorEncoding encoding) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw InputError({path, 0, 0}, "cannot read image: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || int64_t(spec.width) * spec.height > (int64_t(1) << 28))
-    throw InputError({path, 0, 0}, "image has an unsupported size " + std::to_string(spec.width) + "x" + std::to_string(spec.height));
-  int nc = spec.nchannels;
-  std::vector<float> data(size_t(spec.width) * size_t(spec.height) * size_t(nc));
-  if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, data.data()))
-    throw InputError({path, 0, 0}, "cannot decode image: " + in->geterror());
-  const bool integer = spec.format.basetype == OIIO::TypeDesc::UINT8 || spec.format.basetype == OIIO::TypeDesc::UINT16;
-  auto decode = [&](float v) { return integer ? encoding.to_linear(v) : v; };
-  TextureImage img;
-  img.filename = path;
-  img.width = spec.width;
-  img.height = spec.height;
-  img.channels = nc >= 4 ? 4 : nc >= 3 ? 3 : 1;
-  img.texels.resize(size_t(spec.width) * size_t(spec.height));
-  if (img.channels == 4) img.alpha.resize(img.texels.size());
-  double sum = 0.0;
-  for (size_t i = 0; i < img.texels.size(); ++i) {
-    const float* px = &data[i * size_t(nc)];
-    RGB c = nc >= 3 ? RGB(decode(px[0]), decode(px[1]), decode(px[2])) : RGB(decode(px[0]));
-    if (!is_finite(c)) throw InputError({path, 0, 0}, "image has a non-finite texel at (" + std::to_string(i % size_t(spec.width)) + ", " + std::to_string(i / size_t(spec.width)) + ")");
-    img.texels[i] = glm::max(c, RGB(0.f));
-    sum += double(img.texels[i].x + img.texels[i].y + img.texels[i].z) / 3.0;
-    // pbrt-v4 decodes every channel of an integer file, alpha included.
-    if (img.channels == 4) img.alpha[i] = glm::clamp(decode(px[3]), 0.f, 1.f);
-  }
-  img.mean = float(sum / double(img.texels.size()));
-  return img;
+  return image_io_module().load_texture_image(path, encoding);
 }
 
 }  // namespace lantern

@@ -20,7 +20,14 @@ enum class ImageFilter : uint8_t { Point, Bilinear, Trilinear, EWA };
 struct ColorEncoding {
   enum Kind : uint8_t { Linear, SRGB, Gamma } kind = SRGB;
   float gamma = 2.2f;
-  float to_linear(float v) const;
+  float to_linear(float v) const {
+    switch (kind) {
+      case Linear: return v;
+      case Gamma: return std::pow(std::fmax(v, 0.f), gamma);
+      case SRGB: break;
+    }
+    return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+  }
 };
 
 struct TextureImage {
@@ -45,7 +52,8 @@ struct TextureImage {
   T bilerp(Vec2 st, Fetch&& fetch) const;
 };
 
-// Loads an image through OpenImageIO; `encoding` decodes integer formats.
+// Loads an image (through the image module, imageio/); `encoding` decodes
+// integer formats.
 // Throws InputError naming the file for unreadable, empty, huge or
 // non-finite images.
 TextureImage load_texture_image(const std::string& path, ColorEncoding encoding);

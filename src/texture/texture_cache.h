@@ -3,12 +3,14 @@
 // cache with a memory limit and evicted when it is full, so a scene with
 // hundreds of large textures renders in bounded memory. Each registered
 // texture keeps its lookup options (filter, wrap, anisotropy), built once.
-// OpenImageIO stays out of this header: the texture pools include it.
+// The TextureSystem lives in the image module (imageio/); this class holds
+// its handle and pbrt-v4's reading of channels.
 #pragma once
 
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "texture/image.h"
 #include "texture/prepared_texture.h"
@@ -60,9 +62,17 @@ class TextureCache {
   void reset_lookup_stats(bool timed);
 
  private:
-  struct Impl;
+  struct Entry {
+    int channels = 3;
+    bool point = false;
+  };
+  // n channels from `first` into out; zeros where the file failed.
+  void texture(int32_t id, const TextureLookup& q, int first, int n, float* out) const;
+
   TextureCacheSettings settings_;
-  std::unique_ptr<Impl> impl_;
+  const struct ImageIoModule* io_ = nullptr;
+  void* handle_ = nullptr;  // the module's cache
+  std::vector<Entry> entries_;
 };
 
 }  // namespace lantern
