@@ -3,11 +3,11 @@
 // image with path tracing, bidirectional path tracing and light tracing.
 #include <gtest/gtest.h>
 
-#include <OpenImageIO/imagebuf.h>
 #include <unistd.h>
 
 #include <filesystem>
 
+#include "lantern/image.h"
 #include "scene/scene.h"
 #include "stat_compare.h"
 #include "texture/footprint.h"
@@ -84,13 +84,15 @@ TEST(Footprint, FilteredTexturesRenderAlikeWithEveryIntegrator) {
   auto dir = std::filesystem::temp_directory_path() / ("lantern-footprint-test-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const std::string image = (dir / "fine.exr").string();
-  OIIO::ImageBuf buf(OIIO::ImageSpec(512, 512, 3, OIIO::TypeDesc::FLOAT));
+  Image fine{512, 512, std::vector<float>(size_t(512) * 512 * 3)};
   for (int y = 0; y < 512; ++y)
     for (int x = 0; x < 512; ++x) {
-      float v[3] = {float((x ^ y) & 1), float((x / 3 + y) & 1), 0.5f};
-      buf.setpixel(x, y, 0, v, 3);
+      float* v = fine.at(x, y);
+      v[0] = float((x ^ y) & 1);
+      v[1] = float((x / 3 + y) & 1);
+      v[2] = 0.5f;
     }
-  ASSERT_TRUE(buf.write(image));
+  write_image(image, fine, {});
   auto scene = load_scene_from_string(R"(LookAt 0 1 -3  0 0 2  0 1 0
 Camera "perspective" "float fov" 50
 WorldBegin

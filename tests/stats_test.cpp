@@ -71,6 +71,37 @@ TEST(RenderStats, RayCountsMatchTheRaysGivenToEmbree) {
   std::remove(path.c_str());
 }
 
+// Next-event estimation counts one light sample per non-specular eye vertex
+// (path; bdpt's s = 1); on a diffuse floor under a point light every sample
+// is unoccluded, and with the light shut in a box none is (from the box's
+// outside the light is behind the surface: a zero sample).
+TEST(RenderStats, NextEventCountsUnoccludedLightSamples) {
+  const std::string head = R"(LookAt 0 3 -3  0 0 0  0 1 0
+Camera "perspective" "float fov" 60
+WorldBegin
+LightSource "point" "rgb I" [5 5 5] "point3 from" [0 2 0]
+Shape "bilinearmesh" "point3 P" [-9 0 -9  9 0 -9  -9 0 9  9 0 9]
+)";
+  const std::string box = R"(Shape "trianglemesh" "point3 P" [-.3 1.7 -.3  .3 1.7 -.3  .3 1.7 .3  -.3 1.7 .3
+                                 -.3 2.3 -.3  .3 2.3 -.3  .3 2.3 .3  -.3 2.3 .3]
+  "integer indices" [0 1 2 0 2 3  4 6 5 4 7 6  0 4 5 0 5 1  1 5 6 1 6 2  2 6 7 2 7 3  3 7 4 3 4 0]
+)";
+  for (const char* integrator : {"path", "bdpt"}) {
+    RenderOptions o;
+    o.integrator = integrator;
+    o.spp = 1;
+    o.width = 16;
+    o.height = 16;
+    o.maxdepth = 1;  // the floor only: no vertex beyond the first
+    RenderStats open = render(*load_scene_from_string(head, "open.pbrt"), o).stats;
+    EXPECT_EQ(open.light_samples, open.eye_vertices) << integrator;
+    EXPECT_EQ(open.light_samples_unoccluded, open.light_samples) << integrator;
+    RenderStats shut = render(*load_scene_from_string(head + box, "shut.pbrt"), o).stats;
+    EXPECT_GT(shut.light_samples, 0u) << integrator;
+    EXPECT_EQ(shut.light_samples_unoccluded, 0u) << integrator;
+  }
+}
+
 TEST(RenderStats, NoTimingUnlessAsked) {
   auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
   RenderOptions o;

@@ -62,6 +62,9 @@ struct RenderStats {
   // Subpath vertices on surfaces, and why subpaths ended (escaped, absorbed,
   // roulette, maxdepth), summed over all samples.
   uint64_t eye_vertices = 0, light_vertices = 0;
+  // Next-event estimation (path; bdpt's s = 1): lights sampled, and those
+  // whose sample was non-zero and unoccluded (how well lights are chosen).
+  uint64_t light_samples = 0, light_samples_unoccluded = 0;
   std::vector<std::pair<std::string, uint64_t>> eye_ends, light_ends;
   size_t wave_pool_bytes = 0;  // structure-of-arrays pools of all threads
   int threads = 0;

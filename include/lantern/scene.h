@@ -18,6 +18,10 @@ struct SceneSettings {
   int spp = 16;
   int width = 1280, height = 720;
   std::string output = "pbrt.exr";
+  // What the scene's Sampler and Integrator "lightsampler" ask for (pbrt-v4's
+  // defaults otherwise); Lantern renders with independent samples and
+  // chooses lights by power whatever they say (--stats reports both).
+  std::string sampler = "zsobol", light_sampler = "bvh";
 };
 
 struct LoadOptions {

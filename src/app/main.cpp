@@ -172,7 +172,7 @@ int run_render(const RenderArgs& a) {
                  (long long)r.stats.texture_failed_lookups);
   if (!a.stats.empty()) {
     RunInfo run{a.scene, o.integrator, out, o.ray_backend, r.image.width, r.image.height, o.wave_size, load_s,
-                scene_info(*scene)};
+                scene_info(*scene), scene_settings(*scene).sampler, scene_settings(*scene).light_sampler};
     write_text_atomically(a.stats, stats_json(run, r.stats).dump(2) + "\n");
   }
   if (r.interrupted) {

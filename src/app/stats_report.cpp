@@ -64,6 +64,13 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
   j["subpaths"] = {{"eye", subpath_entry(s.eye_vertices, s.samples, s.eye_ends)},
                    {"light", subpath_entry(s.light_vertices, s.light_paths, s.light_ends)}};
   j["nonfinite_samples"] = s.nonfinite_samples;
+  j["sampler"] = {{"used", "independent"}, {"scene", run.scene_sampler}};
+  j["light_sampler"] = {{"used", "power"}, {"scene", run.scene_light_sampler}};
+  // How often a chosen light was worth its shadow ray: a direct view of
+  // light-selection quality.
+  j["next_event"] = {{"light_samples", s.light_samples},
+                     {"unoccluded_nonzero", s.light_samples_unoccluded},
+                     {"fraction", s.light_samples ? double(s.light_samples_unoccluded) / double(s.light_samples) : 0.0}};
   j["memory"] = {{"peak_rss_bytes", peak_rss_bytes()},
                  {"wave_pools_bytes", s.wave_pool_bytes},
                  {"bvh_bytes", run.scene_info.bvh_bytes},

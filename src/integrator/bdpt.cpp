@@ -116,6 +116,7 @@ void Bdpt::eye_connect_stage(BdptWave& w) const {
     const RGB& beta = w.eye.beta[slot];
     const MisState& m = w.eye.mis[slot];
     {
+      ++w.stats.light_samples;
       if (auto ls = sample_light(sc.lights, sc.shapes, sc.textures, h.p[i], u_light, u_light2);
           ls && !is_black(ls->L)) {  // s = 1
         Vec3 wi = frame.to_local(ls->wi);
@@ -136,12 +137,12 @@ void Bdpt::eye_connect_stage(BdptWave& w) const {
           StrategyTag tag{1, uint8_t(depth + 1), u};
           Vec3 o = offset_ray_origin(h.p[i], h.ng[i], h.error_scale[i], ls->wi);
           if (ls->infinite) {
-            w.shadow.push(o, ls->wi, kInfinity, slot, u * weight(wt), Vec2(0.f), tag);
+            w.shadow.push(o, ls->wi, kInfinity, slot, u * weight(wt), Vec2(0.f), tag, true);
           } else {
             Vec3 target = ls->n_light == Vec3(0.f)
                               ? ls->p_light
                               : offset_ray_origin(ls->p_light, ls->n_light, ls->error_scale, -ls->wi);
-            w.shadow.push(o, target - o, 1.f, slot, u * weight(wt), Vec2(0.f), tag);
+            w.shadow.push(o, target - o, 1.f, slot, u * weight(wt), Vec2(0.f), tag, true);
           }
         }
       }
@@ -207,6 +208,7 @@ void Bdpt::connection_stage(BdptWave& w) const {
   for (uint32_t r = 0; r < c.rays.count; ++r) {
     if (c.rays.occluded(r)) continue;
     w.L[c.slot[r]] += c.contrib[r];
+    w.stats.light_samples_unoccluded += c.next_event[r];
     if (c.record)
       w.out->strategies.push_back(
           {w.pixel[c.slot[r]], Vec2(0.f), c.tags[r].s, c.tags[r].t, c.contrib[r], c.tags[r].unweighted});

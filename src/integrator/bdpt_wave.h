@@ -90,19 +90,22 @@ struct ConnectionPool {
   std::vector<RGB> contrib;
   std::vector<Vec2> p_raster;     // light tracing: where the contribution lands on the film
   std::vector<StrategyTag> tags;  // filled only when strategies are recorded
+  std::vector<uint8_t> next_event;  // s = 1: a light sample's ray (for --stats)
   bool record = false;
   uint32_t push(const Vec3& o, const Vec3& d, float t_max, uint32_t s, const RGB& c, Vec2 raster,
-                const StrategyTag& tag) {
+                const StrategyTag& tag, bool light_sample = false) {
     uint32_t i = rays.push(o, d, 0.f, t_max);
     if (slot.size() <= i) {
       slot.resize(rays.capacity());
       contrib.resize(rays.capacity());
       p_raster.resize(rays.capacity());
+      next_event.resize(rays.capacity());
       if (record) tags.resize(rays.capacity());
     }
     slot[i] = s;
     contrib[i] = c;
     p_raster[i] = raster;
+    next_event[i] = light_sample;
     if (record) tags[i] = tag;
     return i;
   }
@@ -146,7 +149,8 @@ struct BdptWave {
     const SubpathPool* subpaths[] = {&eye, &light};
     size_t b = vector_bytes(pixel) + vector_bytes(sampler) + vector_bytes(L) + vector_bytes(active) +
                rays.memory_bytes() + hits.memory_bytes() + shadow.rays.memory_bytes() + vector_bytes(shadow.slot) +
-               vector_bytes(shadow.contrib) + vector_bytes(shadow.p_raster) + vector_bytes(shadow.tags);
+               vector_bytes(shadow.contrib) + vector_bytes(shadow.p_raster) + vector_bytes(shadow.tags) +
+               vector_bytes(shadow.next_event);
     for (const SubpathPool* p : subpaths)
       b += vector_bytes(p->beta) + vector_bytes(p->mis) + vector_bytes(p->prev_p) + vector_bytes(p->eta_scale) +
            vector_bytes(p->rr_scale);

@@ -101,6 +101,7 @@ namespace {
 template <class BSDF>
 void next_event(const Scene& sc, PathWave& w, uint32_t i, uint32_t slot, const BSDF& bsdf, const Frame& frame,
                 const Vec3& wo, float u_light, Vec2 u_light2) {
+  ++w.stats.light_samples;
   auto ls = sample_light(sc.lights, sc.shapes, sc.textures, w.hits.p[i], u_light, u_light2);
   if (!ls || is_black(ls->L)) return;
   Vec3 wi = frame.to_local(ls->wi);
@@ -174,7 +175,10 @@ void PathTracer::shade_stage(PathWave& w) const {
 
 void PathTracer::shadow_stage(PathWave& w) const {
   for (uint32_t r = 0; r < w.shadow.count; ++r)
-    if (!w.shadow.occluded(r)) w.L[w.shadow_slot[r]] += w.shadow_contrib[r];
+    if (!w.shadow.occluded(r)) {
+      w.L[w.shadow_slot[r]] += w.shadow_contrib[r];
+      ++w.stats.light_samples_unoccluded;  // every shadow ray here is a light sample's
+    }
 }
 
 void PathTracer::trace(const WaveDesc& wave, PathWave& w, WaveOutput& out) const {

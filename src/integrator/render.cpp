@@ -87,6 +87,8 @@ void gather_stats(States& states, double film_seconds, RenderStats& st) {
   }
   st.eye_vertices = total.eye_vertices;
   st.light_vertices = total.light_vertices;
+  st.light_samples = total.light_samples;
+  st.light_samples_unoccluded = total.light_samples_unoccluded;
   for (int e = 0; e < kPathEndCount; ++e) {
     st.eye_ends.emplace_back(path_end_name(PathEnd(e)), total.eye_ends[size_t(e)]);
     st.light_ends.emplace_back(path_end_name(PathEnd(e)), total.light_ends[size_t(e)]);

@@ -38,11 +38,16 @@ struct WaveStats {
   std::array<double, kStageCount> seconds{};
   uint64_t eye_vertices = 0, light_vertices = 0;  // surface hits of each kind of subpath
   std::array<uint64_t, kPathEndCount> eye_ends{}, light_ends{};
+  // Next-event estimation (the path tracer's, bdpt's s = 1): lights sampled,
+  // and those whose sample was non-zero and unoccluded.
+  uint64_t light_samples = 0, light_samples_unoccluded = 0;
 
   void operator+=(const WaveStats& o) {
     for (int i = 0; i < kStageCount; ++i) seconds[size_t(i)] += o.seconds[size_t(i)];
     eye_vertices += o.eye_vertices;
     light_vertices += o.light_vertices;
+    light_samples += o.light_samples;
+    light_samples_unoccluded += o.light_samples_unoccluded;
     for (int i = 0; i < kPathEndCount; ++i) {
       eye_ends[size_t(i)] += o.eye_ends[size_t(i)];
       light_ends[size_t(i)] += o.light_ends[size_t(i)];

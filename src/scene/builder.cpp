@@ -54,12 +54,13 @@ void SceneBuilder::film(const std::string& type, const ParamSet& ps) {
   s.output = ps.get_string("filename", "pbrt.exr");
 }
 
-void SceneBuilder::sampler(const std::string&, const ParamSet& ps) {
+void SceneBuilder::sampler(const std::string& type, const ParamSet& ps) {
   // The sample pattern changes noise, not the expected image; Lantern uses
   // its own independent random numbers whatever the type.
   int spp = ps.get_int("pixelsamples", 16);
   if (spp <= 0) ps.fail("\"pixelsamples\" must be positive");
   scene_.settings.spp = spp;
+  scene_.settings.sampler = printable(type);
 }
 
 void SceneBuilder::integrator(const std::string& type, const ParamSet& ps) {
@@ -74,7 +75,8 @@ void SceneBuilder::integrator(const std::string& type, const ParamSet& ps) {
     warn(ps.where, "integrator \"" + printable(type) + "\" is not available; using \"path\" (choose with --integrator)");
     scene_.settings.integrator = "path";
   }
-  for (const char* p : {"regularize", "lightsampler", "visualizestrategies", "visualizeweights"})
+  scene_.settings.light_sampler = printable(ps.get_string("lightsampler", "bvh"));
+  for (const char* p : {"regularize", "visualizestrategies", "visualizeweights"})
     ps.find(p);  // affect noise or debug output only
 }
 
