@@ -70,7 +70,9 @@ class SceneBuilder {
   // encoding, registered with n's filter and wrap.
   int32_t cached_texture(const pbrt::ParamSet& ps, const std::string& path, ColorEncoding encoding,
                          const TextureNode& n, const char* param = "filename");
-  bool resident_fits(const pbrt::ParamSet& ps, const std::string& path, ImageFilter filter);
+  // Whether an image read by `filter` stays resident: small, and within the
+  // scene's budget (counted once per file and encoding).
+  bool resident_fits(const pbrt::ParamSet& ps, const std::string& path, ColorEncoding encoding, ImageFilter filter);
   TextureRef add_texture_node(TextureNode n);
   // Material parameters (builder_materials.cpp).
   // pbrt's roughness, uroughness and vroughness (after prefix) and remaproughness.

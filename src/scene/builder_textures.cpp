@@ -68,9 +68,14 @@ TextureMapping SceneBuilder::texture_mapping(const ParamSet& ps, const Mat4& ctm
   return m;
 }
 
+// Images are read (or prepared) once per file and encoding.
+static std::string image_key(const std::string& path, ColorEncoding encoding) {
+  return std::to_string(int(encoding.kind)) + "/" + std::to_string(encoding.gamma) + "|" + path;
+}
+
 int32_t SceneBuilder::texture_image(const ParamSet& ps, const std::string& path, ColorEncoding encoding,
                                     const char* param) {
-  std::string key = std::to_string(int(encoding.kind)) + "/" + std::to_string(encoding.gamma) + "|" + path;
+  const std::string key = image_key(path, encoding);
   if (auto it = images_.find(key); it != images_.end()) return it->second;
   TextureImage img;
   try {
@@ -84,8 +89,10 @@ int32_t SceneBuilder::texture_image(const ParamSet& ps, const std::string& path,
   return index;
 }
 
-bool SceneBuilder::resident_fits(const ParamSet& ps, const std::string& path, ImageFilter filter) {
+bool SceneBuilder::resident_fits(const ParamSet& ps, const std::string& path, ColorEncoding encoding,
+                                 ImageFilter filter) {
   if (filter != ImageFilter::Point && filter != ImageFilter::Bilinear) return false;
+  if (images_.count(image_key(path, encoding))) return true;  // already resident, already counted
   std::pair<int, int> size;
   try {
     size = image_resolution(path);
@@ -102,7 +109,7 @@ int32_t SceneBuilder::cached_texture(const ParamSet& ps, const std::string& path
                                      const TextureNode& n, const char* param) {
   TexturePools& pools = scene_.textures;
   if (!pools.cache) pools.cache = std::make_shared<TextureCache>(texture_cache_);
-  std::string key = std::to_string(int(encoding.kind)) + "/" + std::to_string(encoding.gamma) + "|" + path;
+  const std::string key = image_key(path, encoding);
   auto it = prepared_.find(key);
   if (it == prepared_.end()) {
     try {
@@ -184,7 +191,7 @@ void SceneBuilder::texture(const std::string& name, const std::string& value_typ
     // Small images read without MIP filtering stay resident too, within a
     // fixed budget: a lookup there costs a quarter of the cache's
     // (docs/performance.md), and the budget, not the cache size, bounds them.
-    if (n.wrap == WrapMode::OctahedralSphere || resident_fits(ps, path, n.filter)) {
+    if (n.wrap == WrapMode::OctahedralSphere || resident_fits(ps, path, encoding, n.filter)) {
       n.image = texture_image(ps, path, encoding);
     } else {
       n.cached = cached_texture(ps, path, encoding, n);
