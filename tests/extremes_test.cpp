@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "sanitizer.h"
 #include "lantern/render.h"
 #include "lantern/scene.h"
 #include "material/bsdf_kernel.h"
@@ -486,13 +487,7 @@ TEST(ExtremeSettings, OnePixelImage) {
 // tracer only: on this VM first-touching a GiB costs ~3 s, and bdpt's film
 // differs only by its splat sums, which the bound counts anyway.
 TEST(ExtremeSettings, EightKSquaredStaysWithinFilmPlusPools) {
-#if defined(__SANITIZE_ADDRESS__)
-  GTEST_SKIP() << "peak memory is the sanitizer's, not Lantern's";
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-  GTEST_SKIP() << "peak memory is the sanitizer's, not Lantern's";
-#endif
-#endif
+  if (LANTERN_ASAN) GTEST_SKIP() << "peak memory is the sanitizer's, not Lantern's";
   auto scene = scene_from(std::string(kFloorAndCamera) + "LightSource \"point\" \"rgb I\" [ 5 5 5 ] \"point3 from\" [ 0 2 0 ]\n");
   for (const char* integrator : {"path"}) {
     RenderOptions small = options(integrator, 64, 64, 1);

@@ -15,6 +15,7 @@
 #include <fstream>
 #include <thread>
 
+#include "sanitizer.h"
 #include "lantern/image.h"
 
 extern char** environ;
@@ -106,13 +107,7 @@ double run_lantern(std::vector<std::string> args) {
 }
 
 TEST(TextureMemory, TwoHundredLargeTexturesRenderWithinTheCacheLimit) {
-#if defined(__SANITIZE_ADDRESS__)
-  GTEST_SKIP() << "peak memory is the sanitizer's, not Lantern's";
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-  GTEST_SKIP() << "peak memory is the sanitizer's, not Lantern's";
-#endif
-#endif
+  if (LANTERN_ASAN) GTEST_SKIP() << "peak memory is the sanitizer's, not Lantern's";
   const fs::path dir = fs::temp_directory_path() / ("lantern-texture-memory-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   auto t0 = std::chrono::steady_clock::now();
