@@ -17,7 +17,8 @@ namespace lantern {
 // so no coordinate (huge, infinite or NaN) can overflow an integer.
 inline double filtered_square_wave(double x, double r) {
   if (!std::isfinite(x)) return 1.0;
-  if (!(r > 0.0) || std::floor(x - r) == std::floor(x + r)) return std::fabs(std::fmod(std::floor(x), 2.0)) == 1.0 ? -1.0 : 1.0;
+  if (!(r > 0.0) || std::floor(x - r) == std::floor(x + r))  // within one cell
+    return std::fabs(std::fmod(std::floor(x), 2.0)) == 1.0 ? -1.0 : 1.0;
   auto S = [](double v) {
     double y = v / 2 - std::floor(v / 2) - 0.5;
     return v / 2 + y * (1 - 2 * std::fabs(y));
@@ -35,7 +36,8 @@ inline float checkerboard_2d(const TexCoord2D& c) {
 }
 inline float checkerboard_3d(const TexCoord3D& c) {
   double w = 1.0;
-  for (int k = 0; k < 3; ++k) w *= filtered_square_wave(c.p[k], 1.5 * std::fmax(std::fabs(c.dpdx[k]), std::fabs(c.dpdy[k])));
+  for (int k = 0; k < 3; ++k)
+    w *= filtered_square_wave(c.p[k], 1.5 * std::fmax(std::fabs(c.dpdx[k]), std::fabs(c.dpdy[k])));
   return float(0.5 - 0.5 * w);
 }
 
