@@ -30,7 +30,7 @@ void expect_sampling_matches_pdf(const BSDF& bsdf, const Vec3& wo, TransportMode
   constexpr int kTheta = 16, kPhi = 32;
   constexpr int kSamples = 400000;
   std::vector<double> observed(kTheta * kPhi + 1, 0.0), expected(kTheta * kPhi + 1, 0.0);
-  PathSampler s = PathSampler::make(7, 0, 0);
+  RandomStream s = RandomStream::make(7, 0, 0);
   auto bin_of = [&](const Vec3& w) {
     float theta = std::acos(glm::clamp(w.z, -1.f, 1.f));
     int bt = std::min(kTheta - 1, int(theta * kInvPi * kTheta));  // uniform in theta
@@ -94,7 +94,7 @@ void expect_sampling_matches_pdf(const BSDF& bsdf, const Vec3& wo, TransportMode
 
 template <class BSDF>
 double albedo(const BSDF& bsdf, const Vec3& wo, TransportMode mode, double* std_error) {
-  PathSampler s = PathSampler::make(11, 1, 0);
+  RandomStream s = RandomStream::make(11, 1, 0);
   const int n = 200000;
   double sum = 0.0, sum2 = 0.0;
   for (int i = 0; i < n; ++i) {
@@ -113,7 +113,7 @@ double albedo(const BSDF& bsdf, const Vec3& wo, TransportMode mode, double* std_
 
 template <class BSDF>
 void expect_adjoint_reciprocity(const BSDF& bsdf, const std::string& what) {
-  PathSampler s = PathSampler::make(3, 2, 0);
+  RandomStream s = RandomStream::make(3, 2, 0);
   int checked = 0;
   for (int i = 0; i < 2000; ++i) {
     Vec3 a = glm::normalize(Vec3(2.f * s.get1d() - 1.f, 2.f * s.get1d() - 1.f, 2.f * s.get1d() - 1.f));

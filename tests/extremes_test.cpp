@@ -196,7 +196,7 @@ TEST(ExtremeLights, LightSeenOnlyAtGrazingAngles) {
 template <class BSDF>
 double sampled_albedo(const BSDF& bsdf, const Vec3& wo, int n, int* nonfinite,
                       TransportMode mode = TransportMode::Radiance) {
-  PathSampler s = PathSampler::make(5, 3, 0);
+  RandomStream s = RandomStream::make(5, 3, 0);
   double sum = 0.0;
   for (int i = 0; i < n; ++i) {
     float uc = s.get1d();
@@ -271,7 +271,7 @@ TEST(NearSpecular, DielectricIndexExtremesAndTotalInternalReflection) {
     }
   }
   // Index 1 transmits straight through, with all the energy.
-  PathSampler s = PathSampler::make(1, 1, 0);
+  RandomStream s = RandomStream::make(1, 1, 0);
   for (int i = 0; i < 100; ++i) {
     Vec3 wo = direction_at(70.f * s.get1d());
     auto bs = DielectricBSDF{{0.f, 0.f}, 1.f}.sample_f(wo, s.get1d(), s.get2d(), TransportMode::Radiance);

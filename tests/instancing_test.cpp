@@ -80,7 +80,7 @@ TEST(Instancing, HitsMatchTheFlattenedGeometry) {
   for (const char* backend : {"stream", "single", "packet16"}) {
     SCOPED_TRACE(backend);
     RayBatch a, b;
-    PathSampler s = PathSampler::make(9, 0, 0);
+    RandomStream s = RandomStream::make(9, 0, 0);
     for (int i = 0; i < 20000; ++i) {
       Vec3 o(6.f * s.get1d() - 3.f, 3.f * s.get1d(), 6.f * s.get1d() - 3.f);
       Vec3 target(4.f * s.get1d() - 2.f, 1.2f * s.get1d() - 0.1f, 4.f * s.get1d() - 2.f);

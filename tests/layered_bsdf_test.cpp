@@ -74,7 +74,7 @@ class AnalogSlab {
   double albedo(const Vec3& wo, int n, uint64_t seed, double* std_error) const {
     double sum = 0.0, sum2 = 0.0;
     for (int i = 0; i < n; ++i) {
-      PathSampler s = PathSampler::make(seed, 17, uint64_t(i));
+      RandomStream s = RandomStream::make(seed, 17, uint64_t(i));
       double v = trace(wo, s);
       sum += v;
       sum2 += v * v;
@@ -89,7 +89,7 @@ class AnalogSlab {
   // the surface, back where the particle came from). On return, *out is its
   // new direction and *weight carries the microfacet shadowing of the
   // visible-normal estimator, G2 / G1. False if the particle is lost.
-  bool interface(const Vec3& v, PathSampler& s, double* weight, Vec3* out) const {
+  bool interface(const Vec3& v, RandomStream& s, double* weight, Vec3* out) const {
     const float side = v.z > 0.f ? 1.f : -1.f;
     Vec3 m(0.f, 0.f, side);
     if (l_.alpha() >= 1e-3f) {
@@ -120,7 +120,7 @@ class AnalogSlab {
     return glm::normalize(f.from_local(Vec3(sin_t * std::cos(phi), sin_t * std::sin(phi), cos_t)));
   }
 
-  double trace(const Vec3& wo, PathSampler& s) const {
+  double trace(const Vec3& wo, RandomStream& s) const {
     double weight = 1.0;
     Vec3 w;
     if (!interface(wo, s, &weight, &w)) return 0.0;
@@ -166,7 +166,7 @@ class AnalogSlab {
   }
 
   // The conductor base, met from inside the coat along -v (v.z > 0).
-  bool conductor_base(const Vec3& v, PathSampler& s, double* weight, Vec3* out) const {
+  bool conductor_base(const Vec3& v, RandomStream& s, double* weight, Vec3* out) const {
     Vec3 m(0.f, 0.f, 1.f);
     const bool rough = l_.cond_alpha() >= 1e-3f;
     if (rough) m = base_mf_.sample_wm(v, s.get2d());
@@ -193,7 +193,7 @@ struct Estimate {
 // E[f cos / pdf] over the BSDF's own samples.
 template <class BSDF>
 Estimate sampled_albedo(const BSDF& b, const Vec3& wo, TransportMode mode, int n) {
-  PathSampler s = PathSampler::make(23, 5, 0);
+  RandomStream s = RandomStream::make(23, 5, 0);
   double sum = 0.0, sum2 = 0.0;
   for (int i = 0; i < n; ++i) {
     float uc = s.get1d();
@@ -211,7 +211,7 @@ Estimate sampled_albedo(const BSDF& b, const Vec3& wo, TransportMode mode, int n
 // directions, plus the smooth coat's mirror reflection, which f() leaves out.
 template <class BSDF>
 Estimate evaluated_albedo(const BSDF& b, const Vec3& wo, int n, TransportMode mode = TransportMode::Radiance) {
-  PathSampler s = PathSampler::make(29, 6, 0);
+  RandomStream s = RandomStream::make(29, 6, 0);
   double sum = 0.0, sum2 = 0.0;
   for (int i = 0; i < n; ++i) {
     Vec3 wi = sample_cosine_hemisphere(s.get2d());
@@ -347,7 +347,7 @@ TEST(LayeredBSDF, MisDensityCoversTheBSDF) {
     CoatedDiffuseBSDF b = make_coated({roughness, 0.5f, 0.01f, 0.f, 0.f});
     for (float theta : {0.f, 50.f, 85.f}) {
       Vec3 wo = view(theta);
-      PathSampler s = PathSampler::make(31, 7, 0);
+      RandomStream s = RandomStream::make(31, 7, 0);
       double integral = 0.0;
       const int n = 200000;
       for (int i = 0; i < n; ++i) {

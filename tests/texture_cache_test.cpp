@@ -94,7 +94,7 @@ TEST(TextureCache, LookupsMatchTheResidentImage) {
     TextureImage resident = load_texture_image(src, ColorEncoding{ColorEncoding::Linear});
     PreparedTexture prepared = prepare_texture(src, ColorEncoding{ColorEncoding::Linear}, dir.string());
     TextureCache cache(TextureCacheSettings{16.0, dir.string()});
-    PathSampler s = PathSampler::make(7, uint64_t(nc), 0);
+    RandomStream s = RandomStream::make(7, uint64_t(nc), 0);
     for (ImageFilter filter : {ImageFilter::Point, ImageFilter::Bilinear})
       for (WrapMode wrap : {WrapMode::Repeat, WrapMode::Clamp, WrapMode::Black}) {
         int32_t id = cache.add(prepared, filter, wrap, 8.f);

@@ -167,7 +167,7 @@ TEST(Texture, EncodingsOfEightBitImages) {
 
 TEST(Texture, NoiseRangeAndMean) {
   EXPECT_EQ(perlin_noise(Vec3(3, -7, 12)), 0.f) << "gradient noise vanishes on the lattice";
-  PathSampler s = PathSampler::make(1, 2, 3);
+  RandomStream s = RandomStream::make(1, 2, 3);
   double sum = 0.0, fsum = 0.0, wsum = 0.0;
   float lo = 1e9f, hi = -1e9f, wlo = 1e9f;
   const int n = 200000;

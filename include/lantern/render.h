@@ -27,6 +27,7 @@ struct RenderOptions {
   int maxdepth = 5;
   int threads = 0;  // 0: all cores
   uint64_t seed = 0;
+  SamplerSettings sampler;  // the app passes the scene's (or --sampler's)
   int width = 0, height = 0;  // 0: the scene's Film resolution
   std::string ray_backend = "stream";
   int wave_size = 4096;  // paths per wave

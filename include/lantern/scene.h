@@ -1,6 +1,7 @@
 // Loading a scene in pbrt-v4 format.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -12,16 +13,26 @@ namespace lantern {
 struct Scene;  // entities and component pools; see src/scene/scene.h
 
 // What the scene file asks for; the command line may override each.
+// The scene's Sampler: pbrt-v4's types, parameters and defaults
+// (docs/samplers.md).
+struct SamplerSettings {
+  std::string type = "zsobol";  // zsobol, paddedsobol, sobol, halton, stratified, independent
+  std::string randomization;    // fastowen, owen, permutedigits, none; empty: the type's default
+  uint64_t seed = 0;
+  int xsamples = 4, ysamples = 4;  // stratified
+  bool jitter = true;              // stratified
+};
+
 struct SceneSettings {
   std::string integrator = "path";
   int maxdepth = 5;
   int spp = 16;
   int width = 1280, height = 720;
   std::string output = "pbrt.exr";
-  // What the scene's Sampler and Integrator "lightsampler" ask for (pbrt-v4's
-  // defaults otherwise); Lantern renders with independent samples and
-  // chooses lights by power whatever they say (--stats reports both).
-  std::string sampler = "zsobol", light_sampler = "bvh";
+  SamplerSettings sampler;
+  // The Integrator's "lightsampler" (pbrt-v4's default otherwise); Lantern
+  // chooses lights by power whatever it says (--stats reports it).
+  std::string light_sampler = "bvh";
 };
 
 struct LoadOptions {

@@ -35,7 +35,7 @@ std::string hms(double s) {
 
 struct RenderArgs {
   std::string scene, output, integrator, rays = "stream", mis = "power", strategies, stats, dump_rays, checkpoint_file;
-  std::string texture_dir;
+  std::string texture_dir, sampler;
   int spp = 0, maxdepth = -1, threads = 0, wave_size = 4096;
   double time = 0.0, checkpoint = 0.0, texture_cache_mb = 1024.0;
   uint64_t seed = 0;
@@ -115,6 +115,12 @@ int run_render(const RenderArgs& a) {
   o.maxdepth = a.maxdepth >= 0 ? a.maxdepth : ss.maxdepth;
   o.threads = a.threads;
   o.seed = a.seed;
+  o.sampler = ss.sampler;
+  if (!a.sampler.empty() && a.sampler != ss.sampler.type) {
+    o.sampler = lantern::SamplerSettings{};  // the scene's parameters belong to its own type
+    o.sampler.type = a.sampler;
+    o.sampler.seed = ss.sampler.seed;
+  }
   if (a.resolution.size() == 2) {
     o.width = a.resolution[0];
     o.height = a.resolution[1];
@@ -172,7 +178,7 @@ int run_render(const RenderArgs& a) {
                  (long long)r.stats.texture_failed_lookups);
   if (!a.stats.empty()) {
     RunInfo run{a.scene, o.integrator, out, o.ray_backend, r.image.width, r.image.height, o.wave_size, load_s,
-                scene_info(*scene), scene_settings(*scene).sampler, scene_settings(*scene).light_sampler};
+                scene_info(*scene), scene_settings(*scene).sampler, o.sampler, scene_settings(*scene).light_sampler};
     write_text_atomically(a.stats, stats_json(run, r.stats).dump(2) + "\n");
   }
   if (r.interrupted) {
@@ -236,6 +242,10 @@ int main(int argc, char** argv) {
   render->add_option("--maxdepth", a.maxdepth, "Maximum path depth, as pbrt defines it (default: the scene's)")->check(CLI::NonNegativeNumber);
   render->add_option("--threads", a.threads, "Worker threads (default: all cores)")->check(CLI::PositiveNumber);
   render->add_option("--seed", a.seed, "Random seed");
+  render->add_option("--sampler", a.sampler,
+                     "Sample pattern: zsobol, paddedsobol, sobol, halton, stratified or independent "
+                     "(default: the scene's Sampler)")
+      ->check(CLI::IsMember({"zsobol", "paddedsobol", "sobol", "halton", "stratified", "independent"}));
   render->add_option("--resolution", a.resolution, "Image size W H (default: the scene's Film)")->expected(2)->check(CLI::Range(1, 65536));
   render->add_option("--rays", a.rays, "Ray query back end: stream (Embree Np streams), stream-1m, single, packet16")
       ->check(CLI::IsMember({"stream", "stream-1m", "single", "packet16"}));

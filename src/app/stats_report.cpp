@@ -1,5 +1,7 @@
 #include "app/stats_report.h"
 
+#include "sampler/sampler.h"
+
 #include <sys/resource.h>
 
 #include <cstdio>
@@ -64,7 +66,14 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
   j["subpaths"] = {{"eye", subpath_entry(s.eye_vertices, s.samples, s.eye_ends)},
                    {"light", subpath_entry(s.light_vertices, s.light_paths, s.light_ends)}};
   j["nonfinite_samples"] = s.nonfinite_samples;
-  j["sampler"] = {{"used", "independent"}, {"scene", run.scene_sampler}};
+  auto describe = [](const SamplerSettings& s) {
+    nlohmann::json d = {{"type", s.type}, {"seed", s.seed}};
+    SamplerKind kind = parse_sampler_kind(s.type);
+    d["randomization"] = s.randomization.empty() ? randomization_name(default_randomization(kind)) : s.randomization;
+    if (kind == SamplerKind::Stratified) d["strata"] = {s.xsamples, s.ysamples}, d["jitter"] = s.jitter;
+    return d;
+  };
+  j["sampler"] = {{"used", describe(run.sampler)}, {"scene", describe(run.scene_sampler)}};
   j["light_sampler"] = {{"used", "power"}, {"scene", run.scene_light_sampler}};
   // How often a chosen light was worth its shadow ray: a direct view of
   // light-selection quality.

@@ -15,7 +15,8 @@ struct RunInfo {
   int width = 0, height = 0, wave_size = 0;
   double load_seconds = 0.0;  // parsing, geometry and the BVH build
   SceneInfo scene_info;
-  std::string scene_sampler, scene_light_sampler;  // what the scene asked for
+  SamplerSettings scene_sampler, sampler;  // what the scene asked for, what was used
+  std::string scene_light_sampler;
 };
 
 nlohmann::json stats_json(const RunInfo& run, const RenderStats& stats);

@@ -1,6 +1,7 @@
 // Eye subpaths of the bidirectional tracer and the strategies that end on
 // them: s = 0 (the eye subpath finds an emitter), s = 1 (next-event
 // estimation) and s >= 2 (connections to the slot's stored light vertices).
+#include "sampler/dimensions.h"
 #include "integrator/bdpt.h"
 
 #include "film/pixel_filter.h"
@@ -19,7 +20,11 @@ constexpr uint32_t kMaxPendingConnections = 1u << 16;
 }  // namespace
 
 Bdpt::Bdpt(const Scene& scene, const BdptSettings& s)
-    : scene_(scene), settings_(s), camera_(scene.camera, s.width, s.height, scene.filter.radius), mis_{s.mis_beta} {
+    : scene_(scene),
+      settings_(s),
+      camera_(scene.camera, s.width, s.height, scene.filter.radius),
+      mis_{s.mis_beta},
+      sampler_(make_sampler_spec(s.sampler, s.width, s.height, s.planned_spp, s.seed)) {
   if (scene.textures.uses_footprint) footprints_ = FootprintModel(camera_, s.footprint_spp);
 }
 
@@ -32,10 +37,10 @@ void Bdpt::start_eye_subpaths(const WaveDesc& wave, BdptWave& w) const {
   w.shadow.rays.count = 0;
   const uint32_t width = uint32_t(settings_.width);
   for (uint32_t slot = 0; slot < wave.size(); ++slot) {
-    PathSampler& s = w.sampler[slot];
+    const PathSampler& s = w.sampler[slot];
     uint32_t pixel = w.pixel[slot];
-    Vec2 p_raster = sample_raster_position(scene_.filter, pixel, width, s.get2d());
-    CameraRay r = camera_.generate_ray(p_raster, s.get2d());
+    Vec2 p_raster = sample_raster_position(scene_.filter, pixel, width, s.get2d(dims::kFilm));
+    CameraRay r = camera_.generate_ray(p_raster, s.get2d(dims::kLens));
     w.eye.beta[slot] = RGB(1.f);
     w.eye.mis[slot] = mis_camera_start(camera_.pdf_dir(r.d), mis_);
     w.eye.prev_p[slot] = r.o;
@@ -106,9 +111,9 @@ void Bdpt::eye_connect_stage(BdptWave& w) const {
   const uint32_t maxdepth = uint32_t(settings_.maxdepth);
   for_each_binned_bsdf(w.hits, sc, [&](uint32_t i, const auto& bsdf) {
     const uint32_t slot = w.active[i];
-    PathSampler& s = w.sampler[slot];
-    float u_light = s.get1d();
-    Vec2 u_light2 = s.get2d();
+    const PathSampler& s = w.sampler[slot];
+    float u_light = s.get1d(dims::vertex(depth) + dims::kEyeLightSelect);
+    Vec2 u_light2 = s.get2d(dims::vertex(depth) + dims::kEyeLightPosition);
     if (bsdf.is_specular() || depth > maxdepth) return;
     const HitPool& h = w.hits;
     const Frame frame = Frame::from_z(h.ns[i]);
@@ -189,10 +194,10 @@ void Bdpt::eye_scatter_stage(BdptWave& w) const {
   const uint32_t depth = w.depth;
   for_each_binned_bsdf(w.hits, scene_, [&](uint32_t i, const auto& bsdf) {
     const uint32_t slot = w.active[i];
-    PathSampler& s = w.sampler[slot];
-    float uc = s.get1d();
-    Vec2 u2 = s.get2d();
-    float u_rr = s.get1d();
+    const PathSampler& s = w.sampler[slot];
+    float uc = s.get1d(dims::vertex(depth) + dims::kEyeBsdfComponent);
+    Vec2 u2 = s.get2d(dims::vertex(depth) + dims::kEyeBsdfDirection);
+    float u_rr = s.get1d(dims::vertex(depth) + dims::kEyeRoulette);
     const Frame frame = Frame::from_z(w.hits.ns[i]);
     PathEnd end =
         continue_subpath(bsdf, TransportMode::Radiance, w.hits, i, frame, frame.to_local(w.hits.wo[i]), uc, u2, u_rr,

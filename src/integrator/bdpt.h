@@ -20,6 +20,7 @@
 #include "film/film.h"
 #include "integrator/bdpt_mis.h"
 #include "integrator/wave.h"
+#include "sampler/sampler.h"
 #include "scene/scene.h"
 
 namespace lantern {
@@ -35,6 +36,8 @@ struct BdptSettings {
   // The samples per pixel the texture filter footprint is scaled for: the
   // scene's own, so that an image does not depend on --spp or --time.
   int footprint_spp = 16;
+  SamplerSettings sampler;
+  uint32_t planned_spp = 0;  // 0 under a time budget
 };
 
 struct BdptWave;
@@ -69,6 +72,7 @@ class Bdpt {
   PerspectiveCamera camera_;
   FootprintModel footprints_;  // enabled when the scene's textures filter
   MisPower mis_;
+  SamplerSpec sampler_;
 };
 
 }  // namespace lantern

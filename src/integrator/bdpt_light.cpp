@@ -1,5 +1,6 @@
 // Light subpaths of the bidirectional tracer: emission, bounces, the stored
 // light vertices, and the t = 1 strategies (light tracing onto the film).
+#include "sampler/dimensions.h"
 #include "integrator/bdpt.h"
 #include "integrator/bdpt_wave.h"
 #include "integrator/hit.h"
@@ -27,9 +28,10 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
   w.vertices.clear();
   for (uint32_t slot = 0; slot < wave.size(); ++slot) {
     uint32_t pixel = wave.pixels[slot / wave.samples];
-    PathSampler s = PathSampler::make(settings_.seed, pixel, wave.first_sample + slot % wave.samples);
-    float u_select = s.get1d();
-    Vec2 u_pos = s.get2d(), u_dir = s.get2d(), u_lens = s.get2d();
+    PathSampler s = PathSampler::make(sampler_, pixel, wave.first_sample + slot % wave.samples);
+    float u_select = s.get1d(dims::kLightSelect);
+    Vec2 u_pos = s.get2d(dims::kLightPosition), u_dir = s.get2d(dims::kLightDirection);
+    Vec2 u_lens = s.get2d(dims::kLightStartLens);
     w.pixel[slot] = pixel;
     w.L[slot] = RGB(0.f);
     w.sampler[slot] = s;
@@ -121,7 +123,7 @@ void Bdpt::light_connect_stage(BdptWave& w) const {
   const uint32_t maxdepth = uint32_t(settings_.maxdepth);
   for_each_binned_bsdf(w.hits, scene_, [&](uint32_t i, const auto& bsdf) {
     const uint32_t slot = w.active[i];
-    Vec2 u_lens = w.sampler[slot].get2d();
+    Vec2 u_lens = w.sampler[slot].get2d(dims::vertex(depth) + dims::kLightLens);
     if (bsdf.is_specular()) return;
     const HitPool& h = w.hits;
     const Frame frame = Frame::from_z(h.ns[i]);
@@ -168,10 +170,10 @@ void Bdpt::light_scatter_stage(BdptWave& w) const {
   const uint32_t depth = w.depth;
   for_each_binned_bsdf(w.hits, scene_, [&](uint32_t i, const auto& bsdf) {
     const uint32_t slot = w.active[i];
-    PathSampler& s = w.sampler[slot];
-    float uc = s.get1d();
-    Vec2 u2 = s.get2d();
-    float u_rr = s.get1d();
+    const PathSampler& s = w.sampler[slot];
+    float uc = s.get1d(dims::vertex(depth) + dims::kLightBsdfComponent);
+    Vec2 u2 = s.get2d(dims::vertex(depth) + dims::kLightBsdfDirection);
+    float u_rr = s.get1d(dims::vertex(depth) + dims::kLightRoulette);
     if (depth >= uint32_t(settings_.maxdepth)) {  // deeper vertices would only make paths longer than maxdepth
       ++w.stats.light_ends[size_t(PathEnd::MaxDepth)];
       return;

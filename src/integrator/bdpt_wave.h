@@ -12,7 +12,7 @@
 #include "integrator/hit.h"
 #include "integrator/wave_stats.h"
 #include "material/material.h"
-#include "math/rng.h"
+#include "sampler/sampler.h"
 
 namespace lantern {
 

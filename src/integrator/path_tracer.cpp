@@ -5,6 +5,7 @@
 #include "integrator/hit_material.h"
 #include "integrator/path_wave.h"
 #include "integrator/shade.h"
+#include "sampler/dimensions.h"
 #include "scene/surface.h"
 
 namespace lantern {
@@ -21,7 +22,10 @@ std::vector<uint32_t> tile_order(int width, int height, int tile) {
 }
 
 PathTracer::PathTracer(const Scene& scene, const PathTracerSettings& s)
-    : scene_(scene), settings_(s), camera_(scene.camera, s.width, s.height) {
+    : scene_(scene),
+      settings_(s),
+      camera_(scene.camera, s.width, s.height),
+      sampler_(make_sampler_spec(s.sampler, s.width, s.height, s.planned_spp, s.seed)) {
   if (scene.textures.uses_footprint) footprints_ = FootprintModel(camera_, s.footprint_spp);
 }
 
@@ -35,9 +39,9 @@ void PathTracer::generate_camera_rays(const WaveDesc& wave, PathWave& w) const {
   for (uint32_t slot = 0; slot < wave.size(); ++slot) {
     uint32_t pixel = wave.pixels[slot / wave.samples];
     uint32_t sample_index = wave.first_sample + slot % wave.samples;
-    PathSampler s = PathSampler::make(settings_.seed, pixel, sample_index);
-    Vec2 p_raster = sample_raster_position(scene_.filter, pixel, width, s.get2d());
-    CameraRay r = camera_.generate_ray(p_raster, s.get2d());
+    PathSampler s = PathSampler::make(sampler_, pixel, sample_index);
+    Vec2 p_raster = sample_raster_position(scene_.filter, pixel, width, s.get2d(dims::kFilm));
+    CameraRay r = camera_.generate_ray(p_raster, s.get2d(dims::kLens));
     w.pixel[slot] = pixel;
     w.sampler[slot] = s;
     w.beta[slot] = RGB(1.f);
@@ -132,16 +136,17 @@ void PathTracer::shade_stage(PathWave& w) const {
   const Scene& sc = scene_;
   for_each_binned_bsdf(w.hits, sc, [&](uint32_t i, const auto& bsdf) {
     uint32_t slot = w.active[i];
-    PathSampler& s = w.sampler[slot];
+    const PathSampler& s = w.sampler[slot];
+    const uint32_t dim = dims::vertex(w.depth);
     Frame frame = Frame::from_z(w.hits.ns[i]);
     Vec3 wo = frame.to_local(w.hits.wo[i]);
-    float u_light = s.get1d();
-    Vec2 u_light2 = s.get2d();
+    float u_light = s.get1d(dim + dims::kEyeLightSelect);
+    Vec2 u_light2 = s.get2d(dim + dims::kEyeLightPosition);
     if (!bsdf.is_specular()) next_event(sc, w, i, slot, bsdf, frame, wo, u_light, u_light2);
     // Continue the path by sampling the BSDF.
-    float uc = s.get1d();
-    Vec2 u2 = s.get2d();
-    float u_rr = s.get1d();
+    float uc = s.get1d(dim + dims::kEyeBsdfComponent);
+    Vec2 u2 = s.get2d(dim + dims::kEyeBsdfDirection);
+    float u_rr = s.get1d(dim + dims::kEyeRoulette);
     auto bs = bsdf.sample_f(wo, uc, u2, TransportMode::Radiance);
     if (!bs || bs->pdf == 0.f || is_black(bs->f)) {
       ++w.stats.eye_ends[size_t(PathEnd::Absorbed)];

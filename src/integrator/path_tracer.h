@@ -7,6 +7,7 @@
 #include "accel/ray_stream.h"
 #include "film/film.h"
 #include "integrator/wave.h"
+#include "sampler/sampler.h"
 #include "scene/scene.h"
 #include "texture/footprint.h"
 
@@ -19,6 +20,8 @@ struct PathTracerSettings {
   // The samples per pixel the texture filter footprint is scaled for: the
   // scene's own, so that an image does not depend on --spp or --time.
   int footprint_spp = 16;
+  SamplerSettings sampler;
+  uint32_t planned_spp = 0;  // 0 under a time budget
 };
 
 struct PathWave;  // the SoA pools, reused wave after wave by one thread
@@ -42,6 +45,7 @@ class PathTracer {
   PathTracerSettings settings_;
   PerspectiveCamera camera_;
   FootprintModel footprints_;  // enabled when the scene's textures filter
+  SamplerSpec sampler_;
 };
 
 }  // namespace lantern

@@ -9,7 +9,7 @@
 #include "integrator/hit.h"
 #include "integrator/wave_stats.h"
 #include "material/material.h"
-#include "math/rng.h"
+#include "sampler/sampler.h"
 
 namespace lantern {
 

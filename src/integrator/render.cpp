@@ -145,6 +145,9 @@ std::string sequence_fingerprint(const RenderOptions& o, int width, int height) 
   if (o.integrator != "path") line("mis", o.mis);
   line("maxdepth", std::to_string(o.maxdepth));
   line("seed", std::to_string(o.seed));
+  line("sampler", o.sampler.type + " " + o.sampler.randomization + " " + std::to_string(o.sampler.seed) + " " +
+                      std::to_string(o.sampler.xsamples) + "x" + std::to_string(o.sampler.ysamples) +
+                      (o.sampler.jitter ? " jitter" : ""));
   line("resolution", std::to_string(width) + "x" + std::to_string(height));
   line("budget", o.time_limit_seconds > 0 ? std::string("time") : "spp " + std::to_string(o.spp));
   line("wave-size", std::to_string(o.wave_size));
@@ -247,6 +250,11 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
     throw std::invalid_argument("per-strategy images cannot be checkpointed or resumed");
   if (opt.resume && opt.checkpoint_path.empty()) throw std::invalid_argument("resume needs a checkpoint path");
   RayBackend backend = parse_ray_backend(opt.ray_backend);
+  parse_sampler_kind(opt.sampler.type);  // throws for an unknown one, naming the choices
+  if (!opt.sampler.randomization.empty()) parse_randomization(opt.sampler.randomization);
+  // Low-discrepancy samplers lay a pixel's samples out for the count they
+  // plan for; under a time budget the count is open.
+  const uint32_t planned_spp = opt.time_limit_seconds > 0 ? 0u : uint32_t(opt.spp);
 
   std::optional<tbb::global_control> limit;
   if (opt.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(opt.threads));
@@ -287,6 +295,8 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
       bs.unit_weights = opt.debug_unit_mis_weights;
       bs.record_strategies = opt.strategies;
       bs.footprint_spp = scene.settings.spp;
+      bs.sampler = opt.sampler;
+      bs.planned_spp = planned_spp;
       if (opt.strategies) strategy_film.emplace(width, height, scene.filter);
       run_passes(Bdpt(scene, bs), scene, opt, backend, counters, film, strategy_film ? &*strategy_film : nullptr,
                  done, res.stats, dump.get(), checkpoints, position);
@@ -297,6 +307,8 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
       ps.width = width;
       ps.height = height;
       ps.footprint_spp = scene.settings.spp;
+      ps.sampler = opt.sampler;
+      ps.planned_spp = planned_spp;
       run_passes(PathTracer(scene, ps), scene, opt, backend, counters, film, nullptr, done, res.stats, dump.get(),
                  checkpoints, position);
     }

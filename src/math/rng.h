@@ -1,6 +1,5 @@
-// Counter-based random numbers: every value is a pure function of
-// (seed, pixel, sample index, dimension). No state is shared between paths,
-// so an image does not depend on how the work is scheduled over threads.
+// Counter-based random numbers: hashes of the values that name a sample,
+// with no state shared between paths (sampler/sampler.h builds on them).
 #pragma once
 
 #include <cstdint>
@@ -31,17 +30,14 @@ inline float bits_to_unit_float(uint64_t bits) {
   return float(bits >> 40) * 0x1p-24f;
 }
 
-// The per-path sampler: a key that names the sample, and the next dimension.
-struct PathSampler {
+// A stream of independent uniform numbers named by three integers, for
+// tests and tools that need random numbers outside a render's sampler.
+struct RandomStream {
   uint64_t key = 0;
-  uint32_t dimension = 0;
+  uint32_t counter = 0;
 
-  static PathSampler make(uint64_t seed, uint64_t pixel, uint64_t sample_index) {
-    return PathSampler{hash_key(seed, pixel, sample_index), 0};
-  }
-  float get1d() {
-    return bits_to_unit_float(mix64(key ^ (uint64_t(dimension++) * 0x9E3779B97F4A7C15ULL)));
-  }
+  static RandomStream make(uint64_t seed, uint64_t a, uint64_t b) { return RandomStream{hash_key(seed, a, b), 0}; }
+  float get1d() { return bits_to_unit_float(mix64(key ^ (uint64_t(counter++) * 0x9E3779B97F4A7C15ULL))); }
   Vec2 get2d() {
     float a = get1d();
     return Vec2(a, get1d());

@@ -8,6 +8,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "material/fresnel.h"
+#include "sampler/sampler.h"
 #include "scene/ply.h"
 #include "scene/surface.h"
 
@@ -54,13 +55,44 @@ void SceneBuilder::film(const std::string& type, const ParamSet& ps) {
   s.output = ps.get_string("filename", "pbrt.exr");
 }
 
+// pbrt-v4's samplers, parameters and defaults (docs/samplers.md).
 void SceneBuilder::sampler(const std::string& type, const ParamSet& ps) {
-  // The sample pattern changes noise, not the expected image; Lantern uses
-  // its own independent random numbers whatever the type.
+  SamplerSettings& s = scene_.settings.sampler;
+  s = SamplerSettings{};
+  if (type == "pmj02bn") {
+    // Its point tables come from an optimisation Lantern does not run; the
+    // pattern changes noise, not the expected image.
+    warn(ps.where, "sampler \"pmj02bn\" is not available; using \"zsobol\" (the same image, different noise)");
+    s.type = "zsobol";
+  } else {
+    s.type = type;
+    try {
+      parse_sampler_kind(type);
+    } catch (const std::invalid_argument& e) {
+      ps.fail(e.what());
+    }
+  }
   int spp = ps.get_int("pixelsamples", 16);
+  if (type == "stratified") {
+    s.jitter = ps.get_bool("jitter", true);
+    s.xsamples = ps.get_int("xsamples", 4);
+    s.ysamples = ps.get_int("ysamples", 4);
+    if (s.xsamples <= 0 || s.ysamples <= 0 || s.xsamples > 4096 || s.ysamples > 4096)
+      ps.fail("\"xsamples\" and \"ysamples\" must lie in [1, 4096]");
+    spp = s.xsamples * s.ysamples;
+  }
   if (spp <= 0) ps.fail("\"pixelsamples\" must be positive");
   scene_.settings.spp = spp;
-  scene_.settings.sampler = printable(type);
+  s.seed = uint64_t(int64_t(ps.get_int("seed", 0)));
+  if (const pbrt::Param* r = ps.find("randomization")) {
+    std::string name = ps.get_string("randomization", "");
+    try {
+      parse_randomization(name);
+    } catch (const std::invalid_argument& e) {
+      ps.fail(*r, e.what());
+    }
+    s.randomization = name;
+  }
 }
 
 void SceneBuilder::integrator(const std::string& type, const ParamSet& ps) {

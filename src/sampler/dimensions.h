@@ -1,0 +1,40 @@
+// Which sampler dimensions each decision of a path uses. Fixed per purpose
+// and per vertex, so that the same decision of every sample of a pixel
+// reads one well-distributed dimension: the eye subpath's and the light
+// subpath's vertices at the same depth read disjoint dimensions, and how
+// long one subpath was never shifts the other's.
+#pragma once
+
+#include <cstdint>
+
+namespace lantern::dims {
+
+// The camera sample.
+inline constexpr uint32_t kFilm = 0;  // 2D
+inline constexpr uint32_t kLens = 2;  // 2D
+
+// The start of a light subpath (bdpt, lt).
+inline constexpr uint32_t kLightSelect = 4;      // 1D
+inline constexpr uint32_t kLightPosition = 5;    // 2D
+inline constexpr uint32_t kLightDirection = 7;   // 2D
+inline constexpr uint32_t kLightStartLens = 9;   // 2D: its camera connection (t = 1)
+
+// Vertex `depth` (1 for the first hit) of either subpath owns a block.
+inline constexpr uint32_t kVertexBase = 11;
+inline constexpr uint32_t kVertexBlock = 13;
+inline constexpr uint32_t vertex(uint32_t depth) { return kVertexBase + kVertexBlock * depth; }
+
+// Within an eye vertex's block: next-event estimation (bdpt: s = 1) and
+// continuing the path.
+inline constexpr uint32_t kEyeLightSelect = 0;    // 1D
+inline constexpr uint32_t kEyeLightPosition = 1;  // 2D
+inline constexpr uint32_t kEyeBsdfComponent = 3;  // 1D
+inline constexpr uint32_t kEyeBsdfDirection = 4;  // 2D
+inline constexpr uint32_t kEyeRoulette = 6;       // 1D
+// Within a light vertex's block: its camera connection, then continuing.
+inline constexpr uint32_t kLightLens = 7;           // 2D
+inline constexpr uint32_t kLightBsdfComponent = 9;  // 1D
+inline constexpr uint32_t kLightBsdfDirection = 10;  // 2D
+inline constexpr uint32_t kLightRoulette = 12;      // 1D
+
+}  // namespace lantern::dims

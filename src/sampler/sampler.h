@@ -1,0 +1,115 @@
+// The per-path sampler: every value is a pure function of (seed, pixel,
+// sample index, dimension), whatever the kind, so an image does not depend
+// on how the work is scheduled over threads, and a checkpoint resumes
+// exactly. Kinds and randomisations are pbrt-v4's (docs/samplers.md);
+// dimensions are assigned by sampler/dimensions.h.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "lantern/scene.h"
+#include "math/common.h"
+#include "sampler/global_sobol.h"
+#include "sampler/halton.h"
+#include "sampler/padded_sobol.h"
+#include "sampler/sobol_matrices.h"
+#include "sampler/stratified.h"
+#include "sampler/zsobol.h"
+
+namespace lantern {
+
+enum class SamplerKind : uint8_t { Independent, Stratified, Halton, Sobol, PaddedSobol, ZSobol };
+
+// Everything a render's samples depend on besides pixel, index, dimension.
+struct SamplerSpec {
+  SamplerKind kind = SamplerKind::Independent;
+  Randomization randomize = Randomization::None;
+  uint64_t seed = 0;
+  uint32_t width = 1;
+  int log2_spp = 0;      // zsobol, paddedsobol: bits of a pixel's block of indices
+  int index_bits = 0;    // zsobol: of the Morton index and the sample index
+  uint32_t xsamples = 1, ysamples = 1;  // stratified
+  bool jitter = true;
+  HaltonLayout halton;
+  SobolLayout sobol;
+};
+
+// The samples per pixel a render plans (its --spp), or 0 under a time
+// budget: the per-pixel block is then 2^16 (a render past that many
+// samples per pixel continues with a freshly randomised block).
+SamplerSpec make_sampler_spec(const SamplerSettings& s, int width, int height, uint32_t planned_spp, uint64_t seed);
+// Throws std::invalid_argument naming the valid choices.
+SamplerKind parse_sampler_kind(const std::string& name);
+Randomization parse_randomization(const std::string& name);
+// pbrt-v4's: permutedigits for halton, fastowen for the Sobol samplers.
+Randomization default_randomization(SamplerKind k);
+const char* sampler_kind_name(SamplerKind k);
+const char* randomization_name(Randomization r);
+
+struct PathSampler {
+  const SamplerSpec* spec = nullptr;
+  uint64_t key = 0;   // the kind's per-sample key: a hash, a global index, ...
+  uint64_t salt = 0;  // per pixel (and round of blocks) randomisation seed
+  uint32_t index = 0;  // sample index within the pixel's block
+
+  static PathSampler make(const SamplerSpec& spec, uint32_t pixel, uint64_t sample_index);
+  float get1d(uint32_t dimension) const;
+  Vec2 get2d(uint32_t dimension) const;
+};
+
+inline float PathSampler::get1d(uint32_t d) const {
+  const SamplerSpec& s = *spec;
+  switch (s.kind) {
+    case SamplerKind::Independent:
+      return bits_to_unit_float(mix64(key ^ (uint64_t(d) * 0x9E3779B97F4A7C15ULL)));
+    case SamplerKind::ZSobol: {
+      const uint64_t h = mix64(salt ^ (uint64_t(d) * 0x9E3779B97F4A7C15ULL));
+      const uint64_t i = zsobol_permuted_index(key, s.index_bits, h);
+      return bits32_to_unit_float(scrambled_van_der_corput(i, s.randomize, uint32_t(h >> 32)));
+    }
+    case SamplerKind::PaddedSobol: {
+      const uint64_t h = mix64(salt ^ (uint64_t(d) * 0x9E3779B97F4A7C15ULL));
+      const uint64_t i = padded_sobol_index(index, s.log2_spp, h);
+      return bits32_to_unit_float(scrambled_van_der_corput(i, s.randomize, uint32_t(h >> 32)));
+    }
+    case SamplerKind::Stratified:
+      return stratified_1d(index, s.xsamples * s.ysamples, s.jitter, mix64(salt ^ (uint64_t(d) * 0x9E3779B97F4A7C15ULL)));
+    case SamplerKind::Halton:
+      if (d < 2) return halton_film(s.halton, key, int(d));
+      return halton_sample(key, int(d), s.randomize, s.seed);
+    case SamplerKind::Sobol: {
+      if (d < 2) return sobol_film(s.sobol, key, int(d));
+      const int dim = int(2 + (d - 2) % uint32_t(kSobolDimensions - 2));
+      const uint32_t seed = uint32_t(mix64(s.seed ^ (uint64_t(dim) * 0x9E3779B97F4A7C15ULL)));
+      return bits32_to_unit_float(scramble_bits(sobol_bits(key, dim), s.randomize, seed));
+    }
+  }
+  return 0.f;
+}
+
+inline Vec2 PathSampler::get2d(uint32_t d) const {
+  const SamplerSpec& s = *spec;
+  switch (s.kind) {
+    case SamplerKind::ZSobol: {
+      const uint64_t h = mix64(salt ^ (uint64_t(d) * 0x9E3779B97F4A7C15ULL));
+      const uint64_t i = zsobol_permuted_index(key, s.index_bits, h);
+      const uint64_t h2 = mix64(h);
+      return Vec2(bits32_to_unit_float(scrambled_van_der_corput(i, s.randomize, uint32_t(h2))),
+                  bits32_to_unit_float(scramble_bits(sobol_bits_dim1(i), s.randomize, uint32_t(h2 >> 32))));
+    }
+    case SamplerKind::PaddedSobol: {
+      const uint64_t h = mix64(salt ^ (uint64_t(d) * 0x9E3779B97F4A7C15ULL));
+      const uint64_t i = padded_sobol_index(index, s.log2_spp, h);
+      const uint64_t h2 = mix64(h);
+      return Vec2(bits32_to_unit_float(scrambled_van_der_corput(i, s.randomize, uint32_t(h2))),
+                  bits32_to_unit_float(scramble_bits(sobol_bits_dim1(i), s.randomize, uint32_t(h2 >> 32))));
+    }
+    case SamplerKind::Stratified:
+      return stratified_2d(index, s.xsamples, s.ysamples, s.jitter, mix64(salt ^ (uint64_t(d) * 0x9E3779B97F4A7C15ULL)));
+    default:
+      return Vec2(get1d(d), get1d(d + 1));
+  }
+}
+
+}  // namespace lantern
