@@ -23,9 +23,10 @@ std::string checkpoint_file() {
   return ::testing::TempDir() + "/lantern_" + name + ".ckpt";
 }
 
-RenderOptions small_render(const std::string& integrator) {
+RenderOptions small_render(const std::string& integrator, const std::string& sampler = "zsobol") {
   RenderOptions o;
   o.integrator = integrator;
+  o.sampler.type = sampler;
   o.spp = 40;  // three passes of up to 16
   o.width = 48;
   o.height = 36;
@@ -40,17 +41,15 @@ bool same_bits(const Image& a, const Image& b) {
          std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)) == 0;
 }
 
-class CheckpointResume : public ::testing::TestWithParam<const char*> {};
-
-TEST_P(CheckpointResume, StopsAndResumesBitForBit) {
+void expect_resumes_bit_for_bit(const std::string& integrator, const std::string& sampler) {
   auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/lantern.pbrt");
-  RenderResult straight = render(*scene, small_render(GetParam()));
+  RenderResult straight = render(*scene, small_render(integrator, sampler));
 
   const std::string kCheckpoint = checkpoint_file();
   std::remove(kCheckpoint.c_str());
   std::atomic<bool> cancel{false};
   int written = 0, runs = 0, stop_after = 1;
-  RenderOptions o = small_render(GetParam());
+  RenderOptions o = small_render(integrator, sampler);
   o.checkpoint_path = kCheckpoint;
   o.checkpoint_seconds = 1e-9;  // after every wave
   o.cancel = &cancel;
@@ -79,7 +78,15 @@ TEST_P(CheckpointResume, StopsAndResumesBitForBit) {
   EXPECT_FALSE(std::filesystem::exists(kCheckpoint)) << "a finished render leaves no checkpoint";
 }
 
+class CheckpointResume : public ::testing::TestWithParam<const char*> {};
+TEST_P(CheckpointResume, StopsAndResumesBitForBit) { expect_resumes_bit_for_bit(GetParam(), "zsobol"); }
 INSTANTIATE_TEST_SUITE_P(Integrators, CheckpointResume, ::testing::Values("path", "bdpt", "lt"));
+
+// Every sampler's values depend only on (seed, pixel, index, dimension).
+class CheckpointResumeSampler : public ::testing::TestWithParam<const char*> {};
+TEST_P(CheckpointResumeSampler, StopsAndResumesBitForBit) { expect_resumes_bit_for_bit("bdpt", GetParam()); }
+INSTANTIATE_TEST_SUITE_P(Samplers, CheckpointResumeSampler,
+                         ::testing::Values("independent", "stratified", "halton", "sobol", "paddedsobol"));
 
 // Makes a checkpoint by cancelling a render after its first wave.
 void make_checkpoint(const Scene& scene, RenderOptions o) {

@@ -56,9 +56,9 @@ uint64_t sobol_index(const SobolLayout& s, uint32_t x, uint32_t y, uint64_t samp
   return high | low;
 }
 
-float sobol_film(const SobolLayout& s, uint64_t index, int axis) {
+float sobol_film(const SobolLayout& s, uint64_t index, int axis, Randomization r, uint32_t seed) {
   uint32_t v = axis == 0 ? sobol_bits_dim0(index) : sobol_bits_dim1(index);
-  return bits32_to_unit_float(s.log2_scale >= 32 ? 0u : v << s.log2_scale);
+  return bits32_to_unit_float(scramble_bits(s.log2_scale >= 32 ? 0u : v << s.log2_scale, r, seed));
 }
 
 }  // namespace lantern

@@ -19,7 +19,10 @@ struct SobolLayout {
 
 SobolLayout make_sobol_layout(int width, int height);
 uint64_t sobol_index(const SobolLayout& s, uint32_t x, uint32_t y, uint64_t sample_index);
-// The offset of the sample inside its pixel, axis 0 or 1.
-float sobol_film(const SobolLayout& s, uint64_t index, int axis);
+// The offset of the sample inside its pixel, axis 0 or 1: the bits below
+// the pixel's, randomised as the other dimensions are (a nested scramble
+// keeps the offsets stratified in the pixel and makes each uniform in it,
+// so an ensemble of seeds averages the pixel filter without bias).
+float sobol_film(const SobolLayout& s, uint64_t index, int axis, Randomization r, uint32_t seed);
 
 }  // namespace lantern

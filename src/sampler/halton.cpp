@@ -94,10 +94,8 @@ uint64_t halton_index(const HaltonLayout& h, uint32_t x, uint32_t y, uint64_t sa
   return index % h.stride + sample_index * h.stride;
 }
 
-float halton_film(const HaltonLayout& h, uint64_t index, int axis) {
-  const uint32_t base = axis == 0 ? 2 : 3;
-  double v = radical_inverse(index / h.scale[axis], base);
-  return std::fmin(float(v), kOneMinusEpsilon);
+float halton_film(const HaltonLayout& h, uint64_t index, int axis, Randomization r, uint64_t seed) {
+  return halton_sample(index / h.scale[axis], axis, r, seed);  // dimensions 0 and 1: bases 2 and 3
 }
 
 // Digit j (least significant first) becomes the (j+1)-th digit after the

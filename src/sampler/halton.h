@@ -24,8 +24,9 @@ inline constexpr int kHaltonDimensions = 1000;  // primes available; later dimen
 
 HaltonLayout make_halton_layout(int width, int height);
 uint64_t halton_index(const HaltonLayout& h, uint32_t x, uint32_t y, uint64_t sample_index);
-// The offset of the sample inside its pixel, axis 0 or 1.
-float halton_film(const HaltonLayout& h, uint64_t index, int axis);
+// The offset of the sample inside its pixel, axis 0 or 1: the digits
+// after the pixel's, randomised as the other dimensions are.
+float halton_film(const HaltonLayout& h, uint64_t index, int axis, Randomization r, uint64_t seed);
 float halton_sample(uint64_t index, int dimension, Randomization r, uint64_t seed);
 
 }  // namespace lantern

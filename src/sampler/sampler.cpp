@@ -100,9 +100,11 @@ PathSampler PathSampler::make(const SamplerSpec& s, uint32_t pixel, uint64_t sam
     }
     case SamplerKind::Halton:
       p.key = halton_index(s.halton, x, y, sample_index);
+      p.salt = hash_combine(s.seed, pixel);
       break;
     case SamplerKind::Sobol:
       p.key = sobol_index(s.sobol, x, y, sample_index);
+      p.salt = hash_combine(s.seed, pixel);
       break;
   }
   return p;

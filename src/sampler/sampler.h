@@ -76,12 +76,16 @@ inline float PathSampler::get1d(uint32_t d) const {
     case SamplerKind::Stratified:
       return stratified_1d(index, s.xsamples * s.ysamples, s.jitter, mix64(salt ^ (uint64_t(d) * 0x9E3779B97F4A7C15ULL)));
     case SamplerKind::Halton:
-      if (d < 2) return halton_film(s.halton, key, int(d));
-      return halton_sample(key, int(d), s.randomize, s.seed);
+      if (d < 2) return halton_film(s.halton, key, int(d), s.randomize, salt);
+      return halton_sample(key, int(d), s.randomize, salt);  // per pixel, as for sobol
     case SamplerKind::Sobol: {
-      if (d < 2) return sobol_film(s.sobol, key, int(d));
+      if (d < 2) return sobol_film(s.sobol, key, int(d), s.randomize, uint32_t(mix64(salt + d)));
+      // Scrambled per pixel as well as per dimension: a pixel's samples are
+      // a subsequence that the film dimensions pick, and neighbouring
+      // pixels' subsequences are alike; one scramble for all would show
+      // that likeness as a pattern in the image.
       const int dim = int(2 + (d - 2) % uint32_t(kSobolDimensions - 2));
-      const uint32_t seed = uint32_t(mix64(s.seed ^ (uint64_t(dim) * 0x9E3779B97F4A7C15ULL)));
+      const uint32_t seed = uint32_t(mix64(salt ^ (uint64_t(dim) * 0x9E3779B97F4A7C15ULL)));
       return bits32_to_unit_float(scramble_bits(sobol_bits(key, dim), s.randomize, seed));
     }
   }
