@@ -28,6 +28,7 @@ struct RenderOptions {
   int threads = 0;  // 0: all cores
   uint64_t seed = 0;
   SamplerSettings sampler;  // the app passes the scene's (or --sampler's)
+  std::string light_sampler = "bvh";  // next-event estimation's choice of light: bvh, power or uniform
   int width = 0, height = 0;  // 0: the scene's Film resolution
   std::string ray_backend = "stream";
   int wave_size = 4096;  // paths per wave
@@ -76,6 +77,12 @@ struct RenderStats {
   int64_t texture_failed_lookups = 0;  // a file unreadable during the render: read as 0
   int64_t texture_lookups = 0;
   double texture_lookup_seconds = 0.0;  // thread-seconds, with collect_stats
+
+  // Next-event estimation's light sampler, and for "bvh" its tree.
+  std::string light_sampler;
+  double light_sampler_seconds = 0.0;  // build time
+  size_t light_sampler_bytes = 0, light_bvh_nodes = 0;
+  int light_bvh_depth = 0;
 
   // With RenderOptions::collect_stats: thread-seconds per stage (summed over
   // threads), in Embree queries per ray kind, and wall seconds merging waves

@@ -30,8 +30,7 @@ struct SceneSettings {
   int width = 1280, height = 720;
   std::string output = "pbrt.exr";
   SamplerSettings sampler;
-  // The Integrator's "lightsampler" (pbrt-v4's default otherwise); Lantern
-  // chooses lights by power whatever it says (--stats reports it).
+  // The Integrator's "lightsampler" (pbrt-v4's names; bvh by default).
   std::string light_sampler = "bvh";
 };
 

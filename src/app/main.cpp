@@ -35,7 +35,7 @@ std::string hms(double s) {
 
 struct RenderArgs {
   std::string scene, output, integrator, rays = "stream", mis = "power", strategies, stats, dump_rays, checkpoint_file;
-  std::string texture_dir, sampler;
+  std::string texture_dir, sampler, light_sampler;
   int spp = 0, maxdepth = -1, threads = 0, wave_size = 4096;
   double time = 0.0, checkpoint = 0.0, texture_cache_mb = 1024.0;
   uint64_t seed = 0;
@@ -116,6 +116,7 @@ int run_render(const RenderArgs& a) {
   o.threads = a.threads;
   o.seed = a.seed;
   o.sampler = ss.sampler;
+  o.light_sampler = a.light_sampler.empty() ? ss.light_sampler : a.light_sampler;
   if (!a.sampler.empty() && a.sampler != ss.sampler.type) {
     o.sampler = lantern::SamplerSettings{};  // the scene's parameters belong to its own type
     o.sampler.type = a.sampler;
@@ -246,6 +247,10 @@ int main(int argc, char** argv) {
                      "Sample pattern: zsobol, paddedsobol, sobol, halton, stratified or independent "
                      "(default: the scene's Sampler)")
       ->check(CLI::IsMember({"zsobol", "paddedsobol", "sobol", "halton", "stratified", "independent"}));
+  render->add_option("--light-sampler", a.light_sampler,
+                     "How next-event estimation chooses lights: bvh, power or uniform (default: the scene's "
+                     "Integrator \"lightsampler\", else bvh)")
+      ->check(CLI::IsMember({"bvh", "power", "uniform"}));
   render->add_option("--resolution", a.resolution, "Image size W H (default: the scene's Film)")->expected(2)->check(CLI::Range(1, 65536));
   render->add_option("--rays", a.rays, "Ray query back end: stream (Embree Np streams), stream-1m, single, packet16")
       ->check(CLI::IsMember({"stream", "stream-1m", "single", "packet16"}));

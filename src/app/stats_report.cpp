@@ -74,7 +74,12 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
     return d;
   };
   j["sampler"] = {{"used", describe(run.sampler)}, {"scene", describe(run.scene_sampler)}};
-  j["light_sampler"] = {{"used", "power"}, {"scene", run.scene_light_sampler}};
+  j["light_sampler"] = {{"used", s.light_sampler}, {"scene", run.scene_light_sampler}};
+  if (s.light_sampler == "bvh")
+    j["light_sampler"]["bvh"] = {{"nodes", s.light_bvh_nodes},
+                                 {"depth", s.light_bvh_depth},
+                                 {"memory_bytes", s.light_sampler_bytes},
+                                 {"build_seconds", s.light_sampler_seconds}};
   // How often a chosen light was worth its shadow ray: a direct view of
   // light-selection quality.
   j["next_event"] = {{"light_samples", s.light_samples},

@@ -19,8 +19,9 @@ namespace {
 constexpr uint32_t kMaxPendingConnections = 1u << 16;
 }  // namespace
 
-Bdpt::Bdpt(const Scene& scene, const BdptSettings& s)
+Bdpt::Bdpt(const Scene& scene, const LightSampler& light_sampler, const BdptSettings& s)
     : scene_(scene),
+      light_sampler_(light_sampler),
       settings_(s),
       camera_(scene.camera, s.width, s.height, scene.filter.radius),
       mis_{s.mis_beta},
@@ -44,6 +45,7 @@ void Bdpt::start_eye_subpaths(const WaveDesc& wave, BdptWave& w) const {
     w.eye.beta[slot] = RGB(1.f);
     w.eye.mis[slot] = mis_camera_start(camera_.pdf_dir(r.d), mis_);
     w.eye.prev_p[slot] = r.o;
+    w.eye.prev_n[slot] = Vec3(0.f);
     w.eye.eta_scale[slot] = 1.f;
     w.active[slot] = slot;
     w.rays.push(r.o, r.d, 0.f, kInfinity);
@@ -66,7 +68,7 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
       if (!lights.infinite.empty()) {
         RGB Le = infinite_lights_Le(lights, scene_.textures, d);
         float wt = w.depth == 1 ? 1.f
-                                : mis_weight_hit_light(m, infinite_lights_pdf(lights, scene_.textures, d),
+                                : mis_weight_hit_light(m, infinite_lights_pdf(lights, scene_.textures, light_sampler_, d),
                                                        infinite_emission_pdf(lights, scene_.textures, d), mis_);
         add_emission(w, slot, w.eye.beta[slot] * Le, weight(wt));
       }
@@ -85,10 +87,12 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
         uint32_t a = uint32_t(light);
         float wt;
         if (w.depth == 1) {
-          float pos_pdf = lights.selection.discrete_pmf(lights.area_to_all[a]) / lights.area[a].area;
+          float pos_pdf = lights.selection.discrete_pmf(lights.area_to_all[a]) / lights.area[a].area;  // emission: by power
           wt = mis_weight_hit_light_direct(m, pos_pdf, mis_);
         } else {
-          wt = mis_weight_hit_light(m, area_light_direct_pdf_area(lights, shapes, a, prev, sp.p, sp.ng),
+          wt = mis_weight_hit_light(m,
+                                    area_light_direct_pdf_area(lights, shapes, light_sampler_, a, prev,
+                                                               w.eye.prev_n[slot], sp.p, sp.ng),
                                     area_emission_pdf(lights, a, sp.ng, -d), mis_);
         }
         add_emission(w, slot, w.eye.beta[slot] * Le, weight(wt));
@@ -122,7 +126,7 @@ void Bdpt::eye_connect_stage(BdptWave& w) const {
     const MisState& m = w.eye.mis[slot];
     {
       ++w.stats.light_samples;
-      if (auto ls = sample_light(sc.lights, sc.shapes, sc.textures, h.p[i], u_light, u_light2);
+      if (auto ls = sample_light(sc.lights, sc.shapes, sc.textures, light_sampler_, h.p[i], h.ns[i], u_light, u_light2);
           ls && !is_black(ls->L)) {  // s = 1
         Vec3 wi = frame.to_local(ls->wi);
         RGB f = bsdf.f(wo, wi, TransportMode::Radiance) * std::fabs(wi.z);
@@ -201,7 +205,7 @@ void Bdpt::eye_scatter_stage(BdptWave& w) const {
     const Frame frame = Frame::from_z(w.hits.ns[i]);
     PathEnd end =
         continue_subpath(bsdf, TransportMode::Radiance, w.hits, i, frame, frame.to_local(w.hits.wo[i]), uc, u2, u_rr,
-                         depth, {w.eye.beta[slot], w.eye.mis[slot], w.eye.prev_p[slot], w.eye.eta_scale[slot], 1.f},
+                         depth, {w.eye.beta[slot], w.eye.mis[slot], w.eye.prev_p[slot], w.eye.prev_n[slot], w.eye.eta_scale[slot], 1.f},
                          mis_);
     if (end != PathEnd::Count) ++w.stats.eye_ends[size_t(end)];
   });

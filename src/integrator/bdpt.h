@@ -20,6 +20,7 @@
 #include "film/film.h"
 #include "integrator/bdpt_mis.h"
 #include "integrator/wave.h"
+#include "light/light_sampler.h"
 #include "sampler/sampler.h"
 #include "scene/scene.h"
 
@@ -41,10 +42,11 @@ struct BdptSettings {
 };
 
 struct BdptWave;
+struct LightOriginPool;
 
 class Bdpt {
  public:
-  Bdpt(const Scene& scene, const BdptSettings& settings);
+  Bdpt(const Scene& scene, const LightSampler& light_sampler, const BdptSettings& settings);
 
   std::unique_ptr<BdptWave, void (*)(BdptWave*)> make_wave_state(uint32_t capacity, RayStream stream) const;
   void trace(const WaveDesc& wave, BdptWave& state, WaveOutput& out) const;
@@ -67,7 +69,11 @@ class Bdpt {
 
   float weight(float w) const { return settings_.unit_weights ? 1.f : w; }
 
+  float first_hit_direct_pdf(const LightOriginPool& o, uint32_t slot, const Vec3& p, const Vec3& ns,
+                             const Vec3& p_light) const;
+
   const Scene& scene_;
+  const LightSampler& light_sampler_;  // next-event estimation's (s = 1) choice of light
   BdptSettings settings_;
   PerspectiveCamera camera_;
   FootprintModel footprints_;  // enabled when the scene's textures filter

@@ -40,7 +40,6 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
     const bool on_surface = es->n != Vec3(0.f);
     const float cos_light = on_surface ? std::fabs(glm::dot(es->n, es->d)) : 1.f;
     const float emission_pdf_W = es->pdf_pos * es->pdf_dir;
-    const float pmf = lights.selection.discrete_pmf(es->light);
     LightOriginPool& o = w.origin;
     o.light[slot] = es->light;
     o.n[slot] = es->n;
@@ -48,10 +47,14 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
     o.cos_light[slot] = cos_light;
     o.delta[slot] = es->delta_pos || es->delta_dir;
     o.infinite[slot] = es->infinite;
-    // Next-event estimation's density of this light point: for area lights it
-    // depends on where it is seen from, so it waits for the first hit.
-    LightKind kind = lights.all[es->light].kind;
-    o.direct_pdf_A[slot] = kind == LightKind::Area ? -1.f : kind == LightKind::Infinite ? pmf * es->pdf_dir : pmf;
+    // Next-event estimation's density of this light point: for lights with a
+    // position it depends on where it is seen from (the area density, and
+    // the light sampler's choice), so it waits for the first hit.
+    const LightKind kind = lights.all[es->light].kind;
+    const float nee_pmf = light_sampler_.pmf_infinite(es->light);  // used for lights at infinity only
+    o.direct_pdf_A[slot] = kind == LightKind::Infinite ? nee_pmf * es->pdf_dir
+                           : kind == LightKind::Distant ? nee_pmf
+                                                         : -1.f;
     RGB beta = es->Le * (cos_light / emission_pdf_W);
     w.light.beta[slot] = beta;
     w.light.rr_scale[slot] = max_component(beta) > 0.f ? 1.f / max_component(beta) : 0.f;
@@ -84,7 +87,6 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
 // Finishes the MIS quantities of each hit and bins the hits by material.
 void Bdpt::light_surface_stage(BdptWave& w) const {
   w.hits.clear_bins();
-  const LightPools& lights = scene_.lights;
   for (uint32_t i = 0; i < w.rays.count; ++i) {
     uint32_t slot = w.active[i];
     w.hits.alive[i] = 0;
@@ -99,22 +101,33 @@ void Bdpt::light_surface_stage(BdptWave& w) const {
     float dist2 = glm::dot(sp.p - prev, sp.p - prev);
     float cos_in = std::fabs(glm::dot(sp.ng, d));
     if (!(cos_in > 0.f) || !(dist2 > 0.f)) continue;
+    Footprint fp;
+    MaterialHandle material = hit_material(scene_, footprints_, w.rays, i, d, &sp, &fp);
+    w.hits.store(i, sp, d, material, footprints_.enabled() ? &fp : nullptr);
     MisState& m = w.light.mis[slot];
     if (w.depth == 1) {
       const LightOriginPool& o = w.origin;
-      float direct = o.direct_pdf_A[slot];
-      if (direct < 0.f)
-        direct =
-            area_light_direct_pdf_area(lights, scene_.shapes, lights.all[o.light[slot]].index, sp.p, prev, o.n[slot]);
-      m = mis_light_start(direct, o.emission_pdf_W[slot], o.cos_light[slot], o.delta[slot] != 0, mis_);
+      m = mis_light_start(first_hit_direct_pdf(o, slot, sp.p, w.hits.ns[i], prev), o.emission_pdf_W[slot],
+                          o.cos_light[slot], o.delta[slot] != 0, mis_);
       mis_after_hit(m, dist2, cos_in, !o.infinite[slot], mis_);
     } else {
       mis_after_hit(m, dist2, cos_in, true, mis_);
     }
-    Footprint fp;
-    MaterialHandle material = hit_material(scene_, footprints_, w.rays, i, d, &sp, &fp);
-    w.hits.store(i, sp, d, material, footprints_.enabled() ? &fp : nullptr);
   }
+}
+
+// The density with which next-event estimation from the light subpath's
+// first hit (p, shading normal ns) would have chosen its light point: the
+// light sampler's choice depends on that point.
+float Bdpt::first_hit_direct_pdf(const LightOriginPool& o, uint32_t slot, const Vec3& p, const Vec3& ns,
+                                 const Vec3& p_light) const {
+  if (o.direct_pdf_A[slot] >= 0.f) return o.direct_pdf_A[slot];  // at infinity: independent of p
+  const LightPools& lights = scene_.lights;
+  const uint32_t light = o.light[slot];
+  if (lights.all[light].kind == LightKind::Area)
+    return area_light_direct_pdf_area(lights, scene_.shapes, light_sampler_, lights.all[light].index, p, ns, p_light,
+                                      o.n[slot]);
+  return light_sampler_.pmf(p, ns, light);  // point and spot lights: a delta position
 }
 
 // Stores connectible vertices and prepares their camera connections (t = 1).
@@ -181,7 +194,8 @@ void Bdpt::light_scatter_stage(BdptWave& w) const {
     const Frame frame = Frame::from_z(w.hits.ns[i]);
     PathEnd end = continue_subpath(
         bsdf, TransportMode::Importance, w.hits, i, frame, frame.to_local(w.hits.wo[i]), uc, u2, u_rr, depth,
-        {w.light.beta[slot], w.light.mis[slot], w.light.prev_p[slot], w.light.eta_scale[slot], w.light.rr_scale[slot]},
+        {w.light.beta[slot], w.light.mis[slot], w.light.prev_p[slot], w.light.prev_n[slot], w.light.eta_scale[slot],
+         w.light.rr_scale[slot]},
         mis_);
     if (end != PathEnd::Count) ++w.stats.light_ends[size_t(end)];
   });

@@ -22,11 +22,13 @@ struct SubpathPool {
   std::vector<RGB> beta;
   std::vector<MisState> mis;
   std::vector<Vec3> prev_p;  // origin of the ray that found the current vertex
+  std::vector<Vec3> prev_n;  // its shading normal (the light sampler's context; zero at the camera)
   std::vector<float> eta_scale, rr_scale;
   void resize(uint32_t n) {
     beta.resize(n);
     mis.resize(n);
     prev_p.resize(n);
+    prev_n.resize(n);
     eta_scale.resize(n);
     rr_scale.resize(n);
   }
@@ -152,7 +154,7 @@ struct BdptWave {
                vector_bytes(shadow.contrib) + vector_bytes(shadow.p_raster) + vector_bytes(shadow.tags) +
                vector_bytes(shadow.next_event);
     for (const SubpathPool* p : subpaths)
-      b += vector_bytes(p->beta) + vector_bytes(p->mis) + vector_bytes(p->prev_p) + vector_bytes(p->eta_scale) +
+      b += vector_bytes(p->beta) + vector_bytes(p->mis) + vector_bytes(p->prev_p) + vector_bytes(p->prev_n) + vector_bytes(p->eta_scale) +
            vector_bytes(p->rr_scale);
     const LightOriginPool& o = origin;
     b += vector_bytes(o.light) + vector_bytes(o.n) + vector_bytes(o.emission_pdf_W) + vector_bytes(o.cos_light) +

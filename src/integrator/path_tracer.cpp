@@ -21,8 +21,9 @@ std::vector<uint32_t> tile_order(int width, int height, int tile) {
   return order;
 }
 
-PathTracer::PathTracer(const Scene& scene, const PathTracerSettings& s)
+PathTracer::PathTracer(const Scene& scene, const LightSampler& light_sampler, const PathTracerSettings& s)
     : scene_(scene),
+      light_sampler_(light_sampler),
       settings_(s),
       camera_(scene.camera, s.width, s.height),
       sampler_(make_sampler_spec(s.sampler, s.width, s.height, s.planned_spp, s.seed)) {
@@ -50,6 +51,7 @@ void PathTracer::generate_camera_rays(const WaveDesc& wave, PathWave& w) const {
     w.eta_scale[slot] = 1.f;
     w.prev_specular[slot] = 1;
     w.prev_p[slot] = r.o;
+    w.prev_n[slot] = Vec3(0.f);
     w.active[slot] = slot;
     w.rays.push(r.o, r.d, 0.f, kInfinity);
   }
@@ -71,7 +73,8 @@ void PathTracer::surface_stage(PathWave& w) const {
       if (!lights.infinite.empty()) {
         RGB Le = infinite_lights_Le(lights, scene_.textures, d);
         float weight =
-            unweighted ? 1.f : power_heuristic(w.prev_pdf[slot], infinite_lights_pdf(lights, scene_.textures, d));
+            unweighted ? 1.f
+                       : power_heuristic(w.prev_pdf[slot], infinite_lights_pdf(lights, scene_.textures, light_sampler_, d));
         w.L[slot] += w.beta[slot] * weight * Le;
       }
       continue;
@@ -84,7 +87,8 @@ void PathTracer::surface_stage(PathWave& w) const {
       if (!is_black(Le)) {
         float weight = unweighted ? 1.f
                                   : power_heuristic(w.prev_pdf[slot],
-                                                    area_light_pdf(lights, shapes, light, w.prev_p[slot], sp.p, sp.ng));
+                                                    area_light_pdf(lights, shapes, light_sampler_, light, w.prev_p[slot],
+                                                                   w.prev_n[slot], sp.p, sp.ng));
         w.L[slot] += w.beta[slot] * weight * Le;
       }
     }
@@ -100,13 +104,13 @@ void PathTracer::surface_stage(PathWave& w) const {
 
 namespace {
 
-// Next-event estimation from hit i towards one light chosen by power:
-// appends a shadow ray with its MIS-weighted contribution.
+// Next-event estimation from hit i towards one light chosen by the light
+// sampler: appends a shadow ray with its MIS-weighted contribution.
 template <class BSDF>
-void next_event(const Scene& sc, PathWave& w, uint32_t i, uint32_t slot, const BSDF& bsdf, const Frame& frame,
-                const Vec3& wo, float u_light, Vec2 u_light2) {
+void next_event(const Scene& sc, const LightSampler& light_sampler, PathWave& w, uint32_t i, uint32_t slot,
+                const BSDF& bsdf, const Frame& frame, const Vec3& wo, float u_light, Vec2 u_light2) {
   ++w.stats.light_samples;
-  auto ls = sample_light(sc.lights, sc.shapes, sc.textures, w.hits.p[i], u_light, u_light2);
+  auto ls = sample_light(sc.lights, sc.shapes, sc.textures, light_sampler, w.hits.p[i], w.hits.ns[i], u_light, u_light2);
   if (!ls || is_black(ls->L)) return;
   Vec3 wi = frame.to_local(ls->wi);
   RGB f = bsdf.f(wo, wi, TransportMode::Radiance) * std::fabs(wi.z);
@@ -142,7 +146,7 @@ void PathTracer::shade_stage(PathWave& w) const {
     Vec3 wo = frame.to_local(w.hits.wo[i]);
     float u_light = s.get1d(dim + dims::kEyeLightSelect);
     Vec2 u_light2 = s.get2d(dim + dims::kEyeLightPosition);
-    if (!bsdf.is_specular()) next_event(sc, w, i, slot, bsdf, frame, wo, u_light, u_light2);
+    if (!bsdf.is_specular()) next_event(sc, light_sampler_, w, i, slot, bsdf, frame, wo, u_light, u_light2);
     // Continue the path by sampling the BSDF.
     float uc = s.get1d(dim + dims::kEyeBsdfComponent);
     Vec2 u2 = s.get2d(dim + dims::kEyeBsdfDirection);
@@ -173,6 +177,7 @@ void PathTracer::shade_stage(PathWave& w) const {
     }
     w.hits.alive[i] = 1;
     w.prev_p[slot] = w.hits.p[i];
+    w.prev_n[slot] = w.hits.ns[i];
     w.hits.next_o[i] = offset_ray_origin(w.hits.p[i], w.hits.ng[i], w.hits.error_scale[i], wi);
     w.hits.next_d[i] = wi;
   });

@@ -7,6 +7,7 @@
 #include "accel/ray_stream.h"
 #include "film/film.h"
 #include "integrator/wave.h"
+#include "light/light_sampler.h"
 #include "sampler/sampler.h"
 #include "scene/scene.h"
 #include "texture/footprint.h"
@@ -28,7 +29,7 @@ struct PathWave;  // the SoA pools, reused wave after wave by one thread
 
 class PathTracer {
  public:
-  PathTracer(const Scene& scene, const PathTracerSettings& settings);
+  PathTracer(const Scene& scene, const LightSampler& light_sampler, const PathTracerSettings& settings);
 
   std::unique_ptr<PathWave, void (*)(PathWave*)> make_wave_state(uint32_t capacity, RayStream stream) const;
   // Traces all paths of the wave and records one sample per slot; the wave
@@ -42,6 +43,7 @@ class PathTracer {
   void shadow_stage(PathWave& w) const;
 
   const Scene& scene_;
+  const LightSampler& light_sampler_;  // next-event estimation's choice of light
   PathTracerSettings settings_;
   PerspectiveCamera camera_;
   FootprintModel footprints_;  // enabled when the scene's textures filter

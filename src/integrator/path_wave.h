@@ -22,6 +22,7 @@ struct PathWave {
   std::vector<RGB> beta, L;
   std::vector<float> prev_pdf, eta_scale;
   std::vector<Vec3> prev_p;  // origin of the ray that found the current vertex
+  std::vector<Vec3> prev_n;  // its shading normal (the light sampler's context; zero at the camera)
   std::vector<uint8_t> prev_specular;
   uint32_t depth = 0;  // all active paths share the bounce count
 
@@ -40,7 +41,7 @@ struct PathWave {
 
   size_t memory_bytes() const {
     return vector_bytes(pixel) + vector_bytes(sampler) + vector_bytes(beta) + vector_bytes(L) + vector_bytes(prev_pdf) +
-           vector_bytes(eta_scale) + vector_bytes(prev_p) + vector_bytes(prev_specular) + vector_bytes(active) +
+           vector_bytes(eta_scale) + vector_bytes(prev_p) + vector_bytes(prev_n) + vector_bytes(prev_specular) + vector_bytes(active) +
            rays.memory_bytes() + hits.memory_bytes() + shadow.memory_bytes() + vector_bytes(shadow_slot) +
            vector_bytes(shadow_contrib);
   }
@@ -51,6 +52,7 @@ struct PathWave {
     for (auto* v : {&beta, &L, &shadow_contrib}) v->resize(n);
     for (auto* v : {&prev_pdf, &eta_scale}) v->resize(n);
     prev_p.resize(n);
+    prev_n.resize(n);
     prev_specular.resize(n);
     hits.resize(n);
     rays.reserve(n);

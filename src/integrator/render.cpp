@@ -145,6 +145,7 @@ std::string sequence_fingerprint(const RenderOptions& o, int width, int height) 
   if (o.integrator != "path") line("mis", o.mis);
   line("maxdepth", std::to_string(o.maxdepth));
   line("seed", std::to_string(o.seed));
+  line("light-sampler", o.light_sampler);
   line("sampler", o.sampler.type + " " + o.sampler.randomization + " " + std::to_string(o.sampler.seed) + " " +
                       std::to_string(o.sampler.xsamples) + "x" + std::to_string(o.sampler.ysamples) +
                       (o.sampler.jitter ? " jitter" : ""));
@@ -255,6 +256,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
   // Low-discrepancy samplers lay a pixel's samples out for the count they
   // plan for; under a time budget the count is open.
   const uint32_t planned_spp = opt.time_limit_seconds > 0 ? 0u : uint32_t(opt.spp);
+  const LightSamplerKind light_kind = parse_light_sampler(opt.light_sampler);
 
   std::optional<tbb::global_control> limit;
   if (opt.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(opt.threads));
@@ -262,6 +264,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
   const int width = opt.width > 0 ? opt.width : scene.settings.width;
   const int height = opt.height > 0 ? opt.height : scene.settings.height;
   Film film(width, height, scene.filter);
+  const LightSampler light_sampler(scene.lights, scene.shapes, scene.textures, light_kind);
   std::optional<StrategyFilm> strategy_film;
   RayCounters counters;
   RenderResult res;
@@ -298,7 +301,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
       bs.sampler = opt.sampler;
       bs.planned_spp = planned_spp;
       if (opt.strategies) strategy_film.emplace(width, height, scene.filter);
-      run_passes(Bdpt(scene, bs), scene, opt, backend, counters, film, strategy_film ? &*strategy_film : nullptr,
+      run_passes(Bdpt(scene, light_sampler, bs), scene, opt, backend, counters, film, strategy_film ? &*strategy_film : nullptr,
                  done, res.stats, dump.get(), checkpoints, position);
     } else {
       PathTracerSettings ps;
@@ -309,7 +312,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
       ps.footprint_spp = scene.settings.spp;
       ps.sampler = opt.sampler;
       ps.planned_spp = planned_spp;
-      run_passes(PathTracer(scene, ps), scene, opt, backend, counters, film, nullptr, done, res.stats, dump.get(),
+      run_passes(PathTracer(scene, light_sampler, ps), scene, opt, backend, counters, film, nullptr, done, res.stats, dump.get(),
                  checkpoints, position);
     }
     interrupted = opt.cancel && opt.cancel->load();
@@ -327,6 +330,11 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
   if (strategy_film) res.strategies = strategy_film->resolve(film);
   res.interrupted = interrupted;
   RenderStats& st = res.stats;
+  st.light_sampler = light_sampler_name(light_sampler.kind());
+  st.light_sampler_seconds = light_sampler.build_seconds();
+  st.light_sampler_bytes = light_sampler.memory_bytes();
+  st.light_bvh_nodes = light_sampler.bvh().node_count();
+  st.light_bvh_depth = light_sampler.bvh().depth();
   st.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   res.total_render_seconds = prior_seconds + st.seconds;
   st.samples = film.total_samples();

@@ -29,6 +29,7 @@ struct SubpathRef {
   RGB& beta;
   MisState& mis;
   Vec3& prev_p;
+  Vec3& prev_n;
   float& eta_scale;  // radiance's 1/eta^2 factors, undone for Russian roulette
   float rr_scale;    // 1 / the throughput the subpath started with
 };
@@ -62,6 +63,7 @@ PathEnd continue_subpath(const BSDF& bsdf, TransportMode mode, HitPool& hits, ui
   if (!is_finite(sub.beta)) return PathEnd::Absorbed;
   hits.alive[i] = 1;
   sub.prev_p = hits.p[i];
+  sub.prev_n = hits.ns[i];
   hits.next_o[i] = offset_ray_origin(hits.p[i], hits.ng[i], hits.error_scale[i], wi);
   hits.next_d[i] = wi;
   return PathEnd::Count;

@@ -122,7 +122,10 @@ float area_emission_pdf(const LightPools& L, uint32_t area_index, const Vec3& n,
 }
 
 float infinite_emission_pdf(const LightPools& L, const TexturePools& tex, const Vec3& w_to_light) {
-  return infinite_lights_pdf(L, tex, w_to_light) * disk_pdf(L);
+  float pdf = 0.f;  // light subpaths choose by power
+  for (uint32_t i = 0; i < L.infinite.size(); ++i)
+    pdf += L.selection.discrete_pmf(L.infinite_to_all[i]) * infinite_light_pdf(L, tex, i, w_to_light);
+  return pdf * disk_pdf(L);
 }
 
 float emission_pdf(const LightPools& L, const TexturePools& tex, uint32_t light, const Vec3& n, const Vec3& w) {
@@ -159,13 +162,14 @@ RGB emitted(const LightPools& L, const TexturePools& tex, uint32_t light, const 
   }
 }
 
-float area_light_direct_pdf_area(const LightPools& L, const ShapePools& shapes, uint32_t area_index, const Vec3& p,
-                                 const Vec3& p_light, const Vec3& n_light) {
+float area_light_direct_pdf_area(const LightPools& L, const ShapePools& shapes, const LightSampler& sampler,
+                                 uint32_t area_index, const Vec3& p, const Vec3& n, const Vec3& p_light,
+                                 const Vec3& n_light) {
   Vec3 d = p_light - p;
   float dist2 = glm::dot(d, d);
   if (!(dist2 > 0.f)) return 0.f;
   float cos_l = std::fabs(glm::dot(n_light, d)) / std::sqrt(dist2);
-  return area_light_pdf(L, shapes, area_index, p, p_light, n_light) * cos_l / dist2;
+  return area_light_pdf(L, shapes, sampler, area_index, p, n, p_light, n_light) * cos_l / dist2;
 }
 
 }  // namespace lantern

@@ -40,8 +40,10 @@ float infinite_emission_pdf(const LightPools& lights, const TexturePools& tex, c
 RGB emitted(const LightPools& lights, const TexturePools& tex, uint32_t light, const Vec3& n, Vec2 uv, const Vec3& w);
 
 // Area density (times the pmf) with which sample_light picks p_light when
-// called from p: next-event estimation's density of a light vertex.
-float area_light_direct_pdf_area(const LightPools& lights, const ShapePools& shapes, uint32_t area_index, const Vec3& p,
-                                 const Vec3& p_light, const Vec3& n_light);
+// called from p with normal n: next-event estimation's density of a light
+// vertex.
+float area_light_direct_pdf_area(const LightPools& lights, const ShapePools& shapes, const LightSampler& sampler,
+                                 uint32_t area_index, const Vec3& p, const Vec3& n, const Vec3& p_light,
+                                 const Vec3& n_light);
 
 }  // namespace lantern

@@ -1,5 +1,6 @@
 #include "light/lights.h"
 
+#include "light/light_sampler.h"
 #include "math/sampling.h"
 #include "scene/surface.h"
 #include "texture/texture.h"
@@ -57,7 +58,7 @@ static RGB env_lookup(const InfiniteLight& l, const TexturePools& tex, Vec2 uv) 
   return l.scale * img.texels[size_t(y) * size_t(img.width) + size_t(x)];
 }
 
-static float power_of(const LightPools& L, const LightRef& r, const TexturePools& tex) {
+float light_power(const LightPools& L, const LightRef& r, const TexturePools& tex) {
   auto avg = [](const RGB& c) { return (c.x + c.y + c.z) / 3.f; };
   float disk = kPi * sqr(L.scene_radius);
   switch (r.kind) {
@@ -117,7 +118,7 @@ void finalize_lights(LightPools& L, const ShapePools& shapes, const TexturePools
     e.distribution = Distribution2D(w, img.width, img.height);
   }
   std::vector<float> power(L.all.size());
-  for (size_t i = 0; i < L.all.size(); ++i) power[i] = power_of(L, L.all[i], tex);
+  for (size_t i = 0; i < L.all.size(); ++i) power[i] = light_power(L, L.all[i], tex);
   L.selection = Distribution1D(std::move(power));
 }
 
@@ -252,20 +253,21 @@ std::optional<LightSample> sample_light_from(const LightPools& L, const ShapePoo
 }
 
 std::optional<LightSample> sample_light(const LightPools& L, const ShapePools& shapes, const TexturePools& tex,
-                                        const Vec3& p, float u_select, Vec2 u) {
-  if (L.all.empty()) return std::nullopt;
+                                        const LightSampler& sampler, const Vec3& p, const Vec3& n, float u_select,
+                                        Vec2 u) {
+  uint32_t i;
   float pmf;
-  size_t i = L.selection.sample_discrete(u_select, &pmf);
-  if (pmf == 0.f) return std::nullopt;
-  auto ls = sample_light_from(L, shapes, tex, uint32_t(i), p, u);
+  if (!sampler.sample(p, n, u_select, &i, &pmf) || pmf == 0.f) return std::nullopt;
+  auto ls = sample_light_from(L, shapes, tex, i, p, u);
   if (ls) ls->pdf *= pmf;
   return ls;
 }
 
-float area_light_pdf(const LightPools& L, const ShapePools& shapes, uint32_t area_index, const Vec3& p,
-                     const Vec3& p_light, const Vec3& n_light) {
+float area_light_pdf(const LightPools& L, const ShapePools& shapes, const LightSampler& sampler,
+                     uint32_t area_index, const Vec3& p, const Vec3& n, const Vec3& p_light, const Vec3& n_light) {
   const AreaLight& a = L.area[area_index];
-  float pmf = L.selection.discrete_pmf(L.area_to_all[area_index]);
+  const float pmf = sampler.pmf(p, n, L.area_to_all[area_index]);
+  if (pmf == 0.f) return 0.f;
   const Geometry& g = shapes.geometries[a.geometry];
   if (g.kind == ShapeKind::Sphere) {
     const Sphere& s = shapes.spheres[g.index];
@@ -305,10 +307,10 @@ float infinite_light_pdf(const LightPools& L, const TexturePools& tex, uint32_t 
   return sin_theta > 0.f ? e.distribution.pdf(uv) / (2.f * kPi * kPi * sin_theta) : 0.f;
 }
 
-float infinite_lights_pdf(const LightPools& L, const TexturePools& tex, const Vec3& w) {
+float infinite_lights_pdf(const LightPools& L, const TexturePools& tex, const LightSampler& sampler, const Vec3& w) {
   float pdf = 0.f;
   for (uint32_t i = 0; i < L.infinite.size(); ++i)
-    pdf += L.selection.discrete_pmf(L.infinite_to_all[i]) * infinite_light_pdf(L, tex, i, w);
+    pdf += sampler.pmf_infinite(L.infinite_to_all[i]) * infinite_light_pdf(L, tex, i, w);
   return pdf;
 }
 

@@ -13,6 +13,7 @@
 namespace lantern {
 
 struct ShapePools;
+class LightSampler;  // light/light_sampler.h
 
 enum class LightKind : uint8_t { Area, Point, Spot, Distant, Infinite };
 
@@ -80,18 +81,24 @@ struct LightSample {
   uint32_t light = 0;     // index into LightPools::all
 };
 
+// Emitted power (flux), averaged over the colour channels.
+float light_power(const LightPools& lights, const LightRef& light, const TexturePools& tex);
+
 // Builds the selection distribution (proportional to emitted power) and the
 // environment-map sampling tables. Call once after all lights are added.
 void finalize_lights(LightPools& lights, const ShapePools& shapes, const TexturePools& tex, Vec3 center, float radius);
 
-// Chooses a light by power and samples a direction to it from p.
+// Chooses a light for the point p with shading normal n (zero: none) and
+// samples a direction to it from p.
 std::optional<LightSample> sample_light(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex,
-                                        const Vec3& p, float u_select, Vec2 u);
+                                        const LightSampler& sampler, const Vec3& p, const Vec3& n, float u_select,
+                                        Vec2 u);
 
-// Density (solid angle at p, times selection pmf) that sample_light picks
-// area light `area_index` at point p_light with normal n_light.
-float area_light_pdf(const LightPools& lights, const ShapePools& shapes, uint32_t area_index, const Vec3& p,
-                     const Vec3& p_light, const Vec3& n_light);
+// Density (solid angle at p, times the light sampler's pmf for (p, n)) that
+// sample_light picks area light `area_index` at point p_light with normal
+// n_light.
+float area_light_pdf(const LightPools& lights, const ShapePools& shapes, const LightSampler& sampler,
+                     uint32_t area_index, const Vec3& p, const Vec3& n, const Vec3& p_light, const Vec3& n_light);
 
 // Radiance leaving an area light at a point of normal n and surface
 // coordinates uv, in direction w.
@@ -108,8 +115,9 @@ RGB infinite_lights_Le(const LightPools& lights, const TexturePools& tex, const 
 std::optional<LightSample> sample_light_from(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex,
                                              uint32_t light, const Vec3& p, Vec2 u);
 
-// Density (times selection pmf) that sample_light produces direction w from the infinite lights.
-float infinite_lights_pdf(const LightPools& lights, const TexturePools& tex, const Vec3& w);
+// Density (times the light sampler's pmf) that sample_light produces
+// direction w from the infinite lights.
+float infinite_lights_pdf(const LightPools& lights, const TexturePools& tex, const LightSampler& sampler, const Vec3& w);
 // Solid-angle density of direction w for infinite light `index` alone (no pmf).
 float infinite_light_pdf(const LightPools& lights, const TexturePools& tex, uint32_t index, const Vec3& w);
 

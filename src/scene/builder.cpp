@@ -107,7 +107,17 @@ void SceneBuilder::integrator(const std::string& type, const ParamSet& ps) {
     warn(ps.where, "integrator \"" + printable(type) + "\" is not available; using \"path\" (choose with --integrator)");
     scene_.settings.integrator = "path";
   }
-  scene_.settings.light_sampler = printable(ps.get_string("lightsampler", "bvh"));
+  std::string light_sampler = ps.get_string("lightsampler", "bvh");
+  if (light_sampler == "exhaustive") {
+    // pbrt-v4's exhaustive sampler weighs every light at every point: the
+    // same image as the BVH's, at a cost linear in the number of lights.
+    warn(ps.where, "light sampler \"exhaustive\" is not available; using \"bvh\" (the same image, different noise)");
+    light_sampler = "bvh";
+  }
+  if (light_sampler != "bvh" && light_sampler != "power" && light_sampler != "uniform")
+    ps.fail(*ps.find("lightsampler"), "unknown light sampler \"" + printable(light_sampler) +
+                                          "\" (expected bvh, power, uniform or exhaustive)");
+  scene_.settings.light_sampler = light_sampler;
   for (const char* p : {"regularize", "visualizestrategies", "visualizeweights"})
     ps.find(p);  // affect noise or debug output only
 }

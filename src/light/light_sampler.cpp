@@ -1,0 +1,167 @@
+#include "light/light_sampler.h"
+
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <stdexcept>
+
+#include "scene/shapes.h"
+#include "scene/surface.h"
+
+namespace lantern {
+
+LightSamplerKind parse_light_sampler(const std::string& n) {
+  if (n == "bvh") return LightSamplerKind::Bvh;
+  if (n == "power") return LightSamplerKind::Power;
+  if (n == "uniform") return LightSamplerKind::Uniform;
+  throw std::invalid_argument("unknown light sampler \"" + n + "\" (expected bvh, power or uniform)");
+}
+
+const char* light_sampler_name(LightSamplerKind k) {
+  switch (k) {
+    case LightSamplerKind::Bvh: return "bvh";
+    case LightSamplerKind::Power: return "power";
+    case LightSamplerKind::Uniform: return "uniform";
+  }
+  return "?";
+}
+
+namespace {
+
+LightBounds triangle_bounds(const TriangleMesh& m, uint32_t prim, const AreaLight& a) {
+  LightBounds b;
+  const glm::uvec3 t = m.triangles[prim];
+  for (uint32_t v : {t.x, t.y, t.z}) {
+    b.lo = glm::min(b.lo, m.positions[v]);
+    b.hi = glm::max(b.hi, m.positions[v]);
+  }
+  // The emitting side follows the geometric normal as the surface point
+  // orients it; with vertex normals that can differ across the triangle,
+  // and then both sides count.
+  const Vec3 n0 = triangle_point(m, prim, 0.f, 0.f).ng, n1 = triangle_point(m, prim, 1.f, 0.f).ng,
+             n2 = triangle_point(m, prim, 0.f, 1.f).ng, nc = triangle_point(m, prim, 1.f / 3.f, 1.f / 3.f).ng;
+  const bool consistent = glm::dot(n0, nc) > 0.f && glm::dot(n1, nc) > 0.f && glm::dot(n2, nc) > 0.f;
+  b.w = nc;
+  b.cos_theta_o = 1.f;
+  b.cos_theta_e = 0.f;  // cos(pi / 2): diffuse emission
+  b.two_sided = a.two_sided || !consistent;
+  return b;
+}
+
+}  // namespace
+
+// The bounds' "power" is what makes importance (phi cos / d^2) estimate
+// the irradiance a light gives: intensity for point and spot lights, and
+// radiance times the area seen at once for area lights (a sphere shows at
+// most a disk of its radius). Emitted power instead would favour a spot
+// light by 2 / (1 - cos theta) and a sphere by 4 over what they deliver.
+LightBounds light_bounds(const LightPools& L, const ShapePools& shapes, const TexturePools& tex, uint32_t light) {
+  const LightRef r = L.all[light];
+  auto avg = [](const RGB& c) { return std::max((c.x + c.y + c.z) / 3.f, 0.f); };
+  LightBounds b;
+  switch (r.kind) {
+    case LightKind::Area: {
+      const AreaLight& a = L.area[r.index];
+      const Geometry& g = shapes.geometries[a.geometry];
+      const float mean = a.image < 0 ? 1.f : tex.image_mean(a.image);
+      if (g.kind == ShapeKind::Mesh) {
+        b = triangle_bounds(shapes.meshes[g.index], a.primitive, a);
+        b.phi = avg(a.L) * mean * a.area;
+      } else {
+        const Sphere& s = shapes.spheres[g.index];
+        b.lo = s.center - Vec3(s.radius);
+        b.hi = s.center + Vec3(s.radius);
+        b.cos_theta_o = -1.f;  // normals in every direction
+        b.cos_theta_e = 0.f;
+        b.two_sided = a.two_sided;
+        b.phi = avg(a.L) * mean * kPi * sqr(s.radius);
+      }
+      return b;
+    }
+    case LightKind::Point:
+      b.lo = b.hi = L.point[r.index].p;
+      b.cos_theta_o = -1.f;  // every direction
+      b.cos_theta_e = 0.f;
+      b.phi = avg(L.point[r.index].I);
+      return b;
+    case LightKind::Spot: {
+      // Light leaves within the falloff's end angle of the axis: a cone of
+      // theta_start around it, widened by the rest.
+      const SpotLight& s = L.spot[r.index];
+      b.lo = b.hi = s.p;
+      b.w = s.frame.n;
+      b.cos_theta_o = s.cos_falloff_start;
+      const float te = std::acos(glm::clamp(s.cos_falloff_end, -1.f, 1.f)) -
+                       std::acos(glm::clamp(s.cos_falloff_start, -1.f, 1.f));
+      b.cos_theta_e = std::cos(std::max(te, 0.f));
+      b.phi = avg(s.I);
+      return b;
+    }
+    default:
+      return b;  // at infinity: no bounds (phi stays 0)
+  }
+}
+
+LightSampler::LightSampler(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex,
+                           LightSamplerKind kind)
+    : lights_(lights), kind_(kind) {
+  if (kind_ != LightSamplerKind::Bvh || lights.all.empty()) return;
+  const auto start = std::chrono::steady_clock::now();
+  const size_t n = lights.all.size();
+  is_infinite_.assign(n, 0);
+  std::vector<uint32_t> finite;
+  for (uint32_t i = 0; i < n; ++i) {
+    const LightKind k = lights.all[i].kind;
+    if (k == LightKind::Distant || k == LightKind::Infinite) {
+      infinite_.push_back(i);
+      is_infinite_[i] = 1;
+    } else {
+      finite.push_back(i);
+    }
+  }
+  std::vector<LightBounds> bounds(finite.size());
+  tbb::parallel_for(size_t(0), finite.size(), [&](size_t i) { bounds[i] = light_bounds(lights, shapes, tex, finite[i]); });
+  bvh_ = LightBvh(std::move(bounds), std::move(finite), n);
+  if (!infinite_.empty()) p_infinite_ = float(infinite_.size()) / float(infinite_.size() + (bvh_.empty() ? 0 : 1));
+  build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+bool LightSampler::sample(const Vec3& p, const Vec3& n, float u, uint32_t* light, float* pmf) const {
+  const size_t count = lights_.all.size();
+  if (count == 0) return false;
+  switch (kind_) {
+    case LightSamplerKind::Power: {
+      size_t i = lights_.selection.sample_discrete(u, pmf);
+      *light = uint32_t(i);
+      return *pmf > 0.f;
+    }
+    case LightSamplerKind::Uniform:
+      *light = uint32_t(std::min(size_t(u * float(count)), count - 1));
+      *pmf = 1.f / float(count);
+      return true;
+    case LightSamplerKind::Bvh:
+      break;
+  }
+  if (u < p_infinite_) {
+    const size_t k = infinite_.size();
+    *light = infinite_[std::min(size_t(u / p_infinite_ * float(k)), k - 1)];
+    *pmf = p_infinite_ / float(k);
+    return true;
+  }
+  u = std::min((u - p_infinite_) / (1.f - p_infinite_), kOneMinusEpsilon);
+  if (!bvh_.sample(p, n, u, light, pmf)) return false;
+  *pmf *= 1.f - p_infinite_;
+  return true;
+}
+
+float LightSampler::pmf(const Vec3& p, const Vec3& n, uint32_t light) const {
+  switch (kind_) {
+    case LightSamplerKind::Power: return lights_.selection.discrete_pmf(light);
+    case LightSamplerKind::Uniform: return lights_.all.empty() ? 0.f : 1.f / float(lights_.all.size());
+    case LightSamplerKind::Bvh: break;
+  }
+  if (is_infinite_[light]) return p_infinite_ / float(infinite_.size());
+  return bvh_.pmf(p, n, light) * (1.f - p_infinite_);
+}
+
+}  // namespace lantern
