@@ -5,11 +5,11 @@
 set -eu
 secs=${1:-150}
 shift 2>/dev/null || true
-scenes=${*:-"cornell-box cornell-box-tiny-light lantern door-ajar caustics"}
+scenes=${*:-"cornell-box cornell-box-tiny-light lantern door-ajar caustics lamp-street"}
 lantern=${LANTERN:-build/lantern}
 mkdir -p perf/references
 for s in $scenes; do
-  res="240 180"; case "$s" in cornell-box*) res="256 256" ;; esac
+  res="240 180"; case "$s" in cornell-box*) res="256 256" ;; lamp-street) res="240 135" ;; esac
   "$lantern" render "scenes/$s.pbrt" --integrator bdpt --time "$secs" --seed 424242 --resolution $res -q \
     -o "/tmp/ref-$s.exr"
   oiiotool "/tmp/ref-$s.exr" -d half --compression zip -o "perf/references/$s.exr"

@@ -1,6 +1,8 @@
 // Pixel filter sampling against its density: the sampled offsets must
 // follow pixel_filter_density, since light-tracing splats are weighted by
-// it while camera samples are drawn by sample_pixel_filter.
+// it while camera samples are drawn by sample_pixel_filter. And the
+// Gaussian must be pbrt-v4's: per axis, the normal density less its value
+// at the radius.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,31 +12,61 @@
 namespace lantern {
 namespace {
 
-// The truncated normal's inverse CDF by bisection in double precision.
-double gaussian_offset_reference(double u, double radius, double sigma) {
-  auto cdf = [&](double x) { return std::erf(x / (sigma * std::sqrt(2.0))); };
-  double lo = -radius, hi = radius, target = cdf(-radius) + u * (cdf(radius) - cdf(-radius));
-  for (int i = 0; i < 200; ++i) {
-    double mid = 0.5 * (lo + hi);
-    (cdf(mid) < target ? lo : hi) = mid;
+const std::pair<float, float> kRadiusSigma[] = {{1.5f, 0.5f}, {2.f, 2.f}, {1.5f, 0.1f}, {0.5f, 3.f}};
+
+// The table's density is pbrt-v4's filter, normalised: g(x) - g(r) with
+// g(x) = exp(-x^2 / 2 sigma^2), over its integral (by Simpson's rule).
+TEST(PixelFilter, GaussianIsPbrtV4sFilter) {
+  for (auto [radius, sigma] : kRadiusSigma) {
+    GaussianFilterTable t(radius, sigma);
+    auto f = [&](double x) {
+      return std::max(0.0, std::exp(-x * x / (2.0 * sigma * sigma)) - std::exp(-double(radius) * radius / (2.0 * sigma * sigma)));
+    };
+    const int n = 20000;
+    double integral = 0.0;
+    for (int i = 0; i <= n; ++i) {
+      const double x = -radius + 2.0 * radius * i / n;
+      integral += f(x) * (i == 0 || i == n ? 1.0 : i % 2 ? 4.0 : 2.0);
+    }
+    integral *= 2.0 * radius / n / 3.0;
+    double worst = 0.0, peak = f(0.0) / integral;
+    for (int i = 0; i <= 3000; ++i) {
+      const double x = -radius + 2.0 * radius * i / 3000.0;
+      worst = std::max(worst, std::fabs(t.density(float(x)) - f(x) / integral));
+    }
+    EXPECT_LT(worst, 3e-4 * peak) << "radius " << radius << ", sigma " << sigma;
+    EXPECT_EQ(t.density(radius), 0.f);
+    EXPECT_EQ(t.density(-radius - 0.1f), 0.f);
   }
-  return 0.5 * (lo + hi);
 }
 
-TEST(PixelFilter, GaussianOffsetsInvertTheTruncatedCdf) {
-  for (auto [radius, sigma] : {std::pair{1.5f, 0.5f}, std::pair{2.f, 2.f}, std::pair{1.5f, 0.1f}, std::pair{0.5f, 3.f}}) {
-    double worst = 0.0;
-    for (int i = 0; i <= 4096; ++i) {
-      float u = std::min(float(i) / 4096.f, 0x1.fffffep-1f);
-      float x = sample_gaussian_offset(u, radius, sigma);
-      ASSERT_TRUE(std::isfinite(x));
-      ASSERT_LE(std::fabs(x), radius);
-      double ref = gaussian_offset_reference(u, radius, sigma);
-      // Compare where the CDF is steep enough for u to pin x down.
-      double density = std::exp(-ref * ref / (2.0 * sigma * sigma));
-      if (density > 1e-3) worst = std::max(worst, std::fabs(double(x) - ref) / radius);
+// sample() inverts the table's CDF: the fraction of a fine grid of u below
+// a point x equals the density's integral up to x (trapezoids on a fine
+// grid), offsets stay within the radius, and they increase with u.
+TEST(PixelFilter, GaussianOffsetsFollowTheDensity) {
+  for (auto [radius, sigma] : kRadiusSigma) {
+    GaussianFilterTable t(radius, sigma);
+    const int n = 1 << 16;
+    std::vector<float> xs(n);
+    for (int i = 0; i < n; ++i) {
+      xs[size_t(i)] = t.sample((float(i) + 0.5f) / float(n));
+      ASSERT_TRUE(std::isfinite(xs[size_t(i)]));
+      ASSERT_LE(std::fabs(xs[size_t(i)]), radius);
+      if (i > 0) ASSERT_GE(xs[size_t(i)], xs[size_t(i - 1)]) << "not monotone at u = " << i;
     }
-    EXPECT_LT(worst, 2e-6) << "radius " << radius << ", sigma " << sigma;
+    double worst = 0.0, cdf = 0.0;
+    const int m = 4000;
+    double prev = t.density(-radius);
+    size_t below = 0;
+    for (int j = 1; j <= m; ++j) {
+      const float x = -radius + 2.f * radius * float(j) / float(m);
+      const double d = t.density(x);
+      cdf += 0.5 * (prev + d) * (2.0 * radius / m);
+      prev = d;
+      while (below < xs.size() && xs[below] < x) ++below;
+      worst = std::max(worst, std::fabs(double(below) / n - cdf));
+    }
+    EXPECT_LT(worst, 2e-4) << "radius " << radius << ", sigma " << sigma;
   }
 }
 

@@ -71,6 +71,10 @@ EmbreeScene::EmbreeScene(const ShapePools& shapes, const TexturePools& textures)
   rtcSetDeviceErrorFunction(device_, on_error, this);
   rtcSetDeviceMemoryMonitorFunction(device_, on_memory, this);
   scene_ = rtcNewScene(device_);
+  // Watertight intersection: without it a ray can slip between two
+  // triangles through their shared edge, and light leaks through closed
+  // walls (tests/extremes_test.cpp, ScaleInvariance, caught it).
+  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
 
   auto t0 = std::chrono::steady_clock::now();
@@ -93,6 +97,7 @@ EmbreeScene::EmbreeScene(const ShapePools& shapes, const TexturePools& textures)
     RTCScene& ps = prototypes[inst.prototype];
     if (ps) continue;
     ps = rtcNewScene(device_);
+    rtcSetSceneFlags(ps, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(ps, RTC_BUILD_QUALITY_HIGH);
     const Prototype& proto = shapes.prototypes[inst.prototype];
     for (uint32_t j = 0; j < proto.count; ++j) attach(ps, shapes, proto.first + j, j);

@@ -113,10 +113,10 @@ void for_each_splat_pixel(const PixelFilter& f, int width, int height, Vec2 p, F
   int y0 = std::max(0, int(std::ceil(p.y - 0.5f - f.radius.y)));
   int y1 = std::min(height - 1, int(std::floor(p.y - 0.5f + f.radius.y)));
   for (int y = y0; y <= y1; ++y) {
-    float wy = pixel_filter_density_1d(f, p.y - (float(y) + 0.5f), f.radius.y);
+    float wy = pixel_filter_density_1d(f, p.y - (float(y) + 0.5f), 1);
     if (wy == 0.f) continue;
     for (int x = x0; x <= x1; ++x) {
-      float w = wy * pixel_filter_density_1d(f, p.x - (float(x) + 0.5f), f.radius.x);
+      float w = wy * pixel_filter_density_1d(f, p.x - (float(x) + 0.5f), 0);
       if (w != 0.f) fn(size_t(y) * size_t(width) + size_t(x), w);
     }
   }

@@ -102,15 +102,37 @@ LightBounds light_bounds(const LightPools& L, const ShapePools& shapes, const Te
   }
 }
 
+namespace {
+
+// A constant environment (no image) is left to BSDF sampling: its radiance
+// is the same from every direction, so sampling the BSDF (the cosine, for a
+// diffuse surface) is never worse than sampling the sphere uniformly, and a
+// light sample spent on it is one not spent on the lights that need them.
+// pbrt-v4's path tracer skips it too (an "incomplete" light pdf), but still
+// lets its sampler choose it and then wastes that sample.
+bool sampled_by_next_event(const LightPools& lights, uint32_t light) {
+  const LightRef r = lights.all[light];
+  return !(r.kind == LightKind::Infinite && lights.infinite[r.index].image < 0);
+}
+
+}  // namespace
+
 LightSampler::LightSampler(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex,
                            LightSamplerKind kind)
     : lights_(lights), kind_(kind) {
-  if (kind_ != LightSamplerKind::Bvh || lights.all.empty()) return;
   const auto start = std::chrono::steady_clock::now();
   const size_t n = lights.all.size();
+  std::vector<float> power(n, 0.f);
+  for (uint32_t i = 0; i < n; ++i)
+    if (sampled_by_next_event(lights, i)) {
+      eligible_.push_back(i);
+      power[i] = light_power(lights, lights.all[i], tex);
+    }
+  if (kind_ == LightSamplerKind::Power) power_ = Distribution1D(std::move(power));
+  if (kind_ != LightSamplerKind::Bvh || eligible_.empty()) return;
   is_infinite_.assign(n, 0);
   std::vector<uint32_t> finite;
-  for (uint32_t i = 0; i < n; ++i) {
+  for (uint32_t i : eligible_) {
     const LightKind k = lights.all[i].kind;
     if (k == LightKind::Distant || k == LightKind::Infinite) {
       infinite_.push_back(i);
@@ -127,16 +149,16 @@ LightSampler::LightSampler(const LightPools& lights, const ShapePools& shapes, c
 }
 
 bool LightSampler::sample(const Vec3& p, const Vec3& n, float u, uint32_t* light, float* pmf) const {
-  const size_t count = lights_.all.size();
+  const size_t count = eligible_.size();
   if (count == 0) return false;
   switch (kind_) {
     case LightSamplerKind::Power: {
-      size_t i = lights_.selection.sample_discrete(u, pmf);
+      size_t i = power_.sample_discrete(u, pmf);
       *light = uint32_t(i);
       return *pmf > 0.f;
     }
     case LightSamplerKind::Uniform:
-      *light = uint32_t(std::min(size_t(u * float(count)), count - 1));
+      *light = eligible_[std::min(size_t(u * float(count)), count - 1)];
       *pmf = 1.f / float(count);
       return true;
     case LightSamplerKind::Bvh:
@@ -156,10 +178,12 @@ bool LightSampler::sample(const Vec3& p, const Vec3& n, float u, uint32_t* light
 
 float LightSampler::pmf(const Vec3& p, const Vec3& n, uint32_t light) const {
   switch (kind_) {
-    case LightSamplerKind::Power: return lights_.selection.discrete_pmf(light);
-    case LightSamplerKind::Uniform: return lights_.all.empty() ? 0.f : 1.f / float(lights_.all.size());
+    case LightSamplerKind::Power: return eligible_.empty() ? 0.f : power_.discrete_pmf(light);
+    case LightSamplerKind::Uniform:
+      return sampled_by_next_event(lights_, light) ? 1.f / float(eligible_.size()) : 0.f;
     case LightSamplerKind::Bvh: break;
   }
+  if (light >= is_infinite_.size()) return 0.f;  // no lights at all
   if (is_infinite_[light]) return p_infinite_ / float(infinite_.size());
   return bvh_.pmf(p, n, light) * (1.f - p_infinite_);
 }

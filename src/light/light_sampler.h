@@ -5,6 +5,10 @@
 // are outside the BVH: with n of them, "bvh" picks one of them with
 // probability n / (n + 1), as pbrt-v4 does, and the BVH otherwise.
 //
+// Constant environment lights (no image) are never chosen: BSDF sampling
+// finds them at least as well (light_sampler.cpp), and their light
+// samples go to the other lights.
+//
 // Light subpaths (bdpt, lt) always start from a light chosen by power
 // (LightPools::selection): their density is what bidirectional MIS
 // compares with next-event estimation's, which this sampler gives.
@@ -38,12 +42,16 @@ class LightSampler {
   LightSamplerKind kind() const { return kind_; }
   const LightBvh& bvh() const { return bvh_; }
   double build_seconds() const { return build_seconds_; }
-  size_t memory_bytes() const { return bvh_.memory_bytes() + infinite_.capacity() * sizeof(uint32_t); }
+  size_t memory_bytes() const {
+    return bvh_.memory_bytes() + (infinite_.capacity() + eligible_.capacity()) * sizeof(uint32_t);
+  }
 
  private:
   const LightPools& lights_;
   LightSamplerKind kind_;
   LightBvh bvh_;
+  std::vector<uint32_t> eligible_;  // every light but constant environments
+  Distribution1D power_;            // power: over eligible_
   std::vector<uint32_t> infinite_;  // lights at infinity (bvh)
   std::vector<uint8_t> is_infinite_;
   float p_infinite_ = 0.f;          // bvh: probability of choosing among infinite_

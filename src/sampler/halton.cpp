@@ -106,18 +106,21 @@ float halton_film(const HaltonLayout& h, uint64_t index, int axis, Randomization
 float halton_sample(uint64_t index, int dimension, Randomization r, uint64_t seed) {
   const uint32_t base = primes()[size_t(dimension % kHaltonDimensions)];
   if (r == Randomization::None) return std::fmin(float(radical_inverse(index, base)), kOneMinusEpsilon);
+  const uint64_t dim_seed = hash_combine(seed, uint64_t(dimension));
+  // In base 2 the radical inverse is the reversed bits, and the digit
+  // randomisations are the Sobol samplers' (one hash, not one per digit).
+  if (base == 2) return bits32_to_unit_float(scramble_bits(reverse_bits32(uint32_t(index)), r, uint32_t(dim_seed)));
   // fastowen is a base-2 construction; in other bases it means full Owen.
   const bool owen = r == Randomization::Owen || r == Randomization::FastOwen;
   const double inv = 1.0 / base;
-  const uint64_t dim_seed = hash_combine(seed, uint64_t(dimension));
   double f = inv, sum = 0.0;
   uint64_t lower = 0;
-  for (int j = 0; f > 0x1p-26; ++j, f *= inv) {
+  for (uint64_t j = 0; f > 0x1p-26; ++j, f *= inv) {
     const uint32_t digit = uint32_t(index % base);
     index /= base;
-    const uint64_t s = owen ? hash_combine(dim_seed, uint64_t(j), lower) : hash_combine(dim_seed, uint64_t(j));
+    const uint64_t s = dim_seed ^ (j * 0x9E3779B97F4A7C15ULL) ^ (owen ? lower * 0xD1B54A32D192ED03ULL : 0);
     sum += double(permutation_element(digit, base, s)) * f;
-    lower = lower * base + digit;
+    lower = lower * base + digit + 1;  // + 1: a prefix of zeros differs from none
   }
   return std::fmin(float(sum), kOneMinusEpsilon);
 }

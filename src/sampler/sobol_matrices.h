@@ -16,12 +16,13 @@ inline constexpr int kSobolColumns = 52;  // indices below 2^52
 // Column c of dimension d's matrix is sobol_matrix(d)[c].
 const uint32_t* sobol_matrix(int dimension);
 
-// The Sobol point's 32 bits: the xor of the columns of the index's set bits.
+// The Sobol point's 32 bits: the xor of the columns of the index's set bits
+// (visited by counting trailing zeros: as many steps as set bits).
 inline uint32_t sobol_bits(uint64_t index, int dimension) {
   const uint32_t* m = sobol_matrix(dimension);
+  index &= (uint64_t(1) << kSobolColumns) - 1;
   uint32_t v = 0;
-  for (int c = 0; index != 0 && c < kSobolColumns; index >>= 1, ++c)
-    if (index & 1) v ^= m[c];
+  for (; index != 0; index &= index - 1) v ^= m[__builtin_ctzll(index)];
   return v;
 }
 

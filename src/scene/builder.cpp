@@ -124,7 +124,8 @@ void SceneBuilder::integrator(const std::string& type, const ParamSet& ps) {
 
 void SceneBuilder::pixel_filter(const std::string& type, const ParamSet& ps) {
   PixelFilter& f = scene_.filter;
-  float def_r;
+  float def_r = 1.5f;
+  bool supported = true;
   if (type == "box") {
     f.type = PixelFilter::Type::Box;
     def_r = 0.5f;
@@ -140,10 +141,16 @@ void SceneBuilder::pixel_filter(const std::string& type, const ParamSet& ps) {
     f.type = PixelFilter::Type::Gaussian;
     for (const char* p : {"B", "C", "tau", "xradius", "yradius"}) ps.find(p);
     f.radius = Vec2(1.5f);
-    return;
+    supported = false;
   }
-  f.radius = Vec2(ps.get_float("xradius", def_r), ps.get_float("yradius", def_r));
-  if (!(f.radius.x > 0.f && f.radius.y > 0.f)) ps.fail("filter radii must be positive");
+  if (supported) {
+    f.radius = Vec2(ps.get_float("xradius", def_r), ps.get_float("yradius", def_r));
+    if (!(f.radius.x > 0.f && f.radius.y > 0.f)) ps.fail("filter radii must be positive");
+  }
+  if (f.type == PixelFilter::Type::Gaussian) {
+    if (!(f.sigma > 0.f) || !std::isfinite(f.sigma)) ps.fail("\"sigma\" must be positive");
+    for (int axis = 0; axis < 2; ++axis) f.gaussian[axis] = GaussianFilterTable(f.radius[axis], f.sigma);
+  }
 }
 
 static bool swaps_handedness(const Mat4& m) { return glm::determinant(glm::mat3(m)) < 0.f; }

@@ -74,12 +74,21 @@ inline SurfacePoint sphere_point(const Sphere& s, const Vec3& p) {
 }
 
 // Offsets a ray origin off the surface along the geometric normal, on the
-// side `w` leaves towards. The offset is relative to the magnitude of the
-// coordinates, so a scene scaled by 1e-4 or 1e5 behaves alike.
+// side `w` (unit) leaves towards. The offset is relative to the magnitude of
+// the coordinates, so a scene scaled by 1e-4 or 1e5 behaves alike.
+//
+// The origin also steps back along w by half the offset. A point on the
+// edge where two surfaces meet (a wall's top against a ceiling, rounded
+// onto the ceiling's plane) moved only along its own normal would start
+// its ray exactly on the other surface, which the ray then need not hit:
+// light leaked through a closed room's corner that way
+// (tests/extremes_test.cpp, ScaleInvariance). Stepping back puts it
+// behind that surface; it stays at least half the offset in front of its
+// own.
 inline constexpr float kRayOffsetScale = 1.0e-5f;
 inline Vec3 offset_ray_origin(const Vec3& p, const Vec3& ng, float error_scale, const Vec3& w) {
   float d = kRayOffsetScale * error_scale;
-  return glm::dot(w, ng) < 0.f ? p - d * ng : p + d * ng;
+  return (glm::dot(w, ng) < 0.f ? p - d * ng : p + d * ng) - (0.5f * d) * w;
 }
 
 }  // namespace lantern
