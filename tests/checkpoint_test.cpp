@@ -82,11 +82,12 @@ class CheckpointResume : public ::testing::TestWithParam<const char*> {};
 TEST_P(CheckpointResume, StopsAndResumesBitForBit) { expect_resumes_bit_for_bit(GetParam(), "zsobol"); }
 INSTANTIATE_TEST_SUITE_P(Integrators, CheckpointResume, ::testing::Values("path", "bdpt", "lt"));
 
-// Every sampler's values depend only on (seed, pixel, index, dimension).
+// Every sampler's values depend only on (seed, pixel, index, dimension);
+// these three find their indices in ways of their own (global sequences,
+// rounds of strata). paddedsobol is built as zsobol is.
 class CheckpointResumeSampler : public ::testing::TestWithParam<const char*> {};
 TEST_P(CheckpointResumeSampler, StopsAndResumesBitForBit) { expect_resumes_bit_for_bit("bdpt", GetParam()); }
-INSTANTIATE_TEST_SUITE_P(Samplers, CheckpointResumeSampler,
-                         ::testing::Values("independent", "stratified", "halton", "sobol", "paddedsobol"));
+INSTANTIATE_TEST_SUITE_P(Samplers, CheckpointResumeSampler, ::testing::Values("stratified", "halton", "sobol"));
 
 // Makes a checkpoint by cancelling a render after its first wave.
 void make_checkpoint(const Scene& scene, RenderOptions o) {

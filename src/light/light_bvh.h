@@ -15,7 +15,7 @@
 namespace lantern {
 
 struct LightBvhNode {
-  LightBounds bounds;
+  PreparedLightBounds bounds;
   uint32_t index = 0;  // leaf: the light (index into LightPools::all); interior: the second child
   bool leaf = false;   // an interior node's first child is the next node
 };
