@@ -58,23 +58,35 @@ struct PathSampler {
   Vec2 get2d(uint32_t dimension) const;
 };
 
+// A dimension's own hash of the sample's salt: its randomisation seeds.
+inline uint64_t dimension_hash(uint64_t salt, uint32_t d) { return mix64(salt ^ (uint64_t(d) * 0x9E3779B97F4A7C15ULL)); }
+
+// Scrambled Sobol values of a permuted index: dimension 0 for 1D, 0 and 1
+// for 2D (zsobol and paddedsobol; h is the dimension's hash).
+inline float sobol_1d(uint64_t i, Randomization r, uint64_t h) {
+  return bits32_to_unit_float(scrambled_van_der_corput(i, r, uint32_t(h >> 32)));
+}
+inline Vec2 sobol_2d(uint64_t i, Randomization r, uint64_t h) {
+  const uint64_t h2 = mix64(h);
+  return Vec2(bits32_to_unit_float(scrambled_van_der_corput(i, r, uint32_t(h2))),
+              bits32_to_unit_float(scramble_bits(sobol_bits_dim1(i), r, uint32_t(h2 >> 32))));
+}
+
 inline float PathSampler::get1d(uint32_t d) const {
   const SamplerSpec& s = *spec;
   switch (s.kind) {
     case SamplerKind::Independent:
       return bits_to_unit_float(mix64(key ^ (uint64_t(d) * 0x9E3779B97F4A7C15ULL)));
     case SamplerKind::ZSobol: {
-      const uint64_t h = mix64(salt ^ (uint64_t(d) * 0x9E3779B97F4A7C15ULL));
-      const uint64_t i = zsobol_permuted_index(key, s.index_bits, h);
-      return bits32_to_unit_float(scrambled_van_der_corput(i, s.randomize, uint32_t(h >> 32)));
+      const uint64_t h = dimension_hash(salt, d);
+      return sobol_1d(zsobol_permuted_index(key, s.index_bits, h), s.randomize, h);
     }
     case SamplerKind::PaddedSobol: {
-      const uint64_t h = mix64(salt ^ (uint64_t(d) * 0x9E3779B97F4A7C15ULL));
-      const uint64_t i = padded_sobol_index(index, s.log2_spp, h);
-      return bits32_to_unit_float(scrambled_van_der_corput(i, s.randomize, uint32_t(h >> 32)));
+      const uint64_t h = dimension_hash(salt, d);
+      return sobol_1d(padded_sobol_index(index, s.log2_spp, h), s.randomize, h);
     }
     case SamplerKind::Stratified:
-      return stratified_1d(index, s.xsamples * s.ysamples, s.jitter, mix64(salt ^ (uint64_t(d) * 0x9E3779B97F4A7C15ULL)));
+      return stratified_1d(index, s.xsamples * s.ysamples, s.jitter, dimension_hash(salt, d));
     case SamplerKind::Halton:
       if (d < 2) return halton_film(s.halton, key, int(d), s.randomize, salt);
       return halton_sample(key, int(d), s.randomize, salt);  // per pixel, as for sobol
@@ -85,7 +97,7 @@ inline float PathSampler::get1d(uint32_t d) const {
       // pixels' subsequences are alike; one scramble for all would show
       // that likeness as a pattern in the image.
       const int dim = int(2 + (d - 2) % uint32_t(kSobolDimensions - 2));
-      const uint32_t seed = uint32_t(mix64(salt ^ (uint64_t(dim) * 0x9E3779B97F4A7C15ULL)));
+      const uint32_t seed = uint32_t(dimension_hash(salt, uint32_t(dim)));
       return bits32_to_unit_float(scramble_bits(sobol_bits(key, dim), s.randomize, seed));
     }
   }
@@ -96,21 +108,15 @@ inline Vec2 PathSampler::get2d(uint32_t d) const {
   const SamplerSpec& s = *spec;
   switch (s.kind) {
     case SamplerKind::ZSobol: {
-      const uint64_t h = mix64(salt ^ (uint64_t(d) * 0x9E3779B97F4A7C15ULL));
-      const uint64_t i = zsobol_permuted_index(key, s.index_bits, h);
-      const uint64_t h2 = mix64(h);
-      return Vec2(bits32_to_unit_float(scrambled_van_der_corput(i, s.randomize, uint32_t(h2))),
-                  bits32_to_unit_float(scramble_bits(sobol_bits_dim1(i), s.randomize, uint32_t(h2 >> 32))));
+      const uint64_t h = dimension_hash(salt, d);
+      return sobol_2d(zsobol_permuted_index(key, s.index_bits, h), s.randomize, h);
     }
     case SamplerKind::PaddedSobol: {
-      const uint64_t h = mix64(salt ^ (uint64_t(d) * 0x9E3779B97F4A7C15ULL));
-      const uint64_t i = padded_sobol_index(index, s.log2_spp, h);
-      const uint64_t h2 = mix64(h);
-      return Vec2(bits32_to_unit_float(scrambled_van_der_corput(i, s.randomize, uint32_t(h2))),
-                  bits32_to_unit_float(scramble_bits(sobol_bits_dim1(i), s.randomize, uint32_t(h2 >> 32))));
+      const uint64_t h = dimension_hash(salt, d);
+      return sobol_2d(padded_sobol_index(index, s.log2_spp, h), s.randomize, h);
     }
     case SamplerKind::Stratified:
-      return stratified_2d(index, s.xsamples, s.ysamples, s.jitter, mix64(salt ^ (uint64_t(d) * 0x9E3779B97F4A7C15ULL)));
+      return stratified_2d(index, s.xsamples, s.ysamples, s.jitter, dimension_hash(salt, d));
     default:
       return Vec2(get1d(d), get1d(d + 1));
   }
