@@ -17,7 +17,8 @@ const std::pair<float, float> kRadiusSigma[] = {{1.5f, 0.5f}, {2.f, 2.f}, {1.5f,
 // The table's density is pbrt-v4's filter, normalised: g(x) - g(r) with
 // g(x) = exp(-x^2 / 2 sigma^2), over its integral (by Simpson's rule).
 TEST(PixelFilter, GaussianIsPbrtV4sFilter) {
-  for (auto [radius, sigma] : kRadiusSigma) {
+  for (auto rs : kRadiusSigma) {
+    const float radius = rs.first, sigma = rs.second;  // (lambdas cannot capture structured bindings in C++17)
     GaussianFilterTable t(radius, sigma);
     auto f = [&](double x) {
       return std::max(0.0, std::exp(-x * x / (2.0 * sigma * sigma)) - std::exp(-double(radius) * radius / (2.0 * sigma * sigma)));
