@@ -99,9 +99,17 @@ AttributeEnd
 )",
                                       "lights.pbrt");
   const std::vector<Region> regions = {{0, 0, 24, 24}, {0, 0, 8, 8}, {8, 8, 8, 8}, {16, 8, 8, 8}, {0, 16, 8, 8}};
-  auto path = render_stats(*scene, "path", 24, 24, 128, kRuns, regions);
-  auto bdpt = render_stats(*scene, "bdpt", 24, 24, 32, kRuns, regions);
-  auto lt = render_stats(*scene, "lt", 24, 24, 64, kRuns, regions);
+  // Under the sky, independent samples: the light tracer's estimate is
+  // heavy-tailed there (sky light through the rough glass ball splatted
+  // near the camera). A low-discrepancy sampler shrinks the typical run's
+  // error, so the spread of the runs no longer covers the rare large
+  // splats and the z statistic overstates a difference that is noise
+  // (seeds 1-4 at 2048 spp: zsobol's means 0.078-0.090, independent's
+  // 0.084-0.096, path's 0.084; z = 12.8 with a quarter of the samples).
+  const char* kind_sampler = std::string(GetParam()).find("infinite") != std::string::npos ? "independent" : "zsobol";
+  auto path = render_stats(*scene, "path", 24, 24, 128, kRuns, regions, false, kind_sampler);
+  auto bdpt = render_stats(*scene, "bdpt", 24, 24, 32, kRuns, regions, false, kind_sampler);
+  auto lt = render_stats(*scene, "lt", 24, 24, 64, kRuns, regions, false, kind_sampler);
   EXPECT_LT(max_z(bdpt, path), kMaxZ);
   EXPECT_LT(max_z(lt, path), kMaxZ);
 }

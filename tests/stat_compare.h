@@ -72,10 +72,13 @@ inline std::vector<Image> render_runs(const Scene& scene, RenderOptions o, int r
   return images;
 }
 
+// sampler: see BdptLightKinds for when a comparison wants "independent".
 inline RegionStats render_stats(const Scene& scene, const std::string& integrator, int width, int height, int spp, int runs,
-                         const std::vector<Region>& regions, bool unit_weights = false) {
+                         const std::vector<Region>& regions, bool unit_weights = false,
+                         const std::string& sampler = "zsobol") {
   RenderOptions o;
   o.integrator = integrator;
+  o.sampler.type = sampler;
   o.spp = spp;
   o.maxdepth = 6;
   o.width = width;
