@@ -38,8 +38,6 @@ class GaussianFilterTable {
     total_ = float(area);
   }
 
-  float radius() const { return radius_; }
-
   // Offset in [-radius, radius] for u in [0, 1), increasing in u.
   float sample(float u) const {
     const float t = 2.f * u - 1.f;

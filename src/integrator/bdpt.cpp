@@ -1,7 +1,6 @@
 // Eye subpaths of the bidirectional tracer and the strategies that end on
 // them: s = 0 (the eye subpath finds an emitter), s = 1 (next-event
 // estimation) and s >= 2 (connections to the slot's stored light vertices).
-#include "sampler/dimensions.h"
 #include "integrator/bdpt.h"
 
 #include "film/pixel_filter.h"
@@ -10,6 +9,7 @@
 #include "integrator/hit_material.h"
 #include "integrator/shade.h"
 #include "light/emission.h"
+#include "sampler/dimensions.h"
 
 namespace lantern {
 

@@ -1,12 +1,12 @@
 // Light subpaths of the bidirectional tracer: emission, bounces, the stored
 // light vertices, and the t = 1 strategies (light tracing onto the film).
-#include "sampler/dimensions.h"
 #include "integrator/bdpt.h"
 #include "integrator/bdpt_wave.h"
 #include "integrator/hit.h"
 #include "integrator/hit_material.h"
 #include "integrator/shade.h"
 #include "light/emission.h"
+#include "sampler/dimensions.h"
 
 namespace lantern {
 

@@ -108,8 +108,4 @@ inline float light_importance(const PreparedLightBounds& b, const Vec3& p, const
   return std::max(importance, 0.f);
 }
 
-inline float light_importance(const LightBounds& b, const Vec3& p, const Vec3& n) {
-  return light_importance(prepare(b), p, n);
-}
-
 }  // namespace lantern

@@ -122,13 +122,13 @@ LightSampler::LightSampler(const LightPools& lights, const ShapePools& shapes, c
     : lights_(lights), kind_(kind) {
   const auto start = std::chrono::steady_clock::now();
   const size_t n = lights.all.size();
-  std::vector<float> power(n, 0.f);
   for (uint32_t i = 0; i < n; ++i)
-    if (sampled_by_next_event(lights, i)) {
-      eligible_.push_back(i);
-      power[i] = light_power(lights, lights.all[i], tex);
-    }
-  if (kind_ == LightSamplerKind::Power) power_ = Distribution1D(std::move(power));
+    if (sampled_by_next_event(lights, i)) eligible_.push_back(i);
+  if (kind_ == LightSamplerKind::Power) {
+    std::vector<float> power(n, 0.f);  // constant environments keep 0
+    for (uint32_t i : eligible_) power[i] = light_power(lights, lights.all[i], tex);
+    power_ = Distribution1D(std::move(power));
+  }
   if (kind_ != LightSamplerKind::Bvh || eligible_.empty()) return;
   is_infinite_.assign(n, 0);
   std::vector<uint32_t> finite;

@@ -36,18 +36,6 @@ Randomization default_randomization(SamplerKind k) {
   return Randomization::FastOwen;
 }
 
-const char* sampler_kind_name(SamplerKind k) {
-  switch (k) {
-    case SamplerKind::Independent: return "independent";
-    case SamplerKind::Stratified: return "stratified";
-    case SamplerKind::Halton: return "halton";
-    case SamplerKind::Sobol: return "sobol";
-    case SamplerKind::PaddedSobol: return "paddedsobol";
-    case SamplerKind::ZSobol: return "zsobol";
-  }
-  return "?";
-}
-
 const char* randomization_name(Randomization r) {
   switch (r) {
     case Randomization::None: return "none";

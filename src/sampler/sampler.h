@@ -44,7 +44,6 @@ SamplerKind parse_sampler_kind(const std::string& name);
 Randomization parse_randomization(const std::string& name);
 // pbrt-v4's: permutedigits for halton, fastowen for the Sobol samplers.
 Randomization default_randomization(SamplerKind k);
-const char* sampler_kind_name(SamplerKind k);
 const char* randomization_name(Randomization r);
 
 struct PathSampler {
