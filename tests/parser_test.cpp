@@ -136,11 +136,11 @@ TEST(Parser, MalformedInputGivesClearErrors) {
                {"t.pbrt:2:50", "found a directive name \"nan\""});
   expect_error("WorldBegin\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 1e39] \"integer indices\" [0 1 2]\n",
                {"Shape \"trianglemesh\"", "vertex 2 at (0, 1, inf) is not finite"});
-  expect_error("WorldBegin\nShape \"disk\"\n", {"shape \"disk\" is not supported"});
+  expect_error("WorldBegin\nShape \"cone\"\n", {"shape \"cone\" is not supported"});
   expect_error("WorldBegin\nMaterial \"hair\"\n", {"material type \"hair\" is not supported"});
   expect_error("WorldBegin\nCamera \"perspective\"\n", {"only allowed before WorldBegin"});
   expect_error("Camera \"orthographic\"\n", {"camera type \"orthographic\" is not supported"});
-  expect_error("WorldBegin\nScale -1 2 1\nShape \"sphere\"\n", {"non-uniformly scaled sphere"});
+  expect_error("WorldBegin\nScale -1 0 1\nShape \"sphere\"\n", {"t.pbrt:3", "transform is singular"});
   expect_error("WorldBegin\nShape \"sphere\" \"float radius\" 1 \"float radius\" 2\n", {"given twice"});
   expect_error("WorldBegin\nShape \"plymesh\" \"string filename\" \"missing.ply\"\n", {"missing.ply", "cannot open PLY"});
 }

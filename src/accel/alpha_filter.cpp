@@ -11,8 +11,9 @@ float alpha_at(const ShapePools& shapes, const TexturePools& textures, uint32_t 
   const Geometry& geo = shapes.geometries[g];
   const TextureRef& a = shapes.alpha_masks[size_t(geo.alpha)].alpha;
   if (a.is_constant()) return a.value.x;
-  SurfacePoint sp = geo.kind == ShapeKind::Mesh ? triangle_point(shapes.meshes[geo.index], prim, b.x, b.y)
-                                                : sphere_point(shapes.spheres[geo.index], p);
+  SurfacePoint sp = geo.kind == ShapeKind::Mesh      ? triangle_point(shapes.meshes[geo.index], prim, b.x, b.y)
+                    : geo.kind == ShapeKind::Quadric ? quadric_point(shapes.quadrics[geo.index], b)
+                                                     : sphere_point(shapes.spheres[geo.index], p);
   return textures.evaluate_float(a, TextureContext{sp.p, sp.ng, sp.uv});
 }
 

@@ -22,7 +22,8 @@ struct AlphaFilterData {
 };
 
 // The alpha of geometry g at primitive prim, barycentrics (b1, b2) for a
-// triangle or point p on a sphere (in the space the geometry is stored in).
+// triangle, surface coordinates b for a quadric, or point p on a sphere (in
+// the space the geometry is stored in).
 float alpha_at(const ShapePools& shapes, const TexturePools& textures, uint32_t g, uint32_t prim, Vec2 b, Vec3 p);
 
 // Whether a hit with this alpha is kept, for the hash value u in [0, 1).

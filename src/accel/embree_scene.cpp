@@ -38,8 +38,16 @@ bool EmbreeScene::on_memory(void* user, ssize_t bytes, bool) {
 void EmbreeScene::attach(RTCScene scene, const ShapePools& shapes, uint32_t id, uint32_t embree_id) {
   const Geometry& g = shapes.geometries[id];
   if (g.kind == ShapeKind::Mesh && shapes.meshes[g.index].triangles.empty()) return;  // an empty PLY: nothing to trace
+  AlphaFilterData* alpha = nullptr;
+  if (g.alpha >= 0) {
+    alpha_data_.push_back(std::make_unique<AlphaFilterData>(AlphaFilterData{&shapes, textures_, id}));
+    alpha = alpha_data_.back().get();
+  }
   RTCGeometry geom;
-  if (g.kind == ShapeKind::Mesh) {
+  if (g.kind == ShapeKind::Quadric) {
+    quadric_data_.push_back(std::make_unique<QuadricGeometryData>(QuadricGeometryData{&shapes.quadrics[g.index], alpha}));
+    geom = new_quadric_geometry(device_, quadric_data_.back().get());
+  } else if (g.kind == ShapeKind::Mesh) {
     const TriangleMesh& m = shapes.meshes[g.index];
     geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
     // Shared buffers: Embree reads the pool's own arrays, no second copy.
@@ -54,9 +62,8 @@ void EmbreeScene::attach(RTCScene scene, const ShapePools& shapes, uint32_t id, 
         rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
     v[0] = s.center.x, v[1] = s.center.y, v[2] = s.center.z, v[3] = s.radius;
   }
-  if (g.alpha >= 0) {
-    alpha_data_.push_back(std::make_unique<AlphaFilterData>(AlphaFilterData{&shapes, textures_, id}));
-    rtcSetGeometryUserData(geom, alpha_data_.back().get());
+  if (alpha && g.kind != ShapeKind::Quadric) {  // a quadric runs its filter itself
+    rtcSetGeometryUserData(geom, alpha);
     rtcSetGeometryIntersectFilterFunction(geom, alpha_filter);
     rtcSetGeometryOccludedFilterFunction(geom, alpha_filter);
   }

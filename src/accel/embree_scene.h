@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "accel/alpha_filter.h"
+#include "accel/quadric_geometry.h"
 #include "scene/shapes.h"
 
 namespace lantern {
@@ -52,6 +53,7 @@ class EmbreeScene {
   std::vector<uint32_t> instance_first_;
   const TexturePools* textures_ = nullptr;
   std::vector<std::unique_ptr<AlphaFilterData>> alpha_data_;
+  std::vector<std::unique_ptr<QuadricGeometryData>> quadric_data_;
   std::atomic<int64_t> bytes_{0}, peak_bytes_{0};
 };
 

@@ -87,13 +87,14 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
         uint32_t a = uint32_t(light);
         float wt;
         if (w.depth == 1) {
-          float pos_pdf = lights.selection.discrete_pmf(lights.area_to_all[a]) / lights.area[a].area;  // emission: by power
+          float pos_pdf = lights.selection.discrete_pmf(lights.area_to_all[a]) *  // emission: by power
+                          area_point_density(shapes, lights.area[a], sp.ng);
           wt = mis_weight_hit_light_direct(m, pos_pdf, mis_);
         } else {
           wt = mis_weight_hit_light(m,
                                     area_light_direct_pdf_area(lights, shapes, light_sampler_, a, prev,
                                                                w.eye.prev_n[slot], sp.p, sp.ng),
-                                    area_emission_pdf(lights, a, sp.ng, -d), mis_);
+                                    area_emission_pdf(lights, shapes, a, sp.ng, -d), mis_);
         }
         add_emission(w, slot, w.eye.beta[slot] * Le, weight(wt));
       }
@@ -137,7 +138,7 @@ void Bdpt::eye_connect_stage(BdptWave& w) const {
         // rounding: a set of measure zero) has zero density per area, and its
         // MIS ratios would be 0/0.
         if (!is_black(f) && direct_pdf_A > 0.f) {
-          float emission_fwd_A = emission_pdf(sc.lights, sc.textures, ls->light, ls->n_light, -ls->wi) *
+          float emission_fwd_A = emission_pdf(sc.lights, sc.shapes, sc.textures, ls->light, ls->n_light, -ls->wi) *
                                  std::fabs(glm::dot(h.ng[i], ls->wi)) / dist2;
           float wt =
               mis_weight_next_event(m, ls->delta ? 0.f : ls->pdf, bsdf.pdf(wo, wi, TransportMode::Radiance),

@@ -21,6 +21,7 @@ namespace lantern {
 inline SurfacePoint local_hit_point(const ShapePools& shapes, const RayBatch& rays, uint32_t i, const Instance* inst) {
   const Geometry& g = shapes.geometries[rays.geom_id[i]];
   if (g.kind == ShapeKind::Mesh) return triangle_point(shapes.meshes[g.index], rays.prim_id[i], rays.u[i], rays.v[i]);
+  if (g.kind == ShapeKind::Quadric) return quadric_point(shapes.quadrics[g.index], Vec2(rays.u[i], rays.v[i]));
   const Sphere& s = shapes.spheres[g.index];
   Vec3 ng(rays.ng_x[i], rays.ng_y[i], rays.ng_z[i]);
   float len = glm::length(ng);

@@ -27,7 +27,8 @@ inline ShadingGeometry world_shading_geometry(const Scene& scene, const RayBatch
   SurfacePoint local = in ? local_hit_point(shapes, rays, i, in) : sp;
   ShadingGeometry g = geo.kind == ShapeKind::Mesh
                           ? triangle_shading_geometry(shapes.meshes[geo.index], rays.prim_id[i], local)
-                          : sphere_shading_geometry(shapes.spheres[geo.index], local);
+                      : geo.kind == ShapeKind::Quadric ? quadric_shading_geometry(shapes.quadrics[geo.index], local)
+                                                       : sphere_shading_geometry(shapes.spheres[geo.index], local);
   if (in) {
     const glm::mat3 M(in->world_from_object);
     g.dpdu = M * g.dpdu;

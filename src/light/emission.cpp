@@ -46,15 +46,7 @@ std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& s
   switch (r.kind) {
     case LightKind::Area: {
       const AreaLight& a = L.area[r.index];
-      const Geometry& g = shapes.geometries[a.geometry];
-      SurfacePoint sp;
-      if (g.kind == ShapeKind::Mesh) {
-        Vec2 b = sample_uniform_triangle(u_pos);
-        sp = triangle_point(shapes.meshes[g.index], a.primitive, b.y, 1.f - b.x - b.y);
-      } else {
-        const Sphere& s = shapes.spheres[g.index];
-        sp = sphere_point_at_normal(s, sample_uniform_sphere(u_pos));
-      }
+      const SurfacePoint sp = sample_area_point(shapes, a, u_pos);
       // Cosine-weighted about the normal; a two-sided light picks a side.
       bool back = false;
       if (a.two_sided) {
@@ -67,7 +59,7 @@ std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& s
       es.n = sp.ng;
       es.uv = sp.uv;
       es.d = f.from_local(wl);
-      es.pdf_pos *= 1.f / a.area;
+      es.pdf_pos *= area_point_density(shapes, a, sp.ng);
       es.pdf_dir = area_dir_pdf(a, sp.ng, es.d);
       es.Le = area_light_Le(a, tex, sp.ng, sp.uv, es.d);
       es.error_scale = sp.error_scale;
@@ -116,9 +108,11 @@ std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& s
   return es;
 }
 
-float area_emission_pdf(const LightPools& L, uint32_t area_index, const Vec3& n, const Vec3& w) {
+float area_emission_pdf(const LightPools& L, const ShapePools& shapes, uint32_t area_index, const Vec3& n,
+                        const Vec3& w) {
   const AreaLight& a = L.area[area_index];
-  return L.selection.discrete_pmf(L.area_to_all[area_index]) / a.area * area_dir_pdf(a, n, w);
+  return L.selection.discrete_pmf(L.area_to_all[area_index]) * area_point_density(shapes, a, n) *
+         area_dir_pdf(a, n, w);
 }
 
 float infinite_emission_pdf(const LightPools& L, const TexturePools& tex, const Vec3& w_to_light) {
@@ -128,12 +122,12 @@ float infinite_emission_pdf(const LightPools& L, const TexturePools& tex, const 
   return pdf * disk_pdf(L);
 }
 
-float emission_pdf(const LightPools& L, const TexturePools& tex, uint32_t light, const Vec3& n, const Vec3& w) {
+float emission_pdf(const LightPools& L, const ShapePools& shapes, const TexturePools& tex, uint32_t light, const Vec3& n, const Vec3& w) {
   const LightRef r = L.all[light];
   float pmf = L.selection.discrete_pmf(light);
   switch (r.kind) {
     case LightKind::Area:
-      return area_emission_pdf(L, r.index, n, w);
+      return area_emission_pdf(L, shapes, r.index, n, w);
     case LightKind::Point:
       return pmf * uniform_sphere_pdf();
     case LightKind::Spot:

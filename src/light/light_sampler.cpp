@@ -67,6 +67,18 @@ LightBounds light_bounds(const LightPools& L, const ShapePools& shapes, const Te
       if (g.kind == ShapeKind::Mesh) {
         b = triangle_bounds(shapes.meshes[g.index], a.primitive, a);
         b.phi = avg(a.L) * mean * a.area;
+      } else if (g.kind == ShapeKind::Quadric) {
+        const Quadric& q = shapes.quadrics[g.index];
+        quadric_bounds(q, &b.lo, &b.hi);
+        // A disk faces one way; a sphere or cylinder shows about a quarter
+        // (1 / pi) of its area at once.
+        const bool disk = q.kind == QuadricKind::Disk;
+        if (disk) b.w = quadric_point(q, Vec2(0.f)).ng;
+        b.cos_theta_o = disk ? 1.f : -1.f;
+        b.cos_theta_e = 0.f;
+        b.two_sided = a.two_sided;
+        const float seen = disk ? 1.f : q.kind == QuadricKind::Sphere ? 0.25f : kInvPi;
+        b.phi = avg(a.L) * mean * a.area * seen;
       } else {
         const Sphere& s = shapes.spheres[g.index];
         b.lo = s.center - Vec3(s.radius);

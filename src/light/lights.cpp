@@ -131,49 +131,62 @@ static float sphere_cone_sin2_max(const Sphere& s, const Vec3& p) {
   return s2 >= 1.f - 1e-3f ? 1.f : s2;
 }
 
+SurfacePoint sample_area_point(const ShapePools& shapes, const AreaLight& a, Vec2 u) {
+  const Geometry& g = shapes.geometries[a.geometry];
+  switch (g.kind) {
+    case ShapeKind::Mesh: {
+      Vec2 b = sample_uniform_triangle(u);
+      return triangle_point(shapes.meshes[g.index], a.primitive, b.y, 1.f - b.x - b.y);
+    }
+    case ShapeKind::Sphere: return sphere_point_at_normal(shapes.spheres[g.index], sample_uniform_sphere(u));
+    case ShapeKind::Quadric: {
+      const Quadric& q = shapes.quadrics[g.index];
+      return quadric_point(q, quadric_sample_uv(q, u));
+    }
+  }
+  return {};
+}
+
+float area_point_density(const ShapePools& shapes, const AreaLight& a, const Vec3& n) {
+  const Geometry& g = shapes.geometries[a.geometry];
+  if (g.kind == ShapeKind::Quadric) return quadric_area_density(shapes.quadrics[g.index], n);
+  return 1.f / a.area;
+}
+
 static std::optional<LightSample> sample_area(const LightPools& L, const ShapePools& shapes, const TexturePools& tex,
                                               const AreaLight& a,
                                               const Vec3& p, Vec2 u) {
   const Geometry& g = shapes.geometries[a.geometry];
   SurfacePoint sp;
   float pdf;
-  if (g.kind == ShapeKind::Mesh) {
-    Vec2 b = sample_uniform_triangle(u);
-    sp = triangle_point(shapes.meshes[g.index], a.primitive, b.y, 1.f - b.x - b.y);
+  const float sin2_max = g.kind == ShapeKind::Sphere ? sphere_cone_sin2_max(shapes.spheres[g.index], p) : 1.f;
+  if (sin2_max >= 1.f) {  // by area (a sphere: from inside), converted to solid angle
+    sp = sample_area_point(shapes, a, u);
     Vec3 d = sp.p - p;
     float dist2 = glm::dot(d, d);
     float cos_l = std::fabs(glm::dot(sp.ng, d)) / std::sqrt(dist2);
-    pdf = dist2 / (cos_l * a.area);
+    pdf = dist2 * area_point_density(shapes, a, sp.ng) / cos_l;
   } else {
     const Sphere& s = shapes.spheres[g.index];
-    float sin2_max = sphere_cone_sin2_max(s, p);
-    if (sin2_max >= 1.f) {  // inside: uniform area sampling
-      sp = sphere_point_at_normal(s, sample_uniform_sphere(u));
-      Vec3 d = sp.p - p;
-      float dist2 = glm::dot(d, d);
-      float cos_l = std::fabs(glm::dot(sp.ng, d)) / std::sqrt(dist2);
-      pdf = dist2 / (cos_l * a.area);
-    } else {
-      // Uniform over the cone of directions the sphere subtends, with the
-      // point computed by trigonometry rather than a ray-sphere test.
-      float sin_max = std::sqrt(sin2_max), cos_max = safe_sqrt(1.f - sin2_max);
-      float one_minus_cos_max = 1.f - cos_max;
-      float cos_t = (cos_max - 1.f) * u.x + 1.f;
-      float sin2_t = 1.f - cos_t * cos_t;
-      if (sin2_max < 0.00068523f) {  // sin^2(1.5 deg): use a Taylor expansion
-        sin2_t = sin2_max * u.x;
-        cos_t = std::sqrt(1.f - sin2_t);
-        one_minus_cos_max = sin2_max / 2.f;
-      }
-      float cos_alpha = sin2_t / sin_max + cos_t * safe_sqrt(1.f - sin2_t / sin2_max);
-      float sin_alpha = safe_sqrt(1.f - cos_alpha * cos_alpha);
-      float phi = u.y * 2.f * kPi;
-      Vec3 w(sin_alpha * std::cos(phi), sin_alpha * std::sin(phi), cos_alpha);
-      Frame f = Frame::from_z(glm::normalize(s.center - p));
-      Vec3 n = f.from_local(-w);
-      sp = sphere_point_at_normal(s, n);
-      pdf = 1.f / (2.f * kPi * one_minus_cos_max);
+    // Uniform over the cone of directions the sphere subtends, with the
+    // point computed by trigonometry rather than a ray-sphere test.
+    float sin_max = std::sqrt(sin2_max), cos_max = safe_sqrt(1.f - sin2_max);
+    float one_minus_cos_max = 1.f - cos_max;
+    float cos_t = (cos_max - 1.f) * u.x + 1.f;
+    float sin2_t = 1.f - cos_t * cos_t;
+    if (sin2_max < 0.00068523f) {  // sin^2(1.5 deg): use a Taylor expansion
+      sin2_t = sin2_max * u.x;
+      cos_t = std::sqrt(1.f - sin2_t);
+      one_minus_cos_max = sin2_max / 2.f;
     }
+    float cos_alpha = sin2_t / sin_max + cos_t * safe_sqrt(1.f - sin2_t / sin2_max);
+    float sin_alpha = safe_sqrt(1.f - cos_alpha * cos_alpha);
+    float phi = u.y * 2.f * kPi;
+    Vec3 w(sin_alpha * std::cos(phi), sin_alpha * std::sin(phi), cos_alpha);
+    Frame f = Frame::from_z(glm::normalize(s.center - p));
+    Vec3 n = f.from_local(-w);
+    sp = sphere_point_at_normal(s, n);
+    pdf = 1.f / (2.f * kPi * one_minus_cos_max);
   }
   Vec3 d = sp.p - p;
   float dist2 = glm::dot(d, d);
@@ -281,7 +294,7 @@ float area_light_pdf(const LightPools& L, const ShapePools& shapes, const LightS
   float dist2 = glm::dot(d, d);
   float cos_l = std::fabs(glm::dot(n_light, d)) / std::sqrt(dist2);
   if (cos_l == 0.f || a.area == 0.f) return 0.f;
-  return pmf * dist2 / (cos_l * a.area);
+  return pmf * dist2 * area_point_density(shapes, a, n_light) / cos_l;
 }
 
 RGB infinite_lights_Le(const LightPools& L, const TexturePools& tex, const Vec3& w) {

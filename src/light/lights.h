@@ -13,6 +13,7 @@
 namespace lantern {
 
 struct ShapePools;
+struct SurfacePoint;
 class LightSampler;  // light/light_sampler.h
 
 enum class LightKind : uint8_t { Area, Point, Spot, Distant, Infinite };
@@ -99,6 +100,13 @@ std::optional<LightSample> sample_light(const LightPools& lights, const ShapePoo
 // n_light.
 float area_light_pdf(const LightPools& lights, const ShapePools& shapes, const LightSampler& sampler,
                      uint32_t area_index, const Vec3& p, const Vec3& n, const Vec3& p_light, const Vec3& n_light);
+
+// A point on area light a: uniform in area, or in a quadric's object-space
+// area (which a non-uniform scale makes non-uniform in the world).
+SurfacePoint sample_area_point(const ShapePools& shapes, const AreaLight& a, Vec2 u);
+// The density per unit area with which sample_area_point places the point
+// of normal n.
+float area_point_density(const ShapePools& shapes, const AreaLight& a, const Vec3& n);
 
 // Radiance leaving an area light at a point of normal n and surface
 // coordinates uv, in direction w.

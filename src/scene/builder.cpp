@@ -329,24 +329,10 @@ void SceneBuilder::add_shape(const std::string& type, const ParamSet& ps, const 
     std::string file = ps.get_string("filename", "");
     if (file.empty()) ps.fail("plymesh needs a \"filename\"");
     add_ply_mesh(resolve_path(base_dir, file), gs, ps);
-  } else if (type == "sphere") {
-    float r = ps.get_float("radius", 1.f);
-    float zmin = ps.get_float("zmin", -r), zmax = ps.get_float("zmax", r), phimax = ps.get_float("phimax", 360.f);
-    if (zmin > -r || zmax < r || phimax < 360.f) ps.fail("partial spheres (zmin, zmax, phimax) are not supported");
-    if (!(r > 0.f) || !std::isfinite(r)) ps.fail("\"radius\" must be positive and finite");
-    const Mat4& M = gs.ctm;
-    float sx = glm::length(Vec3(M[0])), sy = glm::length(Vec3(M[1])), sz = glm::length(Vec3(M[2]));
-    if (std::fabs(sx - sy) > 1e-4f * sx || std::fabs(sx - sz) > 1e-4f * sx)
-      ps.fail("a non-uniformly scaled sphere (an ellipsoid) is not supported");
-    Sphere s{Vec3(M * Vec4(0, 0, 0, 1)), r * sx, gs.reverse_orientation != swaps_handedness(M), glm::inverse(M)};
-    if (!is_finite(s.center) || !std::isfinite(s.radius)) ps.fail("the sphere's centre or radius is not finite");
-    ShapePools& p = scene_.shapes;
-    p.spheres.push_back(s);
-    p.geometries.push_back({ShapeKind::Sphere, uint32_t(p.spheres.size() - 1), gs.material ? *gs.material : default_material(), -1});
-    note_geometry();
-    add_area_lights(uint32_t(p.geometries.size() - 1), 1, gs);
+  } else if (type == "sphere" || type == "cylinder" || type == "disk") {
+    add_quadric(type, ps, gs);
   } else {
-    ps.fail("shape \"" + printable(type) + "\" is not supported; expected trianglemesh, plymesh, sphere or bilinearmesh");
+    ps.fail("shape \"" + printable(type) + "\" is not supported; expected trianglemesh, plymesh, bilinearmesh, sphere, cylinder or disk");
   }
 }
 
@@ -368,8 +354,9 @@ void SceneBuilder::add_area_lights(uint32_t geometry, uint32_t primitives, const
   g.light_offset = int32_t(scene_.lights.area.size());
   float total = 0.f;
   for (uint32_t i = 0; i < primitives; ++i) {
-    float area = g.kind == ShapeKind::Mesh ? triangle_area(scene_.shapes.meshes[g.index], i)
-                                           : 4.f * kPi * sqr(scene_.shapes.spheres[g.index].radius);
+    float area = g.kind == ShapeKind::Mesh      ? triangle_area(scene_.shapes.meshes[g.index], i)
+                 : g.kind == ShapeKind::Quadric ? scene_.shapes.quadrics[g.index].world_area
+                                                : 4.f * kPi * sqr(scene_.shapes.spheres[g.index].radius);
     total += area;
     scene_.lights.area.push_back({geometry, i, L, two_sided, area, image});
   }

@@ -9,6 +9,7 @@
 
 #include "material/material.h"
 #include "math/common.h"
+#include "scene/quadric.h"
 
 namespace lantern {
 
@@ -30,11 +31,13 @@ struct Sphere {
   Mat4 object_from_world;  // for (u, v): pbrt's parameterisation is in object space
 };
 
-enum class ShapeKind : uint8_t { Mesh, Sphere };
+// Sphere: a full sphere under uniform scale, traced by Embree's own sphere
+// primitive; every other sphere, cylinder and disk is a Quadric.
+enum class ShapeKind : uint8_t { Mesh, Sphere, Quadric };
 
 struct Geometry {
   ShapeKind kind;
-  uint32_t index;            // into meshes or spheres
+  uint32_t index;            // into meshes, spheres or quadrics
   MaterialHandle material;
   int32_t light_offset = -1;  // area light of primitive i is lights.area[light_offset + i]
   int32_t alpha = -1;         // index into ShapePools::alpha_masks, or -1: opaque
@@ -67,6 +70,7 @@ struct Instance {
 struct ShapePools {
   std::vector<TriangleMesh> meshes;
   std::vector<Sphere> spheres;
+  std::vector<Quadric> quadrics;
   // Top-level geometries and prototypes' geometries alike: a hit's geomID
   // is rewritten to this index (see RayStream), so shading never asks
   // which kind of geometry it was.

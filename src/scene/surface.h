@@ -73,6 +73,21 @@ inline SurfacePoint sphere_point(const Sphere& s, const Vec3& p) {
   return sphere_point_at_normal(s, len > 0.f ? d / len : Vec3(0, 0, 1));
 }
 
+// The point of a quadric at surface coordinates uv, in the space the
+// quadric is placed in.
+inline SurfacePoint quadric_point(const Quadric& q, Vec2 uv) {
+  const Vec3 po = quadric_object_point(q, uv);
+  SurfacePoint sp;
+  sp.p = Vec3(q.world_from_object * glm::dvec4(po, 1.0));
+  Vec3 n = q.normal_to_world * quadric_object_normal(q, po);
+  float len = glm::length(n);
+  n = len > 0.f ? n / len : Vec3(0, 0, 1);
+  sp.ng = sp.ns = q.flip_normal ? -n : n;
+  sp.uv = uv;
+  sp.error_scale = std::fmax(max_abs_component(sp.p), q.error_scale);
+  return sp;
+}
+
 // Offsets a ray origin off the surface along the geometric normal, on the
 // side `w` (unit) leaves towards. The offset is relative to the magnitude of
 // the coordinates, so a scene scaled by 1e-4 or 1e5 behaves alike.
