@@ -158,6 +158,37 @@ TEST(BSDF, RoughDielectricSamplingMatchesPdf) {
     }
 }
 
+TEST(BSDF, DiffuseTransmissionSamplingMatchesPdf) {
+  for (auto [R, T] : {std::pair{RGB(0.6f, 0.3f, 0.2f), RGB(0.2f, 0.5f, 0.1f)}, std::pair{RGB(0.f), RGB(0.7f)}})
+    for (float t : {5.f, 60.f, 120.f, 175.f})
+      expect_sampling_matches_pdf(DiffuseTransmissionBSDF{R, T}, dir_from_angles(t, 30.f), TransportMode::Radiance,
+                                  "diffuse transmission theta " + std::to_string(t));
+}
+
+// Thin glass at normal incidence: the interreflected total R' = 2R / (1 + R)
+// (R = 0.04 for eta 1.5), T' = 1 - R'; every sample carries weight 1.
+TEST(BSDF, ThinDielectricReflectsTheInterreflectedFresnelTotal) {
+  ThinDielectricBSDF b{1.5f};
+  for (Vec3 wo : {Vec3(0, 0, 1), Vec3(0, 0, -1)}) {
+    RandomStream s = RandomStream::make(5, 0, 0);
+    int reflected = 0;
+    const int n = 200000;
+    for (int i = 0; i < n; ++i) {
+      auto bs = b.sample_f(wo, s.get1d(), s.get2d(), TransportMode::Radiance);
+      ASSERT_TRUE(bs && bs->specular);
+      EXPECT_NEAR(luminance(bs->f) * std::fabs(bs->wi.z) / bs->pdf, 1.f, 1e-5f);
+      if (bs->transmission) {
+        ASSERT_EQ(bs->wi, -wo);
+      } else {
+        ++reflected;
+      }
+    }
+    const double r = 2.0 * 0.04 / 1.04, se = std::sqrt(r * (1 - r) / n);
+    EXPECT_NEAR(double(reflected) / n, r, 4 * se);
+  }
+  EXPECT_NEAR(fr_dielectric(1.f, 1.5f), 0.04f, 1e-4f);
+}
+
 // The coated diffuse BSDF's samples come from random walks whose density is
 // not its pdf(); tests/layered_bsdf_test.cpp checks it instead.
 
@@ -167,6 +198,10 @@ TEST(BSDF, WhiteFurnaceNoEnergyGain) {
     double se;
     double a = albedo(DiffuseBSDF{RGB(1.f)}, wo, TransportMode::Radiance, &se);
     EXPECT_NEAR(a, 1.0, 1e-3) << "a white Lambertian reflects everything";
+    a = albedo(DiffuseTransmissionBSDF{RGB(0.3f), RGB(0.7f)}, wo, TransportMode::Radiance, &se);
+    EXPECT_NEAR(a, 1.0, 4 * se + 1e-4) << "diffuse transmission, R + T = 1";
+    a = albedo(DiffuseTransmissionBSDF{RGB(0.2f), RGB(0.5f)}, -wo, TransportMode::Importance, &se);
+    EXPECT_NEAR(a, 0.7, 4 * se + 1e-4) << "diffuse transmission from below, R + T = 0.7";
     for (float alpha : {0.f, 0.01f, 0.2f, 0.7f}) {
       // A perfect reflector: microfacet models lose energy, never gain it.
       ConductorBSDF c{{alpha, alpha}, RGB(1.f), RGB(0.f), RGB(1.f), true};
@@ -179,6 +214,9 @@ TEST(BSDF, WhiteFurnaceNoEnergyGain) {
         EXPECT_LT(a, 1.0 + 4 * se + 1e-4) << "dielectric alpha " << alpha << " eta " << eta;
         if (alpha == 0.f) EXPECT_NEAR(a, 1.0, 4 * se + 1e-3) << "smooth glass neither absorbs nor creates";
       }
+      ThinDielectricBSDF thin{1.f + 3.f * alpha};
+      a = albedo(thin, wo, TransportMode::Radiance, &se);
+      EXPECT_NEAR(a, 1.0, 1e-4) << "thin glass neither absorbs nor creates";
       CoatedDiffuseBSDF cd{DielectricBSDF{{alpha, alpha}, 1.5f}, DiffuseBSDF{RGB(1.f)}, 1e-6f, RGB(0.f), 0.f, 100, 1};
       a = albedo(cd, wo, TransportMode::Radiance, &se);
       EXPECT_LT(a, 1.0 + 4 * se + 1e-4) << "coated diffuse alpha " << alpha;
@@ -190,6 +228,7 @@ TEST(BSDF, AdjointReciprocity) {
   expect_adjoint_reciprocity(DiffuseBSDF{RGB(0.7f)}, "diffuse");
   expect_adjoint_reciprocity(ConductorBSDF{{0.3f, 0.1f}, RGB(0.2f), RGB(3.f), RGB(1.f), false}, "conductor");
   expect_adjoint_reciprocity(DielectricBSDF{{0.3f, 0.3f}, 1.5f}, "rough dielectric");
+  expect_adjoint_reciprocity(DiffuseTransmissionBSDF{RGB(0.6f, 0.2f, 0.1f), RGB(0.1f, 0.3f, 0.5f)}, "diffuse transmission");
 }
 
 TEST(Fresnel, DielectricLimits) {

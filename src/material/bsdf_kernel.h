@@ -11,6 +11,8 @@
 #include "material/conductor_bsdf.h"
 #include "material/dielectric_bsdf.h"
 #include "material/diffuse_bsdf.h"
+#include "material/diffuse_transmission_bsdf.h"
+#include "material/thin_dielectric_bsdf.h"
 #include "material/material.h"
 
 namespace lantern {
@@ -31,6 +33,15 @@ inline ConductorBSDF make_bsdf(const ConductorMaterial& m, const TextureContext&
 inline DielectricBSDF make_bsdf(const DielectricMaterial& m, const TextureContext& c, const TexturePools& tex) {
   float eta = tex.evaluate_float(m.eta, c);
   return DielectricBSDF{m.roughness.distribution(tex, c), eta > 0.f ? eta : 1.f};
+}
+inline DiffuseTransmissionBSDF make_bsdf(const DiffuseTransmissionMaterial& m, const TextureContext& c,
+                                         const TexturePools& tex) {
+  return DiffuseTransmissionBSDF{glm::clamp(m.scale * tex.evaluate(m.reflectance, c), RGB(0.f), RGB(1.f)),
+                                 glm::clamp(m.scale * tex.evaluate(m.transmittance, c), RGB(0.f), RGB(1.f))};
+}
+inline ThinDielectricBSDF make_bsdf(const ThinDielectricMaterial& m, const TextureContext& c, const TexturePools& tex) {
+  float eta = tex.evaluate_float(m.eta, c);
+  return ThinDielectricBSDF{eta > 0.f ? eta : 1.f};
 }
 // The layer parameters of a coated material at a point, as pbrt-v4 clamps them.
 template <class Top, class Bottom>
@@ -96,6 +107,8 @@ void for_each_bsdf(MaterialKind kind, const MaterialPools& pools, const TextureP
     case MaterialKind::Dielectric: run(pools.dielectric); break;
     case MaterialKind::CoatedDiffuse: run(pools.coated_diffuse); break;
     case MaterialKind::CoatedConductor: run(pools.coated_conductor); break;
+    case MaterialKind::DiffuseTransmission: run(pools.diffuse_transmission); break;
+    case MaterialKind::ThinDielectric: run(pools.thin_dielectric); break;
     case MaterialKind::Mix:        // resolved when the hit was stored
     case MaterialKind::Interface:  // cut out of the scene
       break;
@@ -112,6 +125,8 @@ decltype(auto) with_bsdf(MaterialHandle m, const MaterialPools& pools, const Tex
     case MaterialKind::Conductor: return fn(make_bsdf(pools.conductor[m.index()], c, tex));
     case MaterialKind::Dielectric: return fn(make_bsdf(pools.dielectric[m.index()], c, tex));
     case MaterialKind::CoatedConductor: return fn(make_bsdf(pools.coated_conductor[m.index()], c, tex));
+    case MaterialKind::DiffuseTransmission: return fn(make_bsdf(pools.diffuse_transmission[m.index()], c, tex));
+    case MaterialKind::ThinDielectric: return fn(make_bsdf(pools.thin_dielectric[m.index()], c, tex));
     case MaterialKind::CoatedDiffuse:
     case MaterialKind::Mix:        // never stored in a hit
     case MaterialKind::Interface:

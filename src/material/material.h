@@ -16,8 +16,18 @@ namespace lantern {
 // kinds that never reach shading: Mix is resolved to one of its materials
 // when a hit is stored (resolve_material), and Interface (a boundary with no
 // surface) is cut out of the scene like alpha 0.
-enum class MaterialKind : uint8_t { Diffuse = 0, Conductor, Dielectric, CoatedDiffuse, CoatedConductor, Mix, Interface };
-inline constexpr int kMaterialKindCount = 5;  // the kinds with a BSDF
+enum class MaterialKind : uint8_t {
+  Diffuse = 0,
+  Conductor,
+  Dielectric,
+  CoatedDiffuse,
+  CoatedConductor,
+  DiffuseTransmission,
+  ThinDielectric,
+  Mix,
+  Interface
+};
+inline constexpr int kMaterialKindCount = 7;  // the kinds with a BSDF
 
 struct MaterialHandle {
   uint32_t bits = 0;
@@ -92,6 +102,19 @@ struct CoatedConductorMaterial {
   int32_t bump = -1;
 };
 
+// pbrt-v4's diffusetransmission: reflectance and transmittance (default
+// 0.25 each), both scaled by "scale" and clamped to [0, 1].
+struct DiffuseTransmissionMaterial {
+  TextureRef reflectance = TextureRef::constant(0.25f), transmittance = TextureRef::constant(0.25f);
+  float scale = 1.f;
+  int32_t bump = -1;
+};
+
+struct ThinDielectricMaterial {
+  TextureRef eta = TextureRef::constant(1.5f);
+  int32_t bump = -1;
+};
+
 // A material's bump or normal map (applied by material/bump.h).
 struct BumpParams {
   TextureRef displacement = TextureRef::constant(0.f);
@@ -111,6 +134,8 @@ struct MaterialPools {
   std::vector<DielectricMaterial> dielectric;
   std::vector<CoatedDiffuseMaterial> coated_diffuse;
   std::vector<CoatedConductorMaterial> coated_conductor;
+  std::vector<DiffuseTransmissionMaterial> diffuse_transmission;
+  std::vector<ThinDielectricMaterial> thin_dielectric;
   std::vector<MixMaterial> mix;
   std::vector<BumpParams> bumps;  // only for materials with a displacement or normal map
 
@@ -123,6 +148,8 @@ struct MaterialPools {
       case MaterialKind::Dielectric: b = dielectric[m.index()].bump; break;
       case MaterialKind::CoatedDiffuse: b = coated_diffuse[m.index()].bump; break;
       case MaterialKind::CoatedConductor: b = coated_conductor[m.index()].bump; break;
+      case MaterialKind::DiffuseTransmission: b = diffuse_transmission[m.index()].bump; break;
+      case MaterialKind::ThinDielectric: b = thin_dielectric[m.index()].bump; break;
       case MaterialKind::Mix:
       case MaterialKind::Interface: break;
     }
@@ -136,6 +163,8 @@ struct MaterialPools {
       case MaterialKind::Dielectric: return !dielectric.empty();
       case MaterialKind::CoatedDiffuse: return !coated_diffuse.empty();
       case MaterialKind::CoatedConductor: return !coated_conductor.empty();
+      case MaterialKind::DiffuseTransmission: return !diffuse_transmission.empty();
+      case MaterialKind::ThinDielectric: return !thin_dielectric.empty();
       case MaterialKind::Mix: return !mix.empty();
       case MaterialKind::Interface: return false;
     }

@@ -78,6 +78,8 @@ MaterialHandle SceneBuilder::material(const std::string& type, const ParamSet& p
       case MaterialKind::Dielectric: m.dielectric[h.index()].bump = b; break;
       case MaterialKind::CoatedDiffuse: m.coated_diffuse[h.index()].bump = b; break;
       case MaterialKind::CoatedConductor: m.coated_conductor[h.index()].bump = b; break;
+      case MaterialKind::DiffuseTransmission: m.diffuse_transmission[h.index()].bump = b; break;
+      case MaterialKind::ThinDielectric: m.thin_dielectric[h.index()].bump = b; break;
       case MaterialKind::Mix:
       case MaterialKind::Interface: break;
     }
@@ -156,9 +158,22 @@ MaterialHandle SceneBuilder::concrete_material(const std::string& type, const Pa
     return MaterialHandle::make(MaterialKind::CoatedDiffuse, uint32_t(m.coated_diffuse.size() - 1));
   }
   if (type == "coatedconductor") return coated_conductor(ps);
+  if (type == "diffusetransmission") {
+    DiffuseTransmissionMaterial d;
+    d.reflectance = rgb_texture(ps, "reflectance", RGB(0.25f));
+    d.transmittance = rgb_texture(ps, "transmittance", RGB(0.25f));
+    d.scale = ps.get_float("scale", 1.f);
+    if (!(d.scale >= 0.f) || !std::isfinite(d.scale)) ps.fail(*ps.find("scale"), "\"scale\" must be a finite number >= 0");
+    m.diffuse_transmission.push_back(d);
+    return MaterialHandle::make(MaterialKind::DiffuseTransmission, uint32_t(m.diffuse_transmission.size() - 1));
+  }
+  if (type == "thindielectric") {
+    m.thin_dielectric.push_back({eta_param(ps, 1.5f)});
+    return MaterialHandle::make(MaterialKind::ThinDielectric, uint32_t(m.thin_dielectric.size() - 1));
+  }
   ps.fail("material type \"" + type +
-          "\" is not supported; expected diffuse, conductor, dielectric, coateddiffuse, coatedconductor, mix, interface (or matte, metal, "
-          "glass, plastic, mirror)");
+          "\" is not supported; expected diffuse, conductor, dielectric, thindielectric, diffusetransmission, "
+          "coateddiffuse, coatedconductor, mix, interface (or matte, metal, glass, plastic, mirror)");
 }
 
 // pbrt-v4's coatedconductor, with its parameter names and defaults.
