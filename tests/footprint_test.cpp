@@ -16,11 +16,11 @@ namespace lantern {
 namespace {
 
 // 100 x 100 pixels, 10 degrees across, at (0, 0, -10) looking down +z.
-PerspectiveCamera narrow_camera() {
+Camera narrow_camera() {
   CameraDesc d;
   d.world_from_camera = glm::translate(Mat4(1.f), Vec3(0, 0, -10));
   d.fov_degrees = 10.f;
-  return PerspectiveCamera(d, 100, 100);
+  return Camera(d, 100, 100);
 }
 
 // A pixel step at distance 10 spans 2 tan(5 deg) * 10 / 100 on a plane

@@ -139,7 +139,7 @@ TEST(Parser, MalformedInputGivesClearErrors) {
   expect_error("WorldBegin\nShape \"cone\"\n", {"shape \"cone\" is not supported"});
   expect_error("WorldBegin\nMaterial \"hair\"\n", {"material type \"hair\" is not supported"});
   expect_error("WorldBegin\nCamera \"perspective\"\n", {"only allowed before WorldBegin"});
-  expect_error("Camera \"orthographic\"\n", {"camera type \"orthographic\" is not supported"});
+  expect_error("Camera \"fisheye\"\n", {"camera type \"fisheye\" is not supported"});
   expect_error("WorldBegin\nScale -1 0 1\nShape \"sphere\"\n", {"t.pbrt:3", "transform is singular"});
   expect_error("WorldBegin\nShape \"sphere\" \"float radius\" 1 \"float radius\" 2\n", {"given twice"});
   expect_error("WorldBegin\nShape \"plymesh\" \"string filename\" \"missing.ply\"\n", {"missing.ply", "cannot open PLY"});

@@ -1,9 +1,16 @@
 #include "camera/camera.h"
 
+#include "math/equal_area.h"
+
 namespace lantern {
 
-PerspectiveCamera::PerspectiveCamera(const CameraDesc& d, int width, int height, Vec2 film_margin)
-    : world_from_camera_(d.world_from_camera), width_(width), height_(height), margin_(film_margin) {
+Camera::Camera(const CameraDesc& d, int width, int height, Vec2 film_margin)
+    : projection_(d.projection),
+      equal_area_(d.equal_area),
+      world_from_camera_(d.world_from_camera),
+      width_(width),
+      height_(height),
+      margin_(film_margin) {
   float aspect = float(width) / float(height);
   if (d.has_screen_window) {
     sx0_ = d.screen_window[0];
@@ -17,23 +24,74 @@ PerspectiveCamera::PerspectiveCamera(const CameraDesc& d, int width, int height,
     sy0_ = -1.f / aspect;
     sy1_ = 1.f / aspect;
   }
-  tan_half_ = std::tan(glm::radians(d.fov_degrees) * 0.5f);
-  lens_radius_ = d.lens_radius;
+  tan_half_ = projection_ == Projection::Perspective ? std::tan(glm::radians(d.fov_degrees) * 0.5f) : 1.f;
+  lens_radius_ = projection_ == Projection::Spherical ? 0.f : d.lens_radius;
   focal_distance_ = d.focal_distance;
   camera_from_world_ = glm::inverse(world_from_camera_);
   forward_ = glm::normalize(Vec3(world_from_camera_ * Vec4(0.f, 0.f, 1.f, 0.f)));
   film_area_ = (sx1_ - sx0_) * (sy1_ - sy0_) * tan_half_ * tan_half_;
 }
 
-CameraRay PerspectiveCamera::generate_ray(Vec2 p, Vec2 u_lens) const {
-  float sx = sx0_ + (p.x / float(width_)) * (sx1_ - sx0_);
-  float sy = sy1_ - (p.y / float(height_)) * (sy1_ - sy0_);
-  Vec3 dir = glm::normalize(Vec3(sx * tan_half_, sy * tan_half_, 1.f));
-  Vec3 origin(0.f);
+Vec3 Camera::perspective_direction(Vec2 s) const { return glm::normalize(Vec3(s.x * tan_half_, s.y * tan_half_, 1.f)); }
+
+// pbrt-v4's mappings, with camera y and z exchanged so that the image's
+// vertical runs along the camera's up axis.
+Vec3 Camera::spherical_direction(Vec2 p) const {
+  Vec2 uv(p.x / float(width_), p.y / float(height_));
+  Vec3 d;
+  if (equal_area_) {
+    d = equal_area_square_to_sphere(wrap_equal_area_square(uv));
+  } else {
+    float theta = kPi * uv.y, phi = 2.f * kPi * uv.x;
+    d = Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+  }
+  return Vec3(d.x, d.z, d.y);
+}
+
+bool Camera::spherical_raster(const Vec3& dc, Vec2* p_raster) const {
+  const Vec3 d = glm::normalize(Vec3(dc.x, dc.z, dc.y));
+  Vec2 uv;
+  if (equal_area_) {
+    uv = equal_area_sphere_to_square(d);
+  } else {
+    float phi = std::atan2(d.y, d.x);
+    if (phi < 0.f) phi += 2.f * kPi;
+    uv = Vec2(phi * kInv2Pi, std::acos(glm::clamp(d.z, -1.f, 1.f)) * kInvPi);
+  }
+  *p_raster = uv * Vec2(float(width_), float(height_));
+  return is_finite(Vec3(*p_raster, 0.f));
+}
+
+int Camera::seam_images(Vec2 p, Vec2 reach, Vec2 out[2]) const {
+  if (projection_ != Projection::Spherical) return 0;
+  const float W = float(width_), H = float(height_);
+  int n = 0;
+  // Equirectangular: x wraps around; across a pole, phi turns by pi.
+  // Equal-area: each edge of the square folds onto itself reversed.
+  if (p.x < reach.x) out[n++] = equal_area_ ? Vec2(-p.x, H - p.y) : Vec2(p.x + W, p.y);
+  else if (p.x > W - reach.x) out[n++] = equal_area_ ? Vec2(2.f * W - p.x, H - p.y) : Vec2(p.x - W, p.y);
+  const float x_across = equal_area_ ? W - p.x : std::fmod(p.x + 0.5f * W, W);
+  if (p.y < reach.y) out[n++] = Vec2(x_across, -p.y);
+  else if (p.y > H - reach.y) out[n++] = Vec2(x_across, 2.f * H - p.y);
+  return n;
+}
+
+CameraRay Camera::generate_ray(Vec2 p, Vec2 u_lens) const {
+  const Vec2 s(sx0_ + (p.x / float(width_)) * (sx1_ - sx0_), sy1_ - (p.y / float(height_)) * (sy1_ - sy0_));
+  Vec3 origin(0.f), dir;
+  switch (projection_) {
+    case Projection::Perspective: dir = perspective_direction(s); break;
+    case Projection::Orthographic:
+      origin = Vec3(s.x, s.y, 0.f);
+      dir = Vec3(0.f, 0.f, 1.f);
+      break;
+    case Projection::Spherical: dir = spherical_direction(p); break;
+  }
   if (lens_radius_ > 0.f) {
+    // Through the point of the plane of focus the pinhole ray meets.
     Vec2 lens = lens_radius_ * sample_uniform_disk_concentric(u_lens);
-    Vec3 focus = dir * (focal_distance_ / dir.z);
-    origin = Vec3(lens.x, lens.y, 0.f);
+    Vec3 focus = origin + dir * (focal_distance_ / dir.z);
+    origin = Vec3(origin.x + lens.x, origin.y + lens.y, 0.f);
     dir = glm::normalize(focus - origin);
   }
   CameraRay r;
@@ -42,7 +100,14 @@ CameraRay PerspectiveCamera::generate_ray(Vec2 p, Vec2 u_lens) const {
   return r;
 }
 
-float PerspectiveCamera::We(const Vec3& p_lens, const Vec3& d, Vec2* p_raster) const {
+float Camera::We(const Vec3& p_lens, const Vec3& d, Vec2* p_raster) const {
+  if (projection_ == Projection::Orthographic) return 0.f;
+  if (projection_ == Projection::Spherical) {
+    Vec2 r;
+    if (!spherical_raster(Vec3(camera_from_world_ * Vec4(d, 0.f)), &r)) return 0.f;
+    *p_raster = r;
+    return pdf_dir(d);
+  }
   float cos_t = cos_theta(d);
   if (cos_t <= 0.f) return 0.f;
   // Where the ray crosses the plane of focus, seen from the lens centre,
@@ -59,12 +124,26 @@ float PerspectiveCamera::We(const Vec3& p_lens, const Vec3& d, Vec2* p_raster) c
   return 1.f / (film_area_ * lens_area() * cos2 * cos2);
 }
 
-float PerspectiveCamera::pdf_dir(const Vec3& d) const {
-  float cos_t = cos_theta(d);
-  return cos_t > 0.f ? 1.f / (film_area_ * cos_t * cos_t * cos_t) : 0.f;
+float Camera::pdf_dir(const Vec3& d) const {
+  switch (projection_) {
+    case Projection::Perspective: {
+      float cos_t = cos_theta(d);
+      return cos_t > 0.f ? 1.f / (film_area_ * cos_t * cos_t * cos_t) : 0.f;
+    }
+    case Projection::Orthographic: return kInfinity;
+    case Projection::Spherical: {
+      if (equal_area_) return kInv4Pi;
+      // Uniform in (phi, theta): d(omega) = 2 pi^2 sin(theta) du dv.
+      Vec3 dc = glm::normalize(Vec3(camera_from_world_ * Vec4(d, 0.f)));
+      float sin_theta = safe_sqrt(1.f - dc.y * dc.y);  // theta from the camera's y axis
+      return sin_theta > 0.f ? 1.f / (2.f * kPi * kPi * sin_theta) : 0.f;
+    }
+  }
+  return 0.f;
 }
 
-std::optional<CameraSample> PerspectiveCamera::sample_wi(const Vec3& ref, Vec2 u_lens) const {
+std::optional<CameraSample> Camera::sample_wi(const Vec3& ref, Vec2 u_lens) const {
+  if (projection_ == Projection::Orthographic) return std::nullopt;
   Vec3 p_lens_cam(0.f);
   if (lens_radius_ > 0.f) {
     Vec2 l = lens_radius_ * sample_uniform_disk_concentric(u_lens);
@@ -79,7 +158,9 @@ std::optional<CameraSample> PerspectiveCamera::sample_wi(const Vec3& ref, Vec2 u
   cs.wi = d / cs.dist;
   cs.We = We(cs.p_lens, -cs.wi, &cs.p_raster);
   if (cs.We == 0.f) return std::nullopt;
-  cs.pdf = dist2 / (cos_theta(-cs.wi) * lens_area());
+  // A point sensor (spherical) has no cosine.
+  const float cos_lens = projection_ == Projection::Spherical ? 1.f : cos_theta(-cs.wi);
+  cs.pdf = dist2 / (cos_lens * lens_area());
   return cs;
 }
 

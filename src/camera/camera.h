@@ -1,5 +1,9 @@
-// pbrt's perspective camera: a pinhole or a thin lens, looking down +z in a
-// left-handed camera space; raster x grows with camera x, raster y downwards.
+// pbrt's cameras, looking down +z in a left-handed camera space (raster x
+// grows with camera x, raster y downwards): perspective (a pinhole or a thin
+// lens), orthographic (parallel rays, or a thin lens focused at the focal
+// distance) and spherical (every direction from a point, equal-area or
+// equirectangular). One class, the projection chosen by a switch: camera
+// rays are generated per wave, never through a virtual call.
 #pragma once
 
 #include <optional>
@@ -9,7 +13,11 @@
 
 namespace lantern {
 
+enum class Projection : uint8_t { Perspective, Orthographic, Spherical };
+
 struct CameraDesc {
+  Projection projection = Projection::Perspective;
+  bool equal_area = true;  // spherical: pbrt-v4's "equalarea" mapping, else "equirectangular"
   Mat4 world_from_camera{1.f};
   float fov_degrees = 90.f;
   float lens_radius = 0.f;
@@ -33,24 +41,41 @@ struct CameraSample {
   Vec2 p_raster{0.f};
 };
 
-class PerspectiveCamera {
+class Camera {
  public:
-  PerspectiveCamera() = default;
+  Camera() = default;
   // film_margin: how far (in pixels) past the image edges samples may land,
   // i.e. the pixel filter's radius; light tracing must reach as far.
-  PerspectiveCamera(const CameraDesc& desc, int width, int height, Vec2 film_margin = Vec2(0.f));
+  Camera(const CameraDesc& desc, int width, int height, Vec2 film_margin = Vec2(0.f));
 
   // p_raster in [0, width) x [0, height).
   CameraRay generate_ray(Vec2 p_raster, Vec2 u_lens) const;
   // Importance (pbrt's We) of a ray leaving the lens in world direction d,
-  // normalised over the whole film: 1 / (A * lens_area * cos^4).
-  // Returns 0 when the ray misses the film; p_raster receives where it lands.
+  // normalised over the whole film: 1 / (A * lens_area * cos^4) for a
+  // perspective camera, the direction density for a spherical one (a point
+  // sensor: no cosine). Returns 0 when the ray misses the film; p_raster
+  // receives where it lands.
   float We(const Vec3& p_lens, const Vec3& d, Vec2* p_raster) const;
   // Solid-angle density of camera ray directions over the whole film
-  // (1 / (A cos^3)); the lens position density is 1 / lens_area.
+  // (1 / (A cos^3) for a perspective camera); the lens position density is
+  // 1 / lens_area. An orthographic camera's directions are a delta (with a
+  // thin lens, a direction and a lens point no longer determine each other
+  // as the bidirectional weights assume): infinity, which gives the
+  // strategies that connect to the camera (t = 1) weight 0.
   float pdf_dir(const Vec3& d) const;
   float lens_area() const { return lens_radius_ > 0.f ? kPi * lens_radius_ * lens_radius_ : 1.f; }
+  // A lens point that sees ref; none for an orthographic camera.
   std::optional<CameraSample> sample_wi(const Vec3& ref, Vec2 u_lens) const;
+  // A spherical image continues across its edges: a camera sample drawn
+  // just outside the film (the pixel filter reaches there) looks along the
+  // direction of a point inside. For a splat at p within `reach` of an
+  // edge, the raster points outside the film that look along the same
+  // direction, so that the pixels by the edge receive its filtered share as
+  // their camera samples do. Returns how many (at most 2) were written.
+  int seam_images(Vec2 p, Vec2 reach, Vec2 out[2]) const;
+  // Whether light subpaths can connect to the camera (t = 1) at all.
+  bool connectible() const { return projection_ != Projection::Orthographic; }
+  Projection projection() const { return projection_; }
 
   int width() const { return width_; }
   int height() const { return height_; }
@@ -59,6 +84,12 @@ class PerspectiveCamera {
 
  private:
   float cos_theta(const Vec3& d) const { return glm::dot(d, forward_); }
+  Vec3 perspective_direction(Vec2 screen) const;
+  Vec3 spherical_direction(Vec2 p_raster) const;  // camera space
+  bool spherical_raster(const Vec3& d_camera, Vec2* p_raster) const;
+
+  Projection projection_ = Projection::Perspective;
+  bool equal_area_ = true;
 
   Mat4 world_from_camera_{1.f}, camera_from_world_{1.f};
   Vec3 forward_{0, 0, 1};

@@ -75,7 +75,7 @@ class Bdpt {
   const Scene& scene_;
   const LightSampler& light_sampler_;  // next-event estimation's (s = 1) choice of light
   BdptSettings settings_;
-  PerspectiveCamera camera_;
+  Camera camera_;
   FootprintModel footprints_;  // enabled when the scene's textures filter
   MisPower mis_;
   SamplerSpec sampler_;

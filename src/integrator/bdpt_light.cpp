@@ -208,6 +208,9 @@ void Bdpt::splat_stage(BdptWave& w) const {
   for (uint32_t r = 0; r < c.rays.count; ++r) {
     if (c.rays.occluded(r)) continue;
     w.out->splats.push_back({c.p_raster[r], c.contrib[r]});
+    Vec2 images[2];
+    for (int k = camera_.seam_images(c.p_raster[r], scene_.filter.radius, images); k-- > 0;)
+      w.out->splats.push_back({images[k], c.contrib[r]});
     if (c.record) w.out->strategies.push_back({0, c.p_raster[r], c.tags[r].s, 1, c.contrib[r], c.tags[r].unweighted});
   }
   c.rays.count = 0;

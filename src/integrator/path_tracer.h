@@ -45,7 +45,7 @@ class PathTracer {
   const Scene& scene_;
   const LightSampler& light_sampler_;  // next-event estimation's choice of light
   PathTracerSettings settings_;
-  PerspectiveCamera camera_;
+  Camera camera_;
   FootprintModel footprints_;  // enabled when the scene's textures filter
   SamplerSpec sampler_;
 };

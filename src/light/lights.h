@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "math/distribution.h"
+#include "math/equal_area.h"
 #include "math/frame.h"
 #include "texture/texture.h"
 
@@ -128,10 +129,5 @@ std::optional<LightSample> sample_light_from(const LightPools& lights, const Sha
 float infinite_lights_pdf(const LightPools& lights, const TexturePools& tex, const LightSampler& sampler, const Vec3& w);
 // Solid-angle density of direction w for infinite light `index` alone (no pmf).
 float infinite_light_pdf(const LightPools& lights, const TexturePools& tex, uint32_t index, const Vec3& w);
-
-// The equal-area mapping between the unit square and the sphere used by
-// pbrt-v4 environment maps (Clarberg 2008).
-Vec3 equal_area_square_to_sphere(Vec2 p);
-Vec2 equal_area_sphere_to_square(const Vec3& d);
 
 }  // namespace lantern

@@ -27,15 +27,35 @@ std::string resolve_path(const std::string& base_dir, const std::string& file) {
 }
 
 void SceneBuilder::camera(const std::string& type, const ParamSet& ps, const Mat4& camera_from_world) {
-  if (type != "perspective")
-    ps.fail("camera type \"" + printable(type) + "\" is not supported; expected \"perspective\"");
   CameraDesc& c = scene_.camera;
+  if (type == "perspective") {
+    c.projection = Projection::Perspective;
+  } else if (type == "orthographic") {
+    c.projection = Projection::Orthographic;
+  } else if (type == "spherical") {
+    c.projection = Projection::Spherical;
+    std::string mapping = ps.get_string("mapping", "equalarea");
+    if (mapping != "equalarea" && mapping != "equirectangular")
+      ps.fail(*ps.find("mapping"), "spherical \"mapping\" \"" + printable(mapping) +
+                                       "\" is not known; expected \"equalarea\" or \"equirectangular\"");
+    c.equal_area = mapping == "equalarea";
+  } else if (type == "realistic") {
+    ps.fail("camera \"realistic\" (a lens system) is not supported; use \"perspective\" with \"lensradius\" and "
+            "\"focaldistance\" for depth of field");
+  } else {
+    ps.fail("camera type \"" + printable(type) + "\" is not supported; expected perspective, orthographic or spherical");
+  }
   c.world_from_camera = glm::inverse(camera_from_world);
-  c.fov_degrees = ps.get_float("fov", 90.f);
-  if (!(c.fov_degrees > 0.f && c.fov_degrees < 180.f)) ps.fail("\"fov\" must lie strictly between 0 and 180 degrees");
-  c.lens_radius = ps.get_float("lensradius", 0.f);
-  c.focal_distance = ps.get_float("focaldistance", 1e6f);
-  if (c.lens_radius < 0.f || !(c.focal_distance > 0.f)) ps.fail("\"lensradius\" must be >= 0 and \"focaldistance\" > 0");
+  if (c.projection == Projection::Perspective) {
+    c.fov_degrees = ps.get_float("fov", 90.f);
+    if (!(c.fov_degrees > 0.f && c.fov_degrees < 180.f)) ps.fail("\"fov\" must lie strictly between 0 and 180 degrees");
+  }
+  if (c.projection != Projection::Spherical) {
+    c.lens_radius = ps.get_float("lensradius", 0.f);
+    c.focal_distance = ps.get_float("focaldistance", 1e6f);
+    if (!(c.lens_radius >= 0.f) || !std::isfinite(c.lens_radius) || !(c.focal_distance > 0.f))
+      ps.fail("\"lensradius\" must be >= 0 and \"focaldistance\" > 0");
+  }
   std::vector<float> sw = ps.get_floats("screenwindow");
   if (!sw.empty()) {
     if (sw.size() != 4) ps.fail("\"screenwindow\" needs 4 values: xmin xmax ymin ymax");

@@ -21,7 +21,7 @@ void keep_shorter(Vec3* best, const Vec3& v) {
 
 }  // namespace
 
-FootprintModel::FootprintModel(const PerspectiveCamera& camera, int samples_per_pixel) : enabled_(true) {
+FootprintModel::FootprintModel(const Camera& camera, int samples_per_pixel) : enabled_(true) {
   origin_ = camera.position();
   forward_ = camera.forward();
   // The smallest differentials over a grid of film positions, from rays

@@ -16,7 +16,7 @@ namespace lantern {
 class FootprintModel {
  public:
   FootprintModel() = default;  // zero footprints: textures read unfiltered
-  FootprintModel(const PerspectiveCamera& camera, int samples_per_pixel);
+  FootprintModel(const Camera& camera, int samples_per_pixel);
 
   bool enabled() const { return enabled_; }
   // dp/dx and dp/dy at p on a surface with normal n (zero where the

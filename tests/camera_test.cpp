@@ -1,0 +1,170 @@
+// Orthographic and spherical cameras: images of known scenes against closed
+// forms (a constant environment gives a constant image; a square's
+// footprint under parallel projection), film positions that round-trip
+// through the importance functions light tracing uses, and path, bdpt and
+// lt agreeing with each camera that light subpaths can reach.
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "camera/camera.h"
+#include "expect_error.h"
+#include "math/rng.h"
+#include "stat_compare.h"
+
+namespace lantern {
+namespace {
+
+double image_mean(const Image& im, int channel) {
+  double s = 0.0;
+  for (int y = 0; y < im.height; ++y)
+    for (int x = 0; x < im.width; ++x) s += im.at(x, y)[channel];
+  return s / (double(im.width) * im.height);
+}
+
+TEST(Camera, SphericalCameraSeesAConstantEnvironmentAsAConstantImage) {
+  for (const char* mapping : {"equalarea", "equirectangular"}) {
+    auto scene = load_scene_from_string(std::string(R"(
+LookAt 1 2 3  0 0 0  0 1 0
+Camera "spherical" "string mapping" ")") + mapping + R"("
+Film "rgb" "integer xresolution" [ 32 ] "integer yresolution" [ 16 ]
+WorldBegin
+LightSource "infinite" "rgb L" [ 0.3 0.6 0.9 ]
+)",
+                                        "env.pbrt");
+    RenderOptions o;
+    o.spp = 2;
+    Image im = render(*scene, o).image;
+    for (int y = 0; y < im.height; ++y)
+      for (int x = 0; x < im.width; ++x) ASSERT_NEAR(im.at(x, y)[1], 0.6f, 1e-5f) << mapping << " " << x << "," << y;
+  }
+}
+
+// Parallel projection of a unit square emitter onto a 4 x 2 screen window:
+// it covers an eighth of the film, wherever it sits in depth.
+TEST(Camera, OrthographicFootprintOfASquareIsItsArea) {
+  for (const char* depth : {"2", "50"}) {
+    auto scene = load_scene_from_string(std::string(R"(
+LookAt 0 0 -10  0 0 0  0 1 0
+Camera "orthographic" "float screenwindow" [ -2 2 -1 1 ]
+Film "rgb" "integer xresolution" [ 64 ] "integer yresolution" [ 32 ]
+Sampler "stratified" "integer xsamples" [ 4 ] "integer ysamples" [ 4 ]
+WorldBegin
+AttributeBegin
+  AreaLightSource "diffuse" "rgb L" [ 2 2 2 ]
+  Translate 0.3 -0.2 )") + depth + R"(
+  Shape "trianglemesh" "point3 P" [ -0.5 -0.5 0  0.5 -0.5 0  0.5 0.5 0  -0.5 0.5 0 ] "integer indices" [ 0 2 1 0 3 2 ]
+AttributeEnd
+)",
+                                        "ortho.pbrt");
+    RenderOptions o;
+    o.spp = 16;
+    EXPECT_NEAR(image_mean(render(*scene, o).image, 0), 2.0 / 8.0, 2e-3) << "depth " << depth;
+  }
+}
+
+// The film position of a camera ray's direction, as light tracing finds it
+// from the importance function, is the position the ray was made for.
+TEST(Camera, ImportanceFindsTheFilmPositionOfEachRay) {
+  for (bool equal_area : {true, false}) {
+    CameraDesc d;
+    d.projection = Projection::Spherical;
+    d.equal_area = equal_area;
+    d.world_from_camera = glm::rotate(glm::translate(Mat4(1.f), Vec3(1, 2, 3)), 0.6f, glm::normalize(Vec3(1, 1, 0)));
+    Camera cam(d, 64, 32);
+    RandomStream rng = RandomStream::make(1, 0, 0);
+    double integral = 0.0;
+    for (int i = 0; i < 2000; ++i) {
+      Vec2 p(rng.get1d() * 64.f, rng.get1d() * 32.f);
+      CameraRay r = cam.generate_ray(p, Vec2(0.5f));
+      Vec2 back;
+      float We = cam.We(r.o, r.d, &back);
+      ASSERT_GT(We, 0.f);
+      // Equal-area positions are exact up to rounding; across the
+      // equirectangular seam x wraps.
+      float dx = std::fabs(back.x - p.x);
+      dx = std::fmin(dx, 64.f - dx);
+      EXPECT_LT(dx, 2e-2f) << equal_area;
+      EXPECT_NEAR(back.y, p.y, 2e-2f) << equal_area;
+      EXPECT_FLOAT_EQ(We, cam.pdf_dir(r.d));
+      integral += 1.0;  // We / pdf_dir over directions drawn by pdf_dir
+    }
+    EXPECT_EQ(integral, 2000.0);
+    // The importance integrates to 1 over the sphere (a point sensor).
+    double sum = 0.0;
+    const int n = 200000;
+    for (int i = 0; i < n; ++i) {
+      float z = 1.f - 2.f * rng.get1d(), phi = 2.f * kPi * rng.get1d(), s = safe_sqrt(1.f - z * z);
+      Vec3 w(s * std::cos(phi), s * std::sin(phi), z);
+      Vec2 back;
+      sum += cam.We(Vec3(1, 2, 3), w, &back) * 4.0 * kPi;
+    }
+    EXPECT_NEAR(sum / n, 1.0, equal_area ? 1e-6 : 2e-2) << equal_area;
+  }
+}
+
+const char* kRoom = R"(
+Film "rgb" "integer xresolution" [ 32 ] "integer yresolution" [ 16 ]
+WorldBegin
+AttributeBegin
+  AreaLightSource "diffuse" "rgb L" [ 8 8 8 ]
+  Translate 0.5 1.9 0.2 Rotate 90 1 0 0
+  Shape "disk" "float radius" [ 0.3 ]
+AttributeEnd
+Material "diffuse" "rgb reflectance" [ 0.6 0.5 0.4 ]
+Shape "trianglemesh" "point3 P" [ -2 0 -2  2 0 -2  2 0 2  -2 0 2  -2 2 -2  2 2 -2  2 2 2  -2 2 2 ]
+  "integer indices" [ 0 1 2 0 2 3  4 6 5 4 7 6  0 4 5 0 5 1  1 5 6 1 6 2  2 6 7 2 7 3  3 7 4 3 4 0 ]
+AttributeBegin
+  Material "diffuse" "rgb reflectance" [ 0.2 0.6 0.3 ]
+  Translate -0.6 0.5 0.4
+  Shape "sphere" "float radius" [ 0.5 ]
+AttributeEnd
+)";
+
+// Inside a closed room lit by a small disk: the spherical camera sees every
+// wall. Light tracing splats through the spherical importance, and across
+// the image's seams (the regions include every edge).
+TEST(Camera, IntegratorsAgreeWithASphericalCamera) {
+  for (auto [mapping, w, h] : {std::tuple{"equirectangular", 32, 16}, std::tuple{"equalarea", 24, 24}}) {
+    auto scene = load_scene_from_string(std::string("LookAt 0.2 1 -0.5  0.2 1 1  0 1 0\nCamera \"spherical\" \"string "
+                                                    "mapping\" \"") +
+                                            mapping + "\"\n" + kRoom,
+                                        "spherical.pbrt");
+    const int hw = w / 2, hh = h / 2;
+    const std::vector<Region> regions = {{0, 0, w, h}, {0, 0, hw, hh}, {hw, 0, hw, hh}, {0, hh, hw, hh}, {hw, hh, hw, hh},
+                                         {0, 0, w, 2}, {0, 0, 2, h}};
+    auto path = render_stats(*scene, "path", w, h, 32, 16, regions);
+    auto bdpt = render_stats(*scene, "bdpt", w, h, 8, 16, regions);
+    auto lt = render_stats(*scene, "lt", w, h, 16, 16, regions);
+    EXPECT_LT(max_z(bdpt, path), 5.0) << mapping;
+    EXPECT_LT(max_z(lt, path), 5.0) << mapping;
+  }
+}
+
+// Parallel rays (with a thin lens too): no light path connects to the
+// camera, so bdpt weights its remaining strategies without t = 1, and
+// light tracing is refused.
+TEST(Camera, BdptAgreesWithPathWithAnOrthographicCamera) {
+  for (const char* lens : {"", "\"float lensradius\" [ 0.05 ] \"float focaldistance\" [ 1.5 ]"}) {
+    auto scene = load_scene_from_string(std::string("LookAt 0.2 1 -1.9  0.2 1 1  0 1 0\nCamera \"orthographic\" ") + lens +
+                                            " \"float screenwindow\" [ -1.8 1.8 -0.9 0.9 ]\n" + kRoom,
+                                        "ortho-room.pbrt");
+    const std::vector<Region> regions = {{0, 0, 32, 16}, {0, 0, 16, 8}, {16, 0, 16, 8}, {0, 8, 16, 8}, {16, 8, 16, 8}};
+    auto path = render_stats(*scene, "path", 32, 16, 32, 16, regions);
+    auto bdpt = render_stats(*scene, "bdpt", 32, 16, 8, 16, regions);
+    EXPECT_LT(max_z(bdpt, path), 5.0) << lens;
+    RenderOptions o;
+    o.integrator = "lt";
+    EXPECT_THROW(render(*scene, o), std::invalid_argument);
+  }
+}
+
+TEST(Camera, UnsupportedCamerasAreClearErrors) {
+  expect_load_error("Camera \"realistic\"\n", "r.pbrt", {"r.pbrt:1", "realistic", "lensradius"});
+  expect_load_error("Camera \"spherical\" \"string mapping\" \"cubemap\"\n", "s.pbrt",
+                    {"s.pbrt:1", "cubemap", "equirectangular"});
+  expect_load_error("Camera \"fisheye\"\n", "f.pbrt", {"f.pbrt:1", "fisheye", "orthographic", "spherical"});
+}
+
+}  // namespace
+}  // namespace lantern
