@@ -79,6 +79,10 @@ void SceneBuilder::film(const std::string& type, const ParamSet& ps) {
 void SceneBuilder::sampler(const std::string& type, const ParamSet& ps) {
   SamplerSettings& s = scene_.settings.sampler;
   s = SamplerSettings{};
+  // pbrt-v3's names, as pbrt-v4's upgrade maps them.
+  if (type == "lowdiscrepancy" || type == "02sequence") return sampler("paddedsobol", ps);
+  if (type == "maxmindist") return sampler("pmj02bn", ps);
+  if (type == "random") return sampler("independent", ps);
   if (type == "pmj02bn") {
     // Its point tables come from an optimisation Lantern does not run; the
     // pattern changes noise, not the expected image.
@@ -362,7 +366,7 @@ void SceneBuilder::add_area_lights(uint32_t geometry, uint32_t primitives, const
     gs.area_light->fail("area lights inside ObjectBegin/ObjectEnd are not supported (nor are they in pbrt-v4); "
                         "define the emitter outside the object");
   const ParamSet& ps = *gs.area_light;
-  RGB L = ps.get_rgb("L", ColorUsage::Illuminant).value_or(RGB(1.f)) * ps.get_float("scale", 1.f);
+  RGB L = ps.get_rgb("L", ColorUsage::Illuminant).value_or(RGB(1.f)) * light_scale(ps);
   bool two_sided = ps.get_bool("twosided", false);
   int32_t image = -1;
   if (std::string file = ps.get_string("filename", ""); !file.empty()) {

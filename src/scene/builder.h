@@ -23,6 +23,9 @@ struct GraphicsState {
   std::string area_light_dir;  // folder of the file that gave the AreaLightSource (for its "filename")
 };
 
+// A light's "scale": a float (pbrt-v4) or a colour (pbrt-v3).
+RGB light_scale(const pbrt::ParamSet& ps);
+
 class SceneBuilder {
  public:
   SceneBuilder(Scene& scene, WarningSink warn, std::function<void(const std::string&)> progress = nullptr)
@@ -84,6 +87,9 @@ class SceneBuilder {
   int32_t bump_map(const pbrt::ParamSet& ps, const std::string& base_dir);
   MaterialHandle concrete_material(const std::string& type, const pbrt::ParamSet& ps);
   MaterialHandle mix_material(const pbrt::ParamSet& ps, const std::map<std::string, MaterialHandle>& named);
+  // pbrt-v3's materials, mapped as pbrt-v4's upgrade maps them (builder_v3.cpp).
+  MaterialHandle mix_material_v3(const pbrt::ParamSet& ps, const std::map<std::string, MaterialHandle>& named);
+  std::optional<MaterialHandle> v3_material(const std::string& type, const pbrt::ParamSet& ps);
   void coat_layer(const pbrt::ParamSet& ps, CoatLayer* c);
   MaterialHandle coated_conductor(const pbrt::ParamSet& ps);
   MaterialHandle default_material();

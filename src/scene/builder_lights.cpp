@@ -8,8 +8,14 @@ namespace lantern {
 using pbrt::ColorUsage;
 using pbrt::ParamSet;
 
+RGB light_scale(const ParamSet& ps) {
+  const pbrt::Param* p = ps.find("scale");
+  if (p && p->type != "float") return ps.get_rgb("scale", ColorUsage::Unbounded).value_or(RGB(1.f));
+  return RGB(ps.get_float("scale", 1.f));
+}
+
 void SceneBuilder::light(const std::string& type, const ParamSet& ps, const Mat4& ctm, const std::string& base_dir) {
-  float scale = ps.get_float("scale", 1.f);
+  const RGB scale = light_scale(ps);
   LightPools& L = scene_.lights;
   if (type == "point") {
     RGB I = ps.get_rgb("I", ColorUsage::Illuminant).value_or(RGB(1.f)) * scale;
@@ -37,7 +43,7 @@ void SceneBuilder::light(const std::string& type, const ParamSet& ps, const Mat4
     e.light_from_world = glm::inverse(e.world_from_light);
     std::string file = ps.get_string("filename", ps.get_string("mapname", ""));
     auto Lc = ps.get_rgb("L", ColorUsage::Illuminant);
-    if (!file.empty() && Lc) ps.fail("give either \"L\" or \"filename\", not both");
+    // Both: a pbrt-v3 file, where L scales the map (pbrt-v4 refuses it).
     e.scale = Lc.value_or(RGB(1.f)) * scale;
     if (!file.empty()) {
       TextureImage img = load_texture_image((std::filesystem::path(base_dir) / file).string(), ColorEncoding{ColorEncoding::SRGB});

@@ -47,7 +47,7 @@ TextureRef SceneBuilder::eta_param(const ParamSet& ps, float def) {
 
 int32_t SceneBuilder::bump_map(const ParamSet& ps, const std::string& base_dir) {
   BumpParams b;
-  b.displacement = float_texture(ps, "displacement", 0.f);
+  b.displacement = float_texture(ps, ps.has("bumpmap") ? "bumpmap" : "displacement", 0.f);  // pbrt-v3: "bumpmap"
   std::string file = ps.get_string("normalmap", "");
   if (!file.empty()) {
     // pbrt-v4 reads normal maps linearly, whatever the format, bilinearly
@@ -89,6 +89,7 @@ MaterialHandle SceneBuilder::material(const std::string& type, const ParamSet& p
 
 MaterialHandle SceneBuilder::mix_material(const ParamSet& ps, const std::map<std::string, MaterialHandle>& named) {
   MaterialPools& m = scene_.materials;
+  if (ps.has("namedmaterial1") || ps.has("namedmaterial2")) return mix_material_v3(ps, named);
   const pbrt::Param* p = ps.find("materials");
   if (!p || p->type != "string" || p->strings.size() != 2)
     ps.fail("mix needs \"string materials\" with the names of two materials defined with MakeNamedMaterial");
@@ -158,6 +159,7 @@ MaterialHandle SceneBuilder::concrete_material(const std::string& type, const Pa
     return MaterialHandle::make(MaterialKind::CoatedDiffuse, uint32_t(m.coated_diffuse.size() - 1));
   }
   if (type == "coatedconductor") return coated_conductor(ps);
+  if (auto v3 = v3_material(type, ps)) return *v3;
   if (type == "diffusetransmission") {
     DiffuseTransmissionMaterial d;
     d.reflectance = rgb_texture(ps, "reflectance", RGB(0.25f));

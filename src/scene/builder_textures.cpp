@@ -217,8 +217,32 @@ void SceneBuilder::texture(const std::string& name, const std::string& value_typ
     result = add_texture_node(n);
   } else if (cls == "scale") {
     n.kind = TextureKind::Scale;
-    n.tex1 = child("tex", 1.f);
-    n.tex2 = float_texture(ps, "scale", 1.f);
+    if (ps.has("tex1") || ps.has("tex2")) {
+      // pbrt-v3's product of tex1 and tex2: one of them becomes the float
+      // scale (a number, a float texture or a grey colour), as pbrt-v4's
+      // upgrade does.
+      auto scalar = [&](const char* p) {
+        const pbrt::Param* q = ps.find(p);
+        if (!q || q->type == "float") return true;
+        if (q->type == "texture") return is_float || float_textures_.count(ps.get_texture(p).value_or("")) > 0;
+        std::optional<RGB> c = ps.get_rgb(p, ColorUsage::Unbounded);
+        return c && c->x == c->y && c->y == c->z;
+      };
+      const bool swap = !scalar("tex2") && scalar("tex1");
+      if (!scalar(swap ? "tex1" : "tex2"))
+        ps.fail("pbrt-v3 \"scale\" of two colour textures: one of \"tex1\" and \"tex2\" must be a float or a grey "
+                "constant (as pbrt-v4's upgrade requires)");
+      const char* tex = swap ? "tex2" : "tex1";
+      const char* by = swap ? "tex1" : "tex2";
+      n.tex1 = child(tex, 1.f);
+      const pbrt::Param* q = ps.find(by);
+      n.tex2 = q && q->type != "float" && q->type != "texture"
+                   ? TextureRef::constant(ps.get_rgb(by, ColorUsage::Unbounded)->x)
+                   : float_texture(ps, by, 1.f);
+    } else {
+      n.tex1 = child("tex", 1.f);
+      n.tex2 = float_texture(ps, "scale", 1.f);
+    }
     result = n.tex1.is_constant() && n.tex2.is_constant() ? TextureRef::constant(n.tex1.value * n.tex2.value.x)
                                                           : add_texture_node(n);
   } else if (cls == "mix" || cls == "directionmix") {
