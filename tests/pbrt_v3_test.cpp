@@ -108,6 +108,25 @@ TEST(PbrtV3, EnvironmentMapScaledByL) {
   EXPECT_NEAR(ba / bb, 2.0, 1e-4);
 }
 
+// pbrt-v3's imagemap flags: "bool gamma" for the encoding, "bool
+// trilinear" for the filter.
+TEST(PbrtV3, ImagemapFlags) {
+  auto dir = std::filesystem::temp_directory_path() / "lantern-v3-test";
+  std::filesystem::create_directories(dir);
+  std::vector<float> rgb;
+  for (int i = 0; i < 64 * 64; ++i) rgb.insert(rgb.end(), {float(i % 7) / 7.f, float(i % 5) / 5.f, 0.5f});
+  const std::string file = (dir / "tex.exr").string();
+  write_image(file, Image{64, 64, rgb}, {});
+  auto with = [&](const std::string& flags) {
+    return scene("Texture \"t\" \"color\" \"imagemap\" \"string filename\" \"" + file + "\" " + flags +
+                 "\nMakeNamedMaterial \"m\" \"string type\" \"matte\" \"texture Kd\" \"t\"");
+  };
+  expect_identical_renders(*with("\"bool gamma\" true \"bool trilinear\" true"),
+                           *with("\"string encoding\" \"sRGB\" \"string filter\" \"trilinear\""), {"path"});
+  expect_identical_renders(*with("\"bool gamma\" false \"bool trilinear\" false"),
+                           *with("\"string encoding\" \"linear\" \"string filter\" \"bilinear\""), {"path"});
+}
+
 TEST(PbrtV3, UnsupportedMaterialsAreClearErrors) {
   expect_load_error("WorldBegin\nMaterial \"kdsubsurface\"\n", "k.pbrt", {"k.pbrt:2", "subsurface scattering"});
   expect_load_error("WorldBegin\nMaterial \"fourier\" \"string bsdffile\" \"x.bsdf\"\n", "f.pbrt", {"f.pbrt:2", "fourier"});

@@ -143,7 +143,10 @@ static ColorEncoding parse_encoding(const ParamSet& ps, const std::string& file)
 }
 
 static void parse_image_lookup(const ParamSet& ps, TextureNode* n) {
-  std::string filter = ps.get_string("filter", "bilinear");
+  // pbrt-v3: "bool trilinear" instead of a filter name.
+  const char* v3 = ps.has("trilinear") && !ps.has("filter") ? (ps.get_bool("trilinear", false) ? "trilinear" : "bilinear")
+                                                             : "bilinear";
+  std::string filter = ps.get_string("filter", v3);
   if (filter == "point") n->filter = ImageFilter::Point;
   else if (filter == "bilinear") n->filter = ImageFilter::Bilinear;
   else if (filter == "trilinear") n->filter = ImageFilter::Trilinear;
