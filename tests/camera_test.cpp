@@ -10,6 +10,7 @@
 #include "camera/camera.h"
 #include "expect_error.h"
 #include "math/rng.h"
+#include "sanitizer.h"
 #include "stat_compare.h"
 
 namespace lantern {
@@ -126,6 +127,8 @@ AttributeEnd
 // the image's seams (the regions include every edge).
 TEST(Camera, IntegratorsAgreeWithASphericalCamera) {
   for (auto [mapping, w, h] : {std::tuple{"equirectangular", 32, 16}, std::tuple{"equalarea", 24, 24}}) {
+    // Under the sanitizers one mapping covers the code.
+    if (LANTERN_ASAN && std::string(mapping) == "equalarea") continue;
     auto scene = load_scene_from_string(std::string("LookAt 0.2 1 -0.5  0.2 1 1  0 1 0\nCamera \"spherical\" \"string "
                                                     "mapping\" \"") +
                                             mapping + "\"\n" + kRoom,
@@ -146,6 +149,7 @@ TEST(Camera, IntegratorsAgreeWithASphericalCamera) {
 // light tracing is refused.
 TEST(Camera, BdptAgreesWithPathWithAnOrthographicCamera) {
   for (const char* lens : {"", "\"float lensradius\" [ 0.05 ] \"float focaldistance\" [ 1.5 ]"}) {
+    if (LANTERN_ASAN && *lens == '\0') continue;  // the thin lens covers the code under the sanitizers
     auto scene = load_scene_from_string(std::string("LookAt 0.2 1 -1.9  0.2 1 1  0 1 0\nCamera \"orthographic\" ") + lens +
                                             " \"float screenwindow\" [ -1.8 1.8 -0.9 0.9 ]\n" + kRoom,
                                         "ortho-room.pbrt");
