@@ -98,7 +98,8 @@ TEST(Bump, FlatNormalMapChangesNothing) {
 TEST(Bump, NormalMapTangentSpace) {
   std::string map = normal_map_file("plus-u.exr", Vec3(1.f, 0.f, 1.f));
   auto scene = load_scene_from_string(
-      scene_text(R"(Material "diffuse" "string normalmap" ")" + map + "\"", ""), "tangent.pbrt");
+      "Option \"string renderingcoordinatesystem\" \"world\"\n" + scene_text(R"(Material "diffuse" "string normalmap" ")" + map + "\"", ""),
+      "tangent.pbrt");  // world space: the ray below is given in world coordinates
   const Scene& s = *scene;
   RayCounters counters;
   RayStream stream(s.accel->handle(), RayBackend::Single, &counters);

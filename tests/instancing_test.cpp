@@ -52,7 +52,8 @@ const std::vector<Placement> kPlacements = {
 
 std::string scene_text(bool instanced) {
   std::ostringstream t;
-  t << "LookAt 0 3 5  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 45 ]\nWorldBegin\n"
+  // World space: the test traces rays given in world coordinates.
+  t << "Option \"string renderingcoordinatesystem\" \"world\"\nLookAt 0 3 5  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 45 ]\nWorldBegin\n"
     << "LightSource \"infinite\" \"rgb L\" [ 0.2 0.22 0.25 ]\n"
     << "AttributeBegin\n AreaLightSource \"diffuse\" \"rgb L\" [ 12 11 9 ]\n Translate 1 3 1\n"
     << " Shape \"sphere\" \"float radius\" [ 0.3 ]\nAttributeEnd\n"

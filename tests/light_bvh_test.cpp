@@ -24,7 +24,8 @@ namespace {
 // out of view: the light tracer would show it as a dot, which camera rays
 // cannot find.
 std::string many_lights_scene(int resolution, bool at_infinity = true) {
-  std::string s = "LookAt 0 5 -9  0 0.5 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 50 ]\n";
+  // World space: the tests place reference points in world coordinates.
+  std::string s = "Option \"string renderingcoordinatesystem\" \"world\"\nLookAt 0 5 -9  0 0.5 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 50 ]\n";
   s += "Film \"rgb\" \"integer xresolution\" [ " + std::to_string(resolution) + " ] \"integer yresolution\" [ " +
        std::to_string(resolution) + " ]\nWorldBegin\n";
   if (at_infinity) {

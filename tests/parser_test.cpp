@@ -75,7 +75,8 @@ WorldEnd
 
 TEST(Parser, EveryDirectiveLandsInItsPool) {
   std::vector<std::string> warnings;
-  auto s = load(kEverything, &warnings);
+  // In world space, so that positions read back as written.
+  auto s = load("Option \"string renderingcoordinatesystem\" \"world\"\n" + std::string(kEverything), &warnings);
   EXPECT_EQ(s->settings.width, 64);
   EXPECT_EQ(s->settings.height, 32);
   EXPECT_EQ(s->settings.spp, 8);

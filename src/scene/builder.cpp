@@ -26,7 +26,7 @@ std::string resolve_path(const std::string& base_dir, const std::string& file) {
   return p.is_absolute() || base_dir.empty() ? file : (std::filesystem::path(base_dir) / p).string();
 }
 
-void SceneBuilder::camera(const std::string& type, const ParamSet& ps, const Mat4& camera_from_world) {
+void SceneBuilder::camera(const std::string& type, const ParamSet& ps, const glm::dmat4& camera_from_world) {
   CameraDesc& c = scene_.camera;
   if (type == "perspective") {
     c.projection = Projection::Perspective;
@@ -45,7 +45,8 @@ void SceneBuilder::camera(const std::string& type, const ParamSet& ps, const Mat
   } else {
     ps.fail("camera type \"" + printable(type) + "\" is not supported; expected perspective, orthographic or spherical");
   }
-  c.world_from_camera = glm::inverse(camera_from_world);
+  world_from_camera_ = glm::inverse(camera_from_world);
+  c.world_from_camera = Mat4(world_from_camera_);
   if (c.projection == Projection::Perspective) {
     c.fov_degrees = ps.get_float("fov", 90.f);
     if (!(c.fov_degrees > 0.f && c.fov_degrees < 180.f)) ps.fail("\"fov\" must lie strictly between 0 and 180 degrees");
@@ -62,6 +63,10 @@ void SceneBuilder::camera(const std::string& type, const ParamSet& ps, const Mat
     c.has_screen_window = true;
     std::copy(sw.begin(), sw.end(), c.screen_window);
   }
+}
+
+void SceneBuilder::begin_world(const glm::dmat4& render_from_world) {
+  scene_.camera.world_from_camera = Mat4(render_from_world * world_from_camera_);
 }
 
 void SceneBuilder::film(const std::string& type, const ParamSet& ps) {

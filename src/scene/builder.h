@@ -16,7 +16,13 @@ std::string resolve_path(const std::string& base_dir, const std::string& file);
 
 // The part of pbrt's graphics state that shapes and lights read.
 struct GraphicsState {
-  Mat4 ctm{1.f};
+  // pbrt's current transformation matrix, world from object, composed in
+  // double precision so that a scene far from the origin keeps its detail.
+  glm::dmat4 world_from_object{1.0};
+  // Where shapes are stored: the render space (docs/scene-format.md, "Far
+  // from the origin"), from the object; set by the parser before each use.
+  glm::dmat4 render_from_object{1.0};
+  Mat4 ctm{1.f};  // render_from_object in float
   bool reverse_orientation = false;
   std::optional<MaterialHandle> material;  // none yet: pbrt's default diffuse
   std::optional<pbrt::ParamSet> area_light;
@@ -37,7 +43,9 @@ class SceneBuilder {
     if (warn_) warn_(line);
   }
 
-  void camera(const std::string& type, const pbrt::ParamSet& ps, const Mat4& camera_from_world);
+  void camera(const std::string& type, const pbrt::ParamSet& ps, const glm::dmat4& camera_from_world);
+  // At WorldBegin: everything from here on is stored in render space.
+  void begin_world(const glm::dmat4& render_from_world);
   void film(const std::string& type, const pbrt::ParamSet& ps);
   void sampler(const std::string& type, const pbrt::ParamSet& ps);
   void integrator(const std::string& type, const pbrt::ParamSet& ps);
@@ -134,6 +142,7 @@ class SceneBuilder {
   static constexpr int64_t kMaxResidentTexels = 256 * 256, kResidentTexelBudget = int64_t(4) << 20;  // 64 MB of float RGBA
   int64_t resident_texels_ = 0;
   std::optional<MaterialHandle> default_material_;
+  glm::dmat4 world_from_camera_{1.0};
 };
 
 }  // namespace lantern

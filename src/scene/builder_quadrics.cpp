@@ -65,7 +65,7 @@ void SceneBuilder::add_quadric(const std::string& type, const ParamSet& ps, cons
     if (!(q.inner_radius >= 0.f) || !(q.inner_radius < r))
       ps.fail(*ps.find("innerradius"), "\"innerradius\" must be at least 0 and less than \"radius\"");
   }
-  glm::dmat4 Md(M);
+  const glm::dmat4& Md = gs.render_from_object;
   if (!(std::fabs(glm::determinant(glm::dmat3(Md))) > 0.0)) ps.fail("the shape's transform is singular");
   if (!finish_quadric(q, Md)) {
     warn(ps.where, "the " + type + " has no area (zmin = zmax or phimax = 0) and was skipped");

@@ -169,28 +169,28 @@ class Parser {
     auto options_only = [&] {
       if (in_world_) fail(t, std::string(d) + " is only allowed before WorldBegin");
     };
-    Mat4& ctm = gs_.ctm;
+    glm::dmat4& ctm = gs_.world_from_object;
     if (d == "Translate") {
       auto v = numbers(3, "Translate");
-      ctm = glm::translate(ctm, Vec3(float(v[0]), float(v[1]), float(v[2])));
+      ctm = glm::translate(ctm, glm::dvec3(v[0], v[1], v[2]));
     } else if (d == "Scale") {
       auto v = numbers(3, "Scale");
-      ctm = glm::scale(ctm, Vec3(float(v[0]), float(v[1]), float(v[2])));
+      ctm = glm::scale(ctm, glm::dvec3(v[0], v[1], v[2]));
     } else if (d == "Rotate") {
       auto v = numbers(4, "Rotate");
-      Vec3 axis{float(v[1]), float(v[2]), float(v[3])};
-      if (glm::length(axis) == 0.f) fail(t, "Rotate: the axis must not be zero");
-      ctm = glm::rotate(ctm, glm::radians(float(v[0])), glm::normalize(axis));
+      glm::dvec3 axis{v[1], v[2], v[3]};
+      if (glm::length(axis) == 0.0) fail(t, "Rotate: the axis must not be zero");
+      ctm = glm::rotate(ctm, glm::radians(v[0]), glm::normalize(axis));
     } else if (d == "LookAt") {
       auto v = numbers(9, "LookAt");
-      ctm = ctm * look_at(t, Vec3(v[0], v[1], v[2]), Vec3(v[3], v[4], v[5]), Vec3(v[6], v[7], v[8]));
+      ctm = ctm * look_at(t, glm::dvec3(v[0], v[1], v[2]), glm::dvec3(v[3], v[4], v[5]), glm::dvec3(v[6], v[7], v[8]));
     } else if (d == "Transform" || d == "ConcatTransform") {
       auto v = numbers(16, std::string(d).c_str());
-      Mat4 m;
-      for (int i = 0; i < 16; ++i) m[i / 4][i % 4] = float(v[size_t(i)]);
+      glm::dmat4 m;
+      for (int i = 0; i < 16; ++i) m[i / 4][i % 4] = v[size_t(i)];
       ctm = d == "Transform" ? m : ctm * m;
     } else if (d == "Identity") {
-      ctm = Mat4(1.f);
+      ctm = glm::dmat4(1.0);
     } else if (d == "CoordinateSystem") {
       named_cs_[expect_string("a coordinate system name")] = ctm;
     } else if (d == "CoordSysTransform") {
@@ -210,7 +210,7 @@ class Parser {
       if (!object_depth_.empty() && object_depth_.back() == stack_.size())
         fail(t, std::string(d) + " would close an ObjectBegin; close it with ObjectEnd");
       if (transform_only_.back()) {
-        gs_.ctm = stack_.back().ctm;
+        gs_.world_from_object = stack_.back().world_from_object;
       } else {
         gs_ = stack_.back();
       }
@@ -220,8 +220,10 @@ class Parser {
     } else if (d == "WorldBegin") {
       options_only();
       in_world_ = true;
-      ctm = Mat4(1.f);
+      ctm = glm::dmat4(1.0);
       named_cs_["world"] = ctm;
+      render_from_world_ = render_from_world();
+      b_.begin_world(render_from_world_);
     } else if (d == "WorldEnd") {
       world_only();
     } else if (d == "Camera") {
@@ -229,6 +231,7 @@ class Parser {
       std::string type = expect_string("a camera type");
       ParamSet ps = params(t, "Camera \"" + printable(type) + "\"");
       b_.camera(type, ps, ctm);
+      camera_from_world_ = ctm;
       named_cs_["camera"] = glm::inverse(ctm);
       ps.warn_unused();
     } else if (d == "Film" || d == "Sampler" || d == "Integrator" || d == "PixelFilter" || d == "Accelerator" ||
@@ -236,8 +239,7 @@ class Parser {
       options_only();
       std::string type = expect_string("a type name");
       if (d == "Option") {
-        peek().kind == TokenKind::OpenBracket ? (void)values_skip() : (void)next();
-        b_.warn(loc(t), "Option \"" + printable(type) + "\" is not supported and was ignored");
+        option(t, type);
         return;
       }
       ParamSet ps = params(t, std::string(d) + " \"" + printable(type) + "\"");
@@ -276,13 +278,13 @@ class Parser {
       std::string vtype = expect_string("a texture value type");
       std::string cls = expect_string("a texture class");
       ParamSet ps = params(t, "Texture \"" + printable(name) + "\"");
-      b_.texture(name, vtype, cls, ps, ctm, base_dir_);
+      b_.texture(name, vtype, cls, ps, render(ctm), base_dir_);
       ps.warn_unused();
     } else if (d == "LightSource") {
       world_only();
       std::string type = expect_string("a light type");
       ParamSet ps = params(t, "LightSource \"" + printable(type) + "\"");
-      b_.light(type, ps, ctm, base_dir_);
+      b_.light(type, ps, render(ctm), base_dir_);
       ps.warn_unused();
     } else if (d == "AreaLightSource") {
       world_only();
@@ -295,6 +297,8 @@ class Parser {
       world_only();
       std::string type = expect_string("a shape type");
       ParamSet ps = params(t, "Shape \"" + printable(type) + "\"");
+      gs_.render_from_object = render_from_world_ * ctm;
+      gs_.ctm = Mat4(gs_.render_from_object);
       b_.shape(type, ps, gs_, base_dir_);
       ps.warn_unused();
     } else if (d == "MakeNamedMedium" || d == "MediumInterface" || d == "Attribute") {
@@ -327,7 +331,9 @@ class Parser {
     } else if (d == "ObjectInstance") {
       world_only();
       std::string name = expect_string("an object name");
-      b_.object_instance(name, ctm, loc(t));
+      // Objects are stored in render space as defined; an instance places
+      // its render-space copy: render_from_world M world_from_render.
+      b_.object_instance(name, Mat4(render_from_world_ * ctm * glm::inverse(render_from_world_)), loc(t));
     } else if (d == "ActiveTransform" || d == "TransformTimes") {
       if (d == "ActiveTransform") next();
       else numbers(2, "TransformTimes");
@@ -344,16 +350,47 @@ class Parser {
   }
 
   // pbrt's LookAt: the camera-from-world matrix of a left-handed camera.
-  Mat4 look_at(const Token& t, Vec3 pos, Vec3 look, Vec3 up) {
-    Vec3 dir = look - pos;
-    if (glm::length(dir) == 0.f) fail(t, "LookAt: eye and look-at point coincide");
+  glm::dmat4 look_at(const Token& t, glm::dvec3 pos, glm::dvec3 look, glm::dvec3 up) {
+    glm::dvec3 dir = look - pos;
+    if (glm::length(dir) == 0.0) fail(t, "LookAt: eye and look-at point coincide");
     dir = glm::normalize(dir);
-    Vec3 right = glm::cross(glm::normalize(up), dir);
-    if (glm::length(right) == 0.f) fail(t, "LookAt: the up vector is parallel to the viewing direction");
+    glm::dvec3 right = glm::cross(glm::normalize(up), dir);
+    if (glm::length(right) == 0.0) fail(t, "LookAt: the up vector is parallel to the viewing direction");
     right = glm::normalize(right);
-    Vec3 new_up = glm::cross(dir, right);
-    Mat4 world_from_camera(Vec4(right, 0.f), Vec4(new_up, 0.f), Vec4(dir, 0.f), Vec4(pos, 1.f));
+    glm::dvec3 new_up = glm::cross(dir, right);
+    glm::dmat4 world_from_camera(glm::dvec4(right, 0.0), glm::dvec4(new_up, 0.0), glm::dvec4(dir, 0.0),
+                                 glm::dvec4(pos, 1.0));
     return glm::inverse(world_from_camera);
+  }
+
+  // The space shapes, lights and the camera are stored in, as pbrt-v4's
+  // Option "renderingcoordinatesystem": "cameraworld" (the default: the
+  // world's axes, the camera at the origin), "camera", or "world". Composed
+  // in double precision, so coordinates stay small near the camera
+  // however far from the world's origin the scene lies.
+  glm::dmat4 render_from_world() const {
+    if (rendering_space_ == "world") return glm::dmat4(1.0);
+    if (rendering_space_ == "camera") return camera_from_world_;
+    const glm::dvec3 eye(glm::inverse(camera_from_world_)[3]);
+    return glm::translate(glm::dmat4(1.0), -eye);
+  }
+  Mat4 render(const glm::dmat4& world_from_object) const { return Mat4(render_from_world_ * world_from_object); }
+
+  // Option "type name" value: renderingcoordinatesystem is read; the
+  // others warn.
+  void option(const Token& t, const std::string& decl) {
+    const bool bracket = peek().kind == TokenKind::OpenBracket;
+    if (decl == "string renderingcoordinatesystem") {
+      if (bracket) next();
+      std::string v = expect_string("a coordinate system: cameraworld, camera or world");
+      if (bracket && next().kind != TokenKind::CloseBracket) fail(t, "Option: expected ']' after the value");
+      if (v != "cameraworld" && v != "camera" && v != "world")
+        fail(t, "Option renderingcoordinatesystem \"" + printable(v) + "\" is unknown; expected cameraworld, camera or world");
+      rendering_space_ = v;
+      return;
+    }
+    bracket ? values_skip() : (void)next();
+    b_.warn(loc(t), "Option \"" + printable(decl) + "\" is not supported and was ignored");
   }
 
   void include(const Token& t, const std::string& file) {
@@ -379,7 +416,9 @@ class Parser {
   std::vector<GraphicsState> stack_;
   std::vector<SourceLocation> stack_where_;
   std::vector<bool> transform_only_;
-  std::map<std::string, Mat4> named_cs_;
+  std::map<std::string, glm::dmat4> named_cs_;
+  glm::dmat4 camera_from_world_{1.0}, render_from_world_{1.0};
+  std::string rendering_space_ = "cameraworld";
   std::map<std::string, MaterialHandle> named_materials_;
   bool in_world_ = false;
   std::vector<size_t> object_depth_;  // stack_ size just after each open ObjectBegin
