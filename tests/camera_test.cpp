@@ -74,23 +74,22 @@ TEST(Camera, ImportanceFindsTheFilmPositionOfEachRay) {
     d.world_from_camera = glm::rotate(glm::translate(Mat4(1.f), Vec3(1, 2, 3)), 0.6f, glm::normalize(Vec3(1, 1, 0)));
     Camera cam(d, 64, 32);
     RandomStream rng = RandomStream::make(1, 0, 0);
-    double integral = 0.0;
     for (int i = 0; i < 2000; ++i) {
-      Vec2 p(rng.get1d() * 64.f, rng.get1d() * 32.f);
+      // The first rays look just off the poles, where precision is scarcest.
+      Vec2 p(rng.get1d() * 64.f, i == 0 ? 1e-4f : i == 1 ? 32.f - 1e-4f : rng.get1d() * 32.f);
       CameraRay r = cam.generate_ray(p, Vec2(0.5f));
       Vec2 back;
       float We = cam.We(r.o, r.d, &back);
       ASSERT_GT(We, 0.f);
+      EXPECT_FLOAT_EQ(We, cam.pdf_dir(r.d));
+      EXPECT_NEAR(back.y, p.y, 2e-2f) << equal_area;
+      if (i < 2) continue;  // at a pole, x (the azimuth) is undetermined
       // Equal-area positions are exact up to rounding; across the
       // equirectangular seam x wraps.
       float dx = std::fabs(back.x - p.x);
       dx = std::fmin(dx, 64.f - dx);
       EXPECT_LT(dx, 2e-2f) << equal_area;
-      EXPECT_NEAR(back.y, p.y, 2e-2f) << equal_area;
-      EXPECT_FLOAT_EQ(We, cam.pdf_dir(r.d));
-      integral += 1.0;  // We / pdf_dir over directions drawn by pdf_dir
     }
-    EXPECT_EQ(integral, 2000.0);
     // The importance integrates to 1 over the sphere (a point sensor).
     double sum = 0.0;
     const int n = 200000;

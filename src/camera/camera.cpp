@@ -135,7 +135,9 @@ float Camera::pdf_dir(const Vec3& d) const {
       if (equal_area_) return kInv4Pi;
       // Uniform in (phi, theta): d(omega) = 2 pi^2 sin(theta) du dv.
       Vec3 dc = glm::normalize(Vec3(camera_from_world_ * Vec4(d, 0.f)));
-      float sin_theta = safe_sqrt(1.f - dc.y * dc.y);  // theta from the camera's y axis
+      // theta from the camera's y axis; from the other two components, which
+      // keep their precision near the poles where 1 - y^2 rounds to 0.
+      float sin_theta = std::sqrt(dc.x * dc.x + dc.z * dc.z);
       return sin_theta > 0.f ? 1.f / (2.f * kPi * kPi * sin_theta) : 0.f;
     }
   }
