@@ -12,6 +12,7 @@
 #include "math/rng.h"
 #include "scene/surface.h"
 #include "expect_error.h"
+#include "sanitizer.h"
 #include "stat_compare.h"
 
 namespace lantern {
@@ -226,7 +227,8 @@ TEST(Quadric, LightIrradianceMatchesClosedFormsAndQuadrature) {
     Shape "disk" "float radius" [ 1.2 ] "float innerradius" [ 0.4 ] "float phimax" [ 270 ])");
   const double h = 1.0, R = 1.2, r = 0.4;
   double ring_closed = 2.0 * 0.5 * glm::radians(270.0) * (R * R / (h * h + R * R) - r * r / (h * h + r * r));
-  EXPECT_LT(nee_irradiance_z(*ring, Vec3(0.f), Vec3(0, 0, 1), 400000, ring_closed), 4.0);
+  const int n = LANTERN_ASAN ? 50000 : 400000;  // the sanitizers check the code, not the last digit
+  EXPECT_LT(nee_irradiance_z(*ring, Vec3(0.f), Vec3(0, 0, 1), n, ring_closed), 4.0);
   struct Check {
     const char* shape;
     Vec3 p, n;
@@ -240,7 +242,7 @@ TEST(Quadric, LightIrradianceMatchesClosedFormsAndQuadrature) {
     auto s = light_scene(c.shape);
     ASSERT_EQ(s->shapes.quadrics.size(), 1u);
     double ref = tessellated_irradiance(s->shapes.quadrics[0], 2.f, c.p, c.n);
-    EXPECT_LT(nee_irradiance_z(*s, c.p, c.n, 400000, ref), 4.0) << c.shape;
+    EXPECT_LT(nee_irradiance_z(*s, c.p, c.n, n, ref), 4.0) << c.shape;
   }
 }
 
@@ -248,6 +250,7 @@ TEST(Quadric, LightIrradianceMatchesClosedFormsAndQuadrature) {
 // the emission densities of light subpaths and the MIS weights that
 // compare them with next-event estimation are consistent.
 TEST(Quadric, IntegratorsAgreeUnderQuadricLights) {
+  if (LANTERN_ASAN) GTEST_SKIP() << "the Release suite runs it; the sanitizers cover this code in the other quadric tests";
   auto scene = load_scene_from_string(R"(
 LookAt 0 3 -3  0 0.3 0  0 1 0
 Camera "perspective" "float fov" [ 35 ]
