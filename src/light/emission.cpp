@@ -122,7 +122,8 @@ float infinite_emission_pdf(const LightPools& L, const TexturePools& tex, const 
   return pdf * disk_pdf(L);
 }
 
-float emission_pdf(const LightPools& L, const ShapePools& shapes, const TexturePools& tex, uint32_t light, const Vec3& n, const Vec3& w) {
+float emission_pdf(const LightPools& L, const ShapePools& shapes, const TexturePools& tex, uint32_t light, const Vec3& n,
+                   const Vec3& w) {
   const LightRef r = L.all[light];
   float pmf = L.selection.discrete_pmf(light);
   switch (r.kind) {
