@@ -38,7 +38,7 @@ void SceneBuilder::add_quadric(const std::string& type, const ParamSet& ps, cons
     q.theta_z_min = std::acos(glm::clamp(q.z_min / r, -1.f, 1.f));
     q.theta_z_max = std::acos(glm::clamp(q.z_max / r, -1.f, 1.f));
     const float sx = glm::length(Vec3(M[0])), sy = glm::length(Vec3(M[1])), sz = glm::length(Vec3(M[2]));
-    const bool uniform = std::fabs(sx - sy) <= 1e-4f * sx && std::fabs(sx - sz) <= 1e-4f * sx &&
+    const bool uniform = sx > 0.f && std::fabs(sx - sy) <= 1e-4f * sx && std::fabs(sx - sz) <= 1e-4f * sx &&
                          std::fabs(glm::dot(Vec3(M[0]), Vec3(M[1]))) <= 1e-4f * sx * sy &&
                          std::fabs(glm::dot(Vec3(M[0]), Vec3(M[2]))) <= 1e-4f * sx * sz &&
                          std::fabs(glm::dot(Vec3(M[1]), Vec3(M[2]))) <= 1e-4f * sy * sz;
