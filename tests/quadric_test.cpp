@@ -97,7 +97,7 @@ std::vector<Case> cases() {
 TEST(Quadric, IntersectionsMatchAnIndependentRootSearch) {
   RandomStream rng = RandomStream::make(7, 0, 0);
   for (Case c : cases()) {
-    ASSERT_TRUE(finish_quadric(c.q, placement(c.non_uniform))) << c.name;
+    ASSERT_EQ(QuadricCheck::Ok, finish_quadric(c.q, placement(c.non_uniform))) << c.name;
     const Quadric& q = c.q;
     Vec3 lo, hi;
     quadric_bounds(q, &lo, &hi);
@@ -148,24 +148,24 @@ TEST(Quadric, IntersectionsMatchAnIndependentRootSearch) {
 TEST(Quadric, AreasMatchClosedForms) {
   const double pi = 3.141592653589793;
   Quadric zone = make(QuadricKind::Sphere, 2.f, -1.f, 1.5f, 200.f);
-  ASSERT_TRUE(finish_quadric(zone, glm::scale(glm::dmat4(1.0), glm::dvec3(1.5))));
+  ASSERT_EQ(QuadricCheck::Ok, finish_quadric(zone, glm::scale(glm::dmat4(1.0), glm::dvec3(1.5))));
   EXPECT_NEAR(zone.world_area, 1.5 * 1.5 * glm::radians(200.0) * 2.0 * 2.5, 1e-4 * zone.world_area);
   // A prolate spheroid, semi-axes 1, 1, 2: 2 pi a^2 (1 + c / (a e) asin e).
   Quadric spheroid = make(QuadricKind::Sphere, 1.f, -1.f, 1.f, 360.f);
-  ASSERT_TRUE(finish_quadric(spheroid, glm::scale(glm::dmat4(1.0), glm::dvec3(1, 1, 2))));
+  ASSERT_EQ(QuadricCheck::Ok, finish_quadric(spheroid, glm::scale(glm::dmat4(1.0), glm::dvec3(1, 1, 2))));
   const double e = std::sqrt(0.75);
   EXPECT_NEAR(spheroid.world_area, 2.0 * pi * (1.0 + 2.0 / e * std::asin(e)), 2e-3 * spheroid.world_area);
   // A disk stretched into an ellipse of semi-axes 2 and 1.
   Quadric disk = make(QuadricKind::Disk, 1.f, 0.f, 0.f, 360.f);
-  ASSERT_TRUE(finish_quadric(disk, glm::scale(glm::dmat4(1.0), glm::dvec3(2, 1, 1))));
+  ASSERT_EQ(QuadricCheck::Ok, finish_quadric(disk, glm::scale(glm::dmat4(1.0), glm::dvec3(2, 1, 1))));
   EXPECT_NEAR(disk.world_area, 2.0 * pi, 1e-4 * disk.world_area);
   // An elliptic cylinder: perimeter 4 a E(e) = 9.6884482205 for a = 2, b = 1.
   Quadric cyl = make(QuadricKind::Cylinder, 1.f, 0.f, 2.f, 360.f);
-  ASSERT_TRUE(finish_quadric(cyl, glm::scale(glm::dmat4(1.0), glm::dvec3(2, 1, 1))));
+  ASSERT_EQ(QuadricCheck::Ok, finish_quadric(cyl, glm::scale(glm::dmat4(1.0), glm::dvec3(2, 1, 1))));
   EXPECT_NEAR(cyl.world_area, 2.0 * 9.6884482205, 1e-4 * cyl.world_area);
   // An annulus sector.
   Quadric ring = make(QuadricKind::Disk, 1.f, 0.f, 0.f, 90.f, 0.5f);
-  ASSERT_TRUE(finish_quadric(ring, glm::dmat4(1.0)));
+  ASSERT_EQ(QuadricCheck::Ok, finish_quadric(ring, glm::dmat4(1.0)));
   EXPECT_NEAR(ring.world_area, 0.25 * pi * 0.75, 1e-5);
 }
 
@@ -357,6 +357,8 @@ TEST(Quadric, BadParametersAreClearErrors) {
   expect_load_error("WorldBegin\nScale 1 0 1\nShape \"sphere\" \"float zmax\" [ 0.5 ]\n", "s.pbrt",
                     {"s.pbrt:3", "singular"});
   expect_load_error("WorldBegin\nShape \"cone\"\n", "x.pbrt", {"x.pbrt:2", "cone", "cylinder", "disk"});
+  expect_load_error("WorldBegin\nShape \"disk\" \"float radius\" [ 1e38 ]\n", "h.pbrt", {"h.pbrt:2", "disk", "single precision"});
+  expect_load_error("WorldBegin\nTranslate 1e300 0 0\nShape \"cylinder\"\n", "t.pbrt", {"t.pbrt:3", "single precision"});
 }
 
 }  // namespace

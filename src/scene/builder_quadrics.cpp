@@ -65,11 +65,15 @@ void SceneBuilder::add_quadric(const std::string& type, const ParamSet& ps, cons
     if (!(q.inner_radius >= 0.f) || !(q.inner_radius < r))
       ps.fail(*ps.find("innerradius"), "\"innerradius\" must be at least 0 and less than \"radius\"");
   }
-  const glm::dmat4& Md = gs.render_from_object;
-  if (!(std::fabs(glm::determinant(glm::dmat3(Md))) > 0.0)) ps.fail("the shape's transform is singular");
-  if (!finish_quadric(q, Md)) {
-    warn(ps.where, "the " + type + " has no area (zmin = zmax or phimax = 0) and was skipped");
-    return;
+  switch (finish_quadric(q, gs.render_from_object)) {
+    case QuadricCheck::Ok: break;
+    case QuadricCheck::Singular: ps.fail("the shape's transform is singular");
+    case QuadricCheck::OutOfRange:
+      ps.fail("the " + type + "'s size or position (its parameters under the current transform) exceeds single "
+              "precision");
+    case QuadricCheck::NoArea:
+      warn(ps.where, "the " + type + " has no area (zmin = zmax, phimax = 0 or a vanishing size) and was skipped");
+      return;
   }
   ShapePools& p = scene_.shapes;
   p.quadrics.push_back(q);

@@ -105,12 +105,14 @@ Vec2 quadric_sample_uv(const Quadric& q, Vec2 u) {
   return u;
 }
 
-bool finish_quadric(Quadric& q, const glm::dmat4& M) {
+QuadricCheck finish_quadric(Quadric& q, const glm::dmat4& M) {
   const glm::dmat3 L(M);
   const double det = glm::determinant(L);
-  if (!(std::fabs(det) > 1e-300) || !std::isfinite(det)) return false;
+  if (!std::isfinite(det) || !is_finite(Vec3(glm::dvec3(M[3])))) return QuadricCheck::OutOfRange;
+  if (!(std::fabs(det) > 1e-300)) return QuadricCheck::Singular;
   const float object_area = quadric_object_area(q);
-  if (!(object_area > 0.f) || !std::isfinite(object_area)) return false;
+  if (!std::isfinite(object_area)) return QuadricCheck::OutOfRange;
+  if (!(object_area > 0.f)) return QuadricCheck::NoArea;
   q.world_from_object = M;
   q.object_from_world = glm::inverse(M);
   q.linear = glm::mat3(L);
@@ -131,7 +133,9 @@ bool finish_quadric(Quadric& q, const glm::dmat4& M) {
   const double extent = std::max({double(q.radius), std::fabs(double(q.z_min)), std::fabs(double(q.z_max))});
   const glm::dvec3 t(M[3]);
   q.error_scale = float(std::max({std::fabs(t.x), std::fabs(t.y), std::fabs(t.z)}) + stretch * extent);
-  return std::isfinite(q.world_area) && q.world_area > 0.f && std::isfinite(q.error_scale);
+  if (!std::isfinite(q.world_area) || !std::isfinite(q.error_scale) || !std::isfinite(q.inv_area_scale))
+    return QuadricCheck::OutOfRange;
+  return q.world_area > 0.f && q.inv_area_scale > 0.f ? QuadricCheck::Ok : QuadricCheck::NoArea;
 }
 
 void quadric_bounds(const Quadric& q, Vec3* lo, Vec3* hi) {

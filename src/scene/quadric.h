@@ -34,9 +34,9 @@ struct Quadric {
 };
 
 // Fills in the derived members (transforms, areas) of a quadric whose kind,
-// parameters and flip_normal are set. Returns false if the transform is
-// singular or the surface has no area.
-bool finish_quadric(Quadric& q, const glm::dmat4& world_from_object);
+// parameters and flip_normal are set.
+enum class QuadricCheck { Ok, Singular, NoArea, OutOfRange };
+QuadricCheck finish_quadric(Quadric& q, const glm::dmat4& world_from_object);
 
 float quadric_object_area(const Quadric& q);
 
