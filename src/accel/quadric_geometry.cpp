@@ -2,6 +2,8 @@
 
 #include <type_traits>
 
+#include "scene/surface.h"
+
 namespace lantern {
 
 namespace {
@@ -28,8 +30,7 @@ RayView ray_of(RTCRayN* ray, unsigned n, unsigned i) {
 
 RTCHit hit_of(const Quadric& q, const QuadricHit& h, unsigned geom_id, const RTCIntersectContext* ctx) {
   RTCHit hit{};
-  Vec3 n = q.normal_to_world * quadric_object_normal(q, quadric_object_point(q, h.uv));
-  if (q.flip_normal) n = -n;
+  const Vec3 n = quadric_point(q, h.uv).ng;
   hit.Ng_x = n.x, hit.Ng_y = n.y, hit.Ng_z = n.z;
   hit.u = h.uv.x, hit.v = h.uv.y;
   hit.primID = 0;
@@ -38,15 +39,17 @@ RTCHit hit_of(const Quadric& q, const QuadricHit& h, unsigned geom_id, const RTC
   return hit;
 }
 
-// Whether the alpha filter keeps a candidate: ray i with tfar at the hit.
+// Whether the alpha filter keeps candidate c of ray rv: always without
+// alpha, so an opaque quadric builds no hit record for its candidates.
 template <typename Args>
-bool keeps(const Args* args, const QuadricGeometryData* d, const RayView& rv, float t, RTCHit hit) {
+bool keeps(const Args* args, const QuadricGeometryData* d, const RayView& rv, const QuadricHit& c) {
   if (!d->alpha) return true;
+  RTCHit hit = hit_of(*d->quadric, c, args->geomID, args->context);
   RTCRay ray{};
   ray.org_x = float(rv.o.x), ray.org_y = float(rv.o.y), ray.org_z = float(rv.o.z);
   ray.dir_x = float(rv.d.x), ray.dir_y = float(rv.d.y), ray.dir_z = float(rv.d.z);
   ray.tnear = rv.tnear;
-  ray.tfar = t;
+  ray.tfar = float(c.t);
   ray.mask = 0xFFFFFFFFu;
   int valid = -1;
   RTCFilterFunctionNArguments fa;
@@ -65,12 +68,13 @@ bool keeps(const Args* args, const QuadricGeometryData* d, const RayView& rv, fl
 
 // The first kept hit of ray rv, if any. A rejected candidate moves the
 // search past it; a quadric has at most two.
-template <typename Accept>
-bool first_hit(const QuadricGeometryData* d, const RayView& rv, QuadricHit* h, const Accept& accept) {
+template <typename Args>
+bool first_hit(const Args* args, const QuadricGeometryData* d, const RayView& rv, QuadricHit* h) {
   double t_min = rv.tnear;
   while (intersect_quadric(*d->quadric, rv.o, rv.d, t_min, rv.tfar, h)) {
-    if (float(h->t) <= rv.tnear) return false;
-    if (accept(*h)) return true;
+    const float t = float(h->t);
+    if (t <= rv.tnear || !(t < rv.tfar)) return false;  // rounded onto the ray's ends
+    if (keeps(args, d, rv, *h)) return true;
     t_min = h->t;
   }
   return false;
@@ -83,23 +87,18 @@ void intersect(const RTCIntersectFunctionNArguments* args) {
   RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, n);
   for (unsigned i = 0; i < n; ++i) {
     if (args->valid[i] != -1) continue;
-    const RayView rv = ray_of(ray, n, i);
     QuadricHit h;
-    RTCHit hit;
-    auto accept = [&](const QuadricHit& c) {
-      hit = hit_of(*d->quadric, c, args->geomID, args->context);
-      return float(c.t) < rv.tfar && keeps(args, d, rv, float(c.t), hit);
-    };
-    if (!first_hit(d, rv, &h, accept)) continue;
+    if (!first_hit(args, d, ray_of(ray, n, i), &h)) continue;
+    const RTCHit hit = hit_of(*d->quadric, h, args->geomID, args->context);
     RTCRayN_tfar(ray, n, i) = float(h.t);
     RTCHitN_Ng_x(hits, n, i) = hit.Ng_x;
     RTCHitN_Ng_y(hits, n, i) = hit.Ng_y;
     RTCHitN_Ng_z(hits, n, i) = hit.Ng_z;
     RTCHitN_u(hits, n, i) = hit.u;
     RTCHitN_v(hits, n, i) = hit.v;
-    RTCHitN_primID(hits, n, i) = 0;
-    RTCHitN_geomID(hits, n, i) = args->geomID;
-    RTCHitN_instID(hits, n, i, 0) = args->context->instID[0];
+    RTCHitN_primID(hits, n, i) = hit.primID;
+    RTCHitN_geomID(hits, n, i) = hit.geomID;
+    RTCHitN_instID(hits, n, i, 0) = hit.instID[0];
   }
 }
 
@@ -108,13 +107,8 @@ void occluded(const RTCOccludedFunctionNArguments* args) {
   const unsigned n = args->N;
   for (unsigned i = 0; i < n; ++i) {
     if (args->valid[i] != -1) continue;
-    const RayView rv = ray_of(args->ray, n, i);
     QuadricHit h;
-    auto accept = [&](const QuadricHit& c) {
-      return float(c.t) < rv.tfar &&
-             keeps(args, d, rv, float(c.t), hit_of(*d->quadric, c, args->geomID, args->context));
-    };
-    if (first_hit(d, rv, &h, accept)) RTCRayN_tfar(args->ray, n, i) = -kInfinity;
+    if (first_hit(args, d, ray_of(args->ray, n, i), &h)) RTCRayN_tfar(args->ray, n, i) = -kInfinity;
   }
 }
 

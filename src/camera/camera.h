@@ -73,9 +73,6 @@ class Camera {
   // direction, so that the pixels by the edge receive its filtered share as
   // their camera samples do. Returns how many (at most 2) were written.
   int seam_images(Vec2 p, Vec2 reach, Vec2 out[2]) const;
-  // Whether light subpaths can connect to the camera (t = 1) at all.
-  bool connectible() const { return projection_ != Projection::Orthographic; }
-  Projection projection() const { return projection_; }
 
   int width() const { return width_; }
   int height() const { return height_; }

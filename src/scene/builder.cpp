@@ -227,7 +227,7 @@ static TriangleMesh from_ply(PlyMesh ply) {
 }
 
 void SceneBuilder::add_mesh(TriangleMesh mesh, const GraphicsState& gs, const ParamSet& ps, const std::string& source) {
-  prepare_mesh(mesh, gs.ctm, gs.reverse_orientation, ps, source);
+  prepare_mesh(mesh, Mat4(gs.render_from_object), gs.reverse_orientation, ps, source);
   if (mesh.triangles.empty()) {
     warn(ps.where, ps.directive + " has no triangles and was skipped");
     return;
@@ -249,7 +249,7 @@ void SceneBuilder::add_ply_mesh(const std::string& path, const GraphicsState& gs
   s.meshes.emplace_back();
   s.geometries.push_back({ShapeKind::Mesh, uint32_t(s.meshes.size() - 1), gs.material ? *gs.material : default_material(), -1});
   note_geometry();
-  pending_.push_back({uint32_t(s.meshes.size() - 1), path, gs.ctm, gs.reverse_orientation, ps});
+  pending_.push_back({uint32_t(s.meshes.size() - 1), path, Mat4(gs.render_from_object), gs.reverse_orientation, ps});
 }
 
 void SceneBuilder::load_pending_meshes() {

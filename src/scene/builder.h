@@ -22,7 +22,6 @@ struct GraphicsState {
   // Where shapes are stored: the render space (docs/scene-format.md, "Far
   // from the origin"), from the object; set by the parser before each use.
   glm::dmat4 render_from_object{1.0};
-  Mat4 ctm{1.f};  // render_from_object in float
   bool reverse_orientation = false;
   std::optional<MaterialHandle> material;  // none yet: pbrt's default diffuse
   std::optional<pbrt::ParamSet> area_light;

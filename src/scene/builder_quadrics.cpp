@@ -23,7 +23,7 @@ float phi_max_param(const ParamSet& ps) {
 }  // namespace
 
 void SceneBuilder::add_quadric(const std::string& type, const ParamSet& ps, const GraphicsState& gs) {
-  const Mat4& M = gs.ctm;
+  const Mat4 M(gs.render_from_object);
   const bool flip = gs.reverse_orientation != (glm::determinant(glm::mat3(M)) < 0.f);
   float r = finite_param(ps, "radius", 1.f);
   if (!(r > 0.f)) ps.fail(*ps.find("radius"), "\"radius\" must be positive");

@@ -56,91 +56,89 @@ inline ShadingGeometry triangle_shading_geometry(const TriangleMesh& m, uint32_t
   return g;
 }
 
-// dn/du and dn/dv of a surface from its first and second derivatives (the
-// Weingarten equations); `fallback` is the normal where dp/du x dp/dv
-// vanishes.
-inline void weingarten(const Vec3& dpdu, const Vec3& dpdv, const Vec3& d2uu, const Vec3& d2uv, const Vec3& d2vv,
-                       const Vec3& fallback, Vec3* dndu, Vec3* dndv) {
-  float E = glm::dot(dpdu, dpdu), F = glm::dot(dpdu, dpdv), G = glm::dot(dpdv, dpdv);
-  Vec3 cr = glm::cross(dpdu, dpdv);
+// The first and second derivatives of a surface's (u, v)
+// parameterisation at a point.
+struct SurfaceDerivatives {
+  Vec3 dpdu{0.f}, dpdv{0.f}, d2uu{0.f}, d2uv{0.f}, d2vv{0.f};
+};
+
+// pbrt's sphere parameterisation at object-space point p of a sphere of
+// radius r: phi = u * phi_max, theta = theta(zmin) + v * theta_range.
+inline SurfaceDerivatives sphere_derivatives(const Vec3& p, float r, float phi_max, float theta_range) {
+  float zr = std::sqrt(p.x * p.x + p.y * p.y);
+  float cos_phi = zr > 0.f ? p.x / zr : 1.f, sin_phi = zr > 0.f ? p.y / zr : 0.f;
+  float sin_theta = safe_sqrt(1.f - sqr(p.z / r));
+  SurfaceDerivatives d;
+  d.dpdu = Vec3(-phi_max * p.y, phi_max * p.x, 0.f);
+  d.dpdv = theta_range * Vec3(p.z * cos_phi, p.z * sin_phi, -r * sin_theta);
+  d.d2uu = -phi_max * phi_max * Vec3(p.x, p.y, 0.f);
+  d.d2uv = theta_range * p.z * phi_max * Vec3(-sin_phi, cos_phi, 0.f);
+  d.d2vv = -theta_range * theta_range * p;
+  return d;
+}
+
+// The shading geometry of object-space derivatives d (dn/du and dn/dv from
+// the Weingarten equations; `fallback` is the normal where dp/du x dp/dv
+// vanishes), carried to the placed space by the linear map and its
+// inverse transpose.
+inline ShadingGeometry placed_shading_geometry(const SurfaceDerivatives& d, const Vec3& fallback,
+                                               const glm::mat3& linear, const glm::mat3& normal_to_world,
+                                               const Vec3& ns) {
+  float E = glm::dot(d.dpdu, d.dpdu), F = glm::dot(d.dpdu, d.dpdv), G = glm::dot(d.dpdv, d.dpdv);
+  Vec3 cr = glm::cross(d.dpdu, d.dpdv);
   float cl = glm::length(cr);
   Vec3 n = cl > 0.f ? cr / cl : fallback;
-  float e = glm::dot(n, d2uu), f = glm::dot(n, d2uv), g = glm::dot(n, d2vv);
+  float e = glm::dot(n, d.d2uu), f = glm::dot(n, d.d2uv), g2 = glm::dot(n, d.d2vv);
   float egf2 = E * G - F * F, inv = egf2 != 0.f ? 1.f / egf2 : 0.f;
-  *dndu = (f * F - e * G) * inv * dpdu + (e * F - f * E) * inv * dpdv;
-  *dndv = (g * F - f * G) * inv * dpdu + (f * F - g * E) * inv * dpdv;
+  Vec3 dndu = (f * F - e * G) * inv * d.dpdu + (e * F - f * E) * inv * d.dpdv;
+  Vec3 dndv = (g2 * F - f * G) * inv * d.dpdu + (f * F - g2 * E) * inv * d.dpdv;
+  ShadingGeometry g;
+  g.n = ns;
+  g.dpdu = linear * d.dpdu;
+  g.dpdv = linear * d.dpdv;
+  g.dndu = normal_to_world * dndu;
+  g.dndv = normal_to_world * dndv;
+  if (glm::dot(glm::cross(g.dpdu, g.dpdv), glm::cross(g.dpdu, g.dpdv)) == 0.f) coordinate_system(ns, g.dpdu, g.dpdv);
+  return g;
 }
 
 inline ShadingGeometry sphere_shading_geometry(const Sphere& s, const SurfacePoint& sp) {
   // In the sphere's own space, where pbrt's (u, v) are defined.
   const glm::mat3 obj_from_world(s.object_from_world);
-  const glm::mat3 world_from_obj = glm::inverse(obj_from_world);
   Vec3 p = obj_from_world * (sp.p - s.center);
   float r = glm::length(p);
-  ShadingGeometry g;
-  g.n = sp.ns;
   if (!(r > 0.f)) {
+    ShadingGeometry g;
+    g.n = sp.ns;
     coordinate_system(sp.ns, g.dpdu, g.dpdv);
     return g;
   }
-  const float phi_max = 2.f * kPi, theta_range = -kPi;  // theta from pi (zmin) to 0 (zmax)
-  float zr = std::sqrt(p.x * p.x + p.y * p.y);
-  float cos_phi = zr > 0.f ? p.x / zr : 1.f, sin_phi = zr > 0.f ? p.y / zr : 0.f;
-  float sin_theta = safe_sqrt(1.f - sqr(p.z / r));
-  Vec3 dpdu(-phi_max * p.y, phi_max * p.x, 0.f);
-  Vec3 dpdv = theta_range * Vec3(p.z * cos_phi, p.z * sin_phi, -r * sin_theta);
-  Vec3 d2uu = -phi_max * phi_max * Vec3(p.x, p.y, 0.f);
-  Vec3 d2uv = theta_range * p.z * phi_max * Vec3(-sin_phi, cos_phi, 0.f);
-  Vec3 d2vv = -theta_range * theta_range * p;
-  Vec3 dndu, dndv;
-  weingarten(dpdu, dpdv, d2uu, d2uv, d2vv, p / r, &dndu, &dndv);
-  const glm::mat3 normal_to_world = glm::transpose(obj_from_world);  // inverse transpose of world_from_obj
-  g.dpdu = world_from_obj * dpdu;
-  g.dpdv = world_from_obj * dpdv;
-  g.dndu = normal_to_world * dndu;
-  g.dndv = normal_to_world * dndv;
-  if (glm::dot(glm::cross(g.dpdu, g.dpdv), glm::cross(g.dpdu, g.dpdv)) == 0.f) coordinate_system(sp.ns, g.dpdu, g.dpdv);
-  return g;
+  // theta runs from pi (zmin) to 0 (zmax); the inverse transpose of
+  // world_from_obj is the transpose of obj_from_world.
+  return placed_shading_geometry(sphere_derivatives(p, r, 2.f * kPi, -kPi), p / r, glm::inverse(obj_from_world),
+                                 glm::transpose(obj_from_world), sp.ns);
 }
 
 // pbrt's derivatives of its quadrics' (u, v) parameterisations, in object
 // space, carried to the space the quadric is placed in.
 inline ShadingGeometry quadric_shading_geometry(const Quadric& q, const SurfacePoint& sp) {
   const Vec3 p = quadric_object_point(q, sp.uv);
-  const float phi_max = q.phi_max;
-  Vec3 dpdu(-phi_max * p.y, phi_max * p.x, 0.f), dpdv(0.f), d2uu(0.f), d2uv(0.f), d2vv(0.f);
+  SurfaceDerivatives d;
   switch (q.kind) {
-    case QuadricKind::Sphere: {
-      const float r = q.radius, theta_range = q.theta_z_max - q.theta_z_min;
-      float zr = std::sqrt(p.x * p.x + p.y * p.y);
-      float cos_phi = zr > 0.f ? p.x / zr : 1.f, sin_phi = zr > 0.f ? p.y / zr : 0.f;
-      float sin_theta = safe_sqrt(1.f - sqr(p.z / r));
-      dpdv = theta_range * Vec3(p.z * cos_phi, p.z * sin_phi, -r * sin_theta);
-      d2uu = -phi_max * phi_max * Vec3(p.x, p.y, 0.f);
-      d2uv = theta_range * p.z * phi_max * Vec3(-sin_phi, cos_phi, 0.f);
-      d2vv = -theta_range * theta_range * p;
-      break;
-    }
+    case QuadricKind::Sphere: d = sphere_derivatives(p, q.radius, q.phi_max, q.theta_z_max - q.theta_z_min); break;
     case QuadricKind::Cylinder:
-      dpdv = Vec3(0.f, 0.f, q.z_max - q.z_min);
-      d2uu = -phi_max * phi_max * Vec3(p.x, p.y, 0.f);
+      d.dpdu = Vec3(-q.phi_max * p.y, q.phi_max * p.x, 0.f);
+      d.dpdv = Vec3(0.f, 0.f, q.z_max - q.z_min);
+      d.d2uu = -q.phi_max * q.phi_max * Vec3(p.x, p.y, 0.f);
       break;
     case QuadricKind::Disk: {
       float r = std::sqrt(p.x * p.x + p.y * p.y);
-      dpdv = r > 0.f ? Vec3(p.x, p.y, 0.f) * ((q.inner_radius - q.radius) / r) : Vec3(q.inner_radius - q.radius, 0, 0);
+      d.dpdu = Vec3(-q.phi_max * p.y, q.phi_max * p.x, 0.f);
+      d.dpdv = r > 0.f ? Vec3(p.x, p.y, 0.f) * ((q.inner_radius - q.radius) / r) : Vec3(q.inner_radius - q.radius, 0, 0);
       break;
     }
   }
-  Vec3 dndu, dndv;
-  weingarten(dpdu, dpdv, d2uu, d2uv, d2vv, quadric_object_normal(q, p), &dndu, &dndv);
-  ShadingGeometry g;
-  g.n = sp.ns;
-  g.dpdu = q.linear * dpdu;
-  g.dpdv = q.linear * dpdv;
-  g.dndu = q.normal_to_world * dndu;
-  g.dndv = q.normal_to_world * dndv;
-  if (glm::dot(glm::cross(g.dpdu, g.dpdv), glm::cross(g.dpdu, g.dpdv)) == 0.f) coordinate_system(sp.ns, g.dpdu, g.dpdv);
-  return g;
+  return placed_shading_geometry(d, quadric_object_normal(q, p), q.linear, q.normal_to_world, sp.ns);
 }
 
 }  // namespace lantern

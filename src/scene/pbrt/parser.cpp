@@ -298,7 +298,6 @@ class Parser {
       std::string type = expect_string("a shape type");
       ParamSet ps = params(t, "Shape \"" + printable(type) + "\"");
       gs_.render_from_object = render_from_world_ * ctm;
-      gs_.ctm = Mat4(gs_.render_from_object);
       b_.shape(type, ps, gs_, base_dir_);
       ps.warn_unused();
     } else if (d == "MakeNamedMedium" || d == "MediumInterface" || d == "Attribute") {
