@@ -392,7 +392,7 @@ TEST(ExtremeGeometry, DegenerateTrianglesChangeNothing) {
   }
 }
 
-std::string load_error(const std::string& text) {
+std::string extremes_load_error(const std::string& text) {
   try {
     scene_from(text);
   } catch (const InputError& e) {
@@ -405,23 +405,23 @@ TEST(ExtremeGeometry, NonFiniteVerticesAreRejectedNamingTheShape) {
   // pbrt text has no NaN literal ("nan" is a parse error at its column);
   // a number beyond float's range is infinite.
   for (const char* v : {"1e39", "-1e39"}) {
-    std::string msg = load_error(std::string(kFloorAndCamera) + "\n\nShape \"trianglemesh\" \"point3 P\" [ 0 0 0  1 0 0  0 " + v +
+    std::string msg = extremes_load_error(std::string(kFloorAndCamera) + "\n\nShape \"trianglemesh\" \"point3 P\" [ 0 0 0  1 0 0  0 " + v +
                                  " 0 ] \"integer indices\" [ 0 1 2 ]\n");
     EXPECT_NE(msg.find("extremes.pbrt:7:1"), std::string::npos) << msg;
     EXPECT_NE(msg.find("\"trianglemesh\""), std::string::npos) << msg;
     EXPECT_NE(msg.find("vertex 2"), std::string::npos) << msg;
   }
-  std::string nan_msg = load_error(std::string(kFloorAndCamera) + "Shape \"trianglemesh\" \"point3 P\" [ 0 0 nan ]");
+  std::string nan_msg = extremes_load_error(std::string(kFloorAndCamera) + "Shape \"trianglemesh\" \"point3 P\" [ 0 0 nan ]");
   EXPECT_NE(nan_msg.find("extremes.pbrt:5:39"), std::string::npos) << nan_msg;
   // A PLY file: the message names the file.
   const std::string ply = ::testing::TempDir() + "/lantern_nan_vertex.ply";
   std::ofstream(ply) << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
                         "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n";
-  std::string msg = load_error(std::string(kFloorAndCamera) + "Shape \"plymesh\" \"string filename\" \"" + ply + "\"\n");
+  std::string msg = extremes_load_error(std::string(kFloorAndCamera) + "Shape \"plymesh\" \"string filename\" \"" + ply + "\"\n");
   EXPECT_NE(msg.find("lantern_nan_vertex.ply"), std::string::npos) << msg;
   EXPECT_NE(msg.find("vertex 1"), std::string::npos) << msg;
   // A transform that overflows a finite vertex is caught after the transform.
-  msg = load_error(std::string(kFloorAndCamera) + "Scale 1e30 1e30 1e30\nShape \"trianglemesh\" \"point3 P\" [ 0 0 0  1e10 0 0  0 1 0 ]"
+  msg = extremes_load_error(std::string(kFloorAndCamera) + "Scale 1e30 1e30 1e30\nShape \"trianglemesh\" \"point3 P\" [ 0 0 0  1e10 0 0  0 1 0 ]"
                    " \"integer indices\" [ 0 1 2 ]\n");
   EXPECT_NE(msg.find("vertex 1"), std::string::npos) << msg;
 }

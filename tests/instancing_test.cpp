@@ -137,7 +137,7 @@ TEST(Instancing, InstancedAndFlattenedScenesRenderTheSameImage) {
   }
 }
 
-std::string load_error(const std::string& text) {
+std::string instancing_load_error(const std::string& text) {
   try {
     load_scene_from_string(text, "t.pbrt");
   } catch (const InputError& e) {
@@ -148,26 +148,26 @@ std::string load_error(const std::string& text) {
 
 TEST(Instancing, MisuseGetsClearErrors) {
   const std::string w = "WorldBegin\n";
-  EXPECT_NE(load_error(w + "ObjectBegin \"a\"\nAreaLightSource \"diffuse\"\nShape \"sphere\"\nObjectEnd\n")
+  EXPECT_NE(instancing_load_error(w + "ObjectBegin \"a\"\nAreaLightSource \"diffuse\"\nShape \"sphere\"\nObjectEnd\n")
                 .find("area lights inside ObjectBegin/ObjectEnd are not supported"),
             std::string::npos);
-  EXPECT_NE(load_error(w + "ObjectBegin \"a\"\nObjectBegin \"b\"\n").find("t.pbrt:3:1: error: ObjectBegin \"b\" inside"),
+  EXPECT_NE(instancing_load_error(w + "ObjectBegin \"a\"\nObjectBegin \"b\"\n").find("t.pbrt:3:1: error: ObjectBegin \"b\" inside"),
             std::string::npos);
-  EXPECT_NE(load_error(w + "ObjectBegin \"a\"\nShape \"sphere\"\nObjectEnd\nObjectBegin \"b\"\nObjectInstance \"a\"\n")
+  EXPECT_NE(instancing_load_error(w + "ObjectBegin \"a\"\nShape \"sphere\"\nObjectEnd\nObjectBegin \"b\"\nObjectInstance \"a\"\n")
                 .find("nested instancing is not supported"),
             std::string::npos);
-  EXPECT_NE(load_error(w + "ObjectInstance \"nope\"\n").find("t.pbrt:2:1: error: ObjectInstance \"nope\": no object"),
+  EXPECT_NE(instancing_load_error(w + "ObjectInstance \"nope\"\n").find("t.pbrt:2:1: error: ObjectInstance \"nope\": no object"),
             std::string::npos);
-  EXPECT_NE(load_error(w + "ObjectEnd\n").find("ObjectEnd without ObjectBegin"), std::string::npos);
-  EXPECT_NE(load_error(w + "ObjectBegin \"a\"\nAttributeBegin\nObjectEnd\n").find("does not close"), std::string::npos);
-  EXPECT_NE(load_error(w + "ObjectBegin \"a\"\nAttributeEnd\n").find("would close an ObjectBegin"), std::string::npos);
-  EXPECT_NE(load_error(w + "ObjectBegin \"a\"\nObjectEnd\nObjectBegin \"a\"\nObjectEnd\n").find("defined twice"),
+  EXPECT_NE(instancing_load_error(w + "ObjectEnd\n").find("ObjectEnd without ObjectBegin"), std::string::npos);
+  EXPECT_NE(instancing_load_error(w + "ObjectBegin \"a\"\nAttributeBegin\nObjectEnd\n").find("does not close"), std::string::npos);
+  EXPECT_NE(instancing_load_error(w + "ObjectBegin \"a\"\nAttributeEnd\n").find("would close an ObjectBegin"), std::string::npos);
+  EXPECT_NE(instancing_load_error(w + "ObjectBegin \"a\"\nObjectEnd\nObjectBegin \"a\"\nObjectEnd\n").find("defined twice"),
             std::string::npos);
-  EXPECT_NE(load_error(w + "ObjectBegin \"a\"\nShape \"sphere\"\nObjectEnd\nScale 0 1 1\nObjectInstance \"a\"\n").find("singular"),
+  EXPECT_NE(instancing_load_error(w + "ObjectBegin \"a\"\nShape \"sphere\"\nObjectEnd\nScale 0 1 1\nObjectInstance \"a\"\n").find("singular"),
             std::string::npos);
   // An object that is never closed, or an empty one instanced: fine or clear.
-  EXPECT_NE(load_error(w + "ObjectBegin \"a\"\nShape \"sphere\"\n").find("t.pbrt:2:1"), std::string::npos);
-  EXPECT_EQ(load_error(w + "ObjectBegin \"empty\"\nObjectEnd\nObjectInstance \"empty\"\n"), "(no error)");
+  EXPECT_NE(instancing_load_error(w + "ObjectBegin \"a\"\nShape \"sphere\"\n").find("t.pbrt:2:1"), std::string::npos);
+  EXPECT_EQ(instancing_load_error(w + "ObjectBegin \"empty\"\nObjectEnd\nObjectInstance \"empty\"\n"), "(no error)");
 }
 
 }  // namespace
