@@ -169,7 +169,8 @@ void Bdpt::eye_connect_stage(BdptWave& w) const {
         if (is_black(f_eye)) continue;
         RGB f_light;
         float light_fwd_W, light_rev_W;
-        const TextureContext light_tc{v.p[j], v.ng[j], v.uv[j], v.footprint.empty() ? nullptr : &v.footprint[j]};
+        const TextureContext light_tc{v.p[j], v.ng[j], v.uv[j], v.footprint.empty() ? nullptr : &v.footprint[j],
+                                      j < v.tangent.size() ? v.tangent[j] : Vec3(0.f)};
         with_bsdf(v.material[j], sc.materials, sc.textures, light_tc, [&](const auto& lb) {
           Frame lf = Frame::from_z(v.ns[j]);
           Vec3 lwo = lf.to_local(v.wo[j]), lwi = lf.to_local(-wi_w);

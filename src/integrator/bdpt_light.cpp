@@ -158,6 +158,10 @@ void Bdpt::light_connect_stage(BdptWave& w) const {
         v.mis.push_back(m);
         v.material.push_back(h.material[i]);
         if (!h.footprint.empty()) v.footprint.push_back(h.footprint[i]);
+        if (!h.tangent.empty()) {
+          v.tangent.resize(v.p.size() - 1);  // vertices stored before the first curve hit have none
+          v.tangent.push_back(h.tangent[i]);
+        }
       }
       auto cs = depth <= maxdepth ? camera_.sample_wi(h.p[i], u_lens) : std::nullopt;
       if (cs) {  // t = 1

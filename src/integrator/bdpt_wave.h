@@ -63,6 +63,7 @@ struct LightVertexPool {
   std::vector<MisState> mis;
   std::vector<MaterialHandle> material;
   std::vector<Footprint> footprint;  // empty unless the scene's textures filter
+  std::vector<Vec3> tangent;         // empty unless the scene has curves
   std::vector<uint32_t> begin, order;
 
   size_t size() const { return slot.size(); }
@@ -75,6 +76,7 @@ struct LightVertexPool {
     mis.clear();
     material.clear();
     footprint.clear();
+    tangent.clear();
   }
 };
 
@@ -161,7 +163,7 @@ struct BdptWave {
          vector_bytes(o.direct_pdf_A) + vector_bytes(o.delta) + vector_bytes(o.infinite);
     const LightVertexPool& v = vertices;
     b += vector_bytes(v.slot) + vector_bytes(v.depth) + vector_bytes(v.p) + vector_bytes(v.ng) + vector_bytes(v.ns) +
-         vector_bytes(v.wo) + vector_bytes(v.uv) + vector_bytes(v.footprint) + vector_bytes(v.error_scale) + vector_bytes(v.beta) +
+         vector_bytes(v.wo) + vector_bytes(v.uv) + vector_bytes(v.footprint) + vector_bytes(v.tangent) + vector_bytes(v.error_scale) + vector_bytes(v.beta) +
          vector_bytes(v.mis) + vector_bytes(v.material) + vector_bytes(v.begin) + vector_bytes(v.order);
     return b;
   }

@@ -22,6 +22,18 @@ inline SurfacePoint local_hit_point(const ShapePools& shapes, const RayBatch& ra
   const Geometry& g = shapes.geometries[rays.geom_id[i]];
   if (g.kind == ShapeKind::Mesh) return triangle_point(shapes.meshes[g.index], rays.prim_id[i], rays.u[i], rays.v[i]);
   if (g.kind == ShapeKind::Quadric) return quadric_point(shapes.quadrics[g.index], Vec2(rays.u[i], rays.v[i]));
+  if (g.kind == ShapeKind::Curve) {
+    // A curve's surface depends on the ray (pbrt's curves face it), so the
+    // point is rebuilt from the ray, carried into the prototype's space.
+    Vec3 o = rays.origin(i), d = rays.direction(i);
+    if (inst) {
+      const Mat4 inv = glm::inverse(inst->world_from_object);
+      o = Vec3(inv * Vec4(o, 1.f));
+      d = glm::mat3(inv) * d;
+    }
+    return curve_point(shapes.curves[g.index], rays.prim_id[i], rays.u[i], o, d, rays.tfar[i],
+                       Vec3(rays.ng_x[i], rays.ng_y[i], rays.ng_z[i]));
+  }
   const Sphere& s = shapes.spheres[g.index];
   Vec3 ng(rays.ng_x[i], rays.ng_y[i], rays.ng_z[i]);
   float len = glm::length(ng);
@@ -40,7 +52,9 @@ inline SurfacePoint to_world(const Instance& inst, const SurfacePoint& local) {
   sp.p = Vec3(M * Vec4(local.p, 1.f));
   sp.ng = glm::normalize(inst.normal_to_world * local.ng);
   sp.ns = glm::normalize(inst.normal_to_world * local.ns);
-  sp.error_scale = std::fmax(max_abs_component(sp.p), local.error_scale * inst.stretch + inst.offset);
+  if (local.dpdu != Vec3(0.f)) sp.dpdu = glm::normalize(glm::mat3(M) * local.dpdu);
+  sp.error_scale = std::copysign(
+      std::fmax(max_abs_component(sp.p), std::fabs(local.error_scale) * inst.stretch + inst.offset), local.error_scale);
   return sp;
 }
 
@@ -66,6 +80,7 @@ struct HitPool {
   std::vector<float> error_scale;
   std::vector<MaterialHandle> material;
   std::vector<Footprint> footprint;  // empty unless the scene's textures filter
+  std::vector<Vec3> tangent;         // empty until a curve is hit
   std::vector<uint8_t> alive;  // the path continues past this bounce
   std::vector<Vec3> next_o, next_d;
   std::array<std::vector<uint32_t>, kMaterialKindCount> bins;
@@ -80,7 +95,7 @@ struct HitPool {
   }
   size_t memory_bytes() const {
     size_t b = vector_bytes(p) + vector_bytes(ng) + vector_bytes(ns) + vector_bytes(wo) + vector_bytes(uv) +
-               vector_bytes(error_scale) + vector_bytes(material) + vector_bytes(footprint) +
+               vector_bytes(error_scale) + vector_bytes(material) + vector_bytes(footprint) + vector_bytes(tangent) +
                vector_bytes(alive) + vector_bytes(next_o) + vector_bytes(next_d);
     for (const auto& bin : bins) b += vector_bytes(bin);
     return b;
@@ -94,6 +109,10 @@ struct HitPool {
     if (fp) {
       if (footprint.size() != p.size()) footprint.resize(p.size());
       footprint[i] = *fp;
+    }
+    if (sp.dpdu != Vec3(0.f) || !tangent.empty()) {
+      if (tangent.size() != p.size()) tangent.resize(p.size());
+      tangent[i] = sp.dpdu;
     }
     p[i] = sp.p;
     ng[i] = sp.ng;

@@ -25,10 +25,15 @@ inline ShadingGeometry world_shading_geometry(const Scene& scene, const RayBatch
   const uint32_t inst = rays.inst_id[i];
   const Instance* in = inst == kInvalidGeometry ? nullptr : &shapes.instances[inst];
   SurfacePoint local = in ? local_hit_point(shapes, rays, i, in) : sp;
-  ShadingGeometry g = geo.kind == ShapeKind::Mesh
-                          ? triangle_shading_geometry(shapes.meshes[geo.index], rays.prim_id[i], local)
-                      : geo.kind == ShapeKind::Quadric ? quadric_shading_geometry(shapes.quadrics[geo.index], local)
-                                                       : sphere_shading_geometry(shapes.spheres[geo.index], local);
+  ShadingGeometry g;
+  switch (geo.kind) {
+    case ShapeKind::Mesh: g = triangle_shading_geometry(shapes.meshes[geo.index], rays.prim_id[i], local); break;
+    case ShapeKind::Quadric: g = quadric_shading_geometry(shapes.quadrics[geo.index], local); break;
+    case ShapeKind::Sphere: g = sphere_shading_geometry(shapes.spheres[geo.index], local); break;
+    case ShapeKind::Curve:
+      g = curve_shading_geometry(shapes.curves[geo.index], rays.prim_id[i], rays.u[i], local);
+      break;
+  }
   if (in) {
     const glm::mat3 M(in->world_from_object);
     g.dpdu = M * g.dpdu;

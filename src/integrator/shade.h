@@ -19,7 +19,8 @@ void for_each_binned_bsdf(const HitPool& hits, const Scene& scene, Fn&& fn) {
       for_each_bsdf(MaterialKind(k), scene.materials, scene.textures, bin.data(), bin.size(),
                     hits.material.data(),
                     SurfaceAttributes{hits.p.data(), hits.ng.data(), hits.uv.data(),
-                                      hits.footprint.empty() ? nullptr : hits.footprint.data()},
+                                      hits.footprint.empty() ? nullptr : hits.footprint.data(),
+                                      hits.tangent.empty() ? nullptr : hits.tangent.data()},
                     fn);
   }
 }

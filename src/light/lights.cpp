@@ -111,6 +111,7 @@ SurfacePoint sample_area_point(const ShapePools& shapes, const AreaLight& a, Vec
       const Quadric& q = shapes.quadrics[g.index];
       return quadric_point(q, quadric_sample_uv(q, u));
     }
+    case ShapeKind::Curve: break;  // curves do not emit (refused at load)
   }
   return {};
 }

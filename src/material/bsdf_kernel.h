@@ -12,6 +12,7 @@
 #include "material/dielectric_bsdf.h"
 #include "material/diffuse_bsdf.h"
 #include "material/diffuse_transmission_bsdf.h"
+#include "material/hair_bsdf.h"
 #include "material/thin_dielectric_bsdf.h"
 #include "material/material.h"
 
@@ -42,6 +43,36 @@ inline DiffuseTransmissionBSDF make_bsdf(const DiffuseTransmissionMaterial& m, c
 inline ThinDielectricBSDF make_bsdf(const ThinDielectricMaterial& m, const TextureContext& c, const TexturePools& tex) {
   float eta = tex.evaluate_float(m.eta, c);
   return ThinDielectricBSDF{eta > 0.f ? eta : 1.f};
+}
+// The fibre's absorption from pbrt-v4's three ways of giving it: the
+// reflectance inversion is Chiang et al. 2016, eq. 9; the melanin
+// absorption coefficients are d'Eon et al. 2011's (as pbrt-v4 uses them).
+inline RGB hair_sigma_a(const HairMaterial& m, const TextureContext& c, const TexturePools& tex, float beta_n) {
+  switch (m.by) {
+    case HairMaterial::Absorption::SigmaA: return glm::max(tex.evaluate(m.sigma_a, c), RGB(0.f));
+    case HairMaterial::Absorption::Reflectance: {
+      const RGB r = glm::clamp(tex.evaluate(m.reflectance, c), RGB(1e-4f), RGB(1.f));
+      const float b = beta_n;
+      const float d = 5.969f - 0.215f * b + 2.532f * b * b - 10.73f * b * b * b + 5.574f * b * b * b * b +
+                      0.245f * b * b * b * b * b;
+      const RGB l = glm::log(r) / d;
+      return l * l;
+    }
+    case HairMaterial::Absorption::Melanin: break;
+  }
+  const float ce = std::fmax(tex.evaluate_float(m.eumelanin, c), 0.f);
+  const float cp = std::fmax(tex.evaluate_float(m.pheomelanin, c), 0.f);
+  return ce * RGB(0.419f, 0.697f, 1.37f) + cp * RGB(0.187f, 0.4f, 1.05f);
+}
+// h from pbrt's v across the curve; the fibre's direction from the curve's
+// tangent, in the shading frame (a curve's shading normal is its normal).
+inline HairBSDF make_bsdf(const HairMaterial& m, const TextureContext& c, const TexturePools& tex) {
+  const float beta_n = glm::clamp(tex.evaluate_float(m.beta_n, c), 0.f, 1.f);
+  const float beta_m = glm::clamp(tex.evaluate_float(m.beta_m, c), 0.f, 1.f);
+  const float eta = tex.evaluate_float(m.eta, c);
+  const Vec3 tangent = Frame::from_z(c.n).to_local(c.dpdu);
+  return HairBSDF(2.f * c.uv.y - 1.f, eta > 0.f ? eta : 1.55f, hair_sigma_a(m, c, tex, beta_n), beta_m, beta_n,
+                  tex.evaluate_float(m.alpha, c), tangent);
 }
 // The layer parameters of a coated material at a point, as pbrt-v4 clamps them.
 template <class Top, class Bottom>
@@ -85,8 +116,9 @@ struct SurfaceAttributes {
   const Vec3* ng;
   const Vec2* uv;
   const Footprint* fp;  // null: no footprints
+  const Vec3* tangent;  // null: no curves
   TextureContext at(uint32_t slot) const {
-    return TextureContext{p[slot], ng[slot], uv[slot], fp ? &fp[slot] : nullptr};
+    return TextureContext{p[slot], ng[slot], uv[slot], fp ? &fp[slot] : nullptr, tangent ? tangent[slot] : Vec3(0.f)};
   }
 };
 
@@ -109,6 +141,7 @@ void for_each_bsdf(MaterialKind kind, const MaterialPools& pools, const TextureP
     case MaterialKind::CoatedConductor: run(pools.coated_conductor); break;
     case MaterialKind::DiffuseTransmission: run(pools.diffuse_transmission); break;
     case MaterialKind::ThinDielectric: run(pools.thin_dielectric); break;
+    case MaterialKind::Hair: run(pools.hair); break;
     case MaterialKind::Mix:        // resolved when the hit was stored
     case MaterialKind::Interface:  // cut out of the scene
       break;
@@ -127,6 +160,7 @@ decltype(auto) with_bsdf(MaterialHandle m, const MaterialPools& pools, const Tex
     case MaterialKind::CoatedConductor: return fn(make_bsdf(pools.coated_conductor[m.index()], c, tex));
     case MaterialKind::DiffuseTransmission: return fn(make_bsdf(pools.diffuse_transmission[m.index()], c, tex));
     case MaterialKind::ThinDielectric: return fn(make_bsdf(pools.thin_dielectric[m.index()], c, tex));
+    case MaterialKind::Hair: return fn(make_bsdf(pools.hair[m.index()], c, tex));
     case MaterialKind::CoatedDiffuse:
     case MaterialKind::Mix:        // never stored in a hit
     case MaterialKind::Interface:

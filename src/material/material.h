@@ -24,10 +24,11 @@ enum class MaterialKind : uint8_t {
   CoatedConductor,
   DiffuseTransmission,
   ThinDielectric,
+  Hair,
   Mix,
   Interface
 };
-inline constexpr int kMaterialKindCount = 7;  // the kinds with a BSDF
+inline constexpr int kMaterialKindCount = 8;  // the kinds with a BSDF
 
 struct MaterialHandle {
   uint32_t bits = 0;
@@ -115,6 +116,20 @@ struct ThinDielectricMaterial {
   int32_t bump = -1;
 };
 
+// pbrt-v4's hair: the fibre's absorption given directly (sigma_a, per unit
+// of diameter), by the colour it gives multiply scattering hair
+// (reflectance; pbrt-v3's "color"), or by melanin concentrations (the
+// default: eumelanin 1.3, brown hair).
+struct HairMaterial {
+  enum class Absorption : uint8_t { SigmaA, Reflectance, Melanin };
+  Absorption by = Absorption::Melanin;
+  TextureRef sigma_a, reflectance;
+  TextureRef eumelanin = TextureRef::constant(1.3f), pheomelanin = TextureRef::constant(0.f);
+  TextureRef eta = TextureRef::constant(1.55f);
+  TextureRef beta_m = TextureRef::constant(0.3f), beta_n = TextureRef::constant(0.3f);
+  TextureRef alpha = TextureRef::constant(2.f);  // degrees
+};
+
 // A material's bump or normal map (applied by material/bump.h).
 struct BumpParams {
   TextureRef displacement = TextureRef::constant(0.f);
@@ -136,6 +151,7 @@ struct MaterialPools {
   std::vector<CoatedConductorMaterial> coated_conductor;
   std::vector<DiffuseTransmissionMaterial> diffuse_transmission;
   std::vector<ThinDielectricMaterial> thin_dielectric;
+  std::vector<HairMaterial> hair;
   std::vector<MixMaterial> mix;
   std::vector<BumpParams> bumps;  // only for materials with a displacement or normal map
 
@@ -150,6 +166,7 @@ struct MaterialPools {
       case MaterialKind::CoatedConductor: b = coated_conductor[m.index()].bump; break;
       case MaterialKind::DiffuseTransmission: b = diffuse_transmission[m.index()].bump; break;
       case MaterialKind::ThinDielectric: b = thin_dielectric[m.index()].bump; break;
+      case MaterialKind::Hair:
       case MaterialKind::Mix:
       case MaterialKind::Interface: break;
     }
@@ -165,6 +182,7 @@ struct MaterialPools {
       case MaterialKind::CoatedConductor: return !coated_conductor.empty();
       case MaterialKind::DiffuseTransmission: return !diffuse_transmission.empty();
       case MaterialKind::ThinDielectric: return !thin_dielectric.empty();
+      case MaterialKind::Hair: return !hair.empty();
       case MaterialKind::Mix: return !mix.empty();
       case MaterialKind::Interface: return false;
     }

@@ -360,8 +360,11 @@ void SceneBuilder::add_shape(const std::string& type, const ParamSet& ps, const 
     add_ply_mesh(resolve_path(base_dir, file), gs, ps);
   } else if (type == "sphere" || type == "cylinder" || type == "disk") {
     add_quadric(type, ps, gs);
+  } else if (type == "curve") {
+    add_curve(ps, gs);
   } else {
-    ps.fail("shape \"" + printable(type) + "\" is not supported; expected trianglemesh, plymesh, bilinearmesh, sphere, cylinder or disk");
+    ps.fail("shape \"" + printable(type) + "\" is not supported; expected trianglemesh, plymesh, bilinearmesh, sphere, "
+            "cylinder, disk or curve");
   }
 }
 

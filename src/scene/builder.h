@@ -99,11 +99,13 @@ class SceneBuilder {
   std::optional<MaterialHandle> v3_material(const std::string& type, const pbrt::ParamSet& ps);
   void coat_layer(const pbrt::ParamSet& ps, CoatLayer* c);
   MaterialHandle coated_conductor(const pbrt::ParamSet& ps);
+  MaterialHandle hair_material(const pbrt::ParamSet& ps);
   MaterialHandle default_material();
   void add_shape(const std::string& type, const pbrt::ParamSet& ps, const GraphicsState& gs, const std::string& base_dir);
   // source: the PLY file the mesh came from, or empty; named in errors.
   void add_mesh(TriangleMesh mesh, const GraphicsState& gs, const pbrt::ParamSet& ps, const std::string& source);
   void add_quadric(const std::string& type, const pbrt::ParamSet& ps, const GraphicsState& gs);  // builder_quadrics.cpp
+  void add_curve(const pbrt::ParamSet& ps, const GraphicsState& gs);  // builder_curves.cpp
   void add_area_lights(uint32_t geometry, uint32_t primitives, const GraphicsState& gs);
   void add_ply_mesh(const std::string& path, const GraphicsState& gs, const pbrt::ParamSet& ps);
   void load_pending_meshes();

@@ -80,6 +80,9 @@ MaterialHandle SceneBuilder::material(const std::string& type, const ParamSet& p
       case MaterialKind::CoatedConductor: m.coated_conductor[h.index()].bump = b; break;
       case MaterialKind::DiffuseTransmission: m.diffuse_transmission[h.index()].bump = b; break;
       case MaterialKind::ThinDielectric: m.thin_dielectric[h.index()].bump = b; break;
+      case MaterialKind::Hair:
+        warn(ps.where, "hair takes no bump or normal map (nor does it in pbrt-v4); ignored");
+        break;
       case MaterialKind::Mix:
       case MaterialKind::Interface: break;
     }
@@ -169,13 +172,14 @@ MaterialHandle SceneBuilder::concrete_material(const std::string& type, const Pa
     m.diffuse_transmission.push_back(d);
     return MaterialHandle::make(MaterialKind::DiffuseTransmission, uint32_t(m.diffuse_transmission.size() - 1));
   }
+  if (type == "hair") return hair_material(ps);
   if (type == "thindielectric") {
     m.thin_dielectric.push_back({eta_param(ps, 1.5f)});
     return MaterialHandle::make(MaterialKind::ThinDielectric, uint32_t(m.thin_dielectric.size() - 1));
   }
   ps.fail("material type \"" + type +
           "\" is not supported; expected diffuse, conductor, dielectric, thindielectric, diffusetransmission, "
-          "coateddiffuse, coatedconductor, mix, interface (or matte, metal, glass, plastic, mirror)");
+          "coateddiffuse, coatedconductor, hair, mix, interface (or matte, metal, glass, plastic, mirror)");
 }
 
 // pbrt-v4's coatedconductor, with its parameter names and defaults.
@@ -201,6 +205,35 @@ MaterialHandle SceneBuilder::coated_conductor(const ParamSet& ps) {
   MaterialPools& m = scene_.materials;
   m.coated_conductor.push_back(c);
   return MaterialHandle::make(MaterialKind::CoatedConductor, uint32_t(m.coated_conductor.size() - 1));
+}
+
+// pbrt-v4's hair: sigma_a, or reflectance (pbrt-v3: color), or eumelanin
+// and pheomelanin; with none of them, eumelanin 1.3.
+MaterialHandle SceneBuilder::hair_material(const ParamSet& ps) {
+  HairMaterial h;
+  const char* refl = ps.has("reflectance") ? "reflectance" : "color";
+  const bool melanin = ps.has("eumelanin") || ps.has("pheomelanin");
+  if (ps.has("sigma_a")) {
+    if (ps.has(refl)) ps.fail(*ps.find(refl), "give hair either \"sigma_a\" or \"" + std::string(refl) + "\", not both");
+    if (melanin) warn(ps.where, "hair's \"sigma_a\" is given: its melanin concentrations are ignored (as in pbrt-v4)");
+    h.by = HairMaterial::Absorption::SigmaA;
+    h.sigma_a = rgb_texture(ps, "sigma_a", RGB(0.f), ColorUsage::Unbounded);
+  } else if (ps.has(refl)) {
+    if (melanin) warn(ps.where, "hair's \"" + std::string(refl) + "\" is given: its melanin concentrations are ignored (as in pbrt-v4)");
+    h.by = HairMaterial::Absorption::Reflectance;
+    h.reflectance = rgb_texture(ps, refl, RGB(0.f));
+  } else if (melanin) {
+    h.eumelanin = float_texture(ps, "eumelanin", 0.f);
+    h.pheomelanin = float_texture(ps, "pheomelanin", 0.f);
+  }
+  for (const char* p : {"eumelanin", "pheomelanin"}) ps.find(p);  // read, even when ignored
+  h.eta = float_texture(ps, "eta", 1.55f);
+  h.beta_m = float_texture(ps, "beta_m", 0.3f);
+  h.beta_n = float_texture(ps, "beta_n", 0.3f);
+  h.alpha = float_texture(ps, "alpha", 2.f);
+  MaterialPools& m = scene_.materials;
+  m.hair.push_back(h);
+  return MaterialHandle::make(MaterialKind::Hair, uint32_t(m.hair.size() - 1));
 }
 
 MaterialHandle SceneBuilder::default_material() {

@@ -141,4 +141,18 @@ inline ShadingGeometry quadric_shading_geometry(const Quadric& q, const SurfaceP
   return placed_shading_geometry(d, quadric_object_normal(q, p), q.linear, q.normal_to_world, sp.ns);
 }
 
+// A curve's dp/du along the whole curve's u, and dp/dv across its width
+// (pbrt's v runs over the width); a ribbon does not bend across, so the
+// normal's derivatives are left at zero.
+inline ShadingGeometry curve_shading_geometry(const CurveSet& c, uint32_t segment, float u, const SurfacePoint& sp) {
+  const CurveFrame f = curve_eval(c, segment, u);
+  const Vec2 span = c.u_range[segment];
+  ShadingGeometry g;
+  g.n = sp.ns;
+  g.dpdu = f.dpdu / std::fmax(span.y - span.x, 1e-30f);
+  g.dpdv = (2.f * f.radius) * glm::cross(sp.ns, sp.dpdu);
+  if (glm::dot(glm::cross(g.dpdu, g.dpdv), glm::cross(g.dpdu, g.dpdv)) == 0.f) coordinate_system(sp.ns, g.dpdu, g.dpdv);
+  return g;
+}
+
 }  // namespace lantern

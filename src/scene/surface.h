@@ -14,6 +14,7 @@ struct SurfacePoint {
   Vec3 ns;  // shading normal (unit), on the same side as ng
   Vec2 uv;
   float error_scale;  // magnitude the position's rounding error scales with
+  Vec3 dpdu{0.f};     // curves only: the unit tangent (pbrt's hair BSDF is defined around it)
 };
 
 inline SurfacePoint triangle_point(const TriangleMesh& m, uint32_t prim, float b1, float b2) {
@@ -100,10 +101,15 @@ inline SurfacePoint quadric_point(const Quadric& q, Vec2 uv) {
 // (tests/extremes_test.cpp, ScaleInvariance). Stepping back puts it
 // behind that surface; it stays at least half the offset in front of its
 // own.
+//
+// A negative error_scale marks a curve (curve_error_scale): its offset is
+// the fibre's width, not a rounding error, and stepping back by half of it
+// would carry a ray that leaves a hair's root back under the skin.
 inline constexpr float kRayOffsetScale = 1.0e-5f;
 inline Vec3 offset_ray_origin(const Vec3& p, const Vec3& ng, float error_scale, const Vec3& w) {
-  float d = kRayOffsetScale * error_scale;
-  return (glm::dot(w, ng) < 0.f ? p - d * ng : p + d * ng) - (0.5f * d) * w;
+  float d = kRayOffsetScale * std::fabs(error_scale);
+  Vec3 o = glm::dot(w, ng) < 0.f ? p - d * ng : p + d * ng;
+  return error_scale > 0.f ? o - (0.5f * d) * w : o - (0.5f * kRayOffsetScale * max_abs_component(p)) * w;
 }
 
 }  // namespace lantern

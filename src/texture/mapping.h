@@ -26,6 +26,7 @@ struct TextureContext {
   Vec3 n{0.f, 0.f, 1.f};
   Vec2 uv{0.f};
   const Footprint* fp = nullptr;  // null: zero
+  Vec3 dpdu{0.f};  // a curve's unit tangent (read by the hair BSDF); zero elsewhere
   const Footprint& footprint() const { return fp ? *fp : kNoFootprint; }
 };
 
