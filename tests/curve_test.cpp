@@ -68,20 +68,35 @@ Shape "curve" "point3 P" [ -1 0 0  -0.3 0.6 0.4  0.4 -0.5 -0.2  1 0.2 0.3 ] "flo
     float z = 1.f - 2.f * rng.get1d(), phi = 2.f * kPi * rng.get1d();
     Vec3 d(safe_sqrt(1 - z * z) * std::cos(phi), safe_sqrt(1 - z * z) * std::sin(phi), z);
     Vec3 o = target - 3.f * d;
-    // The reference: the smallest distance, across the ray, from the curve
-    // to the ray's line relative to the radius there, over 20000 u.
-    float best = 1e30f, best_t = 0.f, best_u = 0.f;
-    for (int k = 0; k <= 20000; ++k) {
-      float u = float(k) / 20000.f;
-      CurveFrame f = curve_eval(c, 0, u);
-      Vec3 rel = f.p - o;
-      float t = glm::dot(rel, d);
-      float dist = glm::length(rel - t * d) / f.radius;
-      if (dist < best) best = dist, best_t = t, best_u = u;
+    // The reference: over 20000 u, the distance across the ray from the
+    // curve to the ray's line in radii. Each run of u closer than a radius
+    // is one crossing of the ribbon, met where it comes closest; the ray
+    // meets the crossing with the smallest t first.
+    float best = 1e30f, best_t = 1e30f, best_u = 0.f, run_best = 1e30f, run_t = 0.f, run_u = 0.f, nearest = 1e30f;
+    bool ambiguous = false;
+    for (int k = 0; k <= 20001; ++k) {
+      float u = float(std::min(k, 20000)) / 20000.f, dist = 1e30f, t = 0.f;
+      if (k <= 20000) {
+        CurveFrame f = curve_eval(c, 0, u);
+        Vec3 rel = f.p - o;
+        t = glm::dot(rel, d);
+        dist = glm::length(rel - t * d) / f.radius;
+        nearest = std::min(nearest, dist);
+      }
+      if (dist < 1.f) {
+        if (dist < run_best) run_best = dist, run_t = t, run_u = u;
+        continue;
+      }
+      if (run_best < 1.f) {  // a crossing ended
+        // Not judged: a crossing past an end (the ribbon ends square there).
+        if (run_u < 0.02f || run_u > 0.98f) ambiguous = true;
+        if (run_t < best_t) best = run_best, best_t = run_t, best_u = run_u;
+        run_best = 1e30f;
+      }
     }
-    // Not judged: rays within 3% of the ribbon's edge, and rays whose
-    // closest approach is past an end (the ribbon ends square there).
-    if (std::fabs(best - 1.f) < 0.03f || best_u < 0.02f || best_u > 0.98f) continue;
+    // Not judged either: rays within 3% of the ribbon's edge.
+    if (std::fabs(nearest - 1.f) < 0.03f || ambiguous) continue;
+    if (best > 1.f) best = nearest;
     RayBatch rays;
     rays.push(o, d, 0.f, kInfinity);
     stream.intersect(rays, RayKind::Camera);
@@ -149,6 +164,42 @@ TEST(Curve, HairBallMatchesPbrt) {
     for (size_t c = 0; c < 3; ++c)
       EXPECT_LT(std::fabs(st.mean[g][c] - pbrt[g][c]), 4.0 * st.std_error[g][c] + 0.02 * pbrt[g][c])
           << "region " << g << " channel " << c << ": " << st.mean[g][c] << " against pbrt-v4's " << pbrt[g][c];
+}
+
+// A ball of hair under a distant light and a sky: path, bdpt and light
+// tracing agree on the fibres and on the floor they shadow. Light subpaths
+// need the hair BSDF's adjoint (its importance mode): with the radiance
+// mode's value instead, bdpt is 6 standard errors off and the test fails.
+TEST(Curve, HairBallRendersAlikeWithEveryIntegrator) {
+  if (LANTERN_ASAN) GTEST_SKIP() << "the Release suite runs it; the sanitizers cover curves in the other curve tests";
+  std::string text = R"(LookAt 0 -3.5 1.2  0 0 0.2  0 0 1
+Camera "perspective" "float fov" [ 40 ]
+WorldBegin
+LightSource "distant" "point3 from" [ -1 -2 3 ] "point3 to" [ 0 0 0 ] "rgb L" [ 2.5 2.5 2.5 ]
+LightSource "infinite" "rgb L" [ 0.2 0.2 0.2 ]
+Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
+Shape "trianglemesh" "point3 P" [ -10 -10 -0.5 10 -10 -0.5 10 10 -0.5 -10 10 -0.5 ] "integer indices" [ 0 1 2 0 2 3 ]
+Shape "sphere" "float radius" [ 0.4 ]
+Material "hair" "float eumelanin" [ 0.3 ] "float beta_m" [ 0.25 ]
+)";
+  RandomStream rng = RandomStream::make(9, 0, 0);
+  for (int i = 0; i < 150; ++i) {  // strands from the core outwards
+    float z = 1.f - 2.f * rng.get1d(), phi = 2.f * kPi * rng.get1d();
+    Vec3 d(safe_sqrt(1 - z * z) * std::cos(phi), safe_sqrt(1 - z * z) * std::sin(phi), std::fabs(z));
+    Vec3 bend(rng.get1d() - 0.5f, rng.get1d() - 0.5f, rng.get1d() - 0.5f);
+    Vec3 p[4] = {0.42f * d, 0.7f * d + 0.2f * bend, 1.f * d - 0.1f * bend, 1.3f * d + 0.2f * bend};
+    text += "Shape \"curve\" \"float width0\" 0.03 \"float width1\" 0.01 \"point3 P\" [";
+    for (const Vec3& q : p) text += " " + std::to_string(q.x) + " " + std::to_string(q.y) + " " + std::to_string(q.z);
+    text += " ]\n";
+  }
+  auto scene = load_scene_from_string(text, "hairball.pbrt");
+  // Below the horizon: light tracing does not see the sky itself.
+  const std::vector<Region> regions = {{0, 10, 24, 14}, {6, 10, 12, 6}, {0, 17, 24, 7}, {9, 11, 6, 6}};
+  auto path = render_stats(*scene, "path", 24, 24, 64, 16, regions);
+  auto bdpt = render_stats(*scene, "bdpt", 24, 24, 16, 16, regions);
+  auto lt = render_stats(*scene, "lt", 24, 24, 32, 16, regions);
+  EXPECT_LT(max_z(bdpt, path), 5.0);
+  EXPECT_LT(max_z(lt, path), 5.0);
 }
 
 TEST(Curve, BadCurvesAreClearErrors) {

@@ -32,9 +32,6 @@ struct SceneSettings {
   SamplerSettings sampler;
   // The Integrator's "lightsampler" (pbrt-v4's names; bvh by default).
   std::string light_sampler = "bvh";
-  // The scene uses pbrt's hair material, which only the path tracer
-  // renders as pbrt does (docs/materials.md, "hair").
-  bool hair = false;
 };
 
 struct LoadOptions {

@@ -113,12 +113,6 @@ int run_render(const RenderArgs& a) {
   o.spp = a.spp > 0 ? a.spp : ss.spp;
   o.time_limit_seconds = a.time;
   o.maxdepth = a.maxdepth >= 0 ? a.maxdepth : ss.maxdepth;
-  if (ss.hair && o.integrator != "path")
-    std::fprintf(stderr,
-                 "warning: the scene uses the hair material; --integrator %s does not yet render it as the path "
-                 "tracer and pbrt-v4 do (it can differ by 10-20%% in dense hair; docs/materials.md): use "
-                 "--integrator path\n",
-                 o.integrator.c_str());
   o.threads = a.threads;
   o.seed = a.seed;
   o.sampler = ss.sampler;

@@ -139,7 +139,7 @@ void Bdpt::eye_connect_stage(BdptWave& w) const {
         // MIS ratios would be 0/0.
         if (!is_black(f) && direct_pdf_A > 0.f) {
           float emission_fwd_A = emission_pdf(sc.lights, sc.shapes, sc.textures, ls->light, ls->n_light, -ls->wi) *
-                                 std::fabs(glm::dot(h.ng[i], ls->wi)) / dist2;
+                                 vertex_cos(h.ng[i], h.error_scale[i], tangent_or_null(h.tangent, i), ls->wi) / dist2;
           float wt =
               mis_weight_next_event(m, ls->delta ? 0.f : ls->pdf, bsdf.pdf(wo, wi, TransportMode::Radiance),
                                     emission_fwd_A, direct_pdf_A, bsdf.pdf(wi, wo, TransportMode::Importance), mis_);
@@ -181,8 +181,10 @@ void Bdpt::eye_connect_stage(BdptWave& w) const {
         });
         RGB c = beta * f_eye * f_light * v.beta[j] / dist2;
         if (is_black(c)) continue;
-        float eye_fwd_A = bsdf.pdf(wo, wi, TransportMode::Radiance) * std::fabs(glm::dot(v.ng[j], wi_w)) / dist2;
-        float light_fwd_A = light_fwd_W * std::fabs(glm::dot(h.ng[i], wi_w)) / dist2;
+        float eye_fwd_A = bsdf.pdf(wo, wi, TransportMode::Radiance) *
+                          vertex_cos(v.ng[j], v.error_scale[j], tangent_or_null(v.tangent, j), wi_w) / dist2;
+        float light_fwd_A =
+            light_fwd_W * vertex_cos(h.ng[i], h.error_scale[i], tangent_or_null(h.tangent, i), wi_w) / dist2;
         float wt = mis_weight_connect(m, v.mis[j], eye_fwd_A, bsdf.pdf(wi, wo, TransportMode::Importance), light_fwd_A,
                                       light_rev_W, mis_);
         Vec3 o = offset_ray_origin(h.p[i], h.ng[i], h.error_scale[i], wi_w);

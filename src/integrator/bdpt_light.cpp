@@ -171,7 +171,9 @@ void Bdpt::light_connect_stage(BdptWave& w) const {
         if (!is_black(f)) {
           float wt = 1.f;
           if (!settings_.light_tracing_only) {
-            float camera_pdf_A = camera_.pdf_dir(-cs->wi) * std::fabs(glm::dot(h.ng[i], cs->wi)) / sqr(cs->dist);
+            float camera_pdf_A = camera_.pdf_dir(-cs->wi) *
+                                 vertex_cos(h.ng[i], h.error_scale[i], tangent_or_null(h.tangent, i), cs->wi) /
+                                 sqr(cs->dist);
             wt = weight(mis_weight_light_trace(m, camera_pdf_A, bsdf.pdf(wi, wo, TransportMode::Radiance), mis_));
           }
           push_camera_ray(w, slot, h.p[i], h.ng[i], h.error_scale[i], *cs, beta * f * (cs->We / cs->pdf), wt,

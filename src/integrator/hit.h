@@ -66,6 +66,20 @@ inline SurfacePoint hit_point(const ShapePools& shapes, const RayBatch& rays, ui
   return to_world(in, local_hit_point(shapes, rays, i, &in));
 }
 
+// The cosine that turns a density per solid angle towards a vertex into one
+// per area there. A curve that faces the ray (flat, cylinder: marked by a
+// negative error_scale) is a fibre that every ray sees across its whole
+// width; its area is width times length, and its cosine that of w to the
+// fibre's normal plane, whichever ray found the vertex (for that ray it is
+// also the cosine to the facing normal).
+inline float vertex_cos(const Vec3& ng, float error_scale, const Vec3* tangent, const Vec3& w) {
+  if (error_scale < 0.f && tangent && *tangent != Vec3(0.f)) return safe_sqrt(1.f - sqr(glm::dot(w, *tangent)));
+  return std::fabs(glm::dot(ng, w));
+}
+inline const Vec3* tangent_or_null(const std::vector<Vec3>& tangents, uint32_t i) {
+  return i < tangents.size() ? &tangents[i] : nullptr;
+}
+
 // Index into LightPools::area of the emitter that was hit, or -1.
 inline int64_t hit_area_light(const ShapePools& shapes, const RayBatch& rays, uint32_t i) {
   const Geometry& g = shapes.geometries[rays.geom_id[i]];

@@ -53,7 +53,8 @@ PathEnd continue_subpath(const BSDF& bsdf, TransportMode mode, HitPool& hits, ui
   const TransportMode reverse = importance ? TransportMode::Radiance : TransportMode::Importance;
   float pdf_fwd = bs->pdf_is_proportional ? bsdf.pdf(wo, bs->wi, mode) : bs->pdf;
   float pdf_rev = bs->specular ? bs->pdf : bsdf.pdf(bs->wi, wo, reverse);
-  mis_after_scatter(sub.mis, std::fabs(glm::dot(hits.ng[i], wi)), pdf_fwd, pdf_rev, bs->specular, mis);
+  mis_after_scatter(sub.mis, vertex_cos(hits.ng[i], hits.error_scale[i], tangent_or_null(hits.tangent, i), wi), pdf_fwd,
+                    pdf_rev, bs->specular, mis);
   if (!importance && bs->transmission) sub.eta_scale *= sqr(bs->etap);
   float rr = max_component(sub.beta * sub.eta_scale) * sub.rr_scale;
   if (rr < 1.f && depth >= 2) {

@@ -59,20 +59,24 @@ struct HairBSDF {
 
   bool is_specular() const { return false; }
 
-  RGB f(const Vec3& wo, const Vec3& wi, TransportMode) const {
-    const Angles o = angles(wo), i = angles(wi);
-    const Internal in = internal(o);
-    const std::array<RGB, kPMax + 1> ap = attenuation(o.cos_theta, in.T);
-    const float phi = i.phi - o.phi;
-    RGB sum(0.f);
-    for (int p = 0; p < kPMax; ++p) {
-      const Angles t = tilted(o, p);
-      sum += mp(i.cos_theta, t.cos_theta, i.sin_theta, t.sin_theta, v_[p]) * ap[size_t(p)] *
-             np(phi, p, in.gamma_t);
+  // Radiance: S(wo, wi), the fibre's scattering from wi towards wo. The
+  // fibre is seen across its width by the ray that found it, so a vertex
+  // found from the light side weighs the camera-side direction by the
+  // fibre's width as the light saw it: importance carries the adjoint,
+  // S(wi, wo) times the ratio of the two directions' cosines to the fibre's
+  // normal plane. Without it light tracing is brighter than path tracing
+  // wherever light meets the fibres more squarely than the camera does
+  // (docs/materials.md, hair).
+  RGB f(const Vec3& wo, const Vec3& wi, TransportMode mode) const {
+    RGB s;
+    if (mode == TransportMode::Radiance) {
+      s = scattering(angles(wo), angles(wi));
+    } else {
+      const Angles o = angles(wo), i = angles(wi);
+      s = o.cos_theta > 0.f ? scattering(i, o) * (i.cos_theta / o.cos_theta) : RGB(0.f);
     }
-    sum += mp(i.cos_theta, o.cos_theta, i.sin_theta, o.sin_theta, v_[kPMax]) * ap[kPMax] * kInv2Pi;
     float c = std::fabs(wi.z);
-    return c > 0.f ? sum / c : sum;
+    return c > 0.f ? s / c : s;
   }
 
   float pdf(const Vec3& wo, const Vec3& wi, TransportMode, Lobes = Lobes::All) const {
@@ -131,6 +135,20 @@ struct HairBSDF {
     float gamma_t;
     RGB T;
   };
+
+  // S: the sum of the terms for light leaving towards o from i, with h and
+  // the internal path taken for o.
+  RGB scattering(const Angles& o, const Angles& i) const {
+    const Internal in = internal(o);
+    const std::array<RGB, kPMax + 1> ap = attenuation(o.cos_theta, in.T);
+    const float phi = i.phi - o.phi;
+    RGB sum(0.f);
+    for (int p = 0; p < kPMax; ++p) {
+      const Angles t = tilted(o, p);
+      sum += mp(i.cos_theta, t.cos_theta, i.sin_theta, t.sin_theta, v_[p]) * ap[size_t(p)] * np(phi, p, in.gamma_t);
+    }
+    return sum + mp(i.cos_theta, o.cos_theta, i.sin_theta, o.sin_theta, v_[kPMax]) * ap[kPMax] * kInv2Pi;
+  }
 
   Angles angles(const Vec3& w) const {
     const float sx = glm::clamp(glm::dot(w, x_), -1.f, 1.f), yy = glm::dot(w, y_);

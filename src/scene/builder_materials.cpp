@@ -233,7 +233,6 @@ MaterialHandle SceneBuilder::hair_material(const ParamSet& ps) {
   h.alpha = float_texture(ps, "alpha", 2.f);
   MaterialPools& m = scene_.materials;
   m.hair.push_back(h);
-  scene_.settings.hair = true;
   return MaterialHandle::make(MaterialKind::Hair, uint32_t(m.hair.size() - 1));
 }
 

@@ -107,11 +107,14 @@ SurfacePoint curve_point(const CurveSet& c, uint32_t segment, float u, const Vec
   sp.uv = Vec2(span.x + (span.y - span.x) * u, 0.5f * (h + 1.f));
   sp.dpdu = T;
   // pbrt bounds a curve hit's error by the curve's width in each axis: rays
-  // leave from one to two widths off the ribbon, so that a ray continuing
-  // through a fibre does not meet the same fibre again. Negative: see
-  // offset_ray_origin.
-  sp.error_scale =
-      -std::fmax(max_abs_component(p), 2.f * r * (std::fabs(n.x) + std::fabs(n.y) + std::fabs(n.z)) / kRayOffsetScale);
+  // leave a fibre from one to two widths off its ribbon, so that a ray
+  // continuing through it does not meet it again. Negative: a surface that
+  // faces the ray (offset_ray_origin, vertex_cos). A ribbon is a surface
+  // like any other, offset by a tenth of its width.
+  const float normal_l1 = std::fabs(n.x) + std::fabs(n.y) + std::fabs(n.z);
+  sp.error_scale = c.type == CurveType::Ribbon
+                       ? std::fmax(max_abs_component(p), 0.1f * r / kRayOffsetScale)
+                       : -std::fmax(max_abs_component(p), 2.f * r * normal_l1 / kRayOffsetScale);
   return sp;
 }
 
