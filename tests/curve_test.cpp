@@ -72,7 +72,7 @@ Shape "curve" "point3 P" [ -1 0 0  -0.3 0.6 0.4  0.4 -0.5 -0.2  1 0.2 0.3 ] "flo
     // curve to the ray's line in radii. Each run of u closer than a radius
     // is one crossing of the ribbon, met where it comes closest; the ray
     // meets the crossing with the smallest t first.
-    float best = 1e30f, best_t = 1e30f, best_u = 0.f, run_best = 1e30f, run_t = 0.f, run_u = 0.f, nearest = 1e30f;
+    float best = 1e30f, best_t = 1e30f, run_best = 1e30f, run_t = 0.f, run_u = 0.f, nearest = 1e30f;
     bool ambiguous = false;
     for (int k = 0; k <= 20001; ++k) {
       float u = float(std::min(k, 20000)) / 20000.f, dist = 1e30f, t = 0.f;
@@ -90,7 +90,7 @@ Shape "curve" "point3 P" [ -1 0 0  -0.3 0.6 0.4  0.4 -0.5 -0.2  1 0.2 0.3 ] "flo
       if (run_best < 1.f) {  // a crossing ended
         // Not judged: a crossing past an end (the ribbon ends square there).
         if (run_u < 0.02f || run_u > 0.98f) ambiguous = true;
-        if (run_t < best_t) best = run_best, best_t = run_t, best_u = run_u;
+        if (run_t < best_t) best = run_best, best_t = run_t;
         run_best = 1e30f;
       }
     }
@@ -107,10 +107,15 @@ Shape "curve" "point3 P" [ -1 0 0  -0.3 0.6 0.4  0.4 -0.5 -0.2  1 0.2 0.3 ] "flo
     // t to within the ribbon's depth and the chords' sagitta.
     EXPECT_NEAR(rays.tfar[0], best_t, 0.12f) << "ray " << i;
     SurfacePoint sp = hit_point(s.shapes, rays, 0);
-    EXPECT_NEAR(sp.uv.x, best_u, 0.03f) << "ray " << i;
+    {  // the reported u is where the ray passes within the ribbon (at a
+       // grazing crossing many u are, so it is not compared with the closest)
+      CurveFrame f = curve_eval(c, 0, sp.uv.x);
+      Vec3 rel = f.p - o;
+      EXPECT_LT(glm::length(rel - glm::dot(rel, d) * d) / f.radius, 1.1f) << "ray " << i;
+    }
     EXPECT_GE(sp.uv.y, 0.f);
     EXPECT_LE(sp.uv.y, 1.f);
-    EXPECT_NEAR(std::fabs(glm::dot(sp.dpdu, glm::normalize(curve_eval(c, 0, best_u).dpdu))), 1.f, 0.02f);
+    EXPECT_NEAR(std::fabs(glm::dot(sp.dpdu, glm::normalize(curve_eval(c, 0, sp.uv.x).dpdu))), 1.f, 1e-4f);
     EXPECT_NEAR(std::fabs(glm::dot(sp.ng, d)), glm::length(d - glm::dot(d, sp.dpdu) * sp.dpdu), 1e-3f)
         << "a flat curve faces the ray";
   }
