@@ -25,7 +25,7 @@ float width_param(const ParamSet& ps, const char* name, float def) {
 }
 
 // The set the next curve goes into: the last geometry's, when it is a set
-// of the same type, detail and material in the same scope (the world, or
+// of the same type and material in the same scope (the world, or
 // the object being defined) and nothing (alpha) sets it apart; otherwise a
 // new one.
 bool can_join(const ShapePools& s, const CurveSet& c, MaterialHandle m, bool last_in_scope, bool alpha) {
