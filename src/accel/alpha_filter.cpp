@@ -13,10 +13,8 @@ float alpha_at(const ShapePools& shapes, const TexturePools& textures, uint32_t 
   if (a.is_constant()) return a.value.x;
   // A curve's v across its width depends on the ray: textures on curves
   // read u along the curve (pbrt's) and the middle of v.
-  if (geo.kind == ShapeKind::Curve) {
-    const Vec2 span = shapes.curves[geo.index].u_range[prim];
-    return textures.evaluate_float(a, TextureContext{p, Vec3(0, 0, 1), Vec2(span.x + (span.y - span.x) * b.x, 0.5f)});
-  }
+  if (geo.kind == ShapeKind::Curve)
+    return textures.evaluate_float(a, TextureContext{p, Vec3(0, 0, 1), Vec2(shapes.curves[geo.index].curve_u(prim, b.x), 0.5f)});
   SurfacePoint sp = geo.kind == ShapeKind::Mesh      ? triangle_point(shapes.meshes[geo.index], prim, b.x, b.y)
                     : geo.kind == ShapeKind::Quadric ? quadric_point(shapes.quadrics[geo.index], b)
                                                      : sphere_point(shapes.spheres[geo.index], p);

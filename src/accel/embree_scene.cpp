@@ -18,16 +18,18 @@ namespace lantern {
 static constexpr float kFlatCurveTessellation = 32.f;
 
 // pbrt's flat and cylinder curves are ribbons facing the ray, ribbons are
-// oriented by their normals (scene/curve.h). The buffers are shared with
-// the pool.
+// oriented by their normals (scene/curve.h). The control points and
+// normals are shared with the pool.
 static RTCGeometry new_curve_geometry(RTCDevice device, const CurveSet& c) {
   const bool ribbon = c.type == CurveType::Ribbon;
   RTCGeometry geom = rtcNewGeometry(
       device, ribbon ? RTC_GEOMETRY_TYPE_NORMAL_ORIENTED_BEZIER_CURVE : RTC_GEOMETRY_TYPE_FLAT_BEZIER_CURVE);
   rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, c.control.data(), 0,
                              sizeof(glm::vec4), c.control.size());
-  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, c.first.data(), 0, sizeof(uint32_t),
-                             c.first.size());
+  // Segment i starts at control point 4 i: Embree copies that index list.
+  auto* first = static_cast<uint32_t*>(
+      rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, sizeof(uint32_t), c.segments()));
+  for (uint32_t i = 0; i < c.segments(); ++i) first[i] = 4 * i;
   // The normals carry one padding element: Embree reads 16 bytes per entry.
   if (ribbon)
     rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_NORMAL, 0, RTC_FORMAT_FLOAT3, c.normals.data(), 0, sizeof(Vec3),

@@ -84,7 +84,6 @@ void SceneBuilder::add_curve(const ParamSet& ps, const GraphicsState& gs) {
   for (size_t i = 0; i < n; ++i) {
     const float r0 = 0.5f * scale * glm::mix(w0, w1, float(i) / float(n));
     const float r1 = 0.5f * scale * glm::mix(w0, w1, float(i + 1) / float(n));
-    c.first.push_back(uint32_t(c.control.size()));
     for (int k = 0; k < 4; ++k) {
       Vec3 p = Vec3(M * glm::dvec4(glm::dvec3(segs[i].cp[k]), 1.0));
       if (!is_finite(p)) ps.fail("the curve's position under the current transform exceeds single precision");
@@ -103,8 +102,6 @@ void SceneBuilder::add_curve(const ParamSet& ps, const GraphicsState& gs) {
   if (can_join(s, c, m, last_in_scope, ps.has("alpha"))) {
     CurveSet& last = s.curves[s.geometries.back().index];
     if (!last.normals.empty()) last.normals.pop_back();  // the padding
-    const uint32_t base = uint32_t(last.control.size());
-    for (uint32_t f : c.first) last.first.push_back(base + f);
     last.control.insert(last.control.end(), c.control.begin(), c.control.end());
     last.normals.insert(last.normals.end(), c.normals.begin(), c.normals.end());
     last.u_range.insert(last.u_range.end(), c.u_range.begin(), c.u_range.end());

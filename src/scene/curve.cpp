@@ -30,7 +30,7 @@ Vec3 any_perpendicular(const Vec3& v) {
 }  // namespace
 
 CurveFrame curve_eval(const CurveSet& c, uint32_t segment, float u) {
-  const glm::vec4* q = &c.control[c.first[segment]];
+  const glm::vec4* q = &c.control[4 * size_t(segment)];
   glm::vec4 p = bezier(q[0], q[1], q[2], q[3], u);
   glm::vec4 dp = bezier_derivative(q[0], q[1], q[2], q[3], u);
   return {Vec3(p), Vec3(dp), p.w};
@@ -82,7 +82,7 @@ SurfacePoint curve_point(const CurveSet& c, uint32_t segment, float u, const Vec
   Vec3 n = z0, across = glm::cross(z0, T);
   if (c.type == CurveType::Ribbon) {
     // Embree's normal, on the side of the normals the curve was given.
-    const Vec3* nq = &c.normals[c.first[segment]];
+    const Vec3* nq = &c.normals[4 * size_t(segment)];
     Vec3 given = bezier(nq[0], nq[1], nq[2], nq[3], u);
     float nl = glm::length(ng_embree);
     n = nl > 0.f && std::isfinite(nl) ? ng_embree / nl : given;
@@ -103,8 +103,7 @@ SurfacePoint curve_point(const CurveSet& c, uint32_t segment, float u, const Vec
   SurfacePoint sp;
   sp.p = p;
   sp.ng = sp.ns = n;
-  const Vec2 span = c.u_range[segment];
-  sp.uv = Vec2(span.x + (span.y - span.x) * u, 0.5f * (h + 1.f));
+  sp.uv = Vec2(c.curve_u(segment, u), 0.5f * (h + 1.f));
   sp.dpdu = T;
   // pbrt bounds a curve hit's error by the curve's width in each axis: rays
   // leave a fibre from one to two widths off its ribbon, so that a ray

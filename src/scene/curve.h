@@ -26,9 +26,13 @@ struct CurveSet {
   std::vector<glm::vec4> control;    // 4 per segment: position and radius
   std::vector<Vec3> normals;         // Ribbon: 4 per segment
   std::vector<Vec2> u_range;         // per segment: its span of the whole curve's u
-  std::vector<uint32_t> first;       // per segment: index of its first control point (4 * segment)
 
   uint32_t segments() const { return uint32_t(u_range.size()); }
+  // pbrt's u along the whole curve at a segment's own u.
+  float curve_u(uint32_t segment, float u) const {
+    const Vec2 span = u_range[segment];
+    return span.x + (span.y - span.x) * u;
+  }
 };
 
 // A segment's position, derivative and radius at u.
