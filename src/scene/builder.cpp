@@ -1,4 +1,5 @@
 #include "scene/builder.h"
+#include "scene/loop_subdivision.h"
 
 #include <tbb/parallel_for.h>
 
@@ -240,6 +241,28 @@ void SceneBuilder::add_mesh(TriangleMesh mesh, const GraphicsState& gs, const Pa
   add_area_lights(uint32_t(s.geometries.size() - 1), prims, gs);
 }
 
+// pbrt's "loopsubdiv": refined at load into a mesh with the limit
+// surface's normals (scene/loop_subdivision.h).
+void SceneBuilder::add_subdivision_surface(const ParamSet& ps, const GraphicsState& gs) {
+  const std::vector<Vec3> P = ps.get_point3s("P");
+  const std::vector<int> indices = ps.get_ints("indices");
+  if (P.empty()) ps.fail("\"point3 P\" is missing");
+  if (indices.empty()) ps.fail("\"integer indices\" is missing");
+  // pbrt-v3 called it "nlevels".
+  const int levels = ps.has("levels") || !ps.has("nlevels") ? ps.get_int("levels", 3) : ps.get_int("nlevels", 3);
+  SubdividedMesh sub;
+  try {
+    sub = loop_subdivide(P, indices, levels);
+  } catch (const std::invalid_argument& e) {
+    ps.fail(e.what());
+  }
+  TriangleMesh m;
+  m.positions = std::move(sub.positions);
+  m.normals = std::move(sub.normals);
+  m.triangles = std::move(sub.triangles);
+  add_mesh(std::move(m), gs, ps, "");
+}
+
 // A PLY mesh that does not emit is given its place in the pools now and is
 // read later, with all the others in parallel (load_pending_meshes); an
 // emitter needs its triangles at once, for the light table.
@@ -354,6 +377,8 @@ void SceneBuilder::add_shape(const std::string& type, const ParamSet& ps, const 
     }
     for (const char* p : {"S", "faceIndices"}) ps.find(p);
     add_mesh(std::move(m), gs, ps, "");
+  } else if (type == "loopsubdiv") {
+    add_subdivision_surface(ps, gs);
   } else if (type == "plymesh") {
     std::string file = ps.get_string("filename", "");
     if (file.empty()) ps.fail("plymesh needs a \"filename\"");
@@ -363,8 +388,8 @@ void SceneBuilder::add_shape(const std::string& type, const ParamSet& ps, const 
   } else if (type == "curve") {
     add_curve(ps, gs);
   } else {
-    ps.fail("shape \"" + printable(type) + "\" is not supported; expected trianglemesh, plymesh, bilinearmesh, sphere, "
-            "cylinder, disk or curve");
+    ps.fail("shape \"" + printable(type) + "\" is not supported; expected trianglemesh, plymesh, bilinearmesh, "
+            "loopsubdiv, sphere, cylinder, disk or curve");
   }
 }
 
