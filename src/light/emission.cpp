@@ -68,9 +68,13 @@ std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& s
     case LightKind::Point: {
       const PointLight& pl = L.point[r.index];
       es.p = pl.p;
-      es.d = sample_uniform_sphere(u_dir);
-      es.pdf_dir = uniform_sphere_pdf();
-      es.Le = pl.I;
+      if (pl.profile < 0) {
+        es.d = sample_uniform_sphere(u_dir);
+        es.pdf_dir = uniform_sphere_pdf();
+      } else if (!sample_profile(L.profiles[size_t(pl.profile)], u_dir, &es.d, &es.pdf_dir)) {
+        return std::nullopt;
+      }
+      es.Le = point_intensity(L, tex, pl, es.d);
       es.error_scale = max_abs_component(pl.p);
       es.delta_pos = true;
       break;
@@ -129,8 +133,10 @@ float emission_pdf(const LightPools& L, const ShapePools& shapes, const TextureP
   switch (r.kind) {
     case LightKind::Area:
       return area_emission_pdf(L, shapes, r.index, n, w);
-    case LightKind::Point:
-      return pmf * uniform_sphere_pdf();
+    case LightKind::Point: {
+      const PointLight& pl = L.point[r.index];
+      return pmf * (pl.profile < 0 ? uniform_sphere_pdf() : profile_pdf(L.profiles[size_t(pl.profile)], w));
+    }
     case LightKind::Spot:
       return pmf * uniform_cone_pdf(L.spot[r.index].cos_falloff_end);
     case LightKind::Distant:
@@ -149,7 +155,7 @@ RGB emitted(const LightPools& L, const TexturePools& tex, uint32_t light, const 
     case LightKind::Area:
       return area_light_Le(L.area[r.index], tex, n, uv, w);
     case LightKind::Point:
-      return L.point[r.index].I;
+      return point_intensity(L, tex, L.point[r.index], w);
     case LightKind::Spot:
       return L.spot[r.index].I * spot_falloff(L.spot[r.index], w);
     default:

@@ -94,7 +94,7 @@ LightBounds light_bounds(const LightPools& L, const ShapePools& shapes, const Te
       b.lo = b.hi = L.point[r.index].p;
       b.cos_theta_o = -1.f;  // every direction
       b.cos_theta_e = 0.f;
-      b.phi = avg(L.point[r.index].I);
+      b.phi = point_mean_intensity(L, L.point[r.index]);  // a profile's light bounded as if isotropic
       return b;
     case LightKind::Spot: {
       // Light leaves within the falloff's end angle of the axis: a cone of

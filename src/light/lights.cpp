@@ -35,7 +35,7 @@ float light_power(const LightPools& L, const LightRef& r, const TexturePools& te
       float mean = a.image < 0 ? 1.f : tex.image_mean(a.image);
       return avg(a.L) * mean * a.area * kPi * (a.two_sided ? 2.f : 1.f);
     }
-    case LightKind::Point: return 4.f * kPi * avg(L.point[r.index].I);
+    case LightKind::Point: return 4.f * kPi * point_mean_intensity(L, L.point[r.index]);
     case LightKind::Spot: {
       const SpotLight& s = L.spot[r.index];
       return avg(s.I) * 2.f * kPi * (1.f - 0.5f * (s.cos_falloff_start + s.cos_falloff_end));
@@ -67,6 +67,7 @@ void finalize_lights(LightPools& L, const ShapePools& shapes, const TexturePools
     L.all.push_back({LightKind::Area, i});
   }
   for (uint32_t i = 0; i < L.point.size(); ++i) L.all.push_back({LightKind::Point, i});
+  for (IntensityProfile& p : L.profiles) finalize_profile(p, tex);
   for (uint32_t i = 0; i < L.spot.size(); ++i) L.all.push_back({LightKind::Spot, i});
   for (uint32_t i = 0; i < L.distant.size(); ++i) L.all.push_back({LightKind::Distant, i});
   for (uint32_t i = 0; i < L.infinite.size(); ++i) {
@@ -181,7 +182,8 @@ std::optional<LightSample> sample_light_from(const LightPools& L, const ShapePoo
       Vec3 d = pl.p - p;
       float dist2 = glm::dot(d, d);
       if (!(dist2 > 0.f)) return std::nullopt;
-      ls = LightSample{pl.I / dist2, d / std::sqrt(dist2), 1.f, pl.p, Vec3(0.f), max_abs_component(pl.p), true, false};
+      const Vec3 wi = d / std::sqrt(dist2);
+      ls = LightSample{point_intensity(L, tex, pl, -wi) / dist2, wi, 1.f, pl.p, Vec3(0.f), max_abs_component(pl.p), true, false};
       break;
     }
     case LightKind::Spot: {

@@ -9,6 +9,7 @@
 #include "math/distribution.h"
 #include "math/equal_area.h"
 #include "math/frame.h"
+#include "light/intensity_profile.h"
 #include "texture/texture.h"
 
 namespace lantern {
@@ -30,6 +31,7 @@ struct AreaLight {  // one per emissive triangle or sphere
 struct PointLight {
   Vec3 p;
   RGB I;
+  int32_t profile = -1;  // goniometric and projection lights: index into LightPools::profiles
 };
 struct SpotLight {
   Vec3 p;
@@ -60,6 +62,7 @@ struct LightPools {
   std::vector<SpotLight> spot;
   std::vector<DistantLight> distant;
   std::vector<InfiniteLight> infinite;
+  std::vector<IntensityProfile> profiles;
 
   std::vector<LightRef> all;        // what the selection distribution indexes
   std::vector<uint32_t> area_to_all;
@@ -82,6 +85,16 @@ struct LightSample {
   bool infinite = false;  // no end point: the shadow ray is unbounded
   uint32_t light = 0;     // index into LightPools::all
 };
+
+// A point light's intensity leaving in world direction w.
+inline RGB point_intensity(const LightPools& L, const TexturePools& tex, const PointLight& pl, const Vec3& w) {
+  return pl.profile < 0 ? pl.I : pl.I * profile_value(L.profiles[size_t(pl.profile)], tex, w);
+}
+// Its mean over all directions (power / 4 pi), averaged over the channels.
+inline float point_mean_intensity(const LightPools& L, const PointLight& pl) {
+  const float avg = (pl.I.x + pl.I.y + pl.I.z) / 3.f;
+  return pl.profile < 0 ? avg : avg * L.profiles[size_t(pl.profile)].mean_intensity;
+}
 
 // Emitted power (flux), averaged over the colour channels.
 float light_power(const LightPools& lights, const LightRef& light, const TexturePools& tex);

@@ -103,6 +103,7 @@ class SceneBuilder {
   MaterialHandle default_material();
   void add_shape(const std::string& type, const pbrt::ParamSet& ps, const GraphicsState& gs, const std::string& base_dir);
   // source: the PLY file the mesh came from, or empty; named in errors.
+  void profiled_light(const std::string& type, const pbrt::ParamSet& ps, const Mat4& ctm, const std::string& base_dir);
   void add_subdivision_surface(const pbrt::ParamSet& ps, const GraphicsState& gs);
   void add_mesh(TriangleMesh mesh, const GraphicsState& gs, const pbrt::ParamSet& ps, const std::string& source);
   void add_quadric(const std::string& type, const pbrt::ParamSet& ps, const GraphicsState& gs);  // builder_quadrics.cpp

@@ -60,9 +60,53 @@ void SceneBuilder::light(const std::string& type, const ParamSet& ps, const Mat4
       scene_.textures.images.push_back(std::move(img));
     }
     L.infinite.push_back(std::move(e));
+  } else if (type == "goniometric" || type == "projection") {
+    profiled_light(type, ps, ctm, base_dir);
   } else {
-    ps.fail("light type \"" + printable(type) + "\" is not supported; expected point, spot, distant or infinite");
+    ps.fail("light type \"" + printable(type) + "\" is not supported; expected point, spot, goniometric, projection, "
+            "distant or infinite");
   }
+}
+
+// pbrt-v4's goniometric light (I times a grey equal-area image of the
+// sphere, its y and z axes swapped) and projection light (scale times an
+// image thrown through a frustum of "fov" degrees along +z, y flipped so
+// the image's top is up), both at the origin of their space.
+void SceneBuilder::profiled_light(const std::string& type, const ParamSet& ps, const Mat4& ctm, const std::string& base_dir) {
+  const bool gonio = type == "goniometric";
+  const std::string file = ps.get_string("filename", "");
+  if (file.empty()) ps.fail("a " + type + " light needs an image: give \"string filename\"");
+  IntensityProfile prof;
+  prof.kind = gonio ? ProfileKind::Goniometric : ProfileKind::Projection;
+  prof.image = texture_image(ps, resolve_path(base_dir, file), ColorEncoding{ColorEncoding::SRGB});
+  const TextureImage& img = scene_.textures.images[size_t(prof.image)];
+  glm::mat3 axes(1.f);
+  RGB I = light_scale(ps);
+  if (gonio) {
+    if (img.width != img.height)
+      ps.fail(*ps.find("filename"), "goniometric image \"" + printable(file) + "\" is " + std::to_string(img.width) + "x" +
+                                        std::to_string(img.height) + ": expected a square equal-area image");
+    I *= ps.get_rgb("I", ColorUsage::Illuminant).value_or(RGB(1.f));
+    axes = glm::mat3(Vec3(1, 0, 0), Vec3(0, 0, 1), Vec3(0, 1, 0));
+  } else {
+    const float fov = ps.get_float("fov", 90.f);
+    if (!(fov > 0.f && fov < 180.f)) ps.fail(*ps.find("fov"), "\"fov\" must be between 0 and 180 degrees");
+    const float aspect = float(img.width) / float(img.height);
+    prof.screen_hi = aspect > 1.f ? Vec2(aspect, 1.f) : Vec2(1.f, 1.f / aspect);
+    prof.screen_lo = -prof.screen_hi;
+    prof.tan_half = std::tan(glm::radians(fov) / 2.f);
+    axes[1][1] = -1.f;
+  }
+  prof.world_from_light = glm::mat3(ctm) * axes;
+  if (std::fabs(glm::determinant(prof.world_from_light)) < 1e-30f) ps.fail("the light's transform is singular");
+  prof.light_from_world = glm::inverse(prof.world_from_light);
+  if (ps.has("power")) {
+    // As pbrt-v4: the power of the profile alone, whatever I is.
+    const float k = profile_power(prof, scene_.textures);
+    if (k > 0.f) I *= ps.get_float("power", 1.f) / k;
+  }
+  scene_.lights.profiles.push_back(std::move(prof));
+  scene_.lights.point.push_back({Vec3(ctm * Vec4(0.f, 0.f, 0.f, 1.f)), I, int32_t(scene_.lights.profiles.size() - 1)});
 }
 
 void SceneBuilder::finish() {
