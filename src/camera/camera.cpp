@@ -100,8 +100,38 @@ CameraRay Camera::generate_ray(Vec2 p, Vec2 u_lens) const {
   return r;
 }
 
+// The raster position of screen point s, if it lies on the film (with the
+// filter's margin).
+bool Camera::screen_to_raster(Vec2 s, Vec2* p_raster) const {
+  Vec2 r((s.x - sx0_) / (sx1_ - sx0_) * float(width_), (sy1_ - s.y) / (sy1_ - sy0_) * float(height_));
+  if (!(r.x > -margin_.x && r.x < float(width_) + margin_.x && r.y > -margin_.y && r.y < float(height_) + margin_.y))
+    return false;
+  *p_raster = r;
+  return true;
+}
+
+// A thin-lens orthographic ray leaves film point f offset by lens point l
+// towards (f, focal distance): its direction (-l, fd) depends on l alone,
+// and for one l the origins cover the film uniformly. Over (film, lens) the
+// rays have density 1 / (A_film A_lens); per unit origin area and solid
+// angle that is fd^2 / (A_film A_lens cos^3), and the importance divides by
+// one more cosine, as for the perspective camera.
+float Camera::orthographic_lens_We(const Vec3& o_cam, const Vec3& d_cam, Vec2* p_raster) const {
+  if (!(d_cam.z > 0.f)) return 0.f;
+  const Vec3 focus = o_cam + d_cam * (focal_distance_ / d_cam.z);
+  const Vec2 lens = Vec2(o_cam) - Vec2(focus);
+  if (glm::dot(lens, lens) > sqr(lens_radius_) * (1.f + 1e-3f)) return 0.f;
+  if (!screen_to_raster(Vec2(focus), p_raster)) return 0.f;
+  const float cos_t = d_cam.z / glm::length(d_cam), cos2 = cos_t * cos_t;
+  return sqr(focal_distance_) / (film_area_ * lens_area() * cos2 * cos2);
+}
+
 float Camera::We(const Vec3& p_lens, const Vec3& d, Vec2* p_raster) const {
-  if (projection_ == Projection::Orthographic) return 0.f;
+  if (projection_ == Projection::Orthographic) {
+    if (lens_radius_ <= 0.f) return 0.f;
+    return orthographic_lens_We(Vec3(camera_from_world_ * Vec4(p_lens, 1.f)), Vec3(camera_from_world_ * Vec4(d, 0.f)),
+                                p_raster);
+  }
   if (projection_ == Projection::Spherical) {
     Vec2 r;
     if (!spherical_raster(Vec3(camera_from_world_ * Vec4(d, 0.f)), &r)) return 0.f;
@@ -115,11 +145,7 @@ float Camera::We(const Vec3& p_lens, const Vec3& d, Vec2* p_raster) const {
   Vec3 o = Vec3(camera_from_world_ * Vec4(p_lens, 1.f));
   Vec3 dc = Vec3(camera_from_world_ * Vec4(d, 0.f));
   Vec3 q = lens_radius_ > 0.f ? o + dc * (focal_distance_ / dc.z) : dc;
-  float sx = q.x / q.z / tan_half_, sy = q.y / q.z / tan_half_;
-  Vec2 r((sx - sx0_) / (sx1_ - sx0_) * float(width_), (sy1_ - sy) / (sy1_ - sy0_) * float(height_));
-  if (!(r.x > -margin_.x && r.x < float(width_) + margin_.x && r.y > -margin_.y && r.y < float(height_) + margin_.y))
-    return 0.f;
-  *p_raster = r;
+  if (!screen_to_raster(Vec2(q.x / q.z / tan_half_, q.y / q.z / tan_half_), p_raster)) return 0.f;
   float cos2 = cos_t * cos_t;
   return 1.f / (film_area_ * lens_area() * cos2 * cos2);
 }
@@ -130,7 +156,12 @@ float Camera::pdf_dir(const Vec3& d) const {
       float cos_t = cos_theta(d);
       return cos_t > 0.f ? 1.f / (film_area_ * cos_t * cos_t * cos_t) : 0.f;
     }
-    case Projection::Orthographic: return kInfinity;
+    case Projection::Orthographic: {
+      if (lens_radius_ <= 0.f) return kInfinity;
+      // Per unit film area, projected along d (see area_sensor()).
+      float cos_t = cos_theta(d);
+      return cos_t > 0.f ? 1.f / (film_area_ * cos_t) : 0.f;
+    }
     case Projection::Spherical: {
       if (equal_area_) return kInv4Pi;
       // Uniform in (phi, theta): d(omega) = 2 pi^2 sin(theta) du dv.
@@ -144,8 +175,33 @@ float Camera::pdf_dir(const Vec3& d) const {
   return 0.f;
 }
 
+// The lens point picks the direction (-l, fd); the ray in that direction
+// through ref starts where it crosses the film plane.
+std::optional<CameraSample> Camera::orthographic_lens_sample_wi(const Vec3& ref, Vec2 u_lens) const {
+  const Vec3 x = Vec3(camera_from_world_ * Vec4(ref, 1.f));
+  if (!(x.z > 0.f)) return std::nullopt;
+  const Vec2 l = lens_radius_ * sample_uniform_disk_concentric(u_lens);
+  const Vec3 d_cam(-l.x, -l.y, focal_distance_);
+  const Vec3 o_cam(x.x - d_cam.x * (x.z / focal_distance_), x.y - d_cam.y * (x.z / focal_distance_), 0.f);
+  CameraSample cs;
+  cs.We = orthographic_lens_We(o_cam, d_cam, &cs.p_raster);
+  if (cs.We == 0.f) return std::nullopt;
+  cs.p_lens = Vec3(world_from_camera_ * Vec4(o_cam, 1.f));
+  Vec3 d = cs.p_lens - ref;
+  cs.dist = glm::length(d);
+  if (!(cs.dist > 0.f)) return std::nullopt;
+  cs.wi = d / cs.dist;
+  // Solid angle at ref per unit lens area: fd^2 / cos^3.
+  const float cos_t = focal_distance_ / glm::length(d_cam);
+  cs.pdf = sqr(focal_distance_) / (lens_area() * cos_t * cos_t * cos_t);
+  return cs;
+}
+
 std::optional<CameraSample> Camera::sample_wi(const Vec3& ref, Vec2 u_lens) const {
-  if (projection_ == Projection::Orthographic) return std::nullopt;
+  if (projection_ == Projection::Orthographic) {
+    if (lens_radius_ <= 0.f) return std::nullopt;
+    return orthographic_lens_sample_wi(ref, u_lens);
+  }
   Vec3 p_lens_cam(0.f);
   if (lens_radius_ > 0.f) {
     Vec2 l = lens_radius_ * sample_uniform_disk_concentric(u_lens);

@@ -56,15 +56,23 @@ class Camera {
   // sensor: no cosine). Returns 0 when the ray misses the film; p_raster
   // receives where it lands.
   float We(const Vec3& p_lens, const Vec3& d, Vec2* p_raster) const;
-  // Solid-angle density of camera ray directions over the whole film
-  // (1 / (A cos^3) for a perspective camera); the lens position density is
-  // 1 / lens_area. An orthographic camera's directions are a delta (with a
-  // thin lens, a direction and a lens point no longer determine each other
-  // as the bidirectional weights assume): infinity, which gives the
-  // strategies that connect to the camera (t = 1) weight 0.
+  // Density of camera ray directions over the whole film: per solid angle
+  // (1 / (A cos^3) for a perspective camera, lens position density
+  // 1 / lens_area, which sample_wi shares). An orthographic camera with a
+  // thin lens is an area sensor (area_sensor()): its density is per unit
+  // film area projected along d, 1 / (A cos), and carries no distance. A
+  // pinhole orthographic camera's directions are a delta: infinity, which
+  // gives the strategies that connect to the camera (t = 1) weight 0.
   float pdf_dir(const Vec3& d) const;
+  bool area_sensor() const { return projection_ == Projection::Orthographic && lens_radius_ > 0.f; }
+  // The camera's density of its first vertex at a point dist2 away along d
+  // with cosine cos_at_point there, relative to sample_wi's choice of lens
+  // point: what bidirectional MIS compares a connection to the camera with.
+  float pdf_area(const Vec3& d, float dist2, float cos_at_point) const {
+    return pdf_dir(d) * cos_at_point / (area_sensor() ? 1.f : dist2);
+  }
   float lens_area() const { return lens_radius_ > 0.f ? kPi * lens_radius_ * lens_radius_ : 1.f; }
-  // A lens point that sees ref; none for an orthographic camera.
+  // A lens point that sees ref; none for a pinhole orthographic camera.
   std::optional<CameraSample> sample_wi(const Vec3& ref, Vec2 u_lens) const;
   // A spherical image continues across its edges: a camera sample drawn
   // just outside the film (the pixel filter reaches there) looks along the
@@ -84,6 +92,9 @@ class Camera {
   Vec3 perspective_direction(Vec2 screen) const;
   Vec3 spherical_direction(Vec2 p_raster) const;  // camera space
   bool spherical_raster(const Vec3& d_camera, Vec2* p_raster) const;
+  bool screen_to_raster(Vec2 s, Vec2* p_raster) const;
+  float orthographic_lens_We(const Vec3& o_camera, const Vec3& d_camera, Vec2* p_raster) const;
+  std::optional<CameraSample> orthographic_lens_sample_wi(const Vec3& ref, Vec2 u_lens) const;
 
   Projection projection_ = Projection::Perspective;
   bool equal_area_ = true;

@@ -80,7 +80,8 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
     float dist2 = glm::dot(sp.p - prev, sp.p - prev);
     float cos_in = std::fabs(glm::dot(sp.ng, d));
     if (!(cos_in > 0.f) || !(dist2 > 0.f)) continue;
-    mis_after_hit(m, dist2, cos_in, true, mis_);
+    // An area sensor's (thin-lens orthographic) first density is per area already.
+    mis_after_hit(m, dist2, cos_in, !(w.depth == 1 && camera_.area_sensor()), mis_);
     if (int64_t light = hit_area_light(shapes, w.rays, i); light >= 0) {
       RGB Le = area_light_Le(lights.area[size_t(light)], scene_.textures, sp.ng, sp.uv, -d);
       if (!is_black(Le)) {

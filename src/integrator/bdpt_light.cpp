@@ -69,7 +69,7 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
         if (!is_black(Le) && cos_l > 0.f) {
           float wt = 1.f;
           if (!settings_.light_tracing_only) {
-            float camera_pdf_A = camera_.pdf_dir(-cs->wi) * cos_l / sqr(cs->dist);
+            float camera_pdf_A = camera_.pdf_area(-cs->wi, sqr(cs->dist), cos_l);
             wt = weight(mis_weight_light_origin(camera_pdf_A, es->pdf_pos, es->delta_pos, mis_));
           }
           RGB c = Le * (cos_l * cs->We / (cs->pdf * es->pdf_pos));
@@ -171,9 +171,8 @@ void Bdpt::light_connect_stage(BdptWave& w) const {
         if (!is_black(f)) {
           float wt = 1.f;
           if (!settings_.light_tracing_only) {
-            float camera_pdf_A = camera_.pdf_dir(-cs->wi) *
-                                 vertex_cos(h.ng[i], h.error_scale[i], tangent_or_null(h.tangent, i), cs->wi) /
-                                 sqr(cs->dist);
+            float camera_pdf_A = camera_.pdf_area(
+                -cs->wi, sqr(cs->dist), vertex_cos(h.ng[i], h.error_scale[i], tangent_or_null(h.tangent, i), cs->wi));
             wt = weight(mis_weight_light_trace(m, camera_pdf_A, bsdf.pdf(wi, wo, TransportMode::Radiance), mis_));
           }
           push_camera_ray(w, slot, h.p[i], h.ng[i], h.error_scale[i], *cs, beta * f * (cs->We / cs->pdf), wt,

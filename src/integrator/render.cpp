@@ -244,9 +244,10 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
     throw std::invalid_argument("unknown MIS heuristic \"" + opt.mis + "\"; available: power, balance");
   if (opt.spp <= 0 && opt.time_limit_seconds <= 0) throw std::invalid_argument("--spp must be positive");
   if (opt.maxdepth < 0) throw std::invalid_argument("--maxdepth must be >= 0");
-  if (opt.integrator == "lt" && scene.camera.projection == Projection::Orthographic)
-    throw std::invalid_argument("light tracing (--integrator lt) cannot reach an orthographic camera: its rays are "
-                                "parallel, so no light path connects to it; use path or bdpt");
+  if (opt.integrator == "lt" && scene.camera.projection == Projection::Orthographic && !(scene.camera.lens_radius > 0.f))
+    throw std::invalid_argument("light tracing (--integrator lt) cannot reach an orthographic camera without a lens: "
+                                "its rays are parallel, so no light path connects to it; use path or bdpt, or give the "
+                                "camera a \"lensradius\"");
   if (opt.strategies && opt.integrator != "bdpt")
     throw std::invalid_argument("per-strategy images need --integrator bdpt");
   if (opt.wave_size < 1 || opt.wave_size > (1 << 22)) throw std::invalid_argument("--wave-size must lie in [1, 4194304]");
