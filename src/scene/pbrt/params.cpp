@@ -1,5 +1,7 @@
 #include "scene/pbrt/params.h"
 
+#include "color/cie1931.h"
+
 #include <map>
 
 namespace lantern::pbrt {
@@ -158,36 +160,13 @@ std::optional<RGB> ParamSet::get_rgb(const std::string& name, ColorUsage usage) 
   fail(*p, "has type \"" + p->type + "\", expected \"rgb\", \"spectrum\" or \"blackbody\"");
 }
 
-// CIE 1931 colour matching functions by the multi-lobe Gaussian fit of
-// Wyman, Sloan and Shirley 2013 ("Simple Analytic Approximations to the CIE
-// XYZ Color Matching Functions"), good to a few percent.
-static float g(float x, float mu, float s1, float s2) {
-  float t = (x - mu) / (x < mu ? s1 : s2);
-  return std::exp(-0.5f * t * t);
-}
-static Vec3 cie_xyz(float nm) {
-  float x = 1.056f * g(nm, 599.8f, 37.9f, 31.0f) + 0.362f * g(nm, 442.0f, 16.0f, 26.7f) - 0.065f * g(nm, 501.1f, 20.4f, 26.2f);
-  float y = 0.821f * g(nm, 568.8f, 46.9f, 40.5f) + 0.286f * g(nm, 530.9f, 16.3f, 31.1f);
-  float z = 1.217f * g(nm, 437.0f, 11.8f, 36.0f) + 0.681f * g(nm, 459.0f, 26.0f, 13.8f);
-  return Vec3(x, y, z);
-}
-
+// A black body's colour: its spectrum against the tabulated CIE 1931
+// observer (color/cie1931.h), luminance 1, in linear sRGB (negative
+// components, below 1900 K or so, clamped).
 RGB blackbody_rgb(float kelvin) {
-  if (!(kelvin > 0.f)) return RGB(0.f);
-  const double c = 299792458.0, h = 6.62606957e-34, kb = 1.3806488e-23;
-  Vec3 xyz(0.f);
-  for (int nm = 360; nm <= 830; nm += 5) {
-    double l = nm * 1e-9;
-    double le = (2.0 * h * c * c) / (std::pow(l, 5) * (std::exp((h * c) / (l * kb * kelvin)) - 1.0));
-    xyz += cie_xyz(float(nm)) * float(le);
-  }
+  const Vec3 xyz = blackbody_xyz(kelvin);
   if (xyz.y <= 0.f) return RGB(0.f);
-  xyz /= xyz.y;
-  // XYZ -> linear sRGB (D65), IEC 61966-2-1.
-  RGB rgb(3.2404542f * xyz.x - 1.5371385f * xyz.y - 0.4985314f * xyz.z,
-          -0.9692660f * xyz.x + 1.8760108f * xyz.y + 0.0415560f * xyz.z,
-          0.0556434f * xyz.x - 0.2040259f * xyz.y + 1.0572252f * xyz.z);
-  return glm::max(rgb, RGB(0.f));
+  return glm::max(xyz_to_linear_srgb(xyz), RGB(0.f));
 }
 
 std::optional<RGB> named_spectrum_rgb(const std::string& name) {
