@@ -15,9 +15,10 @@ float alpha_at(const ShapePools& shapes, const TexturePools& textures, uint32_t 
   // read u along the curve (pbrt's) and the middle of v.
   if (geo.kind == ShapeKind::Curve)
     return textures.evaluate_float(a, TextureContext{p, Vec3(0, 0, 1), Vec2(shapes.curves[geo.index].curve_u(prim, b.x), 0.5f)});
-  SurfacePoint sp = geo.kind == ShapeKind::Mesh      ? triangle_point(shapes.meshes[geo.index], prim, b.x, b.y)
-                    : geo.kind == ShapeKind::Quadric ? quadric_point(shapes.quadrics[geo.index], b)
-                                                     : sphere_point(shapes.spheres[geo.index], p);
+  SurfacePoint sp = geo.kind == ShapeKind::Mesh       ? triangle_point(shapes.meshes[geo.index], prim, b.x, b.y)
+                    : geo.kind == ShapeKind::Quadric  ? quadric_point(shapes.quadrics[geo.index], b)
+                    : geo.kind == ShapeKind::Bilinear ? bilinear_point(shapes.patches[geo.index], prim, b)
+                                                      : sphere_point(shapes.spheres[geo.index], p);
   return textures.evaluate_float(a, TextureContext{sp.p, sp.ng, sp.uv});
 }
 

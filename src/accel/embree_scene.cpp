@@ -77,6 +77,9 @@ void EmbreeScene::attach(RTCScene scene, const ShapePools& shapes, uint32_t id, 
   if (g.kind == ShapeKind::Quadric) {
     quadric_data_.push_back(std::make_unique<QuadricGeometryData>(QuadricGeometryData{&shapes.quadrics[g.index], alpha}));
     geom = new_quadric_geometry(device_, quadric_data_.back().get());
+  } else if (g.kind == ShapeKind::Bilinear) {
+    bilinear_data_.push_back(std::make_unique<BilinearGeometryData>(BilinearGeometryData{&shapes.patches[g.index], alpha}));
+    geom = new_bilinear_geometry(device_, bilinear_data_.back().get());
   } else if (g.kind == ShapeKind::Curve) {
     geom = new_curve_geometry(device_, shapes.curves[g.index]);
   } else if (g.kind == ShapeKind::Mesh) {
@@ -94,7 +97,7 @@ void EmbreeScene::attach(RTCScene scene, const ShapePools& shapes, uint32_t id, 
         rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
     v[0] = s.center.x, v[1] = s.center.y, v[2] = s.center.z, v[3] = s.radius;
   }
-  if (alpha && g.kind != ShapeKind::Quadric) {  // a quadric runs its filter itself
+  if (alpha && g.kind != ShapeKind::Quadric && g.kind != ShapeKind::Bilinear) {  // user geometry runs its filter itself
     rtcSetGeometryUserData(geom, alpha);
     rtcSetGeometryIntersectFilterFunction(geom, alpha_filter);
     rtcSetGeometryOccludedFilterFunction(geom, alpha_filter);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "accel/alpha_filter.h"
+#include "accel/bilinear_geometry.h"
 #include "accel/quadric_geometry.h"
 #include "scene/shapes.h"
 
@@ -54,6 +55,7 @@ class EmbreeScene {
   const TexturePools* textures_ = nullptr;
   std::vector<std::unique_ptr<AlphaFilterData>> alpha_data_;
   std::vector<std::unique_ptr<QuadricGeometryData>> quadric_data_;
+  std::vector<std::unique_ptr<BilinearGeometryData>> bilinear_data_;
   std::atomic<int64_t> bytes_{0}, peak_bytes_{0};
 };
 

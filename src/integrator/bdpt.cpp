@@ -89,13 +89,13 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
         float wt;
         if (w.depth == 1) {
           float pos_pdf = lights.selection.discrete_pmf(lights.area_to_all[a]) *  // emission: by power
-                          area_point_density(shapes, lights.area[a], sp.ng);
+                          area_point_density(shapes, lights.area[a], sp.p, sp.ng);
           wt = mis_weight_hit_light_direct(m, pos_pdf, mis_);
         } else {
           wt = mis_weight_hit_light(m,
                                     area_light_direct_pdf_area(lights, shapes, light_sampler_, a, prev,
                                                                w.eye.prev_n[slot], sp.p, sp.ng),
-                                    area_emission_pdf(lights, shapes, a, sp.ng, -d), mis_);
+                                    area_emission_pdf(lights, shapes, a, sp.p, sp.ng, -d), mis_);
         }
         add_emission(w, slot, w.eye.beta[slot] * Le, weight(wt));
       }
@@ -139,7 +139,7 @@ void Bdpt::eye_connect_stage(BdptWave& w) const {
         // rounding: a set of measure zero) has zero density per area, and its
         // MIS ratios would be 0/0.
         if (!is_black(f) && direct_pdf_A > 0.f) {
-          float emission_fwd_A = emission_pdf(sc.lights, sc.shapes, sc.textures, ls->light, ls->n_light, -ls->wi) *
+          float emission_fwd_A = emission_pdf(sc.lights, sc.shapes, sc.textures, ls->light, ls->p_light, ls->n_light, -ls->wi) *
                                  vertex_cos(h.ng[i], h.error_scale[i], tangent_or_null(h.tangent, i), ls->wi) / dist2;
           float wt =
               mis_weight_next_event(m, ls->delta ? 0.f : ls->pdf, bsdf.pdf(wo, wi, TransportMode::Radiance),

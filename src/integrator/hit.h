@@ -22,6 +22,7 @@ inline SurfacePoint local_hit_point(const ShapePools& shapes, const RayBatch& ra
   const Geometry& g = shapes.geometries[rays.geom_id[i]];
   if (g.kind == ShapeKind::Mesh) return triangle_point(shapes.meshes[g.index], rays.prim_id[i], rays.u[i], rays.v[i]);
   if (g.kind == ShapeKind::Quadric) return quadric_point(shapes.quadrics[g.index], Vec2(rays.u[i], rays.v[i]));
+  if (g.kind == ShapeKind::Bilinear) return bilinear_point(shapes.patches[g.index], rays.prim_id[i], Vec2(rays.u[i], rays.v[i]));
   if (g.kind == ShapeKind::Curve) {
     // A curve's surface depends on the ray (pbrt's curves face it), so the
     // point is rebuilt from the ray, carried into the prototype's space.
@@ -84,7 +85,8 @@ inline const Vec3* tangent_or_null(const std::vector<Vec3>& tangents, uint32_t i
 inline int64_t hit_area_light(const ShapePools& shapes, const RayBatch& rays, uint32_t i) {
   const Geometry& g = shapes.geometries[rays.geom_id[i]];
   if (g.light_offset < 0) return -1;
-  return int64_t(g.light_offset) + (g.kind == ShapeKind::Mesh ? int64_t(rays.prim_id[i]) : 0);
+  const bool per_primitive = g.kind == ShapeKind::Mesh || g.kind == ShapeKind::Bilinear;
+  return int64_t(g.light_offset) + (per_primitive ? int64_t(rays.prim_id[i]) : 0);
 }
 
 // The hits of one bounce, per ray, binned by material kind for shading.

@@ -29,6 +29,9 @@ inline ShadingGeometry world_shading_geometry(const Scene& scene, const RayBatch
   switch (geo.kind) {
     case ShapeKind::Mesh: g = triangle_shading_geometry(shapes.meshes[geo.index], rays.prim_id[i], local); break;
     case ShapeKind::Quadric: g = quadric_shading_geometry(shapes.quadrics[geo.index], local); break;
+    case ShapeKind::Bilinear:
+      g = bilinear_shading_geometry(shapes.patches[geo.index], rays.prim_id[i], Vec2(rays.u[i], rays.v[i]), local);
+      break;
     case ShapeKind::Sphere: g = sphere_shading_geometry(shapes.spheres[geo.index], local); break;
     case ShapeKind::Curve:
       g = curve_shading_geometry(shapes.curves[geo.index], rays.prim_id[i], rays.u[i], local);

@@ -59,7 +59,7 @@ std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& s
       es.n = sp.ng;
       es.uv = sp.uv;
       es.d = f.from_local(wl);
-      es.pdf_pos *= area_point_density(shapes, a, sp.ng);
+      es.pdf_pos *= area_point_density(shapes, a, sp.p, sp.ng);
       es.pdf_dir = area_dir_pdf(a, sp.ng, es.d);
       es.Le = area_light_Le(a, tex, sp.ng, sp.uv, es.d);
       es.error_scale = sp.error_scale;
@@ -112,10 +112,10 @@ std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& s
   return es;
 }
 
-float area_emission_pdf(const LightPools& L, const ShapePools& shapes, uint32_t area_index, const Vec3& n,
-                        const Vec3& w) {
+float area_emission_pdf(const LightPools& L, const ShapePools& shapes, uint32_t area_index, const Vec3& p,
+                        const Vec3& n, const Vec3& w) {
   const AreaLight& a = L.area[area_index];
-  return L.selection.discrete_pmf(L.area_to_all[area_index]) * area_point_density(shapes, a, n) *
+  return L.selection.discrete_pmf(L.area_to_all[area_index]) * area_point_density(shapes, a, p, n) *
          area_dir_pdf(a, n, w);
 }
 
@@ -126,13 +126,13 @@ float infinite_emission_pdf(const LightPools& L, const TexturePools& tex, const 
   return pdf * disk_pdf(L);
 }
 
-float emission_pdf(const LightPools& L, const ShapePools& shapes, const TexturePools& tex, uint32_t light, const Vec3& n,
-                   const Vec3& w) {
+float emission_pdf(const LightPools& L, const ShapePools& shapes, const TexturePools& tex, uint32_t light, const Vec3& p,
+                   const Vec3& n, const Vec3& w) {
   const LightRef r = L.all[light];
   float pmf = L.selection.discrete_pmf(light);
   switch (r.kind) {
     case LightKind::Area:
-      return area_emission_pdf(L, shapes, r.index, n, w);
+      return area_emission_pdf(L, shapes, r.index, p, n, w);
     case LightKind::Point: {
       const PointLight& pl = L.point[r.index];
       return pmf * (pl.profile < 0 ? uniform_sphere_pdf() : profile_pdf(L.profiles[size_t(pl.profile)], w));

@@ -29,11 +29,11 @@ std::optional<EmissionSample> sample_le(const LightPools& lights, const ShapePoo
 // Emission density (pos incl. the selection pmf, times dir) with which
 // sample_le would start at p_light with normal n_light and leave in w.
 // For lights at infinity, w is the direction the light travels.
-float emission_pdf(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex, uint32_t light, const Vec3& n_light,
-                   const Vec3& w);
+float emission_pdf(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex, uint32_t light,
+                   const Vec3& p_light, const Vec3& n_light, const Vec3& w);
 // Same for the area light hit by a ray: area_index indexes LightPools::area.
-float area_emission_pdf(const LightPools& lights, const ShapePools& shapes, uint32_t area_index, const Vec3& n_light,
-                        const Vec3& w);
+float area_emission_pdf(const LightPools& lights, const ShapePools& shapes, uint32_t area_index, const Vec3& p_light,
+                        const Vec3& n_light, const Vec3& w);
 // Emission density of the infinite lights (summed) sending light along -w_to_light.
 float infinite_emission_pdf(const LightPools& lights, const TexturePools& tex, const Vec3& w_to_light);
 

@@ -48,6 +48,25 @@ LightBounds triangle_bounds(const TriangleMesh& m, uint32_t prim, const AreaLigh
   return b;
 }
 
+// A curved patch's normals lie in the cone its corners' normals span (dp/du
+// x dp/dv is affine in (u, v)).
+LightBounds patch_bounds(const BilinearPatchSet& s, uint32_t prim, const AreaLight& a) {
+  LightBounds b;
+  const PatchCorners c = patch_corners(s, prim);
+  b.lo = glm::min(glm::min(c.p00, c.p10), glm::min(c.p01, c.p11));
+  b.hi = glm::max(glm::max(c.p00, c.p10), glm::max(c.p01, c.p11));
+  const Vec3 n[4] = {bilinear_normal(s, prim, Vec2(0, 0)), bilinear_normal(s, prim, Vec2(1, 0)),
+                     bilinear_normal(s, prim, Vec2(0, 1)), bilinear_normal(s, prim, Vec2(1, 1))};
+  const Vec3 sum = n[0] + n[1] + n[2] + n[3];
+  b.w = glm::length(sum) > 0.f ? glm::normalize(sum) : Vec3(0, 0, 1);
+  b.cos_theta_o = 1.f;
+  for (const Vec3& ni : n) b.cos_theta_o = std::fmin(b.cos_theta_o, glm::dot(b.w, ni));
+  if (!(glm::length(sum) > 0.f)) b.cos_theta_o = -1.f;
+  b.cos_theta_e = 0.f;  // diffuse emission
+  b.two_sided = a.two_sided;
+  return b;
+}
+
 }  // namespace
 
 // The bounds' "power" is what makes importance (phi cos / d^2) estimate
@@ -66,6 +85,9 @@ LightBounds light_bounds(const LightPools& L, const ShapePools& shapes, const Te
       const float mean = a.image < 0 ? 1.f : tex.image_mean(a.image);
       if (g.kind == ShapeKind::Mesh) {
         b = triangle_bounds(shapes.meshes[g.index], a.primitive, a);
+        b.phi = avg(a.L) * mean * a.area;
+      } else if (g.kind == ShapeKind::Bilinear) {
+        b = patch_bounds(shapes.patches[g.index], a.primitive, a);
         b.phi = avg(a.L) * mean * a.area;
       } else if (g.kind == ShapeKind::Quadric) {
         const Quadric& q = shapes.quadrics[g.index];

@@ -112,14 +112,22 @@ SurfacePoint sample_area_point(const ShapePools& shapes, const AreaLight& a, Vec
       const Quadric& q = shapes.quadrics[g.index];
       return quadric_point(q, quadric_sample_uv(q, u));
     }
+    case ShapeKind::Bilinear: {
+      const BilinearPatchSet& s = shapes.patches[g.index];
+      return bilinear_point(s, a.primitive, sample_bilinear_patch(patch_corners(s, a.primitive), u));
+    }
     case ShapeKind::Curve: break;  // curves do not emit (refused at load)
   }
   return {};
 }
 
-float area_point_density(const ShapePools& shapes, const AreaLight& a, const Vec3& n) {
+float area_point_density(const ShapePools& shapes, const AreaLight& a, const Vec3& p, const Vec3& n) {
   const Geometry& g = shapes.geometries[a.geometry];
   if (g.kind == ShapeKind::Quadric) return quadric_area_density(shapes.quadrics[g.index], n);
+  if (g.kind == ShapeKind::Bilinear) {
+    const PatchCorners c = patch_corners(shapes.patches[g.index], a.primitive);
+    return bilinear_area_density(c, bilinear_uv_of(c, p));
+  }
   return 1.f / a.area;
 }
 
@@ -135,7 +143,7 @@ static std::optional<LightSample> sample_area(const LightPools& L, const ShapePo
     Vec3 d = sp.p - p;
     float dist2 = glm::dot(d, d);
     float cos_l = std::fabs(glm::dot(sp.ng, d)) / std::sqrt(dist2);
-    pdf = dist2 * area_point_density(shapes, a, sp.ng) / cos_l;
+    pdf = dist2 * area_point_density(shapes, a, sp.p, sp.ng) / cos_l;
   } else {
     const Sphere& s = shapes.spheres[g.index];
     // Uniform over the cone of directions the sphere subtends, with the
@@ -265,7 +273,7 @@ float area_light_pdf(const LightPools& L, const ShapePools& shapes, const LightS
   float dist2 = glm::dot(d, d);
   float cos_l = std::fabs(glm::dot(n_light, d)) / std::sqrt(dist2);
   if (cos_l == 0.f || a.area == 0.f) return 0.f;
-  return pmf * dist2 * area_point_density(shapes, a, n_light) / cos_l;
+  return pmf * dist2 * area_point_density(shapes, a, p_light, n_light) / cos_l;
 }
 
 RGB infinite_lights_Le(const LightPools& L, const TexturePools& tex, const Vec3& w) {

@@ -119,8 +119,8 @@ float area_light_pdf(const LightPools& lights, const ShapePools& shapes, const L
 // area (which a non-uniform scale makes non-uniform in the world).
 SurfacePoint sample_area_point(const ShapePools& shapes, const AreaLight& a, Vec2 u);
 // The density per unit area with which sample_area_point places the point
-// of normal n.
-float area_point_density(const ShapePools& shapes, const AreaLight& a, const Vec3& n);
+// p of normal n.
+float area_point_density(const ShapePools& shapes, const AreaLight& a, const Vec3& p, const Vec3& n);
 
 // Radiance leaving an area light at a point of normal n and surface
 // coordinates uv, in direction w.

@@ -183,7 +183,7 @@ void SceneBuilder::pixel_filter(const std::string& type, const ParamSet& ps) {
   }
 }
 
-static bool swaps_handedness(const Mat4& m) { return glm::determinant(glm::mat3(m)) < 0.f; }
+bool swaps_handedness(const Mat4& m) { return glm::determinant(glm::mat3(m)) < 0.f; }
 
 // Carries a mesh into the space it is stored in and checks it. It touches
 // nothing but the mesh, so PLY meshes are prepared on any thread.
@@ -336,47 +336,24 @@ void SceneBuilder::shape(const std::string& type, const ParamSet& ps, const Grap
 
 void SceneBuilder::add_shape(const std::string& type, const ParamSet& ps, const GraphicsState& gs,
                              const std::string& base_dir) {
-  if (type == "trianglemesh" || type == "bilinearmesh") {
+  if (type == "trianglemesh") {
     TriangleMesh m;
     m.positions = ps.get_point3s("P");
     m.normals = ps.get_point3s("N");
     m.uvs = ps.get_point2s(ps.has("uv") ? "uv" : "st");
     if (m.positions.empty()) ps.fail("\"point3 P\" is missing");
     std::vector<int> idx = ps.get_ints("indices");
-    size_t per = type == "trianglemesh" ? 3 : 4;
-    if (idx.empty() && m.positions.size() == per)
-      for (size_t i = 0; i < per; ++i) idx.push_back(int(i));
+    if (idx.empty() && m.positions.size() == 3) idx = {0, 1, 2};
     if (idx.empty()) ps.fail("\"integer indices\" is missing");
-    if (idx.size() % per != 0)
-      ps.fail("\"indices\" has " + std::to_string(idx.size()) + " values, expected a multiple of " + std::to_string(per));
+    if (idx.size() % 3 != 0)
+      ps.fail("\"indices\" has " + std::to_string(idx.size()) + " values, expected a multiple of 3");
     for (int i : idx)
       if (i < 0) ps.fail("\"indices\" contains a negative index");
-    if (per == 4 && m.uvs.empty()) {
-      // A patch's (u, v) runs over [0,1]^2 from p00 to p11 (pbrt-v4): each
-      // patch gets its own four corners to carry them.
-      for (int i : idx)
-        if (size_t(i) >= m.positions.size()) ps.fail("\"indices\" refers past the end of \"P\"");
-      bool with_n = m.normals.size() == m.positions.size();
-      TriangleMesh split;
-      for (size_t i = 0; i < idx.size(); ++i) {
-        split.positions.push_back(m.positions[size_t(idx[i])]);
-        if (with_n) split.normals.push_back(m.normals[size_t(idx[i])]);
-        split.uvs.emplace_back(float(i % 4 & 1), float(i % 4 >> 1));
-      }
-      if (!with_n) split.normals = std::move(m.normals);  // left for add_mesh to check
-      m = std::move(split);
-      for (size_t i = 0; i < idx.size(); ++i) idx[i] = int(i);
-    }
-    for (size_t i = 0; i < idx.size(); i += per) {
-      if (per == 3) {
-        m.triangles.emplace_back(idx[i], idx[i + 1], idx[i + 2]);
-      } else {  // pbrt's patch order p00 p10 p01 p11; split along p00-p11
-        m.triangles.emplace_back(idx[i], idx[i + 1], idx[i + 3]);
-        m.triangles.emplace_back(idx[i], idx[i + 3], idx[i + 2]);
-      }
-    }
+    for (size_t i = 0; i < idx.size(); i += 3) m.triangles.emplace_back(idx[i], idx[i + 1], idx[i + 2]);
     for (const char* p : {"S", "faceIndices"}) ps.find(p);
     add_mesh(std::move(m), gs, ps, "");
+  } else if (type == "bilinearmesh") {
+    add_bilinear_mesh(ps, gs);
   } else if (type == "loopsubdiv") {
     add_subdivision_surface(ps, gs);
   } else if (type == "plymesh") {
@@ -411,9 +388,10 @@ void SceneBuilder::add_area_lights(uint32_t geometry, uint32_t primitives, const
   g.light_offset = int32_t(scene_.lights.area.size());
   float total = 0.f;
   for (uint32_t i = 0; i < primitives; ++i) {
-    float area = g.kind == ShapeKind::Mesh      ? triangle_area(scene_.shapes.meshes[g.index], i)
-                 : g.kind == ShapeKind::Quadric ? scene_.shapes.quadrics[g.index].world_area
-                                                : 4.f * kPi * sqr(scene_.shapes.spheres[g.index].radius);
+    float area = g.kind == ShapeKind::Mesh       ? triangle_area(scene_.shapes.meshes[g.index], i)
+                 : g.kind == ShapeKind::Quadric  ? scene_.shapes.quadrics[g.index].world_area
+                 : g.kind == ShapeKind::Bilinear ? bilinear_area(patch_corners(scene_.shapes.patches[g.index], i))
+                                                 : 4.f * kPi * sqr(scene_.shapes.spheres[g.index].radius);
     total += area;
     scene_.lights.area.push_back({geometry, i, L, two_sided, area, image});
   }

@@ -108,6 +108,7 @@ class SceneBuilder {
   void add_mesh(TriangleMesh mesh, const GraphicsState& gs, const pbrt::ParamSet& ps, const std::string& source);
   void add_quadric(const std::string& type, const pbrt::ParamSet& ps, const GraphicsState& gs);  // builder_quadrics.cpp
   void add_curve(const pbrt::ParamSet& ps, const GraphicsState& gs);  // builder_curves.cpp
+  void add_bilinear_mesh(const pbrt::ParamSet& ps, const GraphicsState& gs);  // builder_patches.cpp
   void add_area_lights(uint32_t geometry, uint32_t primitives, const GraphicsState& gs);
   void add_ply_mesh(const std::string& path, const GraphicsState& gs, const pbrt::ParamSet& ps);
   void load_pending_meshes();

@@ -141,6 +141,38 @@ inline ShadingGeometry quadric_shading_geometry(const Quadric& q, const SurfaceP
   return placed_shading_geometry(d, quadric_object_normal(q, p), q.linear, q.normal_to_world, sp.ns);
 }
 
+// A bilinear patch's derivatives in (u, v), dn/du and dn/dv from the
+// Weingarten equations (its only second derivative is d2p/dudv), or from
+// the interpolated normals when the set has them; with texture
+// coordinates, carried to (s, t) through the inverse of d(s, t)/d(u, v).
+inline ShadingGeometry bilinear_shading_geometry(const BilinearPatchSet& s, uint32_t i, Vec2 uv, const SurfacePoint& sp) {
+  const PatchCorners c = patch_corners(s, i);
+  SurfaceDerivatives d;
+  d.dpdu = glm::mix(c.p10 - c.p00, c.p11 - c.p01, uv.y);
+  d.dpdv = glm::mix(c.p01 - c.p00, c.p11 - c.p10, uv.x);
+  d.d2uv = (c.p00 - c.p01) + (c.p11 - c.p10);
+  ShadingGeometry g = placed_shading_geometry(d, sp.ng, glm::mat3(1.f), glm::mat3(1.f), sp.ns);
+  const glm::uvec4 v = s.patches[i];
+  if (!s.normals.empty()) {
+    g.dndu = glm::mix(s.normals[v.y] - s.normals[v.x], s.normals[v.w] - s.normals[v.z], uv.y);
+    g.dndv = glm::mix(s.normals[v.z] - s.normals[v.x], s.normals[v.w] - s.normals[v.y], uv.x);
+  }
+  if (s.uvs.empty()) return g;
+  const Vec2 dst_du = glm::mix(s.uvs[v.y] - s.uvs[v.x], s.uvs[v.w] - s.uvs[v.z], uv.y);
+  const Vec2 dst_dv = glm::mix(s.uvs[v.z] - s.uvs[v.x], s.uvs[v.w] - s.uvs[v.y], uv.x);
+  const float det = dst_du.x * dst_dv.y - dst_du.y * dst_dv.x;
+  if (!(std::fabs(det) > 1e-12f)) return g;
+  // (du, dv) per (ds, dt): the inverse of [dst_du dst_dv].
+  const float du_ds = dst_dv.y / det, du_dt = -dst_dv.x / det, dv_ds = -dst_du.y / det, dv_dt = dst_du.x / det;
+  const ShadingGeometry in_uv = g;
+  g.dpdu = in_uv.dpdu * du_ds + in_uv.dpdv * dv_ds;
+  g.dpdv = in_uv.dpdu * du_dt + in_uv.dpdv * dv_dt;
+  g.dndu = in_uv.dndu * du_ds + in_uv.dndv * dv_ds;
+  g.dndv = in_uv.dndu * du_dt + in_uv.dndv * dv_dt;
+  if (glm::dot(glm::cross(g.dpdu, g.dpdv), glm::cross(g.dpdu, g.dpdv)) == 0.f) coordinate_system(sp.ns, g.dpdu, g.dpdv);
+  return g;
+}
+
 // A curve's dp/du along the whole curve's u, and dp/dv across its width
 // (pbrt's v runs over the width); a ribbon does not bend across, so the
 // normal's derivatives are left at zero.

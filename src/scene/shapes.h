@@ -9,6 +9,7 @@
 
 #include "material/material.h"
 #include "math/common.h"
+#include "scene/bilinear_patch.h"
 #include "scene/curve.h"
 #include "scene/quadric.h"
 
@@ -34,12 +35,13 @@ struct Sphere {
 
 // Sphere: a full sphere under uniform scale, traced by Embree's own sphere
 // primitive; every other sphere, cylinder and disk is a Quadric. Curve: a
-// CurveSet, one or more of pbrt's curves.
-enum class ShapeKind : uint8_t { Mesh, Sphere, Quadric, Curve };
+// CurveSet, one or more of pbrt's curves. Bilinear: a BilinearPatchSet of
+// patches that are not parallelograms (those are meshes).
+enum class ShapeKind : uint8_t { Mesh, Sphere, Quadric, Curve, Bilinear };
 
 struct Geometry {
   ShapeKind kind;
-  uint32_t index;            // into meshes, spheres, quadrics or curves
+  uint32_t index;            // into meshes, spheres, quadrics, curves or patches
   MaterialHandle material;
   int32_t light_offset = -1;  // area light of primitive i is lights.area[light_offset + i]
   int32_t alpha = -1;         // index into ShapePools::alpha_masks, or -1: opaque
@@ -74,6 +76,7 @@ struct ShapePools {
   std::vector<Sphere> spheres;
   std::vector<Quadric> quadrics;
   std::vector<CurveSet> curves;
+  std::vector<BilinearPatchSet> patches;
   // Top-level geometries and prototypes' geometries alike: a hit's geomID
   // is rewritten to this index (see RayStream), so shading never asks
   // which kind of geometry it was.
