@@ -66,9 +66,10 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
     if (!w.rays.hit(i)) {
       ++w.stats.eye_ends[size_t(PathEnd::Escaped)];
       if (!lights.infinite.empty()) {
-        RGB Le = infinite_lights_Le(lights, scene_.textures, d);
+        const Vec3 prev = w.eye.prev_p[slot];
+        RGB Le = infinite_lights_Le(lights, scene_.textures, prev, d);
         float wt = w.depth == 1 ? 1.f
-                                : mis_weight_hit_light(m, infinite_lights_pdf(lights, scene_.textures, light_sampler_, d),
+                                : mis_weight_hit_light(m, infinite_lights_pdf(lights, scene_.textures, light_sampler_, prev, d),
                                                        infinite_emission_pdf(lights, scene_.textures, d), mis_);
         add_emission(w, slot, w.eye.beta[slot] * Le, weight(wt));
       }

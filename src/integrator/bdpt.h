@@ -69,6 +69,9 @@ class Bdpt {
 
   float weight(float w) const { return settings_.unit_weights ? 1.f : w; }
 
+  // Whether light from `light` (index into LightPools::all) reaches p along -w_to_light: false
+  // only for a portal light whose window does not let it through.
+  bool reaches_through_portal(uint32_t light, const Vec3& p, const Vec3& w_to_light) const;
   float first_hit_direct_pdf(const LightOriginPool& o, uint32_t slot, const Vec3& p, const Vec3& ns,
                              const Vec3& p_light) const;
 

@@ -52,7 +52,10 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
     // the light sampler's choice), so it waits for the first hit.
     const LightKind kind = lights.all[es->light].kind;
     const float nee_pmf = light_sampler_.pmf_infinite(es->light);  // used for lights at infinity only
-    o.direct_pdf_A[slot] = kind == LightKind::Infinite ? nee_pmf * es->pdf_dir
+    // A portal light's next-event density depends on the point lit (its window) too.
+    const bool portal = kind == LightKind::Infinite && lights.infinite[lights.all[es->light].index].portal >= 0;
+    o.direct_pdf_A[slot] = portal                        ? -1.f
+                           : kind == LightKind::Infinite ? nee_pmf * es->pdf_dir
                            : kind == LightKind::Distant ? nee_pmf
                                                          : -1.f;
     RGB beta = es->Le * (cos_light / emission_pdf_W);
@@ -101,6 +104,8 @@ void Bdpt::light_surface_stage(BdptWave& w) const {
     float dist2 = glm::dot(sp.p - prev, sp.p - prev);
     float cos_in = std::fabs(glm::dot(sp.ng, d));
     if (!(cos_in > 0.f) || !(dist2 > 0.f)) continue;
+    // Light from a portal light arrives only through its window.
+    if (w.depth == 1 && !reaches_through_portal(w.origin.light[slot], sp.p, -d)) continue;
     Footprint fp;
     MaterialHandle material = hit_material(scene_, footprints_, w.rays, i, d, &sp, &fp);
     w.hits.store(i, sp, d, material, footprints_.enabled() ? &fp : nullptr);
@@ -124,10 +129,20 @@ float Bdpt::first_hit_direct_pdf(const LightOriginPool& o, uint32_t slot, const 
   if (o.direct_pdf_A[slot] >= 0.f) return o.direct_pdf_A[slot];  // at infinity: independent of p
   const LightPools& lights = scene_.lights;
   const uint32_t light = o.light[slot];
+  if (lights.all[light].kind == LightKind::Infinite)  // a portal light, seen through its window from p
+    return light_sampler_.pmf_infinite(light) *
+           infinite_light_pdf(lights, scene_.textures, lights.all[light].index, p, glm::normalize(p_light - p));
   if (lights.all[light].kind == LightKind::Area)
     return area_light_direct_pdf_area(lights, scene_.shapes, light_sampler_, lights.all[light].index, p, ns, p_light,
                                       o.n[slot]);
   return light_sampler_.pmf(p, ns, light);  // point and spot lights: a delta position
+}
+
+bool Bdpt::reaches_through_portal(uint32_t light, const Vec3& p, const Vec3& w_to_light) const {
+  const LightPools& lights = scene_.lights;
+  if (lights.all[light].kind != LightKind::Infinite) return true;
+  const InfiniteLight& e = lights.infinite[lights.all[light].index];
+  return e.portal < 0 || through_portal(lights.portals[size_t(e.portal)], p, w_to_light);
 }
 
 // Stores connectible vertices and prepares their camera connections (t = 1).

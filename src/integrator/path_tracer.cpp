@@ -71,10 +71,10 @@ void PathTracer::surface_stage(PathWave& w) const {
     if (!w.rays.hit(i)) {
       ++w.stats.eye_ends[size_t(PathEnd::Escaped)];
       if (!lights.infinite.empty()) {
-        RGB Le = infinite_lights_Le(lights, scene_.textures, d);
-        float weight =
-            unweighted ? 1.f
-                       : power_heuristic(w.prev_pdf[slot], infinite_lights_pdf(lights, scene_.textures, light_sampler_, d));
+        RGB Le = infinite_lights_Le(lights, scene_.textures, w.prev_p[slot], d);
+        float weight = unweighted ? 1.f
+                                  : power_heuristic(w.prev_pdf[slot], infinite_lights_pdf(lights, scene_.textures,
+                                                                                          light_sampler_, w.prev_p[slot], d));
         w.L[slot] += w.beta[slot] * weight * Le;
       }
       continue;

@@ -98,6 +98,14 @@ std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& s
       break;
     }
     case LightKind::Infinite: {
+      const InfiniteLight& e = L.infinite[r.index];
+      if (e.portal >= 0) {  // any direction of the map; the first hit applies the window
+        Vec3 w;
+        if (!sample_portal_emission(L.portals[size_t(e.portal)], u_dir, &w, &es.pdf_dir, &es.Le)) return std::nullopt;
+        es.d = -w;
+        start_on_disk(L, u_pos, &es);
+        break;
+      }
       // The direction is drawn exactly as next-event estimation draws it.
       auto ls = sample_light_from(L, shapes, tex, uint32_t(i), Vec3(0.f), u_dir);
       if (!ls || ls->pdf == 0.f) return std::nullopt;
@@ -122,7 +130,7 @@ float area_emission_pdf(const LightPools& L, const ShapePools& shapes, uint32_t 
 float infinite_emission_pdf(const LightPools& L, const TexturePools& tex, const Vec3& w_to_light) {
   float pdf = 0.f;  // light subpaths choose by power
   for (uint32_t i = 0; i < L.infinite.size(); ++i)
-    pdf += L.selection.discrete_pmf(L.infinite_to_all[i]) * infinite_light_pdf(L, tex, i, w_to_light);
+    pdf += L.selection.discrete_pmf(L.infinite_to_all[i]) * infinite_light_emission_dir_pdf(L, tex, i, w_to_light);
   return pdf * disk_pdf(L);
 }
 
@@ -142,7 +150,7 @@ float emission_pdf(const LightPools& L, const ShapePools& shapes, const TextureP
     case LightKind::Distant:
       return pmf * disk_pdf(L);
     case LightKind::Infinite: {
-      auto pdf = infinite_light_pdf(L, tex, r.index, -w);
+      auto pdf = infinite_light_emission_dir_pdf(L, tex, r.index, -w);
       return pmf * pdf * disk_pdf(L);
     }
   }

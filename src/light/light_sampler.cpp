@@ -138,7 +138,7 @@ LightBounds light_bounds(const LightPools& L, const ShapePools& shapes, const Te
 
 namespace {
 
-// A constant environment (no image) is left to BSDF sampling: its radiance
+// A constant environment (no image, no portal) is left to BSDF sampling: its radiance
 // is the same from every direction, so sampling the BSDF (the cosine, for a
 // diffuse surface) is never worse than sampling the sphere uniformly, and a
 // light sample spent on it is one not spent on the lights that need them.
@@ -146,7 +146,7 @@ namespace {
 // lets its sampler choose it and then wastes that sample.
 bool sampled_by_next_event(const LightPools& lights, uint32_t light) {
   const LightRef r = lights.all[light];
-  return !(r.kind == LightKind::Infinite && lights.infinite[r.index].image < 0);
+  return !(r.kind == LightKind::Infinite && lights.infinite[r.index].image < 0 && lights.infinite[r.index].portal < 0);
 }
 
 }  // namespace

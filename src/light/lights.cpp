@@ -43,6 +43,7 @@ float light_power(const LightPools& L, const LightRef& r, const TexturePools& te
     case LightKind::Distant: return avg(L.distant[r.index].L) * disk;
     case LightKind::Infinite: {
       const InfiniteLight& e = L.infinite[r.index];
+      if (e.portal >= 0) return portal_power(L.portals[size_t(e.portal)]);
       float mean = avg(e.scale);
       if (e.image >= 0) {
         const TextureImage& img = tex.images[size_t(e.image)];
@@ -74,7 +75,7 @@ void finalize_lights(LightPools& L, const ShapePools& shapes, const TexturePools
     L.infinite_to_all[i] = uint32_t(L.all.size());
     L.all.push_back({LightKind::Infinite, i});
     InfiniteLight& e = L.infinite[i];
-    if (e.image < 0) continue;
+    if (e.image < 0 || e.portal >= 0) continue;
     const TextureImage& img = tex.images[size_t(e.image)];
     std::vector<float> w(img.texels.size());
     for (int y = 0; y < img.height; ++y) {
@@ -214,7 +215,9 @@ std::optional<LightSample> sample_light_from(const LightPools& L, const ShapePoo
       const InfiniteLight& e = L.infinite[r.index];
       LightSample s;
       s.infinite = true;
-      if (e.image < 0) {
+      if (e.portal >= 0) {
+        if (!sample_portal(L.portals[size_t(e.portal)], p, u, &s.wi, &s.pdf, &s.L)) return std::nullopt;
+      } else if (e.image < 0) {
         s.wi = sample_uniform_sphere(u);
         s.pdf = uniform_sphere_pdf();
         s.L = e.scale;
@@ -276,9 +279,13 @@ float area_light_pdf(const LightPools& L, const ShapePools& shapes, const LightS
   return pmf * dist2 * area_point_density(shapes, a, p_light, n_light) / cos_l;
 }
 
-RGB infinite_lights_Le(const LightPools& L, const TexturePools& tex, const Vec3& w) {
+RGB infinite_lights_Le(const LightPools& L, const TexturePools& tex, const Vec3& p, const Vec3& w) {
   RGB sum(0.f);
   for (const InfiniteLight& e : L.infinite) {
+    if (e.portal >= 0) {
+      sum += portal_Le(L.portals[size_t(e.portal)], p, w);
+      continue;
+    }
     if (e.image < 0) {
       sum += e.scale;
       continue;
@@ -289,8 +296,15 @@ RGB infinite_lights_Le(const LightPools& L, const TexturePools& tex, const Vec3&
   return sum;
 }
 
-float infinite_light_pdf(const LightPools& L, const TexturePools& tex, uint32_t index, const Vec3& w) {
+float infinite_light_emission_dir_pdf(const LightPools& L, const TexturePools& tex, uint32_t index, const Vec3& w) {
   const InfiniteLight& e = L.infinite[index];
+  if (e.portal >= 0) return portal_emission_pdf(L.portals[size_t(e.portal)], w);
+  return infinite_light_pdf(L, tex, index, Vec3(0.f), w);
+}
+
+float infinite_light_pdf(const LightPools& L, const TexturePools& tex, uint32_t index, const Vec3& p, const Vec3& w) {
+  const InfiniteLight& e = L.infinite[index];
+  if (e.portal >= 0) return portal_pdf(L.portals[size_t(e.portal)], p, w);
   if (e.image < 0) return uniform_sphere_pdf();
   Vec3 wl = glm::normalize(e.light_from_world * w);
   if (e.equal_area) return e.distribution.pdf(equal_area_sphere_to_square(wl)) / (4.f * kPi);
@@ -299,10 +313,11 @@ float infinite_light_pdf(const LightPools& L, const TexturePools& tex, uint32_t 
   return sin_theta > 0.f ? e.distribution.pdf(uv) / (2.f * kPi * kPi * sin_theta) : 0.f;
 }
 
-float infinite_lights_pdf(const LightPools& L, const TexturePools& tex, const LightSampler& sampler, const Vec3& w) {
+float infinite_lights_pdf(const LightPools& L, const TexturePools& tex, const LightSampler& sampler, const Vec3& p,
+                          const Vec3& w) {
   float pdf = 0.f;
   for (uint32_t i = 0; i < L.infinite.size(); ++i)
-    pdf += sampler.pmf_infinite(L.infinite_to_all[i]) * infinite_light_pdf(L, tex, i, w);
+    pdf += sampler.pmf_infinite(L.infinite_to_all[i]) * infinite_light_pdf(L, tex, i, p, w);
   return pdf;
 }
 

@@ -10,6 +10,7 @@
 #include "math/equal_area.h"
 #include "math/frame.h"
 #include "light/intensity_profile.h"
+#include "light/portal.h"
 #include "texture/texture.h"
 
 namespace lantern {
@@ -49,6 +50,7 @@ struct InfiniteLight {
   int32_t image = -1;       // -1: constant radiance `scale`
   bool equal_area = true;   // pbrt-v4 octahedral equal-area map; else lat-long
   Distribution2D distribution;
+  int32_t portal = -1;      // pbrt-v4's "portal": index into LightPools::portals, which then holds the map
 };
 
 struct LightRef {
@@ -63,6 +65,7 @@ struct LightPools {
   std::vector<DistantLight> distant;
   std::vector<InfiniteLight> infinite;
   std::vector<IntensityProfile> profiles;
+  std::vector<PortalMap> portals;
 
   std::vector<LightRef> all;        // what the selection distribution indexes
   std::vector<uint32_t> area_to_all;
@@ -131,16 +134,22 @@ inline RGB area_light_Le(const AreaLight& l, const TexturePools& tex, const Vec3
   return l.L * tex.images[size_t(l.image)].lookup_rgb(Vec2(uv.x, 1.f - uv.y), ImageFilter::Bilinear, WrapMode::Repeat);
 }
 
-// Radiance from infinite lights along a ray leaving the scene in direction w.
-RGB infinite_lights_Le(const LightPools& lights, const TexturePools& tex, const Vec3& w);
+// Radiance from infinite lights along a ray from p leaving the scene in
+// direction w (a portal light's only through its window).
+RGB infinite_lights_Le(const LightPools& lights, const TexturePools& tex, const Vec3& p, const Vec3& w);
 // The same for one given light (index into `all`), without the selection pmf.
 std::optional<LightSample> sample_light_from(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex,
                                              uint32_t light, const Vec3& p, Vec2 u);
 
 // Density (times the light sampler's pmf) that sample_light produces
-// direction w from the infinite lights.
-float infinite_lights_pdf(const LightPools& lights, const TexturePools& tex, const LightSampler& sampler, const Vec3& w);
-// Solid-angle density of direction w for infinite light `index` alone (no pmf).
-float infinite_light_pdf(const LightPools& lights, const TexturePools& tex, uint32_t index, const Vec3& w);
+// direction w from p, from the infinite lights.
+float infinite_lights_pdf(const LightPools& lights, const TexturePools& tex, const LightSampler& sampler, const Vec3& p,
+                          const Vec3& w);
+// Solid-angle density of direction w from p for infinite light `index`
+// alone (no pmf).
+float infinite_light_pdf(const LightPools& lights, const TexturePools& tex, uint32_t index, const Vec3& p, const Vec3& w);
+// The density of direction w (towards the light) with which a light subpath
+// leaves infinite light `index`: a portal light draws from its whole map.
+float infinite_light_emission_dir_pdf(const LightPools& lights, const TexturePools& tex, uint32_t index, const Vec3& w);
 
 }  // namespace lantern

@@ -67,6 +67,7 @@ void SceneBuilder::camera(const std::string& type, const ParamSet& ps, const glm
 }
 
 void SceneBuilder::begin_world(const glm::dmat4& render_from_world) {
+  render_from_world_ = render_from_world;
   scene_.camera.world_from_camera = Mat4(render_from_world * world_from_camera_);
 }
 

@@ -103,6 +103,7 @@ class SceneBuilder {
   MaterialHandle default_material();
   void add_shape(const std::string& type, const pbrt::ParamSet& ps, const GraphicsState& gs, const std::string& base_dir);
   // source: the PLY file the mesh came from, or empty; named in errors.
+  void add_portal(InfiniteLight& e, const pbrt::ParamSet& ps, const std::string& file);
   void profiled_light(const std::string& type, const pbrt::ParamSet& ps, const Mat4& ctm, const std::string& base_dir);
   void add_subdivision_surface(const pbrt::ParamSet& ps, const GraphicsState& gs);
   void add_mesh(TriangleMesh mesh, const GraphicsState& gs, const pbrt::ParamSet& ps, const std::string& source);
@@ -147,6 +148,7 @@ class SceneBuilder {
   int64_t resident_texels_ = 0;
   std::optional<MaterialHandle> default_material_;
   glm::dmat4 world_from_camera_{1.0};
+  glm::dmat4 render_from_world_{1.0};
 };
 
 }  // namespace lantern

@@ -45,7 +45,9 @@ void SceneBuilder::light(const std::string& type, const ParamSet& ps, const Mat4
     auto Lc = ps.get_rgb("L", ColorUsage::Illuminant);
     // Both: a pbrt-v3 file, where L scales the map (pbrt-v4 refuses it).
     e.scale = Lc.value_or(RGB(1.f)) * scale;
-    if (!file.empty()) {
+    if (ps.has("portal")) {
+      add_portal(e, ps, file.empty() ? file : (std::filesystem::path(base_dir) / file).string());
+    } else if (!file.empty()) {
       TextureImage img = load_texture_image((std::filesystem::path(base_dir) / file).string(), ColorEncoding{ColorEncoding::SRGB});
       if (img.width == img.height) {
         e.equal_area = true;
@@ -66,6 +68,33 @@ void SceneBuilder::light(const std::string& type, const ParamSet& ps, const Mat4
     ps.fail("light type \"" + printable(type) + "\" is not supported; expected point, spot, goniometric, projection, "
             "distant or infinite");
   }
+}
+
+// pbrt-v4's portal: four corners in world space, in order, around the
+// window the map shines through (light/portal.h). Without a map, L (or the
+// default white) makes a one-texel map.
+void SceneBuilder::add_portal(InfiniteLight& e, const ParamSet& ps, const std::string& path) {
+  const std::vector<Vec3> P = ps.get_point3s("portal");
+  if (P.size() != 4)
+    ps.fail(*ps.find("portal"), "\"portal\" has " + std::to_string(P.size()) + " points, expected the 4 corners of a rectangle");
+  Vec3 corners[4];
+  for (int i = 0; i < 4; ++i) corners[i] = Vec3(render_from_world_ * glm::dvec4(glm::dvec3(P[size_t(i)]), 1.0));
+  TextureImage map;
+  if (path.empty()) {
+    map.width = map.height = 1;
+    map.texels = {RGB(1.f)};
+  } else {
+    map = scene_.textures.images[size_t(texture_image(ps, path, ColorEncoding{ColorEncoding::SRGB}))];
+    if (map.width != map.height)
+      ps.fail(*ps.find("filename"), "a portal light's map must be a square equal-area image; \"" + printable(path) +
+                                        "\" is " + std::to_string(map.width) + "x" + std::to_string(map.height));
+  }
+  try {
+    scene_.lights.portals.push_back(make_portal(corners, map, e.light_from_world, e.scale));
+  } catch (const std::invalid_argument& err) {
+    ps.fail(*ps.find("portal"), err.what());
+  }
+  e.portal = int32_t(scene_.lights.portals.size() - 1);
 }
 
 // pbrt-v4's goniometric light (I times a grey equal-area image of the
