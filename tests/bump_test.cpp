@@ -30,7 +30,7 @@ std::string normal_map_file(const char* name, Vec3 n) {
   return path;
 }
 
-std::string scene_text(const std::string& floor_material, const std::string& sphere_material) {
+std::string bump_scene_text(const std::string& floor_material, const std::string& sphere_material) {
   return R"(
 LookAt 0 3 -3  0 0.3 0  0 1 0
 Camera "perspective" "float fov" [ 30 ]
@@ -54,7 +54,7 @@ Shape "sphere" "float radius" [ 0.5 ]
 TEST(Bump, PathBdptAndLightTracingAgree) {
   std::string map = normal_map_file("tilted.exr", Vec3(0.6f, 0.2f, 0.77f));
   auto scene = load_scene_from_string(
-      scene_text(R"(Material "diffuse" "rgb reflectance" [ 0.6 0.6 0.6 ] "string normalmap" ")" + map + "\"",
+      bump_scene_text(R"(Material "diffuse" "rgb reflectance" [ 0.6 0.6 0.6 ] "string normalmap" ")" + map + "\"",
                  R"(Texture "bumps" "float" "wrinkled" "integer octaves" [ 3 ]
 Texture "bumpscale" "float" "scale" "texture tex" "bumps" "float scale" [ 0.05 ]
 Material "coateddiffuse" "rgb reflectance" [ 0.5 0.3 0.2 ] "float roughness" [ 0.1 ] "texture displacement" "bumpscale")"),
@@ -69,11 +69,11 @@ Material "coateddiffuse" "rgb reflectance" [ 0.5 0.3 0.2 ] "float roughness" [ 0
 
 TEST(Bump, FlatNormalMapChangesNothing) {
   std::string flat = normal_map_file("flat.exr", Vec3(0, 0, 1));
-  auto plain = load_scene_from_string(scene_text(R"(Material "diffuse" "rgb reflectance" [ 0.6 0.6 0.6 ])",
+  auto plain = load_scene_from_string(bump_scene_text(R"(Material "diffuse" "rgb reflectance" [ 0.6 0.6 0.6 ])",
                                                  R"(Material "diffuse" "rgb reflectance" [ 0.5 0.3 0.2 ])"),
                                       "plain.pbrt");
   auto mapped = load_scene_from_string(
-      scene_text(R"(Material "diffuse" "rgb reflectance" [ 0.6 0.6 0.6 ] "string normalmap" ")" + flat + "\"",
+      bump_scene_text(R"(Material "diffuse" "rgb reflectance" [ 0.6 0.6 0.6 ] "string normalmap" ")" + flat + "\"",
                  R"(Material "diffuse" "rgb reflectance" [ 0.5 0.3 0.2 ] "string normalmap" ")" + flat + "\""),
       "flat.pbrt");
   RenderOptions o;
@@ -98,7 +98,7 @@ TEST(Bump, FlatNormalMapChangesNothing) {
 TEST(Bump, NormalMapTangentSpace) {
   std::string map = normal_map_file("plus-u.exr", Vec3(1.f, 0.f, 1.f));
   auto scene = load_scene_from_string(
-      "Option \"string renderingcoordinatesystem\" \"world\"\n" + scene_text(R"(Material "diffuse" "string normalmap" ")" + map + "\"", ""),
+      "Option \"string renderingcoordinatesystem\" \"world\"\n" + bump_scene_text(R"(Material "diffuse" "string normalmap" ")" + map + "\"", ""),
       "tangent.pbrt");  // world space: the ray below is given in world coordinates
   const Scene& s = *scene;
   RayCounters counters;

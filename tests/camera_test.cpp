@@ -16,7 +16,7 @@
 namespace lantern {
 namespace {
 
-double image_mean(const Image& im, int channel) {
+double camera_image_mean(const Image& im, int channel) {
   double s = 0.0;
   for (int y = 0; y < im.height; ++y)
     for (int x = 0; x < im.width; ++x) s += im.at(x, y)[channel];
@@ -60,7 +60,7 @@ AttributeEnd
                                         "ortho.pbrt");
     RenderOptions o;
     o.spp = 16;
-    EXPECT_NEAR(image_mean(render(*scene, o).image, 0), 2.0 / 8.0, 2e-3) << "depth " << depth;
+    EXPECT_NEAR(camera_image_mean(render(*scene, o).image, 0), 2.0 / 8.0, 2e-3) << "depth " << depth;
   }
 }
 

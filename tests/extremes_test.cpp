@@ -245,7 +245,7 @@ TEST(ExtremeLights, LightSeenOnlyAtGrazingAngles) {
 // Directional albedo, f cos / pdf averaged over BSDF samples, and the count
 // of samples or evaluations that were not finite.
 template <class BSDF>
-double sampled_albedo(const BSDF& bsdf, const Vec3& wo, int n, int* nonfinite,
+double extreme_sampled_albedo(const BSDF& bsdf, const Vec3& wo, int n, int* nonfinite,
                       TransportMode mode = TransportMode::Radiance) {
   RandomStream s = RandomStream::make(5, 3, 0);
   double sum = 0.0;
@@ -282,8 +282,8 @@ TEST(NearSpecular, RoughnessTowardsZeroApproachesSmooth) {
     for (int kind = 0; kind < 2; ++kind) {
       auto albedo = [&](float alpha, int* bad) {
         TrowbridgeReitz d{alpha, alpha};
-        return kind == 0 ? sampled_albedo(ConductorBSDF{d, RGB(0.2f), RGB(3.9f), RGB(1.f), false}, wo, 20000, bad)
-                         : sampled_albedo(DielectricBSDF{d, 1.5f}, wo, 20000, bad);
+        return kind == 0 ? extreme_sampled_albedo(ConductorBSDF{d, RGB(0.2f), RGB(3.9f), RGB(1.f), false}, wo, 20000, bad)
+                         : extreme_sampled_albedo(DielectricBSDF{d, 1.5f}, wo, 20000, bad);
       };
       int bad = 0;
       double smooth = albedo(0.f, &bad);
@@ -315,7 +315,7 @@ TEST(NearSpecular, DielectricIndexExtremesAndTotalInternalReflection) {
       int bad = 0;
       for (Vec3 wo : {direction_at(theta), -direction_at(theta)}) {
         // Importance transport: no 1/eta^2 radiance scaling, so R + T = 1.
-        double a = sampled_albedo(DielectricBSDF{{0.f, 0.f}, eta}, wo, 4000, &bad, TransportMode::Importance);
+        double a = extreme_sampled_albedo(DielectricBSDF{{0.f, 0.f}, eta}, wo, 4000, &bad, TransportMode::Importance);
         EXPECT_NEAR(a, 1.0, 1e-3) << "smooth glass, eta " << eta << ", theta " << theta << ", wo.z " << wo.z;
       }
       EXPECT_EQ(bad, 0);

@@ -50,7 +50,7 @@ const std::vector<Placement> kPlacements = {
     {"Translate 0.4 0 1.2  Scale -0.7 0.7 0.7", false},
 };
 
-std::string scene_text(bool instanced) {
+std::string instancing_scene_text(bool instanced) {
   std::ostringstream t;
   // World space: the test traces rays given in world coordinates.
   t << "Option \"string renderingcoordinatesystem\" \"world\"\nLookAt 0 3 5  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 45 ]\nWorldBegin\n"
@@ -76,8 +76,8 @@ std::string scene_text(bool instanced) {
 // with the same normals, uv and kind of material, whichever of Embree's
 // back ends traced it.
 TEST(Instancing, HitsMatchTheFlattenedGeometry) {
-  auto instanced = load_scene_from_string(scene_text(true), "instanced.pbrt");
-  auto flat = load_scene_from_string(scene_text(false), "flat.pbrt");
+  auto instanced = load_scene_from_string(instancing_scene_text(true), "instanced.pbrt");
+  auto flat = load_scene_from_string(instancing_scene_text(false), "flat.pbrt");
   for (const char* backend : {"stream", "single", "packet16"}) {
     SCOPED_TRACE(backend);
     RayBatch a, b;
@@ -115,8 +115,8 @@ TEST(Instancing, HitsMatchTheFlattenedGeometry) {
 }
 
 TEST(Instancing, InstancedAndFlattenedScenesRenderTheSameImage) {
-  auto instanced = load_scene_from_string(scene_text(true), "instanced.pbrt");
-  auto flat = load_scene_from_string(scene_text(false), "flat.pbrt");
+  auto instanced = load_scene_from_string(instancing_scene_text(true), "instanced.pbrt");
+  auto flat = load_scene_from_string(instancing_scene_text(false), "flat.pbrt");
   SceneInfo a = scene_info(*instanced), b = scene_info(*flat);
   EXPECT_EQ(a.instances, 4u);
   EXPECT_EQ(a.instanced_triangles, b.triangles);

@@ -58,7 +58,7 @@ std::string many_lights_scene(int resolution, bool at_infinity = true) {
   return s;
 }
 
-Vec3 random_direction(RandomStream& r) {
+Vec3 random_unit_vector(RandomStream& r) {
   Vec2 u = r.get2d();
   float z = 1.f - 2.f * u.x, s = safe_sqrt(1.f - z * z), phi = 2.f * kPi * u.y;
   return Vec3(s * std::cos(phi), s * std::sin(phi), z);
@@ -72,7 +72,7 @@ std::vector<std::pair<Vec3, Vec3>> shading_points(int count) {
     Vec2 a = r.get2d(), b = r.get2d();
     Vec3 p(-6.f + 12.f * a.x, 2.5f * a.y, -5.f + 9.f * b.x);
     if (k % 5 == 0) p.y = 0.f;  // on the floor
-    Vec3 n = k % 7 == 3 ? Vec3(0.f) : (k % 5 == 0 ? Vec3(0, 1, 0) : random_direction(r));
+    Vec3 n = k % 7 == 3 ? Vec3(0.f) : (k % 5 == 0 ? Vec3(0, 1, 0) : random_unit_vector(r));
     pts.push_back({p, n});
   }
   return pts;
@@ -155,8 +155,8 @@ TEST(LightSampler, ZeroProbabilityOnlyWhereTheLightCannotReach) {
   EXPECT_GT(behind_surface, 10);
 }
 
-constexpr double kMaxZ = 5.0;  // as in bdpt_test.cpp
-const std::vector<Region> kRegions = {{0, 0, 32, 32}, {0, 0, 16, 16}, {16, 0, 16, 16},
+constexpr double kBvhMaxZ = 5.0;  // as in bdpt_test.cpp
+const std::vector<Region> kBvhRegions = {{0, 0, 32, 32}, {0, 0, 16, 16}, {16, 0, 16, 16},
                                       {0, 16, 16, 16}, {16, 16, 16, 16}, {12, 20, 8, 8}};
 
 RegionStats many_light_stats(const Scene& scene, const char* integrator, const char* light_sampler, int spp,
@@ -166,7 +166,7 @@ RegionStats many_light_stats(const Scene& scene, const char* integrator, const c
   o.light_sampler = light_sampler;
   o.spp = spp;
   o.maxdepth = 4;
-  return stats_of(render_runs(scene, o, runs, 300), kRegions);
+  return stats_of(render_runs(scene, o, runs, 300), kBvhRegions);
 }
 
 // The BVH changes which light is sampled, never the expected image: path
@@ -180,10 +180,10 @@ TEST(LightSampler, BvhAgreesWithPowerAndBdpt) {
   auto path_uniform = many_light_stats(*scene, "path", "uniform", 16, runs);
   auto bdpt_bvh = many_light_stats(*scene, "bdpt", "bvh", 8, runs);
   auto lt = many_light_stats(*scene, "lt", "bvh", 16, runs);
-  EXPECT_LT(max_z(path_power, path_bvh), kMaxZ);
-  EXPECT_LT(max_z(path_uniform, path_bvh), kMaxZ);
-  EXPECT_LT(max_z(bdpt_bvh, path_bvh), kMaxZ);
-  EXPECT_LT(max_z(lt, path_bvh), kMaxZ);
+  EXPECT_LT(max_z(path_power, path_bvh), kBvhMaxZ);
+  EXPECT_LT(max_z(path_uniform, path_bvh), kBvhMaxZ);
+  EXPECT_LT(max_z(bdpt_bvh, path_bvh), kBvhMaxZ);
+  EXPECT_LT(max_z(lt, path_bvh), kBvhMaxZ);
 }
 
 // Relative variance of one-sample next-event estimates of the irradiance

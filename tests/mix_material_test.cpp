@@ -10,7 +10,7 @@ namespace lantern {
 namespace {
 
 // A sphere under a small light and a sky, on a floor, with material `m`.
-std::shared_ptr<Scene> scene_with(const std::string& m) {
+std::shared_ptr<Scene> mix_scene_with(const std::string& m) {
   return load_scene_from_string(R"(
 LookAt 0 2 -4  0 0.5 0  0 1 0
 Camera "perspective" "float fov" [ 35 ]
@@ -36,9 +36,9 @@ std::string mix_of(const char* amount) {
 }
 
 TEST(MixMaterial, AmountZeroAndOneAreEachMaterial) {
-  expect_identical_renders(*scene_with(mix_of("\"float amount\" 0")), *scene_with("NamedMaterial \"red\""),
+  expect_identical_renders(*mix_scene_with(mix_of("\"float amount\" 0")), *mix_scene_with("NamedMaterial \"red\""),
                            {"path", "bdpt"});
-  expect_identical_renders(*scene_with(mix_of("\"float amount\" 1")), *scene_with("NamedMaterial \"gold\""),
+  expect_identical_renders(*mix_scene_with(mix_of("\"float amount\" 1")), *mix_scene_with("NamedMaterial \"gold\""),
                            {"path", "bdpt"});
 }
 
@@ -48,9 +48,9 @@ TEST(MixMaterial, AmountBlendsTheImages) {
     RenderOptions o;
     o.integrator = integrator;
     o.spp = 16;
-    auto red = render_runs(*scene_with("NamedMaterial \"red\""), o, 10, 500);
-    auto gold = render_runs(*scene_with("NamedMaterial \"gold\""), o, 10, 600);
-    auto mixed = render_runs(*scene_with(mix_of("\"float amount\" 0.3")), o, 10, 700);
+    auto red = render_runs(*mix_scene_with("NamedMaterial \"red\""), o, 10, 500);
+    auto gold = render_runs(*mix_scene_with("NamedMaterial \"gold\""), o, 10, 600);
+    auto mixed = render_runs(*mix_scene_with(mix_of("\"float amount\" 0.3")), o, 10, 700);
     std::vector<Image> blend = red;
     for (size_t r = 0; r < blend.size(); ++r)
       for (size_t k = 0; k < blend[r].rgb.size(); ++k) blend[r].rgb[k] = 0.7f * red[r].rgb[k] + 0.3f * gold[r].rgb[k];

@@ -106,7 +106,7 @@ TEST(Ply, GzipCompressedFilesRead) {
   EXPECT_EQ(b.triangles.size(), 2u);
 }
 
-void expect_error(const std::string& data, const char* fragment) {
+void expect_ply_error(const std::string& data, const char* fragment) {
   try {
     parse_ply(data, "bad.ply");
     ADD_FAILURE() << "no error, expected: " << fragment;
@@ -117,15 +117,15 @@ void expect_error(const std::string& data, const char* fragment) {
 }
 
 TEST(Ply, BadFilesGiveClearErrors) {
-  expect_error("plx\n", "does not start with \"ply\"");
-  expect_error("ply\nformat ascii 1.0\nelement vertex 3\n", "no \"end_header\"");
-  expect_error("ply\nformat weird 1.0\nend_header\n", "unknown format");
-  expect_error("ply\nformat ascii 1.0\nelement vertex 1\nproperty quaternion x\nend_header\n", "unknown property type");
+  expect_ply_error("plx\n", "does not start with \"ply\"");
+  expect_ply_error("ply\nformat ascii 1.0\nelement vertex 3\n", "no \"end_header\"");
+  expect_ply_error("ply\nformat weird 1.0\nend_header\n", "unknown format");
+  expect_ply_error("ply\nformat ascii 1.0\nelement vertex 1\nproperty quaternion x\nend_header\n", "unknown property type");
   std::string quad = binary_quad(false);
-  expect_error(quad.substr(0, quad.size() - 6), "ends early");
-  expect_error(header("ascii", 3, 1) + "0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 7\n", "refers to vertex 7");
-  expect_error(header("binary_little_endian", 2000000000, 1), "claims 2000000000 entries");
-  expect_error(header("ascii", 3, 1) + "0 0 0 0 0\n1 0 0 1 0\n", "ends early");
+  expect_ply_error(quad.substr(0, quad.size() - 6), "ends early");
+  expect_ply_error(header("ascii", 3, 1) + "0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 7\n", "refers to vertex 7");
+  expect_ply_error(header("binary_little_endian", 2000000000, 1), "claims 2000000000 entries");
+  expect_ply_error(header("ascii", 3, 1) + "0 0 0 0 0\n1 0 0 1 0\n", "ends early");
 }
 
 }  // namespace

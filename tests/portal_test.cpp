@@ -17,7 +17,7 @@
 namespace lantern {
 namespace {
 
-const std::string kDir = std::string(LANTERN_SOURCE_DIR) + "/perf/lights/";
+const std::string kLightsDir = std::string(LANTERN_SOURCE_DIR) + "/perf/lights/";
 
 // Inside a window, samples have the density they report, integrate
 // functions correctly and never leave the window; the density integrates to
@@ -54,7 +54,8 @@ TEST(Portal, WindowedDistributionSamplesItsWindow) {
 
 // From points inside a room, next-event directions pass through the
 // window, carry the density they report, and estimate the irradiance that
-// uniform directions estimate from the radiance the window lets through.
+// points drawn uniformly on the window estimate from the radiance it lets
+// through.
 TEST(Portal, SamplesThroughTheWindowEstimateIrradiance) {
   TextureImage map;
   map.width = map.height = 16;
@@ -77,10 +78,16 @@ TEST(Portal, SamplesThroughTheWindowEstimateIrradiance) {
         EXPECT_NEAR(portal_pdf(m, p, wi) / pdf, 1.f, 1e-3f);
         by_sampling += double(L.z * std::fmax(glm::dot(n, wi), 0.f) / pdf);
       }
-      const Vec3 w = sample_uniform_sphere(Vec2(rng.get1d(), rng.get1d()));
-      by_uniform += double(portal_Le(m, p, w).z * std::fmax(glm::dot(n, w), 0.f) / uniform_sphere_pdf());
+      // Independently: a point uniform on the window, its direction's
+      // density dist^2 / (area cos) at p.
+      const Vec3 q = corners[0] + rng.get1d() * (corners[1] - corners[0]) + rng.get1d() * (corners[3] - corners[0]);
+      const Vec3 d = q - p;
+      const float dist2 = glm::dot(d, d);
+      const Vec3 w = d / std::sqrt(dist2);
+      const float pdf_w = dist2 / (m.area * std::fabs(w.y));  // the window lies in the plane y = 2
+      by_uniform += double(portal_Le(m, p, w).z * std::fmax(glm::dot(n, w), 0.f) / pdf_w);
     }
-    EXPECT_NEAR(by_sampling / by_uniform, 1.0, 0.03) << p.x << " " << p.y << " " << p.z;
+    EXPECT_NEAR(by_sampling / by_uniform, 1.0, 0.02) << p.x << " " << p.y << " " << p.z;
   }
 }
 
@@ -91,7 +98,7 @@ TEST(Portal, SamplesThroughTheWindowEstimateIrradiance) {
 // infinity.
 TEST(Portal, IntegratorsAgreeInARoomLitThroughAPortal) {
   if (LANTERN_ASAN) GTEST_SKIP() << "the Release suite runs it; the sanitizers cover the portal code above";
-  auto scene = load_scene(kDir + "portal.pbrt");
+  auto scene = load_scene(kLightsDir + "portal.pbrt");
   const std::vector<Region> regions = {{0, 14, 24, 10}, {0, 0, 8, 24}, {16, 0, 8, 24}, {12, 16, 12, 8}, {8, 0, 8, 6}};
   auto path = render_stats(*scene, "path", 24, 24, 16, 12, regions);
   auto bdpt = render_stats(*scene, "bdpt", 24, 24, 8, 12, regions);
@@ -106,7 +113,7 @@ TEST(Portal, IntegratorsAgreeInARoomLitThroughAPortal) {
 // window, the sphere and the left wall. 2% beyond the noise.
 TEST(Portal, RoomMatchesPbrt) {
   if (LANTERN_ASAN) GTEST_SKIP() << "the Release suite runs it";
-  auto scene = load_scene(kDir + "portal.pbrt");
+  auto scene = load_scene(kLightsDir + "portal.pbrt");
   const std::vector<Region> regions = {{0, 0, 32, 24}, {16, 18, 12, 6}, {14, 8, 4, 4}, {10, 14, 5, 5}, {0, 4, 4, 12}};
   const double pbrt[][3] = {{0.048163, 0.050800, 0.060568},
                             {0.139577, 0.128150, 0.107205},
@@ -132,7 +139,7 @@ TEST(Portal, BadPortalsAreClearErrors) {
                     {"three.pbrt:2", "has 3 points", "4 corners of a rectangle"});
   expect_load_error(head + R"("point3 portal" [0 0 0 1 0 0 1.5 1 0 0 1 0])", "skew.pbrt",
                     {"skew.pbrt:2", "not the corners of a rectangle"});
-  expect_load_error(head + R"("string filename" ")" + kDir + R"(slide.exr" "point3 portal" [0 0 0 1 0 0 1 1 0 0 1 0])",
+  expect_load_error(head + R"("string filename" ")" + kLightsDir + R"(slide.exr" "point3 portal" [0 0 0 1 0 0 1 1 0 0 1 0])",
                     "map.pbrt", {"map.pbrt:2", "square equal-area", "48x32"});
 }
 

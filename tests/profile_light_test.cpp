@@ -16,7 +16,7 @@
 namespace lantern {
 namespace {
 
-const std::string kDir = std::string(LANTERN_SOURCE_DIR) + "/perf/lights/";
+const std::string kProfileDir = std::string(LANTERN_SOURCE_DIR) + "/perf/lights/";
 
 // A 16x8 (projection) or 16x16 (goniometric) image of smoothly varying
 // colours with a dark band, in a TexturePools of its own.
@@ -93,11 +93,11 @@ WorldBegin
 AttributeBegin
   Translate -1 -0.5 4.5
   Rotate 30 1 0 0
-  LightSource "goniometric" "string filename" [ ")" + kDir + R"(goniometric.exr" ] "rgb I" [ 12 9 6 ]
+  LightSource "goniometric" "string filename" [ ")" + kProfileDir + R"(goniometric.exr" ] "rgb I" [ 12 9 6 ]
 AttributeEnd
 AttributeBegin
   LookAt 1.5 -3 1.5  0.5 2 1.2  0 0 1
-  LightSource "projection" "string filename" [ ")" + kDir + R"(slide.exr" ] "float fov" [ 35 ] "float scale" [ 6 ]
+  LightSource "projection" "string filename" [ ")" + kProfileDir + R"(slide.exr" ] "float fov" [ 35 ] "float scale" [ 6 ]
 AttributeEnd
 Material "diffuse" "rgb reflectance" [ 0.6 0.6 0.6 ]
 Shape "trianglemesh" "point3 P" [ -10 -10 0 10 -10 0 10 10 0 -10 10 0 ] "integer indices" [ 0 1 2 0 2 3 ]
@@ -119,7 +119,7 @@ Shape "trianglemesh" "point3 P" [ -10 2 0 10 2 0 10 2 10 -10 2 10 ] "integer ind
 // mirrored or turned, or "power" computed another way, misses by more.
 TEST(ProfileLight, SceneMatchesPbrt) {
   if (LANTERN_ASAN) GTEST_SKIP() << "the Release suite runs it";
-  auto scene = load_scene(kDir + "profiles.pbrt");
+  auto scene = load_scene(kProfileDir + "profiles.pbrt");
   const std::vector<Region> regions = {{0, 0, 32, 24}, {7, 0, 12, 8}, {7, 11, 5, 4}, {0, 18, 32, 6}, {20, 4, 12, 10}};
   const double pbrt[][3] = {{0.180796, 0.190645, 0.137197},
                             {0.877567, 0.990010, 0.652052},
@@ -142,11 +142,11 @@ TEST(ProfileLight, SceneMatchesPbrt) {
 TEST(ProfileLight, BadParametersAreClearErrors) {
   expect_load_error("WorldBegin\nLightSource \"goniometric\" \"rgb I\" [1 1 1]\n", "nofile.pbrt",
                     {"nofile.pbrt:2", "goniometric light needs an image", "filename"});
-  expect_load_error("WorldBegin\nLightSource \"goniometric\" \"string filename\" \"" + kDir + "slide.exr\"\n", "wide.pbrt",
+  expect_load_error("WorldBegin\nLightSource \"goniometric\" \"string filename\" \"" + kProfileDir + "slide.exr\"\n", "wide.pbrt",
                     {"wide.pbrt:2", "is 48x32", "expected a square equal-area image"});
-  expect_load_error("WorldBegin\nLightSource \"projection\" \"string filename\" \"" + kDir + "slide.exr\" \"float fov\" 180\n",
+  expect_load_error("WorldBegin\nLightSource \"projection\" \"string filename\" \"" + kProfileDir + "slide.exr\" \"float fov\" 180\n",
                     "fov.pbrt", {"fov.pbrt:2", "\"fov\" must be between 0 and 180"});
-  expect_load_error("WorldBegin\nLightSource \"projection\" \"string filename\" \"" + kDir + "none.exr\"\n", "missing.pbrt",
+  expect_load_error("WorldBegin\nLightSource \"projection\" \"string filename\" \"" + kProfileDir + "none.exr\"\n", "missing.pbrt",
                     {"missing.pbrt", "none.exr"});
   expect_load_error("WorldBegin\nLightSource \"gobo\"\n", "kind.pbrt", {"kind.pbrt:2", "goniometric, projection"});
 }

@@ -11,10 +11,10 @@
 namespace lantern {
 namespace {
 
-constexpr double kMaxZ = 5.0;  // as in bdpt_test.cpp
-constexpr int kRuns = 10;
+constexpr double kSamplerMaxZ = 5.0;  // as in bdpt_test.cpp
+constexpr int kSamplerRuns = 10;
 
-const std::vector<Region> kCornellRegions = {
+const std::vector<Region> kSamplerCornellRegions = {
     {0, 0, 32, 32}, {0, 0, 8, 8}, {12, 4, 8, 8}, {4, 20, 8, 8}, {20, 20, 8, 8}};
 
 RegionStats sampler_stats(const Scene& scene, const char* sampler, const char* integrator, int spp) {
@@ -24,7 +24,7 @@ RegionStats sampler_stats(const Scene& scene, const char* sampler, const char* i
   o.spp = spp;
   o.maxdepth = 6;
   o.width = o.height = 32;
-  return stats_of(render_runs(scene, o, kRuns, 500), kCornellRegions);
+  return stats_of(render_runs(scene, o, kSamplerRuns, 500), kSamplerCornellRegions);
 }
 
 class SamplerRender : public ::testing::TestWithParam<const char*> {};
@@ -38,8 +38,8 @@ TEST_P(SamplerRender, PathBdptAndLightTracingAgree) {
   auto path = sampler_stats(*scene, GetParam(), "path", 16);
   auto bdpt = sampler_stats(*scene, GetParam(), "bdpt", 16);
   auto lt = sampler_stats(*scene, GetParam(), "lt", 16);
-  EXPECT_LT(max_z(bdpt, path), kMaxZ);
-  EXPECT_LT(max_z(lt, path), kMaxZ);
+  EXPECT_LT(max_z(bdpt, path), kSamplerMaxZ);
+  EXPECT_LT(max_z(lt, path), kSamplerMaxZ);
 }
 
 TEST_P(SamplerRender, SameImageWithOneOrTwoThreads) {

@@ -18,7 +18,7 @@
 namespace lantern {
 namespace {
 
-std::shared_ptr<Scene> load(const std::string& text) { return load_scene_from_string(text, "t.pbrt", {}); }
+std::shared_ptr<Scene> load_texture_scene(const std::string& text) { return load_scene_from_string(text, "t.pbrt", {}); }
 
 // The scene's float or spectrum texture bound to material parameter
 // "reflectance" of its only diffuse material.
@@ -35,7 +35,7 @@ std::string tmp_path(const std::string& name) {
 }
 
 TEST(Texture, CheckerboardMeanOverWholePeriodsAndParity) {
-  auto s = load(R"(WorldBegin
+  auto s = load_texture_scene(R"(WorldBegin
 Texture "c" "spectrum" "checkerboard" "rgb tex1" [0.2 0.2 0.2] "rgb tex2" [0.8 0.8 0.8] "float uscale" 4 "float vscale" 4
 Texture "c3" "float" "checkerboard" "integer dimension" 3 "float tex1" 0.1 "float tex2" 0.9
 Material "diffuse" "texture reflectance" "c"
@@ -62,7 +62,7 @@ Shape "trianglemesh" "point3 P" [0 0 0 1 0 0 0 1 0] "integer indices" [0 1 2]
 }
 
 TEST(Texture, ScaleMixDirectionMixOfConstants) {
-  auto s = load(R"(WorldBegin
+  auto s = load_texture_scene(R"(WorldBegin
 Texture "a" "spectrum" "constant" "rgb value" [0.2 0.4 0.6]
 Texture "half" "float" "constant" "float value" 0.5
 Texture "s" "spectrum" "scale" "texture tex" "a" "texture scale" "half"
@@ -87,7 +87,7 @@ Shape "trianglemesh" "point3 P" [0 0 0 1 0 0 0 1 0] "integer indices" [0 1 2]
 }
 
 TEST(Texture, BilerpCornersAndCentre) {
-  auto s = load(R"(WorldBegin
+  auto s = load_texture_scene(R"(WorldBegin
 Texture "b" "float" "bilerp" "float v00" 1 "float v01" 2 "float v10" 3 "float v11" 4
 Material "conductor" "texture roughness" "b"
 Shape "trianglemesh" "point3 P" [0 0 0 1 0 0 0 1 0] "integer indices" [0 1 2]
@@ -111,7 +111,7 @@ std::string two_by_two() {
 
 TEST(Texture, ImageOrientationAndWrapModes) {
   std::string file = two_by_two();
-  auto s = load(R"(WorldBegin
+  auto s = load_texture_scene(R"(WorldBegin
 Texture "rep" "spectrum" "imagemap" "string filter" "point" "string filename" ")" + file + R"("
 Texture "clamp" "spectrum" "imagemap" "string filter" "point" "string wrap" "clamp" "string filename" ")" + file + R"("
 Texture "black" "spectrum" "imagemap" "string filter" "point" "string wrap" "black" "string filename" ")" + file + R"("
@@ -157,7 +157,7 @@ TEST(Texture, EncodingsOfEightBitImages) {
                {"\"string encoding\" \"gamma 2.2\"", std::pow(byte, 2.2f)},
                {"\"bool gamma\" false", byte}, {"\"bool gamma\" true", srgb}};  // pbrt-v3's form
   for (const Case& k : cases) {
-    auto s = load(std::string("WorldBegin\nTexture \"t\" \"spectrum\" \"imagemap\" ") + k.encoding +
+    auto s = load_texture_scene(std::string("WorldBegin\nTexture \"t\" \"spectrum\" \"imagemap\" ") + k.encoding +
                   " \"string filename\" \"" + png + "\"\nMaterial \"diffuse\" \"texture reflectance\" \"t\"\n"
                   "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 2]\n");
     // Decoded values are prepared as half floats: 11 significant bits.
@@ -205,8 +205,8 @@ LightSource "point" "rgb I" [4 4 4] "point3 from" [1 3 -1]
 Texture "r1" "float" "checkerboard" "float tex1" 0.15 "float tex2" 0.15
 )";
   const std::string shape = "\nShape \"sphere\" \"float radius\" 1\n";
-  auto textured = load(scene_head + R"(Material "conductor" "texture roughness" "r1")" + shape);
-  auto constant = load(scene_head + R"(Material "conductor" "float roughness" 0.15)" + shape);
+  auto textured = load_texture_scene(scene_head + R"(Material "conductor" "texture roughness" "r1")" + shape);
+  auto constant = load_texture_scene(scene_head + R"(Material "conductor" "float roughness" 0.15)" + shape);
   ASSERT_FALSE(textured->materials.conductor[0].roughness.u.is_constant());
   expect_identical_renders(*textured, *constant, {"path", "bdpt"});
 }
@@ -214,7 +214,7 @@ Texture "r1" "float" "checkerboard" "float tex1" 0.15 "float tex2" 0.15
 // pbrt-v4's (u, v) where a shape has none: a triangle's vertices are (0,0),
 // (1,0), (1,1); a bilinear patch runs over [0,1]^2 from p00 to p11.
 TEST(Texture, DefaultSurfaceCoordinates) {
-  auto s = load(R"(WorldBegin
+  auto s = load_texture_scene(R"(WorldBegin
 Shape "trianglemesh" "point3 P" [0 0 0 1 0 0 0 1 0] "integer indices" [0 1 2]
 Shape "bilinearmesh" "point3 P" [0 0 0 1 0 0 0 1 0 1 1 0] "integer indices" [0 1 2 3]
 )");
@@ -230,33 +230,33 @@ Shape "bilinearmesh" "point3 P" [0 0 0 1 0 0 0 1 0 1 1 0] "integer indices" [0 1
     }
 }
 
-void expect_error(const std::string& text, std::initializer_list<const char*> fragments) {
+void expect_texture_error(const std::string& text, std::initializer_list<const char*> fragments) {
   expect_load_error(text, "t.pbrt", fragments);
 }
 
 TEST(Texture, MisuseIsAClearError) {
   const char* tri = "\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 2]\n";
-  expect_error(std::string("WorldBegin\nTexture \"f\" \"float\" \"constant\" \"float value\" 1\n"
+  expect_texture_error(std::string("WorldBegin\nTexture \"f\" \"float\" \"constant\" \"float value\" 1\n"
                            "Material \"diffuse\" \"texture reflectance\" \"f\"") + tri,
                {"t.pbrt:3", "\"f\" is a float texture", "spectrum texture"});
-  expect_error(std::string("WorldBegin\nTexture \"c\" \"spectrum\" \"constant\" \"rgb value\" [1 1 1]\n"
+  expect_texture_error(std::string("WorldBegin\nTexture \"c\" \"spectrum\" \"constant\" \"rgb value\" [1 1 1]\n"
                            "Material \"conductor\" \"texture roughness\" \"c\"") + tri,
                {"t.pbrt:3", "spectrum texture", "float texture"});
-  expect_error("WorldBegin\nTexture \"i\" \"spectrum\" \"imagemap\" \"string filename\" \"/nonexistent/x.png\"\n",
+  expect_texture_error("WorldBegin\nTexture \"i\" \"spectrum\" \"imagemap\" \"string filename\" \"/nonexistent/x.png\"\n",
                {"t.pbrt:2", "x.png", "cannot read image"});
-  expect_error("WorldBegin\nTexture \"i\" \"spectrum\" \"checkerboard\" \"integer dimension\" 4\n", {"t.pbrt:2", "dimension"});
-  expect_error("WorldBegin\nTexture \"i\" \"spectrum\" \"fbm\"\n", {"t.pbrt:2", "\"fbm\" is not supported"});
-  expect_error("WorldBegin\nTexture \"i\" \"spectrum\" \"ptex\" \"string filename\" \"a.ptx\"\n", {"t.pbrt:2", "ptex"});
-  expect_error("WorldBegin\nTexture \"i\" \"float\" \"imagemap\" \"string filename\" \"a.png\" \"string wrap\" \"mirror\"\n",
+  expect_texture_error("WorldBegin\nTexture \"i\" \"spectrum\" \"checkerboard\" \"integer dimension\" 4\n", {"t.pbrt:2", "dimension"});
+  expect_texture_error("WorldBegin\nTexture \"i\" \"spectrum\" \"fbm\"\n", {"t.pbrt:2", "\"fbm\" is not supported"});
+  expect_texture_error("WorldBegin\nTexture \"i\" \"spectrum\" \"ptex\" \"string filename\" \"a.ptx\"\n", {"t.pbrt:2", "ptex"});
+  expect_texture_error("WorldBegin\nTexture \"i\" \"float\" \"imagemap\" \"string filename\" \"a.png\" \"string wrap\" \"mirror\"\n",
                {"t.pbrt:2", "wrap mode \"mirror\""});
-  expect_error("WorldBegin\nTexture \"i\" \"float\" \"imagemap\" \"string filename\" \"a.png\" \"string encoding\" \"gamma x\"\n",
+  expect_texture_error("WorldBegin\nTexture \"i\" \"float\" \"imagemap\" \"string filename\" \"a.png\" \"string encoding\" \"gamma x\"\n",
                {"t.pbrt:2", "encoding"});
-  expect_error("WorldBegin\nTexture \"i\" \"float\" \"checkerboard\" \"string mapping\" \"cubic\"\n", {"t.pbrt:2", "mapping"});
+  expect_texture_error("WorldBegin\nTexture \"i\" \"float\" \"checkerboard\" \"string mapping\" \"cubic\"\n", {"t.pbrt:2", "mapping"});
   // An image with a non-finite texel.
   Image bad{1, 1, {1.f, std::numeric_limits<float>::infinity(), 0.f}};
   std::string path = tmp_path("inf.exr");
   write_image(path, bad, {});
-  expect_error("WorldBegin\nTexture \"i\" \"spectrum\" \"imagemap\" \"string filename\" \"" + path + "\"\n",
+  expect_texture_error("WorldBegin\nTexture \"i\" \"spectrum\" \"imagemap\" \"string filename\" \"" + path + "\"\n",
                {"t.pbrt:2", "non-finite"});
 }
 

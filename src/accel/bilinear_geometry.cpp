@@ -17,7 +17,7 @@ struct PatchShape {
   Vec3 normal(uint32_t prim, Vec2 uv) const { return bilinear_normal(s, prim, uv); }
 };
 
-void bounds(const RTCBoundsFunctionArguments* args) {
+void patch_bounds_fn(const RTCBoundsFunctionArguments* args) {
   const auto* d = static_cast<const BilinearGeometryData*>(args->geometryUserPtr);
   const PatchCorners c = patch_corners(*d->patches, args->primID);
   Vec3 lo = glm::min(glm::min(c.p00, c.p10), glm::min(c.p01, c.p11));
@@ -31,12 +31,12 @@ void bounds(const RTCBoundsFunctionArguments* args) {
   b->upper_x = hi.x, b->upper_y = hi.y, b->upper_z = hi.z;
 }
 
-void intersect(const RTCIntersectFunctionNArguments* args) {
+void patch_intersect_fn(const RTCIntersectFunctionNArguments* args) {
   const auto* d = static_cast<const BilinearGeometryData*>(args->geometryUserPtr);
   user_geometry::intersect(args, PatchShape{*d->patches}, d->alpha);
 }
 
-void occluded(const RTCOccludedFunctionNArguments* args) {
+void patch_occluded_fn(const RTCOccludedFunctionNArguments* args) {
   const auto* d = static_cast<const BilinearGeometryData*>(args->geometryUserPtr);
   user_geometry::occluded(args, PatchShape{*d->patches}, d->alpha);
 }
@@ -47,9 +47,9 @@ RTCGeometry new_bilinear_geometry(RTCDevice device, BilinearGeometryData* data) 
   RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
   rtcSetGeometryUserPrimitiveCount(g, unsigned(data->patches->patches.size()));
   rtcSetGeometryUserData(g, data);
-  rtcSetGeometryBoundsFunction(g, bounds, nullptr);
-  rtcSetGeometryIntersectFunction(g, intersect);
-  rtcSetGeometryOccludedFunction(g, occluded);
+  rtcSetGeometryBoundsFunction(g, patch_bounds_fn, nullptr);
+  rtcSetGeometryIntersectFunction(g, patch_intersect_fn);
+  rtcSetGeometryOccludedFunction(g, patch_occluded_fn);
   if (data->alpha) {
     rtcSetGeometryIntersectFilterFunction(g, alpha_filter);
     rtcSetGeometryOccludedFilterFunction(g, alpha_filter);

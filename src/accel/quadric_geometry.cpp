@@ -22,7 +22,7 @@ struct QuadricShape {
   Vec3 normal(uint32_t, Vec2 uv) const { return quadric_point(q, uv).ng; }
 };
 
-void bounds(const RTCBoundsFunctionArguments* args) {
+void quadric_bounds_fn(const RTCBoundsFunctionArguments* args) {
   const auto* d = static_cast<const QuadricGeometryData*>(args->geometryUserPtr);
   Vec3 lo, hi;
   quadric_bounds(*d->quadric, &lo, &hi);
@@ -31,12 +31,12 @@ void bounds(const RTCBoundsFunctionArguments* args) {
   b->upper_x = hi.x, b->upper_y = hi.y, b->upper_z = hi.z;
 }
 
-void intersect(const RTCIntersectFunctionNArguments* args) {
+void quadric_intersect_fn(const RTCIntersectFunctionNArguments* args) {
   const auto* d = static_cast<const QuadricGeometryData*>(args->geometryUserPtr);
   user_geometry::intersect(args, QuadricShape{*d->quadric}, d->alpha);
 }
 
-void occluded(const RTCOccludedFunctionNArguments* args) {
+void quadric_occluded_fn(const RTCOccludedFunctionNArguments* args) {
   const auto* d = static_cast<const QuadricGeometryData*>(args->geometryUserPtr);
   user_geometry::occluded(args, QuadricShape{*d->quadric}, d->alpha);
 }
@@ -47,9 +47,9 @@ RTCGeometry new_quadric_geometry(RTCDevice device, QuadricGeometryData* data) {
   RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
   rtcSetGeometryUserPrimitiveCount(g, 1);
   rtcSetGeometryUserData(g, data);
-  rtcSetGeometryBoundsFunction(g, bounds, nullptr);
-  rtcSetGeometryIntersectFunction(g, intersect);
-  rtcSetGeometryOccludedFunction(g, occluded);
+  rtcSetGeometryBoundsFunction(g, quadric_bounds_fn, nullptr);
+  rtcSetGeometryIntersectFunction(g, quadric_intersect_fn);
+  rtcSetGeometryOccludedFunction(g, quadric_occluded_fn);
   if (data->alpha) {
     rtcSetGeometryIntersectFilterFunction(g, alpha_filter);
     rtcSetGeometryOccludedFilterFunction(g, alpha_filter);
