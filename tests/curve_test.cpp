@@ -153,22 +153,12 @@ TEST(Curve, HairBallMatchesPbrt) {
   if (LANTERN_ASAN) GTEST_SKIP() << "the Release suite runs it; the sanitizers cover curves in the other curve tests";
   auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/perf/shapes/hair.pbrt");
   const std::vector<Region> regions = {{0, 0, 32, 24}, {8, 2, 16, 10}, {12, 6, 8, 8}, {20, 14, 12, 10}, {0, 18, 32, 6}};
-  const double pbrt[][3] = {{0.291794, 0.287593, 0.276000},
+  const std::vector<std::array<double, 3>> pbrt = {{0.291794, 0.287593, 0.276000},
                             {0.232137, 0.220758, 0.203081},
                             {0.291489, 0.267260, 0.230888},
                             {0.368337, 0.374945, 0.357831},
                             {0.376185, 0.374552, 0.365582}};
-  RenderOptions o;
-  o.integrator = "path";
-  o.spp = 64;
-  o.maxdepth = 16;
-  o.width = 32;
-  o.height = 24;
-  RegionStats st = stats_of(render_runs(*scene, o, 8, 1000), regions);
-  for (size_t g = 0; g < regions.size(); ++g)
-    for (size_t c = 0; c < 3; ++c)
-      EXPECT_LT(std::fabs(st.mean[g][c] - pbrt[g][c]), 4.0 * st.std_error[g][c] + 0.02 * pbrt[g][c])
-          << "region " << g << " channel " << c << ": " << st.mean[g][c] << " against pbrt-v4's " << pbrt[g][c];
+  expect_matches_pbrt(*scene, 32, 24, 16, 64, 8, regions, pbrt);
 }
 
 // A ball of hair under a distant light and a sky: path, bdpt and light

@@ -87,6 +87,26 @@ inline RegionStats render_stats(const Scene& scene, const std::string& integrato
   return stats_of(render_runs(scene, o, runs, 1000), regions);
 }
 
+// Path-traced region means of `scene` (width x height, spp per run, `runs`
+// independent runs) against values measured with pbrt-v4 (each test says
+// how): every region and channel within 4 standard errors plus `allowance`
+// (relative) of pbrt-v4's.
+inline void expect_matches_pbrt(const Scene& scene, int width, int height, int maxdepth, int spp, int runs,
+                                const std::vector<Region>& regions, const std::vector<std::array<double, 3>>& pbrt,
+                                double allowance = 0.02) {
+  RenderOptions o;
+  o.integrator = "path";
+  o.spp = spp;
+  o.maxdepth = maxdepth;
+  o.width = width;
+  o.height = height;
+  const RegionStats st = stats_of(render_runs(scene, o, runs, 1000), regions);
+  for (size_t g = 0; g < regions.size(); ++g)
+    for (size_t c = 0; c < 3; ++c)
+      EXPECT_LT(std::fabs(st.mean[g][c] - pbrt[g][c]), 4.0 * st.std_error[g][c] + allowance * pbrt[g][c])
+          << "region " << g << " channel " << c << ": " << st.mean[g][c] << " against pbrt-v4's " << pbrt[g][c];
+}
+
 // Two scenes that must render the same image bit for bit (the same random
 // decisions on the same paths) with each integrator.
 inline void expect_identical_renders(const Scene& a, const Scene& b, std::initializer_list<const char*> integrators,

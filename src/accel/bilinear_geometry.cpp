@@ -44,17 +44,8 @@ void patch_occluded_fn(const RTCOccludedFunctionNArguments* args) {
 }  // namespace
 
 RTCGeometry new_bilinear_geometry(RTCDevice device, BilinearGeometryData* data) {
-  RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-  rtcSetGeometryUserPrimitiveCount(g, unsigned(data->patches->patches.size()));
-  rtcSetGeometryUserData(g, data);
-  rtcSetGeometryBoundsFunction(g, patch_bounds_fn, nullptr);
-  rtcSetGeometryIntersectFunction(g, patch_intersect_fn);
-  rtcSetGeometryOccludedFunction(g, patch_occluded_fn);
-  if (data->alpha) {
-    rtcSetGeometryIntersectFilterFunction(g, alpha_filter);
-    rtcSetGeometryOccludedFilterFunction(g, alpha_filter);
-  }
-  return g;
+  return user_geometry::create(device, unsigned(data->patches->patches.size()), data, data->alpha != nullptr,
+                               patch_bounds_fn, patch_intersect_fn, patch_occluded_fn);
 }
 
 }  // namespace lantern

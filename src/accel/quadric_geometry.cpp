@@ -44,17 +44,8 @@ void quadric_occluded_fn(const RTCOccludedFunctionNArguments* args) {
 }  // namespace
 
 RTCGeometry new_quadric_geometry(RTCDevice device, QuadricGeometryData* data) {
-  RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-  rtcSetGeometryUserPrimitiveCount(g, 1);
-  rtcSetGeometryUserData(g, data);
-  rtcSetGeometryBoundsFunction(g, quadric_bounds_fn, nullptr);
-  rtcSetGeometryIntersectFunction(g, quadric_intersect_fn);
-  rtcSetGeometryOccludedFunction(g, quadric_occluded_fn);
-  if (data->alpha) {
-    rtcSetGeometryIntersectFilterFunction(g, alpha_filter);
-    rtcSetGeometryOccludedFilterFunction(g, alpha_filter);
-  }
-  return g;
+  return user_geometry::create(device, 1, data, data->alpha != nullptr, quadric_bounds_fn, quadric_intersect_fn,
+                               quadric_occluded_fn);
 }
 
 }  // namespace lantern

@@ -50,7 +50,8 @@ RTCHit hit_of(const Shape& s, uint32_t prim, const UserHit& h, unsigned geom_id,
 // Whether the alpha filter keeps candidate c: always without alpha, so an
 // opaque shape builds no hit record for its candidates.
 template <class Shape, class Args>
-bool keeps(const Args* args, const Shape& s, AlphaFilterData* alpha, uint32_t prim, const RayView& rv, const UserHit& c) {
+bool keeps(const Args* args, const Shape& s, AlphaFilterData* alpha, uint32_t prim, const RayView& rv,
+           const UserHit& c) {
   if (!alpha) return true;
   RTCHit hit = hit_of(s, prim, c, args->geomID, args->context);
   RTCRay ray{};
@@ -115,8 +116,27 @@ void occluded(const RTCOccludedFunctionNArguments* args, const Shape& s, AlphaFi
   for (unsigned i = 0; i < n; ++i) {
     if (args->valid[i] != -1) continue;
     UserHit h;
-    if (first_hit(args, s, alpha, args->primID, ray_of(args->ray, n, i), &h)) RTCRayN_tfar(args->ray, n, i) = -kInfinity;
+    if (first_hit(args, s, alpha, args->primID, ray_of(args->ray, n, i), &h))
+      RTCRayN_tfar(args->ray, n, i) = -kInfinity;
   }
+}
+
+// A user geometry of `count` primitives with these callbacks. With alpha,
+// the alpha filter is registered so that keeps() can run it through
+// rtcFilterIntersection / rtcFilterOcclusion. To be committed by the caller.
+inline RTCGeometry create(RTCDevice device, unsigned count, void* user_data, bool alpha, RTCBoundsFunction bounds,
+                          RTCIntersectFunctionN intersect, RTCOccludedFunctionN occluded) {
+  RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+  rtcSetGeometryUserPrimitiveCount(g, count);
+  rtcSetGeometryUserData(g, user_data);
+  rtcSetGeometryBoundsFunction(g, bounds, nullptr);
+  rtcSetGeometryIntersectFunction(g, intersect);
+  rtcSetGeometryOccludedFunction(g, occluded);
+  if (alpha) {
+    rtcSetGeometryIntersectFilterFunction(g, alpha_filter);
+    rtcSetGeometryOccludedFilterFunction(g, alpha_filter);
+  }
+  return g;
 }
 
 }  // namespace lantern::user_geometry

@@ -46,7 +46,8 @@ Vec3 cie1931_cmf(float nm) {
   if (!(x >= 0.f) || x > float(kEntries - 1)) return Vec3(0.f);
   const int i = std::min(int(x), kEntries - 2);
   const float t = x - float(i);
-  return (1.f - t) * Vec3(kCmf[i][0], kCmf[i][1], kCmf[i][2]) + t * Vec3(kCmf[i + 1][0], kCmf[i + 1][1], kCmf[i + 1][2]);
+  return (1.f - t) * Vec3(kCmf[i][0], kCmf[i][1], kCmf[i][2]) +
+         t * Vec3(kCmf[i + 1][0], kCmf[i + 1][1], kCmf[i + 1][2]);
 }
 
 Vec3 blackbody_xyz(float kelvin) {

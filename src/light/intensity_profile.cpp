@@ -103,7 +103,8 @@ void finalize_profile(IntensityProfile& p, const TexturePools& tex) {
 float profile_power(const IntensityProfile& p, const TexturePools& tex) {
   const TextureImage& img = tex.images[size_t(p.image)];
   if (p.kind == ProfileKind::Goniometric) return float(integrate(p, img, grey, nullptr));
-  return float(integrate(p, img, [](const RGB& c) { return luminance(c); }, nullptr));
+  return float(integrate(
+      p, img, [](const RGB& c) { return luminance(c); }, nullptr));
 }
 
 }  // namespace lantern

@@ -23,9 +23,9 @@ struct IntensityProfile {
   // Projection: the screen window [lo, hi] on the plane z = 1 / tan_half.
   Vec2 screen_lo{-1.f}, screen_hi{1.f};
   float tan_half = 1.f;
-  float hither = 1e-3f;              // directions with z below this (light space) get nothing
-  Distribution2D distribution;        // over the image's texels, for light subpaths
-  float mean_intensity = 0.f;         // the profile's mean over the sphere: power / (4 pi I)
+  float hither = 1e-3f;         // directions with z below this (light space) get nothing
+  Distribution2D distribution;  // over the image's texels, for light subpaths
+  float mean_intensity = 0.f;   // the profile's mean over the sphere: power / (4 pi I)
 };
 
 // The profile's factor in world direction w (unit, leaving the light).

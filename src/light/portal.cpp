@@ -29,7 +29,8 @@ Vec3 dir_of(const PortalMap& m, Vec2 uv, float* dw_duv) {
 // The rectangle of (u, v) that the window covers seen from p.
 bool window(const PortalMap& m, const Vec3& p, Vec2* lo, Vec2* hi) {
   Vec2 a, b;
-  if (!uv_of(m, glm::normalize(m.corner[0] - p), &a, nullptr) || !uv_of(m, glm::normalize(m.corner[2] - p), &b, nullptr))
+  if (!uv_of(m, glm::normalize(m.corner[0] - p), &a, nullptr) ||
+      !uv_of(m, glm::normalize(m.corner[2] - p), &b, nullptr))
     return false;
   *lo = glm::min(a, b);
   *hi = glm::max(a, b);
@@ -44,7 +45,8 @@ const RGB& texel(const PortalMap& m, Vec2 uv) {
 
 }  // namespace
 
-PortalMap make_portal(const Vec3 corners[4], const TextureImage& map, const glm::mat3& light_from_world, const RGB& scale) {
+PortalMap make_portal(const Vec3 corners[4], const TextureImage& map, const glm::mat3& light_from_world,
+                      const RGB& scale) {
   PortalMap m;
   for (int i = 0; i < 4; ++i) m.corner[i] = corners[i];
   const Vec3 e01 = corners[1] - corners[0], e03 = corners[3] - corners[0];
@@ -53,10 +55,11 @@ PortalMap make_portal(const Vec3 corners[4], const TextureImage& map, const glm:
   if (!(l01 > 0.f) || !(l03 > 0.f) || !(glm::length(e12) > 0.f) || !(glm::length(e32) > 0.f))
     throw std::invalid_argument("the portal has coincident corners");
   // Opposite sides parallel and equal, adjacent sides perpendicular (to 1e-3, as pbrt-v4 checks).
-  const bool parallel = glm::dot(e01, e32) / (l01 * glm::length(e32)) > 0.999f &&
-                        glm::dot(e12, e03) / (glm::length(e12) * l03) > 0.999f;
+  const bool parallel =
+      glm::dot(e01, e32) / (l01 * glm::length(e32)) > 0.999f && glm::dot(e12, e03) / (glm::length(e12) * l03) > 0.999f;
   const bool square = std::fabs(glm::dot(e01, e03)) / (l01 * l03) < 1e-3f;
-  if (!parallel || !square) throw std::invalid_argument("the portal's four points are not the corners of a rectangle, in order");
+  if (!parallel || !square)
+    throw std::invalid_argument("the portal's four points are not the corners of a rectangle, in order");
   m.frame.s = e03 / l03;
   m.frame.t = e01 / l01;
   m.frame.n = glm::cross(m.frame.s, m.frame.t);

@@ -11,8 +11,8 @@ WindowedDistribution2D::WindowedDistribution2D(const std::vector<float>& f, int 
     for (int i = 0; i < nu; ++i) {
       const size_t w = size_t(nu + 1);
       sat_[size_t(j + 1) * w + size_t(i + 1)] = double(f[size_t(j) * size_t(nu) + size_t(i)]) * cell +
-                                                sat_[size_t(j) * w + size_t(i + 1)] + sat_[size_t(j + 1) * w + size_t(i)] -
-                                                sat_[size_t(j) * w + size_t(i)];
+                                                sat_[size_t(j) * w + size_t(i + 1)] +
+                                                sat_[size_t(j + 1) * w + size_t(i)] - sat_[size_t(j) * w + size_t(i)];
     }
 }
 
@@ -46,8 +46,10 @@ double invert(F&& cdf, double a, double b, int n, double target) {
   auto edge = [&](int k) { return glm::clamp(double(k) / n, a, b); };
   while (hi - lo > 1) {
     const int mid = (lo + hi) / 2;
-    if (cdf(edge(mid)) < target) lo = mid;
-    else hi = mid;
+    if (cdf(edge(mid)) < target)
+      lo = mid;
+    else
+      hi = mid;
   }
   const double x0 = edge(lo), x1 = edge(hi), c0 = cdf(x0), c1 = cdf(x1);
   if (!(c1 > c0)) return x0;
@@ -60,8 +62,8 @@ bool WindowedDistribution2D::sample(Vec2 u, Vec2 lo, Vec2 hi, Vec2* p, float* pd
   const double total = integral(lo, hi);
   if (!(total > 0.0)) return false;
   // v by the window's marginal, then u along the row v falls in.
-  const double v = invert([&](double y) { return integral(lo, Vec2(hi.x, float(y))); }, lo.y, hi.y, nv_,
-                          double(u.y) * total);
+  const double v =
+      invert([&](double y) { return integral(lo, Vec2(hi.x, float(y))); }, lo.y, hi.y, nv_, double(u.y) * total);
   const int j = glm::clamp(int(v * nv_), 0, nv_ - 1);
   const size_t w = size_t(nu_ + 1);
   auto row = [&](double x) {  // integral over [0, x] of row j, per unit v

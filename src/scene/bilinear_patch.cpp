@@ -110,9 +110,9 @@ SurfacePoint bilinear_point(const BilinearPatchSet& s, uint32_t i, Vec2 uv) {
     if (l2 > 0.f) sp.ns = ns / std::sqrt(l2);
   }
   sp.uv = s.uvs.empty() ? uv : bilerp(s.uvs, v, uv);
-  sp.error_scale = std::fmax(max_abs_component(sp.p),
-                             std::fmax(std::fmax(max_abs_component(c.p00), max_abs_component(c.p10)),
-                                       std::fmax(max_abs_component(c.p01), max_abs_component(c.p11))));
+  sp.error_scale =
+      std::fmax(max_abs_component(sp.p), std::fmax(std::fmax(max_abs_component(c.p00), max_abs_component(c.p10)),
+                                                   std::fmax(max_abs_component(c.p01), max_abs_component(c.p11))));
   return sp;
 }
 
@@ -159,7 +159,8 @@ Vec2 bilinear_uv_of(const PatchCorners& c, const Vec3& p) {
   for (int k = 0; k < 12; ++k) {
     const Vec2 f(uv);
     const glm::dvec3 q = dv(glm::mix(glm::mix(c.p00, c.p10, f.x), glm::mix(c.p01, c.p11, f.x), f.y));
-    const glm::dvec3 du = dv(glm::mix(c.p10 - c.p00, c.p11 - c.p01, f.y)), dvv = dv(glm::mix(c.p01 - c.p00, c.p11 - c.p10, f.x));
+    const glm::dvec3 du = dv(glm::mix(c.p10 - c.p00, c.p11 - c.p01, f.y)),
+                     dvv = dv(glm::mix(c.p01 - c.p00, c.p11 - c.p10, f.x));
     const glm::dvec3 r = dv(p) - q;
     // Least squares: (J^T J) delta = J^T r.
     const double a = glm::dot(du, du), b = glm::dot(du, dvv), d = glm::dot(dvv, dvv);
@@ -173,8 +174,8 @@ Vec2 bilinear_uv_of(const PatchCorners& c, const Vec3& p) {
 }
 
 bool is_parallelogram(const Vec3& v00, const Vec3& v10, const Vec3& v01, const Vec3& v11) {
-  const float size = std::fmax(std::fmax(glm::length(v10 - v00), glm::length(v01 - v00)),
-                               std::fmax(glm::length(v11 - v00), 1e-30f));
+  const float size =
+      std::fmax(std::fmax(glm::length(v10 - v00), glm::length(v01 - v00)), std::fmax(glm::length(v11 - v00), 1e-30f));
   return glm::length((v00 + v11) - (v10 + v01)) <= 1e-6f * size;
 }
 

@@ -18,11 +18,11 @@ namespace lantern {
 struct SurfacePoint;
 
 struct BilinearPatchSet {
-  std::vector<Vec3> positions;       // in the space the set is stored in
-  std::vector<Vec3> normals;         // empty, or one per vertex (already flipped by ReverseOrientation)
-  std::vector<Vec2> uvs;             // empty, or one per vertex
-  std::vector<glm::uvec4> patches;   // vertex indices in pbrt's order: p00, p10, p01, p11
-  bool flip_normal = false;          // ReverseOrientation xor a handedness-swapping transform (sets without N)
+  std::vector<Vec3> positions;      // in the space the set is stored in
+  std::vector<Vec3> normals;        // empty, or one per vertex (already flipped by ReverseOrientation)
+  std::vector<Vec2> uvs;            // empty, or one per vertex
+  std::vector<glm::uvec4> patches;  // vertex indices in pbrt's order: p00, p10, p01, p11
+  bool flip_normal = false;         // ReverseOrientation xor a handedness-swapping transform (sets without N)
 };
 
 struct PatchCorners {

@@ -63,7 +63,8 @@ void SceneBuilder::add_bilinear_mesh(const ParamSet& ps, const GraphicsState& gs
   std::vector<int> idx = ps.get_ints("indices");
   if (idx.empty() && P.size() == 4) idx = {0, 1, 2, 3};
   if (idx.empty()) ps.fail("\"integer indices\" is missing");
-  if (idx.size() % 4 != 0) ps.fail("\"indices\" has " + std::to_string(idx.size()) + " values, expected a multiple of 4");
+  if (idx.size() % 4 != 0)
+    ps.fail("\"indices\" has " + std::to_string(idx.size()) + " values, expected a multiple of 4");
   for (int i : idx)
     if (i < 0 || size_t(i) >= P.size())
       ps.fail("index " + std::to_string(i) + " is out of range: there are " + std::to_string(P.size()) + " vertices");
@@ -80,7 +81,8 @@ void SceneBuilder::add_bilinear_mesh(const ParamSet& ps, const GraphicsState& gs
   BilinearPatchSet s;
   for (size_t i = 0; i < P.size(); ++i) {
     const Vec3 p = Vec3(M * Vec4(P[i], 1.f));
-    if (!is_finite(p)) ps.fail("vertex " + std::to_string(i) + " is not finite" + (is_finite(P[i]) ? " after the transform" : ""));
+    if (!is_finite(p))
+      ps.fail("vertex " + std::to_string(i) + " is not finite" + (is_finite(P[i]) ? " after the transform" : ""));
     s.positions.push_back(p);
   }
   for (const Vec3& n : N) s.normals.push_back(gs.reverse_orientation ? -(to_normal * n) : to_normal * n);

@@ -43,15 +43,18 @@ Topology connect(std::vector<glm::uvec3> tri, uint32_t vertex_count) {
       halves[3 * f + k] = {uint64_t(std::min(a, b)) << 32 | std::max(a, b), uint32_t(3 * f + k)};
       t.some_corner[a] = int32_t(3 * f + k);
     }
-  tbb::parallel_sort(halves.begin(), halves.end(),
-                     [](const Half& x, const Half& y) { return x.key < y.key || (x.key == y.key && x.corner < y.corner); });
+  tbb::parallel_sort(halves.begin(), halves.end(), [](const Half& x, const Half& y) {
+    return x.key < y.key || (x.key == y.key && x.corner < y.corner);
+  });
   t.across.assign(corners, kNone);
   t.edge.resize(corners);
   for (size_t i = 0; i < corners;) {
     size_t j = i + 1;
     while (j < corners && halves[j].key == halves[i].key) ++j;
     const std::string ends = std::to_string(halves[i].key >> 32) + "-" + std::to_string(halves[i].key & 0xffffffffu);
-    if (j - i > 2) throw std::invalid_argument("edge " + ends + " is shared by " + std::to_string(j - i) + " triangles; at most two may share an edge");
+    if (j - i > 2)
+      throw std::invalid_argument("edge " + ends + " is shared by " + std::to_string(j - i) +
+                                  " triangles; at most two may share an edge");
     if (j - i == 2) {
       const uint32_t c0 = halves[i].corner, c1 = halves[i + 1].corner;
       if (tri[c0 / 3][c0 % 3] == tri[c1 / 3][c1 % 3])
@@ -115,7 +118,8 @@ bool one_ring(const Topology& t, uint32_t v, uint32_t incident, std::vector<uint
     }
   }
   if (faces != incident)
-    throw std::invalid_argument("vertex " + std::to_string(v) + " joins separate fans of triangles; a subdivision "
+    throw std::invalid_argument("vertex " + std::to_string(v) +
+                                " joins separate fans of triangles; a subdivision "
                                 "surface must be a manifold there");
   return boundary;
 }
@@ -219,7 +223,8 @@ Vec3 limit_normal(const std::vector<Vec3>& L, uint32_t v, bool boundary, const s
 SubdividedMesh loop_subdivide(const std::vector<Vec3>& P, const std::vector<int>& indices, int levels) {
   if (levels < 0) throw std::invalid_argument("\"levels\" is " + std::to_string(levels) + "; expected 0 or more");
   if (indices.size() % 3 != 0)
-    throw std::invalid_argument("\"indices\" has " + std::to_string(indices.size()) + " values, expected a multiple of 3");
+    throw std::invalid_argument("\"indices\" has " + std::to_string(indices.size()) +
+                                " values, expected a multiple of 3");
   const uint64_t base = indices.size() / 3;
   if (levels > 13 || (base << (2 * levels)) > kMaxSubdividedTriangles)
     throw std::invalid_argument(std::to_string(levels) + " levels would refine " + std::to_string(base) +
