@@ -45,12 +45,18 @@ expect_run(NAME bad-mis EXIT 105 ARGS render ${SRC}/scenes/cornell-box.pbrt --mi
 
 # SIGINT during a long render: exit 130 and an image with the samples so far,
 # for the path tracer and for bdpt (whose splats go through the same merge).
+# With --trace, the timeline of the waves that ran is written too.
 foreach(integrator path bdpt)
-  file(REMOVE ${OUT}/interrupted.exr)
-  execute_process(COMMAND sh -c "${LANTERN} render ${SRC}/scenes/cornell-box.pbrt --integrator ${integrator} --spp 100000 --resolution 64 64 --quiet -o ${OUT}/interrupted.exr & pid=$!; sleep 2; kill -INT $pid; wait $pid"
+  file(REMOVE ${OUT}/interrupted.exr ${OUT}/interrupted.json)
+  execute_process(COMMAND sh -c "${LANTERN} render ${SRC}/scenes/cornell-box.pbrt --integrator ${integrator} --spp 100000 --resolution 64 64 --quiet --trace ${OUT}/interrupted.json --trace-waves 50 -o ${OUT}/interrupted.exr & pid=$!; sleep 2; kill -INT $pid; wait $pid"
                   RESULT_VARIABLE rc ERROR_VARIABLE err TIMEOUT 60)
-  if(NOT rc EQUAL 130 OR NOT EXISTS ${OUT}/interrupted.exr)
-    message(FATAL_ERROR "SIGINT (${integrator}): exit ${rc}, image written: ${OUT}/interrupted.exr\n${err}")
+  if(NOT rc EQUAL 130 OR NOT EXISTS ${OUT}/interrupted.exr OR NOT EXISTS ${OUT}/interrupted.json)
+    message(FATAL_ERROR "SIGINT (${integrator}): exit ${rc}, image and trace written: ${OUT}/interrupted.exr, .json\n${err}")
+  endif()
+  file(READ ${OUT}/interrupted.json trace)
+  string(JSON events ERROR_VARIABLE json_error LENGTH "${trace}" traceEvents)
+  if(json_error OR events LESS 10)
+    message(FATAL_ERROR "SIGINT (${integrator}): the trace does not parse or is empty: ${json_error}")
   endif()
 endforeach()
 # SIGTERM, then SIGINT, each writing the image so far (its header giving the

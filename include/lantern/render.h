@@ -13,6 +13,8 @@
 
 namespace lantern {
 
+class Timeline;  // src/trace/timeline.h
+
 struct RenderProgress {
   double fraction = 0.0;  // of the sample budget, or of the time budget
   double elapsed_seconds = 0.0;
@@ -35,6 +37,7 @@ struct RenderOptions {
   std::function<void(const RenderProgress&)> progress;
   const std::atomic<bool>* cancel = nullptr;  // set it to stop after the waves in flight
   bool collect_stats = false;  // time stages and ray queries (two clock reads per stage and batch)
+  Timeline* timeline = nullptr;  // --trace: record every wave, stage and ray query on it
   std::string dump_rays;       // when set: write every ray batch given to Embree to this file (perf/ replays it)
   bool strategies = false;  // bdpt: also produce one weighted and one unweighted image per (s, t)
   bool debug_unit_mis_weights = false;  // tests only: weight every bdpt strategy 1 (a deliberately biased estimator)

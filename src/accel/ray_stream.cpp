@@ -91,12 +91,12 @@ void RayStream::intersect(RayBatch& b, RayKind kind) {
     }
   }
   if (dump_) dump_->write(kind, b);
-  if (!timing_) {
+  if (!timing_ && !trace_) {
     run_intersect(b, kind);
   } else {
-    auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = TraceClock::now();
     run_intersect(b, kind);
-    seconds_[size_t(kind)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    record(kind, b.count, t0, TraceClock::now());
   }
   if (instance_first_) remap_instance_hits(b);
 }
@@ -168,10 +168,19 @@ void RayStream::occluded(RayBatch& b) {
   if (b.count == 0) return;
   if (counters_) counters_->shadow += b.count;
   if (dump_) dump_->write(RayKind::Shadow, b);
-  if (!timing_) return run_occluded(b);
-  auto t0 = std::chrono::steady_clock::now();
+  if (!timing_ && !trace_) return run_occluded(b);
+  const auto t0 = TraceClock::now();
   run_occluded(b);
-  seconds_[size_t(RayKind::Shadow)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  record(RayKind::Shadow, b.count, t0, TraceClock::now());
+}
+
+void RayStream::record(RayKind kind, uint32_t count, TraceClock::time_point t0, TraceClock::time_point t1) {
+  if (timing_) seconds_[size_t(kind)] += std::chrono::duration<double>(t1 - t0).count();
+  if (!trace_) return;
+  static const char* names[] = {"camera rays", "extension rays", "light rays", "shadow rays"};
+  trace_->span(names[size_t(kind)], TraceCategory::Rays, t0, t1, count);
+  trace_->counter(trace_->rays_per_query_name(), t0, count);
+  if (kind != RayKind::Shadow) trace_->counter(trace_->paths_alive_name(), t0, count);  // one ray per live path
 }
 
 void RayStream::run_occluded(RayBatch& b) {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "accel/ray_batch.h"
+#include "trace/timeline.h"
 
 namespace lantern {
 
@@ -46,6 +47,9 @@ class RayStream {
   void set_timing(bool on) { timing_ = on; }
   // Every batch is also written here before it is queried (`--dump-rays`).
   void set_dump(class RayDump* dump) { dump_ = dump; }
+  // Each query also becomes a span on this track (--trace), with the
+  // paths-alive and rays-per-query counters; null: none.
+  void set_trace(class TraceBuffer* trace) { trace_ = trace; }
   const std::array<double, 4>& seconds() const { return seconds_; }
 
  private:
@@ -53,6 +57,7 @@ class RayStream {
   void run_occluded(RayBatch& batch);
 
   void remap_instance_hits(RayBatch& batch) const;
+  void record(RayKind kind, uint32_t count, TraceClock::time_point t0, TraceClock::time_point t1);
 
   RTCScene scene_;
   uint32_t instance_base_ = 0;
@@ -63,6 +68,7 @@ class RayStream {
   std::vector<RTCRay> aos_rays_;
   bool timing_ = false;
   class RayDump* dump_ = nullptr;
+  class TraceBuffer* trace_ = nullptr;
   std::array<double, 4> seconds_{};
 };
 

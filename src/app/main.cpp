@@ -10,6 +10,7 @@
 #include <iostream>
 
 #include "app/stats_report.h"
+#include "trace/timeline.h"
 #include "film/image_metrics.h"
 #include "math/fnv1a.h"
 #include "lantern/render.h"
@@ -35,7 +36,8 @@ std::string hms(double s) {
 
 struct RenderArgs {
   std::string scene, output, integrator, rays = "stream", mis = "power", strategies, stats, dump_rays, checkpoint_file;
-  std::string texture_dir, sampler, light_sampler;
+  std::string texture_dir, sampler, light_sampler, trace;
+  uint64_t trace_waves = 1000;
   int spp = 0, maxdepth = -1, threads = 0, wave_size = 4096;
   double time = 0.0, checkpoint = 0.0, texture_cache_mb = 1024.0;
   uint64_t seed = 0;
@@ -78,12 +80,42 @@ void write_text_atomically(const std::string& path, const std::string& text) {
   std::filesystem::rename(tmp, path);
 }
 
+// Loading as spans on the timeline's main track: the whole load, and each
+// stage the loader reports (parsing, reading PLY meshes, building the BVH).
+class LoadTrace {
+ public:
+  explicit LoadTrace(lantern::Timeline* t) : timeline_(t), begin_(lantern::TraceClock::now()), stage_begin_(begin_) {}
+  void stage(const std::string& name) {
+    if (!timeline_) return;
+    close_stage();
+    stage_ = timeline_->intern(name);
+  }
+  void done() {
+    if (!timeline_) return;
+    close_stage();
+    timeline_->main().span("load", lantern::TraceCategory::Load, begin_, lantern::TraceClock::now());
+  }
+
+ private:
+  void close_stage() {
+    const auto now = lantern::TraceClock::now();
+    timeline_->main().span(stage_, lantern::TraceCategory::Load, stage_begin_, now);
+    stage_begin_ = now;
+  }
+  lantern::Timeline* timeline_;
+  lantern::TraceClock::time_point begin_, stage_begin_;
+  const char* stage_ = "parse";
+};
+
 int run_render(const RenderArgs& a) {
   using namespace lantern;
   LoadOptions lo;
   lo.texture_cache_mb = a.texture_cache_mb;
   lo.texture_directory = a.texture_dir;
   const bool show_progress = !a.quiet && isatty(STDERR_FILENO);
+  std::unique_ptr<Timeline> timeline;
+  if (!a.trace.empty()) timeline = std::make_unique<Timeline>(a.trace_waves);
+  LoadTrace load_trace(timeline.get());
   auto t0 = std::chrono::steady_clock::now();
   // A progress line while loading: the stage and the time so far.
   bool progress_shown = false;
@@ -92,14 +124,17 @@ int run_render(const RenderArgs& a) {
     progress_shown = false;
     std::cerr << w << "\n";
   };
-  if (show_progress)
+  if (show_progress || timeline)
     lo.progress = [&](const std::string& stage) {
+      load_trace.stage(stage);
+      if (!show_progress) return;
       double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       std::fprintf(stderr, "\r\033[K[load %6.1f s] %s", s, stage.c_str());
       std::fflush(stderr);
       progress_shown = true;
     };
   std::shared_ptr<Scene> scene = load_scene(a.scene, lo);
+  load_trace.done();
   double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (progress_shown) std::fprintf(stderr, "\r\033[K[load %6.1f s] done\n", load_s);
   const SceneSettings& ss = scene_settings(*scene);
@@ -147,7 +182,12 @@ int run_render(const RenderArgs& a) {
   }
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
-  RenderResult r = render(*scene, o);
+  o.timeline = timeline.get();
+  RenderResult r;
+  {
+    TraceSpan span(timeline ? &timeline->main() : nullptr, "render", TraceCategory::Render);
+    r = render(*scene, o);
+  }
   if (o.progress) std::fprintf(stderr, "\n");
 
   ImageMetadata md = {{"lantern:integrator", o.integrator},
@@ -159,8 +199,12 @@ int run_render(const RenderArgs& a) {
                       {"lantern:resumed_samples", std::to_string(r.resumed_samples)},
                       {"lantern:interrupted", r.interrupted ? "true" : "false"},
                       {"lantern:scene", a.scene}};
-  write_image(out, r.image, md);
-  if (!a.strategies.empty()) write_strategy_images(a.strategies, r.strategies, md);
+  {
+    TraceSpan span(timeline ? &timeline->main() : nullptr, "write image", TraceCategory::Output);
+    write_image(out, r.image, md);
+    if (!a.strategies.empty()) write_strategy_images(a.strategies, r.strategies, md);
+  }
+  if (timeline) write_text_atomically(a.trace, timeline->json());  // interrupted renders too
   if (!a.quiet) {
     const RenderStats& s = r.stats;
     double rays = double(s.camera_rays + s.extension_rays + s.light_rays + s.shadow_rays);
@@ -266,6 +310,11 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1.0, 1048576.0));
   render->add_option("--texture-dir", a.texture_dir,
                      "Where images are prepared as tiled, MIP-mapped textures (default: ~/.cache/lantern/textures)");
+  render->add_option("--trace", a.trace,
+                     "Write a timeline of the render to FILE.json (Chrome trace events: open it in Perfetto or "
+                     "chrome://tracing; docs/profiling.md)");
+  render->add_option("--trace-waves", a.trace_waves,
+                     "With --trace: keep the first N waves in full, later ones as counters only (default 1000; 0: all)");
   render->add_flag("-q,--quiet", a.quiet, "No progress line or summary");
   CompareArgs ca;
   CLI::App* compare = app.add_subcommand("compare", "Error metrics of an image against a reference");

@@ -156,6 +156,26 @@ std::string sequence_fingerprint(const RenderOptions& o, int width, int height) 
   return f;
 }
 
+constexpr const char* kMergeQueue = "waves waiting for the film merge";
+
+// Traces one wave; with a timeline, as a span on this thread's track with
+// its stages and ray queries inside.
+template <class Tracer, class State>
+void trace_wave(const Tracer& tracer, const WaveDesc& wave, State& state, WaveOutput& out, Timeline* timeline,
+                int64_t number) {
+  TraceBuffer* track = timeline ? &timeline->local() : nullptr;
+  state.stats.trace = track;
+  state.stream.set_trace(track);
+  if (!track) return tracer.trace(wave, state, out);
+  track->begin_wave(number);
+  {
+    TraceSpan span(track, "wave", TraceCategory::Wave, int64_t(wave.size()));
+    tracer.trace(wave, state, out);
+  }
+  track->counter(kMergeQueue, Clock::now(), ++timeline->merge_queue(), true);
+  track->end_wave();
+}
+
 // Runs one integrator over all passes. Waves flow through a pipeline whose
 // last stage merges their output into the film serially and in wave order.
 template <class Tracer>
@@ -171,6 +191,8 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
   const uint32_t waves = uint32_t((order.size() + pixels_per_wave - 1) / pixels_per_wave);
 
   using State = typename decltype(tracer.make_wave_state(0, RayStream(nullptr, backend, nullptr)))::element_type;
+  // Waves numbered through the whole render (passes one after another).
+  auto wave_number = [&](uint32_t first, uint32_t wi) { return int64_t(first / pass_spp) * int64_t(waves) + int64_t(wi); };
   tbb::enumerable_thread_specific<std::unique_ptr<State, void (*)(State*)>> states([&] {
     auto state = tracer.make_wave_state(capacity, RayStream(scene.accel->handle(), backend, &counters));
     state->stats.timing = opt.collect_stats;
@@ -216,15 +238,24 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
                                                                  first, samples};
                                                    WaveOutput& out = outputs[wi % tokens];
                                                    out.clear();
-                                                   tracer.trace(wave, *states.local(), out);
+                                                   trace_wave(tracer, wave, *states.local(), out, opt.timeline,
+                                                              wave_number(first, wi));
                                                    return wi;
                                                  }) &
             tbb::make_filter<uint32_t, void>(tbb::filter_mode::serial_in_order, [&](uint32_t wi) {
               const WaveOutput& out = outputs[wi % tokens];
-              auto t0 = opt.collect_stats ? Clock::now() : Clock::time_point();
+              TraceBuffer* track = opt.timeline ? &opt.timeline->pipeline() : nullptr;
+              if (track) track->begin_wave(wave_number(first, wi));
+              auto t0 = opt.collect_stats || track ? Clock::now() : Clock::time_point();
               film.merge(out);
               if (strategies) strategies->merge(out.strategies);
               if (opt.collect_stats) film_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+              if (track) {
+                const auto t1 = Clock::now();
+                track->span("film merge", TraceCategory::Pipeline, t0, t1, int64_t(out.samples.size()));
+                track->counter(kMergeQueue, t1, --opt.timeline->merge_queue(), true);
+                track->end_wave();
+              }
               done += out.samples.size();
               position = wi + 1 < waves ? SequencePosition{first, wi + 1} : SequencePosition{first + pass_spp, 0};
               checkpoints.maybe_write(film, position);

@@ -7,6 +7,8 @@
 #include <chrono>
 #include <cstdint>
 
+#include "trace/timeline.h"
+
 namespace lantern {
 
 // CPU stages of a wave, outside the ray queries (which RayStream times).
@@ -35,6 +37,7 @@ inline const char* path_end_name(PathEnd e) {
 
 struct WaveStats {
   bool timing = false;
+  TraceBuffer* trace = nullptr;  // with --trace: this thread's track
   std::array<double, kStageCount> seconds{};
   uint64_t eye_vertices = 0, light_vertices = 0;  // surface hits of each kind of subpath
   std::array<uint64_t, kPathEndCount> eye_ends{}, light_ends{};
@@ -55,14 +58,18 @@ struct WaveStats {
   }
 };
 
+// Times a stage for --stats and records it as a span for --trace; reads no
+// clock when neither is on.
 class StageTimer {
  public:
   StageTimer(WaveStats& s, Stage stage) : stats_(s), stage_(stage) {
-    if (s.timing) start_ = std::chrono::steady_clock::now();
+    if (s.timing || s.trace) start_ = TraceClock::now();
   }
   ~StageTimer() {
-    if (stats_.timing)
-      stats_.seconds[size_t(stage_)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    if (!stats_.timing && !stats_.trace) return;
+    const TraceClock::time_point end = TraceClock::now();
+    if (stats_.timing) stats_.seconds[size_t(stage_)] += std::chrono::duration<double>(end - start_).count();
+    if (stats_.trace) stats_.trace->span(stage_name(stage_), TraceCategory::Stage, start_, end);
   }
   StageTimer(const StageTimer&) = delete;
   StageTimer& operator=(const StageTimer&) = delete;
@@ -70,7 +77,7 @@ class StageTimer {
  private:
   WaveStats& stats_;
   Stage stage_;
-  std::chrono::steady_clock::time_point start_;
+  TraceClock::time_point start_;
 };
 
 }  // namespace lantern
