@@ -109,7 +109,8 @@ SurfacePoint bilinear_point(const BilinearPatchSet& s, uint32_t i, Vec2 uv) {
     const float l2 = glm::dot(ns, ns);
     if (l2 > 0.f) sp.ns = ns / std::sqrt(l2);
   }
-  sp.uv = s.uvs.empty() ? uv : bilerp(s.uvs, v, uv);
+  Vec2 st[4];
+  sp.uv = patch_corner_uvs(s, i, st) ? glm::mix(glm::mix(st[0], st[1], uv.x), glm::mix(st[2], st[3], uv.x), uv.y) : uv;
   sp.error_scale =
       std::fmax(max_abs_component(sp.p), std::fmax(std::fmax(max_abs_component(c.p00), max_abs_component(c.p10)),
                                                    std::fmax(max_abs_component(c.p01), max_abs_component(c.p11))));

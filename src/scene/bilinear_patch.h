@@ -23,7 +23,24 @@ struct BilinearPatchSet {
   std::vector<Vec2> uvs;            // empty, or one per vertex
   std::vector<glm::uvec4> patches;  // vertex indices in pbrt's order: p00, p10, p01, p11
   bool flip_normal = false;         // ReverseOrientation xor a handedness-swapping transform (sets without N)
+  // Patches from here on are a PLY file's triangles (p01 = p11): without
+  // uvs they take pbrt's default triangle uvs, (0,0) (1,0) (1,1).
+  uint32_t first_triangle = 0xFFFFFFFFu;
 };
+
+// The texture coordinates at a patch's corners (p00 p10 p01 p11): the set's
+// uvs, or a triangle's defaults; false for a patch without (its (u, v) are
+// its texture coordinates).
+inline bool patch_corner_uvs(const BilinearPatchSet& s, uint32_t i, Vec2 out[4]) {
+  if (!s.uvs.empty()) {
+    const glm::uvec4 v = s.patches[i];
+    out[0] = s.uvs[v.x], out[1] = s.uvs[v.y], out[2] = s.uvs[v.z], out[3] = s.uvs[v.w];
+    return true;
+  }
+  if (i < s.first_triangle) return false;
+  out[0] = Vec2(0, 0), out[1] = Vec2(1, 0), out[2] = out[3] = Vec2(1, 1);
+  return true;
+}
 
 struct PatchCorners {
   Vec3 p00, p10, p01, p11;

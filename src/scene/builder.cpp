@@ -219,7 +219,7 @@ static void prepare_mesh(TriangleMesh& mesh, const Mat4& M, bool reverse_orienta
   if (!mesh.triangles.empty()) mesh.positions.push_back(Vec3(0.f));  // Embree's 16-byte read of the last vertex
 }
 
-static TriangleMesh from_ply(PlyMesh ply) {
+TriangleMesh from_ply(PlyMesh ply) {
   TriangleMesh m;
   m.positions = std::move(ply.positions);
   m.normals = std::move(ply.normals);
@@ -267,13 +267,23 @@ void SceneBuilder::add_subdivision_surface(const ParamSet& ps, const GraphicsSta
 // A PLY mesh that does not emit is given its place in the pools now and is
 // read later, with all the others in parallel (load_pending_meshes); an
 // emitter needs its triangles at once, for the light table.
+// A PLY mesh whose quads are not all parallelograms is a patch set, as in
+// pbrt-v4 (scene/builder_patches.cpp).
 void SceneBuilder::add_ply_mesh(const std::string& path, const GraphicsState& gs, const ParamSet& ps) {
-  if (gs.area_light) return add_mesh(from_ply(read_ply(path)), gs, ps, path);
+  if (gs.area_light) {
+    PlyMesh ply = read_ply(path);
+    if (std::optional<BilinearPatchSet> patches = ply_patches(ply)) {
+      prepare_patches(*patches, Mat4(gs.render_from_object), gs.reverse_orientation, ps, path);
+      return add_patch_set(std::move(*patches), gs);
+    }
+    return add_mesh(from_ply(std::move(ply)), gs, ps, path);
+  }
   ShapePools& s = scene_.shapes;
   s.meshes.emplace_back();
   s.geometries.push_back({ShapeKind::Mesh, uint32_t(s.meshes.size() - 1), gs.material ? *gs.material : default_material(), -1});
   note_geometry();
-  pending_.push_back({uint32_t(s.meshes.size() - 1), path, Mat4(gs.render_from_object), gs.reverse_orientation, ps});
+  pending_.push_back({uint32_t(s.meshes.size() - 1), uint32_t(s.geometries.size() - 1), path, Mat4(gs.render_from_object),
+                      gs.reverse_orientation, ps});
 }
 
 void SceneBuilder::load_pending_meshes() {
@@ -282,10 +292,14 @@ void SceneBuilder::load_pending_meshes() {
   // Errors are kept per mesh and the first in file order is reported, so
   // the message does not depend on thread timing.
   std::vector<std::exception_ptr> errors(pending_.size());
+  std::vector<std::optional<BilinearPatchSet>> patches(pending_.size());
   tbb::parallel_for(size_t(0), pending_.size(), [&](size_t i) {
     const PendingMesh& p = pending_[i];
     try {
-      TriangleMesh m = from_ply(read_ply(p.path));
+      PlyMesh ply = read_ply(p.path);
+      patches[i] = ply_patches(ply);
+      if (patches[i]) return prepare_patches(*patches[i], p.ctm, p.reverse_orientation, p.ps, p.path);
+      TriangleMesh m = from_ply(std::move(ply));
       prepare_mesh(m, p.ctm, p.reverse_orientation, p.ps, p.path);
       scene_.shapes.meshes[p.mesh] = std::move(m);
     } catch (...) {
@@ -294,8 +308,17 @@ void SceneBuilder::load_pending_meshes() {
   });
   for (const std::exception_ptr& e : errors)
     if (e) std::rethrow_exception(e);
-  for (const PendingMesh& p : pending_)
-    if (scene_.shapes.meshes[p.mesh].triangles.empty()) warn(p.ps.where, p.ps.directive + " has no triangles and was skipped");
+  ShapePools& s = scene_.shapes;
+  for (size_t i = 0; i < pending_.size(); ++i) {
+    const PendingMesh& p = pending_[i];
+    if (patches[i]) {  // the geometry's place is kept; it now points at a patch set
+      s.patches.push_back(std::move(*patches[i]));
+      s.geometries[p.geometry].kind = ShapeKind::Bilinear;
+      s.geometries[p.geometry].index = uint32_t(s.patches.size() - 1);
+    } else if (s.meshes[p.mesh].triangles.empty()) {
+      warn(p.ps.where, p.ps.directive + " has no triangles and was skipped");
+    }
+  }
   pending_.clear();
 }
 

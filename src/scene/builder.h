@@ -12,6 +12,15 @@
 namespace lantern {
 
 // file, relative to the including scene file's folder unless absolute.
+struct PlyMesh;  // scene/ply.h
+// A PLY mesh's quads as a patch set when any of them is not a
+// parallelogram (its triangles then become patches that collapse an edge,
+// which are exactly those triangles), as pbrt-v4 traces PLY quads;
+// nothing when the mesh can stay triangles (builder_patches.cpp).
+std::optional<BilinearPatchSet> ply_patches(const PlyMesh& ply);
+// Carries a patch set into render space and checks it (builder_patches.cpp).
+void prepare_patches(BilinearPatchSet& s, const Mat4& render_from_object, bool reverse_orientation,
+                     const pbrt::ParamSet& ps, const std::string& source);
 std::string resolve_path(const std::string& base_dir, const std::string& file);
 
 // The part of pbrt's graphics state that shapes and lights read.
@@ -110,6 +119,7 @@ class SceneBuilder {
   void add_quadric(const std::string& type, const pbrt::ParamSet& ps, const GraphicsState& gs);  // builder_quadrics.cpp
   void add_curve(const pbrt::ParamSet& ps, const GraphicsState& gs);  // builder_curves.cpp
   void add_bilinear_mesh(const pbrt::ParamSet& ps, const GraphicsState& gs);  // builder_patches.cpp
+  void add_patch_set(BilinearPatchSet s, const GraphicsState& gs);           // builder_patches.cpp
   void add_area_lights(uint32_t geometry, uint32_t primitives, const GraphicsState& gs);
   void add_ply_mesh(const std::string& path, const GraphicsState& gs, const pbrt::ParamSet& ps);
   void load_pending_meshes();
@@ -127,7 +137,7 @@ class SceneBuilder {
 
   // PLY meshes whose place in the pools is taken, read at finish().
   struct PendingMesh {
-    uint32_t mesh;
+    uint32_t mesh, geometry;
     std::string path;
     Mat4 ctm;
     bool reverse_orientation;

@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "scene/builder.h"
+#include "scene/ply.h"
 
 namespace lantern {
 
@@ -76,19 +77,16 @@ void SceneBuilder::add_bilinear_mesh(const ParamSet& ps, const GraphicsState& gs
   if (parallelograms(P, idx) && parallelograms(N, idx) && parallelograms(uv, idx))
     return add_mesh(split_patches(std::move(P), std::move(N), std::move(uv), std::move(idx)), gs, ps, "");
 
-  const Mat4 M(gs.render_from_object);
-  const glm::mat3 to_normal = glm::inverseTranspose(glm::mat3(M));
   BilinearPatchSet s;
-  for (size_t i = 0; i < P.size(); ++i) {
-    const Vec3 p = Vec3(M * Vec4(P[i], 1.f));
-    if (!is_finite(p))
-      ps.fail("vertex " + std::to_string(i) + " is not finite" + (is_finite(P[i]) ? " after the transform" : ""));
-    s.positions.push_back(p);
-  }
-  for (const Vec3& n : N) s.normals.push_back(gs.reverse_orientation ? -(to_normal * n) : to_normal * n);
+  s.positions = std::move(P);
+  s.normals = std::move(N);
   s.uvs = std::move(uv);
   for (size_t i = 0; i < idx.size(); i += 4) s.patches.emplace_back(idx[i], idx[i + 1], idx[i + 2], idx[i + 3]);
-  s.flip_normal = gs.reverse_orientation != swaps_handedness(M);
+  prepare_patches(s, Mat4(gs.render_from_object), gs.reverse_orientation, ps, "");
+  add_patch_set(std::move(s), gs);
+}
+
+void SceneBuilder::add_patch_set(BilinearPatchSet s, const GraphicsState& gs) {
   const uint32_t count = uint32_t(s.patches.size());
   ShapePools& pools = scene_.shapes;
   pools.patches.push_back(std::move(s));
@@ -96,6 +94,55 @@ void SceneBuilder::add_bilinear_mesh(const ParamSet& ps, const GraphicsState& gs
       {ShapeKind::Bilinear, uint32_t(pools.patches.size() - 1), gs.material ? *gs.material : default_material(), -1});
   note_geometry();
   add_area_lights(uint32_t(pools.geometries.size() - 1), count, gs);
+}
+
+void prepare_patches(BilinearPatchSet& s, const Mat4& M, bool reverse_orientation, const ParamSet& ps,
+                     const std::string& source) {
+  const glm::mat3 to_normal = glm::inverseTranspose(glm::mat3(M));
+  const std::string of = source.empty() ? "" : " of \"" + printable(source, 1024) + "\"";
+  for (size_t i = 0; i < s.positions.size(); ++i) {
+    const Vec3 p = Vec3(M * Vec4(s.positions[i], 1.f));
+    if (!is_finite(p))
+      ps.fail("vertex " + std::to_string(i) + of + " is not finite" + (is_finite(s.positions[i]) ? " after the transform" : ""));
+    s.positions[i] = p;
+  }
+  for (Vec3& n : s.normals) n = reverse_orientation ? -(to_normal * n) : to_normal * n;
+  if (!s.normals.empty() && s.normals.size() != s.positions.size())
+    ps.fail("\"N\" has " + std::to_string(s.normals.size()) + " normals for " + std::to_string(s.positions.size()) + " vertices" + of);
+  if (!s.uvs.empty() && s.uvs.size() != s.positions.size())
+    ps.fail("\"uv\" has " + std::to_string(s.uvs.size()) + " entries for " + std::to_string(s.positions.size()) + " vertices" + of);
+  for (const glm::uvec4& q : s.patches)
+    if (std::max({q.x, q.y, q.z, q.w}) >= s.positions.size())
+      ps.fail("index " + std::to_string(std::max({q.x, q.y, q.z, q.w})) + of + " is out of range: there are " +
+              std::to_string(s.positions.size()) + " vertices");
+  s.flip_normal = reverse_orientation != swaps_handedness(M);
+}
+
+std::optional<BilinearPatchSet> ply_patches(const PlyMesh& ply) {
+  if (ply.quad_first.empty()) return std::nullopt;
+  // A quad (v0 v1 v2 v3) read around its face is the patch (v0 v1 v3 v2).
+  std::vector<int> idx;
+  std::vector<uint8_t> in_quad(ply.triangles.size(), 0);
+  for (uint32_t t : ply.quad_first) {
+    const glm::uvec3 a = ply.triangles[t], b = ply.triangles[t + 1];
+    idx.insert(idx.end(), {int(a.x), int(a.y), int(b.z), int(a.z)});
+    in_quad[t] = in_quad[t + 1] = 1;
+  }
+  for (int i : idx)
+    if (size_t(i) >= ply.positions.size()) return std::nullopt;  // prepare_mesh names the bad index
+  const bool with_n = ply.normals.size() == ply.positions.size(), with_uv = ply.uvs.size() == ply.positions.size();
+  if (parallelograms(ply.positions, idx) && (!with_n || parallelograms(ply.normals, idx)) &&
+      (!with_uv || parallelograms(ply.uvs, idx)))
+    return std::nullopt;
+  BilinearPatchSet s;
+  s.positions = ply.positions;
+  s.normals = ply.normals;
+  s.uvs = ply.uvs;
+  for (size_t i = 0; i < idx.size(); i += 4) s.patches.emplace_back(idx[i], idx[i + 1], idx[i + 2], idx[i + 3]);
+  s.first_triangle = uint32_t(s.patches.size());
+  for (size_t t = 0; t < ply.triangles.size(); ++t)
+    if (!in_quad[t]) s.patches.emplace_back(ply.triangles[t].x, ply.triangles[t].y, ply.triangles[t].z, ply.triangles[t].z);
+  return s;
 }
 
 }  // namespace lantern

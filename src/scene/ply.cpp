@@ -197,6 +197,7 @@ bool read_triangle_faces(Reader& r, const Element& e, PlyMesh& mesh) {
     if (q.type == Scalar::I32)
       for (int j = 0; j < count; ++j)
         if (int32_t(poly[j]) < 0) r.fail("face " + std::to_string(i) + " has an invalid vertex index");
+    if (count == 4) mesh.quad_first.push_back(uint32_t(mesh.triangles.size()));
     for (int j = 1; j + 1 < count; ++j) mesh.triangles.emplace_back(poly[0], poly[j], poly[j + 1]);
   }
   return true;
@@ -329,6 +330,7 @@ PlyMesh parse_ply(const std::string& data, const std::string& name) {
           poly[j] = uint32_t(v);
         }
         if (n < 3) r.fail("face " + std::to_string(i) + " has fewer than 3 vertices");
+        if (n == 4) mesh.quad_first.push_back(uint32_t(mesh.triangles.size()));
         for (size_t j = 1; j + 1 < n; ++j) mesh.triangles.emplace_back(poly[0], poly[j], poly[j + 1]);
       }
       if (is_vertex) {

@@ -16,7 +16,10 @@ struct PlyMesh {
   std::vector<Vec3> positions;
   std::vector<Vec3> normals;
   std::vector<Vec2> uvs;
-  std::vector<glm::uvec3> triangles;
+  std::vector<glm::uvec3> triangles;  // every face, polygons fan-split
+  // The faces that were quads: each entry is the first of the two
+  // triangles (v0 v1 v2), (v0 v2 v3) its quad (v0 v1 v2 v3) was split into.
+  std::vector<uint32_t> quad_first;
 };
 
 PlyMesh read_ply(const std::string& path);

@@ -157,9 +157,10 @@ inline ShadingGeometry bilinear_shading_geometry(const BilinearPatchSet& s, uint
     g.dndu = glm::mix(s.normals[v.y] - s.normals[v.x], s.normals[v.w] - s.normals[v.z], uv.y);
     g.dndv = glm::mix(s.normals[v.z] - s.normals[v.x], s.normals[v.w] - s.normals[v.y], uv.x);
   }
-  if (s.uvs.empty()) return g;
-  const Vec2 dst_du = glm::mix(s.uvs[v.y] - s.uvs[v.x], s.uvs[v.w] - s.uvs[v.z], uv.y);
-  const Vec2 dst_dv = glm::mix(s.uvs[v.z] - s.uvs[v.x], s.uvs[v.w] - s.uvs[v.y], uv.x);
+  Vec2 st[4];
+  if (!patch_corner_uvs(s, i, st)) return g;
+  const Vec2 dst_du = glm::mix(st[1] - st[0], st[3] - st[2], uv.y);
+  const Vec2 dst_dv = glm::mix(st[2] - st[0], st[3] - st[1], uv.x);
   const float det = dst_du.x * dst_dv.y - dst_du.y * dst_dv.x;
   if (!(std::fabs(det) > 1e-12f)) return g;
   // (du, dv) per (ds, dt): the inverse of [dst_du dst_dv].
