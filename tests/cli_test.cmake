@@ -24,7 +24,12 @@ expect_run(NAME help EXIT 0 MATCH "--spp" ARGS render --help)
 expect_run(NAME missing-scene EXIT 2 MATCH "cannot open scene file" ARGS render ${OUT}/no-such-scene.pbrt -o ${OUT}/x.png)
 file(WRITE ${OUT}/broken.pbrt "WorldBegin\nShape \"sphere\" \"float radius\" [ 1\n")
 expect_run(NAME syntax-error EXIT 2 MATCH "broken.pbrt:2:.*error: .*missing" ARGS render ${OUT}/broken.pbrt -o ${OUT}/x.png)
-expect_run(NAME bad-flag EXIT 105 ARGS render ${SRC}/scenes/cornell-box.pbrt --spp -3)
+# Bad values say what was expected, in words (no numeric range spelt out).
+expect_run(NAME bad-flag EXIT 105 MATCH "--spp: must be a positive integer, not \"-3\"" ARGS render ${SRC}/scenes/cornell-box.pbrt --spp -3)
+expect_run(NAME bad-time EXIT 105 MATCH "--time: must be a positive number of seconds" ARGS render ${SRC}/scenes/cornell-box.pbrt --time -1)
+expect_run(NAME bad-threads EXIT 105 MATCH "--threads: must be a positive integer, not \"abc\"" ARGS render ${SRC}/scenes/cornell-box.pbrt --threads abc)
+expect_run(NAME bad-resolution EXIT 105 MATCH "--resolution: must be an integer from 1 to 65536" ARGS render ${SRC}/scenes/cornell-box.pbrt --resolution 0 5)
+expect_run(NAME bad-maxdepth EXIT 105 MATCH "--maxdepth: must be an integer of 0 or more" ARGS render ${SRC}/scenes/cornell-box.pbrt --maxdepth -2)
 
 # The bidirectional integrators, per-strategy images, and compare.
 file(REMOVE_RECURSE ${OUT}/strategies)

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "app/cli_checks.h"
 #include "app/stats_report.h"
 #include "trace/timeline.h"
 #include "film/image_metrics.h"
@@ -271,8 +272,8 @@ int main(int argc, char** argv) {
   CLI::App* render = app.add_subcommand("render", "Render a pbrt-v4 scene to an image");
   render->add_option("scene", a.scene, "Scene file (pbrt-v4 format)")->required();
   render->add_option("-o,--output", a.output, "Output image (.exr linear float, .png sRGB); default: the scene's Film filename");
-  auto* spp = render->add_option("--spp", a.spp, "Samples per pixel (default: the scene's Sampler pixelsamples)")->check(CLI::PositiveNumber);
-  render->add_option("--time", a.time, "Render for this many seconds instead of a sample count")->check(CLI::PositiveNumber)->excludes(spp);
+  auto* spp = render->add_option("--spp", a.spp, "Samples per pixel (default: the scene's Sampler pixelsamples)")->check(lantern::cli::positive_integer());
+  render->add_option("--time", a.time, "Render for this many seconds instead of a sample count")->check(lantern::cli::positive_seconds())->excludes(spp);
   render->add_option("--integrator", a.integrator,
                      "Integrator: path, bdpt or lt (light tracing); default: the scene's Integrator")
       ->check(CLI::IsMember({"path", "bdpt", "lt"}));
@@ -284,8 +285,8 @@ int main(int argc, char** argv) {
                      "Write every ray batch given to Embree to FILE (32 bytes a ray; for perf/'s ray benchmark)");
   render->add_option("--strategies", a.strategies,
                      "bdpt: write DIR/s<s>_t<t>_{weighted,unweighted}.exr, one pair per strategy");
-  render->add_option("--maxdepth", a.maxdepth, "Maximum path depth, as pbrt defines it (default: the scene's)")->check(CLI::NonNegativeNumber);
-  render->add_option("--threads", a.threads, "Worker threads (default: all cores)")->check(CLI::PositiveNumber);
+  render->add_option("--maxdepth", a.maxdepth, "Maximum path depth, as pbrt defines it (default: the scene's)")->check(lantern::cli::integer_in(0, 2147483647, "an integer of 0 or more"));
+  render->add_option("--threads", a.threads, "Worker threads (default: all cores)")->check(lantern::cli::positive_integer());
   render->add_option("--seed", a.seed, "Random seed");
   render->add_option("--sampler", a.sampler,
                      "Sample pattern: zsobol, paddedsobol, sobol, halton, stratified or independent "
@@ -295,26 +296,27 @@ int main(int argc, char** argv) {
                      "How next-event estimation chooses lights: bvh, power or uniform (default: the scene's "
                      "Integrator \"lightsampler\", else bvh)")
       ->check(CLI::IsMember({"bvh", "power", "uniform"}));
-  render->add_option("--resolution", a.resolution, "Image size W H (default: the scene's Film)")->expected(2)->check(CLI::Range(1, 65536));
+  render->add_option("--resolution", a.resolution, "Image size W H (default: the scene's Film)")->expected(2)->check(lantern::cli::integer_in(1, 65536, "an integer from 1 to 65536"));
   render->add_option("--rays", a.rays, "Ray query back end: stream (Embree Np streams), stream-1m, single, packet16")
       ->check(CLI::IsMember({"stream", "stream-1m", "single", "packet16"}));
-  render->add_option("--wave-size", a.wave_size, "Paths per wave")->check(CLI::Range(1, 1 << 22));
+  render->add_option("--wave-size", a.wave_size, "Paths per wave")->check(lantern::cli::integer_in(1, 1 << 22, "an integer from 1 to 4194304"));
   render->add_option("--checkpoint", a.checkpoint,
                      "Write the render's state every SECONDS (and on Ctrl-C/SIGTERM) to OUTPUT.ckpt")
-      ->check(CLI::PositiveNumber);
+      ->check(lantern::cli::positive_seconds());
   render->add_option("--checkpoint-file", a.checkpoint_file, "Checkpoint file (default: the output's name + .ckpt)");
   render->add_flag("--resume", a.resume,
                    "Continue from the checkpoint; the result equals an uninterrupted render with the same settings");
   render->add_option("--texture-cache", a.texture_cache_mb,
                      "Memory for image texture tiles, in MB (default: 1024); the image does not depend on it")
-      ->check(CLI::Range(1.0, 1048576.0));
+      ->check(lantern::cli::number_in(1.0, 1048576.0, true, "a number of megabytes from 1 to 1048576"));
   render->add_option("--texture-dir", a.texture_dir,
                      "Where images are prepared as tiled, MIP-mapped textures (default: ~/.cache/lantern/textures)");
   render->add_option("--trace", a.trace,
                      "Write a timeline of the render to FILE.json (Chrome trace events: open it in Perfetto or "
                      "chrome://tracing; docs/profiling.md)");
   render->add_option("--trace-waves", a.trace_waves,
-                     "With --trace: keep the first N waves in full, later ones as counters only (default 1000; 0: all)");
+                     "With --trace: keep the first N waves in full, later ones as counters only (default 1000; 0: all)")
+      ->check(lantern::cli::integer_in(0, 9223372036854775807LL, "an integer of 0 or more"));
   render->add_flag("-q,--quiet", a.quiet, "No progress line or summary");
   CompareArgs ca;
   CLI::App* compare = app.add_subcommand("compare", "Error metrics of an image against a reference");
@@ -322,7 +324,7 @@ int main(int argc, char** argv) {
   compare->add_option("reference", ca.ref, "Reference image")->required()->check(CLI::ExistingFile);
   compare->add_option("--error-image", ca.error_image, "Write a false-colour map of the relative squared error");
   compare->add_option("--error-scale", ca.error_scale, "Relative squared error shown as full red")
-      ->check(CLI::PositiveNumber);
+      ->check(lantern::cli::number_in(0.0, HUGE_VAL, false, "a positive number"));
   std::string info_image;
   CLI::App* info = app.add_subcommand("info", "Print an image's size and the settings it was rendered with");
   info->add_option("image", info_image, "Image written by lantern render")->required()->check(CLI::ExistingFile);
