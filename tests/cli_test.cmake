@@ -31,6 +31,27 @@ expect_run(NAME bad-threads EXIT 105 MATCH "--threads: must be a positive intege
 expect_run(NAME bad-resolution EXIT 105 MATCH "--resolution: must be an integer from 1 to 65536" ARGS render ${SRC}/scenes/cornell-box.pbrt --resolution 0 5)
 expect_run(NAME bad-maxdepth EXIT 105 MATCH "--maxdepth: must be an integer of 0 or more" ARGS render ${SRC}/scenes/cornell-box.pbrt --maxdepth -2)
 
+# Output files are checked before anything renders: these would run for
+# hours (and time out here) if the check came at the end.
+expect_run(NAME output-folder-missing EXIT 1 MATCH "the folder \"[^\"]*no-such-dir\" does not exist"
+           ARGS render ${SRC}/scenes/cornell-box.pbrt --spp 100000 -o ${OUT}/no-such-dir/x.exr)
+expect_run(NAME output-format-unknown EXIT 1 MATCH "no image writer for the extension \".xyz\""
+           ARGS render ${SRC}/scenes/cornell-box.pbrt --spp 100000 -o ${OUT}/x.xyz)
+expect_run(NAME trace-folder-missing EXIT 1 MATCH "cannot write the trace"
+           ARGS render ${SRC}/scenes/cornell-box.pbrt --spp 100000 --trace ${OUT}/no-such-dir/t.json -o ${OUT}/x.exr)
+expect_run(NAME checkpoint-folder-missing EXIT 1 MATCH "cannot write the checkpoint"
+           ARGS render ${SRC}/scenes/cornell-box.pbrt --spp 100000 --checkpoint 60 --checkpoint-file ${OUT}/no-such-dir/c.ckpt -o ${OUT}/x.exr)
+# A folder removed during the render: the image goes to a rescue copy in
+# the working directory, and the exit status says something went wrong.
+file(REMOVE_RECURSE ${OUT}/vanishing)
+file(REMOVE ${OUT}/x.rescue.exr)
+file(MAKE_DIRECTORY ${OUT}/vanishing)
+execute_process(COMMAND sh -c "${LANTERN} render ${SRC}/scenes/cornell-box.pbrt --spp 100000 --resolution 32 32 --quiet -o ${OUT}/vanishing/x.exr & pid=$!; sleep 2; rm -rf ${OUT}/vanishing; kill -INT $pid; wait $pid"
+                WORKING_DIRECTORY ${OUT} RESULT_VARIABLE rc ERROR_VARIABLE err TIMEOUT 60)
+if(NOT rc EQUAL 1 OR NOT EXISTS ${OUT}/x.rescue.exr OR NOT err MATCHES "saved instead in")
+  message(FATAL_ERROR "removed output folder: exit ${rc}, rescue copy ${OUT}/x.rescue.exr\n${err}")
+endif()
+
 # The bidirectional integrators, per-strategy images, and compare.
 file(REMOVE_RECURSE ${OUT}/strategies)
 expect_run(NAME bdpt EXIT 0 MATCH "light extension" ARGS render ${SRC}/scenes/cornell-box.pbrt --integrator bdpt --spp 2

@@ -22,6 +22,8 @@ using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
 // Written to a temporary file and renamed, so a failure never leaves a
 // truncated image. Throws std::runtime_error with the reason.
 void write_image(const std::string& path, const Image& image, const ImageMetadata& metadata);
+// Whether write_image has a writer for path's extension.
+bool can_write_image_format(const std::string& path);
 Image read_image(const std::string& path);
 // The string attributes of an image's header whose names start with prefix.
 ImageMetadata read_image_metadata(const std::string& path, const std::string& prefix = "lantern:");

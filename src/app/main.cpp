@@ -10,6 +10,7 @@
 #include <iostream>
 
 #include "app/cli_checks.h"
+#include "app/outputs.h"
 #include "app/stats_report.h"
 #include "trace/timeline.h"
 #include "film/image_metrics.h"
@@ -114,6 +115,11 @@ int run_render(const RenderArgs& a) {
   lo.texture_cache_mb = a.texture_cache_mb;
   lo.texture_directory = a.texture_dir;
   const bool show_progress = !a.quiet && isatty(STDERR_FILENO);
+  // Outputs known before loading are checked before loading: a scene can
+  // take minutes to load.
+  if (!a.output.empty()) check_image_path(a.output);
+  if (!a.stats.empty()) check_writable(a.stats, "the statistics");
+  if (!a.trace.empty()) check_writable(a.trace, "the trace");
   std::unique_ptr<Timeline> timeline;
   if (!a.trace.empty()) timeline = std::make_unique<Timeline>(a.trace_waves);
   LoadTrace load_trace(timeline.get());
@@ -181,6 +187,10 @@ int run_render(const RenderArgs& a) {
       std::fflush(stderr);
     };
   }
+  // Every file the render will write, before it starts.
+  if (a.output.empty()) check_image_path(out);
+  if (!o.checkpoint_path.empty()) check_writable(o.checkpoint_path, "the checkpoint");
+  if (!a.strategies.empty()) std::filesystem::create_directories(a.strategies);
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   o.timeline = timeline.get();
@@ -200,10 +210,21 @@ int run_render(const RenderArgs& a) {
                       {"lantern:resumed_samples", std::to_string(r.resumed_samples)},
                       {"lantern:interrupted", r.interrupted ? "true" : "false"},
                       {"lantern:scene", a.scene}};
+  ImageWrite written;
   {
     TraceSpan span(timeline ? &timeline->main() : nullptr, "write image", TraceCategory::Output);
-    write_image(out, r.image, md);
+    written = write_image_or_rescue(out, r.image, md, o.checkpoint_path);
     if (!a.strategies.empty()) write_strategy_images(a.strategies, r.strategies, md);
+  }
+  if (!written.written) {
+    std::fprintf(stderr, "error: %s\n", written.error.c_str());
+    if (!written.rescue.empty()) {
+      std::fprintf(stderr, "the rendered image is saved instead in %s\n", written.rescue.c_str());
+    } else {
+      std::fprintf(stderr, "error: no rescue copy could be written either; the image is lost\n");
+    }
+    if (timeline) write_text_atomically(a.trace, timeline->json());
+    return 1;
   }
   if (timeline) write_text_atomically(a.trace, timeline->json());  // interrupted renders too
   if (!a.quiet) {

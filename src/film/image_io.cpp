@@ -9,6 +9,8 @@ void write_image(const std::string& path, const Image& image, const ImageMetadat
   image_io_module().write_image(path, image, metadata);
 }
 
+bool can_write_image_format(const std::string& path) { return image_io_module().can_write_format(path); }
+
 Image read_image(const std::string& path) { return image_io_module().read_image(path); }
 
 ImageMetadata read_image_metadata(const std::string& path, const std::string& prefix) {

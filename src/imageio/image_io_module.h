@@ -17,12 +17,13 @@
 
 namespace lantern {
 
-inline constexpr int kImageIoModuleVersion = 1;
+inline constexpr int kImageIoModuleVersion = 2;
 
 struct ImageIoModule {
   int version;
   // lantern/image.h
   void (*write_image)(const std::string& path, const Image& image, const ImageMetadata& metadata);
+  bool (*can_write_format)(const std::string& path);
   Image (*read_image)(const std::string& path);
   ImageMetadata (*read_image_metadata)(const std::string& path, const std::string& prefix);
   // texture/image.h and texture/prepared_texture.h

@@ -27,6 +27,11 @@ static unsigned char encode_srgb8(float v) {
   return (unsigned char)std::lround(std::clamp(v, 0.f, 1.f) * 255.f);
 }
 
+bool can_write_format(const std::string& path) {
+  // An output for the name, not opened: nothing is created.
+  return OIIO::ImageOutput::create(path) != nullptr;
+}
+
 void write_image(const std::string& path, const Image& image, const ImageMetadata& metadata) {
   std::string ext = lower_extension(path);
   bool linear = is_float_format(ext);

@@ -5,6 +5,7 @@ extern "C" __attribute__((visibility("default"))) const lantern::ImageIoModule* 
   using namespace lantern::oiio;
   static const lantern::ImageIoModule table{lantern::kImageIoModuleVersion,
                                             write_image,
+                                            can_write_format,
                                             read_image,
                                             read_image_metadata,
                                             load_texture_image,

@@ -7,6 +7,7 @@
 namespace lantern::oiio {
 
 void write_image(const std::string& path, const Image& image, const ImageMetadata& metadata);
+bool can_write_format(const std::string& path);
 Image read_image(const std::string& path);
 ImageMetadata read_image_metadata(const std::string& path, const std::string& prefix);
 TextureImage load_texture_image(const std::string& path, ColorEncoding encoding);

@@ -1,0 +1,73 @@
+#include "app/outputs.h"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <vector>
+#include <unistd.h>
+
+namespace lantern {
+
+namespace fs = std::filesystem;
+
+void check_writable(const std::string& path, const std::string& what) {
+  const fs::path p(path);
+  const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec))
+    throw std::runtime_error("cannot write " + what + " \"" + path + "\": the folder \"" + dir.string() +
+                             "\" does not exist");
+  if (fs::is_directory(p, ec)) throw std::runtime_error("cannot write " + what + " \"" + path + "\": it is a folder");
+  // A file of our own next to it, created and removed: the real test of a
+  // writable folder (permissions, read-only mounts, quotas at zero).
+  const fs::path probe = dir / (".lantern-probe-" + std::to_string(getpid()));
+  {
+    std::ofstream f(probe);
+    if (!f) {
+      const std::string why = std::strerror(errno);
+      throw std::runtime_error("cannot write " + what + " \"" + path + "\": cannot create files in \"" +
+                               dir.string() + "\" (" + why + ")");
+    }
+  }
+  fs::remove(probe, ec);
+}
+
+void check_image_path(const std::string& path) {
+  check_writable(path, "the output image");
+  if (!can_write_image_format(path))
+    throw std::runtime_error("cannot write the output image \"" + path + "\": no image writer for the extension \"" +
+                             fs::path(path).extension().string() + "\"; use .exr (linear floats) or .png");
+}
+
+ImageWrite write_image_or_rescue(const std::string& path, const Image& image, const ImageMetadata& md,
+                                 const std::string& checkpoint_path) {
+  ImageWrite w;
+  try {
+    write_image(path, image, md);
+    w.written = true;
+    return w;
+  } catch (const std::exception& e) {
+    w.error = e.what();
+  }
+  const std::string name = fs::path(path).stem().string() + ".rescue.exr";
+  std::vector<fs::path> places;
+  if (!checkpoint_path.empty()) places.push_back(fs::path(checkpoint_path).parent_path());
+  places.push_back(fs::current_path());
+  places.push_back(fs::temp_directory_path());
+  for (const fs::path& dir : places) {
+    const fs::path rescue = (dir.empty() ? fs::path(".") : dir) / name;
+    try {
+      write_image(rescue.string(), image, md);
+      w.rescue = rescue.string();
+      return w;
+    } catch (const std::exception&) {
+      // the next place
+    }
+  }
+  return w;
+}
+
+}  // namespace lantern
