@@ -111,6 +111,11 @@ class LoadTrace {
 
 int run_render(const RenderArgs& a) {
   using namespace lantern;
+  // From the start: a signal during loading stops the render before its
+  // first wave, and the (empty) image is still written, with exit 130.
+  // Installed only later, such a signal killed the process with no image.
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
   LoadOptions lo;
   lo.texture_cache_mb = a.texture_cache_mb;
   lo.texture_directory = a.texture_dir;
@@ -191,8 +196,6 @@ int run_render(const RenderArgs& a) {
   if (a.output.empty()) check_image_path(out);
   if (!o.checkpoint_path.empty()) check_writable(o.checkpoint_path, "the checkpoint");
   if (!a.strategies.empty()) std::filesystem::create_directories(a.strategies);
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
   o.timeline = timeline.get();
   RenderResult r;
   {
