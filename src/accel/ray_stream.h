@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "accel/ray_batch.h"
-#include "trace/timeline.h"
+#include "trace/trace_buffer.h"
 
 namespace lantern {
 

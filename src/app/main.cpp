@@ -219,6 +219,7 @@ int run_render(const RenderArgs& a) {
     written = write_image_or_rescue(out, r.image, md, o.checkpoint_path);
     if (!a.strategies.empty()) write_strategy_images(a.strategies, r.strategies, md);
   }
+  if (timeline) write_text_atomically(a.trace, timeline->json());  // interrupted renders too
   if (!written.written) {
     std::fprintf(stderr, "error: %s\n", written.error.c_str());
     if (!written.rescue.empty()) {
@@ -226,10 +227,8 @@ int run_render(const RenderArgs& a) {
     } else {
       std::fprintf(stderr, "error: no rescue copy could be written either; the image is lost\n");
     }
-    if (timeline) write_text_atomically(a.trace, timeline->json());
     return 1;
   }
-  if (timeline) write_text_atomically(a.trace, timeline->json());  // interrupted renders too
   if (!a.quiet) {
     const RenderStats& s = r.stats;
     double rays = double(s.camera_rays + s.extension_rays + s.light_rays + s.shadow_rays);

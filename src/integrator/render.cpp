@@ -24,6 +24,7 @@
 #include "integrator/bdpt.h"
 #include "integrator/bdpt_wave.h"
 #include "integrator/path_tracer.h"
+#include "trace/timeline.h"
 #include "integrator/path_wave.h"
 #include "integrator/wave_stats.h"
 #include "lantern/render.h"

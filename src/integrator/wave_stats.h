@@ -7,7 +7,7 @@
 #include <chrono>
 #include <cstdint>
 
-#include "trace/timeline.h"
+#include "trace/trace_buffer.h"
 
 namespace lantern {
 

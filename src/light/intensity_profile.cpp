@@ -8,11 +8,8 @@ namespace {
 
 float grey(const RGB& c) { return (c.x + c.y + c.z) / 3.f; }
 
-const RGB& texel(const TextureImage& img, Vec2 uv) {
-  const int x = glm::clamp(int(uv.x * float(img.width)), 0, img.width - 1);
-  const int y = glm::clamp(int(uv.y * float(img.height)), 0, img.height - 1);
-  return img.texels[size_t(y) * size_t(img.width) + size_t(x)];
-}
+// pbrt-v4 reads light images at the nearest texel.
+RGB texel(const TextureImage& img, Vec2 uv) { return img.lookup_rgb(uv, ImageFilter::Point, WrapMode::Clamp); }
 
 // Where light-space direction w meets the projection's screen window, as
 // (u, v) in [0, 1]^2 (v = 0 at the image's top row); false outside it.

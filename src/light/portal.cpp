@@ -37,11 +37,8 @@ bool window(const PortalMap& m, const Vec3& p, Vec2* lo, Vec2* hi) {
   return true;
 }
 
-const RGB& texel(const PortalMap& m, Vec2 uv) {
-  const int x = glm::clamp(int(uv.x * float(m.width)), 0, m.width - 1);
-  const int y = glm::clamp(int(uv.y * float(m.height)), 0, m.height - 1);
-  return m.texels[size_t(y) * size_t(m.width) + size_t(x)];
-}
+// pbrt-v4 reads the map at the nearest texel.
+RGB texel(const PortalMap& m, Vec2 uv) { return m.map.lookup_rgb(uv, ImageFilter::Point, WrapMode::Clamp); }
 
 }  // namespace
 
@@ -66,21 +63,22 @@ PortalMap make_portal(const Vec3 corners[4], const TextureImage& map, const glm:
   m.area = l01 * l03;
   // Resampled at the map's resolution, bilinearly, across the equal-area
   // square's folded edges.
-  m.width = map.width;
-  m.height = map.height;
-  m.texels.resize(size_t(m.width) * size_t(m.height));
-  std::vector<float> weights(m.texels.size());
-  for (int y = 0; y < m.height; ++y)
-    for (int x = 0; x < m.width; ++x) {
-      const Vec2 uv((float(x) + 0.5f) / float(m.width), (float(y) + 0.5f) / float(m.height));
+  TextureImage& r = m.map;
+  r.width = map.width;
+  r.height = map.height;
+  r.texels.resize(size_t(r.width) * size_t(r.height));
+  std::vector<float> weights(r.texels.size());
+  for (int y = 0; y < r.height; ++y)
+    for (int x = 0; x < r.width; ++x) {
+      const Vec2 uv((float(x) + 0.5f) / float(r.width), (float(y) + 0.5f) / float(r.height));
       float dw_duv;
       const Vec3 w = dir_of(m, uv, &dw_duv);
       const Vec2 st = equal_area_sphere_to_square(glm::normalize(light_from_world * w));
-      const size_t i = size_t(y) * size_t(m.width) + size_t(x);
-      m.texels[i] = scale * glm::max(map.lookup_rgb(st, ImageFilter::Bilinear, WrapMode::OctahedralSphere), RGB(0.f));
-      weights[i] = (m.texels[i].x + m.texels[i].y + m.texels[i].z) * dw_duv;
+      const size_t i = size_t(y) * size_t(r.width) + size_t(x);
+      r.texels[i] = scale * glm::max(map.lookup_rgb(st, ImageFilter::Bilinear, WrapMode::OctahedralSphere), RGB(0.f));
+      weights[i] = (r.texels[i].x + r.texels[i].y + r.texels[i].z) * dw_duv;
     }
-  m.distribution = WindowedDistribution2D(weights, m.width, m.height);
+  m.distribution = WindowedDistribution2D(weights, r.width, r.height);
   return m;
 }
 

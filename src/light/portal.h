@@ -28,8 +28,7 @@ namespace lantern {
 struct PortalMap {
   Vec3 corner[4];  // render space, pbrt's order
   Frame frame;
-  int width = 0, height = 0;
-  std::vector<RGB> texels;  // the resampled map times the light's scale; row 0 at v = 0
+  TextureImage map;  // resampled into (u, v), times the light's scale; row 0 at v = 0
   WindowedDistribution2D distribution;
   float area = 0.f;
 };

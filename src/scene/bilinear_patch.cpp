@@ -84,8 +84,11 @@ Vec3 patch_cross(const PatchCorners& c, Vec2 uv) {
   return glm::cross(dpdu, dpdv);
 }
 
-Vec3 bilinear_normal(const BilinearPatchSet& s, uint32_t i, Vec2 uv) {
-  const PatchCorners c = patch_corners(s, i);
+namespace {
+
+// The unit winding normal, oriented towards the interpolated vertex normal
+// `ns` when the set has normals, else flipped by flip_normal.
+Vec3 oriented_normal(const BilinearPatchSet& s, const PatchCorners& c, Vec2 uv, const Vec3& ns) {
   Vec3 n = patch_cross(c, uv);
   const float len = glm::length(n);
   if (!(len > 0.f) || !std::isfinite(len)) {  // a collapsed corner: the patch's mean normal
@@ -93,8 +96,15 @@ Vec3 bilinear_normal(const BilinearPatchSet& s, uint32_t i, Vec2 uv) {
     if (!(glm::length(n) > 0.f)) n = Vec3(0, 0, 1);
   }
   n = glm::normalize(n);
-  if (!s.normals.empty()) return glm::dot(n, bilerp(s.normals, s.patches[i], uv)) < 0.f ? -n : n;
+  if (!s.normals.empty()) return glm::dot(n, ns) < 0.f ? -n : n;
   return s.flip_normal ? -n : n;
+}
+
+}  // namespace
+
+Vec3 bilinear_normal(const BilinearPatchSet& s, uint32_t i, Vec2 uv) {
+  const Vec3 ns = s.normals.empty() ? Vec3(0.f) : bilerp(s.normals, s.patches[i], uv);
+  return oriented_normal(s, patch_corners(s, i), uv, ns);
 }
 
 SurfacePoint bilinear_point(const BilinearPatchSet& s, uint32_t i, Vec2 uv) {
@@ -102,13 +112,10 @@ SurfacePoint bilinear_point(const BilinearPatchSet& s, uint32_t i, Vec2 uv) {
   const glm::uvec4 v = s.patches[i];
   SurfacePoint sp;
   sp.p = glm::mix(glm::mix(c.p00, c.p10, uv.x), glm::mix(c.p01, c.p11, uv.x), uv.y);
-  sp.ng = bilinear_normal(s, i, uv);
-  sp.ns = sp.ng;
-  if (!s.normals.empty()) {
-    const Vec3 ns = bilerp(s.normals, v, uv);
-    const float l2 = glm::dot(ns, ns);
-    if (l2 > 0.f) sp.ns = ns / std::sqrt(l2);
-  }
+  const Vec3 ns = s.normals.empty() ? Vec3(0.f) : bilerp(s.normals, v, uv);
+  sp.ng = oriented_normal(s, c, uv, ns);
+  const float l2 = glm::dot(ns, ns);
+  sp.ns = l2 > 0.f ? ns / std::sqrt(l2) : sp.ng;
   Vec2 st[4];
   sp.uv = patch_corner_uvs(s, i, st) ? glm::mix(glm::mix(st[0], st[1], uv.x), glm::mix(st[2], st[3], uv.x), uv.y) : uv;
   sp.error_scale =
