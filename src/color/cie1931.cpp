@@ -39,6 +39,20 @@ constexpr float kCmf[kEntries][3] = {
     {0.000083f, 0.000030f, 0.000000f}, {0.000059f, 0.000021f, 0.000000f}, {0.000042f, 0.000015f, 0.000000f},
 };
 
+// D65's relative spectral power from 380 to 780 nm in 5 nm steps (CIE
+// 015:2004, Table T.1).
+constexpr float kD65[kEntries] = {
+    49.9755f, 52.3118f, 54.6482f, 68.7015f, 82.7549f, 87.1204f, 91.486f, 92.4589f, 93.4318f,
+    90.057f, 86.6823f, 95.7736f, 104.865f, 110.936f, 117.008f, 117.41f, 117.812f, 116.336f,
+    114.861f, 115.392f, 115.923f, 112.367f, 108.811f, 109.082f, 109.354f, 108.578f, 107.802f,
+    106.296f, 104.79f, 106.239f, 107.689f, 106.047f, 104.405f, 104.225f, 104.046f, 102.023f,
+    100.0f, 98.1671f, 96.3342f, 96.0611f, 95.788f, 92.2368f, 88.6856f, 89.3459f, 90.0062f,
+    89.8026f, 89.5991f, 88.6489f, 87.6987f, 85.4936f, 83.2886f, 83.4939f, 83.6992f, 81.863f,
+    80.0268f, 80.1207f, 80.2146f, 81.2462f, 82.2778f, 80.281f, 78.2842f, 74.0027f, 69.7213f,
+    70.6652f, 71.6091f, 72.979f, 74.349f, 67.9765f, 61.604f, 65.7448f, 69.8856f, 72.4863f,
+    75.087f, 69.3398f, 63.5927f, 55.0054f, 46.4182f, 56.6118f, 66.8054f, 65.0941f, 63.3828f,
+};
+
 }  // namespace
 
 Vec3 cie1931_cmf(float nm) {
@@ -48,6 +62,33 @@ Vec3 cie1931_cmf(float nm) {
   const float t = x - float(i);
   return (1.f - t) * Vec3(kCmf[i][0], kCmf[i][1], kCmf[i][2]) +
          t * Vec3(kCmf[i + 1][0], kCmf[i + 1][1], kCmf[i + 1][2]);
+}
+
+float cie_d65(float nm) {
+  const float x = (nm - float(kFirstNm)) / float(kStepNm);
+  if (!(x >= 0.f) || x > float(kEntries - 1)) return 0.f;
+  const int i = std::min(int(x), kEntries - 2);
+  const float t = x - float(i);
+  return (1.f - t) * kD65[i] + t * kD65[i + 1];
+}
+
+RGB reflectance_rgb(const std::function<double(double)>& reflectance) {
+  // XYZ of the reflected light and of D65 itself, then the sRGB of each; the
+  // ratio per channel removes the table's small departure from the exact
+  // sRGB white point, so constants map to themselves.
+  double reflected[3] = {0.0, 0.0, 0.0}, white[3] = {0.0, 0.0, 0.0};
+  for (int nm = kFirstNm; nm <= kFirstNm + kStepNm * (kEntries - 1); ++nm) {
+    const Vec3 cmf = cie1931_cmf(float(nm));
+    const double light = double(cie_d65(float(nm)));
+    const double r = reflectance(double(nm));
+    for (int c = 0; c < 3; ++c) {
+      white[c] += light * double(cmf[c]);
+      reflected[c] += r * light * double(cmf[c]);
+    }
+  }
+  const RGB rgb = xyz_to_linear_srgb(Vec3(float(reflected[0]), float(reflected[1]), float(reflected[2])));
+  const RGB rgb_white = xyz_to_linear_srgb(Vec3(float(white[0]), float(white[1]), float(white[2])));
+  return rgb / rgb_white;
 }
 
 Vec3 blackbody_xyz(float kelvin) {

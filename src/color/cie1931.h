@@ -3,6 +3,8 @@
 // parameters (blackbody emitters) into Lantern's linear sRGB.
 #pragma once
 
+#include <functional>
+
 #include "math/common.h"
 
 namespace lantern {
@@ -14,6 +16,18 @@ Vec3 cie1931_cmf(float nm);
 // CIE XYZ of a black body at `kelvin` (Planck's law, integrated over
 // 380-780 nm at 1 nm against the table), scaled to Y = 1.
 Vec3 blackbody_xyz(float kelvin);
+
+// CIE standard illuminant D65's relative spectral power (100 at 560 nm):
+// linear between the 5 nm entries of CIE 015:2004, Table T.1, zero outside
+// 380-780 nm.
+float cie_d65(float nm);
+
+// Linear sRGB of a surface whose reflectance at each wavelength (nm) is
+// `reflectance(nm)`, lit by D65, the sRGB white: integrated at 1 nm over
+// 380-780 nm and normalised so that a constant reflectance c gives exactly
+// (c, c, c). This is the colour a spectral renderer shows for the surface
+// under a white (D65) light, which pbrt-v4's RGB lights are.
+RGB reflectance_rgb(const std::function<double(double)>& reflectance);
 
 // XYZ to linear sRGB (IEC 61966-2-1, D65 white).
 inline RGB xyz_to_linear_srgb(const Vec3& xyz) {

@@ -1,6 +1,7 @@
 #include "scene/pbrt/params.h"
 
 #include "color/cie1931.h"
+#include "color/optical_constants.h"
 
 #include <map>
 
@@ -150,7 +151,7 @@ std::optional<RGB> ParamSet::get_rgb(const std::string& name, ColorUsage usage) 
     if (!p->strings.empty()) {
       if (auto c = named_spectrum_rgb(p->strings[0])) return *c;
       fail(*p, "unknown named spectrum \"" + p->strings[0] +
-                   "\"; known: metal-{Cu,Au,Ag,Al}-{eta,k}, glass-{BK7,BAF10,FK51A,LASF9,F5,F10,F11}");
+                   "\"; known: metal-{Cu,Au,Ag,Al,CuZn,MgO,TiO2}-{eta,k}, glass-{BK7,BAF10,FK51A,LASF9,F5,F10,F11}");
     }
     if (p->numbers.size() == 1) return RGB(float(p->numbers[0]));
     fail(*p, "sampled spectra (wavelength/value pairs) are not supported: give \"rgb\" values instead");
@@ -170,19 +171,27 @@ RGB blackbody_rgb(float kelvin) {
 }
 
 std::optional<RGB> named_spectrum_rgb(const std::string& name) {
-  // Metal optical constants reduced to RGB and glass indices at the sodium
-  // d-line (587.6 nm); dispersion is not modelled.
-  static const std::map<std::string, RGB> table = {
-      {"metal-Cu-eta", RGB(0.200438f, 0.924033f, 1.102212f)}, {"metal-Cu-k", RGB(3.912949f, 2.452848f, 2.142188f)},
-      {"metal-Au-eta", RGB(0.143119f, 0.374957f, 1.442479f)}, {"metal-Au-k", RGB(3.983160f, 2.385721f, 1.603215f)},
-      {"metal-Ag-eta", RGB(0.155265f, 0.116723f, 0.138342f)}, {"metal-Ag-k", RGB(4.828350f, 3.122250f, 2.146960f)},
-      {"metal-Al-eta", RGB(1.657460f, 0.880369f, 0.521229f)}, {"metal-Al-k", RGB(9.223869f, 6.269523f, 4.837001f)},
+  // metal-<metal>-eta and metal-<metal>-k: the measured spectra reduced to
+  // the per-channel conductor that matches them (color/optical_constants.h).
+  if (name.starts_with("metal-")) {
+    const std::string_view rest = std::string_view(name).substr(6);
+    const size_t dash = rest.rfind('-');
+    if (dash == std::string_view::npos) return std::nullopt;
+    const std::string_view part = rest.substr(dash + 1);
+    if (part != "eta" && part != "k") return std::nullopt;
+    const auto conductor = named_conductor_rgb(rest.substr(0, dash));
+    if (!conductor) return std::nullopt;
+    return part == "eta" ? conductor->eta : conductor->k;
+  }
+  // Glass indices at the sodium d-line (587.6 nm); dispersion is not
+  // modelled.
+  static const std::map<std::string, RGB> glasses = {
       {"glass-BK7", RGB(1.5168f)},  {"glass-BAF10", RGB(1.6700f)}, {"glass-FK51A", RGB(1.4866f)},
       {"glass-LASF9", RGB(1.8503f)}, {"glass-F5", RGB(1.6034f)},    {"glass-F10", RGB(1.6200f)},
       {"glass-F11", RGB(1.6200f)},
   };
-  auto it = table.find(name);
-  if (it == table.end()) return std::nullopt;
+  auto it = glasses.find(name);
+  if (it == glasses.end()) return std::nullopt;
   return it->second;
 }
 
