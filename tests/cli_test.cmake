@@ -123,4 +123,25 @@ if(NOT rc EQUAL 0 OR NOT cmp MATCHES "^mse 0\n" OR EXISTS ${OUT}/stopped.exr.ckp
 endif()
 expect_run(NAME resume-nothing EXIT 2 MATCH "nothing to resume" ARGS ${ck_args} -o ${OUT}/stopped.exr --resume)
 
+# A render in parts (--part K/N) merged into the image the single render
+# makes, bit for bit; merge refuses a missing part unless asked for a preview.
+set(pt_args render ${SRC}/scenes/cornell-box.pbrt --integrator bdpt --spp 32 --resolution 24 24 --quiet)
+execute_process(COMMAND ${LANTERN} ${pt_args} -o ${OUT}/whole.exr RESULT_VARIABLE rc)
+foreach(k 1 2 3)
+  expect_run(NAME part-${k} EXIT 0 ARGS ${pt_args} --part ${k}/3 -o ${OUT}/part${k}.film --threads ${k})
+endforeach()
+expect_run(NAME merge EXIT 0 ARGS merge ${OUT}/part2.film ${OUT}/part3.film ${OUT}/part1.film -o ${OUT}/merged.exr)
+execute_process(COMMAND ${LANTERN} compare ${OUT}/merged.exr ${OUT}/whole.exr OUTPUT_VARIABLE cmp)
+if(NOT cmp MATCHES "^mse 0\n")
+  message(FATAL_ERROR "merged parts differ from the single render:\n${cmp}")
+endif()
+expect_run(NAME merge-missing EXIT 1 MATCH "part 2/3 is missing; merge the parts there are with --preview"
+           ARGS merge ${OUT}/part1.film ${OUT}/part3.film -o ${OUT}/merged.exr)
+expect_run(NAME merge-preview EXIT 0 MATCH "warning: preview: part 2/3 is missing"
+           ARGS merge ${OUT}/part1.film ${OUT}/part3.film -o ${OUT}/preview.exr --preview)
+expect_run(NAME merge-twice EXIT 2 MATCH "part1.film: error: is part 1/3 again"
+           ARGS merge ${OUT}/part1.film ${OUT}/part1.film -o ${OUT}/merged.exr)
+expect_run(NAME part-bad EXIT 105 MATCH "--part: must be K/N with 1 <= K <= N"
+           ARGS ${pt_args} --part 3/2 -o ${OUT}/x.film)
+
 message(STATUS "cli end-to-end: all checks passed")

@@ -54,6 +54,14 @@ struct RenderOptions {
   bool resume = false;
   std::string checkpoint_key;  // identifies the scene; a checkpoint made for another key is refused
   std::function<void()> checkpoint_written;  // called after each checkpoint (from the merging thread)
+
+  // Shares (--part K/N): render only the units u (one wave of one pass
+  // each, numbered through the render) with u % share_count == share_index,
+  // and write the film's sums and the units done to film_path at the end,
+  // finished or interrupted. `lantern merge` adds such files; the sum of all
+  // shares equals the whole render bit for bit (film/unit_set.h).
+  uint32_t share_index = 0, share_count = 1;
+  std::string film_path;
 };
 
 struct RenderStats {

@@ -10,6 +10,7 @@
 #include <iostream>
 
 #include "app/cli_checks.h"
+#include "app/merge_command.h"
 #include "app/outputs.h"
 #include "app/stats_report.h"
 #include "trace/timeline.h"
@@ -38,7 +39,7 @@ std::string hms(double s) {
 
 struct RenderArgs {
   std::string scene, output, integrator, rays = "stream", mis = "power", strategies, stats, dump_rays, checkpoint_file;
-  std::string texture_dir, sampler, light_sampler, trace;
+  std::string texture_dir, sampler, light_sampler, trace, part;
   uint64_t trace_waves = 1000;
   int spp = 0, maxdepth = -1, threads = 0, wave_size = 4096;
   double time = 0.0, checkpoint = 0.0, texture_cache_mb = 1024.0;
@@ -109,6 +110,21 @@ class LoadTrace {
   const char* stage_ = "parse";
 };
 
+// A part's render has written its file (render() does, finished or not).
+int finish_part(const RenderArgs& a, const lantern::RenderOptions& o, const lantern::RenderResult& r,
+                lantern::Timeline* timeline) {
+  if (timeline) write_text_atomically(a.trace, timeline->json());
+  if (!a.quiet)
+    std::fprintf(stderr, "%s: part %s, %llu samples, %.2f s render\n", o.film_path.c_str(), a.part.c_str(),
+                 (unsigned long long)r.stats.samples, r.stats.seconds);
+  if (r.interrupted) {
+    std::fprintf(stderr, "interrupted: %s holds the part so far (merge it with --preview, or finish it with "
+                         "--checkpoint and --resume)\n", o.film_path.c_str());
+    return 130;
+  }
+  return 0;
+}
+
 int run_render(const RenderArgs& a) {
   using namespace lantern;
   // From the start: a signal during loading stops the render before its
@@ -120,9 +136,14 @@ int run_render(const RenderArgs& a) {
   lo.texture_cache_mb = a.texture_cache_mb;
   lo.texture_directory = a.texture_dir;
   const bool show_progress = !a.quiet && isatty(STDERR_FILENO);
+  long long part_k = 1, part_n = 1;
+  if (!a.part.empty()) cli::parse_part(a.part, part_k, part_n);
   // Outputs known before loading are checked before loading: a scene can
   // take minutes to load.
-  if (!a.output.empty()) check_image_path(a.output);
+  if (!a.output.empty()) {
+    if (a.part.empty()) check_image_path(a.output);
+    else check_writable(a.output, "the part file");
+  }
   if (!a.stats.empty()) check_writable(a.stats, "the statistics");
   if (!a.trace.empty()) check_writable(a.trace, "the trace");
   std::unique_ptr<Timeline> timeline;
@@ -177,6 +198,13 @@ int run_render(const RenderArgs& a) {
   o.wave_size = a.wave_size;
   o.cancel = &g_cancel;
   std::string out = a.output.empty() ? ss.output : a.output;
+  if (!a.part.empty()) {
+    // The part file instead of an image: `lantern merge` makes the image.
+    if (a.output.empty()) out = ss.output + ".part" + std::to_string(part_k) + "of" + std::to_string(part_n);
+    o.share_index = uint32_t(part_k - 1);
+    o.share_count = uint32_t(part_n);
+    o.film_path = out;
+  }
   if (a.checkpoint > 0 || a.resume) {
     o.checkpoint_path = a.checkpoint_file.empty() ? out + ".ckpt" : a.checkpoint_file;
     o.checkpoint_seconds = a.checkpoint;
@@ -193,7 +221,10 @@ int run_render(const RenderArgs& a) {
     };
   }
   // Every file the render will write, before it starts.
-  if (a.output.empty()) check_image_path(out);
+  if (a.output.empty()) {
+    if (a.part.empty()) check_image_path(out);
+    else check_writable(out, "the part file");
+  }
   if (!o.checkpoint_path.empty()) check_writable(o.checkpoint_path, "the checkpoint");
   if (!a.strategies.empty()) std::filesystem::create_directories(a.strategies);
   o.timeline = timeline.get();
@@ -203,6 +234,7 @@ int run_render(const RenderArgs& a) {
     r = render(*scene, o);
   }
   if (o.progress) std::fprintf(stderr, "\n");
+  if (!a.part.empty()) return finish_part(a, o, r, timeline.get());
 
   ImageMetadata md = {{"lantern:integrator", o.integrator},
                       {"lantern:spp", std::to_string(r.stats.min_spp)},
@@ -340,6 +372,10 @@ int main(int argc, char** argv) {
   render->add_option("--trace-waves", a.trace_waves,
                      "With --trace: keep the first N waves in full, later ones as counters only (default 1000; 0: all)")
       ->check(lantern::cli::integer_in(0, 9223372036854775807LL, "an integer of 0 or more"));
+  render->add_option("--part", a.part,
+                     "Render part K of N of the render's work into a part file (-o; default: the output's name + "
+                     ".partKofN); `lantern merge` adds the parts into the image")
+      ->check(lantern::cli::part_of());
   render->add_flag("-q,--quiet", a.quiet, "No progress line or summary");
   CompareArgs ca;
   CLI::App* compare = app.add_subcommand("compare", "Error metrics of an image against a reference");
@@ -348,6 +384,13 @@ int main(int argc, char** argv) {
   compare->add_option("--error-image", ca.error_image, "Write a false-colour map of the relative squared error");
   compare->add_option("--error-scale", ca.error_scale, "Relative squared error shown as full red")
       ->check(lantern::cli::number_in(0.0, HUGE_VAL, false, "a positive number"));
+  lantern::MergeArgs ma;
+  CLI::App* merge = app.add_subcommand("merge", "Add the part files of a render (render --part K/N) into its image");
+  merge->add_option("parts", ma.parts, "Part files, in any order")->required();
+  merge->add_option("-o,--output", ma.output, "Output image (.exr, .png)")->required();
+  merge->add_flag("--preview", ma.preview,
+                  "Merge an incomplete set (missing or unfinished parts): each pixel normalised by its own samples");
+  merge->add_flag("-q,--quiet", ma.quiet, "No summary");
   std::string info_image;
   CLI::App* info = app.add_subcommand("info", "Print an image's size and the settings it was rendered with");
   info->add_option("image", info_image, "Image written by lantern render")->required()->check(CLI::ExistingFile);
@@ -355,6 +398,7 @@ int main(int argc, char** argv) {
   try {
     if (compare->parsed()) return run_compare(ca);
     if (info->parsed()) return run_info(info_image);
+    if (merge->parsed()) return lantern::run_merge(ma);
     return run_render(a);
   } catch (const lantern::InputError& e) {
     std::cerr << e.what() << "\n";

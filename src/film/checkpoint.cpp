@@ -1,5 +1,6 @@
 #include "film/checkpoint.h"
 
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -14,7 +15,7 @@ namespace lantern {
 namespace {
 
 constexpr char kMagic[8] = {'L', 'N', 'T', 'N', 'C', 'K', 'P', 'T'};
-constexpr uint32_t kVersion = 1;
+constexpr uint32_t kVersion = 2;  // 2: fixed-point sums, unit sets
 
 class HashingWriter final : public StateWriter {
  public:
@@ -36,7 +37,7 @@ class HashingReader final : public StateReader {
   HashingReader(std::ifstream& in, const std::string& path) : in_(in), path_(path) {}
   void read(void* p, size_t n) override {
     if (!in_.read(static_cast<char*>(p), std::streamsize(n)))
-      throw InputError({path_, 0, 0}, "checkpoint is truncated");
+      throw InputError({path_, 0, 0}, "file is truncated");
     hash.add(p, n);
   }
   template <class T>
@@ -77,9 +78,17 @@ void write_checkpoint(const std::string& path, const CheckpointInfo& info, const
     w.put(kVersion);
     w.put(uint32_t(info.fingerprint.size()));
     w.write(info.fingerprint.data(), info.fingerprint.size());
-    w.put(info.position.pass_first);
-    w.put(info.position.wave);
+    w.put(info.share.index);
+    w.put(info.share.count);
+    w.put(info.passes);
+    w.put(info.waves);
     w.put(info.elapsed_seconds);
+    const auto& runs = info.done.intervals();
+    w.put(uint32_t(runs.size()));
+    for (const auto& [first, end] : runs) {
+      w.put(first);
+      w.put(end);
+    }
     film.write_state(w);
     uint64_t h = w.hash.h;
     out.write(reinterpret_cast<const char*>(&h), sizeof h);
@@ -93,31 +102,58 @@ void write_checkpoint(const std::string& path, const CheckpointInfo& info, const
   if (ec) throw std::runtime_error("cannot move checkpoint to \"" + path + "\": " + ec.message());
 }
 
-CheckpointInfo read_checkpoint(const std::string& path, const std::string& expected, Film& film) {
+namespace {
+
+CheckpointInfo read_file(const std::string& path, const std::string* expected, Film& film) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError({path, 0, 0}, "cannot open checkpoint (nothing to resume)");
+  if (!in) throw InputError({path, 0, 0}, expected ? "cannot open checkpoint (nothing to resume)" : "cannot open film file");
   HashingReader r(in, path);
   char magic[sizeof kMagic];
   r.read(magic, sizeof magic);
-  if (std::memcmp(magic, kMagic, sizeof kMagic) != 0) throw InputError({path, 0, 0}, "not a Lantern checkpoint");
+  if (std::memcmp(magic, kMagic, sizeof kMagic) != 0) throw InputError({path, 0, 0}, "not a Lantern checkpoint or part file");
   if (uint32_t v = r.get<uint32_t>(); v != kVersion)
-    throw InputError({path, 0, 0}, "checkpoint version " + std::to_string(v) + " is not " + std::to_string(kVersion));
+    throw InputError({path, 0, 0}, "file format version " + std::to_string(v) + " is not " + std::to_string(kVersion) +
+                                       " (made by another Lantern version)");
   CheckpointInfo info;
   uint32_t n = r.get<uint32_t>();
-  if (n > (1u << 20)) throw InputError({path, 0, 0}, "checkpoint is damaged (fingerprint length)");
+  if (n > (1u << 20)) throw InputError({path, 0, 0}, "file is damaged (fingerprint length)");
   info.fingerprint.resize(n);
   r.read(info.fingerprint.data(), n);
-  if (info.fingerprint != expected)
-    throw InputError({path, 0, 0}, "checkpoint belongs to another render: " + first_difference(info.fingerprint, expected));
-  info.position.pass_first = r.get<uint32_t>();
-  info.position.wave = r.get<uint32_t>();
+  if (expected && info.fingerprint != *expected)
+    throw InputError({path, 0, 0}, "checkpoint belongs to another render: " + first_difference(info.fingerprint, *expected));
+  info.share.index = r.get<uint32_t>();
+  info.share.count = r.get<uint32_t>();
+  info.passes = r.get<uint64_t>();
+  info.waves = r.get<uint32_t>();
   info.elapsed_seconds = r.get<double>();
+  if (info.share.count == 0 || info.share.index >= info.share.count || !std::isfinite(info.elapsed_seconds))
+    throw InputError({path, 0, 0}, "file is damaged (share or time)");
+  const uint32_t runs = r.get<uint32_t>();
+  if (runs > (1u << 26)) throw InputError({path, 0, 0}, "file is damaged (unit list length)");
+  std::vector<UnitSet::Interval> intervals(runs);
+  for (auto& [first, end] : intervals) {
+    first = r.get<uint64_t>();
+    end = r.get<uint64_t>();
+  }
+  const bool bounded = info.passes > 0 && info.passes < (uint64_t(1) << 40);
+  if (!UnitSet::valid(intervals) ||
+      (!intervals.empty() && (info.waves == 0 || (bounded && intervals.back().second > info.passes * info.waves))))
+    throw InputError({path, 0, 0}, "file is damaged (unit list)");
+  info.done = UnitSet::of(std::move(intervals));
   film.read_state(r);
   uint64_t computed = r.hash.h, stored = 0;
-  if (!in.read(reinterpret_cast<char*>(&stored), sizeof stored)) throw InputError({path, 0, 0}, "checkpoint is truncated");
-  if (stored != computed) throw InputError({path, 0, 0}, "checkpoint is damaged (checksum mismatch)");
-  if (in.peek() != std::ifstream::traits_type::eof()) throw InputError({path, 0, 0}, "checkpoint has trailing bytes");
+  if (!in.read(reinterpret_cast<char*>(&stored), sizeof stored)) throw InputError({path, 0, 0}, "file is truncated");
+  if (stored != computed) throw InputError({path, 0, 0}, "file is damaged (checksum mismatch)");
+  if (in.peek() != std::ifstream::traits_type::eof()) throw InputError({path, 0, 0}, "file has trailing bytes");
   return info;
 }
+
+}  // namespace
+
+CheckpointInfo read_checkpoint(const std::string& path, const std::string& expected, Film& film) {
+  return read_file(path, &expected, film);
+}
+
+CheckpointInfo read_film_file(const std::string& path, Film& film) { return read_file(path, nullptr, film); }
 
 }  // namespace lantern

@@ -1,10 +1,14 @@
-// Checkpoint files: the film's raw sums plus the position in the sample
-// sequence, so that a stopped render continues exactly where it stopped.
+// Film files: the film's raw fixed-point sums plus the set of units merged
+// into them. The same format serves checkpoints (a stopped render continues
+// with the units it lacks), --part files (one share of a render, added up by
+// `lantern merge`) and MPI ranks' checkpoints.
 //
 // Layout (little-endian, as the machine writes it):
 //   "LNTNCKPT" u32 version
 //   u32 length, bytes: the fingerprint (key=value lines)
-//   u32 pass_first, u32 wave, f64 elapsed_seconds
+//   u32 share index, u32 share count, u64 passes (0: open-ended, a time
+//   budget), u32 waves per pass, f64 elapsed_seconds
+//   u32 n, then n (u64 first, u64 end): the units done, sorted and disjoint
 //   the film state (Film::write_state)
 //   u64 FNV-1a hash of every byte before it
 // Written to a temporary name and renamed, so a crash mid-write leaves the
@@ -15,19 +19,16 @@
 #include <string>
 
 #include "film/film.h"
+#include "film/unit_set.h"
 
 namespace lantern {
 
-// Where a render is in its fixed sequence of (pass, wave): every wave before
-// it has been merged into the film, none after it.
-struct SequencePosition {
-  uint32_t pass_first = 0;  // first sample index of the current pass
-  uint32_t wave = 0;        // next wave of that pass
-};
-
 struct CheckpointInfo {
   std::string fingerprint;  // everything that shapes the sample sequence
-  SequencePosition position;
+  UnitShare share;          // the units this file's render was given
+  uint64_t passes = 0;      // of the whole render; 0: open-ended (a time budget)
+  uint32_t waves = 0;       // per pass; unit = pass * waves + wave
+  UnitSet done;             // the units merged into the film
   double elapsed_seconds = 0.0;  // render time spent so far, over all runs
 };
 
@@ -38,5 +39,9 @@ void write_checkpoint(const std::string& path, const CheckpointInfo& info, const
 // foreign file, and for a fingerprint that differs from `expected`, naming
 // the first setting that differs.
 CheckpointInfo read_checkpoint(const std::string& path, const std::string& expected_fingerprint, Film& film);
+
+// Reads any film file into `film` (0x0: it takes the file's size) without
+// comparing fingerprints; `lantern merge` compares them across its parts.
+CheckpointInfo read_film_file(const std::string& path, Film& film);
 
 }  // namespace lantern

@@ -10,42 +10,65 @@
 namespace lantern {
 
 Film::Film(int width, int height, const PixelFilter& filter)
-    : width_(width), height_(height), filter_(filter), sum_(3 * size_t(width) * size_t(height), 0.0),
+    : width_(width), height_(height), filter_(filter), sum_(3 * size_t(width) * size_t(height)),
       count_(size_t(width) * size_t(height), 0) {}
 
-void Film::merge(const WaveOutput& out) {
+namespace {
+
+bool addable(const RGB& c) { return FixedSum::addable(c.x) && FixedSum::addable(c.y) && FixedSum::addable(c.z); }
+
+FixedTerm fixed_term(uint32_t pixel, const RGB& c) {
+  return FixedTerm{pixel, {FixedSum::to_fixed(c.x), FixedSum::to_fixed(c.y), FixedSum::to_fixed(c.z)}};
+}
+
+}  // namespace
+
+// Every pixel whose filter support covers a splat's point gets the splat
+// times the filter density at its offset: the same weight with which that
+// pixel's own camera samples would have landed there.
+void Film::prepare(WaveOutput& out) const {
+  out.sample_terms.clear();
+  out.splat_terms.clear();
+  out.nonfinite = 0;
+  out.sample_terms.reserve(out.samples.size());
   for (const FilmSample& s : out.samples) {
-    if (!is_finite(s.L)) {
-      ++nonfinite_;
-    } else {
-      double* d = &sum_[3 * size_t(s.pixel)];
-      d[0] += double(s.L.x);
-      d[1] += double(s.L.y);
-      d[2] += double(s.L.z);
-    }
-    ++count_[s.pixel];
+    if (addable(s.L)) out.sample_terms.push_back(fixed_term(s.pixel, s.L));
+    else ++out.nonfinite;
   }
-  if (!out.splats.empty() && splat_.empty()) splat_.assign(sum_.size(), 0.0);
   for (const Splat& s : out.splats) {
-    if (!is_finite(s.L)) {
-      ++nonfinite_;
+    if (!addable(s.L)) {
+      ++out.nonfinite;
       continue;
     }
-    add_splat(s);
+    for_each_splat_pixel(filter_, width_, height_, s.p_raster, [&](size_t pixel, float w) {
+      out.splat_terms.push_back(fixed_term(uint32_t(pixel), w * s.L));
+    });
   }
+}
+
+void Film::merge(const WaveOutput& out) {
+  for (const FilmSample& s : out.samples) ++count_[s.pixel];
+  for (const FixedTerm& t : out.sample_terms)
+    for (size_t c = 0; c < 3; ++c) sum_[3 * size_t(t.pixel) + c].add_raw(t.rgb[c]);
+  if (!out.splat_terms.empty() && splat_.empty()) splat_.assign(sum_.size(), FixedSum());
+  for (const FixedTerm& t : out.splat_terms)
+    for (size_t c = 0; c < 3; ++c) splat_[3 * size_t(t.pixel) + c].add_raw(t.rgb[c]);
+  nonfinite_ += out.nonfinite;
   light_paths_ += out.light_paths;
 }
 
-// Every pixel whose filter support covers the point gets the splat times the
-// filter density at its offset: the same weight with which that pixel's own
-// camera samples would have landed there.
-void Film::add_splat(const Splat& s) {
-  for_each_splat_pixel(filter_, width_, height_, s.p_raster, [&](size_t pixel, float w) {
-    double* d = &splat_[3 * pixel];
-    d[0] += double(w * s.L.x);
-    d[1] += double(w * s.L.y);
-    d[2] += double(w * s.L.z);
-  });
+void Film::add(const Film& other) {
+  if (other.width_ != width_ || other.height_ != height_)
+    throw std::runtime_error("cannot add a " + std::to_string(other.width_) + "x" + std::to_string(other.height_) +
+                             " film to a " + std::to_string(width_) + "x" + std::to_string(height_) + " one");
+  for (size_t k = 0; k < sum_.size(); ++k) sum_[k].add(other.sum_[k]);
+  if (!other.splat_.empty()) {
+    if (splat_.empty()) splat_.assign(sum_.size(), FixedSum());
+    for (size_t k = 0; k < splat_.size(); ++k) splat_[k].add(other.splat_[k]);
+  }
+  for (size_t i = 0; i < count_.size(); ++i) count_[i] += other.count_[i];
+  nonfinite_ += other.nonfinite_;
+  light_paths_ += other.light_paths_;
 }
 
 Image Film::resolve() const {
@@ -58,7 +81,7 @@ Image Film::resolve() const {
     double inv = count_[i] ? 1.0 / double(count_[i]) : 0.0;
     for (int c = 0; c < 3; ++c) {
       size_t k = 3 * i + size_t(c);
-      img.rgb[k] = float(sum_[k] * inv + (splat_.empty() ? 0.0 : splat_[k] * splat_scale));
+      img.rgb[k] = float(sum_[k].value() * inv + (splat_.empty() ? 0.0 : splat_[k].value() * splat_scale));
     }
   }
   return img;
@@ -71,14 +94,21 @@ void Film::write_state(StateWriter& out) const {
   out.write(&light_paths_, sizeof light_paths_);
   const uint8_t has_splats = splat_.empty() ? 0 : 1;
   out.write(&has_splats, 1);
-  out.write(sum_.data(), sum_.size() * sizeof(double));
+  static_assert(sizeof(FixedSum) == sizeof(FixedSum::Raw));
+  out.write(sum_.data(), sum_.size() * sizeof(FixedSum));
   out.write(count_.data(), count_.size() * sizeof(uint32_t));
-  if (has_splats) out.write(splat_.data(), splat_.size() * sizeof(double));
+  if (has_splats) out.write(splat_.data(), splat_.size() * sizeof(FixedSum));
 }
 
 void Film::read_state(StateReader& in) {
   int32_t size[2];
   in.read(size, sizeof size);
+  if (width_ == 0 && height_ == 0 && size[0] > 0 && size[1] > 0 && int64_t(size[0]) * size[1] <= (int64_t(1) << 28)) {
+    width_ = size[0];
+    height_ = size[1];
+    sum_.assign(3 * size_t(width_) * size_t(height_), FixedSum());
+    count_.assign(size_t(width_) * size_t(height_), 0);
+  }
   if (size[0] != width_ || size[1] != height_)
     throw std::runtime_error("film state is " + std::to_string(size[0]) + "x" + std::to_string(size[1]) +
                              ", this film is " + std::to_string(width_) + "x" + std::to_string(height_));
@@ -86,12 +116,12 @@ void Film::read_state(StateReader& in) {
   in.read(&light_paths_, sizeof light_paths_);
   uint8_t has_splats = 0;
   in.read(&has_splats, 1);
-  in.read(sum_.data(), sum_.size() * sizeof(double));
+  in.read(sum_.data(), sum_.size() * sizeof(FixedSum));
   in.read(count_.data(), count_.size() * sizeof(uint32_t));
   splat_.clear();
   if (has_splats) {
-    splat_.assign(sum_.size(), 0.0);
-    in.read(splat_.data(), splat_.size() * sizeof(double));
+    splat_.assign(sum_.size(), FixedSum());
+    in.read(splat_.data(), splat_.size() * sizeof(FixedSum));
   }
 }
 

@@ -2,9 +2,10 @@
 // taken for; light-tracing splats land wherever a light vertex projects and
 // are spread over the pixels whose filter covers that point.
 //
-// Waves write into a WaveOutput of their own; the renderer merges outputs
-// into the film one at a time in wave order, so every sum is formed in the
-// same order whatever the thread count (bit-identical images).
+// Waves write into a WaveOutput of their own and the renderer merges them
+// into the film. The sums are fixed-point (film/fixed_sum.h), so they do not
+// depend on the order of the terms: films of any pieces of a render, added,
+// equal the film of the whole render bit for bit.
 #pragma once
 
 #include <algorithm>
@@ -15,6 +16,7 @@
 
 #include "lantern/image.h"
 #include "math/common.h"
+#include "film/fixed_sum.h"
 #include "film/pixel_filter.h"
 
 namespace lantern {
@@ -37,16 +39,29 @@ struct StrategyRecord {
   RGB weighted, unweighted;
 };
 
+// A sample or a splat's share of one pixel, converted to fixed point.
+struct FixedTerm {
+  uint32_t pixel;
+  FixedSum::Raw rgb[3];
+};
+
 struct WaveOutput {
   std::vector<FilmSample> samples;
   std::vector<Splat> splats;
   std::vector<StrategyRecord> strategies;
   uint64_t light_paths = 0;
+  // Filled by Film::prepare from samples and splats, in the parallel stage,
+  // so that the serial merge only adds integers.
+  std::vector<FixedTerm> sample_terms, splat_terms;
+  uint64_t nonfinite = 0;
   void clear() {
     samples.clear();
     splats.clear();
     strategies.clear();
     light_paths = 0;
+    sample_terms.clear();
+    splat_terms.clear();
+    nonfinite = 0;
   }
 };
 
@@ -78,13 +93,20 @@ class Film {
   int width() const { return width_; }
   int height() const { return height_; }
 
-  // Adds a wave's camera samples and splats. Not thread-safe: call in order.
+  // Converts a wave's samples and splats (filtered onto pixels) to
+  // fixed-point terms. Thread-safe: waves call it in parallel.
+  void prepare(WaveOutput& out) const;
+
+  // Adds a prepared wave's terms and sample counts. Not thread-safe.
   void merge(const WaveOutput& out);
+
+  // Adds another film of the same size (a part, a rank, a checkpoint).
+  void add(const Film& other);
 
   // pixel = (sum of its samples) / (its sample count)
   //       + (width * height / light paths) * (splats filtered onto it)
   Image resolve() const;
-  uint64_t nonfinite_samples() const { return nonfinite_; }
+  uint64_t nonfinite_samples() const { return nonfinite_; }  // NaN, Inf, or beyond FixedSum's range
   uint64_t total_samples() const;
   uint64_t light_paths() const { return light_paths_; }
   uint32_t min_samples_per_pixel() const;
@@ -93,14 +115,14 @@ class Film {
   // The raw sums and counts, bit for bit: a film restored from them goes on
   // accumulating exactly as the one that wrote them would have.
   void write_state(StateWriter& out) const;
-  void read_state(StateReader& in);  // the film must have the same size
+  // The film must have the same size, or be 0x0: then it takes the state's
+  // (up to 2^28 pixels).
+  void read_state(StateReader& in);
 
  private:
-  void add_splat(const Splat& s);
-
   int width_, height_;
   PixelFilter filter_;
-  std::vector<double> sum_, splat_;
+  std::vector<FixedSum> sum_, splat_;
   std::vector<uint32_t> count_;
   uint64_t nonfinite_ = 0;
   uint64_t light_paths_ = 0;

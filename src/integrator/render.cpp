@@ -27,6 +27,7 @@
 #include "trace/timeline.h"
 #include "integrator/path_wave.h"
 #include "integrator/wave_stats.h"
+#include "lantern/error.h"
 #include "lantern/render.h"
 
 namespace lantern {
@@ -106,26 +107,29 @@ void gather_stats(States& states, double film_seconds, RenderStats& st) {
 }
 
 // Writes checkpoints from the merge stage: the one place that sees the film
-// between two waves, with every earlier wave in it and no later one.
+// between two waves.
 class Checkpointer {
  public:
-  Checkpointer(const RenderOptions& o, std::string fingerprint, double prior_seconds, Clock::time_point start)
-      : opt_(o), start_(start), last_(start), prior_seconds_(prior_seconds) {
-    info_.fingerprint = std::move(fingerprint);
-  }
+  Checkpointer(const RenderOptions& o, CheckpointInfo info, Clock::time_point start)
+      : opt_(o), info_(std::move(info)), start_(start), last_(start), prior_seconds_(info_.elapsed_seconds) {}
   bool enabled() const { return !opt_.checkpoint_path.empty(); }
   double elapsed() const { return prior_seconds_ + std::chrono::duration<double>(Clock::now() - start_).count(); }
-  void maybe_write(const Film& film, SequencePosition pos) {
+  UnitSet& done() { return info_.done; }
+  void set_units(uint64_t passes, uint32_t waves) {
+    info_.passes = passes;
+    info_.waves = waves;
+  }
+  void maybe_write(const Film& film) {
     if (enabled() && opt_.checkpoint_seconds > 0 &&
         std::chrono::duration<double>(Clock::now() - last_).count() >= opt_.checkpoint_seconds)
-      write(film, pos);
+      write(film);
   }
-  void write(const Film& film, SequencePosition pos) {
-    info_.position = pos;
+  void write(const Film& film) { write_to(opt_.checkpoint_path, film); }
+  void write_to(const std::string& path, const Film& film) {
     info_.elapsed_seconds = elapsed();
-    write_checkpoint(opt_.checkpoint_path, info_, film);
+    write_checkpoint(path, info_, film);
     last_ = Clock::now();
-    if (opt_.checkpoint_written) opt_.checkpoint_written();
+    if (opt_.checkpoint_written && path == opt_.checkpoint_path) opt_.checkpoint_written();
   }
 
  private:
@@ -181,8 +185,7 @@ void trace_wave(const Tracer& tracer, const WaveDesc& wave, State& state, WaveOu
 // last stage merges their output into the film serially and in wave order.
 template <class Tracer>
 bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& opt, RayBackend backend,
-                RayCounters& counters, Film& film, StrategyFilm* strategies, std::atomic<uint64_t>& done, RenderStats& stats, RayDump* dump, Checkpointer& checkpoints,
-                SequencePosition& position) {
+                RayCounters& counters, Film& film, StrategyFilm* strategies, std::atomic<uint64_t>& done, RenderStats& stats, RayDump* dump, Checkpointer& checkpoints) {
   const std::vector<uint32_t> order = tile_order(film.width(), film.height());
   const bool timed = opt.time_limit_seconds > 0;  // the budget counts earlier runs too
   const uint32_t total_spp = timed ? 0xFFFFFFFFu : uint32_t(opt.spp);
@@ -190,10 +193,17 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
   const uint32_t pixels_per_wave = std::max<uint32_t>(1, uint32_t(opt.wave_size) / pass_spp);
   const uint32_t capacity = pixels_per_wave * pass_spp;
   const uint32_t waves = uint32_t((order.size() + pixels_per_wave - 1) / pixels_per_wave);
+  checkpoints.set_units(timed ? 0 : (total_spp + pass_spp - 1) / pass_spp, waves);
 
   using State = typename decltype(tracer.make_wave_state(0, RayStream(nullptr, backend, nullptr)))::element_type;
-  // Waves numbered through the whole render (passes one after another).
-  auto wave_number = [&](uint32_t first, uint32_t wi) { return int64_t(first / pass_spp) * int64_t(waves) + int64_t(wi); };
+  // Units: waves numbered through the whole render (passes one after
+  // another). This run renders those of its share that the film lacks.
+  auto unit_of = [&](uint32_t first, uint32_t wi) { return uint64_t(first / pass_spp) * waves + wi; };
+  const UnitShare share{opt.share_index, opt.share_count};
+  UnitSet& merged = checkpoints.done();
+  auto wanted = [&](uint32_t first, uint32_t wi) {
+    return share.holds(first / pass_spp, wi) && !merged.contains(unit_of(first, wi));
+  };
   tbb::enumerable_thread_specific<std::unique_ptr<State, void (*)(State*)>> states([&] {
     auto state = tracer.make_wave_state(capacity, RayStream(scene.accel->handle(), backend, &counters));
     state->stats.timing = opt.collect_stats;
@@ -211,16 +221,16 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
   std::atomic<bool> stop{false};
   bool issued = false;  // a wave was started in this run
   auto time_is_up = [&] { return timed && checkpoints.elapsed() >= opt.time_limit_seconds; };
-  if (position.wave >= waves) throw std::invalid_argument("checkpoint position lies past the last wave");
-  for (uint32_t first = position.pass_first; first < total_spp && !stop; first += pass_spp) {
+  for (uint32_t first = 0; first < total_spp && !stop; first += pass_spp) {
     const uint32_t samples = std::min(pass_spp, total_spp - first);
-    uint32_t next = first == position.pass_first ? position.wave : 0;
+    uint32_t next = 0;
     tbb::parallel_pipeline(
         tokens,
         tbb::make_filter<void, uint32_t>(tbb::filter_mode::serial_in_order,
                                          [&](tbb::flow_control& fc) -> uint32_t {
                                            // A time budget shorter than the set-up still
                                            // renders one wave, so every run adds samples.
+                                           while (next < waves && !wanted(first, next)) ++next;
                                            bool cancelled = opt.cancel && opt.cancel->load();
                                            if (next == waves || stop || cancelled || (issued && time_is_up())) {
                                              if (next != waves) stop = true;
@@ -240,13 +250,14 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
                                                    WaveOutput& out = outputs[wi % tokens];
                                                    out.clear();
                                                    trace_wave(tracer, wave, *states.local(), out, opt.timeline,
-                                                              wave_number(first, wi));
+                                                              int64_t(unit_of(first, wi)));
+                                                   film.prepare(out);
                                                    return wi;
                                                  }) &
             tbb::make_filter<uint32_t, void>(tbb::filter_mode::serial_in_order, [&](uint32_t wi) {
               const WaveOutput& out = outputs[wi % tokens];
               TraceBuffer* track = opt.timeline ? &opt.timeline->pipeline() : nullptr;
-              if (track) track->begin_wave(wave_number(first, wi));
+              if (track) track->begin_wave(int64_t(unit_of(first, wi)));
               auto t0 = opt.collect_stats || track ? Clock::now() : Clock::time_point();
               film.merge(out);
               if (strategies) strategies->merge(out.strategies);
@@ -258,8 +269,8 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
                 track->end_wave();
               }
               done += out.samples.size();
-              position = wi + 1 < waves ? SequencePosition{first, wi + 1} : SequencePosition{first + pass_spp, 0};
-              checkpoints.maybe_write(film, position);
+              merged.insert(unit_of(first, wi));
+              checkpoints.maybe_write(film);
             }));
   }
   gather_stats(states, film_seconds, stats);
@@ -286,6 +297,12 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
   if (opt.strategies && !opt.checkpoint_path.empty())
     throw std::invalid_argument("per-strategy images cannot be checkpointed or resumed");
   if (opt.resume && opt.checkpoint_path.empty()) throw std::invalid_argument("resume needs a checkpoint path");
+  if (opt.share_count == 0 || opt.share_index >= opt.share_count)
+    throw std::invalid_argument("--part K/N needs 1 <= K <= N");
+  if (opt.share_count > 1 && opt.film_path.empty())
+    throw std::invalid_argument("a part of a render (--part) needs a file for its film");
+  if (opt.strategies && (opt.share_count > 1 || !opt.film_path.empty()))
+    throw std::invalid_argument("per-strategy images cannot be rendered in parts");
   RayBackend backend = parse_ray_backend(opt.ray_backend);
   parse_sampler_kind(opt.sampler.type);  // throws for an unknown one, naming the choices
   if (!opt.sampler.randomization.empty()) parse_randomization(opt.sampler.randomization);
@@ -307,16 +324,21 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
   std::unique_ptr<RayDump> dump;
   if (!opt.dump_rays.empty()) dump = std::make_unique<RayDump>(opt.dump_rays);
   const std::string fingerprint = sequence_fingerprint(opt, width, height);
-  SequencePosition position;
-  double prior_seconds = 0.0;
+  CheckpointInfo info;
+  info.fingerprint = fingerprint;
+  info.share = UnitShare{opt.share_index, opt.share_count};
   if (opt.resume) {
-    CheckpointInfo saved = read_checkpoint(opt.checkpoint_path, fingerprint, film);
-    position = saved.position;
-    prior_seconds = saved.elapsed_seconds;
+    info = read_checkpoint(opt.checkpoint_path, fingerprint, film);
+    if (info.share.index != opt.share_index || info.share.count != opt.share_count)
+      throw InputError({opt.checkpoint_path, 0, 0},
+                       "checkpoint was made for part " + std::to_string(info.share.index + 1) + "/" +
+                           std::to_string(info.share.count) + ", this render is part " +
+                           std::to_string(opt.share_index + 1) + "/" + std::to_string(opt.share_count));
     res.resumed_samples = film.total_samples();
   }
+  const double prior_seconds = info.elapsed_seconds;
   const auto start = Clock::now();
-  Checkpointer checkpoints(opt, fingerprint, prior_seconds, start);
+  Checkpointer checkpoints(opt, std::move(info), start);
   if (scene.textures.cache) scene.textures.cache->reset_lookup_stats(opt.collect_stats);
   std::atomic<uint64_t> done{res.resumed_samples};
   bool interrupted = false;
@@ -338,7 +360,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
       bs.planned_spp = planned_spp;
       if (opt.strategies) strategy_film.emplace(width, height, scene.filter);
       run_passes(Bdpt(scene, light_sampler, bs), scene, opt, backend, counters, film, strategy_film ? &*strategy_film : nullptr,
-                 done, res.stats, dump.get(), checkpoints, position);
+                 done, res.stats, dump.get(), checkpoints);
     } else {
       PathTracerSettings ps;
       ps.maxdepth = opt.maxdepth;
@@ -349,18 +371,19 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
       ps.sampler = opt.sampler;
       ps.planned_spp = planned_spp;
       run_passes(PathTracer(scene, light_sampler, ps), scene, opt, backend, counters, film, nullptr, done, res.stats, dump.get(),
-                 checkpoints, position);
+                 checkpoints);
     }
     interrupted = opt.cancel && opt.cancel->load();
   }
   if (checkpoints.enabled()) {
     if (interrupted) {
-      checkpoints.write(film, position);
+      checkpoints.write(film);
     } else {
       std::error_code ec;
       std::filesystem::remove(opt.checkpoint_path, ec);  // done: nothing left to resume
     }
   }
+  if (!opt.film_path.empty()) checkpoints.write_to(opt.film_path, film);
 
   res.image = film.resolve();
   if (strategy_film) res.strategies = strategy_film->resolve(film);

@@ -1,0 +1,33 @@
+#include "app/merge_command.h"
+
+#include <cstdio>
+
+#include "app/outputs.h"
+#include "film/merge_parts.h"
+
+namespace lantern {
+
+int run_merge(const MergeArgs& a) {
+  check_image_path(a.output);  // before reading parts that may be large
+  MergedParts m = merge_parts(a.parts, a.preview);
+  for (const std::string& gap : m.missing) std::fprintf(stderr, "warning: preview: %s\n", gap.c_str());
+  const Image image = m.film.resolve();
+  const ImageMetadata md = {{"lantern:parts", std::to_string(a.parts.size()) + " of " + std::to_string(m.parts)},
+                            {"lantern:preview", m.complete ? "false" : "true"},
+                            {"lantern:spp", std::to_string(m.film.min_samples_per_pixel())},
+                            {"lantern:samples", std::to_string(m.film.total_samples())},
+                            {"lantern:render", m.fingerprint}};
+  const ImageWrite written = write_image_or_rescue(a.output, image, md, "");
+  if (!written.written) {
+    std::fprintf(stderr, "error: %s\n", written.error.c_str());
+    if (!written.rescue.empty()) std::fprintf(stderr, "the merged image is saved instead in %s\n", written.rescue.c_str());
+    return 1;
+  }
+  if (!a.quiet)
+    std::fprintf(stderr, "%s: %dx%d, %zu of %u parts, %llu samples, %u spp (min)%s\n", a.output.c_str(), image.width,
+                 image.height, a.parts.size(), m.parts, (unsigned long long)m.film.total_samples(),
+                 m.film.min_samples_per_pixel(), m.complete ? "" : " (preview)");
+  return 0;
+}
+
+}  // namespace lantern

@@ -1,0 +1,66 @@
+// A sum of floats that comes out the same in any order: every term is
+// converted exactly to a 128-bit fixed-point number (64 fractional bits) and
+// added as an integer, and integer addition is associative. So a film
+// rendered in pieces (checkpoints, --part shares, MPI ranks) and added up
+// equals, bit for bit, the film rendered in one go, whatever the pieces and
+// whoever adds them.
+//
+// Range: a term's magnitude must stay below 2^62 (about 4.6e18; the film
+// treats larger terms like non-finite ones); terms below 2^-41 lose low
+// bits, truncated toward zero (under 2^-64 each). The integers add modulo
+// 2^128 (two's complement, no overflow checks on the hot path): exact, and
+// so order-independent, always; the value is right while the true sum stays
+// below 2^63, which takes over 2^64 terms of the largest size.
+#pragma once
+
+#include <bit>
+#include <cstdint>
+#include <cstring>
+
+namespace lantern {
+
+class FixedSum {
+ public:
+  using Raw = __int128;  // two's complement; stored and added as unsigned
+  static constexpr int kFractionBits = 64;
+  static constexpr float kMaxTerm = 4.6e18f;  // below 2^62
+
+  // Whether x can be added: finite and below kMaxTerm in magnitude.
+  static bool addable(float x) { return x > -kMaxTerm && x < kMaxTerm; }
+
+  // x * 2^64 as an integer, exact for |x| >= 2^-41, from the float's bits;
+  // out-of-range terms give +-2^126 (callers check addable()).
+  static Raw to_fixed(float x) {
+    const uint32_t bits = std::bit_cast<uint32_t>(x);
+    const int exponent = int((bits >> 23) & 0xFFu);
+    if (exponent == 0) return 0;  // zero and denormals (below 2^-126)
+    if (exponent > 188) return (bits >> 31) ? -kLargest : kLargest;  // 2^62 and up, Inf, NaN
+    const Raw mantissa = Raw((bits & 0x7FFFFFu) | 0x800000u);
+    // x = mantissa * 2^(exponent - 150); shifted into 64 fractional bits.
+    const int shift = exponent - 150 + kFractionBits;
+    Raw v = shift >= 0 ? mantissa << shift : (shift > -24 ? mantissa >> -shift : Raw(0));
+    return (bits >> 31) ? -v : v;
+  }
+
+  void add(float x) { add_raw(to_fixed(x)); }
+  void add(const FixedSum& other) { raw_ += other.raw_; }
+  void add_raw(Raw v) { raw_ += Bits(v); }  // modulo 2^128
+
+  double value() const {
+    // High and low halves converted separately: the high half exactly, the
+    // low half to within one ulp of the result.
+    const int64_t hi = int64_t(uint64_t(raw_ >> 64));
+    const uint64_t lo = uint64_t(raw_);
+    return double(hi) + double(lo) * 0x1p-64;
+  }
+
+  Raw raw() const { return Raw(raw_); }
+
+ private:
+  using Bits = unsigned __int128;
+  static constexpr Raw kLargest = Raw(1) << 126;
+
+  Bits raw_ = 0;
+};
+
+}  // namespace lantern
