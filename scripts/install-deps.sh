@@ -12,6 +12,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox  # perf/run-all.sh plots error against time
   clang libclang-rt-14-dev  # scripts/check-sanitized.sh: sanitizers and libFuzzer
+  libopenmpi-dev openmpi-bin  # rendering across machines (mpirun); a build without it renders on one
 )
 
 missing=()

@@ -45,7 +45,7 @@ std::string render_part(const Scene& scene, RenderOptions o, uint32_t k, uint32_
   return o.film_path;
 }
 
-bool same_bits(const Image& a, const Image& b) {
+bool identical_images(const Image& a, const Image& b) {
   return a.width == b.width && a.height == b.height &&
          std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)) == 0;
 }
@@ -63,7 +63,7 @@ TEST_P(Parts, MergeEqualsTheSingleRender) {
   EXPECT_TRUE(m.complete);
   EXPECT_EQ(m.film.total_samples(), single.stats.samples);
   EXPECT_EQ(m.film.light_paths(), single.stats.light_paths);
-  EXPECT_TRUE(same_bits(m.film.resolve(), single.image)) << "the merged image differs from the single render";
+  EXPECT_TRUE(identical_images(m.film.resolve(), single.image)) << "the merged image differs from the single render";
   for (const std::string& f : files) std::remove(f.c_str());
 }
 

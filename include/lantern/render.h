@@ -14,6 +14,8 @@
 namespace lantern {
 
 class Timeline;  // src/trace/timeline.h
+class Film;      // src/film/film.h
+class UnitSet;   // src/film/unit_set.h
 
 struct RenderProgress {
   double fraction = 0.0;  // of the sample budget, or of the time budget
@@ -62,6 +64,18 @@ struct RenderOptions {
   // shares equals the whole render bit for bit (film/unit_set.h).
   uint32_t share_index = 0, share_count = 1;
   std::string film_path;
+
+  // Work handed out by another party (MPI ranks, src/distributed/). The
+  // units this render wants (of its share, not yet in the film) form a
+  // sequence in increasing unit order; next_ticket, called serially before
+  // each unit, returns the position in that sequence of the next unit this
+  // process renders, increasing from call to call, or UINT64_MAX to stop. It
+  // is not called once the render is cancelled or out of time, so every
+  // ticket handed out is rendered. Unset: every wanted unit in turn.
+  std::function<uint64_t()> next_ticket;
+  // Called once at the end, with the film and its units, before the image
+  // is made from the film: the place to add other processes' films into it.
+  std::function<void(Film&, UnitSet&)> reduce_film;
 };
 
 struct RenderStats {

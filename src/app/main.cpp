@@ -1,5 +1,6 @@
 // The lantern command line.
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <unistd.h>
 
 #include <atomic>
@@ -8,6 +9,7 @@
 #include <fstream>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 
 #include "app/cli_checks.h"
 #include "app/merge_command.h"
@@ -18,10 +20,19 @@
 #include "math/fnv1a.h"
 #include "lantern/render.h"
 #include "lantern/scene.h"
+#ifdef LANTERN_HAVE_MPI
+#include "distributed/mpi_render.h"
+#endif
 
 namespace {
 
 std::atomic<bool> g_cancel{false};
+
+// This process's place among MPI ranks (rank 0 of 1 without mpirun).
+int g_rank = 0, g_ranks = 1;
+#ifdef LANTERN_HAVE_MPI
+lantern::MpiSession* g_mpi = nullptr;
+#endif
 
 extern "C" void on_signal(int) {
   g_cancel.store(true);
@@ -125,6 +136,23 @@ int finish_part(const RenderArgs& a, const lantern::RenderOptions& o, const lant
   return 0;
 }
 
+#ifdef LANTERN_HAVE_MPI
+nlohmann::json rank_report_json(const std::vector<lantern::MpiRender::RankReport>& reports) {
+  nlohmann::json ranks = nlohmann::json::array();
+  for (const auto& r : reports)
+    ranks.push_back({{"units", r.units},
+                     {"samples", r.samples},
+                     {"samples_per_second", r.render_seconds > 0 ? r.samples / r.render_seconds : 0.0},
+                     {"render_seconds", r.render_seconds},
+                     {"idle_seconds", r.ticket_seconds + r.end_wait_seconds},
+                     {"ticket_wait_seconds", r.ticket_seconds},
+                     {"end_wait_seconds", r.end_wait_seconds},
+                     {"communication_seconds", r.reduce_seconds},
+                     {"communication_bytes", r.reduce_bytes}});
+  return {{"ranks", reports.size()}, {"per_rank", ranks}};
+}
+#endif
+
 int run_render(const RenderArgs& a) {
   using namespace lantern;
   // From the start: a signal during loading stops the render before its
@@ -135,17 +163,27 @@ int run_render(const RenderArgs& a) {
   LoadOptions lo;
   lo.texture_cache_mb = a.texture_cache_mb;
   lo.texture_directory = a.texture_dir;
-  const bool show_progress = !a.quiet && isatty(STDERR_FILENO);
+  const bool show_progress = !a.quiet && g_rank == 0 && isatty(STDERR_FILENO);
   long long part_k = 1, part_n = 1;
   if (!a.part.empty()) cli::parse_part(a.part, part_k, part_n);
+  if (g_ranks > 1) {
+    auto refuse = [](const char* what) {
+      throw std::runtime_error(std::string(what) + " cannot be used with several MPI ranks yet");
+    };
+    if (!a.part.empty()) refuse("--part");
+    if (a.checkpoint > 0 || a.resume) refuse("--checkpoint and --resume");
+    if (!a.strategies.empty()) refuse("--strategies");
+    if (!a.dump_rays.empty()) refuse("--dump-rays");
+  }
+  const bool writes = g_rank == 0;  // only rank 0 writes the image and reports
   // Outputs known before loading are checked before loading: a scene can
   // take minutes to load.
-  if (!a.output.empty()) {
+  if (!a.output.empty() && writes) {
     if (a.part.empty()) check_image_path(a.output);
     else check_writable(a.output, "the part file");
   }
-  if (!a.stats.empty()) check_writable(a.stats, "the statistics");
-  if (!a.trace.empty()) check_writable(a.trace, "the trace");
+  if (!a.stats.empty() && writes) check_writable(a.stats, "the statistics");
+  if (!a.trace.empty() && writes) check_writable(a.trace, "the trace");
   std::unique_ptr<Timeline> timeline;
   if (!a.trace.empty()) timeline = std::make_unique<Timeline>(a.trace_waves);
   LoadTrace load_trace(timeline.get());
@@ -211,7 +249,7 @@ int run_render(const RenderArgs& a) {
     o.resume = a.resume;
     o.checkpoint_key = scene_key(a.scene, scene_info(*scene));
   }
-  if (!a.quiet && isatty(STDERR_FILENO)) {
+  if (!a.quiet && writes && isatty(STDERR_FILENO)) {
     o.progress = [](const RenderProgress& p) {
       double eta = p.fraction > 0 ? p.elapsed_seconds * (1.0 - p.fraction) / p.fraction : 0.0;
       double rate = p.elapsed_seconds > 0 ? double(p.samples_done) / p.elapsed_seconds : 0.0;
@@ -221,7 +259,7 @@ int run_render(const RenderArgs& a) {
     };
   }
   // Every file the render will write, before it starts.
-  if (a.output.empty()) {
+  if (a.output.empty() && writes) {
     if (a.part.empty()) check_image_path(out);
     else check_writable(out, "the part file");
   }
@@ -229,11 +267,22 @@ int run_render(const RenderArgs& a) {
   if (!a.strategies.empty()) std::filesystem::create_directories(a.strategies);
   o.timeline = timeline.get();
   RenderResult r;
+  nlohmann::json rank_stats;  // under mpirun: per-rank figures for --stats
   {
-    TraceSpan span(timeline ? &timeline->main() : nullptr, "render", TraceCategory::Render);
-    r = render(*scene, o);
+#ifdef LANTERN_HAVE_MPI
+    std::optional<MpiRender> ranks;
+    if (g_mpi && g_ranks > 1) ranks.emplace(*g_mpi, o);
+#endif
+    {
+      TraceSpan span(timeline ? &timeline->main() : nullptr, "render", TraceCategory::Render);
+      r = render(*scene, o);
+    }
+#ifdef LANTERN_HAVE_MPI
+    if (ranks) rank_stats = rank_report_json(ranks->gather(r.stats.seconds));
+#endif
   }
   if (o.progress) std::fprintf(stderr, "\n");
+  if (!writes) return r.interrupted ? 130 : 0;  // rank 0 has the image
   if (!a.part.empty()) return finish_part(a, o, r, timeline.get());
 
   ImageMetadata md = {{"lantern:integrator", o.integrator},
@@ -280,7 +329,9 @@ int run_render(const RenderArgs& a) {
   if (!a.stats.empty()) {
     RunInfo run{a.scene, o.integrator, out, o.ray_backend, r.image.width, r.image.height, o.wave_size, load_s,
                 scene_info(*scene), scene_settings(*scene).sampler, o.sampler, scene_settings(*scene).light_sampler};
-    write_text_atomically(a.stats, stats_json(run, r.stats).dump(2) + "\n");
+    nlohmann::json j = stats_json(run, r.stats);
+    if (!rank_stats.is_null()) j["mpi"] = rank_stats;
+    write_text_atomically(a.stats, j.dump(2) + "\n");
   }
   if (r.interrupted) {
     std::fprintf(stderr, "interrupted: wrote the %llu samples rendered so far to %s\n",
@@ -321,6 +372,26 @@ int run_info(const std::string& path) {
 }  // namespace
 
 int main(int argc, char** argv) {
+#ifdef LANTERN_HAVE_MPI
+  // Under mpirun: MPI for the whole run. A rank that fails ends them all
+  // (MPI_Abort) rather than leaving the others waiting for it.
+  std::unique_ptr<lantern::MpiSession> mpi;
+  if (lantern::MpiSession::launched()) {
+    mpi = std::make_unique<lantern::MpiSession>(argc, argv);
+    g_mpi = mpi.get();
+    g_rank = mpi->rank();
+    g_ranks = mpi->size();
+  }
+  auto fail = [&](int code) {
+    if (g_ranks > 1) {
+      std::cerr << "rank " << g_rank << " of " << g_ranks << " failed; ending all ranks\n";
+      mpi->abort_all(code);
+    }
+    return code;
+  };
+#else
+  auto fail = [](int code) { return code; };
+#endif
   CLI::App app{"Lantern: physically based rendering with bidirectional path tracing"};
   app.require_subcommand(1);
   RenderArgs a;
@@ -402,9 +473,9 @@ int main(int argc, char** argv) {
     return run_render(a);
   } catch (const lantern::InputError& e) {
     std::cerr << e.what() << "\n";
-    return 2;
+    return fail(2);
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
-    return 1;
+    return fail(1);
   }
 }

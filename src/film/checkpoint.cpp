@@ -53,20 +53,17 @@ class HashingReader final : public StateReader {
   const std::string& path_;
 };
 
-// The first key=value line of `a` that `b` does not have, as a message.
-std::string first_difference(const std::string& saved, const std::string& now) {
-  std::istringstream sa(saved), sb(now);
+}  // namespace
+
+std::pair<std::string, std::string> fingerprint_difference(const std::string& a, const std::string& b) {
+  std::istringstream sa(a), sb(b);
   std::string la, lb;
   while (true) {
-    bool ga = bool(std::getline(sa, la)), gb = bool(std::getline(sb, lb));
-    if (!ga && !gb) return "";
-    if (la != lb || ga != gb)
-      return "it was made with \"" + (ga ? la : std::string("(nothing)")) + "\" but this render has \"" +
-             (gb ? lb : std::string("(nothing)")) + "\"";
+    const bool ga = bool(std::getline(sa, la)), gb = bool(std::getline(sb, lb));
+    if (!ga && !gb) return {};
+    if (ga != gb || la != lb) return {ga ? la : "(nothing)", gb ? lb : "(nothing)"};
   }
 }
-
-}  // namespace
 
 void write_checkpoint(const std::string& path, const CheckpointInfo& info, const Film& film) {
   std::string tmp = path + ".partial";
@@ -119,8 +116,11 @@ CheckpointInfo read_file(const std::string& path, const std::string* expected, F
   if (n > (1u << 20)) throw InputError({path, 0, 0}, "file is damaged (fingerprint length)");
   info.fingerprint.resize(n);
   r.read(info.fingerprint.data(), n);
-  if (expected && info.fingerprint != *expected)
-    throw InputError({path, 0, 0}, "checkpoint belongs to another render: " + first_difference(info.fingerprint, *expected));
+  if (expected && info.fingerprint != *expected) {
+    const auto [saved, now] = fingerprint_difference(info.fingerprint, *expected);
+    throw InputError({path, 0, 0}, "checkpoint belongs to another render: it was made with \"" + saved +
+                                       "\" but this render has \"" + now + "\"");
+  }
   info.share.index = r.get<uint32_t>();
   info.share.count = r.get<uint32_t>();
   info.passes = r.get<uint64_t>();

@@ -17,6 +17,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 
 #include "film/film.h"
 #include "film/unit_set.h"
@@ -39,6 +40,11 @@ void write_checkpoint(const std::string& path, const CheckpointInfo& info, const
 // foreign file, and for a fingerprint that differs from `expected`, naming
 // the first setting that differs.
 CheckpointInfo read_checkpoint(const std::string& path, const std::string& expected_fingerprint, Film& film);
+
+// The first key=value line where two fingerprints differ: that line of
+// each ("(nothing)" where one has no more lines); two empty strings when
+// they are equal.
+std::pair<std::string, std::string> fingerprint_difference(const std::string& a, const std::string& b);
 
 // Reads any film file into `film` (0x0: it takes the file's size) without
 // comparing fingerprints; `lantern merge` compares them across its parts.

@@ -125,6 +125,12 @@ void Film::read_state(StateReader& in) {
   }
 }
 
+Film::Buffers Film::buffers(bool splats) {
+  if (splats && splat_.empty()) splat_.assign(sum_.size(), FixedSum());
+  return Buffers{sum_.data(), splat_.empty() ? nullptr : splat_.data(), sum_.size(), count_.data(), &nonfinite_,
+                 &light_paths_};
+}
+
 uint64_t Film::total_samples() const {
   return std::accumulate(count_.begin(), count_.end(), uint64_t(0));
 }

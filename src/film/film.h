@@ -112,6 +112,20 @@ class Film {
   uint32_t min_samples_per_pixel() const;
   uint32_t sample_count(size_t pixel) const { return count_[pixel]; }
 
+  // The raw buffers, for adding films across processes (distributed/):
+  // integers all, so any reduction order gives the same bits. With
+  // `splats`, the splat sums are created if the film has none.
+  struct Buffers {
+    FixedSum* sums;
+    FixedSum* splats;  // null when the film has none
+    size_t values;     // of sums and of splats: 3 per pixel
+    uint32_t* counts;  // one per pixel
+    uint64_t* nonfinite;
+    uint64_t* light_paths;
+  };
+  Buffers buffers(bool splats);
+  bool has_splats() const { return !splat_.empty(); }
+
   // The raw sums and counts, bit for bit: a film restored from them goes on
   // accumulating exactly as the one that wrote them would have.
   void write_state(StateWriter& out) const;

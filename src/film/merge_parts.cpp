@@ -1,6 +1,5 @@
 #include "film/merge_parts.h"
 
-#include <sstream>
 #include <stdexcept>
 
 #include "lantern/error.h"
@@ -10,19 +9,6 @@ namespace lantern {
 namespace {
 
 std::string part_name(const UnitShare& s) { return std::to_string(s.index + 1) + "/" + std::to_string(s.count); }
-
-// The first line where two fingerprints differ, in words.
-std::string first_difference(const std::string& a, const std::string& b) {
-  std::istringstream sa(a), sb(b);
-  std::string la, lb;
-  while (true) {
-    const bool ga = bool(std::getline(sa, la)), gb = bool(std::getline(sb, lb));
-    if (!ga && !gb) return "";
-    if (ga != gb || la != lb)
-      return "\"" + (ga ? la : std::string("(nothing)")) + "\" where the first part has \"" +
-             (gb ? lb : std::string("(nothing)")) + "\"";
-  }
-}
 
 }  // namespace
 
@@ -44,9 +30,11 @@ MergedParts merge_parts(const std::vector<std::string>& paths, bool preview) {
       owner.assign(m.parts, "");
       finished.assign(m.parts, 0);
     } else {
-      if (info.fingerprint != m.fingerprint)
-        throw InputError({path, 0, 0}, "is a part of another render: it has " +
-                                           first_difference(info.fingerprint, m.fingerprint) + " (" + paths[0] + ")");
+      if (info.fingerprint != m.fingerprint) {
+        const auto [here, first] = fingerprint_difference(info.fingerprint, m.fingerprint);
+        throw InputError({path, 0, 0}, "is a part of another render: it has \"" + here + "\" where the first part has \"" +
+                                           first + "\" (" + paths[0] + ")");
+      }
       if (info.share.count != m.parts)
         throw InputError({path, 0, 0}, "is part " + part_name(info.share) + ", but " + paths[0] + " is one of " +
                                            std::to_string(m.parts) + " parts");

@@ -181,6 +181,43 @@ void trace_wave(const Tracer& tracer, const WaveDesc& wave, State& state, WaveOu
   track->end_wave();
 }
 
+// Walks the units this render wants, pass by pass, stopping at those its
+// tickets name (all of them without a ticket source).
+class TicketCursor {
+ public:
+  explicit TicketCursor(const std::function<uint64_t()>& source) : source_(source) {}
+  // Moves `wave` to the next unit of this pass to render; false when the
+  // pass has none left (the ticket, if any, is kept for a later pass).
+  template <class Wanted>
+  bool next(uint32_t first, uint32_t& wave, uint32_t waves, const Wanted& wanted) {
+    if (exhausted_) return false;
+    if (source_ && !holding_) {
+      target_ = source_();
+      holding_ = true;
+      if (target_ == UINT64_MAX) {
+        exhausted_ = true;
+        return false;
+      }
+    }
+    for (; wave < waves; ++wave) {
+      if (!wanted(first, wave)) continue;
+      if (!source_ || seen_ == target_) {
+        ++seen_;
+        holding_ = false;
+        return true;
+      }
+      ++seen_;
+    }
+    return false;
+  }
+  bool exhausted() const { return exhausted_; }
+
+ private:
+  const std::function<uint64_t()>& source_;
+  uint64_t seen_ = 0, target_ = 0;  // wanted units passed; the ticket held
+  bool holding_ = false, exhausted_ = false;
+};
+
 // Runs one integrator over all passes. Waves flow through a pipeline whose
 // last stage merges their output into the film serially and in wave order.
 template <class Tracer>
@@ -220,6 +257,7 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
 
   std::atomic<bool> stop{false};
   bool issued = false;  // a wave was started in this run
+  TicketCursor tickets(opt.next_ticket);
   auto time_is_up = [&] { return timed && checkpoints.elapsed() >= opt.time_limit_seconds; };
   for (uint32_t first = 0; first < total_spp && !stop; first += pass_spp) {
     const uint32_t samples = std::min(pass_spp, total_spp - first);
@@ -230,11 +268,15 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
                                          [&](tbb::flow_control& fc) -> uint32_t {
                                            // A time budget shorter than the set-up still
                                            // renders one wave, so every run adds samples.
-                                           while (next < waves && !wanted(first, next)) ++next;
                                            bool cancelled = opt.cancel && opt.cancel->load();
-                                           if (next == waves || stop || cancelled || (issued && time_is_up())) {
-                                             if (next != waves) stop = true;
+                                           if (stop || cancelled || (issued && time_is_up())) {
+                                             stop = true;
                                              fc.stop();
+                                             return 0;
+                                           }
+                                           if (!tickets.next(first, next, waves, wanted)) {
+                                             if (tickets.exhausted()) stop = true;
+                                             fc.stop();  // this pass has no unit left for us
                                              return 0;
                                            }
                                            issued = true;
@@ -384,6 +426,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
     }
   }
   if (!opt.film_path.empty()) checkpoints.write_to(opt.film_path, film);
+  if (opt.reduce_film) opt.reduce_film(film, checkpoints.done());
 
   res.image = film.resolve();
   if (strategy_film) res.strategies = strategy_film->resolve(film);

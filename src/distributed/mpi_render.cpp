@@ -1,0 +1,186 @@
+#include "distributed/mpi_render.h"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <stdexcept>
+
+#include "film/film.h"
+#include "film/unit_set.h"
+
+namespace lantern {
+
+namespace {
+
+constexpr int kClaimTag = 1, kTicketTag = 2, kDoneTag = 3;
+// Tickets go out in runs of this many consecutive ones: a quarter of the
+// round trips, and at the end at most a few waves of imbalance.
+constexpr uint64_t kBatch = 4;
+using Clock = std::chrono::steady_clock;
+
+// Element-wise sum of 128-bit two's complement integers: exact, so the
+// reduction's order (MPI chooses it) cannot change the result.
+extern "C" void add_fixed_sums(void* in, void* inout, int* len, MPI_Datatype*) {
+  auto* a = static_cast<const unsigned __int128*>(in);
+  auto* b = static_cast<unsigned __int128*>(inout);
+  for (int i = 0; i < *len; ++i) b[i] += a[i];
+}
+
+void check(int code, const char* what) {
+  if (code != MPI_SUCCESS) throw std::runtime_error(std::string("MPI: ") + what + " failed");
+}
+
+// MPI_Reduce to rank 0 in chunks (MPI counts are ints), in place at the root.
+template <class T>
+void reduce_chunks(T* data, size_t n, MPI_Datatype type, MPI_Op op, int rank) {
+  constexpr size_t kChunk = size_t(1) << 22;
+  for (size_t at = 0; at < n; at += kChunk) {
+    const int count = int(std::min(kChunk, n - at));
+    if (rank == 0) check(MPI_Reduce(MPI_IN_PLACE, data + at, count, type, op, 0, MPI_COMM_WORLD), "reduce");
+    else check(MPI_Reduce(data + at, nullptr, count, type, op, 0, MPI_COMM_WORLD), "reduce");
+  }
+}
+
+}  // namespace
+
+bool MpiSession::launched() {
+  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
+    if (std::getenv(v)) return true;
+  return false;
+}
+
+MpiSession::MpiSession(int& argc, char**& argv) {
+  int provided = 0;
+  // Rank 0's scheduler thread calls MPI while its render threads run; the
+  // calls never overlap, which SERIALIZED allows.
+  check(MPI_Init_thread(&argc, &argv, MPI_THREAD_SERIALIZED, &provided), "init");
+  if (provided < MPI_THREAD_SERIALIZED) throw std::runtime_error("MPI: this library does not allow threads to call it");
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+  MPI_Comm_size(MPI_COMM_WORLD, &size_);
+}
+
+MpiSession::~MpiSession() { MPI_Finalize(); }
+
+void MpiSession::abort_all(int code) {
+  MPI_Abort(MPI_COMM_WORLD, code);
+  std::abort();  // MPI_Abort does not return
+}
+
+MpiRender::MpiRender(const MpiSession& session, RenderOptions& o) : session_(session) {
+  if (session_.size() == 1) return;  // one rank: a plain render
+  o.next_ticket = [this] { return next_ticket(); };
+  o.reduce_film = [this](Film& film, UnitSet& done) { reduce(film, done); };
+  if (session_.rank() == 0) scheduler_ = std::thread([this] { serve(); });
+}
+
+MpiRender::~MpiRender() {
+  stop_serving_ = true;
+  if (scheduler_.joinable()) scheduler_.join();
+}
+
+uint64_t MpiRender::next_ticket() {
+  ++report_.units;
+  if (batch_left_ == 0) {
+    if (session_.rank() == 0) {
+      batch_first_ = counter_.fetch_add(kBatch);
+    } else {
+      if (!claim_pending_) claim();
+      const auto t0 = Clock::now();
+      check(MPI_Wait(&claim_reply_, MPI_STATUS_IGNORE), "ticket");
+      report_.ticket_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+      claim_pending_ = false;
+      batch_first_ = claimed_first_;
+    }
+    batch_left_ = kBatch;
+  }
+  // Half way through a run, ask for the next one, so that the answer is
+  // there when this run ends: rank 0's scheduler may answer late when its
+  // core is busy rendering.
+  if (session_.rank() != 0 && batch_left_ == kBatch / 2 && !claim_pending_) claim();
+  --batch_left_;
+  return batch_first_++;
+}
+
+void MpiRender::claim() {
+  static const char byte = 0;
+  check(MPI_Send(&byte, 1, MPI_CHAR, 0, kClaimTag, MPI_COMM_WORLD), "claim");
+  check(MPI_Irecv(&claimed_first_, 1, MPI_UINT64_T, 0, kTicketTag, MPI_COMM_WORLD, &claim_reply_), "ticket");
+  claim_pending_ = true;
+}
+
+// Answers claims until every other rank has said it is done. Polls with
+// short sleeps: a blocking receive would spin a core the render needs.
+void MpiRender::serve() {
+  int done = 0;
+  while (done < session_.size() - 1 && !stop_serving_) {
+    int flag = 0;
+    MPI_Status status;
+    MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status);
+    if (!flag) {
+      std::this_thread::sleep_for(std::chrono::microseconds(250));
+      continue;
+    }
+    char byte = 0;
+    MPI_Recv(&byte, 1, MPI_CHAR, status.MPI_SOURCE, status.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    if (status.MPI_TAG == kDoneTag) {
+      ++done;
+    } else {
+      const uint64_t ticket = counter_.fetch_add(kBatch);
+      MPI_Send(&ticket, 1, MPI_UINT64_T, status.MPI_SOURCE, kTicketTag, MPI_COMM_WORLD);
+    }
+  }
+}
+
+void MpiRender::finish_scheduling() {
+  if (finished_) return;
+  finished_ = true;
+  if (session_.rank() == 0) {
+    if (scheduler_.joinable()) scheduler_.join();
+  } else {
+    if (claim_pending_) check(MPI_Wait(&claim_reply_, MPI_STATUS_IGNORE), "ticket");  // a run left unused
+    claim_pending_ = false;
+    const char byte = 0;
+    check(MPI_Send(&byte, 1, MPI_CHAR, 0, kDoneTag, MPI_COMM_WORLD), "done");
+  }
+}
+
+void MpiRender::reduce(Film& film, UnitSet&) {
+  report_.samples = double(film.total_samples());
+  const auto wait = Clock::now();
+  finish_scheduling();
+  // Also the barrier where the ranks wait for the slowest.
+  int any_splats = film.has_splats() ? 1 : 0;
+  check(MPI_Allreduce(MPI_IN_PLACE, &any_splats, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD), "splat flag");
+  const auto t0 = Clock::now();
+  report_.end_wait_seconds = std::chrono::duration<double>(t0 - wait).count();
+  Film::Buffers b = film.buffers(any_splats != 0);
+  MPI_Datatype fixed;
+  MPI_Op add;
+  MPI_Type_contiguous(int(sizeof(unsigned __int128)), MPI_BYTE, &fixed);
+  MPI_Type_commit(&fixed);
+  MPI_Op_create(add_fixed_sums, 1, &add);
+  const int rank = session_.rank();
+  reduce_chunks(b.sums, b.values, fixed, add, rank);
+  if (b.splats) reduce_chunks(b.splats, b.values, fixed, add, rank);
+  reduce_chunks(b.counts, b.values / 3, MPI_UINT32_T, MPI_SUM, rank);
+  reduce_chunks(b.nonfinite, 1, MPI_UINT64_T, MPI_SUM, rank);
+  reduce_chunks(b.light_paths, 1, MPI_UINT64_T, MPI_SUM, rank);
+  MPI_Op_free(&add);
+  MPI_Type_free(&fixed);
+  report_.reduce_bytes =
+      double((b.values * (b.splats ? 2 : 1)) * sizeof(unsigned __int128) + (b.values / 3) * sizeof(uint32_t) + 16);
+  report_.reduce_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+std::vector<MpiRender::RankReport> MpiRender::gather(double render_seconds) const {
+  static_assert(sizeof(RankReport) == 7 * sizeof(double));
+  RankReport mine = report_;
+  mine.render_seconds = render_seconds;
+  std::vector<RankReport> all(session_.rank() == 0 ? size_t(session_.size()) : 0);
+  check(MPI_Gather(&mine, 7, MPI_DOUBLE, all.data(), 7, MPI_DOUBLE, 0, MPI_COMM_WORLD), "gather reports");
+  return all;
+}
+
+}  // namespace lantern

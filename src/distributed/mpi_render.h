@@ -1,0 +1,83 @@
+// Rendering across MPI ranks (Open MPI: `mpirun -np N lantern render ...`).
+//
+// Every rank loads the scene and runs its own oneTBB threads. Rank 0 hands
+// out the render's units (one wave of one pass each) one at a time, from a
+// scheduler thread, to whichever rank asks next, so that unequal machines
+// finish together. At the end the ranks' films are added at rank 0 with
+// MPI_Reduce. The films' sums are fixed-point integers (film/fixed_sum.h),
+// so the image is bit-identical to a single-process render of the same
+// settings, whatever the number of ranks, threads or the order units
+// finished in (docs/distributed.md).
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <mpi.h>
+
+#include "lantern/render.h"
+
+namespace lantern {
+
+// MPI_Init and MPI_Finalize around the program, when it was started by
+// mpirun (or srun): a plain `lantern` run never touches MPI.
+class MpiSession {
+ public:
+  // True when the environment shows an MPI launcher (Open MPI, PMIx, PMI).
+  static bool launched();
+  MpiSession(int& argc, char**& argv);
+  ~MpiSession();
+  MpiSession(const MpiSession&) = delete;
+  MpiSession& operator=(const MpiSession&) = delete;
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  // Ends every rank with `code` (MPI_Abort): a rank that fails must not
+  // leave the others waiting for it.
+  [[noreturn]] void abort_all(int code);
+
+ private:
+  int rank_ = 0, size_ = 1;
+};
+
+// Installs the hooks (RenderOptions::next_ticket, reduce_film) that make one
+// rank's render() its part of the whole; lives across the render() call.
+class MpiRender {
+ public:
+  MpiRender(const MpiSession& session, RenderOptions& options);
+  ~MpiRender();  // stops the scheduler if the render threw
+  MpiRender(const MpiRender&) = delete;
+  MpiRender& operator=(const MpiRender&) = delete;
+
+  // What one rank measured. Idle: waiting for tickets, and at the end for
+  // the slowest rank; communication: the film reduction after that.
+  struct RankReport {
+    double units = 0, samples = 0, render_seconds = 0, ticket_seconds = 0, end_wait_seconds = 0,
+           reduce_seconds = 0, reduce_bytes = 0;
+  };
+  // Collective: every rank calls it after render(); rank 0 gets every
+  // rank's report (in rank order), the others an empty list.
+  std::vector<RankReport> gather(double render_seconds) const;
+
+ private:
+  uint64_t next_ticket();
+  void claim();  // asks rank 0 for a run of tickets, answer pending
+  void serve();  // rank 0's scheduler thread
+  void finish_scheduling();
+  void reduce(Film& film, UnitSet& done);
+
+  const MpiSession& session_;
+  std::atomic<uint64_t> counter_{0};  // rank 0: the next ticket
+  uint64_t batch_first_ = 0, batch_left_ = 0;  // this rank's run of tickets
+  uint64_t claimed_first_ = 0;                  // the next run, once claim_reply_ completes
+  bool claim_pending_ = false;
+  MPI_Request claim_reply_ = MPI_REQUEST_NULL;
+  std::thread scheduler_;
+  std::atomic<bool> stop_serving_{false};
+  bool finished_ = false;
+  RankReport report_;
+};
+
+}  // namespace lantern
