@@ -37,6 +37,38 @@ execute_process(COMMAND ${mpirun} -np 2 ${LANTERN} render ${OUT}/no-such-scene.p
 if(rc EQUAL 0 OR NOT "${out}${err}" MATCHES "cannot open scene file" OR NOT "${out}${err}" MATCHES "ending all ranks")
   message(FATAL_ERROR "failing ranks: exit ${rc}\n${out}${err}")
 endif()
+# A rank killed mid-render: the job ends in bounded time with checkpoint
+# pieces of both ranks, and --resume on another number of ranks (and on one
+# process) completes to the image of a straight render, bit for bit.
+set(ck render ${SRC}/scenes/lantern.pbrt --integrator bdpt --spp 64 --resolution 96 72 --quiet)
+string(JOIN " " ck_line ${ck})
+string(JOIN " " mpirun_line ${mpirun})
+execute_process(COMMAND ${LANTERN} ${ck} -o ${OUT}/mpi-straight.exr RESULT_VARIABLE rc TIMEOUT 300)
+file(GLOB old ${OUT}/mpi-killed.exr*)
+if(old)
+  file(REMOVE ${old})
+endif()
+execute_process(COMMAND sh -c "touch ${OUT}/mpi-marker; ${mpirun_line} -np 2 ${LANTERN} ${ck_line} --threads 1 -o ${OUT}/mpi-killed.exr --checkpoint 0.05 & job=$!; i=0; while [ $i -lt 1200 ] && [ -z \"$(find ${OUT} -name 'mpi-killed.exr.ckpt.rank1' -newer ${OUT}/mpi-marker 2>/dev/null)\" ]; do sleep 0.05; i=$((i+1)); done; victim=$(pgrep -P $job | tail -1); kill -KILL $victim; wait $job"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
+if(rc EQUAL 0 OR NOT EXISTS ${OUT}/mpi-killed.exr.ckpt.rank0 OR NOT EXISTS ${OUT}/mpi-killed.exr.ckpt.rank1)
+  message(FATAL_ERROR "killed rank: exit ${rc}, pieces:\n${out}${err}")
+endif()
+file(COPY ${OUT}/mpi-killed.exr.ckpt.rank0 ${OUT}/mpi-killed.exr.ckpt.rank1 DESTINATION ${OUT}/mpi-saved)
+foreach(ranks 3 0)
+  set(launch ${LANTERN})
+  if(ranks GREATER 0)
+    set(launch ${mpirun} -np ${ranks} ${LANTERN})
+  endif()
+  file(COPY ${OUT}/mpi-saved/mpi-killed.exr.ckpt.rank0 ${OUT}/mpi-saved/mpi-killed.exr.ckpt.rank1 DESTINATION ${OUT})
+  execute_process(COMMAND ${launch} ${ck} --threads 1 -o ${OUT}/mpi-killed.exr --checkpoint 0.05 --resume
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 300)
+  execute_process(COMMAND ${LANTERN} compare ${OUT}/mpi-killed.exr ${OUT}/mpi-straight.exr OUTPUT_VARIABLE cmp)
+  file(GLOB left ${OUT}/mpi-killed.exr.ckpt*)
+  if(NOT rc EQUAL 0 OR NOT cmp MATCHES "^mse 0\n" OR left)
+    message(FATAL_ERROR "resume after a killed rank on ${ranks} ranks (0: one process): exit ${rc}, pieces left: ${left}\n${cmp}${out}${err}")
+  endif()
+endforeach()
+
 # What is not supported across ranks yet is refused by name.
 execute_process(COMMAND ${mpirun} -np 2 ${LANTERN} ${base} --part 1/2 -o ${OUT}/x.film
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 60)

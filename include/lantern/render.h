@@ -55,6 +55,15 @@ struct RenderOptions {
   double checkpoint_seconds = 0.0;
   bool resume = false;
   std::string checkpoint_key;  // identifies the scene; a checkpoint made for another key is refused
+  // Several processes (MPI ranks) checkpoint one render in pieces: rank r
+  // writes checkpoint_path.rank<r> (-1: one process, checkpoint_path
+  // itself). Resuming reads every piece, whatever the number of ranks that
+  // wrote them, in the process with resume_reads; the others learn the
+  // units done from sync_checkpoint, which every process calls once before
+  // rendering (the reading one passes what it read on).
+  int checkpoint_rank = -1;
+  bool resume_reads = true;
+  std::function<void(UnitSet& done, double& elapsed_seconds)> sync_checkpoint;
   std::function<void()> checkpoint_written;  // called after each checkpoint (from the merging thread)
 
   // Shares (--part K/N): render only the units u (one wave of one pass

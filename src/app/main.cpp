@@ -171,7 +171,6 @@ int run_render(const RenderArgs& a) {
       throw std::runtime_error(std::string(what) + " cannot be used with several MPI ranks yet");
     };
     if (!a.part.empty()) refuse("--part");
-    if (a.checkpoint > 0 || a.resume) refuse("--checkpoint and --resume");
     if (!a.strategies.empty()) refuse("--strategies");
     if (!a.dump_rays.empty()) refuse("--dump-rays");
   }
@@ -263,7 +262,7 @@ int run_render(const RenderArgs& a) {
     if (a.part.empty()) check_image_path(out);
     else check_writable(out, "the part file");
   }
-  if (!o.checkpoint_path.empty()) check_writable(o.checkpoint_path, "the checkpoint");
+  if (!o.checkpoint_path.empty() && writes) check_writable(o.checkpoint_path, "the checkpoint");
   if (!a.strategies.empty()) std::filesystem::create_directories(a.strategies);
   o.timeline = timeline.get();
   RenderResult r;

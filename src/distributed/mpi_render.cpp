@@ -72,6 +72,9 @@ MpiRender::MpiRender(const MpiSession& session, RenderOptions& o) : session_(ses
   if (session_.size() == 1) return;  // one rank: a plain render
   o.next_ticket = [this] { return next_ticket(); };
   o.reduce_film = [this](Film& film, UnitSet& done) { reduce(film, done); };
+  o.sync_checkpoint = [this](UnitSet& done, double& elapsed) { sync_checkpoint(done, elapsed); };
+  o.checkpoint_rank = session_.rank();
+  o.resume_reads = session_.rank() == 0;
   if (session_.rank() == 0) scheduler_ = std::thread([this] { serve(); });
 }
 
@@ -172,6 +175,28 @@ void MpiRender::reduce(Film& film, UnitSet&) {
   report_.reduce_bytes =
       double((b.values * (b.splats ? 2 : 1)) * sizeof(unsigned __int128) + (b.values / 3) * sizeof(uint32_t) + 16);
   report_.reduce_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// Rank 0's units done and time spent, to every rank (and a barrier: rank 0
+// has saved and tidied the checkpoint's pieces by now).
+void MpiRender::sync_checkpoint(UnitSet& done, double& elapsed_seconds) {
+  std::vector<uint64_t> flat;
+  for (const auto& [first, end] : done.intervals()) {
+    flat.push_back(first);
+    flat.push_back(end);
+  }
+  uint64_t n = flat.size();
+  check(MPI_Bcast(&n, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD), "units done");
+  flat.resize(n);
+  for (size_t at = 0; at < n; at += size_t(1) << 28)
+    check(MPI_Bcast(flat.data() + at, int(std::min<size_t>(n - at, size_t(1) << 28)), MPI_UINT64_T, 0, MPI_COMM_WORLD),
+          "units done");
+  check(MPI_Bcast(&elapsed_seconds, 1, MPI_DOUBLE, 0, MPI_COMM_WORLD), "time spent");
+  if (session_.rank() != 0) {
+    std::vector<UnitSet::Interval> runs;
+    for (size_t i = 0; i + 1 < flat.size(); i += 2) runs.emplace_back(flat[i], flat[i + 1]);
+    done = UnitSet::of(std::move(runs));
+  }
 }
 
 std::vector<MpiRender::RankReport> MpiRender::gather(double render_seconds) const {

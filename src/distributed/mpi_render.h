@@ -42,8 +42,11 @@ class MpiSession {
   int rank_ = 0, size_ = 1;
 };
 
-// Installs the hooks (RenderOptions::next_ticket, reduce_film) that make one
-// rank's render() its part of the whole; lives across the render() call.
+// Installs the hooks (RenderOptions::next_ticket, reduce_film,
+// sync_checkpoint) that make one rank's render() its part of the whole;
+// lives across the render() call. With a checkpoint, rank r writes its own
+// piece (FILE.rank<r>) and rank 0 alone reads them all on --resume, then
+// tells the others which units are done.
 class MpiRender {
  public:
   MpiRender(const MpiSession& session, RenderOptions& options);
@@ -67,6 +70,7 @@ class MpiRender {
   void serve();  // rank 0's scheduler thread
   void finish_scheduling();
   void reduce(Film& film, UnitSet& done);
+  void sync_checkpoint(UnitSet& done, double& elapsed_seconds);
 
   const MpiSession& session_;
   std::atomic<uint64_t> counter_{0};  // rank 0: the next ticket

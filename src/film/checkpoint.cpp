@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -155,5 +156,62 @@ CheckpointInfo read_checkpoint(const std::string& path, const std::string& expec
 }
 
 CheckpointInfo read_film_file(const std::string& path, Film& film) { return read_file(path, nullptr, film); }
+
+std::vector<std::string> checkpoint_pieces(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> pieces;
+  std::error_code ec;
+  const fs::path p(path);
+  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+  const std::string prefix = p.filename().string() + ".rank";
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(prefix, 0) == 0 && name.find(".partial") == std::string::npos)
+      pieces.push_back((dir / name).string());
+  }
+  std::sort(pieces.begin(), pieces.end());
+  if (fs::exists(path, ec)) pieces.insert(pieces.begin(), path);
+  return pieces;
+}
+
+CheckpointInfo read_checkpoint_pieces(const std::string& path, const std::string& expected, Film& film,
+                                      std::vector<std::string>& pieces) {
+  pieces = checkpoint_pieces(path);
+  if (pieces.empty()) throw InputError({path, 0, 0}, "cannot open checkpoint (nothing to resume)");
+  std::vector<CheckpointInfo> infos;
+  std::vector<Film> films;
+  for (const std::string& piece : pieces) {
+    films.emplace_back(0, 0, PixelFilter{});
+    infos.push_back(read_checkpoint(piece, expected, films.back()));
+  }
+  CheckpointInfo all;
+  bool first = true;
+  for (size_t i = 0; i < infos.size(); ++i) {
+    bool absorbed = false;
+    for (size_t j = 0; j < infos.size() && !absorbed; ++j) {
+      if (j == i || !infos[i].done.overlaps(infos[j].done)) continue;
+      UnitSet both = infos[j].done;
+      both.add(infos[i].done);
+      if (both == infos[j].done && (infos[i].done.size() < infos[j].done.size() || j < i)) {
+        absorbed = true;  // i's units are all in j: j took i in
+      } else if (!(both == infos[i].done)) {
+        throw InputError({pieces[i], 0, 0}, "shares some but not all of its units with " + pieces[j] +
+                                                ": the checkpoint's pieces do not fit together");
+      }
+    }
+    if (absorbed) continue;
+    if (first) {
+      all = infos[i];
+      first = false;
+    } else {
+      if (infos[i].share.index != all.share.index || infos[i].share.count != all.share.count)
+        throw InputError({pieces[i], 0, 0}, "is a piece of another part of the render than " + pieces[0]);
+      all.done.add(infos[i].done);
+      all.elapsed_seconds = std::max(all.elapsed_seconds, infos[i].elapsed_seconds);
+    }
+    film.add(films[i]);
+  }
+  return all;
+}
 
 }  // namespace lantern

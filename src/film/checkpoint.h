@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "film/film.h"
 #include "film/unit_set.h"
@@ -40,6 +41,18 @@ void write_checkpoint(const std::string& path, const CheckpointInfo& info, const
 // foreign file, and for a fingerprint that differs from `expected`, naming
 // the first setting that differs.
 CheckpointInfo read_checkpoint(const std::string& path, const std::string& expected_fingerprint, Film& film);
+
+// A checkpoint may be in pieces: FILE (one process) and FILE.rank<r> (one
+// per MPI rank). Reads every piece of `path` into `film` (sized for the
+// render) and returns their union: the units of all, the sums of all, the
+// longest elapsed time. A piece whose units another piece holds entirely was
+// absorbed by it (a resumed rank 0 takes in all pieces and saves them first)
+// and is skipped; pieces that share only some units are refused, naming
+// both. `pieces` receives every file read, skipped ones too.
+// The files of a checkpoint's pieces that exist: path, then path.rank*.
+std::vector<std::string> checkpoint_pieces(const std::string& path);
+CheckpointInfo read_checkpoint_pieces(const std::string& path, const std::string& expected_fingerprint, Film& film,
+                                      std::vector<std::string>& pieces);
 
 // The first key=value line where two fingerprints differ: that line of
 // each ("(nothing)" where one has no more lines); two empty strings when

@@ -106,6 +106,11 @@ void gather_stats(States& states, double film_seconds, RenderStats& st) {
   st.film_seconds = film_seconds;
 }
 
+// This process's piece of the checkpoint.
+std::string own_checkpoint_piece(const RenderOptions& o) {
+  return o.checkpoint_rank < 0 ? o.checkpoint_path : o.checkpoint_path + ".rank" + std::to_string(o.checkpoint_rank);
+}
+
 // Writes checkpoints from the merge stage: the one place that sees the film
 // between two waves.
 class Checkpointer {
@@ -113,6 +118,7 @@ class Checkpointer {
   Checkpointer(const RenderOptions& o, CheckpointInfo info, Clock::time_point start)
       : opt_(o), info_(std::move(info)), start_(start), last_(start), prior_seconds_(info_.elapsed_seconds) {}
   bool enabled() const { return !opt_.checkpoint_path.empty(); }
+  std::string own_path() const { return own_checkpoint_piece(opt_); }
   double elapsed() const { return prior_seconds_ + std::chrono::duration<double>(Clock::now() - start_).count(); }
   UnitSet& done() { return info_.done; }
   void set_units(uint64_t passes, uint32_t waves) {
@@ -124,12 +130,12 @@ class Checkpointer {
         std::chrono::duration<double>(Clock::now() - last_).count() >= opt_.checkpoint_seconds)
       write(film);
   }
-  void write(const Film& film) { write_to(opt_.checkpoint_path, film); }
+  void write(const Film& film) { write_to(own_path(), film); }
   void write_to(const std::string& path, const Film& film) {
     info_.elapsed_seconds = elapsed();
     write_checkpoint(path, info_, film);
     last_ = Clock::now();
-    if (opt_.checkpoint_written && path == opt_.checkpoint_path) opt_.checkpoint_written();
+    if (opt_.checkpoint_written && path == own_path()) opt_.checkpoint_written();
   }
 
  private:
@@ -268,6 +274,16 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
                                          [&](tbb::flow_control& fc) -> uint32_t {
                                            // A time budget shorter than the set-up still
                                            // renders one wave, so every run adds samples.
+                                           // Without tickets, a pass whose units are all done
+                                           // ends before a stop is looked at: a stop after the
+                                           // last unit is no interruption.
+                                           if (!opt.next_ticket) {
+                                             while (next < waves && !wanted(first, next)) ++next;
+                                             if (next == waves) {
+                                               fc.stop();
+                                               return 0;
+                                             }
+                                           }
                                            bool cancelled = opt.cancel && opt.cancel->load();
                                            if (stop || cancelled || (issued && time_is_up())) {
                                              stop = true;
@@ -321,6 +337,40 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
 
 }  // namespace
 
+// The units already in the film when this run starts: none, or those of
+// the checkpoint's pieces (read here, or passed on by the process that
+// read them), and the time they took.
+CheckpointInfo start_checkpointing(const RenderOptions& opt, const std::string& fingerprint, Film& film) {
+  CheckpointInfo info;
+  info.fingerprint = fingerprint;
+  info.share = UnitShare{opt.share_index, opt.share_count};
+  if (opt.resume && opt.resume_reads) {
+    std::vector<std::string> pieces;
+    info = read_checkpoint_pieces(opt.checkpoint_path, fingerprint, film, pieces);
+    if (info.share.index != opt.share_index || info.share.count != opt.share_count)
+      throw InputError({opt.checkpoint_path, 0, 0},
+                       "checkpoint was made for part " + std::to_string(info.share.index + 1) + "/" +
+                           std::to_string(info.share.count) + ", this render is part " +
+                           std::to_string(opt.share_index + 1) + "/" + std::to_string(opt.share_count));
+    // The pieces read are in this film now: saved as this process's piece
+    // first, then the others removed, so that no moment has them twice (a
+    // resume skips a piece another holds entirely anyway). Before the other
+    // processes hear of it (sync_checkpoint), so none of their new pieces
+    // is taken for an old one.
+    const std::string own = own_checkpoint_piece(opt);
+    if (pieces.size() > 1 || pieces[0] != own) write_checkpoint(own, info, film);
+    std::error_code ec;
+    for (const std::string& piece : pieces)
+      if (piece != own) std::filesystem::remove(piece, ec);
+  } else if (!opt.resume && opt.resume_reads && !opt.checkpoint_path.empty()) {
+    // A fresh render: pieces of an older one must not join a later resume.
+    std::error_code ec;
+    for (const std::string& piece : checkpoint_pieces(opt.checkpoint_path)) std::filesystem::remove(piece, ec);
+  }
+  if (opt.sync_checkpoint && !opt.checkpoint_path.empty()) opt.sync_checkpoint(info.done, info.elapsed_seconds);
+  return info;
+}
+
 RenderResult render(const Scene& scene, const RenderOptions& opt) {
   const bool bidirectional = opt.integrator == "bdpt" || opt.integrator == "lt";
   if (opt.integrator != "path" && !bidirectional)
@@ -366,24 +416,14 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
   std::unique_ptr<RayDump> dump;
   if (!opt.dump_rays.empty()) dump = std::make_unique<RayDump>(opt.dump_rays);
   const std::string fingerprint = sequence_fingerprint(opt, width, height);
-  CheckpointInfo info;
-  info.fingerprint = fingerprint;
-  info.share = UnitShare{opt.share_index, opt.share_count};
-  if (opt.resume) {
-    info = read_checkpoint(opt.checkpoint_path, fingerprint, film);
-    if (info.share.index != opt.share_index || info.share.count != opt.share_count)
-      throw InputError({opt.checkpoint_path, 0, 0},
-                       "checkpoint was made for part " + std::to_string(info.share.index + 1) + "/" +
-                           std::to_string(info.share.count) + ", this render is part " +
-                           std::to_string(opt.share_index + 1) + "/" + std::to_string(opt.share_count));
-    res.resumed_samples = film.total_samples();
-  }
+  CheckpointInfo info = start_checkpointing(opt, fingerprint, film);
+  res.resumed_samples = film.total_samples();
   const double prior_seconds = info.elapsed_seconds;
   const auto start = Clock::now();
   Checkpointer checkpoints(opt, std::move(info), start);
   if (scene.textures.cache) scene.textures.cache->reset_lookup_stats(opt.collect_stats);
   std::atomic<uint64_t> done{res.resumed_samples};
-  bool interrupted = false;
+  bool interrupted = false, stopped = false;
   {
     const uint64_t total = uint64_t(width) * uint64_t(height) * (opt.time_limit_seconds > 0 ? 1 : uint64_t(opt.spp));
     ProgressReporter reporter(opt, start, done, total);
@@ -401,7 +441,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
       bs.sampler = opt.sampler;
       bs.planned_spp = planned_spp;
       if (opt.strategies) strategy_film.emplace(width, height, scene.filter);
-      run_passes(Bdpt(scene, light_sampler, bs), scene, opt, backend, counters, film, strategy_film ? &*strategy_film : nullptr,
+      stopped = run_passes(Bdpt(scene, light_sampler, bs), scene, opt, backend, counters, film, strategy_film ? &*strategy_film : nullptr,
                  done, res.stats, dump.get(), checkpoints);
     } else {
       PathTracerSettings ps;
@@ -412,17 +452,18 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
       ps.footprint_spp = scene.settings.spp;
       ps.sampler = opt.sampler;
       ps.planned_spp = planned_spp;
-      run_passes(PathTracer(scene, light_sampler, ps), scene, opt, backend, counters, film, nullptr, done, res.stats, dump.get(),
+      stopped = run_passes(PathTracer(scene, light_sampler, ps), scene, opt, backend, counters, film, nullptr, done, res.stats, dump.get(),
                  checkpoints);
     }
-    interrupted = opt.cancel && opt.cancel->load();
+    // A stop that came after the last unit left nothing undone.
+    interrupted = stopped && opt.cancel && opt.cancel->load();
   }
   if (checkpoints.enabled()) {
     if (interrupted) {
       checkpoints.write(film);
     } else {
       std::error_code ec;
-      std::filesystem::remove(opt.checkpoint_path, ec);  // done: nothing left to resume
+      std::filesystem::remove(checkpoints.own_path(), ec);  // done: nothing left to resume
     }
   }
   if (!opt.film_path.empty()) checkpoints.write_to(opt.film_path, film);
