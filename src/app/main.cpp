@@ -137,6 +137,13 @@ int finish_part(const RenderArgs& a, const lantern::RenderOptions& o, const lant
 }
 
 #ifdef LANTERN_HAVE_MPI
+int r_width(const lantern::RenderOptions& o, const lantern::Scene& s) {
+  return o.width > 0 ? o.width : lantern::scene_settings(s).width;
+}
+int r_height(const lantern::RenderOptions& o, const lantern::Scene& s) {
+  return o.height > 0 ? o.height : lantern::scene_settings(s).height;
+}
+
 nlohmann::json rank_report_json(const std::vector<lantern::MpiRender::RankReport>& reports) {
   nlohmann::json ranks = nlohmann::json::array();
   for (const auto& r : reports)
@@ -248,12 +255,18 @@ int run_render(const RenderArgs& a) {
     o.resume = a.resume;
     o.checkpoint_key = scene_key(a.scene, scene_info(*scene));
   }
-  if (!a.quiet && writes && isatty(STDERR_FILENO)) {
-    o.progress = [](const RenderProgress& p) {
+  // On a terminal, a line rewritten in place. Under mpirun the output goes
+  // through pipes to the job's log: there rank 0 writes a whole line every
+  // ten seconds instead.
+  const bool tty = isatty(STDERR_FILENO), logged = g_ranks > 1;
+  if (!a.quiet && writes && (tty || logged)) {
+    o.progress = [tty, last = -1e9](const RenderProgress& p) mutable {
+      if (!tty && p.elapsed_seconds - last < 10.0 && p.fraction < 1.0) return;
+      last = p.elapsed_seconds;
       double eta = p.fraction > 0 ? p.elapsed_seconds * (1.0 - p.fraction) / p.fraction : 0.0;
       double rate = p.elapsed_seconds > 0 ? double(p.samples_done) / p.elapsed_seconds : 0.0;
-      std::fprintf(stderr, "\r[%5.1f%%] %s elapsed, ETA %s, %.2f Msamples/s   ", 100.0 * p.fraction,
-                   hms(p.elapsed_seconds).c_str(), hms(eta).c_str(), rate * 1e-6);
+      std::fprintf(stderr, "%s[%5.1f%%] %s elapsed, ETA %s, %.2f Msamples/s%s", tty ? "\r" : "", 100.0 * p.fraction,
+                   hms(p.elapsed_seconds).c_str(), hms(eta).c_str(), rate * 1e-6, tty ? "   " : "\n");
       std::fflush(stderr);
     };
   }
@@ -270,7 +283,20 @@ int run_render(const RenderArgs& a) {
   {
 #ifdef LANTERN_HAVE_MPI
     std::optional<MpiRender> ranks;
-    if (g_mpi && g_ranks > 1) ranks.emplace(*g_mpi, o);
+    if (g_mpi && g_ranks > 1) {
+      ranks.emplace(*g_mpi, o);
+      if (g_rank != 0) {
+        o.progress = [&ranks](const RenderProgress& p) { ranks->note_local_samples(p.samples_done); };
+      } else if (o.progress) {
+        // One line for the job: the other ranks' samples added to ours.
+        const double total = double(r_width(o, *scene)) * r_height(o, *scene) * std::max(o.spp, 1);
+        o.progress = [&ranks, total, show = o.progress, timed = o.time_limit_seconds > 0](RenderProgress p) {
+          p.samples_done += ranks->remote_samples();
+          if (!timed) p.fraction = std::min(1.0, double(p.samples_done) / total);
+          show(p);
+        };
+      }
+    }
 #endif
     {
       TraceSpan span(timeline ? &timeline->main() : nullptr, "render", TraceCategory::Render);
@@ -280,7 +306,7 @@ int run_render(const RenderArgs& a) {
     if (ranks) rank_stats = rank_report_json(ranks->gather(r.stats.seconds));
 #endif
   }
-  if (o.progress) std::fprintf(stderr, "\n");
+  if (o.progress && isatty(STDERR_FILENO)) std::fprintf(stderr, "\n");
   if (!writes) return r.interrupted ? 130 : 0;  // rank 0 has the image
   if (!a.part.empty()) return finish_part(a, o, r, timeline.get());
 

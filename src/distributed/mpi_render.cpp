@@ -68,7 +68,8 @@ void MpiSession::abort_all(int code) {
   std::abort();  // MPI_Abort does not return
 }
 
-MpiRender::MpiRender(const MpiSession& session, RenderOptions& o) : session_(session) {
+MpiRender::MpiRender(const MpiSession& session, RenderOptions& o)
+    : session_(session), remote_(session.rank() == 0 ? size_t(session.size()) : 0) {
   if (session_.size() == 1) return;  // one rank: a plain render
   o.next_ticket = [this] { return next_ticket(); };
   o.reduce_film = [this](Film& film, UnitSet& done) { reduce(film, done); };
@@ -107,8 +108,8 @@ uint64_t MpiRender::next_ticket() {
 }
 
 void MpiRender::claim() {
-  static const char byte = 0;
-  check(MPI_Send(&byte, 1, MPI_CHAR, 0, kClaimTag, MPI_COMM_WORLD), "claim");
+  claim_samples_ = local_samples_;
+  check(MPI_Send(&claim_samples_, 1, MPI_UINT64_T, 0, kClaimTag, MPI_COMM_WORLD), "claim");
   check(MPI_Irecv(&claimed_first_, 1, MPI_UINT64_T, 0, kTicketTag, MPI_COMM_WORLD, &claim_reply_), "ticket");
   claim_pending_ = true;
 }
@@ -125,8 +126,9 @@ void MpiRender::serve() {
       std::this_thread::sleep_for(std::chrono::microseconds(250));
       continue;
     }
-    char byte = 0;
-    MPI_Recv(&byte, 1, MPI_CHAR, status.MPI_SOURCE, status.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    uint64_t samples = 0;
+    MPI_Recv(&samples, 1, MPI_UINT64_T, status.MPI_SOURCE, status.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    remote_[size_t(status.MPI_SOURCE)] = samples;
     if (status.MPI_TAG == kDoneTag) {
       ++done;
     } else {
@@ -144,8 +146,8 @@ void MpiRender::finish_scheduling() {
   } else {
     if (claim_pending_) check(MPI_Wait(&claim_reply_, MPI_STATUS_IGNORE), "ticket");  // a run left unused
     claim_pending_ = false;
-    const char byte = 0;
-    check(MPI_Send(&byte, 1, MPI_CHAR, 0, kDoneTag, MPI_COMM_WORLD), "done");
+    const uint64_t samples = local_samples_;
+    check(MPI_Send(&samples, 1, MPI_UINT64_T, 0, kDoneTag, MPI_COMM_WORLD), "done");
   }
 }
 
@@ -175,6 +177,12 @@ void MpiRender::reduce(Film& film, UnitSet&) {
   report_.reduce_bytes =
       double((b.values * (b.splats ? 2 : 1)) * sizeof(unsigned __int128) + (b.values / 3) * sizeof(uint32_t) + 16);
   report_.reduce_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+uint64_t MpiRender::remote_samples() const {
+  uint64_t sum = 0;
+  for (const auto& r : remote_) sum += r.load();
+  return sum;
 }
 
 // Rank 0's units done and time spent, to every rank (and a barrier: rank 0

@@ -54,6 +54,11 @@ class MpiRender {
   MpiRender(const MpiRender&) = delete;
   MpiRender& operator=(const MpiRender&) = delete;
 
+  // One progress line for all ranks: the other ranks report their samples
+  // with each claim for tickets, and rank 0 adds them to its own.
+  void note_local_samples(uint64_t samples) { local_samples_ = samples; }
+  uint64_t remote_samples() const;
+
   // What one rank measured. Idle: waiting for tickets, and at the end for
   // the slowest rank; communication: the film reduction after that.
   struct RankReport {
@@ -74,6 +79,9 @@ class MpiRender {
 
   const MpiSession& session_;
   std::atomic<uint64_t> counter_{0};  // rank 0: the next ticket
+  std::atomic<uint64_t> local_samples_{0};
+  std::vector<std::atomic<uint64_t>> remote_;  // rank 0: each rank's last report
+  uint64_t claim_samples_ = 0;  // the value a pending claim sends
   uint64_t batch_first_ = 0, batch_left_ = 0;  // this rank's run of tickets
   uint64_t claimed_first_ = 0;                  // the next run, once claim_reply_ completes
   bool claim_pending_ = false;
