@@ -155,6 +155,7 @@ nlohmann::json rank_report_json(const std::vector<lantern::MpiRender::RankReport
                      {"ticket_wait_seconds", r.ticket_seconds},
                      {"end_wait_seconds", r.end_wait_seconds},
                      {"communication_seconds", r.reduce_seconds},
+                     {"rays", r.rays[0] + r.rays[1] + r.rays[2] + r.rays[3]},
                      {"communication_bytes", r.reduce_bytes}});
   return {{"ranks", reports.size()}, {"per_rank", ranks}};
 }
@@ -303,7 +304,20 @@ int run_render(const RenderArgs& a) {
       r = render(*scene, o);
     }
 #ifdef LANTERN_HAVE_MPI
-    if (ranks) rank_stats = rank_report_json(ranks->gather(r.stats.seconds));
+    if (ranks) {
+      // The job's rays in the summary (samples are the reduced film's).
+      const auto reports = ranks->gather(r.stats);
+      if (!reports.empty()) {
+        uint64_t rays[4] = {0, 0, 0, 0};
+        for (const auto& rep : reports)
+          for (int k = 0; k < 4; ++k) rays[k] += uint64_t(rep.rays[k]);
+        r.stats.camera_rays = rays[0];
+        r.stats.extension_rays = rays[1];
+        r.stats.light_rays = rays[2];
+        r.stats.shadow_rays = rays[3];
+        rank_stats = rank_report_json(reports);
+      }
+    }
 #endif
   }
   if (o.progress && isatty(STDERR_FILENO)) std::fprintf(stderr, "\n");

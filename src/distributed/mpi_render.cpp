@@ -207,12 +207,17 @@ void MpiRender::sync_checkpoint(UnitSet& done, double& elapsed_seconds) {
   }
 }
 
-std::vector<MpiRender::RankReport> MpiRender::gather(double render_seconds) const {
-  static_assert(sizeof(RankReport) == 7 * sizeof(double));
+std::vector<MpiRender::RankReport> MpiRender::gather(const RenderStats& stats) const {
+  constexpr int kDoubles = int(sizeof(RankReport) / sizeof(double));
+  static_assert(sizeof(RankReport) == 11 * sizeof(double));
   RankReport mine = report_;
-  mine.render_seconds = render_seconds;
+  mine.render_seconds = stats.seconds;
+  mine.rays[0] = double(stats.camera_rays);
+  mine.rays[1] = double(stats.extension_rays);
+  mine.rays[2] = double(stats.light_rays);
+  mine.rays[3] = double(stats.shadow_rays);
   std::vector<RankReport> all(session_.rank() == 0 ? size_t(session_.size()) : 0);
-  check(MPI_Gather(&mine, 7, MPI_DOUBLE, all.data(), 7, MPI_DOUBLE, 0, MPI_COMM_WORLD), "gather reports");
+  check(MPI_Gather(&mine, kDoubles, MPI_DOUBLE, all.data(), kDoubles, MPI_DOUBLE, 0, MPI_COMM_WORLD), "gather reports");
   return all;
 }
 

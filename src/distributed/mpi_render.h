@@ -64,10 +64,11 @@ class MpiRender {
   struct RankReport {
     double units = 0, samples = 0, render_seconds = 0, ticket_seconds = 0, end_wait_seconds = 0,
            reduce_seconds = 0, reduce_bytes = 0;
+    double rays[4] = {0, 0, 0, 0};  // camera, eye extension, light extension, shadow/connection
   };
   // Collective: every rank calls it after render(); rank 0 gets every
   // rank's report (in rank order), the others an empty list.
-  std::vector<RankReport> gather(double render_seconds) const;
+  std::vector<RankReport> gather(const RenderStats& stats) const;
 
  private:
   uint64_t next_ticket();
