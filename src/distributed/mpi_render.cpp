@@ -76,7 +76,14 @@ MpiRender::MpiRender(const MpiSession& session, RenderOptions& o)
   o.sync_checkpoint = [this](UnitSet& done, double& elapsed) { sync_checkpoint(done, elapsed); };
   o.checkpoint_rank = session_.rank();
   o.resume_reads = session_.rank() == 0;
-  if (session_.rank() == 0) scheduler_ = std::thread([this] { serve(); });
+}
+
+// Rank 0's scheduler starts with its first ticket, or at the end if it
+// takes none: after sync_checkpoint, so that the main thread's collective
+// calls and the scheduler's never overlap (MPI_THREAD_SERIALIZED). Claims
+// sent before wait in MPI's queue.
+void MpiRender::start_scheduler() {
+  if (!scheduler_.joinable()) scheduler_ = std::thread([this] { serve(); });
 }
 
 MpiRender::~MpiRender() {
@@ -88,6 +95,7 @@ uint64_t MpiRender::next_ticket() {
   ++report_.units;
   if (batch_left_ == 0) {
     if (session_.rank() == 0) {
+      start_scheduler();
       batch_first_ = counter_.fetch_add(kBatch);
     } else {
       if (!claim_pending_) claim();
@@ -142,7 +150,8 @@ void MpiRender::finish_scheduling() {
   if (finished_) return;
   finished_ = true;
   if (session_.rank() == 0) {
-    if (scheduler_.joinable()) scheduler_.join();
+    start_scheduler();  // it serves the others until they are done
+    scheduler_.join();
   } else {
     if (claim_pending_) check(MPI_Wait(&claim_reply_, MPI_STATUS_IGNORE), "ticket");  // a run left unused
     claim_pending_ = false;

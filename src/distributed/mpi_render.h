@@ -74,6 +74,7 @@ class MpiRender {
   uint64_t next_ticket();
   void claim();  // asks rank 0 for a run of tickets, answer pending
   void serve();  // rank 0's scheduler thread
+  void start_scheduler();
   void finish_scheduling();
   void reduce(Film& film, UnitSet& done);
   void sync_checkpoint(UnitSet& done, double& elapsed_seconds);

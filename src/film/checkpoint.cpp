@@ -178,11 +178,12 @@ CheckpointInfo read_checkpoint_pieces(const std::string& path, const std::string
                                       std::vector<std::string>& pieces) {
   pieces = checkpoint_pieces(path);
   if (pieces.empty()) throw InputError({path, 0, 0}, "cannot open checkpoint (nothing to resume)");
+  // Two readings, so that memory holds two films, not one per piece: the
+  // units of every piece first, then the sums of those that count.
   std::vector<CheckpointInfo> infos;
-  std::vector<Film> films;
   for (const std::string& piece : pieces) {
-    films.emplace_back(0, 0, PixelFilter{});
-    infos.push_back(read_checkpoint(piece, expected, films.back()));
+    Film scratch(0, 0, PixelFilter{});
+    infos.push_back(read_checkpoint(piece, expected, scratch));
   }
   CheckpointInfo all;
   bool first = true;
@@ -209,7 +210,9 @@ CheckpointInfo read_checkpoint_pieces(const std::string& path, const std::string
       all.done.add(infos[i].done);
       all.elapsed_seconds = std::max(all.elapsed_seconds, infos[i].elapsed_seconds);
     }
-    film.add(films[i]);
+    Film sums(0, 0, PixelFilter{});
+    read_checkpoint(pieces[i], expected, sums);
+    film.add(sums);
   }
   return all;
 }

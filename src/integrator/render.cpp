@@ -225,7 +225,8 @@ class TicketCursor {
 };
 
 // Runs one integrator over all passes. Waves flow through a pipeline whose
-// last stage merges their output into the film serially and in wave order.
+// last stage adds their output to the film, one wave at a time (in wave
+// order, though the fixed-point sums would not mind another).
 template <class Tracer>
 bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& opt, RayBackend backend,
                 RayCounters& counters, Film& film, StrategyFilm* strategies, std::atomic<uint64_t>& done, RenderStats& stats, RayDump* dump, Checkpointer& checkpoints) {
@@ -335,8 +336,6 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
   return stop;
 }
 
-}  // namespace
-
 // The units already in the film when this run starts: none, or those of
 // the checkpoint's pieces (read here, or passed on by the process that
 // read them), and the time they took.
@@ -370,6 +369,8 @@ CheckpointInfo start_checkpointing(const RenderOptions& opt, const std::string& 
   if (opt.sync_checkpoint && !opt.checkpoint_path.empty()) opt.sync_checkpoint(info.done, info.elapsed_seconds);
   return info;
 }
+
+}  // namespace
 
 RenderResult render(const Scene& scene, const RenderOptions& opt) {
   const bool bidirectional = opt.integrator == "bdpt" || opt.integrator == "lt";
