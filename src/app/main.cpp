@@ -322,7 +322,17 @@ int run_render(const RenderArgs& a) {
   }
   if (o.progress && isatty(STDERR_FILENO)) std::fprintf(stderr, "\n");
   if (!writes) return r.interrupted ? 130 : 0;  // rank 0 has the image
-  if (!a.part.empty()) return finish_part(a, o, r, timeline.get());
+  auto write_stats = [&] {
+    RunInfo run{a.scene, o.integrator, out, o.ray_backend, r.image.width, r.image.height, o.wave_size, load_s,
+                scene_info(*scene), scene_settings(*scene).sampler, o.sampler, scene_settings(*scene).light_sampler};
+    nlohmann::json j = stats_json(run, r.stats);
+    if (!rank_stats.is_null()) j["mpi"] = rank_stats;
+    write_text_atomically(a.stats, j.dump(2) + "\n");
+  };
+  if (!a.part.empty()) {
+    if (!a.stats.empty()) write_stats();
+    return finish_part(a, o, r, timeline.get());
+  }
 
   ImageMetadata md = {{"lantern:integrator", o.integrator},
                       {"lantern:spp", std::to_string(r.stats.min_spp)},
@@ -365,13 +375,7 @@ int run_render(const RenderArgs& a) {
   if (r.stats.texture_failed_lookups > 0)
     std::fprintf(stderr, "warning: %lld texture lookups failed (a texture file could not be read during the render); they read as 0\n",
                  (long long)r.stats.texture_failed_lookups);
-  if (!a.stats.empty()) {
-    RunInfo run{a.scene, o.integrator, out, o.ray_backend, r.image.width, r.image.height, o.wave_size, load_s,
-                scene_info(*scene), scene_settings(*scene).sampler, o.sampler, scene_settings(*scene).light_sampler};
-    nlohmann::json j = stats_json(run, r.stats);
-    if (!rank_stats.is_null()) j["mpi"] = rank_stats;
-    write_text_atomically(a.stats, j.dump(2) + "\n");
-  }
+  if (!a.stats.empty()) write_stats();
   if (r.interrupted) {
     std::fprintf(stderr, "interrupted: wrote the %llu samples rendered so far to %s\n",
                  (unsigned long long)r.stats.samples, out.c_str());
