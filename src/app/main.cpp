@@ -250,7 +250,10 @@ int run_render(const RenderArgs& a) {
     o.share_count = uint32_t(part_n);
     o.film_path = out;
   }
-  if (a.checkpoint > 0 || a.resume) {
+  // Across ranks always: a job ended from outside (a batch system's time
+  // limit, a rank lost, Ctrl-C) leaves every surviving rank's work in its
+  // piece of the checkpoint, for --resume; a job that completes leaves none.
+  if (a.checkpoint > 0 || a.resume || g_ranks > 1) {
     o.checkpoint_path = a.checkpoint_file.empty() ? out + ".ckpt" : a.checkpoint_file;
     o.checkpoint_seconds = a.checkpoint;
     o.resume = a.resume;
