@@ -1,5 +1,6 @@
-# mpirun end to end: 1, 2 and 3 ranks of one thread each give the image a
-# single process gives, bit for bit, for path, bdpt and lt; a rank that fails
+# mpirun end to end: 1, 2 and 3 ranks of one thread each, and 2 ranks of two
+# threads, give the image a single process gives, bit for bit, for path,
+# bdpt and lt; a rank that fails
 # ends the job with its message and a non-zero exit, in bounded time.
 set(ENV{OMPI_ALLOW_RUN_AS_ROOT} 1)
 set(ENV{OMPI_ALLOW_RUN_AS_ROOT_CONFIRM} 1)
@@ -18,14 +19,16 @@ foreach(integrator path bdpt lt)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "single process ${integrator}: exit ${rc}\n${err}")
   endif()
-  foreach(ranks 1 2 3)
+  foreach(layout "1;1" "2;1" "3;1" "2;2")  # ranks; threads per rank
+    list(GET layout 0 ranks)
+    list(GET layout 1 threads)
     file(REMOVE ${OUT}/mpi-ranks.exr)
-    execute_process(COMMAND ${mpirun} -np ${ranks} ${LANTERN} ${base} --integrator ${integrator} --threads 1
+    execute_process(COMMAND ${mpirun} -np ${ranks} ${LANTERN} ${base} --integrator ${integrator} --threads ${threads}
                             -o ${OUT}/mpi-ranks.exr
                     RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
     execute_process(COMMAND ${LANTERN} compare ${OUT}/mpi-ranks.exr ${OUT}/mpi-single.exr OUTPUT_VARIABLE cmp)
     if(NOT rc EQUAL 0 OR NOT cmp MATCHES "^mse 0\n")
-      message(FATAL_ERROR "${ranks} ranks, ${integrator}: exit ${rc}, against one process:\n${cmp}${out}${err}")
+      message(FATAL_ERROR "${ranks} ranks of ${threads} threads, ${integrator}: exit ${rc}, against one process:\n${cmp}${out}${err}")
     endif()
   endforeach()
 endforeach()

@@ -127,7 +127,8 @@ CheckpointInfo read_file(const std::string& path, const std::string* expected, F
   info.passes = r.get<uint64_t>();
   info.waves = r.get<uint32_t>();
   info.elapsed_seconds = r.get<double>();
-  if (info.share.count == 0 || info.share.index >= info.share.count || !std::isfinite(info.elapsed_seconds))
+  if (info.share.count == 0 || info.share.count > 1000000 || info.share.index >= info.share.count ||
+      !std::isfinite(info.elapsed_seconds))
     throw InputError({path, 0, 0}, "file is damaged (share or time)");
   const uint32_t runs = r.get<uint32_t>();
   if (runs > (1u << 26)) throw InputError({path, 0, 0}, "file is damaged (unit list length)");

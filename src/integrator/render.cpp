@@ -187,6 +187,11 @@ void trace_wave(const Tracer& tracer, const WaveDesc& wave, State& state, WaveOu
   track->end_wave();
 }
 
+// A wave in the pipeline: its number in the pass and its output slot.
+struct WaveItem {
+  uint32_t wave, slot;  // trivial: oneTBB carries it in place
+};
+
 // Walks the units this render wants, pass by pass, stopping at those its
 // tickets name (all of them without a ticket source).
 class TicketCursor {
@@ -243,10 +248,14 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
   // Units: waves numbered through the whole render (passes one after
   // another). This run renders those of its share that the film lacks.
   auto unit_of = [&](uint32_t first, uint32_t wi) { return uint64_t(first / pass_spp) * waves + wi; };
+  // The units of the film when this run began: the serial merge stage adds
+  // to the live set while the input stage, on another thread, reads this
+  // copy (units of this run are never offered twice: the walk only moves on).
   const UnitShare share{opt.share_index, opt.share_count};
   UnitSet& merged = checkpoints.done();
+  const UnitSet done_before = merged;
   auto wanted = [&](uint32_t first, uint32_t wi) {
-    return share.holds(first / pass_spp, wi) && !merged.contains(unit_of(first, wi));
+    return share.holds(first / pass_spp, wi) && !done_before.contains(unit_of(first, wi));
   };
   tbb::enumerable_thread_specific<std::unique_ptr<State, void (*)(State*)>> states([&] {
     auto state = tracer.make_wave_state(capacity, RayStream(scene.accel->handle(), backend, &counters));
@@ -257,13 +266,17 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
     return state;
   });
   double film_seconds = 0.0;
-  // At most `tokens` waves are in flight and they retire in order, so wave
-  // i's output slot (i mod tokens) is free again when wave i + tokens starts.
+  // At most `tokens` waves are in flight and they retire in the order they
+  // were issued, so the k-th wave issued can take slot k mod tokens: the
+  // wave that had it has retired. (Not the wave's own number mod tokens:
+  // with units skipped, for a share, a resume or tickets, two waves in
+  // flight could have the same.)
   const size_t tokens = 2 * size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
   std::vector<WaveOutput> outputs(tokens);
 
   std::atomic<bool> stop{false};
   bool issued = false;  // a wave was started in this run
+  uint64_t issued_items = 0;
   TicketCursor tickets(opt.next_ticket);
   auto time_is_up = [&] { return timed && checkpoints.elapsed() >= opt.time_limit_seconds; };
   for (uint32_t first = 0; first < total_spp && !stop; first += pass_spp) {
@@ -271,8 +284,8 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
     uint32_t next = 0;
     tbb::parallel_pipeline(
         tokens,
-        tbb::make_filter<void, uint32_t>(tbb::filter_mode::serial_in_order,
-                                         [&](tbb::flow_control& fc) -> uint32_t {
+        tbb::make_filter<void, WaveItem>(tbb::filter_mode::serial_in_order,
+                                         [&](tbb::flow_control& fc) -> WaveItem {
                                            // A time budget shorter than the set-up still
                                            // renders one wave, so every run adds samples.
                                            // Without tickets, a pass whose units are all done
@@ -282,39 +295,44 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
                                              while (next < waves && !wanted(first, next)) ++next;
                                              if (next == waves) {
                                                fc.stop();
-                                               return 0;
+                                               return {};
                                              }
                                            }
                                            bool cancelled = opt.cancel && opt.cancel->load();
                                            if (stop || cancelled || (issued && time_is_up())) {
                                              stop = true;
                                              fc.stop();
-                                             return 0;
+                                             return {};
                                            }
                                            if (!tickets.next(first, next, waves, wanted)) {
                                              if (tickets.exhausted()) stop = true;
                                              fc.stop();  // this pass has no unit left for us
-                                             return 0;
+                                             return {};
                                            }
                                            issued = true;
-                                           return next++;
+                                           // Slots by issue order: items retire in that order and
+                                           // at most `tokens` are in flight, so a slot is free again
+                                           // when it comes round (wave numbers may skip).
+                                           return WaveItem{next++, uint32_t(issued_items++ % tokens)};
                                          }) &
-            tbb::make_filter<uint32_t, uint32_t>(tbb::filter_mode::parallel,
-                                                 [&](uint32_t wi) {
+            tbb::make_filter<WaveItem, WaveItem>(tbb::filter_mode::parallel,
+                                                 [&](WaveItem item) {
+                                                   const uint32_t wi = item.wave;
                                                    WaveDesc wave{order.data() + size_t(wi) * pixels_per_wave,
                                                                  uint32_t(std::min<size_t>(
                                                                      pixels_per_wave,
                                                                      order.size() - size_t(wi) * pixels_per_wave)),
                                                                  first, samples};
-                                                   WaveOutput& out = outputs[wi % tokens];
+                                                   WaveOutput& out = outputs[item.slot];
                                                    out.clear();
                                                    trace_wave(tracer, wave, *states.local(), out, opt.timeline,
                                                               int64_t(unit_of(first, wi)));
                                                    film.prepare(out);
-                                                   return wi;
+                                                   return item;
                                                  }) &
-            tbb::make_filter<uint32_t, void>(tbb::filter_mode::serial_in_order, [&](uint32_t wi) {
-              const WaveOutput& out = outputs[wi % tokens];
+            tbb::make_filter<WaveItem, void>(tbb::filter_mode::serial_in_order, [&](WaveItem item) {
+              const uint32_t wi = item.wave;
+              const WaveOutput& out = outputs[item.slot];
               TraceBuffer* track = opt.timeline ? &opt.timeline->pipeline() : nullptr;
               if (track) track->begin_wave(int64_t(unit_of(first, wi)));
               auto t0 = opt.collect_stats || track ? Clock::now() : Clock::time_point();
