@@ -21,6 +21,7 @@ struct RenderProgress {
   double fraction = 0.0;  // of the sample budget, or of the time budget
   double elapsed_seconds = 0.0;
   uint64_t samples_done = 0;
+  uint64_t samples_total = 0;  // the sample budget (with --time: one pass)
 };
 
 struct RenderOptions {
@@ -82,9 +83,9 @@ struct RenderOptions {
   // is not called once the render is cancelled or out of time, so every
   // ticket handed out is rendered. Unset: every wanted unit in turn.
   std::function<uint64_t()> next_ticket;
-  // Called once at the end, with the film and its units, before the image
-  // is made from the film: the place to add other processes' films into it.
-  std::function<void(Film&, UnitSet&)> reduce_film;
+  // Called once at the end, with the film, before the image is made from
+  // it: the place to add other processes' films into it.
+  std::function<void(Film&)> reduce_film;
 };
 
 struct RenderStats {

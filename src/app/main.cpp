@@ -137,13 +137,6 @@ int finish_part(const RenderArgs& a, const lantern::RenderOptions& o, const lant
 }
 
 #ifdef LANTERN_HAVE_MPI
-int r_width(const lantern::RenderOptions& o, const lantern::Scene& s) {
-  return o.width > 0 ? o.width : lantern::scene_settings(s).width;
-}
-int r_height(const lantern::RenderOptions& o, const lantern::Scene& s) {
-  return o.height > 0 ? o.height : lantern::scene_settings(s).height;
-}
-
 nlohmann::json rank_report_json(const std::vector<lantern::MpiRender::RankReport>& reports) {
   nlohmann::json ranks = nlohmann::json::array();
   for (const auto& r : reports)
@@ -293,10 +286,9 @@ int run_render(const RenderArgs& a) {
         o.progress = [&ranks](const RenderProgress& p) { ranks->note_local_samples(p.samples_done); };
       } else if (o.progress) {
         // One line for the job: the other ranks' samples added to ours.
-        const double total = double(r_width(o, *scene)) * r_height(o, *scene) * std::max(o.spp, 1);
-        o.progress = [&ranks, total, show = o.progress, timed = o.time_limit_seconds > 0](RenderProgress p) {
+        o.progress = [&ranks, show = o.progress, timed = o.time_limit_seconds > 0](RenderProgress p) {
           p.samples_done += ranks->remote_samples();
-          if (!timed) p.fraction = std::min(1.0, double(p.samples_done) / total);
+          if (!timed) p.fraction = std::min(1.0, double(p.samples_done) / double(std::max<uint64_t>(p.samples_total, 1)));
           show(p);
         };
       }

@@ -72,7 +72,7 @@ MpiRender::MpiRender(const MpiSession& session, RenderOptions& o)
     : session_(session), remote_(session.rank() == 0 ? size_t(session.size()) : 0) {
   if (session_.size() == 1) return;  // one rank: a plain render
   o.next_ticket = [this] { return next_ticket(); };
-  o.reduce_film = [this](Film& film, UnitSet& done) { reduce(film, done); };
+  o.reduce_film = [this](Film& film) { reduce(film); };
   o.sync_checkpoint = [this](UnitSet& done, double& elapsed) { sync_checkpoint(done, elapsed); };
   o.checkpoint_rank = session_.rank();
   o.resume_reads = session_.rank() == 0;
@@ -160,7 +160,7 @@ void MpiRender::finish_scheduling() {
   }
 }
 
-void MpiRender::reduce(Film& film, UnitSet&) {
+void MpiRender::reduce(Film& film) {
   report_.samples = double(film.total_samples());
   const auto wait = Clock::now();
   finish_scheduling();

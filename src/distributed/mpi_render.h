@@ -76,7 +76,7 @@ class MpiRender {
   void serve();  // rank 0's scheduler thread
   void start_scheduler();
   void finish_scheduling();
-  void reduce(Film& film, UnitSet& done);
+  void reduce(Film& film);
   void sync_checkpoint(UnitSet& done, double& elapsed_seconds);
 
   const MpiSession& session_;

@@ -58,6 +58,7 @@ class ProgressReporter {
     RenderProgress p;
     p.elapsed_seconds = std::chrono::duration<double>(Clock::now() - start_).count();
     p.samples_done = done_.load();
+    p.samples_total = total_;
     p.fraction = opts_.time_limit_seconds > 0 ? std::min(1.0, p.elapsed_seconds / opts_.time_limit_seconds)
                                               : double(p.samples_done) / double(std::max<uint64_t>(total_, 1));
     return p;
@@ -288,15 +289,14 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
                                          [&](tbb::flow_control& fc) -> WaveItem {
                                            // A time budget shorter than the set-up still
                                            // renders one wave, so every run adds samples.
-                                           // Without tickets, a pass whose units are all done
-                                           // ends before a stop is looked at: a stop after the
-                                           // last unit is no interruption.
-                                           if (!opt.next_ticket) {
-                                             while (next < waves && !wanted(first, next)) ++next;
-                                             if (next == waves) {
-                                               fc.stop();
-                                               return {};
-                                             }
+                                           // Without tickets the next unit is found before a
+                                           // stop is looked at, so a stop after the last unit is
+                                           // no interruption; with them, after, so that no
+                                           // ticket is taken that will not be rendered.
+                                           const bool ticketed = bool(opt.next_ticket);
+                                           if (!ticketed && !tickets.next(first, next, waves, wanted)) {
+                                             fc.stop();  // this pass is done
+                                             return {};
                                            }
                                            bool cancelled = opt.cancel && opt.cancel->load();
                                            if (stop || cancelled || (issued && time_is_up())) {
@@ -304,7 +304,7 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
                                              fc.stop();
                                              return {};
                                            }
-                                           if (!tickets.next(first, next, waves, wanted)) {
+                                           if (ticketed && !tickets.next(first, next, waves, wanted)) {
                                              if (tickets.exhausted()) stop = true;
                                              fc.stop();  // this pass has no unit left for us
                                              return {};
@@ -486,7 +486,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
     }
   }
   if (!opt.film_path.empty()) checkpoints.write_to(opt.film_path, film);
-  if (opt.reduce_film) opt.reduce_film(film, checkpoints.done());
+  if (opt.reduce_film) opt.reduce_film(film);
 
   res.image = film.resolve();
   if (strategy_film) res.strategies = strategy_film->resolve(film);
