@@ -87,6 +87,7 @@ void RayStream::intersect(RayBatch& b, RayKind kind) {
     switch (kind) {
       case RayKind::Camera: counters_->camera += b.count; break;
       case RayKind::LightExtension: counters_->light += b.count; break;
+      case RayKind::Shadow: counters_->shadow += b.count; break;  // transmittance through media
       default: counters_->extension += b.count; break;
     }
   }

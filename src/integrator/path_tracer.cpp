@@ -31,7 +31,9 @@ PathTracer::PathTracer(const Scene& scene, const LightSampler& light_sampler, co
 }
 
 std::unique_ptr<PathWave, void (*)(PathWave*)> PathTracer::make_wave_state(uint32_t capacity, RayStream stream) const {
-  return {new PathWave(capacity, std::move(stream)), [](PathWave* w) { delete w; }};
+  std::unique_ptr<PathWave, void (*)(PathWave*)> w{new PathWave(capacity, std::move(stream)), [](PathWave* p) { delete p; }};
+  if (!scene_.media.empty()) w->resize_media(capacity);
+  return w;
 }
 
 void PathTracer::generate_camera_rays(const WaveDesc& wave, PathWave& w) const {
@@ -55,6 +57,7 @@ void PathTracer::generate_camera_rays(const WaveDesc& wave, PathWave& w) const {
     w.active[slot] = slot;
     w.rays.push(r.o, r.d, 0.f, kInfinity);
   }
+  if (!scene_.media.empty()) std::fill(w.medium.begin(), w.medium.begin() + wave.size(), scene_.media.camera);
 }
 
 // Hit reconstruction, emission with MIS, maxdepth, and binning by material.
@@ -63,18 +66,37 @@ void PathTracer::surface_stage(PathWave& w) const {
   const ShapePools& shapes = scene_.shapes;
   const LightPools& lights = scene_.lights;
   const bool last = int(w.depth) == settings_.maxdepth;
+  const bool media = !scene_.media.empty();
+  if (media) w.scattered.clear();
   for (uint32_t i = 0; i < w.rays.count; ++i) {
     uint32_t slot = w.active[i];
     w.hits.alive[i] = 0;
     Vec3 d = glm::normalize(w.rays.direction(i));
     bool unweighted = w.prev_specular[slot] != 0;
+    // In a medium the BSDF strategy's density of what the ray reaches
+    // includes the probability of getting there: see next_event.
+    float prev_pdf = w.prev_pdf[slot];
+    if (media) {
+      const SegmentEnd end = w.ends.end[i];
+      w.beta[slot] *= w.ends.weight[i];
+      prev_pdf *= w.ends.fwd_density[i];
+      if (end == SegmentEnd::Absorbed) {
+        ++w.stats.eye_ends[size_t(PathEnd::Absorbed)];
+        continue;
+      }
+      if (end == SegmentEnd::Scatter) {
+        if (last) ++w.stats.eye_ends[size_t(PathEnd::MaxDepth)];
+        else w.scattered.push_back(i);
+        continue;
+      }
+    }
     if (!w.rays.hit(i)) {
       ++w.stats.eye_ends[size_t(PathEnd::Escaped)];
       if (!lights.infinite.empty()) {
         RGB Le = infinite_lights_Le(lights, scene_.textures, w.prev_p[slot], d);
         float weight = unweighted ? 1.f
-                                  : power_heuristic(w.prev_pdf[slot], infinite_lights_pdf(lights, scene_.textures,
-                                                                                          light_sampler_, w.prev_p[slot], d));
+                                  : power_heuristic(prev_pdf, infinite_lights_pdf(lights, scene_.textures,
+                                                                                  light_sampler_, w.prev_p[slot], d));
         w.L[slot] += w.beta[slot] * weight * Le;
       }
       continue;
@@ -86,7 +108,7 @@ void PathTracer::surface_stage(PathWave& w) const {
       RGB Le = area_light_Le(lights.area[light], scene_.textures, sp.ng, sp.uv, -d);
       if (!is_black(Le)) {
         float weight = unweighted ? 1.f
-                                  : power_heuristic(w.prev_pdf[slot],
+                                  : power_heuristic(prev_pdf,
                                                     area_light_pdf(lights, shapes, light_sampler_, light, w.prev_p[slot],
                                                                    w.prev_n[slot], sp.p, sp.ng));
         w.L[slot] += w.beta[slot] * weight * Le;
@@ -118,6 +140,12 @@ void next_event(const Scene& sc, const LightSampler& light_sampler, PathWave& w,
   float weight = ls->delta ? 1.f : power_heuristic(ls->pdf, bsdf.pdf(wo, wi, TransportMode::Radiance));
   RGB contrib = w.beta[slot] * f * ls->L * (weight / ls->pdf);
   Vec3 o = offset_ray_origin(w.hits.p[i], w.hits.ng[i], w.hits.error_scale[i], ls->wi);
+  if (!sc.media.empty()) {  // the weight waits for the transmittance (PathTracer::media_shadow_stage)
+    contrib = w.beta[slot] * f * ls->L / ls->pdf;
+    MediumHandle m = medium_after(sc, w.rays.geom_id[i], w.hits.ng[i], ls->wi, w.ends.medium[i]);
+    push_media_shadow_ray(w, slot, o, *ls, m, ls->delta ? 0.f : ls->pdf, bsdf.pdf(wo, wi, TransportMode::Radiance), contrib);
+    return;
+  }
   uint32_t r;
   if (ls->infinite) {
     r = w.shadow.push(o, ls->wi, 0.f, kInfinity);
@@ -180,6 +208,7 @@ void PathTracer::shade_stage(PathWave& w) const {
     w.prev_n[slot] = w.hits.ns[i];
     w.hits.next_o[i] = offset_ray_origin(w.hits.p[i], w.hits.ng[i], w.hits.error_scale[i], wi);
     w.hits.next_d[i] = wi;
+    if (!sc.media.empty()) w.medium[slot] = medium_after(sc, w.rays.geom_id[i], w.hits.ng[i], wi, w.ends.medium[i]);
   });
 }
 
@@ -198,8 +227,10 @@ void PathTracer::trace(const WaveDesc& wave, PathWave& w, WaveOutput& out) const
     generate_camera_rays(wave, w);
   }
   w.depth = 0;
+  const bool media = !scene_.media.empty();
   w.stream.intersect(w.rays, RayKind::Camera);
   for (;;) {
+    if (media) segment_stage(w, w.depth == 0 ? RayKind::Camera : RayKind::Extension);
     {
       StageTimer t(st, Stage::Surface);
       surface_stage(w);
@@ -207,11 +238,17 @@ void PathTracer::trace(const WaveDesc& wave, PathWave& w, WaveOutput& out) const
     {
       StageTimer t(st, Stage::Shade);
       shade_stage(w);
+      if (media) medium_scatter_stage(w);
     }
-    w.stream.occluded(w.shadow);
+    if (media) {
+      trace_transmittance(scene_, w.stream, w.shadow, w.shadow_medium, w.shadow_T, w.crossing);
+    } else {
+      w.stream.occluded(w.shadow);
+    }
     {
       StageTimer t(st, Stage::Accumulate);
-      shadow_stage(w);
+      if (media) media_shadow_stage(w);
+      else shadow_stage(w);
     }
     {
       StageTimer t(st, Stage::Shade);

@@ -41,6 +41,10 @@ class PathTracer {
   void surface_stage(PathWave& w) const;
   void shade_stage(PathWave& w) const;
   void shadow_stage(PathWave& w) const;
+  // Participating media (path_media.cpp).
+  void segment_stage(PathWave& w, RayKind kind) const;
+  void medium_scatter_stage(PathWave& w) const;
+  void media_shadow_stage(PathWave& w) const;
 
   const Scene& scene_;
   const LightSampler& light_sampler_;  // next-event estimation's choice of light

@@ -7,7 +7,9 @@
 
 #include "accel/ray_stream.h"
 #include "integrator/hit.h"
+#include "integrator/medium_events.h"
 #include "integrator/wave_stats.h"
+#include "light/lights.h"
 #include "material/material.h"
 #include "sampler/sampler.h"
 
@@ -36,14 +38,42 @@ struct PathWave {
   std::vector<uint32_t> shadow_slot;
   std::vector<RGB> shadow_contrib;
 
+  // Participating media (empty in a scene without them): per slot, the
+  // medium the path's ray travels in; per ray, the distance numbers, where
+  // the segments ended, and the rays that scattered in a medium; per shadow
+  // ray, its medium, transmittance, and the densities its MIS weight waits
+  // for (the transmittance enters the BSDF strategy's density).
+  std::vector<MediumHandle> medium, ray_medium;
+  std::vector<float> u_distance;
+  SegmentEnds ends;
+  std::vector<uint32_t> scattered;
+  std::vector<MediumHandle> shadow_medium;
+  std::vector<RGB> shadow_T;
+  std::vector<float> shadow_light_pdf, shadow_scatter_pdf;  // light_pdf 0: a delta light, weight 1
+  CrossingScratch crossing;
+
   RayStream stream;
   WaveStats stats;
+
+  void resize_media(uint32_t n) {
+    medium.resize(n);
+    ray_medium.resize(n);
+    u_distance.resize(n);
+    ends.resize(n);
+    scattered.reserve(n);
+    shadow_medium.resize(n);
+    shadow_T.resize(n);
+    shadow_light_pdf.resize(n);
+    shadow_scatter_pdf.resize(n);
+  }
 
   size_t memory_bytes() const {
     return vector_bytes(pixel) + vector_bytes(sampler) + vector_bytes(beta) + vector_bytes(L) + vector_bytes(prev_pdf) +
            vector_bytes(eta_scale) + vector_bytes(prev_p) + vector_bytes(prev_n) + vector_bytes(prev_specular) + vector_bytes(active) +
            rays.memory_bytes() + hits.memory_bytes() + shadow.memory_bytes() + vector_bytes(shadow_slot) +
-           vector_bytes(shadow_contrib);
+           vector_bytes(shadow_contrib) + vector_bytes(medium) + vector_bytes(ray_medium) + vector_bytes(u_distance) +
+           ends.memory_bytes() + vector_bytes(scattered) + vector_bytes(shadow_medium) + vector_bytes(shadow_T) +
+           vector_bytes(shadow_light_pdf) + vector_bytes(shadow_scatter_pdf) + crossing.memory_bytes();
   }
 
   void resize(uint32_t n) {
@@ -59,5 +89,24 @@ struct PathWave {
     shadow.reserve(n);
   }
 };
+
+// A shadow ray of a scene with media, from o towards light sample ls,
+// starting in medium m; its MIS weight is formed once its transmittance is
+// known (light_pdf 0: a delta light).
+inline void push_media_shadow_ray(PathWave& w, uint32_t slot, const Vec3& o, const LightSample& ls, MediumHandle m,
+                                  float light_pdf, float scatter_pdf, const RGB& unweighted) {
+  uint32_t r;
+  if (ls.infinite) {
+    r = w.shadow.push(o, ls.wi, 0.f, kInfinity);
+  } else {
+    Vec3 target = ls.n_light == Vec3(0.f) ? ls.p_light : offset_ray_origin(ls.p_light, ls.n_light, ls.error_scale, -ls.wi);
+    r = w.shadow.push(o, target - o, 0.f, 1.f);
+  }
+  w.shadow_slot[r] = slot;
+  w.shadow_contrib[r] = unweighted;
+  w.shadow_medium[r] = m;
+  w.shadow_light_pdf[r] = light_pdf;
+  w.shadow_scatter_pdf[r] = scatter_pdf;
+}
 
 }  // namespace lantern

@@ -11,6 +11,7 @@
 #include "math/frame.h"
 #include "light/intensity_profile.h"
 #include "light/portal.h"
+#include "medium/medium.h"
 #include "texture/texture.h"
 
 namespace lantern {
@@ -33,12 +34,14 @@ struct PointLight {
   Vec3 p;
   RGB I;
   int32_t profile = -1;  // goniometric and projection lights: index into LightPools::profiles
+  MediumHandle medium;   // where its light starts
 };
 struct SpotLight {
   Vec3 p;
   Frame frame;  // n = the cone's axis
   RGB I;
   float cos_falloff_start, cos_falloff_end;
+  MediumHandle medium;
 };
 struct DistantLight {
   Vec3 w;  // unit direction towards the light

@@ -37,4 +37,10 @@ inline constexpr uint32_t kLightBsdfComponent = 9;  // 1D
 inline constexpr uint32_t kLightBsdfDirection = 10;  // 2D
 inline constexpr uint32_t kLightRoulette = 12;      // 1D
 
+// Distance sampling in participating media: one number per segment of a
+// subpath (segment k leaves vertex k), eye and light interleaved. They
+// follow every vertex block a render can use (base = vertex(maxdepth + 2)),
+// so a scene without media reads exactly the dimensions it always did.
+inline constexpr uint32_t distance(uint32_t base, uint32_t segment, bool light) { return base + 2 * segment + (light ? 1 : 0); }
+
 }  // namespace lantern::dims

@@ -134,6 +134,8 @@ void SceneBuilder::integrator(const std::string& type, const ParamSet& ps) {
     scene_.settings.integrator = type;
   } else if (type == "lightpath") {
     scene_.settings.integrator = "lt";
+  } else if (type == "volpath") {  // pbrt's path tracer with media: Lantern's path tracer has them
+    scene_.settings.integrator = "path";
   } else {
     warn(ps.where, "integrator \"" + printable(type) + "\" is not available; using \"path\" (choose with --integrator)");
     scene_.settings.integrator = "path";
@@ -237,7 +239,7 @@ void SceneBuilder::add_mesh(TriangleMesh mesh, const GraphicsState& gs, const Pa
   uint32_t prims = uint32_t(mesh.triangles.size());
   ShapePools& s = scene_.shapes;
   s.meshes.push_back(std::move(mesh));
-  s.geometries.push_back({ShapeKind::Mesh, uint32_t(s.meshes.size() - 1), gs.material ? *gs.material : default_material(), -1});
+  s.geometries.push_back({ShapeKind::Mesh, uint32_t(s.meshes.size() - 1), gs.material ? *gs.material : default_material(), -1, -1, {}});
   note_geometry();
   add_area_lights(uint32_t(s.geometries.size() - 1), prims, gs);
 }
@@ -280,7 +282,7 @@ void SceneBuilder::add_ply_mesh(const std::string& path, const GraphicsState& gs
   }
   ShapePools& s = scene_.shapes;
   s.meshes.emplace_back();
-  s.geometries.push_back({ShapeKind::Mesh, uint32_t(s.meshes.size() - 1), gs.material ? *gs.material : default_material(), -1});
+  s.geometries.push_back({ShapeKind::Mesh, uint32_t(s.meshes.size() - 1), gs.material ? *gs.material : default_material(), -1, -1, {}});
   note_geometry();
   pending_.push_back({uint32_t(s.meshes.size() - 1), uint32_t(s.geometries.size() - 1), path, Mat4(gs.render_from_object),
                       gs.reverse_orientation, ps});
@@ -343,14 +345,19 @@ void SceneBuilder::count_triangles() {
 void SceneBuilder::shape(const std::string& type, const ParamSet& ps, const GraphicsState& gs, const std::string& base_dir) {
   const size_t before = scene_.shapes.geometries.size();
   add_shape(type, ps, gs, base_dir);
+  assign_media(before, gs);
   // pbrt's "alpha": a float or a float texture; 1 (the default) is opaque.
-  // A shape of "interface" material has no surface: with media ignored, it
-  // is cut out entirely.
+  // A shape of "interface" material has no surface: unless it bounds a
+  // medium (integrator/medium_*.h cross it), it is cut out entirely.
   TextureRef alpha = float_texture(ps, "alpha", 1.f);
   const bool interface = gs.material && gs.material->kind() == MaterialKind::Interface;
+  if (gs.area_light && interface) ps.fail("an emitting shape cannot have the \"interface\" material");
+  if (interface && medium_interface(gs).transition()) {
+    if (!alpha.is_constant() || alpha.value.x < 1.f) ps.fail(*ps.find("alpha"), "alpha on an \"interface\" shape is not supported");
+    return;
+  }
   if (interface) alpha = TextureRef::constant(0.f);
   if (scene_.shapes.geometries.size() == before || (alpha.is_constant() && alpha.value.x >= 1.f)) return;
-  if (gs.area_light && interface) ps.fail("an emitting shape cannot have the \"interface\" material");
   if (gs.area_light)
     ps.fail(*ps.find("alpha"), "alpha on an emitting shape is not supported; cut the shape out of the light instead");
   ShapePools& s = scene_.shapes;

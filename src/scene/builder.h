@@ -35,6 +35,9 @@ struct GraphicsState {
   std::optional<MaterialHandle> material;  // none yet: pbrt's default diffuse
   std::optional<pbrt::ParamSet> area_light;
   std::string area_light_dir;  // folder of the file that gave the AreaLightSource (for its "filename")
+  // pbrt's current MediumInterface, by name ("" is vacuum), and where it was given.
+  std::string inside_medium, outside_medium;
+  SourceLocation medium_where;
 };
 
 // A light's "scale": a float (pbrt-v4) or a colour (pbrt-v3).
@@ -66,6 +69,14 @@ class SceneBuilder {
                const Mat4& ctm, const std::string& base_dir);
   void shape(const std::string& type, const pbrt::ParamSet& ps, const GraphicsState& gs, const std::string& base_dir);
   void light(const std::string& type, const pbrt::ParamSet& ps, const Mat4& ctm, const std::string& base_dir);
+  // Participating media (builder_media.cpp): MakeNamedMedium; the medium
+  // named by the graphics state when the camera was declared; the media
+  // of lights added since the given pool sizes.
+  void medium(const std::string& name, const pbrt::ParamSet& ps);
+  const LightPools& lights() const { return scene_.lights; }
+  void camera_medium(const std::string& name, const SourceLocation& where);
+  void assign_light_media(size_t points, size_t spots, size_t at_infinity, const std::string& name,
+                          const SourceLocation& where);
 
   // Object instancing: shapes between begin_object and end_object form a
   // prototype; object_instance places it with a transform.
@@ -124,6 +135,10 @@ class SceneBuilder {
   void add_ply_mesh(const std::string& path, const GraphicsState& gs, const pbrt::ParamSet& ps);
   void load_pending_meshes();
   void count_triangles();
+  MediumHandle find_medium(const std::string& name, const SourceLocation& where) const;
+  MediumInterface medium_interface(const GraphicsState& gs) const;
+  void assign_media(size_t first_geometry, const GraphicsState& gs);
+  void finish_media();
   void note_geometry();
   void check_objects_closed() const;
 
@@ -134,6 +149,9 @@ class SceneBuilder {
   std::optional<OpenObject> object_;
   SourceLocation object_where_;
   std::map<std::string, uint32_t> objects_;  // name -> prototype
+  std::map<std::string, MediumHandle> named_media_;
+  std::string camera_medium_;
+  SourceLocation camera_medium_where_;
 
   // PLY meshes whose place in the pools is taken, read at finish().
   struct PendingMesh {

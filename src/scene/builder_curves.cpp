@@ -110,7 +110,7 @@ void SceneBuilder::add_curve(const ParamSet& ps, const GraphicsState& gs) {
   }
   if (c.type == CurveType::Ribbon) c.normals.emplace_back(0.f);  // Embree reads 16 bytes per normal
   s.curves.push_back(std::move(c));
-  s.geometries.push_back({ShapeKind::Curve, uint32_t(s.curves.size() - 1), m, -1});
+  s.geometries.push_back({ShapeKind::Curve, uint32_t(s.curves.size() - 1), m, -1, -1, {}});
   note_geometry();
 }
 

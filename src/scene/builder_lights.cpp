@@ -20,7 +20,7 @@ void SceneBuilder::light(const std::string& type, const ParamSet& ps, const Mat4
   if (type == "point") {
     RGB I = ps.get_rgb("I", ColorUsage::Illuminant).value_or(RGB(1.f)) * scale;
     if (ps.has("power")) I *= ps.get_float("power", 1.f) / (4.f * kPi);
-    L.point.push_back({Vec3(ctm * Vec4(ps.get_point3("from", Vec3(0.f)), 1.f)), I});
+    L.point.push_back({Vec3(ctm * Vec4(ps.get_point3("from", Vec3(0.f)), 1.f)), I, -1, {}});
   } else if (type == "spot") {
     RGB I = ps.get_rgb("I", ColorUsage::Illuminant).value_or(RGB(1.f)) * scale;
     Vec3 from = ps.get_point3("from", Vec3(0.f)), to = ps.get_point3("to", Vec3(0, 0, 1));
@@ -29,7 +29,7 @@ void SceneBuilder::light(const std::string& type, const ParamSet& ps, const Mat4
     if (ps.has("power")) I *= ps.get_float("power", 1.f) / (2.f * kPi * ((1.f - cos_start) + (cos_start - cos_end) / 2.f));
     Vec3 axis = Vec3(ctm * Vec4(to - from, 0.f));
     if (!(glm::length(axis) > 0.f)) ps.fail("\"from\" and \"to\" must differ");
-    L.spot.push_back({Vec3(ctm * Vec4(from, 1.f)), Frame::from_z(glm::normalize(axis)), I, cos_start, cos_end});
+    L.spot.push_back({Vec3(ctm * Vec4(from, 1.f)), Frame::from_z(glm::normalize(axis)), I, cos_start, cos_end, {}});
   } else if (type == "distant") {
     RGB Lr = ps.get_rgb("L", ColorUsage::Illuminant).value_or(RGB(1.f)) * scale;
     if (ps.has("illuminance")) Lr *= ps.get_float("illuminance", 1.f);
@@ -135,11 +135,12 @@ void SceneBuilder::profiled_light(const std::string& type, const ParamSet& ps, c
     if (k > 0.f) I *= ps.get_float("power", 1.f) / k;
   }
   scene_.lights.profiles.push_back(std::move(prof));
-  scene_.lights.point.push_back({Vec3(ctm * Vec4(0.f, 0.f, 0.f, 1.f)), I, int32_t(scene_.lights.profiles.size() - 1)});
+  scene_.lights.point.push_back({Vec3(ctm * Vec4(0.f, 0.f, 0.f, 1.f)), I, int32_t(scene_.lights.profiles.size() - 1), {}});
 }
 
 void SceneBuilder::finish() {
   check_objects_closed();
+  finish_media();
   load_pending_meshes();
   count_triangles();
   if (progress_) progress_("building the BVH");

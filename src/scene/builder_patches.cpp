@@ -91,7 +91,7 @@ void SceneBuilder::add_patch_set(BilinearPatchSet s, const GraphicsState& gs) {
   ShapePools& pools = scene_.shapes;
   pools.patches.push_back(std::move(s));
   pools.geometries.push_back(
-      {ShapeKind::Bilinear, uint32_t(pools.patches.size() - 1), gs.material ? *gs.material : default_material(), -1});
+      {ShapeKind::Bilinear, uint32_t(pools.patches.size() - 1), gs.material ? *gs.material : default_material(), -1, -1, {}});
   note_geometry();
   add_area_lights(uint32_t(pools.geometries.size() - 1), count, gs);
 }

@@ -47,7 +47,7 @@ void SceneBuilder::add_quadric(const std::string& type, const ParamSet& ps, cons
       if (!is_finite(s.center) || !std::isfinite(s.radius)) ps.fail("the sphere's centre or radius is not finite");
       ShapePools& p = scene_.shapes;
       p.spheres.push_back(s);
-      p.geometries.push_back({ShapeKind::Sphere, uint32_t(p.spheres.size() - 1), gs.material ? *gs.material : default_material(), -1});
+      p.geometries.push_back({ShapeKind::Sphere, uint32_t(p.spheres.size() - 1), gs.material ? *gs.material : default_material(), -1, -1, {}});
       note_geometry();
       add_area_lights(uint32_t(p.geometries.size() - 1), 1, gs);
       return;
@@ -77,7 +77,7 @@ void SceneBuilder::add_quadric(const std::string& type, const ParamSet& ps, cons
   }
   ShapePools& p = scene_.shapes;
   p.quadrics.push_back(q);
-  p.geometries.push_back({ShapeKind::Quadric, uint32_t(p.quadrics.size() - 1), gs.material ? *gs.material : default_material(), -1});
+  p.geometries.push_back({ShapeKind::Quadric, uint32_t(p.quadrics.size() - 1), gs.material ? *gs.material : default_material(), -1, -1, {}});
   note_geometry();
   add_area_lights(uint32_t(p.geometries.size() - 1), 1, gs);
 }

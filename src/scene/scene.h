@@ -10,6 +10,7 @@
 #include "lantern/scene.h"
 #include "light/lights.h"
 #include "material/material.h"
+#include "medium/medium.h"
 #include "scene/shapes.h"
 #include "texture/texture.h"
 
@@ -30,6 +31,7 @@ struct Scene {
   MaterialPools materials;
   TexturePools textures;
   LightPools lights;
+  MediumPools media;
   std::unique_ptr<EmbreeScene> accel;
   Vec3 bounds_lo{0.f}, bounds_hi{0.f};
   size_t triangle_count = 0;            // unique: stored once each

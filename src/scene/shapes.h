@@ -9,6 +9,7 @@
 
 #include "material/material.h"
 #include "math/common.h"
+#include "medium/medium.h"
 #include "scene/bilinear_patch.h"
 #include "scene/curve.h"
 #include "scene/quadric.h"
@@ -45,6 +46,7 @@ struct Geometry {
   MaterialHandle material;
   int32_t light_offset = -1;  // area light of primitive i is lights.area[light_offset + i]
   int32_t alpha = -1;         // index into ShapePools::alpha_masks, or -1: opaque
+  MediumInterface media;      // vacuum on both sides unless the scene gives media
 };
 
 // pbrt's shape parameter "alpha": where it is below 1 the surface is cut

@@ -231,6 +231,7 @@ class Parser {
       std::string type = expect_string("a camera type");
       ParamSet ps = params(t, "Camera \"" + printable(type) + "\"");
       b_.camera(type, ps, ctm);
+      b_.camera_medium(gs_.outside_medium, gs_.medium_where);
       camera_from_world_ = ctm;
       named_cs_["camera"] = glm::inverse(ctm);
       ps.warn_unused();
@@ -284,7 +285,11 @@ class Parser {
       world_only();
       std::string type = expect_string("a light type");
       ParamSet ps = params(t, "LightSource \"" + printable(type) + "\"");
+      const LightPools& lights = b_.lights();
+      const size_t points = lights.point.size(), spots = lights.spot.size(),
+                   at_infinity = lights.distant.size() + lights.infinite.size();
       b_.light(type, ps, render(ctm), base_dir_);
+      b_.assign_light_media(points, spots, at_infinity, gs_.outside_medium, gs_.medium_where);
       ps.warn_unused();
     } else if (d == "AreaLightSource") {
       world_only();
@@ -300,11 +305,20 @@ class Parser {
       gs_.render_from_object = render_from_world_ * ctm;
       b_.shape(type, ps, gs_, base_dir_);
       ps.warn_unused();
-    } else if (d == "MakeNamedMedium" || d == "MediumInterface" || d == "Attribute") {
-      std::string first = expect_string("a name");
-      if (d == "MediumInterface" && peek().kind == TokenKind::String) next();
-      if (d == "Attribute" || d == "MakeNamedMedium") params(t, std::string(d));
-      b_.warn(loc(t), std::string(d) + " is not supported (participating media are not rendered); ignored");
+    } else if (d == "MediumInterface") {
+      // One name sets both sides, as in pbrt.
+      gs_.inside_medium = expect_string("a medium name");
+      gs_.outside_medium = peek().kind == TokenKind::String ? expect_string("a medium name") : gs_.inside_medium;
+      gs_.medium_where = loc(t);
+    } else if (d == "MakeNamedMedium") {
+      std::string name = expect_string("a medium name");
+      ParamSet ps = params(t, "MakeNamedMedium \"" + printable(name) + "\"");
+      b_.medium(name, ps);
+      ps.warn_unused();
+    } else if (d == "Attribute") {
+      expect_string("a name");
+      params(t, std::string(d));
+      b_.warn(loc(t), "Attribute is not supported; ignored");
     } else if (d == "ObjectBegin") {
       // As in pbrt: an object's shapes keep the transform current at their
       // definition, and ObjectBegin/End also push and pop the attributes.

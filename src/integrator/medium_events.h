@@ -1,0 +1,92 @@
+// Rays through participating media, in batches. A ray of a subpath is
+// followed from its vertex through every medium it crosses ("interface"
+// boundaries are crossed and the ray traced on, the rays of a batch that
+// cross together traced together) until distance sampling picks a
+// scattering point, or it reaches a surface, or it escapes. Shadow and
+// connection rays are followed the same way to their end, collecting the
+// transmittance; any other surface blocks them.
+//
+// Distance sampling with RGB coefficients (docs/media.md): each ray picks
+// one channel c uniformly and samples the optical depth of that channel,
+// tau_c ~ Exp(1). The density of the point reached is then the mixture
+//   p(t) = 1/3 sum_c sigma_t,c(t) T_c(t)      (scattering at t)
+//   P    = 1/3 sum_c T_c(d)                    (passing the whole segment)
+// which is positive wherever any channel can scatter, so the estimator
+// T sigma_s / p (each channel at most 3 sigma_s / sigma_t) is unbiased and
+// bounded, and bidirectional MIS sees one density per vertex.
+#pragma once
+
+#include <vector>
+
+#include "accel/ray_stream.h"
+#include "scene/scene.h"
+
+namespace lantern {
+
+enum class SegmentEnd : uint8_t { Surface, Scatter, Escaped, Absorbed };
+
+// The mixture densities of a segment with transmittance T, ending at a
+// medium point of extinction sigma_t (zero: a surface or infinity).
+inline float mixture_density(const RGB& sigma_t, const RGB& T) {
+  return is_black(sigma_t) ? (T.x + T.y + T.z) * (1.f / 3.f) : glm::dot(sigma_t, T) * (1.f / 3.f);
+}
+
+// Per ray of a batch: where its segment ended, and what it contributes.
+struct SegmentEnds {
+  std::vector<SegmentEnd> end;
+  std::vector<Vec3> p;              // the scattering point
+  std::vector<RGB> weight;          // the segment's throughput factor, T sigma_s / p or T / P
+  std::vector<RGB> T;               // its transmittance
+  std::vector<float> fwd_density;   // p or P of the end reached
+  std::vector<MediumHandle> medium;  // the medium the segment ends in
+
+  void resize(uint32_t n) {
+    end.resize(n);
+    p.resize(n);
+    weight.resize(n);
+    T.resize(n);
+    fwd_density.resize(n);
+    medium.resize(n);
+  }
+  size_t memory_bytes() const {
+    return vector_bytes(end) + vector_bytes(p) + vector_bytes(weight) + vector_bytes(T) + vector_bytes(fwd_density) +
+           vector_bytes(medium);
+  }
+};
+
+// Scratch for the rays that cross boundaries, reused batch after batch.
+struct CrossingScratch {
+  RayBatch rays;
+  RayBatch continued;
+  std::vector<uint32_t> owner, next;  // the ray of the caller's batch each one continues
+  std::vector<MediumHandle> medium;
+  std::vector<float> tau;
+  std::vector<uint8_t> channel;
+  std::vector<RGB> depth;  // optical depth so far, per channel
+  size_t memory_bytes() const {
+    return rays.memory_bytes() + continued.memory_bytes() + vector_bytes(owner) + vector_bytes(next) + vector_bytes(medium) + vector_bytes(tau) +
+           vector_bytes(channel) + vector_bytes(depth);
+  }
+};
+
+// Follows each ray i of `rays` (already intersected) that starts in
+// medium[i], sampling its distance with the uniform number u[i]. Rays that
+// end on a surface keep that hit in `rays` (their origin moved to the last
+// boundary crossed, their direction unchanged).
+void find_segment_ends(const Scene& scene, RayStream& stream, RayKind kind, RayBatch& rays,
+                       const std::vector<MediumHandle>& medium, const std::vector<float>& u, SegmentEnds& out,
+                       CrossingScratch& scratch);
+
+// The transmittance of each shadow ray of `rays` (origin, direction and
+// t_max set, not yet traced) that starts in medium[i]: zero when a surface
+// blocks it. Blocked rays are also marked occluded in `rays`.
+void trace_transmittance(const Scene& scene, RayStream& stream, RayBatch& rays, const std::vector<MediumHandle>& medium,
+                         std::vector<RGB>& T, CrossingScratch& scratch);
+
+// The medium a ray leaving a surface hit of geometry `geom` along w
+// travels in, given the medium the hit was reached in.
+inline MediumHandle medium_after(const Scene& scene, uint32_t geom, const Vec3& ng, const Vec3& w, MediumHandle current) {
+  return scene.shapes.geometries[geom].media.after(ng, w, current);
+}
+
+}  // namespace lantern

@@ -1,0 +1,90 @@
+// The path tracer's stages for participating media: where each segment
+// ends (integrator/medium_events.h), the vertices that scatter in a medium
+// (next-event estimation and phase-function sampling), and shadow rays
+// weighted once their transmittance is known. Only scenes with media run
+// these; every other scene runs path_tracer.cpp alone.
+#include "integrator/path_tracer.h"
+#include "integrator/path_wave.h"
+#include "medium/henyey_greenstein.h"
+#include "sampler/dimensions.h"
+
+namespace lantern {
+
+void PathTracer::segment_stage(PathWave& w, RayKind kind) const {
+  StageTimer t(w.stats, Stage::Surface);
+  const uint32_t base = dims::vertex(uint32_t(settings_.maxdepth) + 2);
+  for (uint32_t i = 0; i < w.rays.count; ++i) {
+    const uint32_t slot = w.active[i];
+    w.ray_medium[i] = w.medium[slot];
+    w.u_distance[i] = w.sampler[slot].get1d(dims::distance(base, w.depth, false));
+  }
+  find_segment_ends(scene_, w.stream, kind, w.rays, w.ray_medium, w.u_distance, w.ends, w.crossing);
+}
+
+// A vertex in a medium: next-event estimation with the phase function, then
+// the path goes on in a direction sampled from it (exactly, so the
+// throughput does not change).
+void PathTracer::medium_scatter_stage(PathWave& w) const {
+  const Scene& sc = scene_;
+  const uint32_t dim = dims::vertex(w.depth);
+  for (uint32_t i : w.scattered) {
+    const uint32_t slot = w.active[i];
+    const PathSampler& s = w.sampler[slot];
+    const Vec3 p = w.ends.p[i], wo = -glm::normalize(w.rays.direction(i));
+    const MediumHandle m = w.ends.medium[i];
+    const HenyeyGreenstein phase{sc.media.at(m).g};
+    ++w.stats.eye_vertices;
+    ++w.stats.light_samples;
+    auto ls = sample_light(sc.lights, sc.shapes, sc.textures, light_sampler_, p, Vec3(0.f),
+                           s.get1d(dim + dims::kEyeLightSelect), s.get2d(dim + dims::kEyeLightPosition));
+    if (ls && !is_black(ls->L)) {
+      const float f = phase.p(wo, ls->wi);
+      if (f > 0.f)
+        push_media_shadow_ray(w, slot, p, *ls, m, ls->delta ? 0.f : ls->pdf, f, w.beta[slot] * f * ls->L / ls->pdf);
+    }
+    float pdf = 0.f;
+    const Vec3 wi = phase.sample(wo, s.get2d(dim + dims::kEyeBsdfDirection), &pdf);
+    const float u_rr = s.get1d(dim + dims::kEyeRoulette);
+    w.prev_pdf[slot] = pdf;
+    w.prev_specular[slot] = 0;
+    float rr = max_component(w.beta[slot] * w.eta_scale[slot]);
+    if (rr < 1.f && w.depth >= 1) {
+      float q = std::fmax(0.f, 1.f - rr);
+      if (u_rr < q) {
+        ++w.stats.eye_ends[size_t(PathEnd::Roulette)];
+        continue;
+      }
+      w.beta[slot] /= 1.f - q;
+    }
+    if (!is_finite(w.beta[slot]) || !(pdf > 0.f)) {
+      ++w.stats.eye_ends[size_t(PathEnd::Absorbed)];
+      continue;
+    }
+    w.hits.alive[i] = 1;
+    w.prev_p[slot] = p;
+    w.prev_n[slot] = Vec3(0.f);
+    w.hits.next_o[i] = p;
+    w.hits.next_d[i] = wi;
+    w.medium[slot] = m;
+  }
+}
+
+// Unblocked shadow rays with their transmittance and MIS weight: the
+// scattering strategy would have had to pass the same segment, so its
+// density is the BSDF's or phase function's times the probability P of
+// passing it (medium_events.h).
+void PathTracer::media_shadow_stage(PathWave& w) const {
+  for (uint32_t r = 0; r < w.shadow.count; ++r) {
+    if (w.shadow.occluded(r)) continue;
+    const RGB& T = w.shadow_T[r];
+    const float light_pdf = w.shadow_light_pdf[r];
+    const float weight =
+        light_pdf == 0.f ? 1.f : power_heuristic(light_pdf, w.shadow_scatter_pdf[r] * mixture_density(RGB(0.f), T));
+    const RGB c = w.shadow_contrib[r] * T * weight;
+    if (!is_finite(c)) continue;
+    w.L[w.shadow_slot[r]] += c;
+    ++w.stats.light_samples_unoccluded;
+  }
+}
+
+}  // namespace lantern
