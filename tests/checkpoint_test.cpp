@@ -42,8 +42,9 @@ bool same_bits(const Image& a, const Image& b) {
          std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)) == 0;
 }
 
-void expect_resumes_bit_for_bit(const std::string& integrator, const std::string& sampler) {
-  auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/lantern.pbrt");
+void expect_resumes_bit_for_bit(const std::string& integrator, const std::string& sampler,
+                                const std::string& scene_file = "scenes/lantern.pbrt") {
+  auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/" + scene_file);
   RenderResult straight = render(*scene, small_render(integrator, sampler));
 
   const std::string kCheckpoint = checkpoint_file();
@@ -81,6 +82,11 @@ void expect_resumes_bit_for_bit(const std::string& integrator, const std::string
 
 class CheckpointResume : public ::testing::TestWithParam<const char*> {};
 TEST_P(CheckpointResume, StopsAndResumesBitForBit) { expect_resumes_bit_for_bit(GetParam(), "zsobol"); }
+// Media add per-slot state (the medium each path is in) and deferred
+// shadow weights; none of it may leak across waves or resumes.
+TEST(CheckpointResumeMedia, StopsAndResumesBitForBit) {
+  expect_resumes_bit_for_bit("path", "zsobol", "perf/media/fog-sphere.pbrt");
+}
 INSTANTIATE_TEST_SUITE_P(Integrators, CheckpointResume, ::testing::Values("path", "bdpt", "lt"));
 
 // Every sampler's values depend only on (seed, pixel, index, dimension);
