@@ -13,12 +13,6 @@
 
 namespace lantern {
 
-namespace {
-// Occlusion queries are flushed when this many connections are waiting, so
-// memory stays bounded however long the subpaths get.
-constexpr uint32_t kMaxPendingConnections = 1u << 16;
-}  // namespace
-
 Bdpt::Bdpt(const Scene& scene, const LightSampler& light_sampler, const BdptSettings& s)
     : scene_(scene),
       light_sampler_(light_sampler),
@@ -30,7 +24,9 @@ Bdpt::Bdpt(const Scene& scene, const LightSampler& light_sampler, const BdptSett
 }
 
 std::unique_ptr<BdptWave, void (*)(BdptWave*)> Bdpt::make_wave_state(uint32_t capacity, RayStream stream) const {
-  return {new BdptWave(capacity, std::move(stream)), [](BdptWave* w) { delete w; }};
+  std::unique_ptr<BdptWave, void (*)(BdptWave*)> w{new BdptWave(capacity, std::move(stream)), [](BdptWave* p) { delete p; }};
+  if (!scene_.media.empty()) w->resize_media(capacity);
+  return w;
 }
 
 void Bdpt::start_eye_subpaths(const WaveDesc& wave, BdptWave& w) const {
@@ -50,6 +46,11 @@ void Bdpt::start_eye_subpaths(const WaveDesc& wave, BdptWave& w) const {
     w.active[slot] = slot;
     w.rays.push(r.o, r.d, 0.f, kInfinity);
   }
+  if (!scene_.media.empty())
+    for (uint32_t slot = 0; slot < wave.size(); ++slot) {
+      w.eye.medium[slot] = scene_.media.camera;
+      w.eye.sigma_prev[slot] = RGB(0.f);
+    }
 }
 
 // s = 0: emission found by the eye subpath; then hits are binned by material.
@@ -58,13 +59,31 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
   const ShapePools& shapes = scene_.shapes;
   const LightPools& lights = scene_.lights;
   const bool last = int(w.depth) == settings_.maxdepth + 1;  // only emission counts this deep
+  const bool media = !scene_.media.empty();
+  if (media) w.scattered.clear();
   for (uint32_t i = 0; i < w.rays.count; ++i) {
     uint32_t slot = w.active[i];
     w.hits.alive[i] = 0;
     Vec3 d = glm::normalize(w.rays.direction(i));
     MisState& m = w.eye.mis[slot];
+    if (media && w.ends.end[i] == SegmentEnd::Absorbed) {
+      ++w.stats.eye_ends[size_t(PathEnd::Absorbed)];
+      continue;
+    }
+    if (media && w.ends.end[i] == SegmentEnd::Scatter) {  // a vertex in a medium
+      ++w.stats.eye_vertices;
+      const Vec3 p = w.ends.p[i], prev = w.eye.prev_p[slot];
+      const float dist2 = glm::dot(p - prev, p - prev);
+      if (!(dist2 > 0.f)) continue;
+      mis_after_hit(m, dist2, 1.f, !(w.depth == 1 && camera_.area_sensor()), mis_);
+      apply_segment(w, w.eye, i);
+      if (last) ++w.stats.eye_ends[size_t(PathEnd::MaxDepth)];
+      else w.scattered.push_back(i);
+      continue;
+    }
     if (!w.rays.hit(i)) {
       ++w.stats.eye_ends[size_t(PathEnd::Escaped)];
+      if (media) apply_segment(w, w.eye, i);
       if (!lights.infinite.empty()) {
         const Vec3 prev = w.eye.prev_p[slot];
         RGB Le = infinite_lights_Le(lights, scene_.textures, prev, d);
@@ -83,6 +102,7 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
     if (!(cos_in > 0.f) || !(dist2 > 0.f)) continue;
     // An area sensor's (thin-lens orthographic) first density is per area already.
     mis_after_hit(m, dist2, cos_in, !(w.depth == 1 && camera_.area_sensor()), mis_);
+    if (media) apply_segment(w, w.eye, i);
     if (int64_t light = hit_area_light(shapes, w.rays, i); light >= 0) {
       RGB Le = area_light_Le(lights.area[size_t(light)], scene_.textures, sp.ng, sp.uv, -d);
       if (!is_black(Le)) {
@@ -111,9 +131,44 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
   }
 }
 
+// s >= 2 in a scene with media: the light vertex may be in a medium, and
+// the weight waits for the connection's transmittance.
+template <class BSDF>
+void Bdpt::connect_eye_surface_vertex_media(BdptWave& w, uint32_t i, const BSDF& bsdf, const Frame& frame,
+                                            const Vec3& wo) const {
+  const HitPool& h = w.hits;
+  const uint32_t slot = w.active[i], depth = w.depth, maxdepth = uint32_t(settings_.maxdepth);
+  const MisState& m = w.eye.mis[slot];
+  const LightVertexPool& v = w.vertices;
+  for (uint32_t n = v.begin[slot]; n < v.begin[slot + 1]; ++n) {
+    const uint32_t j = v.order[n];
+    if (v.depth[j] + depth > maxdepth) break;
+    const Vec3 dir = v.p[j] - h.p[i];
+    const float dist2 = glm::dot(dir, dir);
+    if (!(dist2 > 0.f)) continue;
+    const Vec3 wi_w = dir / std::sqrt(dist2), wi = frame.to_local(wi_w);
+    const RGB f_eye = bsdf.f(wo, wi, TransportMode::Radiance) * std::fabs(wi.z);
+    if (is_black(f_eye)) continue;
+    const LightVertexResponse lv = light_vertex_response(v, j, wi_w);
+    const RGB c = w.eye.beta[slot] * f_eye * lv.f * v.beta[j] / dist2;
+    if (is_black(c)) continue;
+    DeferredMis dm;
+    dm.a = mis_(bsdf.pdf(wo, wi, TransportMode::Radiance) * lv.cos / dist2) *
+           (v.mis[j].dVCM + v.mis[j].dVC * mis_(lv.rev_W));
+    dm.sigma_a = lv.sigma_t;
+    dm.b = mis_(lv.fwd_W * vertex_cos(h.ng[i], h.error_scale[i], tangent_or_null(h.tangent, i), wi_w) / dist2) *
+           (m.dVCM + m.dVC * mis_(bsdf.pdf(wi, wo, TransportMode::Importance)));
+    const Vec3 o = offset_ray_origin(h.p[i], h.ng[i], h.error_scale[i], wi_w);
+    const MediumHandle start = medium_after(scene_, w.rays.geom_id[i], h.ng[i], wi_w, w.ends.medium[i]);
+    w.shadow.push_deferred(o, lv.target - o, 1.f, slot, c, Vec2(0.f), {uint8_t(v.depth[j] + 1), uint8_t(depth + 1), c},
+                           start, dm);
+  }
+}
+
 // Prepares the s = 1 and s >= 2 connections of every eye vertex.
 void Bdpt::eye_connect_stage(BdptWave& w) const {
   const Scene& sc = scene_;
+  const bool media = !sc.media.empty();
   const uint32_t depth = w.depth;
   const uint32_t maxdepth = uint32_t(settings_.maxdepth);
   for_each_binned_bsdf(w.hits, sc, [&](uint32_t i, const auto& bsdf) {
@@ -148,7 +203,17 @@ void Bdpt::eye_connect_stage(BdptWave& w) const {
           RGB u = beta * f * ls->L / ls->pdf;
           StrategyTag tag{1, uint8_t(depth + 1), u};
           Vec3 o = offset_ray_origin(h.p[i], h.ng[i], h.error_scale[i], ls->wi);
-          if (ls->infinite) {
+          if (media) {  // weighted once the transmittance is known
+            DeferredMis dm;
+            dm.a = ls->delta ? 0.f : mis_(bsdf.pdf(wo, wi, TransportMode::Radiance) / ls->pdf);
+            dm.b = mis_(emission_fwd_A / direct_pdf_A) * (m.dVCM + m.dVC * mis_(bsdf.pdf(wi, wo, TransportMode::Importance)));
+            const MediumHandle start = medium_after(sc, w.rays.geom_id[i], h.ng[i], ls->wi, w.ends.medium[i]);
+            Vec3 target = ls->infinite || ls->n_light == Vec3(0.f)
+                              ? ls->p_light
+                              : offset_ray_origin(ls->p_light, ls->n_light, ls->error_scale, -ls->wi);
+            if (ls->infinite) w.shadow.push_deferred(o, ls->wi, kInfinity, slot, u, Vec2(0.f), tag, start, dm, true);
+            else w.shadow.push_deferred(o, target - o, 1.f, slot, u, Vec2(0.f), tag, start, dm, true);
+          } else if (ls->infinite) {
             w.shadow.push(o, ls->wi, kInfinity, slot, u * weight(wt), Vec2(0.f), tag, true);
           } else {
             Vec3 target = ls->n_light == Vec3(0.f)
@@ -159,6 +224,11 @@ void Bdpt::eye_connect_stage(BdptWave& w) const {
         }
       }
       const LightVertexPool& v = w.vertices;
+      if (media) {
+        connect_eye_surface_vertex_media(w, i, bsdf, frame, wo);
+        if (w.shadow.rays.count >= kMaxPendingConnections) flush_connections(w);
+        return;
+      }
       for (uint32_t n = v.begin[slot]; n < v.begin[slot + 1]; ++n) {  // s >= 2
         const uint32_t j = v.order[n];
         if (v.depth[j] + depth > maxdepth) break;  // in depth order: the rest are deeper
@@ -194,7 +264,7 @@ void Bdpt::eye_connect_stage(BdptWave& w) const {
         w.shadow.push(o, target - o, 1.f, slot, c * weight(wt), Vec2(0.f),
                       {uint8_t(v.depth[j] + 1), uint8_t(depth + 1), c});
       }
-      if (w.shadow.rays.count >= kMaxPendingConnections) connection_stage(w);
+      if (w.shadow.rays.count >= kMaxPendingConnections) flush_connections(w);
     }
   });
 }
@@ -214,6 +284,8 @@ void Bdpt::eye_scatter_stage(BdptWave& w) const {
                          depth, {w.eye.beta[slot], w.eye.mis[slot], w.eye.prev_p[slot], w.eye.prev_n[slot], w.eye.eta_scale[slot], 1.f},
                          mis_);
     if (end != PathEnd::Count) ++w.stats.eye_ends[size_t(end)];
+    else if (!scene_.media.empty())
+      w.eye.medium[slot] = medium_after(scene_, w.rays.geom_id[i], w.hits.ng[i], w.hits.next_d[i], w.ends.medium[i]);
   });
 }
 
@@ -232,6 +304,12 @@ void Bdpt::connection_stage(BdptWave& w) const {
   c.rays.count = 0;
 }
 
+void Bdpt::flush_connections(BdptWave& w) const {
+  if (w.shadow.media) trace_connections(w);
+  else w.stream.occluded(w.shadow.rays);
+  connection_stage(w);
+}
+
 // s = 0: emission the eye subpath found at its current depth.
 void Bdpt::add_emission(BdptWave& w, uint32_t slot, const RGB& unweighted, float weight) const {
   w.L[slot] += unweighted * weight;
@@ -247,18 +325,27 @@ void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
     StageTimer t(st, stage);
     fn();
   };
+  const bool media = !scene_.media.empty();
+  auto trace_shadows = [&] {
+    if (media) trace_connections(w);
+    else w.stream.occluded(w.shadow.rays);
+  };
   timed(Stage::Generate, [&] { start_light_subpaths(wave, w); });
-  w.stream.occluded(w.shadow.rays);
+  trace_shadows();
   timed(Stage::Accumulate, [&] { splat_stage(w); });
   for (w.depth = 1; w.rays.count > 0; ++w.depth) {
     w.stream.intersect(w.rays, RayKind::LightExtension);
+    if (media) segment_stage(w, RayKind::LightExtension, true);
     timed(Stage::Surface, [&] { light_surface_stage(w); });
-    timed(Stage::Connect, [&] { light_connect_stage(w); });
+    timed(Stage::Connect, [&] {
+      light_connect_stage(w);
+      if (media) light_medium_stage(w);
+    });
     timed(Stage::Scatter, [&] {
       light_scatter_stage(w);
       w.hits.compact(w.rays, w.active);
     });
-    w.stream.occluded(w.shadow.rays);
+    trace_shadows();
     timed(Stage::Accumulate, [&] { splat_stage(w); });
   }
   if (!settings_.light_tracing_only) {
@@ -267,15 +354,20 @@ void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
       start_eye_subpaths(wave, w);
     });
     for (w.depth = 1; w.rays.count > 0; ++w.depth) {
-      w.stream.intersect(w.rays, w.depth == 1 ? RayKind::Camera : RayKind::Extension);
+      const RayKind kind = w.depth == 1 ? RayKind::Camera : RayKind::Extension;
+      w.stream.intersect(w.rays, kind);
+      if (media) segment_stage(w, kind, false);
       timed(Stage::Surface, [&] { eye_surface_stage(w); });
       // (a flush of a full connection pool inside this stage is counted in it)
-      timed(Stage::Connect, [&] { eye_connect_stage(w); });
+      timed(Stage::Connect, [&] {
+        eye_connect_stage(w);
+        if (media) eye_medium_stage(w);
+      });
       timed(Stage::Scatter, [&] {
         eye_scatter_stage(w);
         w.hits.compact(w.rays, w.active);
       });
-      w.stream.occluded(w.shadow.rays);
+      trace_shadows();
       timed(Stage::Accumulate, [&] { connection_stage(w); });
     }
   }

@@ -20,6 +20,7 @@
 #include "film/film.h"
 #include "integrator/bdpt_mis.h"
 #include "integrator/wave.h"
+#include "integrator/wave_stats.h"
 #include "light/light_sampler.h"
 #include "sampler/sampler.h"
 #include "scene/scene.h"
@@ -43,6 +44,23 @@ struct BdptSettings {
 
 struct BdptWave;
 struct LightOriginPool;
+struct LightVertexPool;
+struct SubpathPool;
+
+// What a stored light vertex (surface or medium) does with light arriving
+// from direction -wi_w (wi_w points from the eye vertex to it).
+struct LightVertexResponse {
+  RGB f{0.f};                // its BSDF (times the cosine) or phase function
+  float fwd_W = 0.f;         // its density of sampling the direction to the eye vertex
+  float rev_W = 0.f;         // and of sampling its own subpath's previous direction from there
+  float cos = 1.f;           // solid angle to area at it (1 in a medium)
+  RGB sigma_t{0.f};          // extinction there (zero on a surface)
+  Vec3 target{0.f};          // where a connection ray aims
+};
+
+// Occlusion queries are flushed when this many connections are waiting, so
+// memory stays bounded however long the subpaths get.
+inline constexpr uint32_t kMaxPendingConnections = 1u << 16;
 
 class Bdpt {
  public:
@@ -65,6 +83,24 @@ class Bdpt {
   void eye_connect_stage(BdptWave& w) const;
   void eye_scatter_stage(BdptWave& w) const;
   void connection_stage(BdptWave& w) const;
+  // Traces the pending connections and adds what they carry.
+  void flush_connections(BdptWave& w) const;
+  // participating media (bdpt_media.cpp)
+  void segment_stage(BdptWave& w, RayKind kind, bool light_subpaths) const;
+  bool apply_segment(BdptWave& w, SubpathPool& sub, uint32_t i) const;
+  LightVertexResponse light_vertex_response(const LightVertexPool& v, uint32_t j, const Vec3& wi_w) const;
+  void connect_eye_medium_vertex(BdptWave& w, uint32_t slot, const Vec3& p, const Vec3& wo, MediumHandle m,
+                                 float u_light, Vec2 u_light2) const;
+  void connect_light_medium_vertex(BdptWave& w, uint32_t slot, uint32_t i, Vec2 u_lens) const;
+  template <class BSDF>  // s >= 2 from a surface eye vertex (bdpt.cpp)
+  void connect_eye_surface_vertex_media(BdptWave& w, uint32_t i, const BSDF& bsdf, const Frame& frame,
+                                        const Vec3& wo) const;
+  PathEnd scatter_in_medium(BdptWave& w, SubpathPool& sub, uint32_t i, Vec2 u2, float u_rr, bool light) const;
+  void eye_medium_stage(BdptWave& w) const;
+  void light_medium_stage(BdptWave& w) const;
+  void light_medium_arrival(BdptWave& w, uint32_t i) const;
+  MediumHandle light_start_medium(uint32_t light, const Vec3& n, const Vec3& d) const;
+  void trace_connections(BdptWave& w) const;
   void add_emission(BdptWave& w, uint32_t slot, const RGB& unweighted, float weight) const;
 
   float weight(float w) const { return settings_.unit_weights ? 1.f : w; }

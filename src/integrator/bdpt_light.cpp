@@ -63,6 +63,11 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
     w.light.rr_scale[slot] = max_component(beta) > 0.f ? 1.f / max_component(beta) : 0.f;
     w.light.eta_scale[slot] = 1.f;
     w.light.prev_p[slot] = es->p;
+    const bool media = !scene_.media.empty();
+    if (media) {
+      w.light.medium[slot] = light_start_medium(es->light, es->n, es->d);
+      w.light.sigma_prev[slot] = RGB(0.f);
+    }
 
     // s = 1, t = 1: the light's own point seen by the camera.
     if (!es->infinite) {
@@ -76,7 +81,16 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
             wt = weight(mis_weight_light_origin(camera_pdf_A, es->pdf_pos, es->delta_pos, mis_));
           }
           RGB c = Le * (cos_l * cs->We / (cs->pdf * es->pdf_pos));
-          push_camera_ray(w, slot, es->p, es->n, es->error_scale, *cs, c, wt, 1);
+          if (media) {  // the camera ray that would hit this point passes the same segment
+            DeferredMis dm;
+            if (!settings_.light_tracing_only && !settings_.unit_weights && !es->delta_pos)
+              dm.a = mis_(camera_.pdf_area(-cs->wi, sqr(cs->dist), cos_l) / es->pdf_pos);
+            Vec3 o = on_surface ? offset_ray_origin(es->p, es->n, es->error_scale, cs->wi) : es->p;
+            w.shadow.push_deferred(o, cs->p_lens - o, 1.f, slot, c, cs->p_raster, {1, 1, c},
+                                   light_start_medium(es->light, es->n, cs->wi), dm);
+          } else {
+            push_camera_ray(w, slot, es->p, es->n, es->error_scale, *cs, c, wt, 1);
+          }
         }
       }
     }
@@ -90,9 +104,19 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
 // Finishes the MIS quantities of each hit and bins the hits by material.
 void Bdpt::light_surface_stage(BdptWave& w) const {
   w.hits.clear_bins();
+  const bool media = !scene_.media.empty();
+  if (media) w.scattered.clear();
   for (uint32_t i = 0; i < w.rays.count; ++i) {
     uint32_t slot = w.active[i];
     w.hits.alive[i] = 0;
+    if (media && w.ends.end[i] == SegmentEnd::Absorbed) {
+      ++w.stats.light_ends[size_t(PathEnd::Absorbed)];
+      continue;
+    }
+    if (media && w.ends.end[i] == SegmentEnd::Scatter) {
+      light_medium_arrival(w, i);
+      continue;
+    }
     if (!w.rays.hit(i)) {
       ++w.stats.light_ends[size_t(PathEnd::Escaped)];
       continue;
@@ -118,7 +142,31 @@ void Bdpt::light_surface_stage(BdptWave& w) const {
     } else {
       mis_after_hit(m, dist2, cos_in, true, mis_);
     }
+    if (media) apply_segment(w, w.light, i);
   }
+}
+
+// A light subpath's vertex in a medium: its MIS quantities, as for a
+// surface with no cosine (the light sampler sees it with no normal).
+void Bdpt::light_medium_arrival(BdptWave& w, uint32_t i) const {
+  const uint32_t slot = w.active[i];
+  ++w.stats.light_vertices;
+  const Vec3 p = w.ends.p[i], prev = w.light.prev_p[slot];
+  const Vec3 d = glm::normalize(w.rays.direction(i));
+  const float dist2 = glm::dot(p - prev, p - prev);
+  if (!(dist2 > 0.f)) return;
+  if (w.depth == 1 && !reaches_through_portal(w.origin.light[slot], p, -d)) return;
+  MisState& m = w.light.mis[slot];
+  if (w.depth == 1) {
+    const LightOriginPool& o = w.origin;
+    m = mis_light_start(first_hit_direct_pdf(o, slot, p, Vec3(0.f), prev), o.emission_pdf_W[slot], o.cos_light[slot],
+                        o.delta[slot] != 0, mis_);
+    mis_after_hit(m, dist2, 1.f, !o.infinite[slot], mis_);
+  } else {
+    mis_after_hit(m, dist2, 1.f, true, mis_);
+  }
+  apply_segment(w, w.light, i);
+  w.scattered.push_back(i);
 }
 
 // The density with which next-event estimation from the light subpath's
@@ -190,8 +238,20 @@ void Bdpt::light_connect_stage(BdptWave& w) const {
                 -cs->wi, sqr(cs->dist), vertex_cos(h.ng[i], h.error_scale[i], tangent_or_null(h.tangent, i), cs->wi));
             wt = weight(mis_weight_light_trace(m, camera_pdf_A, bsdf.pdf(wi, wo, TransportMode::Radiance), mis_));
           }
-          push_camera_ray(w, slot, h.p[i], h.ng[i], h.error_scale[i], *cs, beta * f * (cs->We / cs->pdf), wt,
-                          depth + 1);
+          if (!scene_.media.empty()) {
+            DeferredMis dm;
+            if (!settings_.light_tracing_only && !settings_.unit_weights)
+              dm.a = mis_(camera_.pdf_area(-cs->wi, sqr(cs->dist),
+                                           vertex_cos(h.ng[i], h.error_scale[i], tangent_or_null(h.tangent, i), cs->wi))) *
+                     (m.dVCM + m.dVC * mis_(bsdf.pdf(wi, wo, TransportMode::Radiance)));
+            const Vec3 o = offset_ray_origin(h.p[i], h.ng[i], h.error_scale[i], cs->wi);
+            const RGB c = beta * f * (cs->We / cs->pdf);
+            w.shadow.push_deferred(o, cs->p_lens - o, 1.f, slot, c, cs->p_raster, {uint8_t(depth + 1), 1, c},
+                                   medium_after(scene_, w.rays.geom_id[i], h.ng[i], cs->wi, w.ends.medium[i]), dm);
+          } else {
+            push_camera_ray(w, slot, h.p[i], h.ng[i], h.error_scale[i], *cs, beta * f * (cs->We / cs->pdf), wt,
+                            depth + 1);
+          }
         }
       }
     }
@@ -218,6 +278,8 @@ void Bdpt::light_scatter_stage(BdptWave& w) const {
          w.light.rr_scale[slot]},
         mis_);
     if (end != PathEnd::Count) ++w.stats.light_ends[size_t(end)];
+    else if (!scene_.media.empty())
+      w.light.medium[slot] = medium_after(scene_, w.rays.geom_id[i], w.hits.ng[i], w.hits.next_d[i], w.ends.medium[i]);
   });
 }
 

@@ -23,6 +23,7 @@
 //    dVCM = 0, and dVC carries the chain on.
 #pragma once
 
+#include "integrator/medium_events.h"
 #include "math/common.h"
 
 namespace lantern {
@@ -119,6 +120,30 @@ inline float mis_weight_light_trace(const MisState& light, float camera_pdf_A, f
 // strategy is the camera ray hitting the light (impossible for delta lights).
 inline float mis_weight_light_origin(float camera_pdf_A, float emission_pos_pdf_A, bool delta_pos, MisPower mis) {
   return delta_pos ? 1.f : 1.f / (1.f + mis(camera_pdf_A / emission_pos_pdf_A));
+}
+
+// Participating media (docs/media.md). A segment sampled by distance
+// sampling adds to the density of the vertex it ends at the probability
+// (surface, infinity) or density (medium point) of ending there, fwd
+// below, and to the reverse density of the vertex it started from the same
+// for the opposite direction, rev. After mis_after_hit:
+inline void mis_after_segment(MisState& m, float fwd, float rev, MisPower mis) {
+  m.dVCM /= mis(fwd);
+  m.dVC *= mis(rev / fwd);
+}
+
+// A connection's segment is not sampled, but the strategies that would have
+// sampled it by distance sampling have densities that contain its
+// transmittance, known once its shadow ray is traced. So a connection
+// keeps the other strategies' two ratio sums without those densities (a:
+// the strategy whose distance sampling ends at the end with extinction
+// sigma_a, zero at a surface; b likewise) and is weighted afterwards.
+struct DeferredMis {
+  float a = 0.f, b = 0.f;
+  RGB sigma_a{0.f}, sigma_b{0.f};
+};
+inline float mis_weight_deferred(const DeferredMis& d, const RGB& T, MisPower mis) {
+  return 1.f / (1.f + d.a * mis(mixture_density(d.sigma_a, T)) + d.b * mis(mixture_density(d.sigma_b, T)));
 }
 
 }  // namespace lantern

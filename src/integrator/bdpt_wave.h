@@ -24,6 +24,14 @@ struct SubpathPool {
   std::vector<Vec3> prev_p;  // origin of the ray that found the current vertex
   std::vector<Vec3> prev_n;  // its shading normal (the light sampler's context; zero at the camera)
   std::vector<float> eta_scale, rr_scale;
+  // With media only: the medium the subpath's ray travels in, and the
+  // extinction at its last vertex (zero on a surface), for reverse densities.
+  std::vector<MediumHandle> medium;
+  std::vector<RGB> sigma_prev;
+  void resize_media(uint32_t n) {
+    medium.resize(n);
+    sigma_prev.resize(n);
+  }
   void resize(uint32_t n) {
     beta.resize(n);
     mis.resize(n);
@@ -64,9 +72,11 @@ struct LightVertexPool {
   std::vector<MaterialHandle> material;
   std::vector<Footprint> footprint;  // empty unless the scene's textures filter
   std::vector<Vec3> tangent;         // empty unless the scene has curves
+  std::vector<MediumHandle> medium;  // empty unless the scene has media; a medium vertex's, else vacuum
   std::vector<uint32_t> begin, order;
 
   size_t size() const { return slot.size(); }
+  bool in_medium(uint32_t j) const { return j < medium.size() && !medium[j].vacuum(); }
   void clear() {
     for (auto* v : {&slot, &depth, &order}) v->clear();
     for (auto* v : {&p, &ng, &ns, &wo}) v->clear();
@@ -77,6 +87,7 @@ struct LightVertexPool {
     material.clear();
     footprint.clear();
     tangent.clear();
+    medium.clear();
   }
 };
 
@@ -95,6 +106,12 @@ struct ConnectionPool {
   std::vector<Vec2> p_raster;     // light tracing: where the contribution lands on the film
   std::vector<StrategyTag> tags;  // filled only when strategies are recorded
   std::vector<uint8_t> next_event;  // s = 1: a light sample's ray (for --stats)
+  // With media: the medium each ray starts in, its transmittance, and its
+  // weight's deferred part (contrib then holds the unweighted value).
+  std::vector<MediumHandle> medium;
+  std::vector<RGB> T;
+  std::vector<DeferredMis> deferred;
+  bool media = false;
   bool record = false;
   uint32_t push(const Vec3& o, const Vec3& d, float t_max, uint32_t s, const RGB& c, Vec2 raster,
                 const StrategyTag& tag, bool light_sample = false) {
@@ -113,9 +130,31 @@ struct ConnectionPool {
     if (record) tags[i] = tag;
     return i;
   }
+  // A connection of a scene with media, weighted once traced.
+  uint32_t push_deferred(const Vec3& o, const Vec3& d, float t_max, uint32_t s, const RGB& unweighted, Vec2 raster,
+                         const StrategyTag& tag, MediumHandle m, const DeferredMis& mis, bool light_sample = false) {
+    uint32_t i = push(o, d, t_max, s, unweighted, raster, tag, light_sample);
+    if (medium.size() <= i) {
+      medium.resize(rays.capacity());
+      deferred.resize(rays.capacity());
+    }
+    medium[i] = m;
+    deferred[i] = mis;
+    return i;
+  }
 };
 
 struct BdptWave {
+  void resize_media(uint32_t capacity) {
+    eye.resize_media(capacity);
+    light.resize_media(capacity);
+    ray_medium.resize(capacity);
+    u_distance.resize(capacity);
+    ends.resize(capacity);
+    scattered.reserve(capacity);
+    shadow.media = true;
+  }
+
   BdptWave(uint32_t capacity, RayStream s) : stream(std::move(s)) {
     pixel.resize(capacity);
     sampler.resize(capacity);
@@ -145,6 +184,13 @@ struct BdptWave {
 
   ConnectionPool shadow;
   LightVertexPool vertices;
+  // With media: per ray, the distance numbers and where segments ended, and
+  // the rays that scattered in a medium this bounce.
+  std::vector<MediumHandle> ray_medium;
+  std::vector<float> u_distance;
+  SegmentEnds ends;
+  std::vector<uint32_t> scattered;
+  CrossingScratch crossing;
   RayStream stream;
   WaveOutput* out = nullptr;  // of the wave being traced
   WaveStats stats;
@@ -164,7 +210,11 @@ struct BdptWave {
     const LightVertexPool& v = vertices;
     b += vector_bytes(v.slot) + vector_bytes(v.depth) + vector_bytes(v.p) + vector_bytes(v.ng) + vector_bytes(v.ns) +
          vector_bytes(v.wo) + vector_bytes(v.uv) + vector_bytes(v.footprint) + vector_bytes(v.tangent) + vector_bytes(v.error_scale) + vector_bytes(v.beta) +
-         vector_bytes(v.mis) + vector_bytes(v.material) + vector_bytes(v.begin) + vector_bytes(v.order);
+         vector_bytes(v.mis) + vector_bytes(v.material) + vector_bytes(v.begin) + vector_bytes(v.order) +
+         vector_bytes(v.medium);
+    for (const SubpathPool* p : subpaths) b += vector_bytes(p->medium) + vector_bytes(p->sigma_prev);
+    b += vector_bytes(shadow.medium) + vector_bytes(shadow.T) + vector_bytes(shadow.deferred) + vector_bytes(ray_medium) +
+         vector_bytes(u_distance) + ends.memory_bytes() + vector_bytes(scattered) + crossing.memory_bytes();
     return b;
   }
 };

@@ -404,9 +404,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
                                 "camera a \"lensradius\"");
   if (opt.strategies && opt.integrator != "bdpt")
     throw std::invalid_argument("per-strategy images need --integrator bdpt");
-  if (bidirectional && !scene.media.empty())
-    throw std::invalid_argument("this scene has participating media, which --integrator " + opt.integrator +
-                                " does not render yet; use --integrator path");
+
   if (opt.wave_size < 1 || opt.wave_size > (1 << 22)) throw std::invalid_argument("--wave-size must lie in [1, 4194304]");
   if (opt.strategies && !opt.checkpoint_path.empty())
     throw std::invalid_argument("per-strategy images cannot be checkpointed or resumed");

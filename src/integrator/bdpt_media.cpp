@@ -1,0 +1,264 @@
+// The bidirectional tracer's stages for participating media: where each
+// segment ends (integrator/medium_events.h) and what that adds to the MIS
+// quantities, the vertices that scatter in a medium on either subpath (the
+// connections they end and the phase-function sampling that continues
+// them), and the response of a stored light vertex of either kind. Only
+// scenes with media run these.
+//
+// A medium vertex differs from a surface vertex in three ways: its
+// "BSDF" is the phase function (no cosine), its area measure is volume (no
+// cosine in the density conversions), and rays leave it without an offset.
+#include "integrator/bdpt.h"
+#include "integrator/bdpt_wave.h"
+#include "integrator/hit.h"
+#include "integrator/shade.h"
+#include "light/emission.h"
+#include "medium/henyey_greenstein.h"
+#include "sampler/dimensions.h"
+
+namespace lantern {
+
+void Bdpt::segment_stage(BdptWave& w, RayKind kind, bool light_subpaths) const {
+  StageTimer t(w.stats, Stage::Surface);
+  const SubpathPool& sub = light_subpaths ? w.light : w.eye;
+  // eye depth d reaches its vertex d along segment d - 1; light depth d along d - 1 too
+  const uint32_t segment = w.depth - 1, base = dims::vertex(uint32_t(settings_.maxdepth) + 2);
+  for (uint32_t i = 0; i < w.rays.count; ++i) {
+    const uint32_t slot = w.active[i];
+    w.ray_medium[i] = sub.medium[slot];
+    w.u_distance[i] = w.sampler[slot].get1d(dims::distance(base, segment, light_subpaths));
+  }
+  find_segment_ends(scene_, w.stream, kind, w.rays, w.ray_medium, w.u_distance, w.ends, w.crossing);
+}
+
+// The segment's throughput and the densities it adds to the MIS quantities
+// of the vertex it reached (call after mis_after_hit). Returns false when
+// the subpath ends here (absorbed).
+bool Bdpt::apply_segment(BdptWave& w, SubpathPool& sub, uint32_t i) const {
+  const uint32_t slot = w.active[i];
+  const SegmentEnds& e = w.ends;
+  sub.beta[slot] *= e.weight[i];
+  if (e.end[i] == SegmentEnd::Absorbed) return false;
+  const float rev = mixture_density(sub.sigma_prev[slot], e.T[i]);
+  mis_after_segment(sub.mis[slot], e.fwd_density[i], rev, mis_);
+  sub.sigma_prev[slot] = e.end[i] == SegmentEnd::Scatter ? scene_.media.sigma_t(e.medium[i]) : RGB(0.f);
+  return true;
+}
+
+LightVertexResponse Bdpt::light_vertex_response(const LightVertexPool& v, uint32_t j, const Vec3& wi_w) const {
+  const Scene& sc = scene_;
+  LightVertexResponse r;
+  if (v.in_medium(j)) {
+    const HenyeyGreenstein phase{sc.media.at(v.medium[j]).g};
+    const float p = phase.p(v.wo[j], -wi_w);
+    r.f = RGB(p);
+    r.fwd_W = r.rev_W = p;
+    r.cos = 1.f;
+    r.sigma_t = sc.media.sigma_t(v.medium[j]);
+    r.target = v.p[j];
+    return r;
+  }
+  const TextureContext light_tc{v.p[j], v.ng[j], v.uv[j], v.footprint.empty() ? nullptr : &v.footprint[j],
+                                j < v.tangent.size() ? v.tangent[j] : Vec3(0.f)};
+  with_bsdf(v.material[j], sc.materials, sc.textures, light_tc, [&](const auto& lb) {
+    Frame lf = Frame::from_z(v.ns[j]);
+    Vec3 lwo = lf.to_local(v.wo[j]), lwi = lf.to_local(-wi_w);
+    r.f = lb.f(lwo, lwi, TransportMode::Importance) *
+          (std::fabs(lwi.z) * shading_normal_correction(v.wo[j], -wi_w, v.ng[j], v.ns[j]));
+    r.fwd_W = lb.pdf(lwo, lwi, TransportMode::Importance);
+    r.rev_W = lb.pdf(lwi, lwo, TransportMode::Radiance);
+  });
+  r.cos = vertex_cos(v.ng[j], v.error_scale[j], tangent_or_null(v.tangent, j), wi_w);
+  r.target = offset_ray_origin(v.p[j], v.ng[j], v.error_scale[j], -wi_w);
+  return r;
+}
+
+// s = 1 and s >= 2 for an eye vertex in a medium: point p, medium m,
+// towards the camera wo.
+void Bdpt::connect_eye_medium_vertex(BdptWave& w, uint32_t slot, const Vec3& p, const Vec3& wo, MediumHandle m,
+                                     float u_light, Vec2 u_light2) const {
+  const Scene& sc = scene_;
+  const HenyeyGreenstein phase{sc.media.at(m).g};
+  const RGB sigma_eye = sc.media.sigma_t(m);
+  const RGB& beta = w.eye.beta[slot];
+  const MisState& em = w.eye.mis[slot];
+  const uint32_t depth = w.depth;
+  ++w.stats.light_samples;
+  if (auto ls = sample_light(sc.lights, sc.shapes, sc.textures, light_sampler_, p, Vec3(0.f), u_light, u_light2);
+      ls && !is_black(ls->L)) {  // s = 1
+    const float f = phase.p(wo, ls->wi);
+    const float dist2 = ls->infinite ? 1.f : glm::dot(ls->p_light - p, ls->p_light - p);
+    const bool area = sc.lights.all[ls->light].kind == LightKind::Area;
+    const float direct_pdf_A = area ? ls->pdf * std::fabs(glm::dot(ls->n_light, ls->wi)) / dist2 : ls->pdf;
+    if (f > 0.f && direct_pdf_A > 0.f) {
+      const float emission_fwd_A =
+          emission_pdf(sc.lights, sc.shapes, sc.textures, ls->light, ls->p_light, ls->n_light, -ls->wi) / dist2;
+      DeferredMis d;
+      d.a = ls->delta ? 0.f : mis_(f / ls->pdf);
+      d.b = mis_(emission_fwd_A / direct_pdf_A) * (em.dVCM + em.dVC * mis_(f));
+      d.sigma_b = sigma_eye;
+      const RGB u = beta * f * ls->L / ls->pdf;
+      const StrategyTag tag{1, uint8_t(depth + 1), u};
+      if (ls->infinite) {
+        w.shadow.push_deferred(p, ls->wi, kInfinity, slot, u, Vec2(0.f), tag, m, d, true);
+      } else {
+        const Vec3 target = ls->n_light == Vec3(0.f)
+                                ? ls->p_light
+                                : offset_ray_origin(ls->p_light, ls->n_light, ls->error_scale, -ls->wi);
+        w.shadow.push_deferred(p, target - p, 1.f, slot, u, Vec2(0.f), tag, m, d, true);
+      }
+    }
+  }
+  const LightVertexPool& v = w.vertices;
+  const uint32_t maxdepth = uint32_t(settings_.maxdepth);
+  for (uint32_t n = v.begin[slot]; n < v.begin[slot + 1]; ++n) {  // s >= 2
+    const uint32_t j = v.order[n];
+    if (v.depth[j] + depth > maxdepth) break;
+    const Vec3 dir = v.p[j] - p;
+    const float dist2 = glm::dot(dir, dir);
+    if (!(dist2 > 0.f)) continue;
+    const Vec3 wi_w = dir / std::sqrt(dist2);
+    const float f_eye = phase.p(wo, wi_w);
+    const LightVertexResponse lv = light_vertex_response(v, j, wi_w);
+    const RGB c = beta * f_eye * lv.f * v.beta[j] / dist2;
+    if (is_black(c) || !(f_eye > 0.f)) continue;
+    DeferredMis d;
+    d.a = mis_(f_eye * lv.cos / dist2) * (v.mis[j].dVCM + v.mis[j].dVC * mis_(lv.rev_W));
+    d.sigma_a = lv.sigma_t;
+    d.b = mis_(lv.fwd_W / dist2) * (em.dVCM + em.dVC * mis_(f_eye));
+    d.sigma_b = sigma_eye;
+    w.shadow.push_deferred(p, lv.target - p, 1.f, slot, c, Vec2(0.f), {uint8_t(v.depth[j] + 1), uint8_t(depth + 1), c},
+                           m, d);
+  }
+}
+
+// Stores a light vertex in a medium and prepares its camera connection.
+void Bdpt::connect_light_medium_vertex(BdptWave& w, uint32_t slot, uint32_t i, Vec2 u_lens) const {
+  const Scene& sc = scene_;
+  const uint32_t depth = w.depth, maxdepth = uint32_t(settings_.maxdepth);
+  const Vec3 p = w.ends.p[i], wo = -glm::normalize(w.rays.direction(i));
+  const MediumHandle m = w.ends.medium[i];
+  const RGB& beta = w.light.beta[slot];
+  const MisState& lm = w.light.mis[slot];
+  if (!settings_.light_tracing_only && depth < maxdepth) {
+    LightVertexPool& v = w.vertices;
+    v.slot.push_back(slot);
+    v.depth.push_back(depth);
+    v.p.push_back(p);
+    v.ng.push_back(Vec3(0.f));
+    v.ns.push_back(Vec3(0.f));
+    v.wo.push_back(wo);
+    v.uv.push_back(Vec2(0.f));
+    v.error_scale.push_back(0.f);
+    v.beta.push_back(beta);
+    v.mis.push_back(lm);
+    v.material.push_back(MaterialHandle::make(MaterialKind::Interface, 0));
+    if (!w.hits.footprint.empty()) v.footprint.push_back(Footprint{});
+    if (!v.tangent.empty()) v.tangent.push_back(Vec3(0.f));
+    v.medium.resize(v.p.size() - 1);
+    v.medium.push_back(m);
+  }
+  auto cs = depth <= maxdepth ? camera_.sample_wi(p, u_lens) : std::nullopt;
+  if (!cs) return;  // t = 1
+  const HenyeyGreenstein phase{sc.media.at(m).g};
+  const float f = phase.p(wo, cs->wi);
+  if (!(f > 0.f)) return;
+  DeferredMis d;
+  if (!settings_.light_tracing_only && !settings_.unit_weights) {
+    d.a = mis_(camera_.pdf_area(-cs->wi, sqr(cs->dist), 1.f)) * (lm.dVCM + lm.dVC * mis_(f));
+    d.sigma_a = sc.media.sigma_t(m);
+  }
+  const RGB c = beta * f * (cs->We / cs->pdf);
+  w.shadow.push_deferred(p, cs->p_lens - p, 1.f, slot, c, cs->p_raster, {uint8_t(depth + 1), 1, c}, m, d);
+}
+
+// Continues a subpath from a medium vertex by sampling the phase function
+// (exactly: the throughput keeps its value). light: the subpath kind.
+PathEnd Bdpt::scatter_in_medium(BdptWave& w, SubpathPool& sub, uint32_t i, Vec2 u2, float u_rr, bool light) const {
+  const uint32_t slot = w.active[i];
+  const MediumHandle m = w.ends.medium[i];
+  const HenyeyGreenstein phase{scene_.media.at(m).g};
+  float pdf = 0.f;
+  const Vec3 wo = -glm::normalize(w.rays.direction(i));
+  const Vec3 wi = phase.sample(wo, u2, &pdf);
+  if (!(pdf > 0.f)) return PathEnd::Absorbed;
+  mis_after_scatter(sub.mis[slot], 1.f, pdf, pdf, false, mis_);
+  const float rr = max_component(sub.beta[slot] * sub.eta_scale[slot]) * (light ? sub.rr_scale[slot] : 1.f);
+  if (rr < 1.f && w.depth >= 2) {
+    const float q = std::fmax(0.f, 1.f - rr);
+    if (u_rr < q) return PathEnd::Roulette;
+    sub.beta[slot] /= 1.f - q;
+  }
+  if (!is_finite(sub.beta[slot])) return PathEnd::Absorbed;
+  w.hits.alive[i] = 1;
+  sub.prev_p[slot] = w.ends.p[i];
+  sub.prev_n[slot] = Vec3(0.f);
+  sub.medium[slot] = m;
+  w.hits.next_o[i] = w.ends.p[i];
+  w.hits.next_d[i] = wi;
+  return PathEnd::Count;
+}
+
+void Bdpt::eye_medium_stage(BdptWave& w) const {
+  const uint32_t depth = w.depth, maxdepth = uint32_t(settings_.maxdepth);
+  for (uint32_t i : w.scattered) {
+    const uint32_t slot = w.active[i];
+    const PathSampler& s = w.sampler[slot];
+    const uint32_t dim = dims::vertex(depth);
+    if (depth <= maxdepth)
+      connect_eye_medium_vertex(w, slot, w.ends.p[i], -glm::normalize(w.rays.direction(i)), w.ends.medium[i],
+                                s.get1d(dim + dims::kEyeLightSelect), s.get2d(dim + dims::kEyeLightPosition));
+    if (w.shadow.rays.count >= kMaxPendingConnections) flush_connections(w);
+    const PathEnd end =
+        scatter_in_medium(w, w.eye, i, s.get2d(dim + dims::kEyeBsdfDirection), s.get1d(dim + dims::kEyeRoulette), false);
+    if (end != PathEnd::Count) ++w.stats.eye_ends[size_t(end)];
+  }
+}
+
+void Bdpt::light_medium_stage(BdptWave& w) const {
+  const uint32_t depth = w.depth;
+  for (uint32_t i : w.scattered) {
+    const uint32_t slot = w.active[i];
+    const PathSampler& s = w.sampler[slot];
+    const uint32_t dim = dims::vertex(depth);
+    connect_light_medium_vertex(w, slot, i, s.get2d(dim + dims::kLightLens));
+    if (depth >= uint32_t(settings_.maxdepth)) {
+      ++w.stats.light_ends[size_t(PathEnd::MaxDepth)];
+      continue;
+    }
+    const PathEnd end = scatter_in_medium(w, w.light, i, s.get2d(dim + dims::kLightBsdfDirection),
+                                          s.get1d(dim + dims::kLightRoulette), true);
+    if (end != PathEnd::Count) ++w.stats.light_ends[size_t(end)];
+  }
+}
+
+// The medium a light subpath starts in, leaving its light along d.
+MediumHandle Bdpt::light_start_medium(uint32_t light, const Vec3& n, const Vec3& d) const {
+  const LightPools& L = scene_.lights;
+  const LightRef& ref = L.all[light];
+  switch (ref.kind) {
+    case LightKind::Point: return L.point[ref.index].medium;
+    case LightKind::Spot: return L.spot[ref.index].medium;
+    case LightKind::Area: {
+      const MediumInterface& mi = scene_.shapes.geometries[L.area[ref.index].geometry].media;
+      return glm::dot(n, d) > 0.f ? mi.outside : mi.inside;
+    }
+    default: return {};  // lights at infinity emit into vacuum (docs/media.md)
+  }
+}
+
+// Traces the pending connections through the media and weights them.
+void Bdpt::trace_connections(BdptWave& w) const {
+  ConnectionPool& c = w.shadow;
+  trace_transmittance(scene_, w.stream, c.rays, c.medium, c.T, w.crossing);
+  const bool weighted = !settings_.light_tracing_only && !settings_.unit_weights;
+  for (uint32_t r = 0; r < c.rays.count; ++r) {
+    if (c.rays.occluded(r)) continue;
+    const float wt = weighted ? mis_weight_deferred(c.deferred[r], c.T[r], mis_) : 1.f;
+    c.contrib[r] *= c.T[r] * wt;
+    if (!is_finite(c.contrib[r])) c.rays.tfar[r] = -kInfinity;
+    if (c.record) c.tags[r].unweighted *= c.T[r];
+  }
+}
+
+}  // namespace lantern
