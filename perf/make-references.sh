@@ -5,7 +5,7 @@
 set -eu
 secs=${1:-150}
 shift 2>/dev/null || true
-scenes=${*:-"cornell-box cornell-box-tiny-light lantern door-ajar caustics lamp-street"}
+scenes=${*:-"cornell-box cornell-box-tiny-light lantern door-ajar caustics lamp-street volumetric-caustic"}
 lantern=${LANTERN:-build/lantern}
 mkdir -p perf/references
 for s in $scenes; do

@@ -18,9 +18,9 @@
 namespace lantern {
 namespace {
 
-RenderOptions small_path_render(int width, int height, int spp, int maxdepth) {
+RenderOptions small_path_render(int width, int height, int spp, int maxdepth, const char* integrator = "path") {
   RenderOptions o;
-  o.integrator = "path";
+  o.integrator = integrator;
   o.width = width;
   o.height = height;
   o.spp = spp;
@@ -123,7 +123,13 @@ TEST(Media, SlabTransmittanceAlongShadowRays) {
 // with maxdepth 1 a pixel sees exactly the light scattered once towards it:
 //   L(d) = integral_0^inf T(t) sigma_s p(d . l(t)) I T(r(t)) / r(t)^2 dt.
 // The image mean is that integral averaged over the film (box filter).
-TEST(Media, SingleScatteringOfAPointLightMatchesItsIntegral) {
+// Every integrator: path (next-event estimation from the medium vertex),
+// bdpt (that, and the light vertex in the medium connected to the camera,
+// weighted by MIS) and lt (the latter alone).
+class MediaIntegrators : public ::testing::TestWithParam<const char*> {};
+INSTANTIATE_TEST_SUITE_P(Media, MediaIntegrators, ::testing::Values("path", "bdpt", "lt"));
+
+TEST_P(MediaIntegrators, SingleScatteringOfAPointLightMatchesItsIntegral) {
   const char* text = R"(
 PixelFilter "box"
 MediumInterface "" "mist"
@@ -136,7 +142,8 @@ MediumInterface "" "mist"
 LightSource "point" "point3 from" [ 1 0 3 ] "rgb I" [ 10 10 10 ]
 )";
   auto scene = load_scene_from_string(text, "mist.pbrt", {});
-  const RegionStats st = stats_of(render_runs(*scene, small_path_render(8, 8, 64, 1), 4, 1), {{0, 0, 8, 8}});
+  const int spp = std::string(GetParam()) == "lt" ? 256 : 64;
+  const RegionStats st = stats_of(render_runs(*scene, small_path_render(8, 8, spp, 1, GetParam()), 4, 1), {{0, 0, 8, 8}});
   const double sa[3] = {0.05, 0.1, 0.2}, ss[3] = {0.3, 0.2, 0.1}, g = 0.5, I = 10.0;
   const double half = std::tan(10.0 * kPi / 180.0);
   for (int c = 0; c < 3; ++c) {
@@ -169,7 +176,11 @@ LightSource "point" "point3 from" [ 1 0 3 ] "rgb I" [ 10 10 10 ]
 // A white furnace: inside a sphere that emits radiance 1 inwards and
 // reflects nothing, a medium that scatters (differently per channel) but
 // absorbs nothing leaves radiance 1 everywhere; the camera sits inside.
-TEST(Media, WhiteFurnaceStaysAtOne) {
+// (Light tracing is left out: with the camera inside a scattering medium,
+// its camera connections from vertices near the lens grow as 1/r^2, and
+// their variance is infinite.)
+TEST_P(MediaIntegrators, WhiteFurnaceStaysAtOne) {
+  if (std::string(GetParam()) == "lt") GTEST_SKIP() << "infinite variance (see above)";
   const char* text = R"(
 PixelFilter "box"
 MediumInterface "fog" "fog"
@@ -179,7 +190,9 @@ WorldBegin
 MakeNamedMedium "fog" "string type" "homogeneous"
   "rgb sigma_a" [ 0 0 0 ] "rgb sigma_s" [ 0.5 1 2 ] "float g" [ 0.3 ]
 AttributeBegin
-  MediumInterface "fog" ""
+  # ReverseOrientation turns the normal inwards, and with it pbrt's
+  # "outside" side: the fog is on the outside of the reversed sphere.
+  MediumInterface "" "fog"
   ReverseOrientation
   AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
   Material "diffuse" "rgb reflectance" [ 0 0 0 ]
@@ -188,7 +201,8 @@ AttributeEnd
 )";
   auto scene = load_scene_from_string(text, "furnace.pbrt", {});
   const int spp = LANTERN_ASAN ? 8 : 32;
-  const RegionStats st = stats_of(render_runs(*scene, small_path_render(16, 16, spp, 100), 4, 1), {{0, 0, 16, 16}});
+  const RegionStats st =
+      stats_of(render_runs(*scene, small_path_render(16, 16, spp, 100, GetParam()), 4, 1), {{0, 0, 16, 16}});
   for (int c = 0; c < 3; ++c)
     EXPECT_LT(std::fabs(st.mean[0][size_t(c)] - 1.0), 4.0 * st.std_error[0][size_t(c)] + 1e-3)
         << "channel " << c << ": " << st.mean[0][size_t(c)];
@@ -197,7 +211,7 @@ AttributeEnd
 TEST(Media, ImagesDoNotDependOnThreads) {
   auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/perf/media/fog-sphere.pbrt");
   RenderOptions o = small_path_render(40, 30, 4, 10);
-  expect_thread_invariant(*scene, o, {"path"});
+  expect_thread_invariant(*scene, o, {"path", "bdpt", "lt"});
 }
 
 // pbrt-v4 (../shared/anchors, volpath) rendered perf/media/fog-sphere.pbrt
