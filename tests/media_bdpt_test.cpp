@@ -68,14 +68,14 @@ AttributeEnd
 // cone under the ball, the floor's spot and fog beside the ball (not seen
 // through it: light tracing cannot see through glass). Path tracing is left
 // out here: most of the room's light passes through the ball, which path
-// tracing finds only through rare paths, so 4 short runs give it no
+// tracing finds only through rare paths, so short runs give it no
 // meaningful standard error (docs/media.md compares long renders).
 TEST(MediaAgreement, VolumetricCaustic) {
   if (LANTERN_ASAN) GTEST_SKIP() << "the Release suite runs it";
   auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/volumetric-caustic.pbrt");
   const std::vector<Region> caustic = {{18, 17, 4, 5}, {17, 23, 6, 3}, {4, 8, 8, 8}};
-  const RegionStats bdpt = render_stats(*scene, "bdpt", 40, 30, 32, 4, caustic);
-  const RegionStats lt = render_stats(*scene, "lt", 40, 30, 64, 4, caustic);
+  const RegionStats bdpt = render_stats(*scene, "bdpt", 40, 30, 32, 8, caustic);
+  const RegionStats lt = render_stats(*scene, "lt", 40, 30, 64, 8, caustic);
   EXPECT_LT(max_z(bdpt, lt), 4.5);
 }
 

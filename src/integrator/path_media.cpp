@@ -47,14 +47,9 @@ void PathTracer::medium_scatter_stage(PathWave& w) const {
     const float u_rr = s.get1d(dim + dims::kEyeRoulette);
     w.prev_pdf[slot] = pdf;
     w.prev_specular[slot] = 0;
-    float rr = max_component(w.beta[slot] * w.eta_scale[slot]);
-    if (rr < 1.f && w.depth >= 1) {
-      float q = std::fmax(0.f, 1.f - rr);
-      if (u_rr < q) {
-        ++w.stats.eye_ends[size_t(PathEnd::Roulette)];
-        continue;
-      }
-      w.beta[slot] /= 1.f - q;
+    if (!survives_roulette(w.beta[slot], w.eta_scale[slot], w.depth, u_rr)) {
+      ++w.stats.eye_ends[size_t(PathEnd::Roulette)];
+      continue;
     }
     if (!is_finite(w.beta[slot]) || !(pdf > 0.f)) {
       ++w.stats.eye_ends[size_t(PathEnd::Absorbed)];

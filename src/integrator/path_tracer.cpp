@@ -189,15 +189,9 @@ void PathTracer::shade_stage(PathWave& w) const {
     w.prev_pdf[slot] = bs->pdf_is_proportional ? bsdf.pdf(wo, bs->wi, TransportMode::Radiance) : bs->pdf;
     w.prev_specular[slot] = bs->specular;
     if (bs->transmission) w.eta_scale[slot] *= sqr(bs->etap);
-    // Russian roulette on the throughput with refraction's scaling undone.
-    float rr = max_component(w.beta[slot] * w.eta_scale[slot]);
-    if (rr < 1.f && w.depth >= 1) {
-      float q = std::fmax(0.f, 1.f - rr);
-      if (u_rr < q) {
-        ++w.stats.eye_ends[size_t(PathEnd::Roulette)];
-        return;
-      }
-      w.beta[slot] /= 1.f - q;
+    if (!survives_roulette(w.beta[slot], w.eta_scale[slot], w.depth, u_rr)) {
+      ++w.stats.eye_ends[size_t(PathEnd::Roulette)];
+      return;
     }
     if (!is_finite(w.beta[slot])) {
       ++w.stats.eye_ends[size_t(PathEnd::Absorbed)];

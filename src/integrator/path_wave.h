@@ -90,6 +90,19 @@ struct PathWave {
   }
 };
 
+// Russian roulette on a path's throughput with refraction's scaling undone
+// (from the second vertex on): false if the path ends, else beta is
+// reweighted.
+inline bool survives_roulette(RGB& beta, float eta_scale, uint32_t depth, float u_rr) {
+  float rr = max_component(beta * eta_scale);
+  if (rr < 1.f && depth >= 1) {
+    float q = std::fmax(0.f, 1.f - rr);
+    if (u_rr < q) return false;
+    beta /= 1.f - q;
+  }
+  return true;
+}
+
 // A shadow ray of a scene with media, from o towards light sample ls,
 // starting in medium m; its MIS weight is formed once its transmittance is
 // known (light_pdf 0: a delta light).
