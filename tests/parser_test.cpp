@@ -112,12 +112,13 @@ TEST(Parser, EveryDirectiveLandsInItsPool) {
 
 TEST(Parser, UnusedAndUnsupportedThingsWarnWithTheirPlace) {
   std::vector<std::string> warnings;
-  load("WorldBegin\nShape \"sphere\" \"float radius\" 1 \"float wobble\" 3\nMakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n"
-       "LightSource \"point\"\n", &warnings);
-  ASSERT_EQ(warnings.size(), 2u);
+  load("WorldBegin\nShape \"sphere\" \"float radius\" 1 \"float wobble\" 3\nAttribute \"shape\" \"float radius\" 2\n"
+       "MakeNamedMedium \"fog\" \"string type\" \"homogeneous\" \"float fluff\" 1\nLightSource \"point\"\n", &warnings);
+  ASSERT_EQ(warnings.size(), 3u);
   EXPECT_NE(warnings[0].find("t.pbrt:2:"), std::string::npos) << warnings[0];
   EXPECT_NE(warnings[0].find("wobble"), std::string::npos);
-  EXPECT_NE(warnings[1].find("MakeNamedMedium"), std::string::npos);
+  EXPECT_NE(warnings[1].find("Attribute"), std::string::npos);
+  EXPECT_NE(warnings[2].find("fluff"), std::string::npos) << warnings[2];
 }
 
 TEST(Parser, MalformedInputGivesClearErrors) {

@@ -17,6 +17,11 @@ void add_depth(RGB& depth, const RGB& sigma_t, float len) {
     if (sigma_t[k] > 0.f) depth[k] += sigma_t[k] * len;
 }
 
+// A ray that crosses more boundaries than this (nested or coincident
+// boundaries hit again and again at a grazing angle) is ended: absorbed, or
+// blocked for a shadow ray. A bound, so a degenerate scene cannot hang.
+constexpr int kMaxCrossings = 256;
+
 RGB transmittance(const RGB& depth) { return RGB(std::exp(-depth.x), std::exp(-depth.y), std::exp(-depth.z)); }
 
 // Ray j of src (its hit included) becomes ray i of dst.
@@ -60,11 +65,18 @@ void find_segment_ends(const Scene& sc, RayStream& stream, RayKind kind, RayBatc
     s.owner[i] = i;
   }
   uint32_t pending = n;
-  while (pending > 0) {
+  for (int round = 0; pending > 0; ++round) {
     s.rays.count = 0;
     s.next.clear();
     for (uint32_t k = 0; k < pending; ++k) {
       const uint32_t i = s.owner[k];
+      if (round == kMaxCrossings) {
+        out.end[i] = SegmentEnd::Absorbed;
+        out.weight[i] = out.T[i] = RGB(0.f);
+        out.fwd_density[i] = 1.f;
+        out.medium[i] = s.medium[i];
+        continue;
+      }
       const Vec3 d = rays.direction(i);
       const float d_len = glm::length(d);
       const bool hit = rays.hit(i);
@@ -125,7 +137,14 @@ void trace_transmittance(const Scene& sc, RayStream& stream, RayBatch& rays, con
     s.next.push_back(r);
   }
   RayBatch& cont = s.continued;
-  while (s.rays.count > 0) {
+  for (int round = 0; s.rays.count > 0; ++round) {
+    if (round == kMaxCrossings) {
+      for (uint32_t j = 0; j < s.rays.count; ++j) {
+        T[s.next[j]] = RGB(0.f);
+        rays.tfar[s.next[j]] = -kInfinity;
+      }
+      break;
+    }
     stream.intersect(s.rays, RayKind::Shadow);
     cont.count = 0;
     s.owner.clear();
