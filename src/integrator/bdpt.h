@@ -90,7 +90,7 @@ class Bdpt {
   bool apply_segment(BdptWave& w, SubpathPool& sub, uint32_t i) const;
   LightVertexResponse light_vertex_response(const LightVertexPool& v, uint32_t j, const Vec3& wi_w) const;
   void connect_eye_medium_vertex(BdptWave& w, uint32_t slot, const Vec3& p, const Vec3& wo, MediumHandle m,
-                                 float u_light, Vec2 u_light2) const;
+                                 const RGB& sigma_eye, float u_light, Vec2 u_light2) const;
   void connect_light_medium_vertex(BdptWave& w, uint32_t slot, uint32_t i, Vec2 u_lens) const;
   template <class BSDF>  // s >= 2 from a surface eye vertex (bdpt.cpp)
   void connect_eye_surface_vertex_media(BdptWave& w, uint32_t i, const BSDF& bsdf, const Frame& frame,

@@ -41,7 +41,7 @@ bool Bdpt::apply_segment(BdptWave& w, SubpathPool& sub, uint32_t i) const {
   if (e.end[i] == SegmentEnd::Absorbed) return false;
   const float rev = mixture_density(sub.sigma_prev[slot], e.T[i]);
   mis_after_segment(sub.mis[slot], e.fwd_density[i], rev, mis_);
-  sub.sigma_prev[slot] = e.end[i] == SegmentEnd::Scatter ? scene_.media.sigma_t(e.medium[i]) : RGB(0.f);
+  sub.sigma_prev[slot] = e.end[i] == SegmentEnd::Scatter ? e.sigma_t[i] : RGB(0.f);
   return true;
 }
 
@@ -49,12 +49,12 @@ LightVertexResponse Bdpt::light_vertex_response(const LightVertexPool& v, uint32
   const Scene& sc = scene_;
   LightVertexResponse r;
   if (v.in_medium(j)) {
-    const HenyeyGreenstein phase{sc.media.at(v.medium[j]).g};
+    const HenyeyGreenstein phase{sc.media.coefficients(v.medium[j]).g};
     const float p = phase.p(v.wo[j], -wi_w);
     r.f = RGB(p);
     r.fwd_W = r.rev_W = p;
     r.cos = 1.f;
-    r.sigma_t = sc.media.sigma_t(v.medium[j]);
+    r.sigma_t = v.sigma_t[j];
     r.target = v.p[j];
     return r;
   }
@@ -76,10 +76,9 @@ LightVertexResponse Bdpt::light_vertex_response(const LightVertexPool& v, uint32
 // s = 1 and s >= 2 for an eye vertex in a medium: point p, medium m,
 // towards the camera wo.
 void Bdpt::connect_eye_medium_vertex(BdptWave& w, uint32_t slot, const Vec3& p, const Vec3& wo, MediumHandle m,
-                                     float u_light, Vec2 u_light2) const {
+                                     const RGB& sigma_eye, float u_light, Vec2 u_light2) const {
   const Scene& sc = scene_;
-  const HenyeyGreenstein phase{sc.media.at(m).g};
-  const RGB sigma_eye = sc.media.sigma_t(m);
+  const HenyeyGreenstein phase{sc.media.coefficients(m).g};
   const RGB& beta = w.eye.beta[slot];
   const MisState& em = w.eye.mis[slot];
   const uint32_t depth = w.depth;
@@ -156,17 +155,19 @@ void Bdpt::connect_light_medium_vertex(BdptWave& w, uint32_t slot, uint32_t i, V
     if (!w.hits.footprint.empty()) v.footprint.push_back(Footprint{});
     if (!v.tangent.empty()) v.tangent.push_back(Vec3(0.f));
     v.medium.resize(v.p.size() - 1);
+    v.sigma_t.resize(v.p.size() - 1);
     v.medium.push_back(m);
+    v.sigma_t.push_back(w.ends.sigma_t[i]);
   }
   auto cs = depth <= maxdepth ? camera_.sample_wi(p, u_lens) : std::nullopt;
   if (!cs) return;  // t = 1
-  const HenyeyGreenstein phase{sc.media.at(m).g};
+  const HenyeyGreenstein phase{sc.media.coefficients(m).g};
   const float f = phase.p(wo, cs->wi);
   if (!(f > 0.f)) return;
   DeferredMis d;
   if (!settings_.light_tracing_only && !settings_.unit_weights) {
     d.a = mis_(camera_.pdf_area(-cs->wi, sqr(cs->dist), 1.f)) * (lm.dVCM + lm.dVC * mis_(f));
-    d.sigma_a = sc.media.sigma_t(m);
+    d.sigma_a = w.ends.sigma_t[i];
   }
   const RGB c = beta * f * (cs->We / cs->pdf);
   w.shadow.push_deferred(p, cs->p_lens - p, 1.f, slot, c, cs->p_raster, {uint8_t(depth + 1), 1, c}, m, d);
@@ -177,7 +178,7 @@ void Bdpt::connect_light_medium_vertex(BdptWave& w, uint32_t slot, uint32_t i, V
 PathEnd Bdpt::scatter_in_medium(BdptWave& w, SubpathPool& sub, uint32_t i, Vec2 u2, float u_rr, bool light) const {
   const uint32_t slot = w.active[i];
   const MediumHandle m = w.ends.medium[i];
-  const HenyeyGreenstein phase{scene_.media.at(m).g};
+  const HenyeyGreenstein phase{scene_.media.coefficients(m).g};
   float pdf = 0.f;
   const Vec3 wo = -glm::normalize(w.rays.direction(i));
   const Vec3 wi = phase.sample(wo, u2, &pdf);
@@ -207,7 +208,7 @@ void Bdpt::eye_medium_stage(BdptWave& w) const {
     const uint32_t dim = dims::vertex(depth);
     if (depth <= maxdepth)
       connect_eye_medium_vertex(w, slot, w.ends.p[i], -glm::normalize(w.rays.direction(i)), w.ends.medium[i],
-                                s.get1d(dim + dims::kEyeLightSelect), s.get2d(dim + dims::kEyeLightPosition));
+                                w.ends.sigma_t[i], s.get1d(dim + dims::kEyeLightSelect), s.get2d(dim + dims::kEyeLightPosition));
     if (w.shadow.rays.count >= kMaxPendingConnections) flush_connections(w);
     const PathEnd end =
         scatter_in_medium(w, w.eye, i, s.get2d(dim + dims::kEyeBsdfDirection), s.get1d(dim + dims::kEyeRoulette), false);

@@ -73,6 +73,7 @@ struct LightVertexPool {
   std::vector<Footprint> footprint;  // empty unless the scene's textures filter
   std::vector<Vec3> tangent;         // empty unless the scene has curves
   std::vector<MediumHandle> medium;  // empty unless the scene has media; a medium vertex's, else vacuum
+  std::vector<RGB> sigma_t;          // alongside medium: the extinction at a medium vertex
   std::vector<uint32_t> begin, order;
 
   size_t size() const { return slot.size(); }
@@ -88,6 +89,7 @@ struct LightVertexPool {
     footprint.clear();
     tangent.clear();
     medium.clear();
+    sigma_t.clear();
   }
 };
 
@@ -211,7 +213,7 @@ struct BdptWave {
     b += vector_bytes(v.slot) + vector_bytes(v.depth) + vector_bytes(v.p) + vector_bytes(v.ng) + vector_bytes(v.ns) +
          vector_bytes(v.wo) + vector_bytes(v.uv) + vector_bytes(v.footprint) + vector_bytes(v.tangent) + vector_bytes(v.error_scale) + vector_bytes(v.beta) +
          vector_bytes(v.mis) + vector_bytes(v.material) + vector_bytes(v.begin) + vector_bytes(v.order) +
-         vector_bytes(v.medium);
+         vector_bytes(v.medium) + vector_bytes(v.sigma_t);
     for (const SubpathPool* p : subpaths) b += vector_bytes(p->medium) + vector_bytes(p->sigma_prev);
     b += vector_bytes(shadow.medium) + vector_bytes(shadow.T) + vector_bytes(shadow.deferred) + vector_bytes(ray_medium) +
          vector_bytes(u_distance) + ends.memory_bytes() + vector_bytes(scattered) + crossing.memory_bytes();

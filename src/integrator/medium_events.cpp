@@ -84,24 +84,30 @@ void find_segment_ends(const Scene& sc, RayStream& stream, RayKind kind, RayBatc
       const MediumHandle m = s.medium[i];
       RGB& depth = s.depth[i];
       if (!m.vacuum()) {
-        const HomogeneousMedium& hm = sc.media.at(m);
-        const RGB sigma_t = hm.sigma_t();
+        // Coefficients per unit density; the channel's remaining optical
+        // depth becomes a target for the density's integral.
+        const HomogeneousMedium& co = sc.media.coefficients(m);
+        const RGB sigma_t = co.sigma_t();
         const float sc_c = sigma_t[s.channel[i]];
-        if (sc_c > 0.f && sc_c * len > s.tau[i]) {  // scatters inside this stretch
-          const float t = s.tau[i] / sc_c;
-          add_depth(depth, sigma_t, t);
-          const RGB T = transmittance(depth);
-          const float p = mixture_density(sigma_t, T);
+        const Vec3 o = rays.origin(i), dir = d / d_len;
+        float s_hit;
+        const float D = sc.media.density_integral(m, o, dir, 0.f, len, sc_c > 0.f ? s.tau[i] / sc_c : -1.f, &s_hit);
+        add_depth(depth, sigma_t, D);
+        if (s_hit < kInfinity) {  // scatters inside this stretch
+          const Vec3 p = o + dir * s_hit;
+          const float rho = sc.media.density(m, p);
+          const RGB T = transmittance(depth), sigma_x = sigma_t * rho;
+          const float pdf = mixture_density(sigma_x, T);
           out.end[i] = SegmentEnd::Scatter;
-          out.p[i] = rays.origin(i) + d * (t / d_len);
+          out.p[i] = p;
           out.T[i] = T;
-          out.weight[i] = p > 0.f ? T * hm.sigma_s / p : RGB(0.f);
-          out.fwd_density[i] = p;
+          out.weight[i] = pdf > 0.f ? T * co.sigma_s * (rho / pdf) : RGB(0.f);
+          out.fwd_density[i] = pdf;
           out.medium[i] = m;
+          out.sigma_t[i] = sigma_x;
           continue;
         }
-        if (sc_c > 0.f) s.tau[i] -= sc_c * len;
-        add_depth(depth, sigma_t, len);
+        if (sc_c > 0.f) s.tau[i] -= sc_c * D;
       }
       if (hit && is_boundary(sc, rays, i)) {
         cross_boundary(sc, rays, i, &s.medium[i], s.rays, kInfinity);
@@ -153,7 +159,14 @@ void trace_transmittance(const Scene& sc, RayStream& stream, RayBatch& rays, con
       const bool hit = s.rays.hit(j);
       const bool bounded = std::isfinite(rays.tfar[r]);
       // tfar: the hit's distance, or (a miss) the ray's own end
-      add_depth(s.depth[r], sc.media.sigma_t(s.medium[r]), s.rays.tfar[j] * glm::length(s.rays.direction(j)));
+      const MediumHandle m = s.medium[r];
+      if (!m.vacuum()) {
+        const Vec3 d = s.rays.direction(j);
+        const float d_len = glm::length(d);
+        float unused;
+        add_depth(s.depth[r], sc.media.coefficients(m).sigma_t(),
+                  sc.media.density_integral(m, s.rays.origin(j), d / d_len, 0.f, s.rays.tfar[j] * d_len, -1.f, &unused));
+      }
       if (hit && is_boundary(sc, s.rays, j)) {
         const uint32_t k = cross_boundary(sc, s.rays, j, &s.medium[r], cont, kInfinity);
         if (bounded) {  // aim at the original end point, not past it

@@ -39,8 +39,10 @@ struct SegmentEnds {
   std::vector<RGB> T;               // its transmittance
   std::vector<float> fwd_density;   // p or P of the end reached
   std::vector<MediumHandle> medium;  // the medium the segment ends in
+  std::vector<RGB> sigma_t;          // the extinction at the scattering point
 
   void resize(uint32_t n) {
+    sigma_t.resize(n);
     end.resize(n);
     p.resize(n);
     weight.resize(n);
@@ -50,7 +52,7 @@ struct SegmentEnds {
   }
   size_t memory_bytes() const {
     return vector_bytes(end) + vector_bytes(p) + vector_bytes(weight) + vector_bytes(T) + vector_bytes(fwd_density) +
-           vector_bytes(medium);
+           vector_bytes(medium) + vector_bytes(sigma_t);
   }
 };
 

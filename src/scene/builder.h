@@ -72,7 +72,7 @@ class SceneBuilder {
   // Participating media (builder_media.cpp): MakeNamedMedium; the medium
   // named by the graphics state when the camera was declared; the media
   // of lights added since the given pool sizes.
-  void medium(const std::string& name, const pbrt::ParamSet& ps);
+  void medium(const std::string& name, const pbrt::ParamSet& ps, const Mat4& render_from_medium);
   const LightPools& lights() const { return scene_.lights; }
   void camera_medium(const std::string& name, const SourceLocation& where);
   void assign_light_media(size_t points, size_t spots, size_t at_infinity, const std::string& name,
@@ -139,6 +139,8 @@ class SceneBuilder {
   MediumInterface medium_interface(const GraphicsState& gs) const;
   void assign_media(size_t first_geometry, const GraphicsState& gs);
   void finish_media();
+  HomogeneousMedium medium_coefficients(const pbrt::ParamSet& ps, bool presets);
+  DensityGrid density_grid(const pbrt::ParamSet& ps, const Mat4& render_from_medium);
   void note_geometry();
   void check_objects_closed() const;
 

@@ -22,28 +22,44 @@ RGB checked_coefficient(const ParamSet& ps, const char* name, RGB value, float s
 
 }  // namespace
 
-void SceneBuilder::medium(const std::string& name, const ParamSet& ps) {
+void SceneBuilder::medium(const std::string& name, const ParamSet& ps, const Mat4& render_from_medium) {
   if (named_media_.count(name)) ps.fail("medium \"" + printable(name) + "\" is defined twice");
   const std::string type = ps.get_string("type", "");
-  if (type.empty()) ps.fail("needs a \"string type\" parameter (homogeneous)");
-  if (type == "uniformgrid" || type == "rgbgrid" || type == "cloud" || type == "nanovdb")
-    ps.fail("medium type \"" + type + "\" is not supported yet; expected \"homogeneous\"");
-  if (type != "homogeneous") ps.fail("unknown medium type \"" + printable(type) + "\"; expected \"homogeneous\"");
+  if (type.empty()) ps.fail("needs a \"string type\" parameter (homogeneous or uniformgrid)");
+  if (type == "rgbgrid" || type == "cloud" || type == "nanovdb")
+    ps.fail("medium type \"" + type + "\" is not supported yet; expected \"homogeneous\" or \"uniformgrid\"");
+  if (type != "homogeneous" && type != "uniformgrid")
+    ps.fail("unknown medium type \"" + printable(type) + "\"; expected \"homogeneous\" or \"uniformgrid\"");
+  if (auto Le = ps.get_rgb("Le", ColorUsage::Illuminant); Le && !is_black(*Le))
+    ps.fail(*ps.find("Le"), "emissive media (\"Le\") are not supported yet");
+  ps.find("Lescale");
+  MediumPools& media = scene_.media;
+  if (type == "homogeneous") {
+    media.homogeneous.push_back(medium_coefficients(ps, true));
+    named_media_[name] = MediumHandle::homogeneous(uint32_t(media.homogeneous.size() - 1));
+    return;
+  }
+  if (ps.has("temperature")) ps.fail(*ps.find("temperature"), "emissive media (\"temperature\") are not supported yet");
+  GridMedium g;
+  g.per_density = medium_coefficients(ps, false);
+  g.density = density_grid(ps, render_from_medium);
+  media.grid.push_back(std::move(g));
+  named_media_[name] = MediumHandle::make(MediumKind::Grid, uint32_t(media.grid.size() - 1));
+}
 
-  RGB sigma_a(1.f), sigma_s(1.f);  // pbrt-v4's defaults
-  const std::string preset = ps.get_string("preset", "");
+// sigma_a, sigma_s (or a preset), scale and g, with pbrt-v4's defaults.
+HomogeneousMedium SceneBuilder::medium_coefficients(const ParamSet& ps, bool presets) {
+  RGB sigma_a(1.f), sigma_s(1.f);
+  const std::string preset = presets ? ps.get_string("preset", "") : "";
   if (!preset.empty()) {
     auto p = medium_preset(preset);
     if (!p) ps.fail(*ps.find("preset"), "unknown preset \"" + printable(preset) + "\"; known: " + medium_preset_names());
     sigma_a = p->sigma_a;
     sigma_s = p->sigma_s;
-  }
-  // As in pbrt-v4, a preset wins over explicit coefficients.
-  if (preset.empty()) {
+    for (const char* name : {"sigma_a", "sigma_s"}) ps.find(name);  // as in pbrt-v4, a preset wins
+  } else {
     sigma_a = ps.get_rgb("sigma_a", ColorUsage::Unbounded).value_or(sigma_a);
     sigma_s = ps.get_rgb("sigma_s", ColorUsage::Unbounded).value_or(sigma_s);
-  } else {
-    for (const char* p : {"sigma_a", "sigma_s"}) ps.find(p);
   }
   const float scale = ps.get_float("scale", 1.f);
   HomogeneousMedium m;
@@ -51,11 +67,34 @@ void SceneBuilder::medium(const std::string& name, const ParamSet& ps) {
   m.sigma_s = checked_coefficient(ps, "sigma_s", sigma_s, scale);
   m.g = ps.get_float("g", 0.f);
   if (!(m.g > -1.f && m.g < 1.f)) ps.fail(*ps.find("g"), "\"g\" must lie strictly between -1 and 1");
-  if (auto Le = ps.get_rgb("Le", ColorUsage::Illuminant); Le && !is_black(*Le))
-    ps.fail(*ps.find("Le"), "emissive media (\"Le\") are not supported yet");
-  ps.find("Lescale");
-  scene_.media.homogeneous.push_back(m);
-  named_media_[name] = MediumHandle::homogeneous(uint32_t(scene_.media.homogeneous.size() - 1));
+  return m;
+}
+
+// pbrt-v4's uniformgrid: "density" (nx * ny * nz values, x fastest) over
+// the box p0..p1 of the medium's space.
+DensityGrid SceneBuilder::density_grid(const ParamSet& ps, const Mat4& render_from_medium) {
+  DensityGrid g;
+  g.nx = ps.get_int("nx", 1);
+  g.ny = ps.get_int("ny", 1);
+  g.nz = ps.get_int("nz", 1);
+  if (g.nx < 1 || g.ny < 1 || g.nz < 1) ps.fail("\"nx\", \"ny\" and \"nz\" must be at least 1");
+  const pbrt::Param* density = ps.find("density");
+  if (!density) ps.fail("a uniformgrid needs \"float density\" values");
+  // Counted in 64 bits before anything is allocated for the grid.
+  const uint64_t count = uint64_t(g.nx) * uint64_t(g.ny) * uint64_t(g.nz);
+  if (count != density->numbers.size())
+    ps.fail(*density, "has " + std::to_string(density->numbers.size()) + " values; expected nx * ny * nz = " +
+                          std::to_string(count));
+  g.values = ps.get_floats("density");
+  for (float v : g.values)
+    if (!(v >= 0.f) || !std::isfinite(v)) ps.fail(*density, "density values must be finite and not negative");
+  g.p0 = ps.get_point3("p0", Vec3(0.f));
+  g.p1 = ps.get_point3("p1", Vec3(1.f));
+  if (!(g.p0.x < g.p1.x && g.p0.y < g.p1.y && g.p0.z < g.p1.z)) ps.fail("\"p0\" must lie below \"p1\" on every axis");
+  const float det = glm::determinant(render_from_medium);
+  if (!std::isfinite(det) || det == 0.f) ps.fail("the medium's transform is singular");
+  g.medium_from_render = glm::inverse(render_from_medium);
+  return g;
 }
 
 MediumHandle SceneBuilder::find_medium(const std::string& name, const SourceLocation& where) const {
