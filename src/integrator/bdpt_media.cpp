@@ -49,7 +49,7 @@ LightVertexResponse Bdpt::light_vertex_response(const LightVertexPool& v, uint32
   const Scene& sc = scene_;
   LightVertexResponse r;
   if (v.in_medium(j)) {
-    const HenyeyGreenstein phase{sc.media.coefficients(v.medium[j]).g};
+    const HenyeyGreenstein phase{sc.media.g(v.medium[j])};
     const float p = phase.p(v.wo[j], -wi_w);
     r.f = RGB(p);
     r.fwd_W = r.rev_W = p;
@@ -78,7 +78,7 @@ LightVertexResponse Bdpt::light_vertex_response(const LightVertexPool& v, uint32
 void Bdpt::connect_eye_medium_vertex(BdptWave& w, uint32_t slot, const Vec3& p, const Vec3& wo, MediumHandle m,
                                      const RGB& sigma_eye, float u_light, Vec2 u_light2) const {
   const Scene& sc = scene_;
-  const HenyeyGreenstein phase{sc.media.coefficients(m).g};
+  const HenyeyGreenstein phase{sc.media.g(m)};
   const RGB& beta = w.eye.beta[slot];
   const MisState& em = w.eye.mis[slot];
   const uint32_t depth = w.depth;
@@ -161,7 +161,7 @@ void Bdpt::connect_light_medium_vertex(BdptWave& w, uint32_t slot, uint32_t i, V
   }
   auto cs = depth <= maxdepth ? camera_.sample_wi(p, u_lens) : std::nullopt;
   if (!cs) return;  // t = 1
-  const HenyeyGreenstein phase{sc.media.coefficients(m).g};
+  const HenyeyGreenstein phase{sc.media.g(m)};
   const float f = phase.p(wo, cs->wi);
   if (!(f > 0.f)) return;
   DeferredMis d;
@@ -178,7 +178,7 @@ void Bdpt::connect_light_medium_vertex(BdptWave& w, uint32_t slot, uint32_t i, V
 PathEnd Bdpt::scatter_in_medium(BdptWave& w, SubpathPool& sub, uint32_t i, Vec2 u2, float u_rr, bool light) const {
   const uint32_t slot = w.active[i];
   const MediumHandle m = w.ends.medium[i];
-  const HenyeyGreenstein phase{scene_.media.coefficients(m).g};
+  const HenyeyGreenstein phase{scene_.media.g(m)};
   float pdf = 0.f;
   const Vec3 wo = -glm::normalize(w.rays.direction(i));
   const Vec3 wi = phase.sample(wo, u2, &pdf);

@@ -10,13 +10,6 @@ bool is_boundary(const Scene& sc, const RayBatch& rays, uint32_t i) {
   return sc.shapes.geometries[rays.geom_id[i]].material.kind() == MaterialKind::Interface;
 }
 
-// Adds the optical depth of a stretch of length len (possibly infinite):
-// channels that do not interact stay finite.
-void add_depth(RGB& depth, const RGB& sigma_t, float len) {
-  for (int k = 0; k < 3; ++k)
-    if (sigma_t[k] > 0.f) depth[k] += sigma_t[k] * len;
-}
-
 // A ray that crosses more boundaries than this (nested or coincident
 // boundaries hit again and again at a grazing angle) is ended: absorbed, or
 // blocked for a shadow ray. A bound, so a degenerate scene cannot hang.
@@ -84,30 +77,27 @@ void find_segment_ends(const Scene& sc, RayStream& stream, RayKind kind, RayBatc
       const MediumHandle m = s.medium[i];
       RGB& depth = s.depth[i];
       if (!m.vacuum()) {
-        // Coefficients per unit density; the channel's remaining optical
-        // depth becomes a target for the density's integral.
-        const HomogeneousMedium& co = sc.media.coefficients(m);
-        const RGB sigma_t = co.sigma_t();
-        const float sc_c = sigma_t[s.channel[i]];
+        const int c = s.channel[i];
         const Vec3 o = rays.origin(i), dir = d / d_len;
         float s_hit;
-        const float D = sc.media.density_integral(m, o, dir, 0.f, len, sc_c > 0.f ? s.tau[i] / sc_c : -1.f, &s_hit);
-        add_depth(depth, sigma_t, D);
+        const RGB stretch = sc.media.optical_depth(m, o, dir, 0.f, len, c, s.tau[i], &s_hit);
+        depth += stretch;
         if (s_hit < kInfinity) {  // scatters inside this stretch
           const Vec3 p = o + dir * s_hit;
-          const float rho = sc.media.density(m, p);
-          const RGB T = transmittance(depth), sigma_x = sigma_t * rho;
+          RGB sigma_a, sigma_s;
+          sc.media.coefficients_at(m, p, &sigma_a, &sigma_s);
+          const RGB T = transmittance(depth), sigma_x = sigma_a + sigma_s;
           const float pdf = mixture_density(sigma_x, T);
           out.end[i] = SegmentEnd::Scatter;
           out.p[i] = p;
           out.T[i] = T;
-          out.weight[i] = pdf > 0.f ? T * co.sigma_s * (rho / pdf) : RGB(0.f);
+          out.weight[i] = pdf > 0.f ? T * sigma_s / pdf : RGB(0.f);
           out.fwd_density[i] = pdf;
           out.medium[i] = m;
           out.sigma_t[i] = sigma_x;
           continue;
         }
-        if (sc_c > 0.f) s.tau[i] -= sc_c * D;
+        s.tau[i] -= stretch[c];
       }
       if (hit && is_boundary(sc, rays, i)) {
         cross_boundary(sc, rays, i, &s.medium[i], s.rays, kInfinity);
@@ -164,8 +154,7 @@ void trace_transmittance(const Scene& sc, RayStream& stream, RayBatch& rays, con
         const Vec3 d = s.rays.direction(j);
         const float d_len = glm::length(d);
         float unused;
-        add_depth(s.depth[r], sc.media.coefficients(m).sigma_t(),
-                  sc.media.density_integral(m, s.rays.origin(j), d / d_len, 0.f, s.rays.tfar[j] * d_len, -1.f, &unused));
+        s.depth[r] += sc.media.optical_depth(m, s.rays.origin(j), d / d_len, 0.f, s.rays.tfar[j] * d_len, 0, -1.f, &unused);
       }
       if (hit && is_boundary(sc, s.rays, j)) {
         const uint32_t k = cross_boundary(sc, s.rays, j, &s.medium[r], cont, kInfinity);

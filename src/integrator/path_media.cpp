@@ -32,7 +32,7 @@ void PathTracer::medium_scatter_stage(PathWave& w) const {
     const PathSampler& s = w.sampler[slot];
     const Vec3 p = w.ends.p[i], wo = -glm::normalize(w.rays.direction(i));
     const MediumHandle m = w.ends.medium[i];
-    const HenyeyGreenstein phase{sc.media.coefficients(m).g};
+    const HenyeyGreenstein phase{sc.media.g(m)};
     ++w.stats.eye_vertices;
     ++w.stats.light_samples;
     auto ls = sample_light(sc.lights, sc.shapes, sc.textures, light_sampler_, p, Vec3(0.f),

@@ -1,18 +1,20 @@
-// pbrt-v4's "uniformgrid" density: nx x ny x nz samples at the centres of
+// Media given on pbrt-v4's grids: nx x ny x nz samples at the centres of
 // the cells that divide the box [p0, p1] of the medium's space, trilinear
 // between neighbouring samples and falling to zero half a cell beyond the
 // outer ones (as pbrt-v4's SampledGrid looks them up).
 //
-// Along a ray, inside one cell of the lattice of samples, the density is a
-// cubic in the distance (a product of three linear interpolations). So its
-// integral, the optical depth up to the medium's coefficients, is exact.
-// So is the point where that integral reaches a given value (a monotone
-// quartic, solved by safeguarded Newton steps). Distance sampling and
+// Along a ray, inside one cell of the lattice of samples, a sampled
+// quantity is a cubic in the distance (a product of three linear
+// interpolations). So its integral, the optical depth, is exact. So is the
+// point where that integral reaches a given value (a monotone quartic,
+// solved by Newton steps guarded by bisection). Distance sampling and
 // transmittance therefore have no tracking noise, and the distance
 // densities bidirectional MIS needs are known in closed form
 // (docs/media.md). Cells whose eight samples are zero cost one test.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -20,17 +22,95 @@
 
 namespace lantern {
 
-struct DensityGrid {
-  int nx = 1, ny = 1, nz = 1;
-  std::vector<float> values;  // x varies fastest, then y, then z (pbrt's order)
-  Vec3 p0{0.f}, p1{1.f};      // the box, in the medium's space
+struct GridLayout {
+  int nx = 1, ny = 1, nz = 1;  // samples; x varies fastest, then y, then z (pbrt's order)
+  Vec3 p0{0.f}, p1{1.f};       // the box, in the medium's space
   Mat4 medium_from_render{1.f};
 
-  // Sample (x, y, z); zero outside the grid.
-  float sample(int x, int y, int z) const {
-    if (x < 0 || y < 0 || z < 0 || x >= nx || y >= ny || z >= nz) return 0.f;
-    return values[(size_t(z) * size_t(ny) + size_t(y)) * size_t(nx) + size_t(x)];
+  bool inside(int x, int y, int z) const { return x >= 0 && y >= 0 && z >= 0 && x < nx && y < ny && z < nz; }
+  size_t offset(int x, int y, int z) const { return (size_t(z) * size_t(ny) + size_t(y)) * size_t(nx) + size_t(x); }
+  // Lattice cell and weights of a point of render space; false outside the box.
+  bool locate(const Vec3& p, int cell[3], double f[3]) const;
+};
+
+namespace lattice {
+
+// c[0] + c[1] s + c[2] s^2 + c[3] s^3, plus a constant part k.
+struct Cubic {
+  double c[4] = {0.0, 0.0, 0.0, 0.0};
+  double k = 0.0;
+  double value(double s) const { return k + c[0] + s * (c[1] + s * (c[2] + s * c[3])); }
+  double integral(double s) const { return s * (k + c[0] + s * (c[1] / 2.0 + s * (c[2] / 3.0 + s * c[3] / 4.0))); }
+};
+
+// The trilinear interpolation of samples v along the ray inside one cell, as
+// a cubic in the distance s from where it entered: f0 is the entry point's
+// position in the cell ([0,1]^3), df its rate.
+Cubic cell_cubic(const double f0[3], const double df[3], const float v[2][2][2]);
+
+// The s in [0, S] where the (non-decreasing) integral of p reaches r, given
+// that it reaches at least r by S.
+double solve_integral(const Cubic& p, double S, double r);
+
+// Calls visit(cell, t_in, t_out, f0, dg) for the lattice cells that o + t d
+// crosses inside the box, for t in [t0, t1], in order, until it returns
+// true. f0: where the ray enters the cell, in the cell's coordinates; dg:
+// their rate per unit t.
+template <class Visit>
+void walk(const GridLayout& grid, const Vec3& o, const Vec3& d, float t0, float t1, Visit&& visit) {
+  const Vec3 om = Vec3(grid.medium_from_render * Vec4(o, 1.f)), dm = glm::mat3(grid.medium_from_render) * d;
+  const int n[3] = {grid.nx, grid.ny, grid.nz};
+  double g0[3], dg[3], ta = t0, tb = t1;
+  for (int k = 0; k < 3; ++k) {  // lattice coordinates, and the box [-0.5, n - 0.5] they must stay in
+    const double ext = double(grid.p1[k]) - double(grid.p0[k]);
+    g0[k] = (double(om[k]) - grid.p0[k]) / ext * n[k] - 0.5;
+    dg[k] = double(dm[k]) / ext * n[k];
+    const double lo = -0.5, hi = n[k] - 0.5;
+    if (dg[k] == 0.0) {
+      if (g0[k] < lo || g0[k] > hi) return;
+      continue;
+    }
+    double ea = (lo - g0[k]) / dg[k], eb = (hi - g0[k]) / dg[k];
+    if (ea > eb) std::swap(ea, eb);
+    ta = std::max(ta, ea);
+    tb = std::min(tb, eb);
   }
+  if (!(ta < tb)) return;
+  int cell[3], step[3];
+  double t_next[3], t_delta[3];
+  for (int k = 0; k < 3; ++k) {
+    cell[k] = std::clamp(int(std::floor(g0[k] + ta * dg[k])), -1, n[k] - 1);
+    step[k] = dg[k] > 0.0 ? 1 : -1;
+    if (dg[k] == 0.0) {
+      t_next[k] = t_delta[k] = kInfinity;
+    } else {
+      t_next[k] = ((dg[k] > 0.0 ? cell[k] + 1 : cell[k]) - g0[k]) / dg[k];
+      t_delta[k] = 1.0 / std::fabs(dg[k]);
+    }
+  }
+  for (double t = ta; t < tb;) {
+    const int axis = t_next[0] < t_next[1] ? (t_next[0] < t_next[2] ? 0 : 2) : (t_next[1] < t_next[2] ? 1 : 2);
+    const double t_exit = std::min(tb, t_next[axis]);
+    if (t_exit > t) {
+      const double f0[3] = {g0[0] + t * dg[0] - cell[0], g0[1] + t * dg[1] - cell[1], g0[2] + t * dg[2] - cell[2]};
+      if (visit(cell, t, t_exit, f0, dg)) return;
+    }
+    if (t_exit >= tb) return;
+    cell[axis] += step[axis];
+    if (cell[axis] < -1 || cell[axis] > n[axis] - 1) return;
+    t_next[axis] += t_delta[axis];
+    t = t_exit;
+  }
+}
+
+}  // namespace lattice
+
+// pbrt-v4's "uniformgrid" density.
+struct DensityGrid : GridLayout {
+  std::vector<float> values;
+
+  // Sample (x, y, z); zero outside the grid.
+  float sample(int x, int y, int z) const { return inside(x, y, z) ? values[offset(x, y, z)] : 0.f; }
   // The density at a point of render space.
   float density(const Vec3& p) const;
   // The integral of the density along o + t d (render space; d need not be
@@ -38,6 +118,25 @@ struct DensityGrid {
   // where the integral reaches target: *t_hit is that t and target is
   // returned; otherwise *t_hit is infinity.
   float integrate(const Vec3& o, const Vec3& d, float t0, float t1, float target, float* t_hit) const;
+};
+
+// pbrt-v4's "rgbgrid": RGB absorption and scattering per sample (scaled);
+// a grid not given is a constant 1 (times scale) inside the box.
+struct RgbGrid : GridLayout {
+  std::vector<RGB> sigma_a, sigma_s;  // empty when not given
+  RGB constant_a{0.f}, constant_s{0.f};
+
+  RGB sample_t(int x, int y, int z) const {
+    if (!inside(x, y, z)) return RGB(0.f);
+    const size_t i = offset(x, y, z);
+    return (sigma_a.empty() ? RGB(0.f) : sigma_a[i]) + (sigma_s.empty() ? RGB(0.f) : sigma_s[i]);
+  }
+  // The coefficients at a point of render space.
+  void at(const Vec3& p, RGB* a, RGB* s) const;
+  // The optical depth per channel along o + t d over [t0, t1]; with
+  // channel c and tau >= 0, stops where channel c's depth reaches tau
+  // (*t_hit; otherwise infinity).
+  RGB integrate(const Vec3& o, const Vec3& d, float t0, float t1, int c, float tau, float* t_hit) const;
 };
 
 }  // namespace lantern

@@ -17,7 +17,7 @@
 
 namespace lantern {
 
-enum class MediumKind : uint8_t { Homogeneous = 0, Grid = 1 };
+enum class MediumKind : uint8_t { Homogeneous = 0, Grid = 1, RgbGrid = 2 };
 
 struct MediumHandle {
   uint32_t bits = 0;  // 0: vacuum; else kind << 28 | (1 + index into the kind's pool)
@@ -57,30 +57,48 @@ struct GridMedium {
   DensityGrid density;
 };
 
+// pbrt-v4's "rgbgrid": RGB coefficients on a grid.
+struct RgbGridMedium {
+  RgbGrid grid;
+  float g = 0.f;
+};
+
 struct MediumPools {
   std::vector<HomogeneousMedium> homogeneous;
   std::vector<GridMedium> grid;
+  std::vector<RgbGridMedium> rgb_grid;
   MediumHandle camera;  // the medium camera rays start in
 
-  bool empty() const { return homogeneous.empty() && grid.empty(); }
-  // The coefficients per unit density, and the phase function's g.
-  const HomogeneousMedium& coefficients(MediumHandle h) const {
-    return h.kind() == MediumKind::Grid ? grid[h.index()].per_density : homogeneous[h.index()];
+  bool empty() const { return homogeneous.empty() && grid.empty() && rgb_grid.empty(); }
+
+  // The Henyey-Greenstein asymmetry of the medium's phase function.
+  float g(MediumHandle h) const {
+    switch (h.kind()) {
+      case MediumKind::Grid: return grid[h.index()].per_density.g;
+      case MediumKind::RgbGrid: return rgb_grid[h.index()].g;
+      default: return homogeneous[h.index()].g;
+    }
   }
-  // The density at p (1 in a homogeneous medium).
-  float density(MediumHandle h, const Vec3& p) const {
-    return h.kind() == MediumKind::Grid ? grid[h.index()].density.density(p) : 1.f;
+  // The coefficients at point p.
+  void coefficients_at(MediumHandle h, const Vec3& p, RGB* sigma_a, RGB* sigma_s) const {
+    switch (h.kind()) {
+      case MediumKind::Grid: {
+        const GridMedium& m = grid[h.index()];
+        const float rho = m.density.density(p);
+        *sigma_a = m.per_density.sigma_a * rho;
+        *sigma_s = m.per_density.sigma_s * rho;
+        return;
+      }
+      case MediumKind::RgbGrid: rgb_grid[h.index()].grid.at(p, sigma_a, sigma_s); return;
+      default: *sigma_a = homogeneous[h.index()].sigma_a, *sigma_s = homogeneous[h.index()].sigma_s;
+    }
   }
-  // The integral of the density along o + s d (d unit length, s a
-  // distance) over [s0, s1]; with target >= 0, stops where it reaches
-  // target (*s_hit: there, or infinity).
-  float density_integral(MediumHandle h, const Vec3& o, const Vec3& d, float s0, float s1, float target,
-                         float* s_hit) const {
-    if (h.kind() == MediumKind::Grid) return grid[h.index()].density.integrate(o, d, s0, s1, target, s_hit);
-    const float len = s1 - s0;
-    *s_hit = target >= 0.f && target < len ? s0 + target : kInfinity;
-    return *s_hit < kInfinity ? target : len;
-  }
+  // The optical depth per channel along o + s d (d unit length, s a
+  // distance, s1 possibly infinite) over [s0, s1]. With tau >= 0, stops
+  // where channel c's depth reaches tau: *s_hit is there (else infinity)
+  // and the depth returned is the depth up to it.
+  RGB optical_depth(MediumHandle h, const Vec3& o, const Vec3& d, float s0, float s1, int c, float tau,
+                    float* s_hit) const;
 };
 
 }  // namespace lantern

@@ -141,6 +141,8 @@ class SceneBuilder {
   void finish_media();
   HomogeneousMedium medium_coefficients(const pbrt::ParamSet& ps, bool presets);
   DensityGrid density_grid(const pbrt::ParamSet& ps, const Mat4& render_from_medium);
+  RgbGridMedium rgb_grid(const pbrt::ParamSet& ps, const Mat4& render_from_medium);
+  void grid_layout(const pbrt::ParamSet& ps, const Mat4& render_from_medium, GridLayout* g);
   void note_geometry();
   void check_objects_closed() const;
 

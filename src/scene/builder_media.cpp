@@ -26,17 +26,25 @@ void SceneBuilder::medium(const std::string& name, const ParamSet& ps, const Mat
   if (named_media_.count(name)) ps.fail("medium \"" + printable(name) + "\" is defined twice");
   const std::string type = ps.get_string("type", "");
   if (type.empty()) ps.fail("needs a \"string type\" parameter (homogeneous or uniformgrid)");
-  if (type == "rgbgrid" || type == "cloud" || type == "nanovdb")
-    ps.fail("medium type \"" + type + "\" is not supported yet; expected \"homogeneous\" or \"uniformgrid\"");
-  if (type != "homogeneous" && type != "uniformgrid")
-    ps.fail("unknown medium type \"" + printable(type) + "\"; expected \"homogeneous\" or \"uniformgrid\"");
-  if (auto Le = ps.get_rgb("Le", ColorUsage::Illuminant); Le && !is_black(*Le))
-    ps.fail(*ps.find("Le"), "emissive media (\"Le\") are not supported yet");
+  if (type == "cloud" || type == "nanovdb")
+    ps.fail("medium type \"" + type + "\" is not supported yet; expected homogeneous, uniformgrid or rgbgrid");
+  if (type != "homogeneous" && type != "uniformgrid" && type != "rgbgrid")
+    ps.fail("unknown medium type \"" + printable(type) + "\"; expected homogeneous, uniformgrid or rgbgrid");
+  if (const pbrt::Param* Le = ps.find("Le")) {
+    bool emits = false;
+    for (double v : Le->numbers) emits |= v != 0.0;
+    if (emits || !Le->strings.empty()) ps.fail(*Le, "emissive media (\"Le\") are not supported yet");
+  }
   ps.find("Lescale");
   MediumPools& media = scene_.media;
   if (type == "homogeneous") {
     media.homogeneous.push_back(medium_coefficients(ps, true));
     named_media_[name] = MediumHandle::homogeneous(uint32_t(media.homogeneous.size() - 1));
+    return;
+  }
+  if (type == "rgbgrid") {
+    media.rgb_grid.push_back(rgb_grid(ps, render_from_medium));
+    named_media_[name] = MediumHandle::make(MediumKind::RgbGrid, uint32_t(media.rgb_grid.size() - 1));
     return;
   }
   if (ps.has("temperature")) ps.fail(*ps.find("temperature"), "emissive media (\"temperature\") are not supported yet");
@@ -72,29 +80,71 @@ HomogeneousMedium SceneBuilder::medium_coefficients(const ParamSet& ps, bool pre
 
 // pbrt-v4's uniformgrid: "density" (nx * ny * nz values, x fastest) over
 // the box p0..p1 of the medium's space.
-DensityGrid SceneBuilder::density_grid(const ParamSet& ps, const Mat4& render_from_medium) {
-  DensityGrid g;
-  g.nx = ps.get_int("nx", 1);
-  g.ny = ps.get_int("ny", 1);
-  g.nz = ps.get_int("nz", 1);
-  if (g.nx < 1 || g.ny < 1 || g.nz < 1) ps.fail("\"nx\", \"ny\" and \"nz\" must be at least 1");
-  const pbrt::Param* density = ps.find("density");
-  if (!density) ps.fail("a uniformgrid needs \"float density\" values");
-  // Counted in 64 bits before anything is allocated for the grid.
-  const uint64_t count = uint64_t(g.nx) * uint64_t(g.ny) * uint64_t(g.nz);
-  if (count != density->numbers.size())
-    ps.fail(*density, "has " + std::to_string(density->numbers.size()) + " values; expected nx * ny * nz = " +
-                          std::to_string(count));
-  g.values = ps.get_floats("density");
-  for (float v : g.values)
-    if (!(v >= 0.f) || !std::isfinite(v)) ps.fail(*density, "density values must be finite and not negative");
-  g.p0 = ps.get_point3("p0", Vec3(0.f));
-  g.p1 = ps.get_point3("p1", Vec3(1.f));
-  if (!(g.p0.x < g.p1.x && g.p0.y < g.p1.y && g.p0.z < g.p1.z)) ps.fail("\"p0\" must lie below \"p1\" on every axis");
+// nx, ny, nz, p0, p1 and the medium's transform of a grid medium.
+void SceneBuilder::grid_layout(const ParamSet& ps, const Mat4& render_from_medium, GridLayout* g) {
+  g->nx = ps.get_int("nx", 1);
+  g->ny = ps.get_int("ny", 1);
+  g->nz = ps.get_int("nz", 1);
+  if (g->nx < 1 || g->ny < 1 || g->nz < 1) ps.fail("\"nx\", \"ny\" and \"nz\" must be at least 1");
+  g->p0 = ps.get_point3("p0", Vec3(0.f));
+  g->p1 = ps.get_point3("p1", Vec3(1.f));
+  if (!(g->p0.x < g->p1.x && g->p0.y < g->p1.y && g->p0.z < g->p1.z))
+    ps.fail("\"p0\" must lie below \"p1\" on every axis");
   const float det = glm::determinant(render_from_medium);
   if (!std::isfinite(det) || det == 0.f) ps.fail("the medium's transform is singular");
-  g.medium_from_render = glm::inverse(render_from_medium);
+  g->medium_from_render = glm::inverse(render_from_medium);
+}
+
+namespace {
+
+// A grid parameter's values must number nx * ny * nz (times `per` numbers
+// each), counted in 64 bits before anything is allocated for the grid.
+void expect_grid_count(const ParamSet& ps, const pbrt::Param& p, const GridLayout& g, uint64_t per) {
+  const uint64_t count = uint64_t(g.nx) * uint64_t(g.ny) * uint64_t(g.nz);
+  if (p.numbers.size() % per != 0 || p.numbers.size() / per != count)
+    ps.fail(p, "has " + std::to_string(p.numbers.size() / per) + " values; expected nx * ny * nz = " +
+                   std::to_string(count));
+  for (double v : p.numbers)
+    if (!(v >= 0.0) || !std::isfinite(v)) ps.fail(p, "grid values must be finite and not negative");
+}
+
+}  // namespace
+
+DensityGrid SceneBuilder::density_grid(const ParamSet& ps, const Mat4& render_from_medium) {
+  DensityGrid g;
+  grid_layout(ps, render_from_medium, &g);
+  const pbrt::Param* density = ps.find("density");
+  if (!density) ps.fail("a uniformgrid needs \"float density\" values");
+  expect_grid_count(ps, *density, g, 1);
+  g.values = ps.get_floats("density");
   return g;
+}
+
+// pbrt-v4's rgbgrid: "rgb sigma_a" and/or "rgb sigma_s", one RGB value per
+// sample, times "scale"; one not given is 1 (times scale) in the box.
+RgbGridMedium SceneBuilder::rgb_grid(const ParamSet& ps, const Mat4& render_from_medium) {
+  RgbGridMedium m;
+  grid_layout(ps, render_from_medium, &m.grid);
+  const float scale = ps.get_float("scale", 1.f);
+  if (!(scale >= 0.f) || !std::isfinite(scale)) ps.fail(*ps.find("scale"), "\"scale\" must be finite and not negative");
+  const pbrt::Param* a = ps.find("sigma_a");
+  const pbrt::Param* s = ps.find("sigma_s");
+  if (!a && !s) ps.fail("an rgbgrid needs \"rgb sigma_a\" and/or \"rgb sigma_s\" values");
+  auto read = [&](const pbrt::Param* p, std::vector<RGB>* out, RGB* constant) {
+    if (!p) {
+      *constant = RGB(scale);
+      return;
+    }
+    if (p->type != "rgb" && p->type != "color") ps.fail(*p, "has type \"" + p->type + "\"; expected \"rgb\" values");
+    expect_grid_count(ps, *p, m.grid, 3);
+    for (size_t i = 0; i < p->numbers.size(); i += 3)
+      out->push_back(RGB(float(p->numbers[i]), float(p->numbers[i + 1]), float(p->numbers[i + 2])) * scale);
+  };
+  read(a, &m.grid.sigma_a, &m.grid.constant_a);
+  read(s, &m.grid.sigma_s, &m.grid.constant_s);
+  m.g = ps.get_float("g", 0.f);
+  if (!(m.g > -1.f && m.g < 1.f)) ps.fail(*ps.find("g"), "\"g\" must lie strictly between -1 and 1");
+  return m;
 }
 
 MediumHandle SceneBuilder::find_medium(const std::string& name, const SourceLocation& where) const {

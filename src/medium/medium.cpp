@@ -1,0 +1,29 @@
+#include "medium/medium.h"
+
+namespace lantern {
+
+RGB MediumPools::optical_depth(MediumHandle h, const Vec3& o, const Vec3& d, float s0, float s1, int c, float tau,
+                               float* s_hit) const {
+  *s_hit = kInfinity;
+  if (h.kind() == MediumKind::RgbGrid) return rgb_grid[h.index()].grid.integrate(o, d, s0, s1, c, tau, s_hit);
+  const bool is_grid = h.kind() == MediumKind::Grid;
+  const RGB sigma_t = is_grid ? grid[h.index()].per_density.sigma_t() : homogeneous[h.index()].sigma_t();
+  const float target = tau >= 0.f && sigma_t[c] > 0.f ? tau / sigma_t[c] : -1.f;
+  // The integral of the density: the length itself in a homogeneous medium.
+  float D;
+  if (is_grid) {
+    D = grid[h.index()].density.integrate(o, d, s0, s1, target, s_hit);
+  } else if (target >= 0.f && target < s1 - s0) {
+    *s_hit = s0 + target;
+    D = target;
+  } else {
+    D = s1 - s0;
+  }
+  // Channels that do not interact stay at zero, even over an infinite stretch.
+  RGB depth(0.f);
+  for (int k = 0; k < 3; ++k)
+    if (sigma_t[k] > 0.f) depth[k] = sigma_t[k] * D;
+  return depth;
+}
+
+}  // namespace lantern
