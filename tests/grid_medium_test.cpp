@@ -12,6 +12,7 @@
 #include "expect_error.h"
 #include "lantern/render.h"
 #include "lantern/scene.h"
+#include "media_scenes.h"
 #include "medium/grid_density.h"
 #include "sanitizer.h"
 #include "stat_compare.h"
@@ -89,25 +90,10 @@ TEST(GridDensity, RandomRaysMatchABruteForceSumAndSamplingInvertsIt) {
 TEST(GridMedium, SlabTransmittanceInARender) {
   std::string density;
   for (int i = 0; i < 8 * 8 * 4; ++i) density += "1 ";
-  const std::string text = R"(
-PixelFilter "box"
-LookAt 0 0 0  0 0 1  0 1 0
-Camera "perspective" "float fov" [ 10 ]
-WorldBegin
-MakeNamedMedium "slab" "string type" "uniformgrid" "rgb sigma_a" [ 0.2 0.4 0.8 ] "rgb sigma_s" [ 0.2 0.2 0.2 ]
+  const std::string text = slab_scene(R"(MakeNamedMedium "slab" "string type" "uniformgrid"
+  "rgb sigma_a" [ 0.2 0.4 0.8 ] "rgb sigma_s" [ 0.2 0.2 0.2 ]
   "point3 p0" [ -10 -10 1 ] "point3 p1" [ 10 10 3 ] "integer nx" 8 "integer ny" 8 "integer nz" 4
-  "float density" [ )" + density + R"( ]
-AttributeBegin
-  MediumInterface "slab" ""
-  Material "interface"
-  Shape "trianglemesh" "point3 P" [ -10 -10 1  -10 10 1  10 10 1  10 -10 1 ] "integer indices" [ 0 1 2 0 2 3 ]
-  Shape "trianglemesh" "point3 P" [ -10 -10 3  10 -10 3  10 10 3  -10 10 3 ] "integer indices" [ 0 1 2 0 2 3 ]
-AttributeEnd
-AttributeBegin
-  AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
-  Shape "trianglemesh" "point3 P" [ -10 -10 5  -10 10 5  10 10 5  10 -10 5 ] "integer indices" [ 0 1 2 0 2 3 ]
-AttributeEnd
-)";
+  "float density" [ )" + density + " ]");
   auto scene = load_scene_from_string(text, "slab.pbrt", {});
   RenderOptions o;
   o.integrator = "path";

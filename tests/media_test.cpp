@@ -11,6 +11,7 @@
 #include "expect_error.h"
 #include "lantern/render.h"
 #include "lantern/scene.h"
+#include "media_scenes.h"
 #include "sanitizer.h"
 #include "scene/scene.h"
 #include "stat_compare.h"
@@ -37,26 +38,9 @@ std::array<double, 3> image_mean(const Image& img) {
   return m;
 }
 
-// A slab 2 units thick (two "interface" planes, normals outwards) between
-// the camera and an emitter of radiance 1 that fills the view.
-const char* kSlab = R"(
-PixelFilter "box"
-LookAt 0 0 0  0 0 1  0 1 0
-Camera "perspective" "float fov" [ 10 ]
-WorldBegin
-MakeNamedMedium "slab" "string type" "homogeneous"
-  "rgb sigma_a" [ 0.1 0.4 0.9 ] "rgb sigma_s" [ 0.2 0.2 0.2 ]
-AttributeBegin
-  MediumInterface "slab" ""
-  Material "interface"
-  Shape "trianglemesh" "point3 P" [ -10 -10 1  -10 10 1  10 10 1  10 -10 1 ] "integer indices" [ 0 1 2 0 2 3 ]
-  Shape "trianglemesh" "point3 P" [ -10 -10 3  10 -10 3  10 10 3  -10 10 3 ] "integer indices" [ 0 1 2 0 2 3 ]
-AttributeEnd
-AttributeBegin
-  AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
-  Shape "trianglemesh" "point3 P" [ -10 -10 5  -10 10 5  10 10 5  10 -10 5 ] "integer indices" [ 0 1 2 0 2 3 ]
-AttributeEnd
-)";
+// A slab 2 units thick (tests/media_scenes.h) before an emitter of radiance 1.
+const std::string kSlab = slab_scene(R"(MakeNamedMedium "slab" "string type" "homogeneous"
+  "rgb sigma_a" [ 0.1 0.4 0.9 ] "rgb sigma_s" [ 0.2 0.2 0.2 ])");
 
 // Camera rays: with maxdepth 0 a ray that scatters ends, so each pixel's
 // expected value is exp(-sigma_t d). Each sample is 0 or T_c / P (P = the
