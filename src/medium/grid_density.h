@@ -1,7 +1,8 @@
 // Media given on pbrt-v4's grids: nx x ny x nz samples at the centres of
 // the cells that divide the box [p0, p1] of the medium's space, trilinear
-// between neighbouring samples and falling to zero half a cell beyond the
-// outer ones (as pbrt-v4's SampledGrid looks them up).
+// between neighbouring samples, and beyond the outer ones towards the zero
+// of a sample outside the grid (half the outer sample at the box's faces),
+// as pbrt-v4's SampledGrid looks them up.
 //
 // Along a ray, inside one cell of the lattice of samples, a sampled
 // quantity is a cubic in the distance (a product of three linear
