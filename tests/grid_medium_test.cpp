@@ -233,6 +233,8 @@ TEST(GridMedium, BadGridsAreRefusedWithTheirLine) {
   expect_load_error(rgb + "\"integer nx\" 2 \"rgb sigma_s\" [ 1 1 1 ]\n", "i.pbrt",
                     {"i.pbrt:4", "has 1 values; expected nx * ny * nz = 2"});
   expect_load_error(rgb + "\"float sigma_a\" [ 1 ]\n", "j.pbrt", {"j.pbrt:4", "expected \"rgb\" values"});
+  expect_load_error(rgb + "\"rgb sigma_s\" [ 1e30 1 1 ] \"float scale\" 1e30\n", "l.pbrt",
+                    {"l.pbrt:4", "times \"scale\" must be finite"});
   expect_load_error(rgb + "\"rgb sigma_a\" [ 1 1 1 ] \"rgb Le\" [ 1 0 0 ]\n", "k.pbrt", {"k.pbrt:4", "emissive"});
 }
 

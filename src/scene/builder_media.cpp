@@ -25,7 +25,7 @@ RGB checked_coefficient(const ParamSet& ps, const char* name, RGB value, float s
 void SceneBuilder::medium(const std::string& name, const ParamSet& ps, const Mat4& render_from_medium) {
   if (named_media_.count(name)) ps.fail("medium \"" + printable(name) + "\" is defined twice");
   const std::string type = ps.get_string("type", "");
-  if (type.empty()) ps.fail("needs a \"string type\" parameter (homogeneous or uniformgrid)");
+  if (type.empty()) ps.fail("needs a \"string type\" parameter (homogeneous, uniformgrid or rgbgrid)");
   if (type == "cloud" || type == "nanovdb")
     ps.fail("medium type \"" + type + "\" is not supported yet; expected homogeneous, uniformgrid or rgbgrid");
   if (type != "homogeneous" && type != "uniformgrid" && type != "rgbgrid")
@@ -137,8 +137,10 @@ RgbGridMedium SceneBuilder::rgb_grid(const ParamSet& ps, const Mat4& render_from
     }
     if (p->type != "rgb" && p->type != "color") ps.fail(*p, "has type \"" + p->type + "\"; expected \"rgb\" values");
     expect_grid_count(ps, *p, m.grid, 3);
-    for (size_t i = 0; i < p->numbers.size(); i += 3)
+    for (size_t i = 0; i < p->numbers.size(); i += 3) {
       out->push_back(RGB(float(p->numbers[i]), float(p->numbers[i + 1]), float(p->numbers[i + 2])) * scale);
+      if (!is_finite(out->back())) ps.fail(*p, "values times \"scale\" must be finite");
+    }
   };
   read(a, &m.grid.sigma_a, &m.grid.constant_a);
   read(s, &m.grid.sigma_s, &m.grid.constant_s);
