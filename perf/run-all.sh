@@ -60,6 +60,6 @@ tmp=$(mktemp -d)
   --benchmark_out="$dir/raybench.json" --benchmark_out_format=json > "$dir/raybench.txt" 2>&1
 rm -rf "$tmp"
 say "equal time"
-LANTERN="$build/lantern" perf/equal-time.sh 20 cornell-box cornell-box-tiny-light lantern door-ajar caustics \
+LANTERN="$build/lantern" perf/equal-time.sh 20 cornell-box cornell-box-tiny-light lantern door-ajar caustics volumetric-caustic \
   > "$dir/equal-time.md"
 echo "$dir"

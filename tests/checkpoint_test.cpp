@@ -86,6 +86,7 @@ TEST_P(CheckpointResume, StopsAndResumesBitForBit) { expect_resumes_bit_for_bit(
 // shadow weights; none of it may leak across waves or resumes.
 TEST(CheckpointResumeMedia, StopsAndResumesBitForBit) {
   expect_resumes_bit_for_bit("path", "zsobol", "perf/media/fog-sphere.pbrt");
+  expect_resumes_bit_for_bit("bdpt", "zsobol", "perf/media/smoke-grid.pbrt");
 }
 INSTANTIATE_TEST_SUITE_P(Integrators, CheckpointResume, ::testing::Values("path", "bdpt", "lt"));
 
