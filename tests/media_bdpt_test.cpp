@@ -20,7 +20,7 @@ void expect_integrators_agree(const Scene& scene, int w, int h, int spp, const s
                               double limit = 4.5) {
   const RegionStats path = render_stats(scene, "path", w, h, spp, 8, regions);
   const RegionStats bdpt = render_stats(scene, "bdpt", w, h, spp, 8, regions);
-  const RegionStats lt = render_stats(scene, "lt", w, h, 4 * spp, 8, regions);
+  const RegionStats lt = render_stats(scene, "lt", w, h, 2 * spp, 8, regions);
   EXPECT_LT(max_z(path, bdpt), limit);
   EXPECT_LT(max_z(bdpt, lt), limit);
 }
@@ -74,8 +74,8 @@ TEST(MediaAgreement, VolumetricCaustic) {
   if (LANTERN_ASAN) GTEST_SKIP() << "the Release suite runs it";
   auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/volumetric-caustic.pbrt");
   const std::vector<Region> caustic = {{18, 17, 4, 5}, {17, 23, 6, 3}, {4, 8, 8, 8}};
-  const RegionStats bdpt = render_stats(*scene, "bdpt", 40, 30, 32, 8, caustic);
-  const RegionStats lt = render_stats(*scene, "lt", 40, 30, 64, 8, caustic);
+  const RegionStats bdpt = render_stats(*scene, "bdpt", 40, 30, 16, 8, caustic);
+  const RegionStats lt = render_stats(*scene, "lt", 40, 30, 32, 8, caustic);
   EXPECT_LT(max_z(bdpt, lt), 4.5);
 }
 
