@@ -239,28 +239,16 @@ void Bdpt::eye_connect_stage(BdptWave& w) const {
         Vec3 wi = frame.to_local(wi_w);
         RGB f_eye = bsdf.f(wo, wi, TransportMode::Radiance) * std::fabs(wi.z);
         if (is_black(f_eye)) continue;
-        RGB f_light;
-        float light_fwd_W, light_rev_W;
-        const TextureContext light_tc{v.p[j], v.ng[j], v.uv[j], v.footprint.empty() ? nullptr : &v.footprint[j],
-                                      j < v.tangent.size() ? v.tangent[j] : Vec3(0.f)};
-        with_bsdf(v.material[j], sc.materials, sc.textures, light_tc, [&](const auto& lb) {
-          Frame lf = Frame::from_z(v.ns[j]);
-          Vec3 lwo = lf.to_local(v.wo[j]), lwi = lf.to_local(-wi_w);
-          f_light = lb.f(lwo, lwi, TransportMode::Importance) *
-                    (std::fabs(lwi.z) * shading_normal_correction(v.wo[j], -wi_w, v.ng[j], v.ns[j]));
-          light_fwd_W = lb.pdf(lwo, lwi, TransportMode::Importance);
-          light_rev_W = lb.pdf(lwi, lwo, TransportMode::Radiance);
-        });
-        RGB c = beta * f_eye * f_light * v.beta[j] / dist2;
+        const LightVertexResponse lv = light_vertex_response(v, j, wi_w);
+        RGB c = beta * f_eye * lv.f * v.beta[j] / dist2;
         if (is_black(c)) continue;
-        float eye_fwd_A = bsdf.pdf(wo, wi, TransportMode::Radiance) *
-                          vertex_cos(v.ng[j], v.error_scale[j], tangent_or_null(v.tangent, j), wi_w) / dist2;
+        float eye_fwd_A = bsdf.pdf(wo, wi, TransportMode::Radiance) * lv.cos / dist2;
         float light_fwd_A =
-            light_fwd_W * vertex_cos(h.ng[i], h.error_scale[i], tangent_or_null(h.tangent, i), wi_w) / dist2;
+            lv.fwd_W * vertex_cos(h.ng[i], h.error_scale[i], tangent_or_null(h.tangent, i), wi_w) / dist2;
         float wt = mis_weight_connect(m, v.mis[j], eye_fwd_A, bsdf.pdf(wi, wo, TransportMode::Importance), light_fwd_A,
-                                      light_rev_W, mis_);
+                                      lv.rev_W, mis_);
         Vec3 o = offset_ray_origin(h.p[i], h.ng[i], h.error_scale[i], wi_w);
-        Vec3 target = offset_ray_origin(v.p[j], v.ng[j], v.error_scale[j], -wi_w);
+        Vec3 target = lv.target;
         w.shadow.push(o, target - o, 1.f, slot, c * weight(wt), Vec2(0.f),
                       {uint8_t(v.depth[j] + 1), uint8_t(depth + 1), c});
       }
