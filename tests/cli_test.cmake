@@ -46,7 +46,7 @@ expect_run(NAME checkpoint-folder-missing EXIT 1 MATCH "cannot write the checkpo
 file(REMOVE_RECURSE ${OUT}/vanishing)
 file(REMOVE ${OUT}/x.rescue.exr)
 file(MAKE_DIRECTORY ${OUT}/vanishing)
-execute_process(COMMAND sh -c "${LANTERN} render ${SRC}/scenes/cornell-box.pbrt --spp 100000 --resolution 32 32 --quiet -o ${OUT}/vanishing/x.exr & pid=$!; sleep 2; rm -rf ${OUT}/vanishing; kill -INT $pid; wait $pid"
+execute_process(COMMAND sh -c "${LANTERN} render ${SRC}/scenes/cornell-box.pbrt --spp 100000 --resolution 32 32 --threads 1 --quiet -o ${OUT}/vanishing/x.exr & pid=$!; sleep 2; rm -rf ${OUT}/vanishing; kill -INT $pid; wait $pid"
                 WORKING_DIRECTORY ${OUT} RESULT_VARIABLE rc ERROR_VARIABLE err TIMEOUT 60)
 if(NOT rc EQUAL 1 OR NOT EXISTS ${OUT}/x.rescue.exr OR NOT err MATCHES "saved instead in")
   message(FATAL_ERROR "removed output folder: exit ${rc}, rescue copy ${OUT}/x.rescue.exr\n${err}")
@@ -74,7 +74,7 @@ expect_run(NAME bad-mis EXIT 105 ARGS render ${SRC}/scenes/cornell-box.pbrt --mi
 # With --trace, the timeline of the waves that ran is written too.
 foreach(integrator path bdpt)
   file(REMOVE ${OUT}/interrupted.exr ${OUT}/interrupted.json)
-  execute_process(COMMAND sh -c "${LANTERN} render ${SRC}/scenes/cornell-box.pbrt --integrator ${integrator} --spp 100000 --resolution 64 64 --quiet --trace ${OUT}/interrupted.json --trace-waves 50 -o ${OUT}/interrupted.exr & pid=$!; sleep 2; kill -INT $pid; wait $pid"
+  execute_process(COMMAND sh -c "${LANTERN} render ${SRC}/scenes/cornell-box.pbrt --integrator ${integrator} --spp 100000 --resolution 64 64 --threads 1 --quiet --trace ${OUT}/interrupted.json --trace-waves 50 -o ${OUT}/interrupted.exr & pid=$!; sleep 2; kill -INT $pid; wait $pid"
                   RESULT_VARIABLE rc ERROR_VARIABLE err TIMEOUT 60)
   if(NOT rc EQUAL 130 OR NOT EXISTS ${OUT}/interrupted.exr OR NOT EXISTS ${OUT}/interrupted.json)
     message(FATAL_ERROR "SIGINT (${integrator}): exit ${rc}, image and trace written: ${OUT}/interrupted.exr, .json\n${err}")

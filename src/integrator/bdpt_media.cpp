@@ -251,11 +251,11 @@ MediumHandle Bdpt::light_start_medium(uint32_t light, const Vec3& n, const Vec3&
 // Traces the pending connections through the media and weights them.
 void Bdpt::trace_connections(BdptWave& w) const {
   ConnectionPool& c = w.shadow;
-  trace_transmittance(scene_, w.stream, c.rays, c.medium, c.T, w.crossing);
+  trace_transmittance(scene_, w.stream, c.rays, c.medium, c.T, c.T_mis, w.crossing);
   const bool weighted = !settings_.light_tracing_only && !settings_.unit_weights;
   for (uint32_t r = 0; r < c.rays.count; ++r) {
     if (c.rays.occluded(r)) continue;
-    const float wt = weighted ? mis_weight_deferred(c.deferred[r], c.T[r], mis_) : 1.f;
+    const float wt = weighted ? mis_weight_deferred(c.deferred[r], c.T_mis[r], mis_) : 1.f;
     c.contrib[r] *= c.T[r] * wt;
     if (!is_finite(c.contrib[r])) c.rays.tfar[r] = -kInfinity;
     if (c.record) c.tags[r].unweighted *= c.T[r];

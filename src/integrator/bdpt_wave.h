@@ -111,7 +111,7 @@ struct ConnectionPool {
   // With media: the medium each ray starts in, its transmittance, and its
   // weight's deferred part (contrib then holds the unweighted value).
   std::vector<MediumHandle> medium;
-  std::vector<RGB> T;
+  std::vector<RGB> T, T_mis;  // the estimate, and what MIS sees (medium_events.h)
   std::vector<DeferredMis> deferred;
   bool media = false;
   bool record = false;
@@ -215,7 +215,7 @@ struct BdptWave {
          vector_bytes(v.mis) + vector_bytes(v.material) + vector_bytes(v.begin) + vector_bytes(v.order) +
          vector_bytes(v.medium) + vector_bytes(v.sigma_t);
     for (const SubpathPool* p : subpaths) b += vector_bytes(p->medium) + vector_bytes(p->sigma_prev);
-    b += vector_bytes(shadow.medium) + vector_bytes(shadow.T) + vector_bytes(shadow.deferred) + vector_bytes(ray_medium) +
+    b += vector_bytes(shadow.medium) + vector_bytes(shadow.T) + vector_bytes(shadow.T_mis) + vector_bytes(shadow.deferred) + vector_bytes(ray_medium) +
          vector_bytes(u_distance) + ends.memory_bytes() + vector_bytes(scattered) + crossing.memory_bytes();
     return b;
   }

@@ -2,6 +2,8 @@
 
 #include "integrator/hit.h"
 
+#include <cstring>
+
 namespace lantern {
 
 namespace {
@@ -40,6 +42,42 @@ uint32_t cross_boundary(const Scene& sc, const RayBatch& rays, uint32_t i, Mediu
 
 }  // namespace
 
+namespace {
+
+// The random numbers of one tracked stretch: a hash of what names it (the
+// segment's uniform number, the stretch's ray and how many boundaries it
+// crossed), so that they do not depend on the batch or the thread.
+RandomStream stretch_stream(const Vec3& o, const Vec3& d, float u, uint32_t round) {
+  auto bits = [](float f) {
+    uint32_t b;
+    std::memcpy(&b, &f, sizeof b);
+    return uint64_t(b);
+  };
+  const uint64_t k = hash_key(bits(u) | uint64_t(round) << 32, bits(o.x) | bits(o.y) << 32, bits(o.z) | bits(d.x) << 32);
+  return RandomStream{mix64(k ^ (bits(d.y) | bits(d.z) << 32)), 0};
+}
+
+// A segment's end: `depth` is the optical depth of the media with closed
+// forms, `tracked` the weight and `tracked_depth` the proxy depth of the
+// tracked ones. At a scattering point (sigma_t > 0) found by the closed
+// forms, sigma_s completes the weight; one found by tracking has it in
+// `tracked` already.
+void end_segment(SegmentEnds& out, uint32_t i, MediumHandle m, const RGB& depth, const RGB& tracked,
+                 const RGB& tracked_depth, const RGB& sigma_a, const RGB& sigma_s, bool scatters, bool by_tracking) {
+  const RGB T = transmittance(depth), sigma_x = sigma_a + sigma_s;
+  const RGB T_mis = is_black(tracked_depth) ? T : transmittance(depth + tracked_depth);
+  const bool closed_form_scatter = scatters && !by_tracking;
+  // the density of what the closed forms sampled: scattering, or passing
+  const float p = mixture_density(closed_form_scatter ? sigma_x : RGB(0.f), T);
+  out.weight[i] = p > 0.f ? tracked * (closed_form_scatter ? T * sigma_s : T) / p : RGB(0.f);
+  out.T[i] = T_mis;
+  out.fwd_density[i] = mixture_density(sigma_x, T_mis);
+  out.medium[i] = m;
+  if (scatters) out.sigma_t[i] = sigma_x;
+}
+
+}  // namespace
+
 void find_segment_ends(const Scene& sc, RayStream& stream, RayKind kind, RayBatch& rays,
                        const std::vector<MediumHandle>& medium, const std::vector<float>& u, SegmentEnds& out,
                        CrossingScratch& s) {
@@ -49,6 +87,8 @@ void find_segment_ends(const Scene& sc, RayStream& stream, RayKind kind, RayBatc
   s.tau.resize(n);
   s.channel.resize(n);
   s.depth.assign(n, RGB(0.f));
+  s.tracked_weight.assign(n, RGB(1.f));
+  s.tracked_depth.assign(n, RGB(0.f));
   s.owner.resize(n);
   for (uint32_t i = 0; i < n; ++i) {
     const float x = 3.f * u[i];
@@ -77,40 +117,40 @@ void find_segment_ends(const Scene& sc, RayStream& stream, RayKind kind, RayBatc
       const MediumHandle m = s.medium[i];
       RGB& depth = s.depth[i];
       if (!m.vacuum()) {
-        const int c = s.channel[i];
         const Vec3 o = rays.origin(i), dir = d / d_len;
-        float s_hit;
-        const RGB stretch = sc.media.optical_depth(m, o, dir, 0.f, len, c, s.tau[i], &s_hit);
-        depth += stretch;
+        float s_hit = kInfinity;
+        RGB sigma_a, sigma_s;
+        bool by_tracking = sc.media.tracked(m);
+        if (by_tracking) {
+          RandomStream rng = stretch_stream(o, dir, u[i], uint32_t(round));
+          const tracking::Track tr = sc.media.track(m, o, dir, len, rng.get1d(), rng);
+          s.tracked_weight[i] *= tr.weight;
+          s_hit = tr.t, sigma_a = tr.sigma_a, sigma_s = tr.sigma_s;
+          float unused;
+          s.tracked_depth[i] += sc.media.optical_depth(m, o, dir, 0.f, tr.real() ? tr.t : len, 0, -1.f, &unused);
+          if (tr.saturated) s.tau[i] = kInfinity, depth = RGB(kInfinity);  // ends absorbed below
+        } else {
+          const RGB stretch = sc.media.optical_depth(m, o, dir, 0.f, len, s.channel[i], s.tau[i], &s_hit);
+          depth += stretch;
+          if (s_hit < kInfinity) sc.media.coefficients_at(m, o + dir * s_hit, &sigma_a, &sigma_s);
+          else s.tau[i] -= stretch[s.channel[i]];
+        }
         if (s_hit < kInfinity) {  // scatters inside this stretch
-          const Vec3 p = o + dir * s_hit;
-          RGB sigma_a, sigma_s;
-          sc.media.coefficients_at(m, p, &sigma_a, &sigma_s);
-          const RGB T = transmittance(depth), sigma_x = sigma_a + sigma_s;
-          const float pdf = mixture_density(sigma_x, T);
           out.end[i] = SegmentEnd::Scatter;
-          out.p[i] = p;
-          out.T[i] = T;
-          out.weight[i] = pdf > 0.f ? T * sigma_s / pdf : RGB(0.f);
-          out.fwd_density[i] = pdf;
-          out.medium[i] = m;
-          out.sigma_t[i] = sigma_x;
+          out.p[i] = o + dir * s_hit;
+          end_segment(out, i, m, depth, s.tracked_weight[i], s.tracked_depth[i], sigma_a, sigma_s, true, by_tracking);
           continue;
         }
-        s.tau[i] -= stretch[c];
       }
       if (hit && is_boundary(sc, rays, i)) {
         cross_boundary(sc, rays, i, &s.medium[i], s.rays, kInfinity);
         s.next.push_back(i);
         continue;
       }
-      const RGB T = transmittance(depth);
-      const float P = mixture_density(RGB(0.f), T);
-      out.end[i] = !(P > 0.f) ? SegmentEnd::Absorbed : hit ? SegmentEnd::Surface : SegmentEnd::Escaped;
-      out.T[i] = T;
-      out.weight[i] = P > 0.f ? T / P : RGB(0.f);
-      out.fwd_density[i] = P;
-      out.medium[i] = m;
+      end_segment(out, i, m, depth, s.tracked_weight[i], s.tracked_depth[i], RGB(0.f), RGB(0.f), false, false);
+      out.end[i] = !(out.fwd_density[i] > 0.f) || is_black(out.weight[i]) ? SegmentEnd::Absorbed
+                   : hit                                                 ? SegmentEnd::Surface
+                                                                         : SegmentEnd::Escaped;
     }
     if (s.rays.count == 0) break;
     stream.intersect(s.rays, kind);
@@ -121,11 +161,14 @@ void find_segment_ends(const Scene& sc, RayStream& stream, RayKind kind, RayBatc
 }
 
 void trace_transmittance(const Scene& sc, RayStream& stream, RayBatch& rays, const std::vector<MediumHandle>& medium,
-                         std::vector<RGB>& T, CrossingScratch& s) {
+                         std::vector<RGB>& T, std::vector<RGB>& T_mis, CrossingScratch& s) {
   const uint32_t n = rays.count;
   if (T.size() < n) T.resize(rays.capacity());
+  if (T_mis.size() < n) T_mis.resize(rays.capacity());
   s.medium.assign(medium.begin(), medium.begin() + n);
   s.depth.assign(n, RGB(0.f));
+  s.tracked_weight.assign(n, RGB(1.f));  // the ratio tracking estimates
+  s.tracked_depth.assign(n, RGB(0.f));
   s.rays.count = 0;
   s.next.clear();
   for (uint32_t r = 0; r < n; ++r) {
@@ -136,7 +179,7 @@ void trace_transmittance(const Scene& sc, RayStream& stream, RayBatch& rays, con
   for (int round = 0; s.rays.count > 0; ++round) {
     if (round == kMaxCrossings) {
       for (uint32_t j = 0; j < s.rays.count; ++j) {
-        T[s.next[j]] = RGB(0.f);
+        T[s.next[j]] = T_mis[s.next[j]] = RGB(0.f);
         rays.tfar[s.next[j]] = -kInfinity;
       }
       break;
@@ -151,10 +194,17 @@ void trace_transmittance(const Scene& sc, RayStream& stream, RayBatch& rays, con
       // tfar: the hit's distance, or (a miss) the ray's own end
       const MediumHandle m = s.medium[r];
       if (!m.vacuum()) {
-        const Vec3 d = s.rays.direction(j);
-        const float d_len = glm::length(d);
+        const Vec3 d = s.rays.direction(j), o = s.rays.origin(j);
+        const float d_len = glm::length(d), len = s.rays.tfar[j] * d_len;
         float unused;
-        s.depth[r] += sc.media.optical_depth(m, s.rays.origin(j), d / d_len, 0.f, s.rays.tfar[j] * d_len, 0, -1.f, &unused);
+        const RGB depth = sc.media.optical_depth(m, o, d / d_len, 0.f, len, 0, -1.f, &unused);
+        if (sc.media.tracked(m)) {
+          RandomStream rng = stretch_stream(o, d / d_len, rays.tfar[r], uint32_t(round));
+          s.tracked_weight[r] *= sc.media.ratio_track(m, o, d / d_len, len, rng);
+          s.tracked_depth[r] += depth;
+        } else {
+          s.depth[r] += depth;
+        }
       }
       if (hit && is_boundary(sc, s.rays, j)) {
         const uint32_t k = cross_boundary(sc, s.rays, j, &s.medium[r], cont, kInfinity);
@@ -167,7 +217,9 @@ void trace_transmittance(const Scene& sc, RayStream& stream, RayBatch& rays, con
         s.owner.push_back(r);
         continue;
       }
-      T[r] = hit ? RGB(0.f) : transmittance(s.depth[r]);
+      const RGB closed = transmittance(s.depth[r]);
+      T[r] = hit ? RGB(0.f) : closed * s.tracked_weight[r];
+      T_mis[r] = hit ? RGB(0.f) : is_black(s.tracked_depth[r]) ? closed : transmittance(s.depth[r] + s.tracked_depth[r]);
       if (is_black(T[r])) rays.tfar[r] = -kInfinity;  // reads as occluded
     }
     std::swap(s.rays, cont);

@@ -36,8 +36,8 @@ struct SegmentEnds {
   std::vector<SegmentEnd> end;
   std::vector<Vec3> p;              // the scattering point
   std::vector<RGB> weight;          // the segment's throughput factor, T sigma_s / p or T / P
-  std::vector<RGB> T;               // its transmittance
-  std::vector<float> fwd_density;   // p or P of the end reached
+  std::vector<RGB> T;               // its transmittance, as the MIS densities see it
+  std::vector<float> fwd_density;   // p or P of the end reached (for MIS)
   std::vector<MediumHandle> medium;  // the medium the segment ends in
   std::vector<RGB> sigma_t;          // the extinction at the scattering point
 
@@ -65,9 +65,12 @@ struct CrossingScratch {
   std::vector<float> tau;
   std::vector<uint8_t> channel;
   std::vector<RGB> depth;  // optical depth so far, per channel
+  // Tracked media (scenes with them only): the weights so far, and the
+  // proxy's depth so far.
+  std::vector<RGB> tracked_weight, tracked_depth;
   size_t memory_bytes() const {
     return rays.memory_bytes() + continued.memory_bytes() + vector_bytes(owner) + vector_bytes(next) + vector_bytes(medium) + vector_bytes(tau) +
-           vector_bytes(channel) + vector_bytes(depth);
+           vector_bytes(channel) + vector_bytes(depth) + vector_bytes(tracked_weight) + vector_bytes(tracked_depth);
   }
 };
 
@@ -81,9 +84,11 @@ void find_segment_ends(const Scene& scene, RayStream& stream, RayKind kind, RayB
 
 // The transmittance of each shadow ray of `rays` (origin, direction and
 // t_max set, not yet traced) that starts in medium[i]: zero when a surface
-// blocks it. Blocked rays are also marked occluded in `rays`.
+// blocks it. Blocked rays are also marked occluded in `rays`. T is the
+// estimate to weight the contribution by; T_mis the transmittance the MIS
+// densities use (the same but where the ray crosses tracked media).
 void trace_transmittance(const Scene& scene, RayStream& stream, RayBatch& rays, const std::vector<MediumHandle>& medium,
-                         std::vector<RGB>& T, CrossingScratch& scratch);
+                         std::vector<RGB>& T, std::vector<RGB>& T_mis, CrossingScratch& scratch);
 
 // The medium a ray leaving a surface hit of geometry `geom` along w
 // travels in, given the medium the hit was reached in.

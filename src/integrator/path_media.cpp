@@ -74,7 +74,7 @@ void PathTracer::media_shadow_stage(PathWave& w) const {
     const RGB& T = w.shadow_T[r];
     const float light_pdf = w.shadow_light_pdf[r];
     const float weight =
-        light_pdf == 0.f ? 1.f : power_heuristic(light_pdf, w.shadow_scatter_pdf[r] * mixture_density(RGB(0.f), T));
+        light_pdf == 0.f ? 1.f : power_heuristic(light_pdf, w.shadow_scatter_pdf[r] * mixture_density(RGB(0.f), w.shadow_T_mis[r]));
     const RGB c = w.shadow_contrib[r] * T * weight;
     if (!is_finite(c)) continue;
     w.L[w.shadow_slot[r]] += c;

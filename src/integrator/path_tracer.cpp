@@ -235,7 +235,7 @@ void PathTracer::trace(const WaveDesc& wave, PathWave& w, WaveOutput& out) const
       if (media) medium_scatter_stage(w);
     }
     if (media) {
-      trace_transmittance(scene_, w.stream, w.shadow, w.shadow_medium, w.shadow_T, w.crossing);
+      trace_transmittance(scene_, w.stream, w.shadow, w.shadow_medium, w.shadow_T, w.shadow_T_mis, w.crossing);
     } else {
       w.stream.occluded(w.shadow);
     }

@@ -48,7 +48,7 @@ struct PathWave {
   SegmentEnds ends;
   std::vector<uint32_t> scattered;
   std::vector<MediumHandle> shadow_medium;
-  std::vector<RGB> shadow_T;
+  std::vector<RGB> shadow_T, shadow_T_mis;  // the estimate, and what MIS sees (medium_events.h)
   std::vector<float> shadow_light_pdf, shadow_scatter_pdf;  // light_pdf 0: a delta light, weight 1
   CrossingScratch crossing;
 
@@ -63,6 +63,7 @@ struct PathWave {
     scattered.reserve(n);
     shadow_medium.resize(n);
     shadow_T.resize(n);
+    shadow_T_mis.resize(n);
     shadow_light_pdf.resize(n);
     shadow_scatter_pdf.resize(n);
   }
@@ -72,7 +73,7 @@ struct PathWave {
            vector_bytes(eta_scale) + vector_bytes(prev_p) + vector_bytes(prev_n) + vector_bytes(prev_specular) + vector_bytes(active) +
            rays.memory_bytes() + hits.memory_bytes() + shadow.memory_bytes() + vector_bytes(shadow_slot) +
            vector_bytes(shadow_contrib) + vector_bytes(medium) + vector_bytes(ray_medium) + vector_bytes(u_distance) +
-           ends.memory_bytes() + vector_bytes(scattered) + vector_bytes(shadow_medium) + vector_bytes(shadow_T) +
+           ends.memory_bytes() + vector_bytes(scattered) + vector_bytes(shadow_medium) + vector_bytes(shadow_T) + vector_bytes(shadow_T_mis) +
            vector_bytes(shadow_light_pdf) + vector_bytes(shadow_scatter_pdf) + crossing.memory_bytes();
   }
 

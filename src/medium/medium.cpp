@@ -6,6 +6,10 @@ RGB MediumPools::optical_depth(MediumHandle h, const Vec3& o, const Vec3& d, flo
                                float* s_hit) const {
   *s_hit = kInfinity;
   if (h.kind() == MediumKind::RgbGrid) return rgb_grid[h.index()].grid.integrate(o, d, s0, s1, c, tau, s_hit);
+  if (h.kind() == MediumKind::Cloud) {
+    const CloudMedium& m = cloud[h.index()];
+    return (m.sigma_a + m.sigma_s) * m.proxy.integrate(o, d, s0, s1, -1.f, s_hit);
+  }
   const bool is_grid = h.kind() == MediumKind::Grid;
   const RGB sigma_t = is_grid ? grid[h.index()].per_density.sigma_t() : homogeneous[h.index()].sigma_t();
   const float target = tau >= 0.f && sigma_t[c] > 0.f ? tau / sigma_t[c] : -1.f;
@@ -24,6 +28,31 @@ RGB MediumPools::optical_depth(MediumHandle h, const Vec3& o, const Vec3& d, flo
   for (int k = 0; k < 3; ++k)
     if (sigma_t[k] > 0.f) depth[k] = sigma_t[k] * D;
   return depth;
+}
+
+tracking::Track MediumPools::track(MediumHandle h, const Vec3& o, const Vec3& d, float len, float u,
+                                   RandomStream& rng) const {
+  const CloudMedium& m = cloud[h.index()];
+  float ta, tb;
+  if (!m.clip(o, d, 0.f, len, &ta, &tb)) return {};
+  tracking::Track r = tracking::delta_track(tb - ta, m.sigma_bar(), u, rng, [&](float t, RGB* a, RGB* s) {
+    const float rho = m.density_at(o + d * (ta + t));
+    *a = m.sigma_a * rho;
+    *s = m.sigma_s * rho;
+  });
+  if (r.real()) r.t += ta;
+  return r;
+}
+
+RGB MediumPools::ratio_track(MediumHandle h, const Vec3& o, const Vec3& d, float len, RandomStream& rng) const {
+  const CloudMedium& m = cloud[h.index()];
+  float ta, tb;
+  if (!m.clip(o, d, 0.f, len, &ta, &tb)) return RGB(1.f);
+  return tracking::ratio_track(tb - ta, m.sigma_bar(), rng, [&](float t, RGB* a, RGB* s) {
+    const float rho = m.density_at(o + d * (ta + t));
+    *a = m.sigma_a * rho;
+    *s = m.sigma_s * rho;
+  });
 }
 
 }  // namespace lantern

@@ -13,11 +13,14 @@
 #include <vector>
 
 #include "math/common.h"
+#include "math/rng.h"
+#include "medium/cloud.h"
 #include "medium/grid_density.h"
+#include "medium/tracking.h"
 
 namespace lantern {
 
-enum class MediumKind : uint8_t { Homogeneous = 0, Grid = 1, RgbGrid = 2 };
+enum class MediumKind : uint8_t { Homogeneous = 0, Grid = 1, RgbGrid = 2, Cloud = 3 };
 
 struct MediumHandle {
   uint32_t bits = 0;  // 0: vacuum; else kind << 28 | (1 + index into the kind's pool)
@@ -67,15 +70,17 @@ struct MediumPools {
   std::vector<HomogeneousMedium> homogeneous;
   std::vector<GridMedium> grid;
   std::vector<RgbGridMedium> rgb_grid;
+  std::vector<CloudMedium> cloud;
   MediumHandle camera;  // the medium camera rays start in
 
-  bool empty() const { return homogeneous.empty() && grid.empty() && rgb_grid.empty(); }
+  bool empty() const { return homogeneous.empty() && grid.empty() && rgb_grid.empty() && cloud.empty(); }
 
   // The Henyey-Greenstein asymmetry of the medium's phase function.
   float g(MediumHandle h) const {
     switch (h.kind()) {
       case MediumKind::Grid: return grid[h.index()].per_density.g;
       case MediumKind::RgbGrid: return rgb_grid[h.index()].g;
+      case MediumKind::Cloud: return cloud[h.index()].g;
       default: return homogeneous[h.index()].g;
     }
   }
@@ -90,6 +95,13 @@ struct MediumPools {
         return;
       }
       case MediumKind::RgbGrid: rgb_grid[h.index()].grid.at(p, sigma_a, sigma_s); return;
+      case MediumKind::Cloud: {
+        const CloudMedium& m = cloud[h.index()];
+        const float rho = m.density_at(p);
+        *sigma_a = m.sigma_a * rho;
+        *sigma_s = m.sigma_s * rho;
+        return;
+      }
       default: *sigma_a = homogeneous[h.index()].sigma_a, *sigma_s = homogeneous[h.index()].sigma_s;
     }
   }
@@ -97,8 +109,19 @@ struct MediumPools {
   // distance, s1 possibly infinite) over [s0, s1]. With tau >= 0, stops
   // where channel c's depth reaches tau: *s_hit is there (else infinity)
   // and the depth returned is the depth up to it.
+  // A tracked medium (below) answers with its proxy's depth, and only
+  // with tau < 0: the transmittance bidirectional MIS uses for it.
   RGB optical_depth(MediumHandle h, const Vec3& o, const Vec3& d, float s0, float s1, int c, float tau,
                     float* s_hit) const;
+
+  // Media with no closed-form optical depth, which rays are tracked
+  // through (medium/tracking.h).
+  bool tracked(MediumHandle h) const { return h.kind() == MediumKind::Cloud; }
+  // Delta tracking along o + s d (d unit length) over [0, len]: the real
+  // collision's distance s (infinity: none) and the weights.
+  tracking::Track track(MediumHandle h, const Vec3& o, const Vec3& d, float len, float u, RandomStream& rng) const;
+  // Ratio tracking over the same: an unbiased transmittance estimate.
+  RGB ratio_track(MediumHandle h, const Vec3& o, const Vec3& d, float len, RandomStream& rng) const;
 };
 
 }  // namespace lantern

@@ -142,6 +142,7 @@ class SceneBuilder {
   HomogeneousMedium medium_coefficients(const pbrt::ParamSet& ps, bool presets);
   DensityGrid density_grid(const pbrt::ParamSet& ps, const Mat4& render_from_medium);
   RgbGridMedium rgb_grid(const pbrt::ParamSet& ps, const Mat4& render_from_medium);
+  CloudMedium cloud(const pbrt::ParamSet& ps, const Mat4& render_from_medium);
   void grid_layout(const pbrt::ParamSet& ps, const Mat4& render_from_medium, GridLayout* g);
   void note_geometry();
   void check_objects_closed() const;

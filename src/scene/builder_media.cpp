@@ -25,11 +25,11 @@ RGB checked_coefficient(const ParamSet& ps, const char* name, RGB value, float s
 void SceneBuilder::medium(const std::string& name, const ParamSet& ps, const Mat4& render_from_medium) {
   if (named_media_.count(name)) ps.fail("medium \"" + printable(name) + "\" is defined twice");
   const std::string type = ps.get_string("type", "");
-  if (type.empty()) ps.fail("needs a \"string type\" parameter (homogeneous, uniformgrid or rgbgrid)");
-  if (type == "cloud" || type == "nanovdb")
-    ps.fail("medium type \"" + type + "\" is not supported yet; expected homogeneous, uniformgrid or rgbgrid");
-  if (type != "homogeneous" && type != "uniformgrid" && type != "rgbgrid")
-    ps.fail("unknown medium type \"" + printable(type) + "\"; expected homogeneous, uniformgrid or rgbgrid");
+  const char* known = "homogeneous, uniformgrid, rgbgrid or cloud";
+  if (type.empty()) ps.fail(std::string("needs a \"string type\" parameter (") + known + ")");
+  if (type == "nanovdb") ps.fail(std::string("medium type \"nanovdb\" is not supported yet; expected ") + known);
+  if (type != "homogeneous" && type != "uniformgrid" && type != "rgbgrid" && type != "cloud")
+    ps.fail("unknown medium type \"" + printable(type) + "\"; expected " + known);
   if (const pbrt::Param* Le = ps.find("Le")) {
     bool emits = false;
     for (double v : Le->numbers) emits |= v != 0.0;
@@ -40,6 +40,11 @@ void SceneBuilder::medium(const std::string& name, const ParamSet& ps, const Mat
   if (type == "homogeneous") {
     media.homogeneous.push_back(medium_coefficients(ps, true));
     named_media_[name] = MediumHandle::homogeneous(uint32_t(media.homogeneous.size() - 1));
+    return;
+  }
+  if (type == "cloud") {
+    media.cloud.push_back(cloud(ps, render_from_medium));
+    named_media_[name] = MediumHandle::make(MediumKind::Cloud, uint32_t(media.cloud.size() - 1));
     return;
   }
   if (type == "rgbgrid") {
@@ -146,6 +151,30 @@ RgbGridMedium SceneBuilder::rgb_grid(const ParamSet& ps, const Mat4& render_from
   read(s, &m.grid.sigma_s, &m.grid.constant_s);
   m.g = ps.get_float("g", 0.f);
   if (!(m.g > -1.f && m.g < 1.f)) ps.fail(*ps.find("g"), "\"g\" must lie strictly between -1 and 1");
+  return m;
+}
+
+// pbrt-v4's cloud: sigma_a, sigma_s (1 by default; no "scale"), g,
+// density, wispiness, frequency and the box p0..p1.
+CloudMedium SceneBuilder::cloud(const ParamSet& ps, const Mat4& render_from_medium) {
+  CloudMedium m;
+  m.sigma_a = checked_coefficient(ps, "sigma_a", ps.get_rgb("sigma_a", ColorUsage::Unbounded).value_or(RGB(1.f)), 1.f);
+  m.sigma_s = checked_coefficient(ps, "sigma_s", ps.get_rgb("sigma_s", ColorUsage::Unbounded).value_or(RGB(1.f)), 1.f);
+  m.g = ps.get_float("g", 0.f);
+  if (!(m.g > -1.f && m.g < 1.f)) ps.fail(*ps.find("g"), "\"g\" must lie strictly between -1 and 1");
+  m.density = ps.get_float("density", 1.f);
+  m.wispiness = ps.get_float("wispiness", 1.f);
+  m.frequency = ps.get_float("frequency", 5.f);
+  for (const char* name : {"density", "wispiness", "frequency"}) {
+    const pbrt::Param* p = ps.find(name);
+    if (p && !(std::isfinite(ps.get_float(name, 0.f)) && std::fabs(ps.get_float(name, 0.f)) < 1e6f))
+      ps.fail(*p, std::string("\"") + name + "\" must be finite (and below 1e6 in magnitude)");
+  }
+  GridLayout box;  // the box and transform, checked as a grid's
+  grid_layout(ps, render_from_medium, &box);
+  m.p0 = box.p0, m.p1 = box.p1;
+  m.medium_from_render = box.medium_from_render;
+  m.build_proxy(kCloudProxyResolution);
   return m;
 }
 

@@ -18,9 +18,9 @@ struct Permutation {
 constexpr Permutation kPerm;
 
 // Dot product of the offset with one of 12 cube-edge gradients (16 entries,
-// four repeated), chosen by hashing the lattice point.
-float grad(int x, int y, int z, float dx, float dy, float dz) {
-  int h = kPerm.p[size_t(kPerm.p[size_t(kPerm.p[size_t(x)] + y)] + z)] & 15;
+// four repeated), chosen by the lattice point's hash h.
+[[gnu::always_inline]] inline float grad(int h, float dx, float dy, float dz) {
+  h &= 15;
   float u = h < 8 || h == 12 || h == 13 ? dx : dy;
   float v = h < 4 || h == 12 || h == 13 ? dy : dz;
   return ((h & 1) ? -u : u) + ((h & 2) ? -v : v);
@@ -32,18 +32,23 @@ float lerp(float t, float a, float b) { return (1.f - t) * a + t * b; }
 }  // namespace
 
 float perlin_noise(Vec3 p) {
-  // Keep the cell index within an int.
+  // Keep the cell index within an int (fmod is slow, and the identity below).
   const float wrap = float(1 << 30);
-  p = Vec3(std::fmod(p.x, wrap), std::fmod(p.y, wrap), std::fmod(p.z, wrap));
+  for (int k = 0; k < 3; ++k)
+    if (!(std::fabs(p[k]) < wrap)) p[k] = std::fmod(p[k], wrap);
   if (!is_finite(p)) return 0.f;
   float fx = std::floor(p.x), fy = std::floor(p.y), fz = std::floor(p.z);
   float dx = p.x - fx, dy = p.y - fy, dz = p.z - fz;
   int ix = int(fx) & 255, iy = int(fy) & 255, iz = int(fz) & 255;
-  float w000 = grad(ix, iy, iz, dx, dy, dz), w100 = grad(ix + 1, iy, iz, dx - 1, dy, dz);
-  float w010 = grad(ix, iy + 1, iz, dx, dy - 1, dz), w110 = grad(ix + 1, iy + 1, iz, dx - 1, dy - 1, dz);
-  float w001 = grad(ix, iy, iz + 1, dx, dy, dz - 1), w101 = grad(ix + 1, iy, iz + 1, dx - 1, dy, dz - 1);
-  float w011 = grad(ix, iy + 1, iz + 1, dx, dy - 1, dz - 1);
-  float w111 = grad(ix + 1, iy + 1, iz + 1, dx - 1, dy - 1, dz - 1);
+  // The corners' hashes perm[perm[perm[x] + y] + z], sharing their prefixes.
+  const auto& P = kPerm.p;
+  const int a = P[size_t(ix)] + iy, b = P[size_t(ix + 1)] + iy;
+  const int aa = P[size_t(a)] + iz, ab = P[size_t(a + 1)] + iz, ba = P[size_t(b)] + iz, bb = P[size_t(b + 1)] + iz;
+  float w000 = grad(P[size_t(aa)], dx, dy, dz), w100 = grad(P[size_t(ba)], dx - 1, dy, dz);
+  float w010 = grad(P[size_t(ab)], dx, dy - 1, dz), w110 = grad(P[size_t(bb)], dx - 1, dy - 1, dz);
+  float w001 = grad(P[size_t(aa + 1)], dx, dy, dz - 1), w101 = grad(P[size_t(ba + 1)], dx - 1, dy, dz - 1);
+  float w011 = grad(P[size_t(ab + 1)], dx, dy - 1, dz - 1);
+  float w111 = grad(P[size_t(bb + 1)], dx - 1, dy - 1, dz - 1);
   float wx = fade(dx), wy = fade(dy), wz = fade(dz);
   float y0 = lerp(wy, lerp(wx, w000, w100), lerp(wx, w010, w110));
   float y1 = lerp(wy, lerp(wx, w001, w101), lerp(wx, w011, w111));
