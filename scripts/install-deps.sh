@@ -8,6 +8,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libembree-dev libtbb-dev libopenimageio-dev libglm-dev
   libcli11-dev nlohmann-json3-dev zlib1g-dev
+  libnanovdb-dev  # header only: the "nanovdb" medium (src/medium/nanovdb_grid.cpp)
   libboost-dev  # header only: Joe & Kuo's Sobol direction numbers (src/sampler/sobol_matrices.cpp)
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox  # perf/run-all.sh plots error against time

@@ -232,8 +232,8 @@ TEST(Media, BadInputIsRefusedWithItsLine) {
                     "h.pbrt", {"h.pbrt:5", "defined twice"});
   expect_load_error(head + "MakeNamedMedium \"m\" \"string type\" \"homogeneous\" \"rgb Le\" [ 1 1 1 ]\n", "i.pbrt",
                     {"i.pbrt:4", "emissive media"});
-  expect_load_error(head + "MakeNamedMedium \"m\" \"string type\" \"nanovdb\"\n", "j.pbrt",
-                    {"j.pbrt:4", "\"nanovdb\" is not supported yet", "rgbgrid"});
+  expect_load_error(head + "MakeNamedMedium \"m\" \"string type\" \"fog\"\n", "j.pbrt",
+                    {"j.pbrt:4", "unknown medium type \"fog\"", "rgbgrid, cloud or nanovdb"});
   expect_load_error("MediumInterface \"air\"\nLookAt 0 0 0 0 0 1 0 1 0\nCamera \"perspective\"\nWorldBegin\n", "k.pbrt",
                     {"k.pbrt:1", "medium \"air\" is not defined"});
 }

@@ -14,6 +14,31 @@ bool GridLayout::locate(const Vec3& p, int cell[3], double f[3]) const {
   return true;
 }
 
+LatticeFrame LatticeFrame::compose(const double a[3][4], const Mat4& b, const double lo[3], const double hi[3]) {
+  LatticeFrame f;
+  for (int k = 0; k < 3; ++k) {
+    for (int j = 0; j < 4; ++j) {  // glm: b[column][row]
+      double v = j == 3 ? a[k][3] : 0.0;
+      for (int i = 0; i < 3; ++i) v += a[k][i] * double(b[j][i]);
+      f.m[k][j] = v;
+    }
+    f.lo[k] = lo[k], f.hi[k] = hi[k];
+  }
+  return f;
+}
+
+LatticeFrame GridLayout::frame() const {
+  const int n[3] = {nx, ny, nz};
+  double a[3][4] = {}, lo[3], hi[3];
+  for (int k = 0; k < 3; ++k) {  // (p - p0) / (p1 - p0) n - 1/2
+    const double s = n[k] / (double(p1[k]) - double(p0[k]));
+    a[k][k] = s;
+    a[k][3] = -double(p0[k]) * s - 0.5;
+    lo[k] = -0.5, hi[k] = n[k] - 0.5;
+  }
+  return LatticeFrame::compose(a, medium_from_render, lo, hi);
+}
+
 namespace lattice {
 
 Cubic cell_cubic(const double f0[3], const double df[3], const float v[2][2][2]) {
@@ -83,7 +108,7 @@ float DensityGrid::integrate(const Vec3& o, const Vec3& d, float t0, float t1, f
   *t_hit = kInfinity;
   double sum = 0.0;
   bool reached = false;
-  lattice::walk(*this, o, d, t0, t1, [&](const int cell[3], double t, double t_exit, const double f0[3], const double dg[3]) {
+  lattice::walk(frame(), o, d, t0, t1, [&](const int cell[3], double t, double t_exit, const double f0[3], const double dg[3]) {
     float v[2][2][2];
     bool any = false;
     for (int a = 0; a < 2; ++a)
@@ -118,7 +143,7 @@ RGB RgbGrid::integrate(const Vec3& o, const Vec3& d, float t0, float t1, int c, 
   *t_hit = kInfinity;
   const RGB constant = constant_a + constant_s;
   double sum[3] = {0.0, 0.0, 0.0};
-  lattice::walk(*this, o, d, t0, t1, [&](const int cell[3], double t, double t_exit, const double f0[3], const double dg[3]) {
+  lattice::walk(frame(), o, d, t0, t1, [&](const int cell[3], double t, double t_exit, const double f0[3], const double dg[3]) {
     RGB v[2][2][2];
     for (int a = 0; a < 2; ++a)
       for (int b = 0; b < 2; ++b)

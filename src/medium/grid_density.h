@@ -23,6 +23,17 @@
 
 namespace lantern {
 
+// Where a lattice of samples at integer coordinates sits: lattice
+// coordinates = m (render point, 1), and the box the medium fills, in
+// lattice coordinates (cells outside it are empty).
+struct LatticeFrame {
+  double m[3][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}};
+  double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+  // The frame whose m is a (lattice from the medium's space) after b (the
+  // medium's space from render space).
+  static LatticeFrame compose(const double a[3][4], const Mat4& b, const double lo[3], const double hi[3]);
+};
+
 struct GridLayout {
   int nx = 1, ny = 1, nz = 1;  // samples; x varies fastest, then y, then z (pbrt's order)
   Vec3 p0{0.f}, p1{1.f};       // the box, in the medium's space
@@ -32,6 +43,8 @@ struct GridLayout {
   size_t offset(int x, int y, int z) const { return (size_t(z) * size_t(ny) + size_t(y)) * size_t(nx) + size_t(x); }
   // Lattice cell and weights of a point of render space; false outside the box.
   bool locate(const Vec3& p, int cell[3], double f[3]) const;
+  // Samples at the cells' centres: the box is [-1/2, n - 1/2] in lattice coordinates.
+  LatticeFrame frame() const;
 };
 
 namespace lattice {
@@ -58,15 +71,16 @@ double solve_integral(const Cubic& p, double S, double r);
 // true. f0: where the ray enters the cell, in the cell's coordinates; dg:
 // their rate per unit t.
 template <class Visit>
-void walk(const GridLayout& grid, const Vec3& o, const Vec3& d, float t0, float t1, Visit&& visit) {
-  const Vec3 om = Vec3(grid.medium_from_render * Vec4(o, 1.f)), dm = glm::mat3(grid.medium_from_render) * d;
-  const int n[3] = {grid.nx, grid.ny, grid.nz};
+void walk(const LatticeFrame& frame, const Vec3& o, const Vec3& d, float t0, float t1, Visit&& visit) {
   double g0[3], dg[3], ta = t0, tb = t1;
-  for (int k = 0; k < 3; ++k) {  // lattice coordinates, and the box [-0.5, n - 0.5] they must stay in
-    const double ext = double(grid.p1[k]) - double(grid.p0[k]);
-    g0[k] = (double(om[k]) - grid.p0[k]) / ext * n[k] - 0.5;
-    dg[k] = double(dm[k]) / ext * n[k];
-    const double lo = -0.5, hi = n[k] - 0.5;
+  int first[3], last[3];  // the cells the box covers
+  for (int k = 0; k < 3; ++k) {  // lattice coordinates, and the box they must stay in
+    const double* m = frame.m[k];
+    g0[k] = m[0] * o.x + m[1] * o.y + m[2] * o.z + m[3];
+    dg[k] = m[0] * d.x + m[1] * d.y + m[2] * d.z;
+    const double lo = frame.lo[k], hi = frame.hi[k];
+    first[k] = int(std::floor(lo));
+    last[k] = int(std::ceil(hi)) - 1;
     if (dg[k] == 0.0) {
       if (g0[k] < lo || g0[k] > hi) return;
       continue;
@@ -80,7 +94,7 @@ void walk(const GridLayout& grid, const Vec3& o, const Vec3& d, float t0, float 
   int cell[3], step[3];
   double t_next[3], t_delta[3];
   for (int k = 0; k < 3; ++k) {
-    cell[k] = std::clamp(int(std::floor(g0[k] + ta * dg[k])), -1, n[k] - 1);
+    cell[k] = std::clamp(int(std::floor(g0[k] + ta * dg[k])), first[k], last[k]);
     step[k] = dg[k] > 0.0 ? 1 : -1;
     if (dg[k] == 0.0) {
       t_next[k] = t_delta[k] = kInfinity;
@@ -98,7 +112,7 @@ void walk(const GridLayout& grid, const Vec3& o, const Vec3& d, float t0, float 
     }
     if (t_exit >= tb) return;
     cell[axis] += step[axis];
-    if (cell[axis] < -1 || cell[axis] > n[axis] - 1) return;
+    if (cell[axis] < first[axis] || cell[axis] > last[axis]) return;
     t_next[axis] += t_delta[axis];
     t = t_exit;
   }

@@ -10,13 +10,17 @@ RGB MediumPools::optical_depth(MediumHandle h, const Vec3& o, const Vec3& d, flo
     const CloudMedium& m = cloud[h.index()];
     return (m.sigma_a + m.sigma_s) * m.proxy.integrate(o, d, s0, s1, -1.f, s_hit);
   }
-  const bool is_grid = h.kind() == MediumKind::Grid;
-  const RGB sigma_t = is_grid ? grid[h.index()].per_density.sigma_t() : homogeneous[h.index()].sigma_t();
+  const MediumKind kind = h.kind();
+  const RGB sigma_t = kind == MediumKind::Grid  ? grid[h.index()].per_density.sigma_t()
+                      : kind == MediumKind::Vdb ? vdb[h.index()].per_density.sigma_t()
+                                                : homogeneous[h.index()].sigma_t();
   const float target = tau >= 0.f && sigma_t[c] > 0.f ? tau / sigma_t[c] : -1.f;
   // The integral of the density: the length itself in a homogeneous medium.
   float D;
-  if (is_grid) {
+  if (kind == MediumKind::Grid) {
     D = grid[h.index()].density.integrate(o, d, s0, s1, target, s_hit);
+  } else if (kind == MediumKind::Vdb) {
+    D = vdb[h.index()].density.integrate(o, d, s0, s1, target, s_hit);
   } else if (target >= 0.f && target < s1 - s0) {
     *s_hit = s0 + target;
     D = target;

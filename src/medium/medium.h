@@ -16,11 +16,12 @@
 #include "math/rng.h"
 #include "medium/cloud.h"
 #include "medium/grid_density.h"
+#include "medium/nanovdb_grid.h"
 #include "medium/tracking.h"
 
 namespace lantern {
 
-enum class MediumKind : uint8_t { Homogeneous = 0, Grid = 1, RgbGrid = 2, Cloud = 3 };
+enum class MediumKind : uint8_t { Homogeneous = 0, Grid = 1, RgbGrid = 2, Cloud = 3, Vdb = 4 };
 
 struct MediumHandle {
   uint32_t bits = 0;  // 0: vacuum; else kind << 28 | (1 + index into the kind's pool)
@@ -60,6 +61,12 @@ struct GridMedium {
   DensityGrid density;
 };
 
+// pbrt-v4's "nanovdb": the coefficients scaled by a NanoVDB density grid.
+struct VdbMedium {
+  HomogeneousMedium per_density;
+  VdbGrid density;
+};
+
 // pbrt-v4's "rgbgrid": RGB coefficients on a grid.
 struct RgbGridMedium {
   RgbGrid grid;
@@ -71,9 +78,10 @@ struct MediumPools {
   std::vector<GridMedium> grid;
   std::vector<RgbGridMedium> rgb_grid;
   std::vector<CloudMedium> cloud;
+  std::vector<VdbMedium> vdb;
   MediumHandle camera;  // the medium camera rays start in
 
-  bool empty() const { return homogeneous.empty() && grid.empty() && rgb_grid.empty() && cloud.empty(); }
+  bool empty() const { return homogeneous.empty() && grid.empty() && rgb_grid.empty() && cloud.empty() && vdb.empty(); }
 
   // The Henyey-Greenstein asymmetry of the medium's phase function.
   float g(MediumHandle h) const {
@@ -81,6 +89,7 @@ struct MediumPools {
       case MediumKind::Grid: return grid[h.index()].per_density.g;
       case MediumKind::RgbGrid: return rgb_grid[h.index()].g;
       case MediumKind::Cloud: return cloud[h.index()].g;
+      case MediumKind::Vdb: return vdb[h.index()].per_density.g;
       default: return homogeneous[h.index()].g;
     }
   }
@@ -95,6 +104,13 @@ struct MediumPools {
         return;
       }
       case MediumKind::RgbGrid: rgb_grid[h.index()].grid.at(p, sigma_a, sigma_s); return;
+      case MediumKind::Vdb: {
+        const VdbMedium& m = vdb[h.index()];
+        const float rho = m.density.density(p);
+        *sigma_a = m.per_density.sigma_a * rho;
+        *sigma_s = m.per_density.sigma_s * rho;
+        return;
+      }
       case MediumKind::Cloud: {
         const CloudMedium& m = cloud[h.index()];
         const float rho = m.density_at(p);

@@ -72,7 +72,8 @@ class SceneBuilder {
   // Participating media (builder_media.cpp): MakeNamedMedium; the medium
   // named by the graphics state when the camera was declared; the media
   // of lights added since the given pool sizes.
-  void medium(const std::string& name, const pbrt::ParamSet& ps, const Mat4& render_from_medium);
+  void medium(const std::string& name, const pbrt::ParamSet& ps, const Mat4& render_from_medium,
+              const std::string& base_dir = {});
   const LightPools& lights() const { return scene_.lights; }
   void camera_medium(const std::string& name, const SourceLocation& where);
   void assign_light_media(size_t points, size_t spots, size_t at_infinity, const std::string& name,
@@ -143,6 +144,7 @@ class SceneBuilder {
   DensityGrid density_grid(const pbrt::ParamSet& ps, const Mat4& render_from_medium);
   RgbGridMedium rgb_grid(const pbrt::ParamSet& ps, const Mat4& render_from_medium);
   CloudMedium cloud(const pbrt::ParamSet& ps, const Mat4& render_from_medium);
+  VdbMedium vdb_medium(const pbrt::ParamSet& ps, const Mat4& render_from_medium, const std::string& base_dir);
   void grid_layout(const pbrt::ParamSet& ps, const Mat4& render_from_medium, GridLayout* g);
   void note_geometry();
   void check_objects_closed() const;

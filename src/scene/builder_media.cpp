@@ -22,13 +22,13 @@ RGB checked_coefficient(const ParamSet& ps, const char* name, RGB value, float s
 
 }  // namespace
 
-void SceneBuilder::medium(const std::string& name, const ParamSet& ps, const Mat4& render_from_medium) {
+void SceneBuilder::medium(const std::string& name, const ParamSet& ps, const Mat4& render_from_medium,
+                          const std::string& base_dir) {
   if (named_media_.count(name)) ps.fail("medium \"" + printable(name) + "\" is defined twice");
   const std::string type = ps.get_string("type", "");
-  const char* known = "homogeneous, uniformgrid, rgbgrid or cloud";
+  const char* known = "homogeneous, uniformgrid, rgbgrid, cloud or nanovdb";
   if (type.empty()) ps.fail(std::string("needs a \"string type\" parameter (") + known + ")");
-  if (type == "nanovdb") ps.fail(std::string("medium type \"nanovdb\" is not supported yet; expected ") + known);
-  if (type != "homogeneous" && type != "uniformgrid" && type != "rgbgrid" && type != "cloud")
+  if (type != "homogeneous" && type != "uniformgrid" && type != "rgbgrid" && type != "cloud" && type != "nanovdb")
     ps.fail("unknown medium type \"" + printable(type) + "\"; expected " + known);
   if (const pbrt::Param* Le = ps.find("Le")) {
     bool emits = false;
@@ -40,6 +40,11 @@ void SceneBuilder::medium(const std::string& name, const ParamSet& ps, const Mat
   if (type == "homogeneous") {
     media.homogeneous.push_back(medium_coefficients(ps, true));
     named_media_[name] = MediumHandle::homogeneous(uint32_t(media.homogeneous.size() - 1));
+    return;
+  }
+  if (type == "nanovdb") {
+    media.vdb.push_back(vdb_medium(ps, render_from_medium, base_dir));
+    named_media_[name] = MediumHandle::make(MediumKind::Vdb, uint32_t(media.vdb.size() - 1));
     return;
   }
   if (type == "cloud") {
@@ -175,6 +180,32 @@ CloudMedium SceneBuilder::cloud(const ParamSet& ps, const Mat4& render_from_medi
   m.p0 = box.p0, m.p1 = box.p1;
   m.medium_from_render = box.medium_from_render;
   m.build_proxy(kCloudProxyResolution);
+  return m;
+}
+
+// pbrt-v4's nanovdb: "filename", the density grid "gridname" (default
+// "density"), sigma_a, sigma_s, scale and g. A temperature grid with a
+// positive "Lescale" would make it emit, which is refused for now.
+VdbMedium SceneBuilder::vdb_medium(const ParamSet& ps, const Mat4& render_from_medium, const std::string& base_dir) {
+  VdbMedium m;
+  m.per_density = medium_coefficients(ps, false);
+  const pbrt::Param* file = ps.find("filename");
+  if (!file) ps.fail("a nanovdb medium needs \"string filename\"");
+  const std::string path = resolve_path(base_dir, ps.get_string("filename", ""));
+  const std::string grid = ps.get_string("gridname", "density");
+  const float det = glm::determinant(render_from_medium);
+  if (!std::isfinite(det) || det == 0.f) ps.fail("the medium's transform is singular");
+  try {
+    m.density = VdbGrid::load(path, grid, glm::inverse(render_from_medium));
+    const std::string temperature = ps.get_string("temperaturename", "temperature");
+    if (ps.get_float("Lescale", 1.f) > 0.f && VdbGrid::has_grid(path, temperature))
+      ps.fail(*file, "\"" + printable(path) + "\" has a \"" + printable(temperature) +
+                         "\" grid: emissive media are not supported yet (set \"float Lescale\" 0 to render without emission)");
+  } catch (const std::runtime_error& e) {
+    if (dynamic_cast<const InputError*>(&e)) throw;
+    ps.fail(*file, "\"" + printable(path) + "\" " + e.what());
+  }
+  for (const char* name : {"temperatureoffset", "temperaturecutoff", "temperaturescale"}) ps.find(name);
   return m;
 }
 

@@ -313,7 +313,7 @@ class Parser {
     } else if (d == "MakeNamedMedium") {
       std::string name = expect_string("a medium name");
       ParamSet ps = params(t, "MakeNamedMedium \"" + printable(name) + "\"");
-      b_.medium(name, ps, render(ctm));
+      b_.medium(name, ps, render(ctm), base_dir_);
       ps.warn_unused();
     } else if (d == "Attribute") {
       expect_string("a name");
