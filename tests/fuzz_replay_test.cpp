@@ -8,6 +8,10 @@
 #include <fstream>
 #include <sstream>
 
+#include <nanovdb/NanoVDB.h>
+#include <nanovdb/util/GridBuilder.h>
+#include <nanovdb/util/IO.h>
+
 #include "fuzz/fuzz_entry.h"
 
 namespace fs = std::filesystem;
@@ -57,6 +61,32 @@ TEST(FuzzReplay, PbrtCorpusAndRegressions) {
   auto regressions = inputs({kSrc / "tests/fuzz/regressions/pbrt"}, {});
   files.insert(files.end(), regressions.begin(), regressions.end());
   EXPECT_GE(replay(files, lantern::fuzz::load_pbrt), 7u);
+}
+
+// The NanoVDB seed (stored compressed, as tests/fuzz/run.sh unpacks it),
+// written here by NanoVDB itself, and cut and overwritten versions of it.
+TEST(FuzzReplay, NvdbSeedsCutsAndRegressions) {
+  nanovdb::GridBuilder<float> builder(0.f);
+  builder.getAccessor().setValue(nanovdb::Coord(0), 1.f);
+  builder.getAccessor().setValue(nanovdb::Coord(3, 9, 2), 2.f);
+  const fs::path file = fs::temp_directory_path() / "lantern-replay-seed.nvdb";
+  nanovdb::io::writeGrid(file.string(), builder.getHandle<>(1.0, nanovdb::Vec3d(0.0), "density"));
+  const std::string seed = read_bytes(file);
+  fs::remove(file);
+  ASSERT_GT(seed.size(), 1000u);
+  auto run = [](const std::string& bytes) {
+    EXPECT_NO_THROW(lantern::fuzz::load_nvdb(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()));
+  };
+  run(seed);
+  for (size_t cut : {size_t(0), size_t(15), size_t(16), size_t(100), size_t(200), seed.size() / 2, seed.size() - 1})
+    run(seed.substr(0, cut));
+  for (size_t at = 0; at < 400; at += 7) {  // the headers and metadata, overwritten
+    std::string bad = seed;
+    bad[at] = char(bad[at] ^ 0x5A);
+    run(bad);
+  }
+  auto files = inputs({kSrc / "tests/fuzz/regressions/nvdb"}, {});
+  replay(files, lantern::fuzz::load_nvdb);
 }
 
 TEST(FuzzReplay, PlyCorpusAndRegressions) {

@@ -77,6 +77,22 @@ std::vector<std::string> check_layout(const std::string& path) {
   return names;
 }
 
+// NanoVDB's validator checks the nodes against the size the grid states;
+// that size, and the arrays of nodes of each level that the block maxima
+// read, must lie in the buffer actually read.
+bool within_buffer(const nanovdb::FloatGrid& grid, uint64_t size) {
+  const auto* begin = reinterpret_cast<const uint8_t*>(&grid);
+  const uint8_t* end = begin + size;
+  if (size < sizeof(nanovdb::FloatGrid) + sizeof(nanovdb::FloatTree) || grid.gridSize() > size) return false;
+  const auto& tree = grid.tree();
+  auto fits = [&](const auto* first, uint32_t count) {
+    const auto* p = reinterpret_cast<const uint8_t*>(first);
+    return count == 0 || (p >= begin && p <= end && uint64_t(end - p) / sizeof(*first) >= count);
+  };
+  return fits(tree.getFirstLeaf(), tree.nodeCount(0)) && fits(tree.getFirstLower(), tree.nodeCount(1)) &&
+         fits(tree.getFirstUpper(), tree.nodeCount(2));
+}
+
 // Blocks [floor((lo - 1) / B), floor(hi / B)] hold the cells next to
 // samples [lo, hi] on each axis.
 template <class Mark>
@@ -140,13 +156,29 @@ VdbGrid VdbGrid::load(const std::string& path, const std::string& name, const Ma
   auto d = std::make_shared<Data>();
   d->handle = nanovdb::io::readGrid<nanovdb::HostBuffer>(path, name);
   if (!d->handle) throw std::runtime_error("has no grid named \"" + name + "\"");
-  d->grid = d->handle.grid<float>();
-  if (!d->grid) throw std::runtime_error("grid \"" + name + "\" does not hold floats");
-  if (!nanovdb::isValid(*d->grid, true, false)) throw std::runtime_error("grid \"" + name + "\" is malformed");
+  // The handle holds this one grid. (GridHandle::grid looks for it by the
+  // index the grid states, walking past the buffer when that is wrong.)
+  if (d->handle.size() < sizeof(nanovdb::GridData)) throw std::runtime_error("grid \"" + name + "\" is malformed");
+  d->grid = reinterpret_cast<const nanovdb::FloatGrid*>(d->handle.data());
+  if (d->grid->gridType() != nanovdb::GridType::Float) throw std::runtime_error("grid \"" + name + "\" does not hold floats");
+  if (!within_buffer(*d->grid, d->handle.size()) || !nanovdb::isValid(*d->grid, true, false))
+    throw std::runtime_error("grid \"" + name + "\" is malformed");
   const nanovdb::CoordBBox box = d->grid->indexBBox();
   if (box.empty()) throw std::runtime_error("grid \"" + name + "\" has no active voxels");
+  for (int k = 0; k < 3; ++k)  // hostile extents would overflow the block counts
+    if (int64_t(box.max()[k]) - int64_t(box.min()[k]) >= (int64_t(1) << 26) || std::abs(box.min()[k]) >= (1 << 29) ||
+        std::abs(box.max()[k]) >= (1 << 29))
+      throw std::runtime_error("grid \"" + name + "\" has an index box of hostile size");
   // index coordinates from the medium's space: the grid's map, inverted
   const nanovdb::Map& map = d->grid->map();
+  double det = 0.0;
+  for (int j = 0; j < 3; ++j)  // the inverse matrix's determinant, by its first row
+    det += map.mInvMatD[j] * (map.mInvMatD[3 + (j + 1) % 3] * map.mInvMatD[6 + (j + 2) % 3] -
+                              map.mInvMatD[3 + (j + 2) % 3] * map.mInvMatD[6 + (j + 1) % 3]);
+  bool finite = std::isfinite(det) && det != 0.0;
+  for (int j = 0; j < 9; ++j) finite = finite && std::isfinite(map.mInvMatD[j]);
+  for (int j = 0; j < 3; ++j) finite = finite && std::isfinite(map.mVecD[j]);
+  if (!finite) throw std::runtime_error("grid \"" + name + "\" has a singular or non-finite transform");
   double a[3][4], lo[3], hi[3];
   for (int k = 0; k < 3; ++k) {
     for (int j = 0; j < 3; ++j) a[k][j] = map.mInvMatD[3 * k + j];
@@ -161,7 +193,7 @@ VdbGrid VdbGrid::load(const std::string& path, const std::string& name, const Ma
     for (int k = 0; k < 3; ++k) total *= uint64_t(floor_div(box.max()[k], B) - floor_div(box.min()[k], B) + 1);
     return total;
   };
-  while (blocks_for(d->block) > (uint64_t(1) << 24)) d->block *= 2;
+  while (blocks_for(d->block) > (uint64_t(1) << 24) && d->block < (1 << 24)) d->block *= 2;
   double ab[3][4], blo[3], bhi[3];
   for (int k = 0; k < 3; ++k) {
     for (int j = 0; j < 4; ++j) ab[k][j] = a[k][j] / d->block;

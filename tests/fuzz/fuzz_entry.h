@@ -1,4 +1,5 @@
-// One fuzz input through the scene loader or the PLY reader. Shared by the
+// One fuzz input through the scene loader, the PLY reader or the NanoVDB
+// reader. Shared by the
 // libFuzzer targets (fuzz_pbrt, fuzz_ply) and by the replay test that runs
 // the seed corpus and every saved crash in the ordinary test suite.
 //
@@ -14,5 +15,8 @@ namespace lantern::fuzz {
 
 void load_pbrt(const uint8_t* data, size_t size);
 void load_ply(const uint8_t* data, size_t size);
+// NanoVDB file bytes through the nanovdb medium's reader, then a few rays
+// through the grid it read.
+void load_nvdb(const uint8_t* data, size_t size);
 
 }  // namespace lantern::fuzz

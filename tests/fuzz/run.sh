@@ -10,10 +10,12 @@ src="$(cd "$(dirname "$0")/../.." && pwd)"
 build="$(cd "$1" && pwd)"
 seconds="${2:-30}"
 mkdir -p "$build/fuzz-crashes"
-for target in pbrt ply; do
+for target in pbrt ply nvdb; do
   corpus="$build/fuzz-corpus/$target"
   mkdir -p "$corpus"
   cp -n "$src/tests/fuzz/corpus/$target/"* "$corpus/"
+  # NanoVDB seeds are mostly an empty node table: stored compressed
+  for gz in "$corpus"/*.gz; do [ -e "$gz" ] && gunzip -f "$gz"; done
   if [ "$target" = pbrt ]; then cp -n "$src/scenes/"*.pbrt "$corpus/"; fi
   cp -n "$src/tests/fuzz/regressions/$target/"* "$corpus/" 2>/dev/null || true
   echo "fuzzing $target for ${seconds}s ($(ls "$corpus" | wc -l) inputs in the corpus)"
@@ -21,7 +23,7 @@ for target in pbrt ply; do
   # condition; -timeout makes a hang one.
   log="$build/fuzz-$target.log"
   if ! (cd "$build/fuzz-crashes" && "$build/tests/fuzz_$target" -max_total_time="$seconds" -timeout=10 \
-          -rss_limit_mb=2048 -malloc_limit_mb=1024 -dict="$src/tests/fuzz/$target.dict" -print_final_stats=1 \
+          -rss_limit_mb=2048 -malloc_limit_mb=1024 $( [ -f "$src/tests/fuzz/$target.dict" ] && echo -dict="$src/tests/fuzz/$target.dict") -print_final_stats=1 \
           "$corpus" >"$log" 2>&1); then
     tail -n 60 "$log"
     echo "fuzz_$target failed; the input is in $build/fuzz-crashes"
