@@ -1,6 +1,6 @@
 // pbrt-v4's "cloud": a procedural density in the box [p0, p1] of the
 // medium's space, built from Perlin noise (Pharr, Jakob & Humphreys, PBR
-// 4th ed., sec. 11.4): five octaves of noise at the lookup point, which
+// 4th ed., ch. 11): five octaves of noise at the lookup point, which
 // "wispiness" first displaces by the noise's gradient; the sum falls off
 // with height (y) and is clamped to [0, 1], and the bottom half is filled
 // in towards y = 0. The coefficients are sigma_a and sigma_s per unit

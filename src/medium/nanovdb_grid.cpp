@@ -138,8 +138,9 @@ void find_block_maxima(VdbGrid::Data& d) {
   auto tiles = [&](const auto* node, uint32_t nodes, uint32_t entries, int dim) {
     for (uint32_t i = 0; i < nodes; ++i, ++node)
       for (uint32_t e = 0; e < entries; ++e) {
+        if (node->data()->isChild(e)) continue;
         const float v = std::fabs(node->data()->getValue(e));
-        if (!node->data()->isChild(e) && v > 0.f) {
+        if (v > 0.f) {
           const nanovdb::Coord lo = node->offsetToGlobalCoord(e);
           raise(lo, lo + nanovdb::Coord(dim - 1), v);
         }
