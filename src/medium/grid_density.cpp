@@ -63,6 +63,17 @@ Cubic cell_cubic(const double f0[3], const double df[3], const float v[2][2][2])
   return out;
 }
 
+bool DepthSum::add(const float v[2][2][2], double t, double t_exit, const double f0[3], const double dg[3]) {
+  const Cubic p = cell_cubic(f0, dg, v);
+  const double S = t_exit - t, I = std::max(0.0, p.integral(S));
+  if (target >= 0.f && sum + I >= target) {
+    *t_hit = float(t + solve_integral(p, S, double(target) - sum));
+    return reached = true;
+  }
+  sum += I;
+  return false;
+}
+
 double solve_integral(const Cubic& p, double S, double r) {
   double lo = 0.0, hi = S;
   const double total = p.integral(S);
@@ -105,26 +116,11 @@ float DensityGrid::density(const Vec3& p) const {
 }
 
 float DensityGrid::integrate(const Vec3& o, const Vec3& d, float t0, float t1, float target, float* t_hit) const {
-  *t_hit = kInfinity;
-  double sum = 0.0;
-  bool reached = false;
-  lattice::walk(frame(), o, d, t0, t1, [&](const int cell[3], double t, double t_exit, const double f0[3], const double dg[3]) {
-    float v[2][2][2];
-    bool any = false;
-    for (int a = 0; a < 2; ++a)
-      for (int b = 0; b < 2; ++b)
-        for (int e = 0; e < 2; ++e) any |= (v[a][b][e] = sample(cell[0] + a, cell[1] + b, cell[2] + e)) != 0.f;
-    if (!any) return false;
-    const lattice::Cubic p = lattice::cell_cubic(f0, dg, v);
-    const double S = t_exit - t, I = std::max(0.0, p.integral(S));
-    if (target >= 0.f && sum + I >= target) {
-      *t_hit = float(t + lattice::solve_integral(p, S, double(target) - sum));
-      return reached = true;
-    }
-    sum += I;
-    return false;
+  lattice::DepthSum depth(target, t_hit);
+  lattice::walk(frame(), o, d, t0, t1, [&](const int c[3], double t, double t_exit, const double f0[3], const double dg[3]) {
+    return depth.add(c, t, t_exit, f0, dg, [&](int x, int y, int z) { return sample(x, y, z); });
   });
-  return reached ? target : float(sum);
+  return depth.result();
 }
 
 void RgbGrid::at(const Vec3& p, RGB* a, RGB* s) const {

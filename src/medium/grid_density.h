@@ -66,6 +66,29 @@ Cubic cell_cubic(const double f0[3], const double df[3], const float v[2][2][2])
 // that it reaches at least r by S.
 double solve_integral(const Cubic& p, double S, double r);
 
+// The integral of a density along a ray, cell by cell: with target >= 0 it
+// stops where the integral reaches target (*t_hit, else infinity).
+struct DepthSum {
+  float target;
+  float* t_hit;
+  double sum = 0.0;
+  bool reached = false;
+  DepthSum(float target_, float* t_hit_) : target(target_), t_hit(t_hit_) { *t_hit = kInfinity; }
+  // Reads the cell's eight samples with sample(x, y, z) (lattice indices)
+  // and adds its part over [t, t_exit]; true once the target is reached.
+  template <class Sample>
+  bool add(const int c[3], double t, double t_exit, const double f0[3], const double dg[3], Sample&& sample) {
+    float v[2][2][2];
+    bool any = false;
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b)
+        for (int e = 0; e < 2; ++e) any |= (v[a][b][e] = sample(c[0] + a, c[1] + b, c[2] + e)) != 0.f;
+    return any && add(v, t, t_exit, f0, dg);  // cells with no sample cost this one test
+  }
+  bool add(const float v[2][2][2], double t, double t_exit, const double f0[3], const double dg[3]);
+  float result() const { return reached ? target : float(sum); }
+};
+
 // Calls visit(cell, t_in, t_out, f0, dg) for the lattice cells that o + t d
 // crosses inside the box, for t in [t0, t1], in order, until it returns
 // true. f0: where the ray enters the cell, in the cell's coordinates; dg:

@@ -232,33 +232,17 @@ float VdbGrid::density(const Vec3& p) const {
 
 float VdbGrid::integrate(const Vec3& o, const Vec3& dir, float t0, float t1, float target, float* t_hit) const {
   const Data& d = *data;
-  *t_hit = kInfinity;
   auto acc = d.grid->getAccessor();
-  double sum = 0.0;
-  bool reached = false;
+  lattice::DepthSum depth(target, t_hit);
   auto cell = [&](const int c[3], double t, double t_exit, const double f0[3], const double dg[3]) {
-    float v[2][2][2];
-    bool any = false;
-    for (int a = 0; a < 2; ++a)
-      for (int b = 0; b < 2; ++b)
-        for (int e = 0; e < 2; ++e)
-          any |= (v[a][b][e] = acc.getValue(nanovdb::Coord(c[0] + a, c[1] + b, c[2] + e))) != 0.f;
-    if (!any) return false;
-    const lattice::Cubic p = lattice::cell_cubic(f0, dg, v);
-    const double S = t_exit - t, I = std::max(0.0, p.integral(S));
-    if (target >= 0.f && sum + I >= target) {
-      *t_hit = float(t + lattice::solve_integral(p, S, double(target) - sum));
-      return reached = true;
-    }
-    sum += I;
-    return false;
+    return depth.add(c, t, t_exit, f0, dg, [&](int x, int y, int z) { return acc.getValue(nanovdb::Coord(x, y, z)); });
   };
   lattice::walk(d.blocks, o, dir, t0, t1, [&](const int b[3], double t, double t_exit, const double*, const double*) {
     if (d.block_value(b) == 0.f) return false;  // no sample of its cells is stored
     lattice::walk(d.frame, o, dir, float(t), float(t_exit), cell);
-    return reached;
+    return depth.reached;
   });
-  return reached ? target : float(sum);
+  return depth.result();
 }
 
 bool VdbGrid::has_grid(const std::string& path, const std::string& name) {
