@@ -1,7 +1,10 @@
-// Scenes the media tests share.
+// Scenes and checks the media tests share.
 #pragma once
 
 #include <string>
+#include <vector>
+
+#include "stat_compare.h"
 
 namespace lantern {
 
@@ -27,6 +30,26 @@ AttributeBegin
   Shape "trianglemesh" "point3 P" [ -10 -10 5  -10 10 5  10 10 5  10 -10 5 ] "integer indices" [ 0 1 2 0 2 3 ]
 AttributeEnd
 )";
+}
+
+// A medium scene's standard checks at 40x30: path and bdpt (32 spp) and
+// lt (64 spp) agree on the regions' means over 8 runs; and, at 32x24,
+// 2 spp, maxdepth 6, 1 and 2 threads give the same bits.
+inline void expect_medium_integrators_agree(const Scene& scene, const std::vector<Region>& regions) {
+  const RegionStats path = render_stats(scene, "path", 40, 30, 32, 8, regions);
+  const RegionStats bdpt = render_stats(scene, "bdpt", 40, 30, 32, 8, regions);
+  const RegionStats lt = render_stats(scene, "lt", 40, 30, 64, 8, regions);
+  EXPECT_LT(max_z(path, bdpt), 4.5);
+  EXPECT_LT(max_z(bdpt, lt), 4.5);
+}
+
+inline void expect_medium_thread_invariant(const Scene& scene) {
+  RenderOptions o;
+  o.width = 32;
+  o.height = 24;
+  o.spp = 2;
+  o.maxdepth = 6;
+  expect_thread_invariant(scene, o, {"path", "bdpt", "lt"});
 }
 
 }  // namespace lantern

@@ -14,6 +14,7 @@
 #include "lantern/scene.h"
 #include "medium/grid_density.h"
 #include "medium/tracking.h"
+#include "media_scenes.h"
 #include "sanitizer.h"
 #include "stat_compare.h"
 
@@ -122,21 +123,12 @@ TEST(Cloud, IntegratorsAgree) {
   if (LANTERN_ASAN) GTEST_SKIP() << "the Release suite runs it";
   auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/perf/media/cloud.pbrt");
   const std::vector<Region> regions = {{13, 5, 14, 12}, {0, 0, 40, 30}, {12, 25, 10, 4}};
-  const RegionStats path = render_stats(*scene, "path", 40, 30, 32, 8, regions);
-  const RegionStats bdpt = render_stats(*scene, "bdpt", 40, 30, 32, 8, regions);
-  const RegionStats lt = render_stats(*scene, "lt", 40, 30, 64, 8, regions);
-  EXPECT_LT(max_z(path, bdpt), 4.5);
-  EXPECT_LT(max_z(bdpt, lt), 4.5);
+  expect_medium_integrators_agree(*scene, regions);
 }
 
 TEST(Cloud, ImagesDoNotDependOnThreads) {
   auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/perf/media/cloud.pbrt");
-  RenderOptions o;
-  o.width = 32;
-  o.height = 24;
-  o.spp = 2;
-  o.maxdepth = 6;
-  expect_thread_invariant(*scene, o, {"path", "bdpt", "lt"});
+  expect_medium_thread_invariant(*scene);
 }
 
 // pbrt-v4 (../shared/anchors, volpath) rendered perf/media/cloud.pbrt at
