@@ -40,10 +40,6 @@ uint32_t cross_boundary(const Scene& sc, const RayBatch& rays, uint32_t i, Mediu
   return next.push(offset_ray_origin(sp.p, sp.ng, sp.error_scale, glm::normalize(d)), d, 0.f, t_max);
 }
 
-}  // namespace
-
-namespace {
-
 // The random numbers of one tracked stretch: a hash of what names it (the
 // segment's uniform number, the stretch's ray and how many boundaries it
 // crossed), so that they do not depend on the batch or the thread.
@@ -120,7 +116,7 @@ void find_segment_ends(const Scene& sc, RayStream& stream, RayKind kind, RayBatc
         const Vec3 o = rays.origin(i), dir = d / d_len;
         float s_hit = kInfinity;
         RGB sigma_a, sigma_s;
-        bool by_tracking = sc.media.tracked(m);
+        const bool by_tracking = sc.media.tracked(m);
         if (by_tracking) {
           RandomStream rng = stretch_stream(o, dir, u[i], uint32_t(round));
           const tracking::Track tr = sc.media.track(m, o, dir, len, rng.get1d(), rng);

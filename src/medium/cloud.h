@@ -32,6 +32,12 @@ struct CloudMedium {
   // The density at a point of the medium's space.
   float density_in_medium(Vec3 p) const;
   float density_at(const Vec3& p_render) const;
+  // The coefficients at a point of render space.
+  void coefficients(const Vec3& p_render, RGB* a, RGB* s) const {
+    const float rho = density_at(p_render);
+    *a = sigma_a * rho;
+    *s = sigma_s * rho;
+  }
   // The grey majorant: the largest extinction of any channel.
   float sigma_bar() const { return max_component(sigma_a + sigma_s); }
   // The part [*ta, *tb] of [t0, t1] along o + t d (render space) that lies

@@ -39,11 +39,8 @@ tracking::Track MediumPools::track(MediumHandle h, const Vec3& o, const Vec3& d,
   const CloudMedium& m = cloud[h.index()];
   float ta, tb;
   if (!m.clip(o, d, 0.f, len, &ta, &tb)) return {};
-  tracking::Track r = tracking::delta_track(tb - ta, m.sigma_bar(), u, rng, [&](float t, RGB* a, RGB* s) {
-    const float rho = m.density_at(o + d * (ta + t));
-    *a = m.sigma_a * rho;
-    *s = m.sigma_s * rho;
-  });
+  tracking::Track r = tracking::delta_track(tb - ta, m.sigma_bar(), u, rng,
+                                            [&](float t, RGB* a, RGB* s) { m.coefficients(o + d * (ta + t), a, s); });
   if (r.real()) r.t += ta;
   return r;
 }
@@ -52,11 +49,8 @@ RGB MediumPools::ratio_track(MediumHandle h, const Vec3& o, const Vec3& d, float
   const CloudMedium& m = cloud[h.index()];
   float ta, tb;
   if (!m.clip(o, d, 0.f, len, &ta, &tb)) return RGB(1.f);
-  return tracking::ratio_track(tb - ta, m.sigma_bar(), rng, [&](float t, RGB* a, RGB* s) {
-    const float rho = m.density_at(o + d * (ta + t));
-    *a = m.sigma_a * rho;
-    *s = m.sigma_s * rho;
-  });
+  return tracking::ratio_track(tb - ta, m.sigma_bar(), rng,
+                               [&](float t, RGB* a, RGB* s) { m.coefficients(o + d * (ta + t), a, s); });
 }
 
 }  // namespace lantern

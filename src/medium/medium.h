@@ -111,13 +111,7 @@ struct MediumPools {
         *sigma_s = m.per_density.sigma_s * rho;
         return;
       }
-      case MediumKind::Cloud: {
-        const CloudMedium& m = cloud[h.index()];
-        const float rho = m.density_at(p);
-        *sigma_a = m.sigma_a * rho;
-        *sigma_s = m.sigma_s * rho;
-        return;
-      }
+      case MediumKind::Cloud: cloud[h.index()].coefficients(p, sigma_a, sigma_s); return;
       default: *sigma_a = homogeneous[h.index()].sigma_a, *sigma_s = homogeneous[h.index()].sigma_s;
     }
   }
