@@ -108,4 +108,19 @@ Vec3 blackbody_xyz(float kelvin) {
   return Vec3(float(X / Y), 1.f, float(Z / Y));
 }
 
+Vec3 blackbody_peak_xyz(float kelvin) {
+  if (!(kelvin > 0.f)) return Vec3(0.f);
+  const double c = 299792458.0, h = 6.62606957e-34, kb = 1.3806488e-23, T = double(kelvin);
+  auto planck = [&](double l) { return 2.0 * h * c * c / (std::pow(l, 5) * std::expm1(h * c / (l * kb * T))); };
+  const double peak = planck(2.8977721e-3 / T);  // Wien's displacement law
+  double xyz[3] = {0.0, 0.0, 0.0};
+  for (int nm = kFirstNm; nm <= kFirstNm + kStepNm * (kEntries - 1); ++nm) {
+    const double b = planck(nm * 1e-9) / peak;
+    const Vec3 cmf = cie1931_cmf(float(nm));
+    for (int k = 0; k < 3; ++k) xyz[k] += b * double(cmf[k]);
+  }
+  if (!std::isfinite(xyz[1])) return Vec3(0.f);
+  return Vec3(float(xyz[0]), float(xyz[1]), float(xyz[2]));
+}
+
 }  // namespace lantern

@@ -17,6 +17,14 @@ Vec3 cie1931_cmf(float nm);
 // 380-780 nm at 1 nm against the table), scaled to Y = 1.
 Vec3 blackbody_xyz(float kelvin);
 
+// CIE XYZ of pbrt-v4's BlackbodySpectrum: Planck's law divided by its
+// value at the peak wavelength (Wien's law), integrated against the table
+// over wavelength in nm. This is what pbrt-v4's film records for it: its
+// sensor integrates spectra against the matching functions without
+// dividing by the integral of y-bar (its light spectra are normalised to
+// a y-bar integral of 1 instead). Zero at or below 0 K.
+Vec3 blackbody_peak_xyz(float kelvin);
+
 // CIE standard illuminant D65's relative spectral power (100 at 560 nm):
 // linear between the 5 nm entries of CIE 015:2004, Table T.1, zero outside
 // 380-780 nm.

@@ -76,7 +76,9 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
       const float dist2 = glm::dot(p - prev, p - prev);
       if (!(dist2 > 0.f)) continue;
       mis_after_hit(m, dist2, 1.f, !(w.depth == 1 && camera_.area_sensor()), mis_);
+      const RGB beta_before = w.eye.beta[slot];
       apply_segment(w, w.eye, i);
+      if (!last && !w.ends.emission.empty() && !is_black(w.ends.emission[i])) add_volume_emission(w, i, beta_before);
       if (last) ++w.stats.eye_ends[size_t(PathEnd::MaxDepth)];
       else w.scattered.push_back(i);
       continue;
@@ -184,13 +186,15 @@ void Bdpt::eye_connect_stage(BdptWave& w) const {
     const MisState& m = w.eye.mis[slot];
     {
       ++w.stats.light_samples;
-      if (auto ls = sample_light(sc.lights, sc.shapes, sc.textures, light_sampler_, h.p[i], h.ns[i], u_light, u_light2);
-          ls && !is_black(ls->L)) {  // s = 1
+      auto ls = sample_light(sc.lights, sc.shapes, sc.textures, light_sampler_, h.p[i], h.ns[i], u_light, u_light2,
+                             volume_number(w, slot));
+      VolumeSampleEnd vol;
+      if (ls && ls->volume) complete_volume_light_sample(*ls, depth, &vol);
+      if (ls && !is_black(ls->L)) {  // s = 1
         Vec3 wi = frame.to_local(ls->wi);
         RGB f = bsdf.f(wo, wi, TransportMode::Radiance) * std::fabs(wi.z);
         float dist2 = ls->infinite ? 1.f : glm::dot(ls->p_light - h.p[i], ls->p_light - h.p[i]);
-        bool area = sc.lights.all[ls->light].kind == LightKind::Area;
-        float direct_pdf_A = area ? ls->pdf * std::fabs(glm::dot(ls->n_light, ls->wi)) / dist2 : ls->pdf;
+        float direct_pdf_A = direct_density(*ls, dist2);
         // A point exactly on a sphere light's silhouette (reached only through
         // rounding: a set of measure zero) has zero density per area, and its
         // MIS ratios would be 0/0.
@@ -206,13 +210,14 @@ void Bdpt::eye_connect_stage(BdptWave& w) const {
           if (media) {  // weighted once the transmittance is known
             DeferredMis dm;
             dm.a = ls->delta ? 0.f : mis_(bsdf.pdf(wo, wi, TransportMode::Radiance) / ls->pdf);
+            dm.sigma_a = vol.sigma_t;  // an eye ray would end at a volume light's point by distance sampling
             dm.b = mis_(emission_fwd_A / direct_pdf_A) * (m.dVCM + m.dVC * mis_(bsdf.pdf(wi, wo, TransportMode::Importance)));
             const MediumHandle start = medium_after(sc, w.rays.geom_id[i], h.ng[i], ls->wi, w.ends.medium[i]);
             Vec3 target = ls->infinite || ls->n_light == Vec3(0.f)
                               ? ls->p_light
                               : offset_ray_origin(ls->p_light, ls->n_light, ls->error_scale, -ls->wi);
             if (ls->infinite) w.shadow.push_deferred(o, ls->wi, kInfinity, slot, u, Vec2(0.f), tag, start, dm, true);
-            else w.shadow.push_deferred(o, target - o, 1.f, slot, u, Vec2(0.f), tag, start, dm, true);
+            else w.shadow.push_deferred(o, target - o, 1.f, slot, u, Vec2(0.f), tag, start, dm, true, vol.medium);
           } else if (ls->infinite) {
             w.shadow.push(o, ls->wi, kInfinity, slot, u * weight(wt), Vec2(0.f), tag, true);
           } else {

@@ -72,6 +72,9 @@ class Bdpt {
  private:
   // light subpaths (bdpt_light.cpp)
   void start_light_subpaths(const WaveDesc& wave, BdptWave& w) const;
+  void start_volume_subpaths(BdptWave& w) const;
+  void begin_light_subpath(BdptWave& w, uint32_t slot, const struct EmissionSample& es, MediumHandle medium,
+                           const RGB& sigma_origin) const;
   void light_surface_stage(BdptWave& w) const;
   void light_connect_stage(BdptWave& w) const;
   void light_scatter_stage(BdptWave& w) const;
@@ -102,6 +105,14 @@ class Bdpt {
   MediumHandle light_start_medium(uint32_t light, const Vec3& n, const Vec3& d) const;
   void trace_connections(BdptWave& w) const;
   void add_emission(BdptWave& w, uint32_t slot, const RGB& unweighted, float weight) const;
+  void add_volume_emission(BdptWave& w, uint32_t i, const RGB& beta_before) const;
+  float volume_number(const BdptWave& w, uint32_t slot) const;
+  struct VolumeSampleEnd {
+    MediumHandle medium;  // vacuum: not a volume light's sample
+    RGB sigma_t{0.f};
+  };
+  void complete_volume_light_sample(LightSample& ls, uint32_t depth, VolumeSampleEnd* end) const;
+  float direct_density(const LightSample& ls, float dist2) const;
 
   float weight(float w) const { return settings_.unit_weights ? 1.f : w; }
 

@@ -5,6 +5,7 @@
 #include "integrator/hit.h"
 #include "integrator/hit_material.h"
 #include "integrator/shade.h"
+#include "integrator/volume_lights.h"
 #include "light/emission.h"
 #include "sampler/dimensions.h"
 
@@ -26,79 +27,125 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
   w.rays.count = 0;
   w.shadow.rays.count = 0;
   w.vertices.clear();
+  const bool emissive = scene_.media.any_emissive();
+  const uint32_t maxdepth = uint32_t(settings_.maxdepth);
+  std::vector<EmissionSample>& in_volume = w.volume_starts;  // waiting to learn which medium they are in
+  in_volume.clear();
   for (uint32_t slot = 0; slot < wave.size(); ++slot) {
     uint32_t pixel = wave.pixels[slot / wave.samples];
     PathSampler s = PathSampler::make(sampler_, pixel, wave.first_sample + slot % wave.samples);
     float u_select = s.get1d(dims::kLightSelect);
     Vec2 u_pos = s.get2d(dims::kLightPosition), u_dir = s.get2d(dims::kLightDirection);
-    Vec2 u_lens = s.get2d(dims::kLightStartLens);
+    const float u_volume =
+        emissive ? s.get1d(dims::volume_point(dims::vertex(maxdepth + 2), maxdepth, 0, true)) : 0.5f;
     w.pixel[slot] = pixel;
     w.L[slot] = RGB(0.f);
     w.sampler[slot] = s;
-    auto es = sample_le(lights, scene_.shapes, scene_.textures, u_select, u_pos, u_dir);
+    w.origin.extra_depth[slot] = 0;
+    auto es = sample_le(lights, scene_.shapes, scene_.textures, u_select, u_pos, u_dir, u_volume);
     if (!es) continue;
-    const bool on_surface = es->n != Vec3(0.f);
-    const float cos_light = on_surface ? std::fabs(glm::dot(es->n, es->d)) : 1.f;
-    const float emission_pdf_W = es->pdf_pos * es->pdf_dir;
-    LightOriginPool& o = w.origin;
-    o.light[slot] = es->light;
-    o.n[slot] = es->n;
-    o.emission_pdf_W[slot] = emission_pdf_W;
-    o.cos_light[slot] = cos_light;
-    o.delta[slot] = es->delta_pos || es->delta_dir;
-    o.infinite[slot] = es->infinite;
-    // Next-event estimation's density of this light point: for lights with a
-    // position it depends on where it is seen from (the area density, and
-    // the light sampler's choice), so it waits for the first hit.
-    const LightKind kind = lights.all[es->light].kind;
-    const float nee_pmf = light_sampler_.pmf_infinite(es->light);  // used for lights at infinity only
-    // A portal light's next-event density depends on the point lit (its window) too.
-    const bool portal = kind == LightKind::Infinite && lights.infinite[lights.all[es->light].index].portal >= 0;
-    o.direct_pdf_A[slot] = portal                        ? -1.f
-                           : kind == LightKind::Infinite ? nee_pmf * es->pdf_dir
-                           : kind == LightKind::Distant ? nee_pmf
-                                                         : -1.f;
-    RGB beta = es->Le * (cos_light / emission_pdf_W);
-    w.light.beta[slot] = beta;
-    w.light.rr_scale[slot] = max_component(beta) > 0.f ? 1.f / max_component(beta) : 0.f;
-    w.light.eta_scale[slot] = 1.f;
-    w.light.prev_p[slot] = es->p;
-    const bool media = !scene_.media.empty();
-    if (media) {
-      w.light.medium[slot] = light_start_medium(es->light, es->n, es->d);
-      w.light.sigma_prev[slot] = RGB(0.f);
+    if (es->volume) {
+      in_volume.push_back(*es);
+      w.volume_slots.push_back(slot);
+      continue;
     }
+    begin_light_subpath(w, slot, *es, !scene_.media.empty() ? light_start_medium(es->light, es->n, es->d) : MediumHandle{},
+                        RGB(0.f));
+  }
+  if (!in_volume.empty()) start_volume_subpaths(w);
+}
 
-    // s = 1, t = 1: the light's own point seen by the camera.
-    if (!es->infinite) {
-      if (auto cs = camera_.sample_wi(es->p, u_lens)) {
-        float cos_l = on_surface ? std::fabs(glm::dot(es->n, cs->wi)) : 1.f;
-        RGB Le = emitted(lights, scene_.textures, es->light, es->n, es->uv, cs->wi);
-        if (!is_black(Le) && cos_l > 0.f) {
-          float wt = 1.f;
-          if (!settings_.light_tracing_only) {
-            float camera_pdf_A = camera_.pdf_area(-cs->wi, sqr(cs->dist), cos_l);
-            wt = weight(mis_weight_light_origin(camera_pdf_A, es->pdf_pos, es->delta_pos, mis_));
+// Light subpaths that start at a point of an emissive medium: they count
+// only if the point lies in that medium (locate_media, towards the camera,
+// whose medium is known), and their paths have at most maxdepth segments
+// (volume_lights.h), one fewer than the light's own depth count allows.
+void Bdpt::start_volume_subpaths(BdptWave& w) const {
+  std::vector<Vec3>& points = w.volume_points;
+  points.clear();
+  for (const EmissionSample& es : w.volume_starts) points.push_back(es.p);
+  locate_media(scene_, w.stream, points, camera_.position(), scene_.media.camera, w.volume_media, w.crossing);
+  for (size_t k = 0; k < points.size(); ++k) {
+    EmissionSample es = w.volume_starts[k];
+    MediumHandle m;
+    RGB sigma_t;
+    complete_volume_sample(scene_, &es.Le, es.p, es.light, &m, &sigma_t);
+    if (w.volume_media[k] != m || is_black(es.Le) || settings_.maxdepth < 1) continue;
+    w.origin.extra_depth[w.volume_slots[k]] = 1;
+    begin_light_subpath(w, w.volume_slots[k], es, m, sigma_t);
+  }
+  w.volume_slots.clear();
+}
+
+// The light subpath of `slot` from emission sample es: its MIS start, the
+// s = 1, t = 1 camera connection and its first ray. medium: where it
+// starts (a volume light's; else the one towards es.d); sigma_origin: the
+// extinction at a volume light's point.
+void Bdpt::begin_light_subpath(BdptWave& w, uint32_t slot, const EmissionSample& es, MediumHandle medium,
+                               const RGB& sigma_origin) const {
+  const LightPools& lights = scene_.lights;
+  const bool on_surface = es.n != Vec3(0.f);
+  const float cos_light = on_surface ? std::fabs(glm::dot(es.n, es.d)) : 1.f;
+  const float emission_pdf_W = es.pdf_pos * es.pdf_dir;
+  LightOriginPool& o = w.origin;
+  o.light[slot] = es.light;
+  o.n[slot] = es.n;
+  o.emission_pdf_W[slot] = emission_pdf_W;
+  o.cos_light[slot] = cos_light;
+  o.delta[slot] = es.delta_pos || es.delta_dir;
+  o.infinite[slot] = es.infinite;
+  // Next-event estimation's density of this light point: for lights with a
+  // position it depends on where it is seen from (the area density, and
+  // the light sampler's choice), so it waits for the first hit.
+  const LightKind kind = lights.all[es.light].kind;
+  const float nee_pmf = light_sampler_.pmf_infinite(es.light);  // used for lights at infinity only
+  // A portal light's next-event density depends on the point lit (its window) too.
+  const bool portal = kind == LightKind::Infinite && lights.infinite[lights.all[es.light].index].portal >= 0;
+  o.direct_pdf_A[slot] = portal                        ? -1.f
+                         : kind == LightKind::Infinite ? nee_pmf * es.pdf_dir
+                         : kind == LightKind::Distant ? nee_pmf
+                                                       : -1.f;
+  RGB beta = es.Le * (cos_light / emission_pdf_W);
+  w.light.beta[slot] = beta;
+  w.light.rr_scale[slot] = max_component(beta) > 0.f ? 1.f / max_component(beta) : 0.f;
+  w.light.eta_scale[slot] = 1.f;
+  w.light.prev_p[slot] = es.p;
+  const bool media = !scene_.media.empty();
+  if (media) {
+    w.light.medium[slot] = medium;
+    w.light.sigma_prev[slot] = sigma_origin;  // a volume light's point is reached by distance sampling
+  }
+  const Vec2 u_lens = w.sampler[slot].get2d(dims::kLightStartLens);
+  // s = 1, t = 1: the light's own point seen by the camera.
+  if (!es.infinite) {
+    if (auto cs = camera_.sample_wi(es.p, u_lens)) {
+      float cos_l = on_surface ? std::fabs(glm::dot(es.n, cs->wi)) : 1.f;
+      RGB Le = es.volume ? es.Le : emitted(lights, scene_.textures, es.light, es.n, es.uv, cs->wi);
+      if (!is_black(Le) && cos_l > 0.f) {
+        float wt = 1.f;
+        if (!settings_.light_tracing_only) {
+          float camera_pdf_A = camera_.pdf_area(-cs->wi, sqr(cs->dist), cos_l);
+          wt = weight(mis_weight_light_origin(camera_pdf_A, es.pdf_pos, es.delta_pos, mis_));
+        }
+        RGB c = Le * (cos_l * cs->We / (cs->pdf * es.pdf_pos));
+        if (media) {  // the camera ray that would hit this point passes the same segment
+          DeferredMis dm;
+          if (!settings_.light_tracing_only && !settings_.unit_weights && !es.delta_pos) {
+            dm.a = mis_(camera_.pdf_area(-cs->wi, sqr(cs->dist), cos_l) / es.pdf_pos);
+            dm.sigma_a = sigma_origin;  // and ends there by distance sampling, for a volume light
           }
-          RGB c = Le * (cos_l * cs->We / (cs->pdf * es->pdf_pos));
-          if (media) {  // the camera ray that would hit this point passes the same segment
-            DeferredMis dm;
-            if (!settings_.light_tracing_only && !settings_.unit_weights && !es->delta_pos)
-              dm.a = mis_(camera_.pdf_area(-cs->wi, sqr(cs->dist), cos_l) / es->pdf_pos);
-            Vec3 o = on_surface ? offset_ray_origin(es->p, es->n, es->error_scale, cs->wi) : es->p;
-            w.shadow.push_deferred(o, cs->p_lens - o, 1.f, slot, c, cs->p_raster, {1, 1, c},
-                                   light_start_medium(es->light, es->n, cs->wi), dm);
-          } else {
-            push_camera_ray(w, slot, es->p, es->n, es->error_scale, *cs, c, wt, 1);
-          }
+          Vec3 org = on_surface ? offset_ray_origin(es.p, es.n, es.error_scale, cs->wi) : es.p;
+          w.shadow.push_deferred(org, cs->p_lens - org, 1.f, slot, c, cs->p_raster, {1, 1, c},
+                                 es.volume ? medium : light_start_medium(es.light, es.n, cs->wi), dm);
+        } else {
+          push_camera_ray(w, slot, es.p, es.n, es.error_scale, *cs, c, wt, 1);
         }
       }
     }
-    if (settings_.maxdepth == 0) continue;
-    Vec3 origin = on_surface ? offset_ray_origin(es->p, es->n, es->error_scale, es->d) : es->p;
-    w.active[w.rays.count] = slot;
-    w.rays.push(origin, es->d, 0.f, kInfinity);
   }
+  if (settings_.maxdepth <= int(w.origin.extra_depth[slot])) return;
+  Vec3 origin = on_surface ? offset_ray_origin(es.p, es.n, es.error_scale, es.d) : es.p;
+  w.active[w.rays.count] = slot;
+  w.rays.push(origin, es.d, 0.f, kInfinity);
 }
 
 // Finishes the MIS quantities of each hit and bins the hits by material.
@@ -180,6 +227,8 @@ float Bdpt::first_hit_direct_pdf(const LightOriginPool& o, uint32_t slot, const 
   if (lights.all[light].kind == LightKind::Infinite)  // a portal light, seen through its window from p
     return light_sampler_.pmf_infinite(light) *
            infinite_light_pdf(lights, scene_.textures, lights.all[light].index, p, glm::normalize(p_light - p));
+  if (lights.all[light].kind == LightKind::Volume)  // per unit volume
+    return light_sampler_.pmf(p, ns, light) * volume_light_density(scene_, light, p_light);
   if (lights.all[light].kind == LightKind::Area)
     return area_light_direct_pdf_area(lights, scene_.shapes, light_sampler_, lights.all[light].index, p, ns, p_light,
                                       o.n[slot]);
@@ -201,16 +250,17 @@ void Bdpt::light_connect_stage(BdptWave& w) const {
     const uint32_t slot = w.active[i];
     Vec2 u_lens = w.sampler[slot].get2d(dims::vertex(depth) + dims::kLightLens);
     if (bsdf.is_specular()) return;
+    const uint32_t ld = depth + w.origin.extra_depth[slot];  // the depth path lengths count
     const HitPool& h = w.hits;
     const Frame frame = Frame::from_z(h.ns[i]);
     const Vec3 wo = frame.to_local(h.wo[i]);
     const RGB& beta = w.light.beta[slot];
     const MisState& m = w.light.mis[slot];
     {
-      if (!settings_.light_tracing_only && depth < maxdepth) {  // s >= 2 connections need t >= 2
+      if (!settings_.light_tracing_only && ld < maxdepth) {  // s >= 2 connections need t >= 2
         LightVertexPool& v = w.vertices;
         v.slot.push_back(slot);
-        v.depth.push_back(depth);
+        v.depth.push_back(ld);
         v.p.push_back(h.p[i]);
         v.ng.push_back(h.ng[i]);
         v.ns.push_back(h.ns[i]);
@@ -226,7 +276,7 @@ void Bdpt::light_connect_stage(BdptWave& w) const {
           v.tangent.push_back(h.tangent[i]);
         }
       }
-      auto cs = depth <= maxdepth ? camera_.sample_wi(h.p[i], u_lens) : std::nullopt;
+      auto cs = ld <= maxdepth ? camera_.sample_wi(h.p[i], u_lens) : std::nullopt;
       if (cs) {  // t = 1
         Vec3 wi = frame.to_local(cs->wi);
         RGB f = bsdf.f(wo, wi, TransportMode::Importance) *
@@ -246,11 +296,11 @@ void Bdpt::light_connect_stage(BdptWave& w) const {
                      (m.dVCM + m.dVC * mis_(bsdf.pdf(wi, wo, TransportMode::Radiance)));
             const Vec3 o = offset_ray_origin(h.p[i], h.ng[i], h.error_scale[i], cs->wi);
             const RGB c = beta * f * (cs->We / cs->pdf);
-            w.shadow.push_deferred(o, cs->p_lens - o, 1.f, slot, c, cs->p_raster, {uint8_t(depth + 1), 1, c},
+            w.shadow.push_deferred(o, cs->p_lens - o, 1.f, slot, c, cs->p_raster, {uint8_t(ld + 1), 1, c},
                                    medium_after(scene_, w.rays.geom_id[i], h.ng[i], cs->wi, w.ends.medium[i]), dm);
           } else {
             push_camera_ray(w, slot, h.p[i], h.ng[i], h.error_scale[i], *cs, beta * f * (cs->We / cs->pdf), wt,
-                            depth + 1);
+                            ld + 1);
           }
         }
       }
@@ -267,7 +317,7 @@ void Bdpt::light_scatter_stage(BdptWave& w) const {
     float uc = s.get1d(dims::vertex(depth) + dims::kLightBsdfComponent);
     Vec2 u2 = s.get2d(dims::vertex(depth) + dims::kLightBsdfDirection);
     float u_rr = s.get1d(dims::vertex(depth) + dims::kLightRoulette);
-    if (depth >= uint32_t(settings_.maxdepth)) {  // deeper vertices would only make paths longer than maxdepth
+    if (depth + w.origin.extra_depth[slot] >= uint32_t(settings_.maxdepth)) {  // deeper vertices would only make paths longer than maxdepth
       ++w.stats.light_ends[size_t(PathEnd::MaxDepth)];
       return;
     }

@@ -12,6 +12,7 @@
 #include "integrator/bdpt_wave.h"
 #include "integrator/hit.h"
 #include "integrator/shade.h"
+#include "integrator/volume_lights.h"
 #include "light/emission.h"
 #include "medium/henyey_greenstein.h"
 #include "sampler/dimensions.h"
@@ -83,17 +84,20 @@ void Bdpt::connect_eye_medium_vertex(BdptWave& w, uint32_t slot, const Vec3& p, 
   const MisState& em = w.eye.mis[slot];
   const uint32_t depth = w.depth;
   ++w.stats.light_samples;
-  if (auto ls = sample_light(sc.lights, sc.shapes, sc.textures, light_sampler_, p, Vec3(0.f), u_light, u_light2);
-      ls && !is_black(ls->L)) {  // s = 1
+  auto ls = sample_light(sc.lights, sc.shapes, sc.textures, light_sampler_, p, Vec3(0.f), u_light, u_light2,
+                         volume_number(w, slot));
+  VolumeSampleEnd vol;
+  if (ls && ls->volume) complete_volume_light_sample(*ls, depth, &vol);
+  if (ls && !is_black(ls->L)) {  // s = 1
     const float f = phase.p(wo, ls->wi);
     const float dist2 = ls->infinite ? 1.f : glm::dot(ls->p_light - p, ls->p_light - p);
-    const bool area = sc.lights.all[ls->light].kind == LightKind::Area;
-    const float direct_pdf_A = area ? ls->pdf * std::fabs(glm::dot(ls->n_light, ls->wi)) / dist2 : ls->pdf;
+    const float direct_pdf_A = direct_density(*ls, dist2);
     if (f > 0.f && direct_pdf_A > 0.f) {
       const float emission_fwd_A =
           emission_pdf(sc.lights, sc.shapes, sc.textures, ls->light, ls->p_light, ls->n_light, -ls->wi) / dist2;
       DeferredMis d;
       d.a = ls->delta ? 0.f : mis_(f / ls->pdf);
+      d.sigma_a = vol.sigma_t;  // an eye ray would end at a volume light's point by distance sampling
       d.b = mis_(emission_fwd_A / direct_pdf_A) * (em.dVCM + em.dVC * mis_(f));
       d.sigma_b = sigma_eye;
       const RGB u = beta * f * ls->L / ls->pdf;
@@ -104,7 +108,7 @@ void Bdpt::connect_eye_medium_vertex(BdptWave& w, uint32_t slot, const Vec3& p, 
         const Vec3 target = ls->n_light == Vec3(0.f)
                                 ? ls->p_light
                                 : offset_ray_origin(ls->p_light, ls->n_light, ls->error_scale, -ls->wi);
-        w.shadow.push_deferred(p, target - p, 1.f, slot, u, Vec2(0.f), tag, m, d, true);
+        w.shadow.push_deferred(p, target - p, 1.f, slot, u, Vec2(0.f), tag, m, d, true, vol.medium);
       }
     }
   }
@@ -131,10 +135,63 @@ void Bdpt::connect_eye_medium_vertex(BdptWave& w, uint32_t slot, const Vec3& p, 
   }
 }
 
+// The third number of a volume light's point sampled from the eye vertex
+// at the current depth (only scenes with emissive media read it).
+float Bdpt::volume_number(const BdptWave& w, uint32_t slot) const {
+  if (!scene_.media.any_emissive()) return 0.5f;
+  const uint32_t maxdepth = uint32_t(settings_.maxdepth);
+  return w.sampler[slot].get1d(dims::volume_point(dims::vertex(maxdepth + 2), maxdepth, w.depth, false));
+}
+
+// Completes a volume light sample of next-event estimation from the eye
+// vertex at eye depth `depth` (paths ending on volume emission have at
+// most maxdepth segments; a longer one gets L = 0).
+void Bdpt::complete_volume_light_sample(LightSample& ls, uint32_t depth, VolumeSampleEnd* end) const {
+  if (int(depth) + 1 > settings_.maxdepth) {
+    ls.L = RGB(0.f);
+    return;
+  }
+  complete_volume_sample(scene_, &ls.L, ls.p_light, ls.light, &end->medium, &end->sigma_t);
+}
+
+// Next-event estimation's density of a light sample's point: per unit
+// area on an area light, per unit volume in a volume light, else the pmf.
+float Bdpt::direct_density(const LightSample& ls, float dist2) const {
+  switch (scene_.lights.all[ls.light].kind) {
+    case LightKind::Area: return ls.pdf * std::fabs(glm::dot(ls.n_light, ls.wi)) / dist2;
+    case LightKind::Volume: return ls.pdf / dist2;
+    default: return ls.pdf;
+  }
+}
+
+// s = 0 at an eye vertex in an emissive medium (beta_before: the
+// throughput before the segment that reached it); call after the
+// vertex's MIS update. The other strategies of the same path sample its
+// point on the medium's volume light: next-event estimation from the
+// previous vertex (s = 1) and light subpaths from it (s >= 2, or the
+// camera connection when the vertex is the first).
+void Bdpt::add_volume_emission(BdptWave& w, uint32_t i, const RGB& beta_before) const {
+  const uint32_t slot = w.active[i];
+  const Vec3 x = w.ends.p[i];
+  const LightPools& lights = scene_.lights;
+  const int64_t light = lights.volume_light_of(w.ends.medium[i]);
+  float wt = 1.f;
+  if (light >= 0) {
+    const float density = volume_light_density(scene_, light, x);
+    const float pos_pdf = lights.selection.discrete_pmf(size_t(light)) * density;  // light subpaths choose by power
+    const MisState& m = w.eye.mis[slot];
+    wt = w.depth == 1 ? mis_weight_hit_light_direct(m, pos_pdf, mis_)
+                      : mis_weight_hit_light(m, light_sampler_.pmf(w.eye.prev_p[slot], w.eye.prev_n[slot], uint32_t(light)) * density,
+                                             pos_pdf * uniform_sphere_pdf(), mis_);
+  }
+  const RGB c = beta_before * w.ends.emission[i];
+  if (is_finite(c)) add_emission(w, slot, c, weight(wt));
+}
+
 // Stores a light vertex in a medium and prepares its camera connection.
 void Bdpt::connect_light_medium_vertex(BdptWave& w, uint32_t slot, uint32_t i, Vec2 u_lens) const {
   const Scene& sc = scene_;
-  const uint32_t depth = w.depth, maxdepth = uint32_t(settings_.maxdepth);
+  const uint32_t depth = w.depth + w.origin.extra_depth[slot], maxdepth = uint32_t(settings_.maxdepth);
   const Vec3 p = w.ends.p[i], wo = -glm::normalize(w.rays.direction(i));
   const MediumHandle m = w.ends.medium[i];
   const RGB& beta = w.light.beta[slot];
@@ -223,7 +280,7 @@ void Bdpt::light_medium_stage(BdptWave& w) const {
     const PathSampler& s = w.sampler[slot];
     const uint32_t dim = dims::vertex(depth);
     connect_light_medium_vertex(w, slot, i, s.get2d(dim + dims::kLightLens));
-    if (depth >= uint32_t(settings_.maxdepth)) {
+    if (depth + w.origin.extra_depth[slot] >= uint32_t(settings_.maxdepth)) {
       ++w.stats.light_ends[size_t(PathEnd::MaxDepth)];
       continue;
     }
@@ -255,6 +312,10 @@ void Bdpt::trace_connections(BdptWave& w) const {
   const bool weighted = !settings_.light_tracing_only && !settings_.unit_weights;
   for (uint32_t r = 0; r < c.rays.count; ++r) {
     if (c.rays.occluded(r)) continue;
+    if (!c.expect[r].vacuum() && w.crossing.medium[r] != c.expect[r]) {  // not in the emitting medium
+      c.rays.tfar[r] = -kInfinity;
+      continue;
+    }
     const float wt = weighted ? mis_weight_deferred(c.deferred[r], c.T_mis[r], mis_) : 1.f;
     c.contrib[r] *= c.T[r] * wt;
     if (!is_finite(c.contrib[r])) c.rays.tfar[r] = -kInfinity;

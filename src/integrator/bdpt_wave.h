@@ -11,6 +11,7 @@
 #include "integrator/bdpt_mis.h"
 #include "integrator/hit.h"
 #include "integrator/wave_stats.h"
+#include "light/emission.h"
 #include "material/material.h"
 #include "sampler/sampler.h"
 
@@ -49,7 +50,11 @@ struct LightOriginPool {
   std::vector<Vec3> n;
   std::vector<float> emission_pdf_W, cos_light, direct_pdf_A;  // direct_pdf_A < 0: compute at the first hit
   std::vector<uint8_t> delta, infinite;
+  // 1 for a subpath from a volume light, whose paths are one segment
+  // shorter (integrator/volume_lights.h); else 0.
+  std::vector<uint8_t> extra_depth;
   void resize(uint32_t n_) {
+    extra_depth.resize(n_);
     light.resize(n_);
     n.resize(n_);
     emission_pdf_W.resize(n_);
@@ -113,6 +118,7 @@ struct ConnectionPool {
   std::vector<MediumHandle> medium;
   std::vector<RGB> T, T_mis;  // the estimate, and what MIS sees (medium_events.h)
   std::vector<DeferredMis> deferred;
+  std::vector<MediumHandle> expect;  // a volume light's point: the medium the ray must end in (else vacuum)
   bool media = false;
   bool record = false;
   uint32_t push(const Vec3& o, const Vec3& d, float t_max, uint32_t s, const RGB& c, Vec2 raster,
@@ -134,14 +140,17 @@ struct ConnectionPool {
   }
   // A connection of a scene with media, weighted once traced.
   uint32_t push_deferred(const Vec3& o, const Vec3& d, float t_max, uint32_t s, const RGB& unweighted, Vec2 raster,
-                         const StrategyTag& tag, MediumHandle m, const DeferredMis& mis, bool light_sample = false) {
+                         const StrategyTag& tag, MediumHandle m, const DeferredMis& mis, bool light_sample = false,
+                         MediumHandle must_end_in = {}) {
     uint32_t i = push(o, d, t_max, s, unweighted, raster, tag, light_sample);
     if (medium.size() <= i) {
       medium.resize(rays.capacity());
       deferred.resize(rays.capacity());
+      expect.resize(rays.capacity());
     }
     medium[i] = m;
     deferred[i] = mis;
+    expect[i] = must_end_in;
     return i;
   }
 };
@@ -193,6 +202,11 @@ struct BdptWave {
   SegmentEnds ends;
   std::vector<uint32_t> scattered;
   CrossingScratch crossing;
+  // Light subpaths from volume lights, waiting for the medium of their point.
+  std::vector<EmissionSample> volume_starts;
+  std::vector<uint32_t> volume_slots;
+  std::vector<Vec3> volume_points;
+  std::vector<MediumHandle> volume_media;
   RayStream stream;
   WaveOutput* out = nullptr;  // of the wave being traced
   WaveStats stats;
@@ -216,7 +230,9 @@ struct BdptWave {
          vector_bytes(v.medium) + vector_bytes(v.sigma_t);
     for (const SubpathPool* p : subpaths) b += vector_bytes(p->medium) + vector_bytes(p->sigma_prev);
     b += vector_bytes(shadow.medium) + vector_bytes(shadow.T) + vector_bytes(shadow.T_mis) + vector_bytes(shadow.deferred) + vector_bytes(ray_medium) +
-         vector_bytes(u_distance) + ends.memory_bytes() + vector_bytes(scattered) + crossing.memory_bytes();
+         vector_bytes(u_distance) + ends.memory_bytes() + vector_bytes(scattered) + crossing.memory_bytes() +
+         vector_bytes(shadow.expect) + vector_bytes(o.extra_depth) + vector_bytes(volume_starts) + vector_bytes(volume_slots) +
+         vector_bytes(volume_points) + vector_bytes(volume_media);
     return b;
   }
 };

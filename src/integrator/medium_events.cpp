@@ -59,7 +59,9 @@ RandomStream stretch_stream(const Vec3& o, const Vec3& d, float u, uint32_t roun
 // forms, sigma_s completes the weight; one found by tracking has it in
 // `tracked` already.
 void end_segment(SegmentEnds& out, uint32_t i, MediumHandle m, const RGB& depth, const RGB& tracked,
-                 const RGB& tracked_depth, const RGB& sigma_a, const RGB& sigma_s, bool scatters, bool by_tracking) {
+                 const RGB& tracked_depth, const RGB& sigma_a, const RGB& sigma_s, bool scatters, bool by_tracking,
+                 const RGB& Le = RGB(0.f)) {
+  const bool sc_emits = !is_black(Le);
   const RGB T = transmittance(depth), sigma_x = sigma_a + sigma_s;
   const RGB T_mis = is_black(tracked_depth) ? T : transmittance(depth + tracked_depth);
   const bool closed_form_scatter = scatters && !by_tracking;
@@ -70,6 +72,8 @@ void end_segment(SegmentEnds& out, uint32_t i, MediumHandle m, const RGB& depth,
   out.fwd_density[i] = mixture_density(sigma_x, T_mis);
   out.medium[i] = m;
   if (scatters) out.sigma_t[i] = sigma_x;
+  if (!out.emission.empty())  // tracked media do not emit
+    out.emission[i] = closed_form_scatter && p > 0.f && sc_emits ? tracked * T * sigma_a * Le / p : RGB(0.f);
 }
 
 }  // namespace
@@ -79,6 +83,8 @@ void find_segment_ends(const Scene& sc, RayStream& stream, RayKind kind, RayBatc
                        CrossingScratch& s) {
   const uint32_t n = rays.count;
   if (out.end.size() < n) out.resize(rays.capacity());
+  const bool emissive = sc.media.any_emissive();
+  if (emissive && out.emission.size() < out.end.size()) out.emission.resize(out.end.size());
   s.medium.assign(medium.begin(), medium.begin() + n);
   s.tau.resize(n);
   s.channel.resize(n);
@@ -104,6 +110,7 @@ void find_segment_ends(const Scene& sc, RayStream& stream, RayKind kind, RayBatc
         out.weight[i] = out.T[i] = RGB(0.f);
         out.fwd_density[i] = 1.f;
         out.medium[i] = s.medium[i];
+        if (!out.emission.empty()) out.emission[i] = RGB(0.f);
         continue;
       }
       const Vec3 d = rays.direction(i);
@@ -134,7 +141,8 @@ void find_segment_ends(const Scene& sc, RayStream& stream, RayKind kind, RayBatc
         if (s_hit < kInfinity) {  // scatters inside this stretch
           out.end[i] = SegmentEnd::Scatter;
           out.p[i] = o + dir * s_hit;
-          end_segment(out, i, m, depth, s.tracked_weight[i], s.tracked_depth[i], sigma_a, sigma_s, true, by_tracking);
+          const RGB Le = emissive && !by_tracking ? sc.media.Le(m, out.p[i]) : RGB(0.f);
+          end_segment(out, i, m, depth, s.tracked_weight[i], s.tracked_depth[i], sigma_a, sigma_s, true, by_tracking, Le);
           continue;
         }
       }
@@ -217,6 +225,45 @@ void trace_transmittance(const Scene& sc, RayStream& stream, RayBatch& rays, con
       T[r] = hit ? RGB(0.f) : closed * s.tracked_weight[r];
       T_mis[r] = hit ? RGB(0.f) : is_black(s.tracked_depth[r]) ? closed : transmittance(s.depth[r] + s.tracked_depth[r]);
       if (is_black(T[r])) rays.tfar[r] = -kInfinity;  // reads as occluded
+    }
+    std::swap(s.rays, cont);
+    s.next.swap(s.owner);
+  }
+}
+
+void locate_media(const Scene& sc, RayStream& stream, const std::vector<Vec3>& p, const Vec3& known,
+                  MediumHandle known_medium, std::vector<MediumHandle>& out, CrossingScratch& s) {
+  const uint32_t n = uint32_t(p.size());
+  out.assign(n, known_medium);
+  s.rays.count = 0;
+  s.next.clear();
+  for (uint32_t i = 0; i < n; ++i) {
+    s.rays.push(p[i], known - p[i], 0.f, 1.f);
+    s.next.push_back(i);
+  }
+  RayBatch& cont = s.continued;
+  for (int round = 0; s.rays.count > 0; ++round) {
+    if (round == kMaxCrossings) {  // a degenerate pile of surfaces: call it vacuum (nothing emits there)
+      for (uint32_t j = 0; j < s.rays.count; ++j) out[s.next[j]] = MediumHandle{};
+      break;
+    }
+    stream.intersect(s.rays, RayKind::Shadow);
+    cont.count = 0;
+    s.owner.clear();
+    for (uint32_t j = 0; j < s.rays.count; ++j) {
+      if (!s.rays.hit(j)) continue;  // reached the known point
+      const uint32_t i = s.next[j];
+      const SurfacePoint sp = hit_point(sc.shapes, s.rays, j);
+      const Vec3 d = s.rays.direction(j);
+      const MediumInterface& mi = sc.shapes.geometries[s.rays.geom_id[j]].media;
+      if (mi.transition()) {  // the side that faces p[i]
+        out[i] = glm::dot(sp.ng, d) > 0.f ? mi.inside : mi.outside;
+        continue;
+      }
+      const uint32_t k = cont.push(offset_ray_origin(sp.p, sp.ng, sp.error_scale, glm::normalize(d)), d, 0.f, 1.f);
+      const Vec3 to = known - cont.origin(k);
+      cont.dir_x[k] = to.x, cont.dir_y[k] = to.y, cont.dir_z[k] = to.z;
+      s.owner.push_back(i);
     }
     std::swap(s.rays, cont);
     s.next.swap(s.owner);

@@ -40,6 +40,9 @@ struct SegmentEnds {
   std::vector<float> fwd_density;   // p or P of the end reached (for MIS)
   std::vector<MediumHandle> medium;  // the medium the segment ends in
   std::vector<RGB> sigma_t;          // the extinction at the scattering point
+  // Scenes with emissive media only: at a scattering point, T sigma_a Le / p
+  // (the segment's emission estimate, per unit of the throughput before it).
+  std::vector<RGB> emission;
 
   void resize(uint32_t n) {
     sigma_t.resize(n);
@@ -52,7 +55,7 @@ struct SegmentEnds {
   }
   size_t memory_bytes() const {
     return vector_bytes(end) + vector_bytes(p) + vector_bytes(weight) + vector_bytes(T) + vector_bytes(fwd_density) +
-           vector_bytes(medium) + vector_bytes(sigma_t);
+           vector_bytes(medium) + vector_bytes(sigma_t) + vector_bytes(emission);
   }
 };
 
@@ -87,8 +90,17 @@ void find_segment_ends(const Scene& scene, RayStream& stream, RayKind kind, RayB
 // blocks it. Blocked rays are also marked occluded in `rays`. T is the
 // estimate to weight the contribution by; T_mis the transmittance the MIS
 // densities use (the same but where the ray crosses tracked media).
+// Afterwards scratch.medium[i] is the medium ray i ends in (emissive
+// media: a light sample counts only if it lies in its medium).
 void trace_transmittance(const Scene& scene, RayStream& stream, RayBatch& rays, const std::vector<MediumHandle>& medium,
                          std::vector<RGB>& T, std::vector<RGB>& T_mis, CrossingScratch& scratch);
+
+// The medium each point p[i] lies in, found along a ray from it to
+// `known`, a point in medium `known_medium`: the side facing p[i] of the
+// first boundary (of any material) between media that the ray meets, else
+// known_medium. Surfaces that separate nothing are passed through.
+void locate_media(const Scene& scene, RayStream& stream, const std::vector<Vec3>& p, const Vec3& known,
+                  MediumHandle known_medium, std::vector<MediumHandle>& out, CrossingScratch& scratch);
 
 // The medium a ray leaving a surface hit of geometry `geom` along w
 // travels in, given the medium the hit was reached in.

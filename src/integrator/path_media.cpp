@@ -5,6 +5,7 @@
 // these; every other scene runs path_tracer.cpp alone.
 #include "integrator/path_tracer.h"
 #include "integrator/path_wave.h"
+#include "integrator/volume_lights.h"
 #include "medium/henyey_greenstein.h"
 #include "sampler/dimensions.h"
 
@@ -19,6 +20,33 @@ void PathTracer::segment_stage(PathWave& w, RayKind kind) const {
     w.u_distance[i] = w.sampler[slot].get1d(dims::distance(base, w.depth, false));
   }
   find_segment_ends(scene_, w.stream, kind, w.rays, w.ray_medium, w.u_distance, w.ends, w.crossing);
+}
+
+// The third number of a point sampled on a volume light from the current
+// vertex (only scenes with emissive media read it).
+float PathTracer::volume_number(const PathWave& w, uint32_t slot) const {
+  if (!scene_.media.any_emissive()) return 0.5f;
+  const uint32_t maxdepth = uint32_t(settings_.maxdepth);
+  return w.sampler[slot].get1d(dims::volume_point(dims::vertex(maxdepth + 2), maxdepth, w.depth, false));
+}
+
+// Volume emission found by distance sampling (s = 0 for a medium point):
+// beta_before is the throughput before the segment. Weighted against
+// next-event estimation of the same point from the previous vertex.
+void PathTracer::add_volume_emission(PathWave& w, uint32_t i, const RGB& beta_before, float prev_pdf) const {
+  const uint32_t slot = w.active[i];
+  const Vec3 x = w.ends.p[i];
+  float weight = 1.f;
+  if (!w.prev_specular[slot]) {
+    const int64_t light = scene_.lights.volume_light_of(w.ends.medium[i]);
+    const Vec3 d = x - w.prev_p[slot];
+    const float light_pdf = light < 0 ? 0.f
+                                      : light_sampler_.pmf(w.prev_p[slot], w.prev_n[slot], uint32_t(light)) *
+                                            volume_light_density(scene_, light, x) * glm::dot(d, d);
+    weight = power_heuristic(prev_pdf, light_pdf);
+  }
+  const RGB c = beta_before * w.ends.emission[i] * weight;
+  if (is_finite(c)) w.L[slot] += c;
 }
 
 // A vertex in a medium: next-event estimation with the phase function, then
@@ -36,11 +64,18 @@ void PathTracer::medium_scatter_stage(PathWave& w) const {
     ++w.stats.eye_vertices;
     ++w.stats.light_samples;
     auto ls = sample_light(sc.lights, sc.shapes, sc.textures, light_sampler_, p, Vec3(0.f),
-                           s.get1d(dim + dims::kEyeLightSelect), s.get2d(dim + dims::kEyeLightPosition));
+                           s.get1d(dim + dims::kEyeLightSelect), s.get2d(dim + dims::kEyeLightPosition), volume_number(w, slot));
+    MediumHandle expect;
+    RGB sigma_end(0.f);
+    if (ls && ls->volume) {
+      if (int(w.depth) + 2 <= settings_.maxdepth) complete_volume_sample(sc, &ls->L, ls->p_light, ls->light, &expect, &sigma_end);
+      else ls->L = RGB(0.f);  // a path too long to end on volume emission
+    }
     if (ls && !is_black(ls->L)) {
       const float f = phase.p(wo, ls->wi);
       if (f > 0.f)
-        push_media_shadow_ray(w, slot, p, *ls, m, ls->delta ? 0.f : ls->pdf, f, w.beta[slot] * f * ls->L / ls->pdf);
+        push_media_shadow_ray(w, slot, p, *ls, m, ls->delta ? 0.f : ls->pdf, f, w.beta[slot] * f * ls->L / ls->pdf,
+                              expect, sigma_end);
     }
     float pdf = 0.f;
     const Vec3 wi = phase.sample(wo, s.get2d(dim + dims::kEyeBsdfDirection), &pdf);
@@ -71,10 +106,13 @@ void PathTracer::medium_scatter_stage(PathWave& w) const {
 void PathTracer::media_shadow_stage(PathWave& w) const {
   for (uint32_t r = 0; r < w.shadow.count; ++r) {
     if (w.shadow.occluded(r)) continue;
+    if (!w.shadow_expect[r].vacuum() && w.crossing.medium[r] != w.shadow_expect[r]) continue;  // not in the emitting medium
     const RGB& T = w.shadow_T[r];
     const float light_pdf = w.shadow_light_pdf[r];
     const float weight =
-        light_pdf == 0.f ? 1.f : power_heuristic(light_pdf, w.shadow_scatter_pdf[r] * mixture_density(RGB(0.f), w.shadow_T_mis[r]));
+        light_pdf == 0.f ? 1.f
+                         : power_heuristic(light_pdf, w.shadow_scatter_pdf[r] *
+                                                          mixture_density(w.shadow_sigma_end[r], w.shadow_T_mis[r]));
     const RGB c = w.shadow_contrib[r] * T * weight;
     if (!is_finite(c)) continue;
     w.L[w.shadow_slot[r]] += c;

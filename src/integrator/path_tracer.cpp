@@ -5,6 +5,7 @@
 #include "integrator/hit_material.h"
 #include "integrator/path_wave.h"
 #include "integrator/shade.h"
+#include "integrator/volume_lights.h"
 #include "sampler/dimensions.h"
 #include "scene/surface.h"
 
@@ -78,6 +79,7 @@ void PathTracer::surface_stage(PathWave& w) const {
     float prev_pdf = w.prev_pdf[slot];
     if (media) {
       const SegmentEnd end = w.ends.end[i];
+      const RGB beta_before = w.beta[slot];
       w.beta[slot] *= w.ends.weight[i];
       prev_pdf *= w.ends.fwd_density[i];
       if (end == SegmentEnd::Absorbed) {
@@ -85,6 +87,7 @@ void PathTracer::surface_stage(PathWave& w) const {
         continue;
       }
       if (end == SegmentEnd::Scatter) {
+        if (!last && !w.ends.emission.empty() && !is_black(w.ends.emission[i])) add_volume_emission(w, i, beta_before, prev_pdf);
         if (last) ++w.stats.eye_ends[size_t(PathEnd::MaxDepth)];
         else w.scattered.push_back(i);
         continue;
@@ -130,9 +133,17 @@ namespace {
 // sampler: appends a shadow ray with its MIS-weighted contribution.
 template <class BSDF>
 void next_event(const Scene& sc, const LightSampler& light_sampler, PathWave& w, uint32_t i, uint32_t slot,
-                const BSDF& bsdf, const Frame& frame, const Vec3& wo, float u_light, Vec2 u_light2) {
+                const BSDF& bsdf, const Frame& frame, const Vec3& wo, float u_light, Vec2 u_light2, float u_volume,
+                int maxdepth) {
   ++w.stats.light_samples;
-  auto ls = sample_light(sc.lights, sc.shapes, sc.textures, light_sampler, w.hits.p[i], w.hits.ns[i], u_light, u_light2);
+  auto ls = sample_light(sc.lights, sc.shapes, sc.textures, light_sampler, w.hits.p[i], w.hits.ns[i], u_light, u_light2,
+                         u_volume);
+  MediumHandle expect;
+  RGB sigma_end(0.f);
+  if (ls && ls->volume) {  // (volume_lights.h: such paths have at most maxdepth segments)
+    if (int(w.depth) + 2 <= maxdepth) complete_volume_sample(sc, &ls->L, ls->p_light, ls->light, &expect, &sigma_end);
+    else return;
+  }
   if (!ls || is_black(ls->L)) return;
   Vec3 wi = frame.to_local(ls->wi);
   RGB f = bsdf.f(wo, wi, TransportMode::Radiance) * std::fabs(wi.z);
@@ -143,7 +154,8 @@ void next_event(const Scene& sc, const LightSampler& light_sampler, PathWave& w,
   if (!sc.media.empty()) {  // the weight waits for the transmittance (PathTracer::media_shadow_stage)
     contrib = w.beta[slot] * f * ls->L / ls->pdf;
     MediumHandle m = medium_after(sc, w.rays.geom_id[i], w.hits.ng[i], ls->wi, w.ends.medium[i]);
-    push_media_shadow_ray(w, slot, o, *ls, m, ls->delta ? 0.f : ls->pdf, bsdf.pdf(wo, wi, TransportMode::Radiance), contrib);
+    push_media_shadow_ray(w, slot, o, *ls, m, ls->delta ? 0.f : ls->pdf, bsdf.pdf(wo, wi, TransportMode::Radiance), contrib,
+                          expect, sigma_end);
     return;
   }
   uint32_t r;
@@ -174,7 +186,8 @@ void PathTracer::shade_stage(PathWave& w) const {
     Vec3 wo = frame.to_local(w.hits.wo[i]);
     float u_light = s.get1d(dim + dims::kEyeLightSelect);
     Vec2 u_light2 = s.get2d(dim + dims::kEyeLightPosition);
-    if (!bsdf.is_specular()) next_event(sc, light_sampler_, w, i, slot, bsdf, frame, wo, u_light, u_light2);
+    if (!bsdf.is_specular())
+      next_event(sc, light_sampler_, w, i, slot, bsdf, frame, wo, u_light, u_light2, volume_number(w, slot), settings_.maxdepth);
     // Continue the path by sampling the BSDF.
     float uc = s.get1d(dim + dims::kEyeBsdfComponent);
     Vec2 u2 = s.get2d(dim + dims::kEyeBsdfDirection);

@@ -45,6 +45,8 @@ class PathTracer {
   void segment_stage(PathWave& w, RayKind kind) const;
   void medium_scatter_stage(PathWave& w) const;
   void media_shadow_stage(PathWave& w) const;
+  float volume_number(const PathWave& w, uint32_t slot) const;
+  void add_volume_emission(PathWave& w, uint32_t i, const RGB& beta_before, float prev_pdf) const;
 
   const Scene& scene_;
   const LightSampler& light_sampler_;  // next-event estimation's choice of light

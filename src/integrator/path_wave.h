@@ -50,6 +50,10 @@ struct PathWave {
   std::vector<MediumHandle> shadow_medium;
   std::vector<RGB> shadow_T, shadow_T_mis;  // the estimate, and what MIS sees (medium_events.h)
   std::vector<float> shadow_light_pdf, shadow_scatter_pdf;  // light_pdf 0: a delta light, weight 1
+  // A sample of an emissive medium: the medium the ray must end in, and
+  // the extinction there (zero for other lights).
+  std::vector<MediumHandle> shadow_expect;
+  std::vector<RGB> shadow_sigma_end;
   CrossingScratch crossing;
 
   RayStream stream;
@@ -66,6 +70,8 @@ struct PathWave {
     shadow_T_mis.resize(n);
     shadow_light_pdf.resize(n);
     shadow_scatter_pdf.resize(n);
+    shadow_expect.resize(n);
+    shadow_sigma_end.resize(n);
   }
 
   size_t memory_bytes() const {
@@ -74,7 +80,8 @@ struct PathWave {
            rays.memory_bytes() + hits.memory_bytes() + shadow.memory_bytes() + vector_bytes(shadow_slot) +
            vector_bytes(shadow_contrib) + vector_bytes(medium) + vector_bytes(ray_medium) + vector_bytes(u_distance) +
            ends.memory_bytes() + vector_bytes(scattered) + vector_bytes(shadow_medium) + vector_bytes(shadow_T) + vector_bytes(shadow_T_mis) +
-           vector_bytes(shadow_light_pdf) + vector_bytes(shadow_scatter_pdf) + crossing.memory_bytes();
+           vector_bytes(shadow_light_pdf) + vector_bytes(shadow_scatter_pdf) + vector_bytes(shadow_expect) +
+           vector_bytes(shadow_sigma_end) + crossing.memory_bytes();
   }
 
   void resize(uint32_t n) {
@@ -106,9 +113,11 @@ inline bool survives_roulette(RGB& beta, float eta_scale, uint32_t depth, float 
 
 // A shadow ray of a scene with media, from o towards light sample ls,
 // starting in medium m; its MIS weight is formed once its transmittance is
-// known (light_pdf 0: a delta light).
+// known (light_pdf 0: a delta light). A sample of an emissive medium
+// counts only if the ray ends in `expect`, of extinction sigma_end there.
 inline void push_media_shadow_ray(PathWave& w, uint32_t slot, const Vec3& o, const LightSample& ls, MediumHandle m,
-                                  float light_pdf, float scatter_pdf, const RGB& unweighted) {
+                                  float light_pdf, float scatter_pdf, const RGB& unweighted,
+                                  MediumHandle expect = {}, const RGB& sigma_end = RGB(0.f)) {
   uint32_t r;
   if (ls.infinite) {
     r = w.shadow.push(o, ls.wi, 0.f, kInfinity);
@@ -121,6 +130,8 @@ inline void push_media_shadow_ray(PathWave& w, uint32_t slot, const Vec3& o, con
   w.shadow_medium[r] = m;
   w.shadow_light_pdf[r] = light_pdf;
   w.shadow_scatter_pdf[r] = scatter_pdf;
+  w.shadow_expect[r] = expect;
+  w.shadow_sigma_end[r] = sigma_end;
 }
 
 }  // namespace lantern

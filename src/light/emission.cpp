@@ -33,7 +33,7 @@ void start_on_disk(const LightPools& L, Vec2 u, EmissionSample* es) {
 }  // namespace
 
 std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& shapes, const TexturePools& tex,
-                                        float u_select, Vec2 u_pos, Vec2 u_dir) {
+                                        float u_select, Vec2 u_pos, Vec2 u_dir, float u_volume) {
   if (L.all.empty()) return std::nullopt;
   float pmf;
   size_t i = L.selection.sample_discrete(u_select, &pmf);
@@ -44,6 +44,17 @@ std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& s
   es.pdf_pos = pmf;
   es.pdf_dir = 1.f;
   switch (r.kind) {
+    case LightKind::Volume: {  // isotropic, as pbrt-v4's media emit
+      float pdf_volume;
+      es.p = sample_volume_point(L.volume[r.index], Vec3(u_volume, u_pos.x, u_pos.y), &pdf_volume);
+      es.pdf_pos *= pdf_volume;
+      es.d = sample_uniform_sphere(u_dir);
+      es.pdf_dir = uniform_sphere_pdf();
+      es.Le = RGB(1.f);
+      es.error_scale = max_abs_component(es.p);
+      es.volume = true;
+      break;
+    }
     case LightKind::Area: {
       const AreaLight& a = L.area[r.index];
       const SurfacePoint sp = sample_area_point(shapes, a, u_pos);
@@ -149,6 +160,8 @@ float emission_pdf(const LightPools& L, const ShapePools& shapes, const TextureP
       return pmf * uniform_cone_pdf(L.spot[r.index].cos_falloff_end);
     case LightKind::Distant:
       return pmf * disk_pdf(L);
+    case LightKind::Volume:
+      return pmf * volume_point_density(L.volume[r.index], p) * uniform_sphere_pdf();
     case LightKind::Infinite: {
       auto pdf = infinite_light_emission_dir_pdf(L, tex, r.index, -w);
       return pmf * pdf * disk_pdf(L);

@@ -20,11 +20,14 @@ struct EmissionSample {
   float error_scale = 0.f;
   uint32_t light = 0;  // index into LightPools::all
   bool delta_pos = false, delta_dir = false, infinite = false;
+  // A point of an emissive medium (n zero): Le is 1, to be multiplied by
+  // sigma_a Le there, and pdf_pos is per unit volume.
+  bool volume = false;
 };
 
 // Chooses a light by power, a point on it and a direction leaving it.
 std::optional<EmissionSample> sample_le(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex,
-                                        float u_select, Vec2 u_pos, Vec2 u_dir);
+                                        float u_select, Vec2 u_pos, Vec2 u_dir, float u_volume = 0.5f);
 
 // Emission density (pos incl. the selection pmf, times dir) with which
 // sample_le would start at p_light with normal n_light and leave in w.

@@ -131,6 +131,14 @@ LightBounds light_bounds(const LightPools& L, const ShapePools& shapes, const Te
       b.phi = avg(s.I);
       return b;
     }
+    case LightKind::Volume: {  // isotropic from every point of its box
+      const VolumeLight& v = L.volume[r.index];
+      b.lo = v.lo, b.hi = v.hi;
+      b.cos_theta_o = -1.f;
+      b.cos_theta_e = 0.f;
+      b.phi = v.power / (4.f * kPi);
+      return b;
+    }
     default:
       return b;  // at infinity: no bounds (phi stays 0)
   }

@@ -41,6 +41,7 @@ float light_power(const LightPools& L, const LightRef& r, const TexturePools& te
       return avg(s.I) * 2.f * kPi * (1.f - 0.5f * (s.cos_falloff_start + s.cos_falloff_end));
     }
     case LightKind::Distant: return avg(L.distant[r.index].L) * disk;
+    case LightKind::Volume: return L.volume[r.index].power;
     case LightKind::Infinite: {
       const InfiniteLight& e = L.infinite[r.index];
       if (e.portal >= 0) return portal_power(L.portals[size_t(e.portal)]);
@@ -71,6 +72,11 @@ void finalize_lights(LightPools& L, const ShapePools& shapes, const TexturePools
   for (IntensityProfile& p : L.profiles) finalize_profile(p, tex);
   for (uint32_t i = 0; i < L.spot.size(); ++i) L.all.push_back({LightKind::Spot, i});
   for (uint32_t i = 0; i < L.distant.size(); ++i) L.all.push_back({LightKind::Distant, i});
+  L.volume_to_all.resize(L.volume.size());
+  for (uint32_t i = 0; i < L.volume.size(); ++i) {
+    L.volume_to_all[i] = uint32_t(L.all.size());
+    L.all.push_back({LightKind::Volume, i});
+  }
   for (uint32_t i = 0; i < L.infinite.size(); ++i) {
     L.infinite_to_all[i] = uint32_t(L.all.size());
     L.all.push_back({LightKind::Infinite, i});
@@ -181,10 +187,25 @@ static std::optional<LightSample> sample_area(const LightPools& L, const ShapePo
 }
 
 std::optional<LightSample> sample_light_from(const LightPools& L, const ShapePools& shapes, const TexturePools& tex,
-                                             uint32_t i, const Vec3& p, Vec2 u) {
+                                             uint32_t i, const Vec3& p, Vec2 u, float u_volume) {
   const LightRef r = L.all[i];
   std::optional<LightSample> ls;
   switch (r.kind) {
+    case LightKind::Volume: {
+      float pdf_volume;
+      const Vec3 x = sample_volume_point(L.volume[r.index], Vec3(u_volume, u.x, u.y), &pdf_volume);
+      const Vec3 d = x - p;
+      const float dist2 = glm::dot(d, d);
+      if (!(dist2 > 0.f) || !(pdf_volume > 0.f)) return std::nullopt;
+      LightSample s;
+      s.L = RGB(1.f);
+      s.wi = d / std::sqrt(dist2);
+      s.pdf = pdf_volume * dist2;
+      s.p_light = x;
+      s.volume = true;
+      ls = s;
+      break;
+    }
     case LightKind::Area: ls = sample_area(L, shapes, tex, L.area[r.index], p, u); break;
     case LightKind::Point: {
       const PointLight& pl = L.point[r.index];
@@ -249,11 +270,11 @@ std::optional<LightSample> sample_light_from(const LightPools& L, const ShapePoo
 
 std::optional<LightSample> sample_light(const LightPools& L, const ShapePools& shapes, const TexturePools& tex,
                                         const LightSampler& sampler, const Vec3& p, const Vec3& n, float u_select,
-                                        Vec2 u) {
+                                        Vec2 u, float u_volume) {
   uint32_t i;
   float pmf;
   if (!sampler.sample(p, n, u_select, &i, &pmf) || pmf == 0.f) return std::nullopt;
-  auto ls = sample_light_from(L, shapes, tex, i, p, u);
+  auto ls = sample_light_from(L, shapes, tex, i, p, u, u_volume);
   if (ls) ls->pdf *= pmf;
   return ls;
 }

@@ -11,6 +11,7 @@
 #include "math/frame.h"
 #include "light/intensity_profile.h"
 #include "light/portal.h"
+#include "light/volume_light.h"
 #include "medium/medium.h"
 #include "texture/texture.h"
 
@@ -20,7 +21,7 @@ struct ShapePools;
 struct SurfacePoint;
 class LightSampler;  // light/light_sampler.h
 
-enum class LightKind : uint8_t { Area, Point, Spot, Distant, Infinite };
+enum class LightKind : uint8_t { Area, Point, Spot, Distant, Infinite, Volume };
 
 struct AreaLight {  // one per emissive triangle or sphere
   uint32_t geometry;
@@ -69,15 +70,23 @@ struct LightPools {
   std::vector<InfiniteLight> infinite;
   std::vector<IntensityProfile> profiles;
   std::vector<PortalMap> portals;
+  std::vector<VolumeLight> volume;  // emissive media (light/volume_light.h)
 
   std::vector<LightRef> all;        // what the selection distribution indexes
   std::vector<uint32_t> area_to_all;
   std::vector<uint32_t> infinite_to_all;
+  std::vector<uint32_t> volume_to_all;
   Distribution1D selection;
   Vec3 scene_center{0.f};
   float scene_radius = 1.f;
 
   bool empty() const { return all.empty(); }
+  // The light (index into `all`) of emissive medium m; -1: none.
+  int64_t volume_light_of(MediumHandle m) const {
+    for (size_t i = 0; i < volume.size(); ++i)
+      if (volume[i].medium == m) return int64_t(volume_to_all[i]);
+    return -1;
+  }
 };
 
 struct LightSample {
@@ -90,6 +99,11 @@ struct LightSample {
   bool delta = false;
   bool infinite = false;  // no end point: the shadow ray is unbounded
   uint32_t light = 0;     // index into LightPools::all
+  // A point of an emissive medium: L is 1, to be multiplied by sigma_a Le
+  // there (the integrators look the medium up: emission per unit length),
+  // and pdf is the density per unit volume times dist^2 (per unit solid
+  // angle and unit length).
+  bool volume = false;
 };
 
 // A point light's intensity leaving in world direction w.
@@ -113,7 +127,7 @@ void finalize_lights(LightPools& lights, const ShapePools& shapes, const Texture
 // samples a direction to it from p.
 std::optional<LightSample> sample_light(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex,
                                         const LightSampler& sampler, const Vec3& p, const Vec3& n, float u_select,
-                                        Vec2 u);
+                                        Vec2 u, float u_volume = 0.5f);
 
 // Density (solid angle at p, times the light sampler's pmf for (p, n)) that
 // sample_light picks area light `area_index` at point p_light with normal
@@ -142,7 +156,7 @@ inline RGB area_light_Le(const AreaLight& l, const TexturePools& tex, const Vec3
 RGB infinite_lights_Le(const LightPools& lights, const TexturePools& tex, const Vec3& p, const Vec3& w);
 // The same for one given light (index into `all`), without the selection pmf.
 std::optional<LightSample> sample_light_from(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex,
-                                             uint32_t light, const Vec3& p, Vec2 u);
+                                             uint32_t light, const Vec3& p, Vec2 u, float u_volume = 0.5f);
 
 // Density (times the light sampler's pmf) that sample_light produces
 // direction w from p, from the infinite lights.

@@ -135,6 +135,13 @@ void RgbGrid::at(const Vec3& p, RGB* a, RGB* s) const {
   *s = constant_s + (sigma_s.empty() ? RGB(0.f) : trilinear(cell, f, pick(sigma_s)));
 }
 
+RGB RgbGrid::Le_at(const Vec3& p) const {
+  int cell[3];
+  double f[3];
+  if (Le.empty() || !locate(p, cell, f)) return RGB(0.f);
+  return trilinear(cell, f, [&](int x, int y, int z) { return inside(x, y, z) ? Le[offset(x, y, z)] : RGB(0.f); });
+}
+
 RGB RgbGrid::integrate(const Vec3& o, const Vec3& d, float t0, float t1, int c, float tau, float* t_hit) const {
   *t_hit = kInfinity;
   const RGB constant = constant_a + constant_s;

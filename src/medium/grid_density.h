@@ -163,6 +163,7 @@ struct DensityGrid : GridLayout {
 struct RgbGrid : GridLayout {
   std::vector<RGB> sigma_a, sigma_s;  // empty when not given
   RGB constant_a{0.f}, constant_s{0.f};
+  std::vector<RGB> Le;  // emission samples ("Le"); empty when not given
 
   RGB sample_t(int x, int y, int z) const {
     if (!inside(x, y, z)) return RGB(0.f);
@@ -171,6 +172,8 @@ struct RgbGrid : GridLayout {
   }
   // The coefficients at a point of render space.
   void at(const Vec3& p, RGB* a, RGB* s) const;
+  // The Le samples, trilinear at a point of render space.
+  RGB Le_at(const Vec3& p) const;
   // The optical depth per channel along o + t d over [t0, t1]; with
   // channel c and tau >= 0, stops where channel c's depth reaches tau
   // (*t_hit; otherwise infinity).

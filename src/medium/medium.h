@@ -18,6 +18,7 @@
 #include "medium/grid_density.h"
 #include "medium/nanovdb_grid.h"
 #include "medium/tracking.h"
+#include "medium/volume_emission.h"
 
 namespace lantern {
 
@@ -52,6 +53,7 @@ struct MediumInterface {
 struct HomogeneousMedium {
   RGB sigma_a{0.f}, sigma_s{0.f};
   float g = 0.f;
+  RGB Le{0.f};  // emitted radiance per unit sigma_a ("Le" times "Lescale"); unused per density
   RGB sigma_t() const { return sigma_a + sigma_s; }
 };
 
@@ -59,6 +61,7 @@ struct HomogeneousMedium {
 struct GridMedium {
   HomogeneousMedium per_density;
   DensityGrid density;
+  GridEmission emission;
 };
 
 // pbrt-v4's "nanovdb": the coefficients scaled by a NanoVDB density grid.
@@ -71,6 +74,7 @@ struct VdbMedium {
 struct RgbGridMedium {
   RgbGrid grid;
   float g = 0.f;
+  float Le_scale = 0.f;  // "Lescale", times the grid's Le samples
 };
 
 struct MediumPools {
@@ -123,6 +127,27 @@ struct MediumPools {
   // with tau < 0: the transmittance bidirectional MIS uses for it.
   RGB optical_depth(MediumHandle h, const Vec3& o, const Vec3& d, float s0, float s1, int c, float tau,
                     float* s_hit) const;
+
+  // Emissive media (medium/volume_emission.h): whether h emits, and its
+  // Le at p (radiance per unit sigma_a; zero outside its box).
+  bool emissive(MediumHandle h) const {
+    switch (h.kind()) {
+      case MediumKind::Homogeneous: return max_component(homogeneous[h.index()].Le) > 0.f;
+      case MediumKind::Grid: return grid[h.index()].emission.emits();
+      case MediumKind::RgbGrid: return rgb_grid[h.index()].Le_scale > 0.f && !rgb_grid[h.index()].grid.Le.empty();
+      default: return false;
+    }
+  }
+  RGB Le(MediumHandle h, const Vec3& p) const {
+    switch (h.kind()) {
+      case MediumKind::Homogeneous: return homogeneous[h.index()].Le;
+      case MediumKind::Grid: return grid[h.index()].emission.at(p);
+      case MediumKind::RgbGrid: return rgb_grid[h.index()].grid.Le_at(p) * rgb_grid[h.index()].Le_scale;
+      default: return RGB(0.f);
+    }
+  }
+  bool any_emissive() const { return !emissive_media.empty(); }
+  std::vector<MediumHandle> emissive_media;  // set by the scene builder
 
   // Media with no closed-form optical depth, which rays are tracked
   // through (medium/tracking.h).

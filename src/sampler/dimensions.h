@@ -43,4 +43,13 @@ inline constexpr uint32_t kLightRoulette = 12;      // 1D
 // so a scene without media reads exactly the dimensions it always did.
 inline constexpr uint32_t distance(uint32_t base, uint32_t segment, bool light) { return base + 2 * segment + (light ? 1 : 0); }
 
+// The third coordinate of a point sampled in an emissive medium (light
+// sampling picks the point with kEyeLightPosition's or kLightPosition's two
+// numbers and this one): one per vertex of either subpath (vertex 0: the
+// light subpath's start), after the distance numbers, so scenes without
+// emissive media read exactly the dimensions they did.
+inline constexpr uint32_t volume_point(uint32_t base, uint32_t maxdepth, uint32_t vertex, bool light) {
+  return base + 2 * (maxdepth + 3) + 2 * vertex + (light ? 1 : 0);
+}
+
 }  // namespace lantern::dims

@@ -140,8 +140,11 @@ class SceneBuilder {
   MediumInterface medium_interface(const GraphicsState& gs) const;
   void assign_media(size_t first_geometry, const GraphicsState& gs);
   void finish_media();
+  void volume_lights();
   HomogeneousMedium medium_coefficients(const pbrt::ParamSet& ps, bool presets);
   DensityGrid density_grid(const pbrt::ParamSet& ps, const Mat4& render_from_medium);
+  RGB medium_Le(const pbrt::ParamSet& ps);
+  GridEmission grid_emission(const pbrt::ParamSet& ps, const DensityGrid& density);
   RgbGridMedium rgb_grid(const pbrt::ParamSet& ps, const Mat4& render_from_medium);
   CloudMedium cloud(const pbrt::ParamSet& ps, const Mat4& render_from_medium);
   VdbMedium vdb_medium(const pbrt::ParamSet& ps, const Mat4& render_from_medium, const std::string& base_dir);

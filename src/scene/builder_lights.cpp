@@ -152,6 +152,7 @@ void SceneBuilder::finish() {
     center = 0.5f * (scene_.bounds_lo + scene_.bounds_hi);
     radius = std::fmax(glm::length(scene_.bounds_hi - center), 1e-6f);
   }
+  volume_lights();
   finalize_lights(scene_.lights, scene_.shapes, scene_.textures, center, radius);
   if (scene_.lights.empty()) warn({}, "the scene has no lights: the image will be black");
 }

@@ -20,6 +20,18 @@ RGB checked_coefficient(const ParamSet& ps, const char* name, RGB value, float s
   return v;
 }
 
+// A grid parameter's values must number nx * ny * nz (times `per` numbers
+// each), counted in 64 bits before anything is allocated for the grid.
+void expect_grid_count(const ParamSet& ps, const pbrt::Param& p, const GridLayout& g, uint64_t per) {
+  const uint64_t count = uint64_t(g.nx) * uint64_t(g.ny) * uint64_t(g.nz);
+  if (p.numbers.size() % per != 0 || p.numbers.size() / per != count)
+    ps.fail(p, "has " + std::to_string(p.numbers.size() / per) + " values; expected nx * ny * nz = " +
+                   std::to_string(count));
+  for (double v : p.numbers)
+    if (!(v >= 0.0) || !std::isfinite(v)) ps.fail(p, "grid values must be finite and not negative");
+}
+
+
 }  // namespace
 
 void SceneBuilder::medium(const std::string& name, const ParamSet& ps, const Mat4& render_from_medium,
@@ -30,39 +42,98 @@ void SceneBuilder::medium(const std::string& name, const ParamSet& ps, const Mat
   if (type.empty()) ps.fail(std::string("needs a \"string type\" parameter (") + known + ")");
   if (type != "homogeneous" && type != "uniformgrid" && type != "rgbgrid" && type != "cloud" && type != "nanovdb")
     ps.fail("unknown medium type \"" + printable(type) + "\"; expected " + known);
-  if (const pbrt::Param* Le = ps.find("Le")) {
+  const bool may_emit = type == "homogeneous" || type == "uniformgrid" || type == "rgbgrid";
+  if (const pbrt::Param* Le = ps.find("Le"); Le && !may_emit) {
     bool emits = false;
     for (double v : Le->numbers) emits |= v != 0.0;
-    if (emits || !Le->strings.empty()) ps.fail(*Le, "emissive media (\"Le\") are not supported yet");
+    if (emits || !Le->strings.empty()) ps.fail(*Le, "\"Le\" is not a parameter of a " + type + " medium (pbrt-v4 ignores it)");
   }
-  ps.find("Lescale");
   MediumPools& media = scene_.media;
+  auto add = [&](MediumKind kind, size_t count) {
+    const MediumHandle h = MediumHandle::make(kind, uint32_t(count - 1));
+    named_media_[name] = h;
+    if (media.emissive(h)) media.emissive_media.push_back(h);
+  };
   if (type == "homogeneous") {
-    media.homogeneous.push_back(medium_coefficients(ps, true));
-    named_media_[name] = MediumHandle::homogeneous(uint32_t(media.homogeneous.size() - 1));
+    HomogeneousMedium m = medium_coefficients(ps, true);
+    m.Le = medium_Le(ps);
+    media.homogeneous.push_back(m);
+    add(MediumKind::Homogeneous, media.homogeneous.size());
     return;
   }
   if (type == "nanovdb") {
+    ps.find("Lescale");
     media.vdb.push_back(vdb_medium(ps, render_from_medium, base_dir));
-    named_media_[name] = MediumHandle::make(MediumKind::Vdb, uint32_t(media.vdb.size() - 1));
+    add(MediumKind::Vdb, media.vdb.size());
     return;
   }
   if (type == "cloud") {
+    ps.find("Lescale");
     media.cloud.push_back(cloud(ps, render_from_medium));
-    named_media_[name] = MediumHandle::make(MediumKind::Cloud, uint32_t(media.cloud.size() - 1));
+    add(MediumKind::Cloud, media.cloud.size());
     return;
   }
   if (type == "rgbgrid") {
     media.rgb_grid.push_back(rgb_grid(ps, render_from_medium));
-    named_media_[name] = MediumHandle::make(MediumKind::RgbGrid, uint32_t(media.rgb_grid.size() - 1));
+    add(MediumKind::RgbGrid, media.rgb_grid.size());
     return;
   }
-  if (ps.has("temperature")) ps.fail(*ps.find("temperature"), "emissive media (\"temperature\") are not supported yet");
   GridMedium g;
   g.per_density = medium_coefficients(ps, false);
   g.density = density_grid(ps, render_from_medium);
+  g.emission = grid_emission(ps, g.density);
   media.grid.push_back(std::move(g));
-  named_media_[name] = MediumHandle::make(MediumKind::Grid, uint32_t(media.grid.size() - 1));
+  add(MediumKind::Grid, media.grid.size());
+}
+
+// A homogeneous medium's "Le" times "Lescale". As pbrt-v4 does for lights,
+// a spectrum is normalised to luminance 1 (pbrt::ParamSet::get_rgb), an
+// RGB value is taken as given.
+RGB SceneBuilder::medium_Le(const ParamSet& ps) {
+  const RGB Le = ps.get_rgb("Le", ColorUsage::Illuminant).value_or(RGB(0.f));
+  const float scale = ps.get_float("Lescale", 1.f);
+  if (!(max_component(Le) > 0.f)) return RGB(0.f);
+  return checked_coefficient(ps, "Le", Le, scale);
+}
+
+// A uniformgrid's emission: "Le" (a spectrum) or "temperature" (one value
+// per sample, a black body at (value - temperatureoffset) *
+// temperaturescale kelvin, emitting above 100 K), times "Lescale" (one
+// value per sample; 1 throughout when not given), as pbrt-v4 reads them.
+GridEmission SceneBuilder::grid_emission(const ParamSet& ps, const DensityGrid& density) {
+  GridEmission e;
+  const pbrt::Param* Le = ps.find("Le");
+  const pbrt::Param* temperature = ps.find("temperature");
+  if (Le && temperature) ps.fail(*Le, "a uniformgrid takes \"Le\" or \"temperature\", not both");
+  static_cast<GridLayout&>(e.scale) = density;
+  static_cast<GridLayout&>(e.temperature) = density;
+  if (const pbrt::Param* scale = ps.find("Lescale")) {
+    expect_grid_count(ps, *scale, density, 1);
+    e.scale.values = ps.get_floats("Lescale");
+  } else {
+    e.scale.nx = e.scale.ny = e.scale.nz = 1;  // one sample: it falls off towards the faces, as in pbrt-v4
+    e.scale.values = {1.f};
+  }
+  if (Le) e.Le = checked_coefficient(ps, "Le", ps.get_rgb("Le", ColorUsage::Illuminant).value_or(RGB(0.f)), 1.f);
+  const float offset = ps.get_float("temperatureoffset", ps.get_float("temperaturecutoff", 0.f));
+  const float tscale = ps.get_float("temperaturescale", 1.f);
+  if (!std::isfinite(offset) || !std::isfinite(tscale))
+    ps.fail("\"temperatureoffset\" and \"temperaturescale\" must be finite");
+  if (temperature) {
+    const pbrt::Param& t = *temperature;
+    if (t.numbers.size() != density.values.size())
+      ps.fail(t, "has " + std::to_string(t.numbers.size()) + " values; expected as many as \"density\" (" +
+                     std::to_string(density.values.size()) + ")");
+    for (double v : t.numbers)
+      if (!std::isfinite(v)) ps.fail(t, "temperatures must be finite");
+    e.temperature.values = ps.get_floats("temperature");
+    e.offset = offset, e.temperature_scale = tscale;
+    float hottest = 0.f;
+    for (float v : e.temperature.values) hottest = std::max(hottest, (v - offset) * tscale);
+    if (hottest > 100.f) e.blackbody = BlackbodyTable(hottest);
+    else e.temperature.values.clear();  // nothing emits
+  }
+  return e;
 }
 
 // sigma_a, sigma_s (or a preset), scale and g, with pbrt-v4's defaults.
@@ -105,20 +176,6 @@ void SceneBuilder::grid_layout(const ParamSet& ps, const Mat4& render_from_mediu
   g->medium_from_render = glm::inverse(render_from_medium);
 }
 
-namespace {
-
-// A grid parameter's values must number nx * ny * nz (times `per` numbers
-// each), counted in 64 bits before anything is allocated for the grid.
-void expect_grid_count(const ParamSet& ps, const pbrt::Param& p, const GridLayout& g, uint64_t per) {
-  const uint64_t count = uint64_t(g.nx) * uint64_t(g.ny) * uint64_t(g.nz);
-  if (p.numbers.size() % per != 0 || p.numbers.size() / per != count)
-    ps.fail(p, "has " + std::to_string(p.numbers.size() / per) + " values; expected nx * ny * nz = " +
-                   std::to_string(count));
-  for (double v : p.numbers)
-    if (!(v >= 0.0) || !std::isfinite(v)) ps.fail(p, "grid values must be finite and not negative");
-}
-
-}  // namespace
 
 DensityGrid SceneBuilder::density_grid(const ParamSet& ps, const Mat4& render_from_medium) {
   DensityGrid g;
@@ -140,7 +197,7 @@ RgbGridMedium SceneBuilder::rgb_grid(const ParamSet& ps, const Mat4& render_from
   const pbrt::Param* a = ps.find("sigma_a");
   const pbrt::Param* s = ps.find("sigma_s");
   if (!a && !s) ps.fail("an rgbgrid needs \"rgb sigma_a\" and/or \"rgb sigma_s\" values");
-  auto read = [&](const pbrt::Param* p, std::vector<RGB>* out, RGB* constant) {
+  auto read = [&](const pbrt::Param* p, std::vector<RGB>* out, RGB* constant, float scale) {
     if (!p) {
       *constant = RGB(scale);
       return;
@@ -152,8 +209,16 @@ RgbGridMedium SceneBuilder::rgb_grid(const ParamSet& ps, const Mat4& render_from
       if (!is_finite(out->back())) ps.fail(*p, "values times \"scale\" must be finite");
     }
   };
-  read(a, &m.grid.sigma_a, &m.grid.constant_a);
-  read(s, &m.grid.sigma_s, &m.grid.constant_s);
+  read(a, &m.grid.sigma_a, &m.grid.constant_a, scale);
+  read(s, &m.grid.sigma_s, &m.grid.constant_s, scale);
+  if (const pbrt::Param* Le = ps.find("Le")) {  // emission, as pbrt-v4: only with sigma_a
+    if (!a) ps.fail(*Le, "an rgbgrid with \"Le\" needs \"rgb sigma_a\" values");
+    RGB unused;
+    read(Le, &m.grid.Le, &unused, 1.f);  // "scale" is for the coefficients only
+    m.Le_scale = ps.get_float("Lescale", 1.f);
+    if (!(m.Le_scale >= 0.f) || !std::isfinite(m.Le_scale))
+      ps.fail(*ps.find("Lescale"), "\"Lescale\" must be finite and not negative");
+  }
   m.g = ps.get_float("g", 0.f);
   if (!(m.g > -1.f && m.g < 1.f)) ps.fail(*ps.find("g"), "\"g\" must lie strictly between -1 and 1");
   return m;
@@ -250,6 +315,58 @@ void SceneBuilder::assign_light_media(size_t points, size_t spots, size_t at_inf
 
 void SceneBuilder::finish_media() {
   scene_.media.camera = find_medium(camera_medium_, camera_medium_where_);
+}
+
+namespace {
+
+// The render-space box around the shapes that have medium h inside them,
+// when they alone bound it: h is not the camera's medium, nor the outside
+// of any shape, nor on a shape of an instance, a curve or a patch. Else
+// false (the caller takes the scene's bounds).
+bool enclosing_box(const Scene& sc, MediumHandle h, Vec3* lo, Vec3* hi) {
+  if (sc.media.camera == h) return false;
+  const ShapePools& shapes = sc.shapes;
+  *lo = Vec3(kInfinity), *hi = Vec3(-kInfinity);
+  bool any = false;
+  for (size_t g = 0; g < shapes.geometries.size(); ++g) {
+    const Geometry& geom = shapes.geometries[g];
+    if (!geom.media.transition() || (geom.media.inside != h && geom.media.outside != h)) continue;
+    if (geom.media.outside == h || shapes.in_prototype[g]) return false;
+    Vec3 a, b;
+    switch (geom.kind) {
+      case ShapeKind::Mesh: {
+        const TriangleMesh& m = shapes.meshes[geom.index];
+        a = Vec3(kInfinity), b = Vec3(-kInfinity);
+        for (uint32_t v = 0; v < m.vertex_count; ++v) a = glm::min(a, m.positions[v]), b = glm::max(b, m.positions[v]);
+        break;
+      }
+      case ShapeKind::Sphere: {
+        const Sphere& sp = shapes.spheres[geom.index];
+        a = sp.center - Vec3(sp.radius), b = sp.center + Vec3(sp.radius);
+        break;
+      }
+      case ShapeKind::Quadric: quadric_bounds(shapes.quadrics[geom.index], &a, &b); break;
+      default: return false;
+    }
+    *lo = glm::min(*lo, a), *hi = glm::max(*hi, b);
+    any = true;
+  }
+  return any;
+}
+
+}  // namespace
+
+// Each emissive medium becomes a light (light/volume_light.h). A
+// homogeneous one samples the box of the shapes around it, or of the whole
+// scene when they do not bound it.
+void SceneBuilder::volume_lights() {
+  for (MediumHandle h : scene_.media.emissive_media) {
+    Vec3 lo = scene_.bounds_lo, hi = scene_.bounds_hi;
+    if (Vec3 a, b; enclosing_box(scene_, h, &a, &b)) lo = glm::max(lo, a), hi = glm::min(hi, b);
+    if (h.kind() == MediumKind::Homogeneous && !glm::all(glm::lessThan(lo, hi))) continue;  // no room to emit in
+    VolumeLight v;
+    if (make_volume_light(scene_.media, h, lo, hi, &v)) scene_.lights.volume.push_back(std::move(v));
+  }
 }
 
 }  // namespace lantern

@@ -1,0 +1,51 @@
+// What emissive media emit: pbrt-v4's "Le" of a medium, radiance emitted
+// per unit of absorption, so a medium emits sigma_a(p) Le(p) per unit
+// length (PBR 4th ed., sec. 11.1.2). A homogeneous medium's Le is a
+// constant; a uniformgrid's is a spectrum times its "Lescale" grid, or a
+// black body at its "temperature" grid's value; an rgbgrid's is an RGB
+// grid times "Lescale" (medium/grid_density.h). Scenes without emissive
+// media never look these up.
+#pragma once
+
+#include <vector>
+
+#include "math/common.h"
+#include "medium/grid_density.h"
+
+namespace lantern {
+
+// pbrt-v4's BlackbodySpectrum (Planck's law over its peak value) as linear
+// sRGB, tabulated in kelvin from 100 K, where pbrt-v4's media start to
+// emit, to the hottest temperature a grid holds; linear in between.
+class BlackbodyTable {
+ public:
+  BlackbodyTable() = default;
+  explicit BlackbodyTable(float max_kelvin);
+  RGB at(float kelvin) const;
+  bool empty() const { return rgb_.empty(); }
+
+ private:
+  static constexpr float kMinKelvin = 100.f;
+  float step_ = 1.f;
+  std::vector<RGB> rgb_;
+};
+
+// A uniformgrid's emission, looked up at the same box coordinates as its
+// density.
+struct GridEmission {
+  RGB Le{0.f};             // the "Le" spectrum as RGB, normalised as pbrt-v4 does (luminance 1)
+  DensityGrid scale;       // "Lescale": one value per sample, or a single sample of 1
+  DensityGrid temperature; // "temperature" samples; empty: Le is used
+  float offset = 0.f, temperature_scale = 1.f;  // kelvin = (sample - offset) * temperature_scale
+  BlackbodyTable blackbody;
+
+  bool emits() const { return !temperature.values.empty() || max_component(Le) > 0.f; }
+  // Le at a point of render space.
+  RGB at(const Vec3& p) const;
+  // The largest Le any point of the box's region [u0, u1] (unit box
+  // coordinates) can have, per channel; loose, but zero only where no
+  // point of the region emits.
+  float bound(const Vec3& u0, const Vec3& u1) const;
+};
+
+}  // namespace lantern
