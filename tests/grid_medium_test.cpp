@@ -224,8 +224,12 @@ TEST(GridMedium, BadGridsAreRefusedWithTheirLine) {
   expect_load_error(head + "\n", "d.pbrt", {"d.pbrt:4", "needs \"float density\""});
   expect_load_error(head + "\"float density\" [ 1 ] \"point3 p1\" [ 1 0 1 ]\n", "e.pbrt",
                     {"e.pbrt:4", "\"p0\" must lie below \"p1\""});
-  expect_load_error(head + "\"float density\" [ 1 ] \"float temperature\" [ 900 ]\n", "f.pbrt",
-                    {"f.pbrt:4", "\"temperature\") are not supported yet"});
+  expect_load_error(head + "\"float density\" [ 1 ] \"float temperature\" [ 900 900 ]\n", "f.pbrt",
+                    {"f.pbrt:4", "has 2 values; expected as many as \"density\" (1)"});
+  expect_load_error(head + "\"float density\" [ 1 ] \"float temperature\" [ 900 ] \"rgb Le\" [ 1 1 1 ]\n", "m.pbrt",
+                    {"m.pbrt:4", "\"Le\" or \"temperature\", not both"});
+  expect_load_error(head + "\"integer nx\" 2 \"float density\" [ 1 1 ] \"float Lescale\" [ 2 ]\n", "n.pbrt",
+                    {"n.pbrt:4", "has 1 values; expected nx * ny * nz = 2"});
   expect_load_error(head + "\"float density\" [ 1 ] \"integer nx\" 0\n", "g.pbrt", {"g.pbrt:4", "at least 1"});
   const std::string rgb = "LookAt 0 0 0 0 0 1 0 1 0\nCamera \"perspective\"\nWorldBegin\n"
                           "MakeNamedMedium \"g\" \"string type\" \"rgbgrid\" ";
@@ -235,7 +239,10 @@ TEST(GridMedium, BadGridsAreRefusedWithTheirLine) {
   expect_load_error(rgb + "\"float sigma_a\" [ 1 ]\n", "j.pbrt", {"j.pbrt:4", "expected \"rgb\" values"});
   expect_load_error(rgb + "\"rgb sigma_s\" [ 1e30 1 1 ] \"float scale\" 1e30\n", "l.pbrt",
                     {"l.pbrt:4", "times \"scale\" must be finite"});
-  expect_load_error(rgb + "\"rgb sigma_a\" [ 1 1 1 ] \"rgb Le\" [ 1 0 0 ]\n", "k.pbrt", {"k.pbrt:4", "emissive"});
+  expect_load_error(rgb + "\"rgb sigma_s\" [ 1 1 1 ] \"rgb Le\" [ 1 0 0 ]\n", "k.pbrt",
+                    {"k.pbrt:4", "with \"Le\" needs \"rgb sigma_a\""});
+  expect_load_error(rgb + "\"rgb sigma_a\" [ 1 1 1 ] \"rgb Le\" [ 1 0 0  1 1 1 ]\n", "o.pbrt",
+                    {"o.pbrt:4", "has 2 values; expected nx * ny * nz = 1"});
 }
 
 }  // namespace

@@ -230,8 +230,10 @@ TEST(Media, BadInputIsRefusedWithItsLine) {
   expect_load_error(head + "MakeNamedMedium \"m\" \"string type\" \"homogeneous\"\n"
                            "MakeNamedMedium \"m\" \"string type\" \"homogeneous\"\n",
                     "h.pbrt", {"h.pbrt:5", "defined twice"});
-  expect_load_error(head + "MakeNamedMedium \"m\" \"string type\" \"homogeneous\" \"rgb Le\" [ 1 1 1 ]\n", "i.pbrt",
-                    {"i.pbrt:4", "emissive media"});
+  expect_load_error(head + "MakeNamedMedium \"m\" \"string type\" \"homogeneous\" \"rgb Le\" [ 1 -1 1 ]\n", "i.pbrt",
+                    {"i.pbrt:4", "\"Le\"", "must not be negative"});
+  expect_load_error(head + "MakeNamedMedium \"m\" \"string type\" \"cloud\" \"rgb Le\" [ 1 1 1 ]\n", "l.pbrt",
+                    {"l.pbrt:4", "\"Le\" is not a parameter of a cloud medium"});
   expect_load_error(head + "MakeNamedMedium \"m\" \"string type\" \"fog\"\n", "j.pbrt",
                     {"j.pbrt:4", "unknown medium type \"fog\"", "rgbgrid, cloud or nanovdb"});
   expect_load_error("MediumInterface \"air\"\nLookAt 0 0 0 0 0 1 0 1 0\nCamera \"perspective\"\nWorldBegin\n", "k.pbrt",

@@ -14,7 +14,7 @@ BlackbodyTable::BlackbodyTable(float max_kelvin) {
   const int n = std::clamp(int(range / 10.f) + 2, 2, 4096);
   step_ = range / float(n - 1);
   rgb_.resize(size_t(n));
-  for (int i = 0; i < n; ++i) rgb_[size_t(i)] = glm::max(xyz_to_linear_srgb(blackbody_peak_xyz(kMinKelvin + step_ * float(i))), RGB(0.f));
+  for (int i = 0; i < n; ++i) rgb_[size_t(i)] = xyz_to_linear_srgb(blackbody_peak_xyz(kMinKelvin + step_ * float(i)));
 }
 
 RGB BlackbodyTable::at(float kelvin) const {

@@ -125,7 +125,7 @@ GridEmission SceneBuilder::grid_emission(const ParamSet& ps, const DensityGrid& 
       ps.fail(t, "has " + std::to_string(t.numbers.size()) + " values; expected as many as \"density\" (" +
                      std::to_string(density.values.size()) + ")");
     for (double v : t.numbers)
-      if (!std::isfinite(v)) ps.fail(t, "temperatures must be finite");
+      if (!std::isfinite(float(v))) ps.fail(t, "temperatures must be finite");
     e.temperature.values = ps.get_floats("temperature");
     e.offset = offset, e.temperature_scale = tscale;
     float hottest = 0.f;
@@ -265,7 +265,7 @@ VdbMedium SceneBuilder::vdb_medium(const ParamSet& ps, const Mat4& render_from_m
     const std::string temperature = ps.get_string("temperaturename", "temperature");
     if (ps.get_float("Lescale", 1.f) > 0.f && VdbGrid::has_grid(path, temperature))
       ps.fail(*file, "\"" + printable(path) + "\" has a \"" + printable(temperature) +
-                         "\" grid: emissive media are not supported yet (set \"float Lescale\" 0 to render without emission)");
+                         "\" grid: emissive nanovdb media (temperature grids) are not supported yet (set \"float Lescale\" 0 to render without emission)");
   } catch (const std::runtime_error& e) {
     if (dynamic_cast<const InputError*>(&e)) throw;
     ps.fail(*file, "\"" + printable(path) + "\" " + e.what());
