@@ -10,23 +10,6 @@ namespace {
 // a look at every sample that weighs on it, once, at load).
 constexpr int kMaxBlocksPerAxis = 64;
 
-// The largest value f(x, y, z) of the samples of layout g that weigh on
-// any point of the unit box region [u0, u1].
-template <class F>
-float max_over(const GridLayout& g, const Vec3& u0, const Vec3& u1, F&& f) {
-  int lo[3], hi[3];
-  const int n[3] = {g.nx, g.ny, g.nz};
-  for (int k = 0; k < 3; ++k) {
-    lo[k] = std::max(int(std::floor(u0[k] * float(n[k]) - 0.5f)), 0);
-    hi[k] = std::min(int(std::floor(u1[k] * float(n[k]) - 0.5f)) + 1, n[k] - 1);
-  }
-  float m = 0.f;
-  for (int z = lo[2]; z <= hi[2]; ++z)
-    for (int y = lo[1]; y <= hi[1]; ++y)
-      for (int x = lo[0]; x <= hi[0]; ++x) m = std::max(m, f(x, y, z));
-  return m;
-}
-
 // The box of a grid medium: unit coordinates to p0..p1 of the medium's space.
 Mat4 render_from_grid_box(const GridLayout& g) {
   Mat4 box(1.f);
@@ -40,7 +23,7 @@ Mat4 render_from_grid_box(const GridLayout& g) {
 bool make_volume_light(const MediumPools& media, MediumHandle h, const Vec3& lo, const Vec3& hi, VolumeLight* out) {
   VolumeLight v;
   v.medium = h;
-  // bound(u0, u1): sigma_a Le can be no larger in the block (max channel)
+  // bound(u0, u1): the block's weight, following the largest sigma_a Le in it
   std::vector<float> weights;
   auto fill = [&](auto&& bound) {
     const size_t count = size_t(v.res[0]) * size_t(v.res[1]) * size_t(v.res[2]);

@@ -143,6 +143,29 @@ void walk(const LatticeFrame& frame, const Vec3& o, const Vec3& d, float t0, flo
 
 }  // namespace lattice
 
+// f(x, y, z) for the samples of layout g that weigh on some point of the
+// region [u0, u1] of the box (unit coordinates), their trilinear
+// neighbours included: the loose bounds that volume lights sample by.
+template <class F>
+void for_samples_over(const GridLayout& g, const Vec3& u0, const Vec3& u1, F&& f) {
+  int lo[3], hi[3];
+  const int n[3] = {g.nx, g.ny, g.nz};
+  for (int k = 0; k < 3; ++k) {
+    lo[k] = std::max(int(std::floor(u0[k] * float(n[k]) - 0.5f)), 0);
+    hi[k] = std::min(int(std::floor(u1[k] * float(n[k]) - 0.5f)) + 1, n[k] - 1);
+  }
+  for (int z = lo[2]; z <= hi[2]; ++z)
+    for (int y = lo[1]; y <= hi[1]; ++y)
+      for (int x = lo[0]; x <= hi[0]; ++x) f(x, y, z);
+}
+// The largest f(x, y, z) over those samples (0 if none is positive).
+template <class F>
+float max_over(const GridLayout& g, const Vec3& u0, const Vec3& u1, F&& f) {
+  float m = 0.f;
+  for_samples_over(g, u0, u1, [&](int x, int y, int z) { m = std::max(m, f(x, y, z)); });
+  return m;
+}
+
 // pbrt-v4's "uniformgrid" density.
 struct DensityGrid : GridLayout {
   std::vector<float> values;

@@ -34,52 +34,18 @@ RGB GridEmission::at(const Vec3& p) const {
   return blackbody.at((temperature.density(p) - offset) * temperature_scale) * s;
 }
 
-namespace {
-
-// The largest sample of g that weighs on any point of the unit box region
-// [u0, u1] (its trilinear neighbours included).
-float max_sample(const DensityGrid& g, const Vec3& u0, const Vec3& u1) {
-  int lo[3], hi[3];
-  const int n[3] = {g.nx, g.ny, g.nz};
-  for (int k = 0; k < 3; ++k) {
-    lo[k] = std::max(int(std::floor(u0[k] * float(n[k]) - 0.5f)), 0);
-    hi[k] = std::min(int(std::floor(u1[k] * float(n[k]) - 0.5f)) + 1, n[k] - 1);
-  }
-  float m = 0.f;
-  for (int z = lo[2]; z <= hi[2]; ++z)
-    for (int y = lo[1]; y <= hi[1]; ++y)
-      for (int x = lo[0]; x <= hi[0]; ++x) m = std::max(m, g.values[g.offset(x, y, z)]);
-  return m;
-}
-
-}  // namespace
-
 float GridEmission::bound(const Vec3& u0, const Vec3& u1) const {
-  const float s = max_sample(scale, u0, u1);
+  const float s = max_over(scale, u0, u1, [&](int x, int y, int z) { return scale.values[scale.offset(x, y, z)]; });
   if (!(s > 0.f)) return 0.f;
   if (temperature.values.empty()) return s * max_component(Le);
-  // The colour of the hottest sample need not be the brightest, so every
-  // sample's colour is looked at.
-  int lo[3], hi[3];
+  // The brightest colour of the samples' temperatures: not a bound of the
+  // colours in between (black bodies do not brighten evenly), but positive
+  // wherever an interpolated temperature is hot enough to emit, since some
+  // sample then is too. Sampling in proportion to it stays unbiased.
   const DensityGrid& g = temperature;
-  const int n[3] = {g.nx, g.ny, g.nz};
-  for (int k = 0; k < 3; ++k) {
-    lo[k] = std::max(int(std::floor(u0[k] * float(n[k]) - 0.5f)), 0);
-    hi[k] = std::min(int(std::floor(u1[k] * float(n[k]) - 0.5f)) + 1, n[k] - 1);
-  }
-  float m = 0.f, hottest = -kInfinity;
-  for (int z = lo[2]; z <= hi[2]; ++z)
-    for (int y = lo[1]; y <= hi[1]; ++y)
-      for (int x = lo[0]; x <= hi[0]; ++x) {
-        const float kelvin = (g.values[g.offset(x, y, z)] - offset) * temperature_scale;
-        hottest = std::max(hottest, kelvin);
-        m = std::max(m, max_component(blackbody.at(kelvin)));
-      }
-  // Between samples the temperature is interpolated: any colour up to the
-  // hottest sample's temperature can appear, so bound by the table's
-  // largest value up to it when some sample is hot enough to emit.
-  if (hottest > 100.f) m = std::max(m, max_component(blackbody.at(hottest)));
-  return s * m;
+  return s * max_over(g, u0, u1, [&](int x, int y, int z) {
+    return max_component(blackbody.at((g.values[g.offset(x, y, z)] - offset) * temperature_scale));
+  });
 }
 
 }  // namespace lantern

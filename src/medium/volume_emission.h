@@ -42,9 +42,9 @@ struct GridEmission {
   bool emits() const { return !temperature.values.empty() || max_component(Le) > 0.f; }
   // Le at a point of render space.
   RGB at(const Vec3& p) const;
-  // The largest Le any point of the box's region [u0, u1] (unit box
-  // coordinates) can have, per channel; loose, but zero only where no
-  // point of the region emits.
+  // A weight for the box's region [u0, u1] (unit box coordinates) that
+  // follows the largest Le there (max channel): zero only where no point
+  // of the region emits.
   float bound(const Vec3& u0, const Vec3& u1) const;
 };
 
