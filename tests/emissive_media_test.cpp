@@ -3,13 +3,16 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <string>
 
 #include "color/cie1931.h"
 #include "expect_error.h"
 #include "lantern/scene.h"
 #include "media_scenes.h"
+#include "light/volume_light.h"
 #include "medium/volume_emission.h"
+#include "scene/scene.h"
 #include "sanitizer.h"
 #include "stat_compare.h"
 
@@ -110,6 +113,16 @@ TEST(EmissiveMedia, BadEmissionIsRefusedWithItsLine) {
   expect_load_error(head + "MakeNamedMedium \"m\" \"string type\" \"rgbgrid\" \"rgb sigma_a\" [ 1 1 1 ] "
                            "\"rgb Le\" [ 1 1 1 ] \"float Lescale\" -2\n",
                     "c.pbrt", {"c.pbrt:4", "\"Lescale\" must be finite and not negative"});
+}
+
+}  // namespace
+}  // namespace lantern
+
+namespace lantern {
+namespace {
+
+TEST(EmissiveMedia, VolumeLightsIntegrateTheirEmission) {
+  expect_volume_light_integrates(*load_scene(std::string(LANTERN_SOURCE_DIR) + "/perf/media/glowing-fog.pbrt"));
 }
 
 }  // namespace

@@ -4,6 +4,10 @@
 #include <string>
 #include <vector>
 
+#include <random>
+
+#include "light/volume_light.h"
+#include "scene/scene.h"
 #include "stat_compare.h"
 
 namespace lantern {
@@ -50,6 +54,45 @@ inline void expect_medium_thread_invariant(const Scene& scene) {
   o.spp = 2;
   o.maxdepth = 6;
   expect_thread_invariant(scene, o, {"path", "bdpt", "lt"});
+}
+
+// A volume light's points, weighted by their density, integrate sigma_a Le
+// over the medium: against a midpoint sum over the light's box, for the
+// glowing fog's ember (a uniformgrid) and the burning NanoVDB blob.
+inline void expect_volume_light_integrates(const Scene& scene) {
+  ASSERT_FALSE(scene.lights.volume.empty());
+  for (const VolumeLight& v : scene.lights.volume) {
+    auto f = [&](const Vec3& p) {
+      RGB a, s;
+      scene.media.coefficients_at(v.medium, p, &a, &s);
+      return a * scene.media.Le(v.medium, p);
+    };
+    const int n = 96;
+    double brute[3] = {0, 0, 0};
+    for (int z = 0; z < n; ++z)
+      for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+          const Vec3 u = (Vec3(float(x), float(y), float(z)) + 0.5f) / float(n);
+          const RGB e = f(Vec3(v.render_from_unit * Vec4(u, 1.f)));
+          for (int c = 0; c < 3; ++c) brute[c] += double(e[c]) * double(v.volume) / double(n * n * n);
+        }
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> uni(0.f, 1.f);
+    const int samples = 200000;
+    double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
+    for (int i = 0; i < samples; ++i) {
+      float pdf;
+      const Vec3 p = sample_volume_point(v, Vec3(uni(rng), uni(rng), uni(rng)), &pdf);
+      ASSERT_GT(pdf, 0.f);
+      EXPECT_NEAR(volume_point_density(v, p), pdf, 1e-3f * pdf);
+      const RGB e = f(p) / pdf;
+      for (int c = 0; c < 3; ++c) sum[c] += e[c], sum2[c] += double(e[c]) * e[c];
+    }
+    for (int c = 0; c < 3; ++c) {
+      const double mean = sum[c] / samples, se = std::sqrt(std::max(0.0, sum2[c] / samples - mean * mean) / samples);
+      EXPECT_LT(std::fabs(mean - brute[c]), 4.5 * se + 0.01 * std::fabs(brute[c])) << "channel " << c << ": " << mean << " against " << brute[c];
+    }
+  }
 }
 
 }  // namespace lantern

@@ -68,6 +68,13 @@ struct GridMedium {
 struct VdbMedium {
   HomogeneousMedium per_density;
   VdbGrid density;
+  // Emission: a black body at a temperature grid's value, (value -
+  // offset) * temperature_scale kelvin, above 100 K, times Le_scale.
+  VdbGrid temperature;  // no data: none
+  float Le_scale = 0.f, offset = 0.f, temperature_scale = 1.f;
+  BlackbodyTable blackbody;
+  bool emits() const { return temperature.data && Le_scale > 0.f && !blackbody.empty(); }
+  RGB Le(const Vec3& p) const { return blackbody.at((temperature.density(p) - offset) * temperature_scale) * Le_scale; }
 };
 
 // pbrt-v4's "rgbgrid": RGB coefficients on a grid.
@@ -135,6 +142,7 @@ struct MediumPools {
       case MediumKind::Homogeneous: return max_component(homogeneous[h.index()].Le) > 0.f;
       case MediumKind::Grid: return grid[h.index()].emission.emits();
       case MediumKind::RgbGrid: return rgb_grid[h.index()].Le_scale > 0.f && !rgb_grid[h.index()].grid.Le.empty();
+      case MediumKind::Vdb: return vdb[h.index()].emits();
       default: return false;
     }
   }
@@ -143,6 +151,7 @@ struct MediumPools {
       case MediumKind::Homogeneous: return homogeneous[h.index()].Le;
       case MediumKind::Grid: return grid[h.index()].emission.at(p);
       case MediumKind::RgbGrid: return rgb_grid[h.index()].grid.Le_at(p) * rgb_grid[h.index()].Le_scale;
+      case MediumKind::Vdb: return vdb[h.index()].emits() ? vdb[h.index()].Le(p) : RGB(0.f);
       default: return RGB(0.f);
     }
   }

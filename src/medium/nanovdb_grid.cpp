@@ -251,6 +251,22 @@ bool VdbGrid::has_grid(const std::string& path, const std::string& name) {
   return false;
 }
 
+Mat4 VdbGrid::block_box(int res[3]) const {
+  const Data& d = *data;
+  glm::dmat4 block_from_render(1.0);  // glm: [column][row]
+  for (int k = 0; k < 3; ++k)
+    for (int j = 0; j < 4; ++j) block_from_render[j][k] = d.blocks.m[k][j];
+  glm::dmat4 block_from_unit(1.0);
+  for (int k = 0; k < 3; ++k) {
+    res[k] = d.count[k];
+    block_from_unit[k][k] = double(d.count[k]);
+    block_from_unit[3][k] = double(d.first[k]);
+  }
+  return Mat4(glm::inverse(block_from_render) * block_from_unit);
+}
+
+const std::vector<float>& VdbGrid::block_maxima() const { return data->block_max; }
+
 size_t VdbGrid::occupied_blocks(size_t* total) const {
   *total = data->block_max.size();
   size_t n = 0;

@@ -13,6 +13,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "medium/grid_density.h"
 
@@ -29,6 +30,11 @@ struct VdbGrid {
   float integrate(const Vec3& o, const Vec3& d, float t0, float t1, float target, float* t_hit) const;
   // How many blocks hold a non-zero sample, of how many.
   size_t occupied_blocks(size_t* total) const;
+  // The box of blocks: render space from its unit coordinates, and the
+  // blocks per axis; and each block's largest |sample| (x fastest;
+  // infinity everywhere when the grid's background is not zero).
+  Mat4 block_box(int res[3]) const;
+  const std::vector<float>& block_maxima() const;
 
   // Reads float grid `name` of a NanoVDB file; std::runtime_error with
   // what is wrong (unreadable, malformed, no such grid, not float, ...).

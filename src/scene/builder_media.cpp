@@ -249,8 +249,8 @@ CloudMedium SceneBuilder::cloud(const ParamSet& ps, const Mat4& render_from_medi
 }
 
 // pbrt-v4's nanovdb: "filename", the density grid "gridname" (default
-// "density"), sigma_a, sigma_s, scale and g. A temperature grid with a
-// positive "Lescale" would make it emit, which is refused for now.
+// "density"), sigma_a, sigma_s, scale and g; and emission from a
+// temperature grid ("temperaturename", default "temperature").
 VdbMedium SceneBuilder::vdb_medium(const ParamSet& ps, const Mat4& render_from_medium, const std::string& base_dir) {
   VdbMedium m;
   m.per_density = medium_coefficients(ps, false);
@@ -262,15 +262,27 @@ VdbMedium SceneBuilder::vdb_medium(const ParamSet& ps, const Mat4& render_from_m
   if (!std::isfinite(det) || det == 0.f) ps.fail("the medium's transform is singular");
   try {
     m.density = VdbGrid::load(path, grid, glm::inverse(render_from_medium));
+    // Emission, as pbrt-v4: a black body at the temperature grid's values
+    // (when the file has one), times "Lescale".
     const std::string temperature = ps.get_string("temperaturename", "temperature");
-    if (ps.get_float("Lescale", 1.f) > 0.f && VdbGrid::has_grid(path, temperature))
-      ps.fail(*file, "\"" + printable(path) + "\" has a \"" + printable(temperature) +
-                         "\" grid: emissive nanovdb media (temperature grids) are not supported yet (set \"float Lescale\" 0 to render without emission)");
+    m.Le_scale = ps.get_float("Lescale", 1.f);
+    m.offset = ps.get_float("temperatureoffset", ps.get_float("temperaturecutoff", 0.f));
+    m.temperature_scale = ps.get_float("temperaturescale", 1.f);
+    if (!std::isfinite(m.Le_scale) || !std::isfinite(m.offset) || !std::isfinite(m.temperature_scale))
+      ps.fail("\"Lescale\", \"temperatureoffset\" and \"temperaturescale\" must be finite");
+    if (m.Le_scale > 0.f && VdbGrid::has_grid(path, temperature)) {
+      m.temperature = VdbGrid::load(path, temperature, glm::inverse(render_from_medium));
+      float largest = 0.f;  // |sample|
+      for (float t : m.temperature.block_maxima()) largest = std::max(largest, t);
+      const float hottest = m.temperature_scale >= 0.f ? (largest - m.offset) * m.temperature_scale
+                                                       : (-largest - m.offset) * m.temperature_scale;
+      if (std::isfinite(hottest) && hottest > 100.f) m.blackbody = BlackbodyTable(std::min(hottest, 1e6f));
+      else if (std::isinf(largest)) m.blackbody = BlackbodyTable(1e6f);  // a background that is not zero
+    }
   } catch (const std::runtime_error& e) {
     if (dynamic_cast<const InputError*>(&e)) throw;
     ps.fail(*file, "\"" + printable(path) + "\" " + e.what());
   }
-  for (const char* name : {"temperatureoffset", "temperaturecutoff", "temperaturescale"}) ps.find(name);
   return m;
 }
 
