@@ -143,5 +143,63 @@ TEST_P(MisWeights, MatchExplicitPathDensitiesAndSumToOne) {
 INSTANTIATE_TEST_SUITE_P(Heuristics, MisWeights, ::testing::Values(1.f, 2.f),
                          [](const auto& info) { return info.param == 1.f ? "Balance" : "Power"; });
 
+// Vertex merging (vcm) at interior vertex x_i: the light subpath reaches
+// x_i, the eye subpath reaches within the radius of it, with density
+// p_light(x_0..x_i) p_eye(x_k..x_i) eta (Georgiev et al. 2012, eq. 10).
+double explicit_merge_pdf(const RandomPath& p, int i, double eta) {
+  double pdf = p.emission_pos_A * eta;
+  for (int m = 1; m <= i; ++m) pdf *= p.area_pdf(m, m - 1);
+  for (int m = i; m <= p.k() - 1; ++m) pdf *= p.area_pdf(m, m + 1);
+  return pdf;
+}
+
+// What the integrator computes for merging at x_i.
+float recursive_merge_weight(const RandomPath& p, int i, MisPower mis) {
+  const int k = p.k();
+  MisState light = mis_light_start(p.direct_pdf_A, p.emission_pos_A * p.emission_dir_W(1), p.cos_at(0, 1), false, mis);
+  mis_after_hit(light, p.dist2(0, 1), p.cos_at(1, 0), true, mis);
+  for (int m = 1; m <= i - 1; ++m) {
+    mis_after_scatter(light, p.cos_at(m, m + 1), p.bsdf_pdf(m, m + 1), p.bsdf_pdf(m, m - 1), false, mis);
+    mis_after_hit(light, p.dist2(m, m + 1), p.cos_at(m + 1, m), true, mis);
+  }
+  MisState eye = mis_camera_start(p.camera_dir_W(k - 1), mis);
+  mis_after_hit(eye, p.dist2(k, k - 1), p.cos_at(k - 1, k), true, mis);
+  for (int m = k - 1; m >= i + 1; --m) {
+    mis_after_scatter(eye, p.cos_at(m, m - 1), p.bsdf_pdf(m, m - 1), p.bsdf_pdf(m, m + 1), false, mis);
+    mis_after_hit(eye, p.dist2(m, m - 1), p.cos_at(m - 1, m), true, mis);
+  }
+  return mis_weight_merge(eye, light, p.bsdf_pdf(i, i - 1), p.bsdf_pdf(i, i + 1), mis);
+}
+
+// With merging, every connection strategy and every merge of a path weigh
+// p^beta / (the sum over all of them), and all sum to one.
+TEST_P(MisWeights, WithMergingMatchExplicitDensitiesAndSumToOne) {
+  std::mt19937 rng(777);
+  for (int trial = 0; trial < 300; ++trial) {
+    const double eta = std::pow(10.0, double(trial % 7) - 3.0);  // from 1e-3 to 1e3
+    MisPower mis{GetParam()};
+    mis.vm_weight = mis(float(eta));
+    mis.vc_weight = mis(float(1.0 / eta));
+    const int k = 1 + trial % 6;
+    RandomPath p = make_path(k, rng);
+    double sum = 0.0;
+    std::vector<double> vc(size_t(k) + 1), vm(size_t(k) + 1, 0.0);
+    for (int s = 0; s <= k; ++s) sum += std::pow(vc[size_t(s)] = explicit_pdf(p, s), double(mis.beta));
+    for (int i = 1; i <= k - 1; ++i) sum += std::pow(vm[size_t(i)] = explicit_merge_pdf(p, i, eta), double(mis.beta));
+    double total = 0.0;
+    for (int s = 0; s <= k; ++s) {
+      const double expected = std::pow(vc[size_t(s)], double(mis.beta)) / sum, w = recursive_weight(p, s, mis);
+      EXPECT_NEAR(w, expected, 2e-3 * std::max(1.0, expected)) << "k=" << k << " s=" << s << " trial " << trial;
+      total += w;
+    }
+    for (int i = 1; i <= k - 1; ++i) {
+      const double expected = std::pow(vm[size_t(i)], double(mis.beta)) / sum, w = recursive_merge_weight(p, i, mis);
+      EXPECT_NEAR(w, expected, 2e-3 * std::max(1.0, expected)) << "k=" << k << " merge at " << i << " trial " << trial;
+      total += w;
+    }
+    EXPECT_NEAR(total, 1.0, 2e-3) << "k=" << k << " trial " << trial;
+  }
+}
+
 }  // namespace
 }  // namespace lantern

@@ -91,7 +91,7 @@ TEST(CheckpointResumeMedia, StopsAndResumesBitForBit) {
   // stream a resume would have to restore (the Release suite's check)
   if (!LANTERN_ASAN) expect_resumes_bit_for_bit("bdpt", "zsobol", "perf/media/cloud.pbrt");
 }
-INSTANTIATE_TEST_SUITE_P(Integrators, CheckpointResume, ::testing::Values("path", "bdpt", "lt"));
+INSTANTIATE_TEST_SUITE_P(Integrators, CheckpointResume, ::testing::Values("path", "bdpt", "lt", "vcm"));
 
 // Every sampler's values depend only on (seed, pixel, index, dimension);
 // these three find their indices in ways of their own (global sequences,

@@ -25,7 +25,12 @@ struct RenderProgress {
 };
 
 struct RenderOptions {
-  std::string integrator = "path";  // path, bdpt or lt (light tracing)
+  std::string integrator = "path";  // path, bdpt, lt (light tracing) or vcm (vertex connection and merging)
+  // vcm: the merging radius of the first sample pass (0: 0.01 of the
+  // scene's bounding radius; docs/vcm.md), and
+  // alpha, by which the radius of pass i is radius * i^((alpha - 1) / 2).
+  float vcm_radius = 0.f;
+  float vcm_alpha = 0.75f;
   std::string mis = "power";        // bdpt's heuristic: power (beta = 2) or balance
   int spp = 16;
   double time_limit_seconds = 0.0;  // > 0: render passes until the time is up (spp is then ignored)
@@ -102,6 +107,8 @@ struct RenderStats {
   // Next-event estimation (path; bdpt's s = 1): lights sampled, and those
   // whose sample was non-zero and unoccluded (how well lights are chosen).
   uint64_t light_samples = 0, light_samples_unoccluded = 0;
+  uint64_t merges = 0;        // vcm: light vertices merged with eye vertices
+  float vcm_radius = 0.f;     // vcm: the first pass's merging radius
   std::vector<std::pair<std::string, uint64_t>> eye_ends, light_ends;
   size_t wave_pool_bytes = 0;  // structure-of-arrays pools of all threads
   int threads = 0;

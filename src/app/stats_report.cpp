@@ -85,6 +85,10 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
   j["next_event"] = {{"light_samples", s.light_samples},
                      {"unoccluded_nonzero", s.light_samples_unoccluded},
                      {"fraction", s.light_samples ? double(s.light_samples_unoccluded) / double(s.light_samples) : 0.0}};
+  if (s.vcm_radius > 0.f)
+    j["vcm"] = {{"merges", s.merges},
+                {"merges_per_eye_vertex", s.eye_vertices ? double(s.merges) / double(s.eye_vertices) : 0.0},
+                {"first_radius", s.vcm_radius}};
   j["memory"] = {{"peak_rss_bytes", peak_rss_bytes()},
                  {"wave_pools_bytes", s.wave_pool_bytes},
                  {"bvh_bytes", run.scene_info.bvh_bytes},

@@ -39,7 +39,7 @@ void Bdpt::start_eye_subpaths(const WaveDesc& wave, BdptWave& w) const {
     Vec2 p_raster = sample_raster_position(scene_.filter, pixel, width, s.get2d(dims::kFilm));
     CameraRay r = camera_.generate_ray(p_raster, s.get2d(dims::kLens));
     w.eye.beta[slot] = RGB(1.f);
-    w.eye.mis[slot] = mis_camera_start(camera_.pdf_dir(r.d), mis_);
+    w.eye.mis[slot] = mis_camera_start(camera_.pdf_dir(r.d), w.mis);
     w.eye.prev_p[slot] = r.o;
     w.eye.prev_n[slot] = Vec3(0.f);
     w.eye.eta_scale[slot] = 1.f;
@@ -75,7 +75,7 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
       const Vec3 p = w.ends.p[i], prev = w.eye.prev_p[slot];
       const float dist2 = glm::dot(p - prev, p - prev);
       if (!(dist2 > 0.f)) continue;
-      mis_after_hit(m, dist2, 1.f, !(w.depth == 1 && camera_.area_sensor()), mis_);
+      mis_after_hit(m, dist2, 1.f, !(w.depth == 1 && camera_.area_sensor()), w.mis);
       const RGB beta_before = w.eye.beta[slot];
       apply_segment(w, w.eye, i);
       if (!last && !w.ends.emission.empty() && !is_black(w.ends.emission[i])) add_volume_emission(w, i, beta_before);
@@ -91,7 +91,7 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
         RGB Le = infinite_lights_Le(lights, scene_.textures, prev, d);
         float wt = w.depth == 1 ? 1.f
                                 : mis_weight_hit_light(m, infinite_lights_pdf(lights, scene_.textures, light_sampler_, prev, d),
-                                                       infinite_emission_pdf(lights, scene_.textures, d), mis_);
+                                                       infinite_emission_pdf(lights, scene_.textures, d), w.mis);
         add_emission(w, slot, w.eye.beta[slot] * Le, weight(wt));
       }
       continue;
@@ -103,7 +103,7 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
     float cos_in = std::fabs(glm::dot(sp.ng, d));
     if (!(cos_in > 0.f) || !(dist2 > 0.f)) continue;
     // An area sensor's (thin-lens orthographic) first density is per area already.
-    mis_after_hit(m, dist2, cos_in, !(w.depth == 1 && camera_.area_sensor()), mis_);
+    mis_after_hit(m, dist2, cos_in, !(w.depth == 1 && camera_.area_sensor()), w.mis);
     if (media) apply_segment(w, w.eye, i);
     if (int64_t light = hit_area_light(shapes, w.rays, i); light >= 0) {
       RGB Le = area_light_Le(lights.area[size_t(light)], scene_.textures, sp.ng, sp.uv, -d);
@@ -113,12 +113,12 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
         if (w.depth == 1) {
           float pos_pdf = lights.selection.discrete_pmf(lights.area_to_all[a]) *  // emission: by power
                           area_point_density(shapes, lights.area[a], sp.p, sp.ng);
-          wt = mis_weight_hit_light_direct(m, pos_pdf, mis_);
+          wt = mis_weight_hit_light_direct(m, pos_pdf, w.mis);
         } else {
           wt = mis_weight_hit_light(m,
                                     area_light_direct_pdf_area(lights, shapes, light_sampler_, a, prev,
                                                                w.eye.prev_n[slot], sp.p, sp.ng),
-                                    area_emission_pdf(lights, shapes, a, sp.p, sp.ng, -d), mis_);
+                                    area_emission_pdf(lights, shapes, a, sp.p, sp.ng, -d), w.mis);
         }
         add_emission(w, slot, w.eye.beta[slot] * Le, weight(wt));
       }
@@ -155,16 +155,57 @@ void Bdpt::connect_eye_surface_vertex_media(BdptWave& w, uint32_t i, const BSDF&
     const RGB c = w.eye.beta[slot] * f_eye * lv.f * v.beta[j] / dist2;
     if (is_black(c)) continue;
     DeferredMis dm;
-    dm.a = mis_(bsdf.pdf(wo, wi, TransportMode::Radiance) * lv.cos / dist2) *
-           (v.mis[j].dVCM + v.mis[j].dVC * mis_(lv.rev_W));
+    dm.a = w.mis(bsdf.pdf(wo, wi, TransportMode::Radiance) * lv.cos / dist2) *
+           (v.mis[j].dVCM + v.mis[j].dVC * w.mis(lv.rev_W));
     dm.sigma_a = lv.sigma_t;
-    dm.b = mis_(lv.fwd_W * vertex_cos(h.ng[i], h.error_scale[i], tangent_or_null(h.tangent, i), wi_w) / dist2) *
-           (m.dVCM + m.dVC * mis_(bsdf.pdf(wi, wo, TransportMode::Importance)));
+    dm.b = w.mis(lv.fwd_W * vertex_cos(h.ng[i], h.error_scale[i], tangent_or_null(h.tangent, i), wi_w) / dist2) *
+           (m.dVCM + m.dVC * w.mis(bsdf.pdf(wi, wo, TransportMode::Importance)));
     const Vec3 o = offset_ray_origin(h.p[i], h.ng[i], h.error_scale[i], wi_w);
     const MediumHandle start = medium_after(scene_, w.rays.geom_id[i], h.ng[i], wi_w, w.ends.medium[i]);
     w.shadow.push_deferred(o, lv.target - o, 1.f, slot, c, Vec2(0.f), {uint8_t(v.depth[j] + 1), uint8_t(depth + 1), c},
                            start, dm);
   }
+}
+
+// vcm: the light vertices of the whole wave within the merging radius of
+// eye vertex i, each a photon-mapping estimate (Georgiev et al. 2012,
+// eq. 17): the eye's BSDF times the light vertex's throughput over
+// pi r^2 n, weighted against every other strategy of the same path. A
+// merged path has v.depth + depth segments (the two vertices count as
+// one), at most maxdepth + 1 as a connected one has.
+template <class BSDF>
+void Bdpt::merge_at_eye_vertex(BdptWave& w, uint32_t i, const BSDF& bsdf, const Frame& frame, const Vec3& wo) const {
+  const HitPool& h = w.hits;
+  const uint32_t slot = w.active[i], depth = w.depth, maxdepth = uint32_t(settings_.maxdepth);
+  const LightVertexPool& v = w.vertices;
+  const MisState& m = w.eye.mis[slot];
+  RGB sum(0.f);
+  w.grid.query(v.p, h.p[i], [&](uint32_t j) {
+    if (v.depth[j] + depth > maxdepth + 1) return;
+    const Vec3 wi = frame.to_local(v.wo[j]);  // where the light came from
+    const RGB f = bsdf.f(wo, wi, TransportMode::Radiance);
+    if (is_black(f)) return;
+    const float wt = mis_weight_merge(m, v.mis[j], bsdf.pdf(wo, wi, TransportMode::Radiance),
+                                      bsdf.pdf(wi, wo, TransportMode::Importance), w.mis);
+    sum += f * v.beta[j] * weight(wt);
+    ++w.stats.merges;
+  });
+  const RGB c = w.eye.beta[slot] * sum * w.vm_normalization;
+  if (!is_black(c) && is_finite(c)) w.L[slot] += c;
+}
+
+// vcm: this wave's merging radius (its first sample pass), the factors
+// eta = pi r^2 n of the MIS quantities (n: the wave's light subpaths,
+// all of which each eye vertex may merge with), and the grid.
+void Bdpt::prepare_merging(const WaveDesc& wave, BdptWave& w) const {
+  w.mis = mis_;
+  if (!settings_.merging) return;
+  const float pass = float(wave.first_sample + 1);
+  w.vm_radius = settings_.vcm_radius * std::pow(pass, 0.5f * (settings_.vcm_alpha - 1.f));
+  const float eta = kPi * w.vm_radius * w.vm_radius * float(wave.size());
+  w.mis.vm_weight = mis_(eta);
+  w.mis.vc_weight = mis_(1.f / eta);
+  w.vm_normalization = 1.f / eta;
 }
 
 // Prepares the s = 1 and s >= 2 connections of every eye vertex.
@@ -203,15 +244,15 @@ void Bdpt::eye_connect_stage(BdptWave& w) const {
                                  vertex_cos(h.ng[i], h.error_scale[i], tangent_or_null(h.tangent, i), ls->wi) / dist2;
           float wt =
               mis_weight_next_event(m, ls->delta ? 0.f : ls->pdf, bsdf.pdf(wo, wi, TransportMode::Radiance),
-                                    emission_fwd_A, direct_pdf_A, bsdf.pdf(wi, wo, TransportMode::Importance), mis_);
+                                    emission_fwd_A, direct_pdf_A, bsdf.pdf(wi, wo, TransportMode::Importance), w.mis);
           RGB u = beta * f * ls->L / ls->pdf;
           StrategyTag tag{1, uint8_t(depth + 1), u};
           Vec3 o = offset_ray_origin(h.p[i], h.ng[i], h.error_scale[i], ls->wi);
           if (media) {  // weighted once the transmittance is known
             DeferredMis dm;
-            dm.a = ls->delta ? 0.f : mis_(bsdf.pdf(wo, wi, TransportMode::Radiance) / ls->pdf);
+            dm.a = ls->delta ? 0.f : w.mis(bsdf.pdf(wo, wi, TransportMode::Radiance) / ls->pdf);
             dm.sigma_a = vol.sigma_t;  // an eye ray would end at a volume light's point by distance sampling
-            dm.b = mis_(emission_fwd_A / direct_pdf_A) * (m.dVCM + m.dVC * mis_(bsdf.pdf(wi, wo, TransportMode::Importance)));
+            dm.b = w.mis(emission_fwd_A / direct_pdf_A) * (m.dVCM + m.dVC * w.mis(bsdf.pdf(wi, wo, TransportMode::Importance)));
             const MediumHandle start = medium_after(sc, w.rays.geom_id[i], h.ng[i], ls->wi, w.ends.medium[i]);
             Vec3 target = ls->infinite || ls->n_light == Vec3(0.f)
                               ? ls->p_light
@@ -234,6 +275,7 @@ void Bdpt::eye_connect_stage(BdptWave& w) const {
         if (w.shadow.rays.count >= kMaxPendingConnections) flush_connections(w);
         return;
       }
+      if (settings_.merging) merge_at_eye_vertex(w, i, bsdf, frame, wo);
       for (uint32_t n = v.begin[slot]; n < v.begin[slot + 1]; ++n) {  // s >= 2
         const uint32_t j = v.order[n];
         if (v.depth[j] + depth > maxdepth) break;  // in depth order: the rest are deeper
@@ -251,7 +293,7 @@ void Bdpt::eye_connect_stage(BdptWave& w) const {
         float light_fwd_A =
             lv.fwd_W * vertex_cos(h.ng[i], h.error_scale[i], tangent_or_null(h.tangent, i), wi_w) / dist2;
         float wt = mis_weight_connect(m, v.mis[j], eye_fwd_A, bsdf.pdf(wi, wo, TransportMode::Importance), light_fwd_A,
-                                      lv.rev_W, mis_);
+                                      lv.rev_W, w.mis);
         Vec3 o = offset_ray_origin(h.p[i], h.ng[i], h.error_scale[i], wi_w);
         Vec3 target = lv.target;
         w.shadow.push(o, target - o, 1.f, slot, c * weight(wt), Vec2(0.f),
@@ -275,7 +317,7 @@ void Bdpt::eye_scatter_stage(BdptWave& w) const {
     PathEnd end =
         continue_subpath(bsdf, TransportMode::Radiance, w.hits, i, frame, frame.to_local(w.hits.wo[i]), uc, u2, u_rr,
                          depth, {w.eye.beta[slot], w.eye.mis[slot], w.eye.prev_p[slot], w.eye.prev_n[slot], w.eye.eta_scale[slot], 1.f},
-                         mis_);
+                         w.mis);
     if (end != PathEnd::Count) ++w.stats.eye_ends[size_t(end)];
     else if (!scene_.media.empty())
       w.eye.medium[slot] = medium_after(scene_, w.rays.geom_id[i], w.hits.ng[i], w.hits.next_d[i], w.ends.medium[i]);
@@ -323,6 +365,7 @@ void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
     if (media) trace_connections(w);
     else w.stream.occluded(w.shadow.rays);
   };
+  prepare_merging(wave, w);
   timed(Stage::Generate, [&] { start_light_subpaths(wave, w); });
   trace_shadows();
   timed(Stage::Accumulate, [&] { splat_stage(w); });
@@ -344,6 +387,7 @@ void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
   if (!settings_.light_tracing_only) {
     timed(Stage::Generate, [&] {
       group_light_vertices(w);
+      if (settings_.merging) w.grid.build(w.vertices.p, w.vm_radius);
       start_eye_subpaths(wave, w);
     });
     for (w.depth = 1; w.rays.count > 0; ++w.depth) {

@@ -33,6 +33,12 @@ struct BdptSettings {
   int width = 0, height = 0;
   float mis_beta = 2.f;             // 2: power heuristic, 1: balance heuristic
   bool light_tracing_only = false;  // the `lt` integrator
+  // Vertex connection and merging (the `vcm` integrator; docs/vcm.md):
+  // light vertices within the radius of an eye vertex are merged with it,
+  // as further strategies. The radius of sample pass i (counting from 1)
+  // is radius * i^((alpha - 1) / 2).
+  bool merging = false;
+  float vcm_radius = 0.f, vcm_alpha = 0.75f;
   bool unit_weights = false;        // every strategy weighted 1: deliberately wrong, for tests only
   bool record_strategies = false;   // per-(s, t) contributions into WaveOutput::strategies
   // The samples per pixel the texture filter footprint is scaled for: the
@@ -95,6 +101,9 @@ class Bdpt {
   void connect_eye_medium_vertex(BdptWave& w, uint32_t slot, const Vec3& p, const Vec3& wo, MediumHandle m,
                                  const RGB& sigma_eye, float u_light, Vec2 u_light2) const;
   void connect_light_medium_vertex(BdptWave& w, uint32_t slot, uint32_t i, Vec2 u_lens) const;
+  template <class BSDF>  // vcm: merging at a surface eye vertex (bdpt.cpp)
+  void merge_at_eye_vertex(BdptWave& w, uint32_t i, const BSDF& bsdf, const Frame& frame, const Vec3& wo) const;
+  void prepare_merging(const WaveDesc& wave, BdptWave& w) const;
   template <class BSDF>  // s >= 2 from a surface eye vertex (bdpt.cpp)
   void connect_eye_surface_vertex_media(BdptWave& w, uint32_t i, const BSDF& bsdf, const Frame& frame,
                                         const Vec3& wo) const;

@@ -124,13 +124,13 @@ void Bdpt::begin_light_subpath(BdptWave& w, uint32_t slot, const EmissionSample&
         float wt = 1.f;
         if (!settings_.light_tracing_only) {
           float camera_pdf_A = camera_.pdf_area(-cs->wi, sqr(cs->dist), cos_l);
-          wt = weight(mis_weight_light_origin(camera_pdf_A, es.pdf_pos, es.delta_pos, mis_));
+          wt = weight(mis_weight_light_origin(camera_pdf_A, es.pdf_pos, es.delta_pos, w.mis));
         }
         RGB c = Le * (cos_l * cs->We / (cs->pdf * es.pdf_pos));
         if (media) {  // the camera ray that would hit this point passes the same segment
           DeferredMis dm;
           if (!settings_.light_tracing_only && !settings_.unit_weights && !es.delta_pos) {
-            dm.a = mis_(camera_.pdf_area(-cs->wi, sqr(cs->dist), cos_l) / es.pdf_pos);
+            dm.a = w.mis(camera_.pdf_area(-cs->wi, sqr(cs->dist), cos_l) / es.pdf_pos);
             dm.sigma_a = sigma_origin;  // and ends there by distance sampling, for a volume light
           }
           Vec3 org = on_surface ? offset_ray_origin(es.p, es.n, es.error_scale, cs->wi) : es.p;
@@ -184,10 +184,10 @@ void Bdpt::light_surface_stage(BdptWave& w) const {
     if (w.depth == 1) {
       const LightOriginPool& o = w.origin;
       m = mis_light_start(first_hit_direct_pdf(o, slot, sp.p, w.hits.ns[i], prev), o.emission_pdf_W[slot],
-                          o.cos_light[slot], o.delta[slot] != 0, mis_);
-      mis_after_hit(m, dist2, cos_in, !o.infinite[slot], mis_);
+                          o.cos_light[slot], o.delta[slot] != 0, w.mis);
+      mis_after_hit(m, dist2, cos_in, !o.infinite[slot], w.mis);
     } else {
-      mis_after_hit(m, dist2, cos_in, true, mis_);
+      mis_after_hit(m, dist2, cos_in, true, w.mis);
     }
     if (media) apply_segment(w, w.light, i);
   }
@@ -207,10 +207,10 @@ void Bdpt::light_medium_arrival(BdptWave& w, uint32_t i) const {
   if (w.depth == 1) {
     const LightOriginPool& o = w.origin;
     m = mis_light_start(first_hit_direct_pdf(o, slot, p, Vec3(0.f), prev), o.emission_pdf_W[slot], o.cos_light[slot],
-                        o.delta[slot] != 0, mis_);
-    mis_after_hit(m, dist2, 1.f, !o.infinite[slot], mis_);
+                        o.delta[slot] != 0, w.mis);
+    mis_after_hit(m, dist2, 1.f, !o.infinite[slot], w.mis);
   } else {
-    mis_after_hit(m, dist2, 1.f, true, mis_);
+    mis_after_hit(m, dist2, 1.f, true, w.mis);
   }
   apply_segment(w, w.light, i);
   w.scattered.push_back(i);
@@ -257,7 +257,8 @@ void Bdpt::light_connect_stage(BdptWave& w) const {
     const RGB& beta = w.light.beta[slot];
     const MisState& m = w.light.mis[slot];
     {
-      if (!settings_.light_tracing_only && ld < maxdepth) {  // s >= 2 connections need t >= 2
+      // s >= 2 connections need t >= 2; merging (vcm) needs t >= 1
+      if (!settings_.light_tracing_only && (ld < maxdepth || (settings_.merging && ld <= maxdepth))) {
         LightVertexPool& v = w.vertices;
         v.slot.push_back(slot);
         v.depth.push_back(ld);
@@ -286,14 +287,14 @@ void Bdpt::light_connect_stage(BdptWave& w) const {
           if (!settings_.light_tracing_only) {
             float camera_pdf_A = camera_.pdf_area(
                 -cs->wi, sqr(cs->dist), vertex_cos(h.ng[i], h.error_scale[i], tangent_or_null(h.tangent, i), cs->wi));
-            wt = weight(mis_weight_light_trace(m, camera_pdf_A, bsdf.pdf(wi, wo, TransportMode::Radiance), mis_));
+            wt = weight(mis_weight_light_trace(m, camera_pdf_A, bsdf.pdf(wi, wo, TransportMode::Radiance), w.mis));
           }
           if (!scene_.media.empty()) {
             DeferredMis dm;
             if (!settings_.light_tracing_only && !settings_.unit_weights)
-              dm.a = mis_(camera_.pdf_area(-cs->wi, sqr(cs->dist),
+              dm.a = w.mis(camera_.pdf_area(-cs->wi, sqr(cs->dist),
                                            vertex_cos(h.ng[i], h.error_scale[i], tangent_or_null(h.tangent, i), cs->wi))) *
-                     (m.dVCM + m.dVC * mis_(bsdf.pdf(wi, wo, TransportMode::Radiance)));
+                     (m.dVCM + m.dVC * w.mis(bsdf.pdf(wi, wo, TransportMode::Radiance)));
             const Vec3 o = offset_ray_origin(h.p[i], h.ng[i], h.error_scale[i], cs->wi);
             const RGB c = beta * f * (cs->We / cs->pdf);
             w.shadow.push_deferred(o, cs->p_lens - o, 1.f, slot, c, cs->p_raster, {uint8_t(ld + 1), 1, c},
@@ -326,7 +327,7 @@ void Bdpt::light_scatter_stage(BdptWave& w) const {
         bsdf, TransportMode::Importance, w.hits, i, frame, frame.to_local(w.hits.wo[i]), uc, u2, u_rr, depth,
         {w.light.beta[slot], w.light.mis[slot], w.light.prev_p[slot], w.light.prev_n[slot], w.light.eta_scale[slot],
          w.light.rr_scale[slot]},
-        mis_);
+        w.mis);
     if (end != PathEnd::Count) ++w.stats.light_ends[size_t(end)];
     else if (!scene_.media.empty())
       w.light.medium[slot] = medium_after(scene_, w.rays.geom_id[i], w.hits.ng[i], w.hits.next_d[i], w.ends.medium[i]);

@@ -41,7 +41,7 @@ bool Bdpt::apply_segment(BdptWave& w, SubpathPool& sub, uint32_t i) const {
   sub.beta[slot] *= e.weight[i];
   if (e.end[i] == SegmentEnd::Absorbed) return false;
   const float rev = mixture_density(sub.sigma_prev[slot], e.T[i]);
-  mis_after_segment(sub.mis[slot], e.fwd_density[i], rev, mis_);
+  mis_after_segment(sub.mis[slot], e.fwd_density[i], rev, w.mis);
   sub.sigma_prev[slot] = e.end[i] == SegmentEnd::Scatter ? e.sigma_t[i] : RGB(0.f);
   return true;
 }
@@ -96,9 +96,9 @@ void Bdpt::connect_eye_medium_vertex(BdptWave& w, uint32_t slot, const Vec3& p, 
       const float emission_fwd_A =
           emission_pdf(sc.lights, sc.shapes, sc.textures, ls->light, ls->p_light, ls->n_light, -ls->wi) / dist2;
       DeferredMis d;
-      d.a = ls->delta ? 0.f : mis_(f / ls->pdf);
+      d.a = ls->delta ? 0.f : w.mis(f / ls->pdf);
       d.sigma_a = vol.sigma_t;  // an eye ray would end at a volume light's point by distance sampling
-      d.b = mis_(emission_fwd_A / direct_pdf_A) * (em.dVCM + em.dVC * mis_(f));
+      d.b = w.mis(emission_fwd_A / direct_pdf_A) * (em.dVCM + em.dVC * w.mis(f));
       d.sigma_b = sigma_eye;
       const RGB u = beta * f * ls->L / ls->pdf;
       const StrategyTag tag{1, uint8_t(depth + 1), u};
@@ -126,9 +126,9 @@ void Bdpt::connect_eye_medium_vertex(BdptWave& w, uint32_t slot, const Vec3& p, 
     const RGB c = beta * f_eye * lv.f * v.beta[j] / dist2;
     if (is_black(c) || !(f_eye > 0.f)) continue;
     DeferredMis d;
-    d.a = mis_(f_eye * lv.cos / dist2) * (v.mis[j].dVCM + v.mis[j].dVC * mis_(lv.rev_W));
+    d.a = w.mis(f_eye * lv.cos / dist2) * (v.mis[j].dVCM + v.mis[j].dVC * w.mis(lv.rev_W));
     d.sigma_a = lv.sigma_t;
-    d.b = mis_(lv.fwd_W / dist2) * (em.dVCM + em.dVC * mis_(f_eye));
+    d.b = w.mis(lv.fwd_W / dist2) * (em.dVCM + em.dVC * w.mis(f_eye));
     d.sigma_b = sigma_eye;
     w.shadow.push_deferred(p, lv.target - p, 1.f, slot, c, Vec2(0.f), {uint8_t(v.depth[j] + 1), uint8_t(depth + 1), c},
                            m, d);
@@ -180,9 +180,9 @@ void Bdpt::add_volume_emission(BdptWave& w, uint32_t i, const RGB& beta_before) 
     const float density = volume_light_density(scene_, light, x);
     const float pos_pdf = lights.selection.discrete_pmf(size_t(light)) * density;  // light subpaths choose by power
     const MisState& m = w.eye.mis[slot];
-    wt = w.depth == 1 ? mis_weight_hit_light_direct(m, pos_pdf, mis_)
+    wt = w.depth == 1 ? mis_weight_hit_light_direct(m, pos_pdf, w.mis)
                       : mis_weight_hit_light(m, light_sampler_.pmf(w.eye.prev_p[slot], w.eye.prev_n[slot], uint32_t(light)) * density,
-                                             pos_pdf * uniform_sphere_pdf(), mis_);
+                                             pos_pdf * uniform_sphere_pdf(), w.mis);
   }
   const RGB c = beta_before * w.ends.emission[i];
   if (is_finite(c)) add_emission(w, slot, c, weight(wt));
@@ -223,7 +223,7 @@ void Bdpt::connect_light_medium_vertex(BdptWave& w, uint32_t slot, uint32_t i, V
   if (!(f > 0.f)) return;
   DeferredMis d;
   if (!settings_.light_tracing_only && !settings_.unit_weights) {
-    d.a = mis_(camera_.pdf_area(-cs->wi, sqr(cs->dist), 1.f)) * (lm.dVCM + lm.dVC * mis_(f));
+    d.a = w.mis(camera_.pdf_area(-cs->wi, sqr(cs->dist), 1.f)) * (lm.dVCM + lm.dVC * w.mis(f));
     d.sigma_a = w.ends.sigma_t[i];
   }
   const RGB c = beta * f * (cs->We / cs->pdf);
@@ -240,7 +240,7 @@ PathEnd Bdpt::scatter_in_medium(BdptWave& w, SubpathPool& sub, uint32_t i, Vec2 
   const Vec3 wo = -glm::normalize(w.rays.direction(i));
   const Vec3 wi = phase.sample(wo, u2, &pdf);
   if (!(pdf > 0.f)) return PathEnd::Absorbed;
-  mis_after_scatter(sub.mis[slot], 1.f, pdf, pdf, false, mis_);
+  mis_after_scatter(sub.mis[slot], 1.f, pdf, pdf, false, w.mis);
   const float rr = max_component(sub.beta[slot] * sub.eta_scale[slot]) * (light ? sub.rr_scale[slot] : 1.f);
   if (rr < 1.f && w.depth >= 2) {
     const float q = std::fmax(0.f, 1.f - rr);
@@ -316,7 +316,7 @@ void Bdpt::trace_connections(BdptWave& w) const {
       c.rays.tfar[r] = -kInfinity;
       continue;
     }
-    const float wt = weighted ? mis_weight_deferred(c.deferred[r], c.T_mis[r], mis_) : 1.f;
+    const float wt = weighted ? mis_weight_deferred(c.deferred[r], c.T_mis[r], w.mis) : 1.f;
     c.contrib[r] *= c.T[r] * wt;
     if (!is_finite(c.contrib[r])) c.rays.tfar[r] = -kInfinity;
     if (c.record) c.tags[r].unweighted *= c.T[r];

@@ -30,12 +30,18 @@ namespace lantern {
 
 struct MisPower {
   float beta = 2.f;
+  // Vertex merging (vcm; Georgiev et al. 2012): Mis(eta) and Mis(1 / eta),
+  // eta = pi r^2 n, the merging strategies' density relative to connecting
+  // (n light subpaths merged with, radius r). Zero without merging, which
+  // leaves every other quantity as bdpt has it.
+  float vm_weight = 0.f, vc_weight = 0.f;
   float operator()(float x) const { return beta == 2.f ? x * x : x; }
 };
 
 struct MisState {
   float dVCM = 0.f;
   float dVC = 0.f;
+  float dVM = 0.f;  // vcm only: the merging strategies' sum
 };
 
 // Eye subpath from a camera ray whose direction has (whole-film) solid-angle
@@ -48,7 +54,8 @@ inline MisState mis_camera_start(float pdf_dir_W, MisPower mis) { return {mis(1.
 // (1 for lights at infinity). Delta lights cannot be hit by eye subpaths.
 inline MisState mis_light_start(float direct_pdf_A, float emission_pdf_W, float cos_light, bool delta_light,
                                 MisPower mis) {
-  return {mis(direct_pdf_A / emission_pdf_W), delta_light ? 0.f : mis(cos_light / emission_pdf_W)};
+  const float dVC = delta_light ? 0.f : mis(cos_light / emission_pdf_W);
+  return {mis(direct_pdf_A / emission_pdf_W), dVC, dVC * mis.vc_weight};
 }
 
 // After a ray of squared length dist2 hits a surface at cosine cos_in. The
@@ -58,6 +65,7 @@ inline void mis_after_hit(MisState& m, float dist2, float cos_in, bool apply_dis
   if (apply_dist) m.dVCM *= mis(dist2);
   m.dVCM /= mis(cos_in);
   m.dVC /= mis(cos_in);
+  m.dVM /= mis(cos_in);
 }
 
 // After sampling a direction with density pdf_fwd (pdf_rev: the density of
@@ -66,8 +74,11 @@ inline void mis_after_scatter(MisState& m, float cos_out, float pdf_fwd, float p
   if (specular) {
     m.dVCM = 0.f;
     m.dVC *= mis(cos_out);  // pdf_fwd == pdf_rev for every delta lobe here
+    m.dVM *= mis(cos_out);
   } else {
-    m.dVC = mis(cos_out / pdf_fwd) * (m.dVC * mis(pdf_rev) + m.dVCM);
+    const float f = mis(cos_out / pdf_fwd);
+    m.dVM = f * (m.dVM * mis(pdf_rev) + m.dVCM * mis.vc_weight + 1.f);
+    m.dVC = f * (m.dVC * mis(pdf_rev) + m.dVCM + mis.vm_weight);
     m.dVCM = mis(1.f / pdf_fwd);
   }
 }
@@ -95,7 +106,7 @@ inline float mis_weight_hit_light_direct(const MisState& eye, float emission_pos
 inline float mis_weight_next_event(const MisState& eye, float light_pdf_W, float bsdf_pdf_W, float emission_fwd_A,
                                    float direct_pdf_A, float eye_rev_W, MisPower mis) {
   float w_light = light_pdf_W > 0.f ? mis(bsdf_pdf_W / light_pdf_W) : 0.f;
-  float w_eye = mis(emission_fwd_A / direct_pdf_A) * (eye.dVCM + eye.dVC * mis(eye_rev_W));
+  float w_eye = mis(emission_fwd_A / direct_pdf_A) * (mis.vm_weight + eye.dVCM + eye.dVC * mis(eye_rev_W));
   return 1.f / (w_light + 1.f + w_eye);
 }
 
@@ -105,15 +116,26 @@ inline float mis_weight_next_event(const MisState& eye, float light_pdf_W, float
 // the connection back to its own subpath's previous vertex.
 inline float mis_weight_connect(const MisState& eye, const MisState& light, float eye_fwd_A, float eye_rev_W,
                                 float light_fwd_A, float light_rev_W, MisPower mis) {
-  float w_light = mis(eye_fwd_A) * (light.dVCM + light.dVC * mis(light_rev_W));
-  float w_eye = mis(light_fwd_A) * (eye.dVCM + eye.dVC * mis(eye_rev_W));
+  float w_light = mis(eye_fwd_A) * (mis.vm_weight + light.dVCM + light.dVC * mis(light_rev_W));
+  float w_eye = mis(light_fwd_A) * (mis.vm_weight + eye.dVCM + eye.dVC * mis(eye_rev_W));
   return 1.f / (w_light + 1.f + w_eye);
 }
 
 // t = 1: a light vertex connected to the camera. camera_pdf_A: the camera's
 // direction density towards it, per area there.
 inline float mis_weight_light_trace(const MisState& light, float camera_pdf_A, float light_rev_W, MisPower mis) {
-  return 1.f / (1.f + mis(camera_pdf_A) * (light.dVCM + light.dVC * mis(light_rev_W)));
+  return 1.f / (1.f + mis(camera_pdf_A) * (mis.vm_weight + light.dVCM + light.dVC * mis(light_rev_W)));
+}
+
+// Merging an eye vertex with a light vertex within the radius (vcm):
+// eye_fwd_W is the eye vertex's density of sampling the direction the
+// light arrived from, eye_rev_W the density of the reverse (from there
+// back towards the eye subpath's previous vertex). The eye vertex's and
+// the light vertex's quantities are those at arrival.
+inline float mis_weight_merge(const MisState& eye, const MisState& light, float eye_fwd_W, float eye_rev_W, MisPower mis) {
+  const float w_light = light.dVCM * mis.vc_weight + light.dVM * mis(eye_fwd_W);
+  const float w_eye = eye.dVCM * mis.vc_weight + eye.dVM * mis(eye_rev_W);
+  return 1.f / (w_light + 1.f + w_eye);
 }
 
 // s = 1, t = 1: the light's own vertex connected to the camera; the other

@@ -10,6 +10,7 @@
 #include "film/film.h"
 #include "integrator/bdpt_mis.h"
 #include "integrator/hit.h"
+#include "integrator/vertex_grid.h"
 #include "integrator/wave_stats.h"
 #include "light/emission.h"
 #include "material/material.h"
@@ -207,6 +208,11 @@ struct BdptWave {
   std::vector<uint32_t> volume_slots;
   std::vector<Vec3> volume_points;
   std::vector<MediumHandle> volume_media;
+  // The MIS exponent and, for vcm, this wave's merging factors; the
+  // merging radius, 1 / (pi r^2 n), and the grid over the light vertices.
+  MisPower mis;
+  float vm_radius = 0.f, vm_normalization = 0.f;
+  VertexGrid grid;
   RayStream stream;
   WaveOutput* out = nullptr;  // of the wave being traced
   WaveStats stats;
@@ -232,7 +238,7 @@ struct BdptWave {
     b += vector_bytes(shadow.medium) + vector_bytes(shadow.T) + vector_bytes(shadow.T_mis) + vector_bytes(shadow.deferred) + vector_bytes(ray_medium) +
          vector_bytes(u_distance) + ends.memory_bytes() + vector_bytes(scattered) + crossing.memory_bytes() +
          vector_bytes(shadow.expect) + vector_bytes(o.extra_depth) + vector_bytes(volume_starts) + vector_bytes(volume_slots) +
-         vector_bytes(volume_points) + vector_bytes(volume_media);
+         vector_bytes(volume_points) + vector_bytes(volume_media) + grid.memory_bytes();
     return b;
   }
 };

@@ -92,6 +92,7 @@ void gather_stats(States& states, double film_seconds, RenderStats& st) {
   st.light_vertices = total.light_vertices;
   st.light_samples = total.light_samples;
   st.light_samples_unoccluded = total.light_samples_unoccluded;
+  st.merges = total.merges;
   for (int e = 0; e < kPathEndCount; ++e) {
     st.eye_ends.emplace_back(path_end_name(PathEnd(e)), total.eye_ends[size_t(e)]);
     st.light_ends.emplace_back(path_end_name(PathEnd(e)), total.light_ends[size_t(e)]);
@@ -155,6 +156,7 @@ std::string sequence_fingerprint(const RenderOptions& o, int width, int height) 
   line("scene", o.checkpoint_key);
   line("integrator", o.integrator);
   if (o.integrator != "path") line("mis", o.mis);
+  if (o.integrator == "vcm") line("vcm", std::to_string(o.vcm_radius) + " " + std::to_string(o.vcm_alpha));
   line("maxdepth", std::to_string(o.maxdepth));
   line("seed", std::to_string(o.seed));
   line("light-sampler", o.light_sampler);
@@ -391,9 +393,14 @@ CheckpointInfo start_checkpointing(const RenderOptions& opt, const std::string& 
 }  // namespace
 
 RenderResult render(const Scene& scene, const RenderOptions& opt) {
-  const bool bidirectional = opt.integrator == "bdpt" || opt.integrator == "lt";
+  const bool bidirectional = opt.integrator == "bdpt" || opt.integrator == "lt" || opt.integrator == "vcm";
   if (opt.integrator != "path" && !bidirectional)
-    throw std::invalid_argument("unknown integrator \"" + opt.integrator + "\"; available: path, bdpt, lt");
+    throw std::invalid_argument("unknown integrator \"" + opt.integrator + "\"; available: path, bdpt, lt, vcm");
+  if (opt.integrator == "vcm" && !scene.media.empty())
+    throw std::invalid_argument("vcm does not render participating media yet; use bdpt or path for this scene");
+  if (opt.integrator == "vcm" && (!(opt.vcm_radius >= 0.f) || !std::isfinite(opt.vcm_radius) ||
+                                  !(opt.vcm_alpha > 0.f && opt.vcm_alpha <= 1.f)))
+    throw std::invalid_argument("vcm needs a radius >= 0 (0: automatic) and an alpha in (0, 1]");
   if (opt.mis != "power" && opt.mis != "balance")
     throw std::invalid_argument("unknown MIS heuristic \"" + opt.mis + "\"; available: power, balance");
   if (opt.spp <= 0 && opt.time_limit_seconds <= 0) throw std::invalid_argument("--spp must be positive");
@@ -455,6 +462,10 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
       bs.height = height;
       bs.mis_beta = opt.mis == "balance" ? 1.f : 2.f;
       bs.light_tracing_only = opt.integrator == "lt";
+      bs.merging = opt.integrator == "vcm";
+      bs.vcm_alpha = opt.vcm_alpha;
+      bs.vcm_radius = opt.vcm_radius > 0.f ? opt.vcm_radius : 0.01f * scene.lights.scene_radius;
+      res.stats.vcm_radius = bs.merging ? bs.vcm_radius : 0.f;
       bs.unit_weights = opt.debug_unit_mis_weights;
       bs.record_strategies = opt.strategies;
       bs.footprint_spp = scene.settings.spp;

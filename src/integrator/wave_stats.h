@@ -44,8 +44,10 @@ struct WaveStats {
   // Next-event estimation (the path tracer's, bdpt's s = 1): lights sampled,
   // and those whose sample was non-zero and unoccluded.
   uint64_t light_samples = 0, light_samples_unoccluded = 0;
+  uint64_t merges = 0;  // vcm: light vertices merged
 
   void operator+=(const WaveStats& o) {
+    merges += o.merges;
     for (int i = 0; i < kStageCount; ++i) seconds[size_t(i)] += o.seconds[size_t(i)];
     eye_vertices += o.eye_vertices;
     light_vertices += o.light_vertices;
