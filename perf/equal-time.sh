@@ -1,8 +1,10 @@
 #!/bin/sh
-# Equal-time error of path vs bdpt on the shipped scenes: each integrator
-# renders for the same wall time at the reference's resolution, and
-# `lantern compare` measures relMSE against perf/references/<scene>.exr
-# (made by perf/make-references.sh). Prints a Markdown table.
+# Equal-time error of path, bdpt and vcm on the shipped scenes: each
+# integrator renders for the same wall time at the reference's resolution,
+# and `lantern compare` measures relMSE against perf/references/<scene>.exr
+# (made by perf/make-references.sh). Prints a Markdown table; the last
+# column is each integrator's relMSE over bdpt's. vcm is left out of
+# scenes with media, which it does not render.
 # Usage: perf/equal-time.sh [seconds] [scenes...]   (from the repository root)
 set -eu
 secs=${1:-20}
@@ -11,13 +13,14 @@ scenes=${*:-"cornell-box lantern door-ajar"}
 lantern=${LANTERN:-build/lantern}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-echo "| scene | integrator | time (s) | Msamples/s | Mrays/s | relMSE | relMSE path / bdpt |"
+echo "| scene | integrator | time (s) | Msamples/s | Mrays/s | relMSE | relMSE / bdpt's |"
 echo "|---|---|---|---|---|---|---|"
 for s in $scenes; do
   ref="perf/references/$s.exr"
   res="240 180"; case "$s" in cornell-box*) res="256 256" ;; esac
-  path_err=""
-  for i in path bdpt; do
+  integrators="bdpt path vcm"; case "$s" in volumetric-caustic) integrators="bdpt path" ;; esac
+  bdpt_err=""
+  for i in $integrators; do
     "$lantern" render "scenes/$s.pbrt" --integrator "$i" --time "$secs" --seed 7 --resolution $res \
       -o "$tmp/$s-$i.exr" 2> "$tmp/log"
     summary=$(tail -n 1 "$tmp/log")
@@ -25,7 +28,7 @@ for s in $scenes; do
     rps=$(echo "$summary" | sed -n 's/.* \([0-9.]*\) Mrays\/s.*/\1/p')
     err=$("$lantern" compare "$tmp/$s-$i.exr" "$ref" | sed -n 's/^relmse //p')
     ratio=""
-    if [ "$i" = path ]; then path_err=$err; else ratio=$(awk "BEGIN { printf \"%.1f\", $path_err / $err }"); fi
+    if [ "$i" = bdpt ]; then bdpt_err=$err; else ratio=$(awk "BEGIN { printf \"%.3g\", $err / $bdpt_err }"); fi
     echo "| $s | $i | $secs | $sps | $rps | $err | $ratio |"
   done
 done

@@ -53,7 +53,7 @@ struct RenderArgs {
   float vcm_radius = 0.f, vcm_alpha = 0.75f;
   std::string texture_dir, sampler, light_sampler, trace, part;
   uint64_t trace_waves = 1000;
-  int spp = 0, maxdepth = -1, threads = 0, wave_size = 0;  // 0: 4096, or 65536 for vcm (docs/vcm.md)
+  int spp = 0, maxdepth = -1, threads = 0, wave_size = 0;  // 0: 4096, or 16384 for vcm (docs/vcm.md)
   double time = 0.0, checkpoint = 0.0, texture_cache_mb = 1024.0;
   uint64_t seed = 0;
   bool resume = false;
@@ -236,7 +236,7 @@ int run_render(const RenderArgs& a) {
     o.height = a.resolution[1];
   }
   o.ray_backend = a.rays;
-  o.wave_size = a.wave_size > 0 ? a.wave_size : o.integrator == "vcm" ? 65536 : 4096;
+  o.wave_size = a.wave_size > 0 ? a.wave_size : o.integrator == "vcm" ? 16384 : 4096;
   o.cancel = &g_cancel;
   std::string out = a.output.empty() ? ss.output : a.output;
   if (!a.part.empty()) {
@@ -472,7 +472,7 @@ int main(int argc, char** argv) {
   render->add_option("--resolution", a.resolution, "Image size W H (default: the scene's Film)")->expected(2)->check(lantern::cli::integer_in(1, 65536, "an integer from 1 to 65536"));
   render->add_option("--rays", a.rays, "Ray query back end: stream (Embree Np streams), stream-1m, single, packet16")
       ->check(CLI::IsMember({"stream", "stream-1m", "single", "packet16"}));
-  render->add_option("--wave-size", a.wave_size, "Paths per wave (default 4096; 65536 for vcm, whose eye vertices merge with the light vertices of their wave)")->check(lantern::cli::integer_in(1, 1 << 22, "an integer from 1 to 4194304"));
+  render->add_option("--wave-size", a.wave_size, "Paths per wave (default 4096; 16384 for vcm, whose eye vertices merge with the light vertices of their wave)")->check(lantern::cli::integer_in(1, 1 << 22, "an integer from 1 to 4194304"));
   render->add_option("--checkpoint", a.checkpoint,
                      "Write the render's state every SECONDS (and on Ctrl-C/SIGTERM) to OUTPUT.ckpt")
       ->check(lantern::cli::positive_seconds());

@@ -464,7 +464,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
       bs.light_tracing_only = opt.integrator == "lt";
       bs.merging = opt.integrator == "vcm";
       bs.vcm_alpha = opt.vcm_alpha;
-      bs.vcm_radius = opt.vcm_radius > 0.f ? opt.vcm_radius : 0.01f * scene.lights.scene_radius;
+      bs.vcm_radius = opt.vcm_radius > 0.f ? opt.vcm_radius : 0.02f * scene.lights.scene_radius;
       res.stats.vcm_radius = bs.merging ? bs.vcm_radius : 0.f;
       bs.unit_weights = opt.debug_unit_mis_weights;
       bs.record_strategies = opt.strategies;
