@@ -17,7 +17,7 @@ echo "| scene | integrator | time (s) | Msamples/s | Mrays/s | relMSE | relMSE /
 echo "|---|---|---|---|---|---|---|"
 for s in $scenes; do
   ref="perf/references/$s.exr"
-  res="240 180"; case "$s" in cornell-box*) res="256 256" ;; esac
+  res="240 180"; case "$s" in cornell-box*) res="256 256" ;; lamp-street) res="240 135" ;; esac
   integrators="bdpt path vcm"; case "$s" in volumetric-caustic) integrators="bdpt path" ;; esac
   bdpt_err=""
   for i in $integrators; do

@@ -26,8 +26,8 @@ struct RenderProgress {
 
 struct RenderOptions {
   std::string integrator = "path";  // path, bdpt, lt (light tracing) or vcm (vertex connection and merging)
-  // vcm: the merging radius of the first sample pass (0: 0.02 of the
-  // scene's bounding radius; docs/vcm.md), and
+  // vcm, ppm: the merging radius of the first sample pass (0: 0.003 of
+  // the scene's bounding radius; docs/vcm.md), and
   // alpha, by which the radius of pass i is radius * i^((alpha - 1) / 2).
   float vcm_radius = 0.f;
   float vcm_alpha = 0.75f;

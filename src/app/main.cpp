@@ -236,7 +236,7 @@ int run_render(const RenderArgs& a) {
     o.height = a.resolution[1];
   }
   o.ray_backend = a.rays;
-  o.wave_size = a.wave_size > 0 ? a.wave_size : o.integrator == "vcm" ? 16384 : 4096;
+  o.wave_size = a.wave_size > 0 ? a.wave_size : o.integrator == "vcm" || o.integrator == "ppm" ? 16384 : 4096;
   o.cancel = &g_cancel;
   std::string out = a.output.empty() ? ss.output : a.output;
   if (!a.part.empty()) {
@@ -442,13 +442,13 @@ int main(int argc, char** argv) {
   auto* spp = render->add_option("--spp", a.spp, "Samples per pixel (default: the scene's Sampler pixelsamples)")->check(lantern::cli::positive_integer());
   render->add_option("--time", a.time, "Render for this many seconds instead of a sample count")->check(lantern::cli::positive_seconds())->excludes(spp);
   render->add_option("--integrator", a.integrator,
-                     "Integrator: path, bdpt, lt (light tracing) or vcm (vertex connection and merging); default: the "
-                     "scene's Integrator")
-      ->check(CLI::IsMember({"path", "bdpt", "lt", "vcm"}));
+                     "Integrator: path, bdpt, lt (light tracing), vcm (vertex connection and merging) or ppm "
+                     "(progressive photon mapping); default: the scene's Integrator")
+      ->check(CLI::IsMember({"path", "bdpt", "lt", "vcm", "ppm"}));
   render->add_option("--vcm-radius", a.vcm_radius,
-                     "vcm: the merging radius of the first pass (default 0.003 of the scene's bounding radius)")
+                     "vcm, ppm: the merging radius of the first pass (default 0.003 of the scene's bounding radius)")
       ->check(CLI::PositiveNumber);
-  render->add_option("--vcm-alpha", a.vcm_alpha, "vcm: the radius of pass i is radius * i^((alpha - 1) / 2); default 0.75")
+  render->add_option("--vcm-alpha", a.vcm_alpha, "vcm, ppm: the radius of pass i is radius * i^((alpha - 1) / 2); default 0.75")
       ->check(CLI::Range(0.01, 1.0));
   render->add_option("--mis", a.mis, "bdpt's MIS heuristic: power or balance")
       ->check(CLI::IsMember({"power", "balance"}));

@@ -182,11 +182,15 @@ void Bdpt::merge_at_eye_vertex(BdptWave& w, uint32_t i, const BSDF& bsdf, const 
   RGB sum(0.f);
   w.grid.query(v.p, h.p[i], [&](uint32_t j) {
     if (v.depth[j] + depth > maxdepth + 1) return;
+    // Only light vertices on a surface facing the same way: a thin wall's
+    // other face lies within the radius but not on this surface.
+    if (!(glm::dot(v.ng[j], h.ng[i]) > 0.f)) return;
     const Vec3 wi = frame.to_local(v.wo[j]);  // where the light came from
     const RGB f = bsdf.f(wo, wi, TransportMode::Radiance);
     if (is_black(f)) return;
-    const float wt = mis_weight_merge(m, v.mis[j], bsdf.pdf(wo, wi, TransportMode::Radiance),
-                                      bsdf.pdf(wi, wo, TransportMode::Importance), w.mis);
+    const float wt = settings_.photon_mapping ? 1.f  // the only strategy
+                                              : mis_weight_merge(m, v.mis[j], bsdf.pdf(wo, wi, TransportMode::Radiance),
+                                                                 bsdf.pdf(wi, wo, TransportMode::Importance), w.mis);
     sum += f * v.beta[j] * weight(wt);
     ++w.stats.merges;
   });
@@ -225,6 +229,10 @@ void Bdpt::eye_connect_stage(BdptWave& w) const {
     const Vec3 wo = frame.to_local(h.wo[i]);
     const RGB& beta = w.eye.beta[slot];
     const MisState& m = w.eye.mis[slot];
+    if (settings_.photon_mapping) {  // ppm: merging is all there is
+      merge_at_eye_vertex(w, i, bsdf, frame, wo);
+      return;
+    }
     {
       ++w.stats.light_samples;
       auto ls = sample_light(sc.lights, sc.shapes, sc.textures, light_sampler_, h.p[i], h.ns[i], u_light, u_light2,
@@ -313,6 +321,10 @@ void Bdpt::eye_scatter_stage(BdptWave& w) const {
     float uc = s.get1d(dims::vertex(depth) + dims::kEyeBsdfComponent);
     Vec2 u2 = s.get2d(dims::vertex(depth) + dims::kEyeBsdfDirection);
     float u_rr = s.get1d(dims::vertex(depth) + dims::kEyeRoulette);
+    if (settings_.photon_mapping && !bsdf.is_specular()) {  // ppm: merged there, and ends
+      ++w.stats.eye_ends[size_t(PathEnd::MaxDepth)];
+      return;
+    }
     const Frame frame = Frame::from_z(w.hits.ns[i]);
     PathEnd end =
         continue_subpath(bsdf, TransportMode::Radiance, w.hits, i, frame, frame.to_local(w.hits.wo[i]), uc, u2, u_rr,

@@ -39,6 +39,10 @@ struct BdptSettings {
   // is radius * i^((alpha - 1) / 2).
   bool merging = false;
   float vcm_radius = 0.f, vcm_alpha = 0.75f;
+  // Progressive photon mapping (the `ppm` integrator, with merging): no
+  // connections; eye subpaths go through specular vertices only and
+  // merge, unweighted, at the first other one.
+  bool photon_mapping = false;
   bool unit_weights = false;        // every strategy weighted 1: deliberately wrong, for tests only
   bool record_strategies = false;   // per-(s, t) contributions into WaveOutput::strategies
   // The samples per pixel the texture filter footprint is scaled for: the
@@ -123,7 +127,8 @@ class Bdpt {
   void complete_volume_light_sample(LightSample& ls, uint32_t depth, VolumeSampleEnd* end) const;
   float direct_density(const LightSample& ls, float dist2) const;
 
-  float weight(float w) const { return settings_.unit_weights ? 1.f : w; }
+  // (ppm has one strategy per path: every weight is 1)
+  float weight(float w) const { return settings_.unit_weights || settings_.photon_mapping ? 1.f : w; }
 
   // Whether light from `light` (index into LightPools::all) reaches p along -w_to_light: false
   // only for a portal light whose window does not let it through.

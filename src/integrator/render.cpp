@@ -156,7 +156,7 @@ std::string sequence_fingerprint(const RenderOptions& o, int width, int height) 
   line("scene", o.checkpoint_key);
   line("integrator", o.integrator);
   if (o.integrator != "path") line("mis", o.mis);
-  if (o.integrator == "vcm") line("vcm", std::to_string(o.vcm_radius) + " " + std::to_string(o.vcm_alpha));
+  if (o.integrator == "vcm" || o.integrator == "ppm") line("vcm", std::to_string(o.vcm_radius) + " " + std::to_string(o.vcm_alpha));
   line("maxdepth", std::to_string(o.maxdepth));
   line("seed", std::to_string(o.seed));
   line("light-sampler", o.light_sampler);
@@ -393,14 +393,14 @@ CheckpointInfo start_checkpointing(const RenderOptions& opt, const std::string& 
 }  // namespace
 
 RenderResult render(const Scene& scene, const RenderOptions& opt) {
-  const bool bidirectional = opt.integrator == "bdpt" || opt.integrator == "lt" || opt.integrator == "vcm";
+  const bool merging = opt.integrator == "vcm" || opt.integrator == "ppm";
+  const bool bidirectional = opt.integrator == "bdpt" || opt.integrator == "lt" || merging;
   if (opt.integrator != "path" && !bidirectional)
-    throw std::invalid_argument("unknown integrator \"" + opt.integrator + "\"; available: path, bdpt, lt, vcm");
-  if (opt.integrator == "vcm" && !scene.media.empty())
-    throw std::invalid_argument("vcm does not render participating media yet; use bdpt or path for this scene");
-  if (opt.integrator == "vcm" && (!(opt.vcm_radius >= 0.f) || !std::isfinite(opt.vcm_radius) ||
-                                  !(opt.vcm_alpha > 0.f && opt.vcm_alpha <= 1.f)))
-    throw std::invalid_argument("vcm needs a radius >= 0 (0: automatic) and an alpha in (0, 1]");
+    throw std::invalid_argument("unknown integrator \"" + opt.integrator + "\"; available: path, bdpt, lt, vcm, ppm");
+  if (merging && !scene.media.empty())
+    throw std::invalid_argument(opt.integrator + " does not render participating media yet; use bdpt or path for this scene");
+  if (merging && (!(opt.vcm_radius >= 0.f) || !std::isfinite(opt.vcm_radius) || !(opt.vcm_alpha > 0.f && opt.vcm_alpha <= 1.f)))
+    throw std::invalid_argument(opt.integrator + " needs a radius >= 0 (0: automatic) and an alpha in (0, 1]");
   if (opt.mis != "power" && opt.mis != "balance")
     throw std::invalid_argument("unknown MIS heuristic \"" + opt.mis + "\"; available: power, balance");
   if (opt.spp <= 0 && opt.time_limit_seconds <= 0) throw std::invalid_argument("--spp must be positive");
@@ -462,9 +462,10 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
       bs.height = height;
       bs.mis_beta = opt.mis == "balance" ? 1.f : 2.f;
       bs.light_tracing_only = opt.integrator == "lt";
-      bs.merging = opt.integrator == "vcm";
+      bs.merging = merging;
+      bs.photon_mapping = opt.integrator == "ppm";
       bs.vcm_alpha = opt.vcm_alpha;
-      bs.vcm_radius = opt.vcm_radius > 0.f ? opt.vcm_radius : 0.02f * scene.lights.scene_radius;
+      bs.vcm_radius = opt.vcm_radius > 0.f ? opt.vcm_radius : 0.003f * scene.lights.scene_radius;
       res.stats.vcm_radius = bs.merging ? bs.vcm_radius : 0.f;
       bs.unit_weights = opt.debug_unit_mis_weights;
       bs.record_strategies = opt.strategies;
