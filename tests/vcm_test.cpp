@@ -15,6 +15,17 @@
 namespace lantern {
 namespace {
 
+// b's region means within 4.5 standard errors of the difference plus
+// `allowance` (relative) of a's.
+void expect_means_agree(const RegionStats& a, const RegionStats& b, double allowance, const char* what) {
+  for (size_t g = 0; g < a.mean.size(); ++g)
+    for (size_t c = 0; c < 3; ++c) {
+      const double se = std::hypot(a.std_error[g][c], b.std_error[g][c]);
+      EXPECT_LT(std::fabs(b.mean[g][c] - a.mean[g][c]), 4.5 * se + allowance * a.mean[g][c])
+          << what << ", region " << g << " channel " << c << ": " << b.mean[g][c] << " against bdpt's " << a.mean[g][c];
+    }
+}
+
 // Merging is biased by its radius (it blurs the light over a disk), which
 // shrinks as samples grow; at the default radius on the Cornell box the
 // blur is far below the noise: vcm's region means match bdpt's within
@@ -24,13 +35,7 @@ TEST(Vcm, AgreesWithBdptOnTheCornellBox) {
   const auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
   const std::vector<Region> regions = {{0, 0, 32, 32}, {8, 20, 16, 10}, {2, 8, 8, 16}, {22, 8, 8, 16}};
   const RegionStats bdpt = render_stats(*scene, "bdpt", 32, 32, 16, 8, regions);
-  const RegionStats vcm = render_stats(*scene, "vcm", 32, 32, 16, 8, regions);
-  for (size_t g = 0; g < regions.size(); ++g)
-    for (size_t c = 0; c < 3; ++c) {
-      const double se = std::hypot(bdpt.std_error[g][c], vcm.std_error[g][c]);
-      EXPECT_LT(std::fabs(vcm.mean[g][c] - bdpt.mean[g][c]), 4.5 * se + 0.01 * bdpt.mean[g][c])
-          << "region " << g << " channel " << c << ": vcm " << vcm.mean[g][c] << ", bdpt " << bdpt.mean[g][c];
-    }
+  expect_means_agree(bdpt, render_stats(*scene, "vcm", 32, 32, 16, 8, regions), 0.01, "vcm");
 }
 
 // Progressive photon mapping on the same light vertices: only merges
@@ -48,13 +53,7 @@ TEST(Vcm, PhotonMappingAgreesWithBdptOnTheCornellBox) {
   o.maxdepth = 6;
   o.width = o.height = 32;
   o.vcm_radius = 10.f;
-  const RegionStats ppm = stats_of(render_runs(*scene, o, 8, 1000), regions);
-  for (size_t g = 0; g < regions.size(); ++g)
-    for (size_t c = 0; c < 3; ++c) {
-      const double se = std::hypot(bdpt.std_error[g][c], ppm.std_error[g][c]);
-      EXPECT_LT(std::fabs(ppm.mean[g][c] - bdpt.mean[g][c]), 4.5 * se + 0.03 * bdpt.mean[g][c])
-          << "region " << g << " channel " << c << ": ppm " << ppm.mean[g][c] << ", bdpt " << bdpt.mean[g][c];
-    }
+  expect_means_agree(bdpt, stats_of(render_runs(*scene, o, 8, 1000), regions), 0.03, "ppm");
 }
 
 TEST(Vcm, ThreadCountsGiveTheSameBits) {
