@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <string>
 
 #include "lantern/render.h"
@@ -30,12 +31,34 @@ void expect_means_agree(const RegionStats& a, const RegionStats& b, double allow
 // shrinks as samples grow; at the default radius on the Cornell box the
 // blur is far below the noise: vcm's region means match bdpt's within
 // 4.5 standard errors plus 1%.
-TEST(Vcm, AgreesWithBdptOnTheCornellBox) {
+TEST(Vcm, AgreesWithBdptOnTheCornellBoxes) {
   if (LANTERN_ASAN) GTEST_SKIP() << "the Release suite runs it";
-  const auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
-  const std::vector<Region> regions = {{0, 0, 32, 32}, {8, 20, 16, 10}, {2, 8, 8, 16}, {22, 8, 8, 16}};
-  const RegionStats bdpt = render_stats(*scene, "bdpt", 32, 32, 16, 8, regions);
-  expect_means_agree(bdpt, render_stats(*scene, "vcm", 32, 32, 16, 8, regions), 0.01, "vcm");
+  for (const char* name : {"cornell-box", "cornell-box-tiny-light"}) {
+    const auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/" + name + ".pbrt");
+    const std::vector<Region> regions = {{0, 0, 32, 32}, {8, 20, 16, 10}, {2, 8, 8, 16}, {22, 8, 8, 16}};
+    const RegionStats bdpt = render_stats(*scene, "bdpt", 32, 32, 16, 8, regions);
+    expect_means_agree(bdpt, render_stats(*scene, "vcm", 32, 32, 16, 8, regions), 0.01, name);
+  }
+}
+
+// With a radius so small that eta = pi r^2 n underflows, Mis(eta) is 0:
+// every connection is weighted exactly as bdpt weighs it, and no merge
+// happens (or weighs anything). The image is bdpt's, bit for bit.
+TEST(Vcm, VanishingRadiusIsBdptBitForBit) {
+  const auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/caustics.pbrt");
+  RenderOptions o;
+  o.width = 40;
+  o.height = 30;
+  o.spp = 4;
+  o.integrator = "bdpt";
+  const Image bdpt = render(*scene, o).image;
+  o.integrator = "vcm";
+  o.vcm_radius = 1e-20f;
+  const RenderResult vcm = render(*scene, o);
+  EXPECT_EQ(vcm.stats.merges, 0u);
+  ASSERT_EQ(bdpt.rgb.size(), vcm.image.rgb.size());
+  EXPECT_EQ(std::memcmp(bdpt.rgb.data(), vcm.image.rgb.data(), bdpt.rgb.size() * sizeof(float)), 0)
+      << "vcm without merging differs from bdpt";
 }
 
 // Progressive photon mapping on the same light vertices: only merges
