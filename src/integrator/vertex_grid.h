@@ -5,6 +5,8 @@
 // runs of indices.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -21,7 +23,7 @@ class VertexGrid {
   void query(const std::vector<Vec3>& p, const Vec3& x, F&& f) const {
     if (start_.empty()) return;
     const Vec3 g = (x - lo_) * inv_cell_ - 0.5f;  // the lower of the two cells per axis
-    const int cx = int(std::floor(g.x)), cy = int(std::floor(g.y)), cz = int(std::floor(g.z));
+    const int cx = cell_of(g.x), cy = cell_of(g.y), cz = cell_of(g.z);
     uint32_t seen[8];
     int visited = 0;
     for (int c = 0; c < 8; ++c) {
@@ -43,9 +45,17 @@ class VertexGrid {
   uint32_t hash(int x, int y, int z) const {
     return (uint32_t(x) * 73856093u ^ uint32_t(y) * 19349663u ^ uint32_t(z) * 83492791u) & mask_;
   }
+  // A cell coordinate, clamped so that a tiny radius (huge coordinates)
+  // stays in range: clamped points share a cell, and the distance test
+  // still decides.
+  static int cell_of(float g) {
+    if (!(g > -1073741824.f)) return -1073741824;  // NaN too
+    if (!(g < 1073741824.f)) return 1073741824;
+    return int(std::floor(g));
+  }
   uint32_t cell_hash(const Vec3& p) const {
     const Vec3 g = (p - lo_) * inv_cell_;
-    return hash(int(std::floor(g.x)), int(std::floor(g.y)), int(std::floor(g.z)));
+    return hash(cell_of(g.x), cell_of(g.y), cell_of(g.z));
   }
   Vec3 lo_{0.f};
   float inv_cell_ = 1.f, r2_ = 0.f;
