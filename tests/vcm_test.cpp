@@ -90,18 +90,21 @@ TEST(Vcm, ThreadCountsGiveTheSameBits) {
   expect_thread_invariant(*scene, o, {"vcm", "ppm"});
 }
 
-// Merges do happen on the pool's floor (an SDS path), and the stats say so.
+// Merges do happen on the pool's floor (an SDS path), and the stats say
+// so, with the radius of the last pass: 40 samples run as passes of 16,
+// the last starting at sample 32, so r = 0.1 * 33^((0.75 - 1) / 2).
 TEST(Vcm, MergesOnThePoolFloor) {
   const auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/pool.pbrt");
   RenderOptions o;
   o.integrator = "vcm";
   o.width = 32;
   o.height = 24;
-  o.spp = 4;
+  o.spp = 40;
   o.vcm_radius = 0.1f;
   const RenderResult r = render(*scene, o);
   EXPECT_GT(r.stats.merges, 0u);
   EXPECT_FLOAT_EQ(r.stats.vcm_radius, 0.1f);
+  EXPECT_NEAR(r.stats.vcm_last_radius, 0.1 * std::pow(33.0, -0.125), 1e-6);
   EXPECT_EQ(r.stats.nonfinite_samples, 0u);
 }
 

@@ -109,6 +109,9 @@ struct RenderStats {
   uint64_t light_samples = 0, light_samples_unoccluded = 0;
   uint64_t merges = 0;        // vcm: light vertices merged with eye vertices
   float vcm_radius = 0.f;     // vcm: the first pass's merging radius
+  float vcm_last_radius = 0.f;  // vcm: the merging radius of the last pass traced
+  uint32_t vcm_last_first_sample = 0;  // vcm: the first sample index of that pass
+  double vcm_grid_seconds = 0.0;  // vcm, with stats: thread-seconds building the merging grids
   std::vector<std::pair<std::string, uint64_t>> eye_ends, light_ends;
   size_t wave_pool_bytes = 0;  // structure-of-arrays pools of all threads
   int threads = 0;

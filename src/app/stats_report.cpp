@@ -88,7 +88,9 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
   if (s.vcm_radius > 0.f)
     j["vcm"] = {{"merges", s.merges},
                 {"merges_per_eye_vertex", s.eye_vertices ? double(s.merges) / double(s.eye_vertices) : 0.0},
-                {"first_radius", s.vcm_radius}};
+                {"first_radius", s.vcm_radius},
+                {"last_radius", s.vcm_last_radius},
+                {"grid_build_seconds", s.vcm_grid_seconds}};
   j["memory"] = {{"peak_rss_bytes", peak_rss_bytes()},
                  {"wave_pools_bytes", s.wave_pool_bytes},
                  {"bvh_bytes", run.scene_info.bvh_bytes},

@@ -399,7 +399,12 @@ void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
   if (!settings_.light_tracing_only) {
     timed(Stage::Generate, [&] {
       group_light_vertices(w);
-      if (settings_.merging) w.grid.build(w.vertices.p, w.vm_radius);
+      if (settings_.merging) {
+        const auto t0 = w.stats.timing ? TraceClock::now() : TraceClock::time_point();
+        w.grid.build(w.vertices.p, w.vm_radius);
+        if (w.stats.timing) w.stats.grid_seconds += std::chrono::duration<double>(TraceClock::now() - t0).count();
+        w.stats.last_pass = std::max(w.stats.last_pass, wave.first_sample);
+      }
       start_eye_subpaths(wave, w);
     });
     for (w.depth = 1; w.rays.count > 0; ++w.depth) {

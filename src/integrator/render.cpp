@@ -93,6 +93,8 @@ void gather_stats(States& states, double film_seconds, RenderStats& st) {
   st.light_samples = total.light_samples;
   st.light_samples_unoccluded = total.light_samples_unoccluded;
   st.merges = total.merges;
+  st.vcm_grid_seconds = total.grid_seconds;
+  st.vcm_last_first_sample = total.last_pass;
   for (int e = 0; e < kPathEndCount; ++e) {
     st.eye_ends.emplace_back(path_end_name(PathEnd(e)), total.eye_ends[size_t(e)]);
     st.light_ends.emplace_back(path_end_name(PathEnd(e)), total.light_ends[size_t(e)]);
@@ -475,6 +477,9 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
       if (opt.strategies) strategy_film.emplace(width, height, scene.filter);
       stopped = run_passes(Bdpt(scene, light_sampler, bs), scene, opt, backend, counters, film, strategy_film ? &*strategy_film : nullptr,
                  done, res.stats, dump.get(), checkpoints);
+      if (bs.merging)  // the radius of the last pass traced (Bdpt::prepare_merging)
+        res.stats.vcm_last_radius =
+            bs.vcm_radius * std::pow(float(res.stats.vcm_last_first_sample + 1), 0.5f * (bs.vcm_alpha - 1.f));
     } else {
       PathTracerSettings ps;
       ps.maxdepth = opt.maxdepth;

@@ -3,6 +3,7 @@
 // them over threads at the end. With timing off a StageTimer reads no clock.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdint>
@@ -45,9 +46,13 @@ struct WaveStats {
   // and those whose sample was non-zero and unoccluded.
   uint64_t light_samples = 0, light_samples_unoccluded = 0;
   uint64_t merges = 0;  // vcm: light vertices merged
+  double grid_seconds = 0.0;   // vcm, with timing: building the merging grids
+  uint32_t last_pass = 0;      // vcm: the largest first sample index of a wave traced
 
   void operator+=(const WaveStats& o) {
     merges += o.merges;
+    grid_seconds += o.grid_seconds;
+    last_pass = std::max(last_pass, o.last_pass);
     for (int i = 0; i < kStageCount; ++i) seconds[size_t(i)] += o.seconds[size_t(i)];
     eye_vertices += o.eye_vertices;
     light_vertices += o.light_vertices;
