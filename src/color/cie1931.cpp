@@ -91,34 +91,39 @@ RGB reflectance_rgb(const std::function<double(double)>& reflectance) {
   return rgb / rgb_white;
 }
 
+namespace {
+
+// Planck's law: spectral radiance at wavelength l (m) and temperature T (K).
+double planck(double l, double T) {
+  const double c = 299792458.0, h = 6.62606957e-34, kb = 1.3806488e-23;
+  return 2.0 * h * c * c / (std::pow(l, 5) * std::expm1(h * c / (l * kb * T)));
+}
+
+// XYZ of Planck's law times `scale`, summed at 1 nm over the table.
+void planck_xyz(double T, double scale, double xyz[3]) {
+  xyz[0] = xyz[1] = xyz[2] = 0.0;
+  for (int nm = kFirstNm; nm <= kFirstNm + kStepNm * (kEntries - 1); ++nm) {
+    const double radiance = planck(nm * 1e-9, T) * scale;
+    const Vec3 cmf = cie1931_cmf(float(nm));
+    for (int k = 0; k < 3; ++k) xyz[k] += radiance * double(cmf[k]);
+  }
+}
+
+}  // namespace
+
 Vec3 blackbody_xyz(float kelvin) {
   if (!(kelvin > 0.f)) return Vec3(0.f);
-  // Planck's law; the constants' scale cancels in the normalisation.
-  const double c = 299792458.0, h = 6.62606957e-34, kb = 1.3806488e-23;
-  double X = 0.0, Y = 0.0, Z = 0.0;
-  for (int nm = kFirstNm; nm <= kFirstNm + kStepNm * (kEntries - 1); ++nm) {
-    const double l = nm * 1e-9;
-    const double radiance = 2.0 * h * c * c / (std::pow(l, 5) * std::expm1(h * c / (l * kb * double(kelvin))));
-    const Vec3 cmf = cie1931_cmf(float(nm));
-    X += radiance * double(cmf.x);
-    Y += radiance * double(cmf.y);
-    Z += radiance * double(cmf.z);
-  }
-  if (!(Y > 0.0) || !std::isfinite(Y)) return Vec3(0.f);
-  return Vec3(float(X / Y), 1.f, float(Z / Y));
+  double xyz[3];
+  planck_xyz(double(kelvin), 1.0, xyz);  // the constants' scale cancels in the normalisation
+  if (!(xyz[1] > 0.0) || !std::isfinite(xyz[1])) return Vec3(0.f);
+  return Vec3(float(xyz[0] / xyz[1]), 1.f, float(xyz[2] / xyz[1]));
 }
 
 Vec3 blackbody_peak_xyz(float kelvin) {
   if (!(kelvin > 0.f)) return Vec3(0.f);
-  const double c = 299792458.0, h = 6.62606957e-34, kb = 1.3806488e-23, T = double(kelvin);
-  auto planck = [&](double l) { return 2.0 * h * c * c / (std::pow(l, 5) * std::expm1(h * c / (l * kb * T))); };
-  const double peak = planck(2.8977721e-3 / T);  // Wien's displacement law
-  double xyz[3] = {0.0, 0.0, 0.0};
-  for (int nm = kFirstNm; nm <= kFirstNm + kStepNm * (kEntries - 1); ++nm) {
-    const double b = planck(nm * 1e-9) / peak;
-    const Vec3 cmf = cie1931_cmf(float(nm));
-    for (int k = 0; k < 3; ++k) xyz[k] += b * double(cmf[k]);
-  }
+  const double T = double(kelvin);
+  double xyz[3];
+  planck_xyz(T, 1.0 / planck(2.8977721e-3 / T, T), xyz);  // over the peak (Wien's displacement law)
   if (!std::isfinite(xyz[1])) return Vec3(0.f);
   return Vec3(float(xyz[0]), float(xyz[1]), float(xyz[2]));
 }

@@ -60,6 +60,10 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
 // whose medium is known), and their paths have at most maxdepth segments
 // (volume_lights.h), one fewer than the light's own depth count allows.
 void Bdpt::start_volume_subpaths(BdptWave& w) const {
+  if (settings_.maxdepth < 1) {  // such paths would have no segment
+    w.volume_slots.clear();
+    return;
+  }
   std::vector<Vec3>& points = w.volume_points;
   points.clear();
   for (const EmissionSample& es : w.volume_starts) points.push_back(es.p);
@@ -69,7 +73,7 @@ void Bdpt::start_volume_subpaths(BdptWave& w) const {
     MediumHandle m;
     RGB sigma_t;
     complete_volume_sample(scene_, &es.Le, es.p, es.light, &m, &sigma_t);
-    if (w.volume_media[k] != m || is_black(es.Le) || settings_.maxdepth < 1) continue;
+    if (w.volume_media[k] != m || is_black(es.Le)) continue;
     w.origin.extra_depth[w.volume_slots[k]] = 1;
     begin_light_subpath(w, w.volume_slots[k], es, m, sigma_t);
   }

@@ -61,7 +61,6 @@ RandomStream stretch_stream(const Vec3& o, const Vec3& d, float u, uint32_t roun
 void end_segment(SegmentEnds& out, uint32_t i, MediumHandle m, const RGB& depth, const RGB& tracked,
                  const RGB& tracked_depth, const RGB& sigma_a, const RGB& sigma_s, bool scatters, bool by_tracking,
                  const RGB& Le = RGB(0.f)) {
-  const bool sc_emits = !is_black(Le);
   const RGB T = transmittance(depth), sigma_x = sigma_a + sigma_s;
   const RGB T_mis = is_black(tracked_depth) ? T : transmittance(depth + tracked_depth);
   const bool closed_form_scatter = scatters && !by_tracking;
@@ -73,7 +72,7 @@ void end_segment(SegmentEnds& out, uint32_t i, MediumHandle m, const RGB& depth,
   out.medium[i] = m;
   if (scatters) out.sigma_t[i] = sigma_x;
   if (!out.emission.empty())  // tracked media do not emit
-    out.emission[i] = closed_form_scatter && p > 0.f && sc_emits ? tracked * T * sigma_a * Le / p : RGB(0.f);
+    out.emission[i] = closed_form_scatter && p > 0.f ? tracked * T * sigma_a * Le / p : RGB(0.f);
 }
 
 }  // namespace
@@ -260,9 +259,8 @@ void locate_media(const Scene& sc, RayStream& stream, const std::vector<Vec3>& p
         out[i] = glm::dot(sp.ng, d) > 0.f ? mi.inside : mi.outside;
         continue;
       }
-      const uint32_t k = cont.push(offset_ray_origin(sp.p, sp.ng, sp.error_scale, glm::normalize(d)), d, 0.f, 1.f);
-      const Vec3 to = known - cont.origin(k);
-      cont.dir_x[k] = to.x, cont.dir_y[k] = to.y, cont.dir_z[k] = to.z;
+      const Vec3 o = offset_ray_origin(sp.p, sp.ng, sp.error_scale, glm::normalize(d));
+      cont.push(o, known - o, 0.f, 1.f);  // on, through a surface that separates nothing
       s.owner.push_back(i);
     }
     std::swap(s.rays, cont);

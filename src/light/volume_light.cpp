@@ -79,14 +79,14 @@ bool make_volume_light(const MediumPools& media, MediumHandle h, const Vec3& lo,
       v.render_from_unit = m.temperature.block_box(v.res);
       const float a = max_component(m.per_density.sigma_a) * m.Le_scale;
       const std::vector<float>& hottest = m.temperature.block_maxima();  // largest |sample| per block
-      const bool uniform = m.temperature_scale < 0.f || std::any_of(hottest.begin(), hottest.end(), [](float t) { return std::isinf(t); });
+      const bool uniform = m.heat.scale < 0.f || std::any_of(hottest.begin(), hottest.end(), [](float t) { return std::isinf(t); });
       for (float t : hottest) {
         // positive wherever the block can emit: its hottest sample is
         // then above 100 K (the density is left out: a block where it is
         // zero only wastes its samples). A negative scale makes the
         // coldest sample the hottest, which the blocks do not keep.
-        const float kelvin = uniform ? kInfinity : (t - m.offset) * m.temperature_scale;
-        weights.push_back(kelvin > 100.f ? a * std::max(max_component(m.blackbody.at(kelvin)), 1e-30f) : 0.f);
+        const float kelvin = uniform ? kInfinity : m.heat.kelvin(t);
+        weights.push_back(kelvin > 100.f ? a * std::max(max_component(m.heat.blackbody.at(kelvin)), 1e-30f) : 0.f);
       }
       break;
     }

@@ -71,10 +71,10 @@ struct VdbMedium {
   // Emission: a black body at a temperature grid's value, (value -
   // offset) * temperature_scale kelvin, above 100 K, times Le_scale.
   VdbGrid temperature;  // no data: none
-  float Le_scale = 0.f, offset = 0.f, temperature_scale = 1.f;
-  BlackbodyTable blackbody;
-  bool emits() const { return temperature.data && Le_scale > 0.f && !blackbody.empty(); }
-  RGB Le(const Vec3& p) const { return blackbody.at((temperature.density(p) - offset) * temperature_scale) * Le_scale; }
+  TemperatureEmission heat;
+  float Le_scale = 0.f;
+  bool emits() const { return temperature.data && Le_scale > 0.f && heat.emits(); }
+  RGB Le(const Vec3& p) const { return heat.at(temperature.density(p)) * Le_scale; }
 };
 
 // pbrt-v4's "rgbgrid": RGB coefficients on a grid.

@@ -27,11 +27,18 @@ RGB BlackbodyTable::at(float kelvin) const {
   return rgb_[i] * (1.f - t) + rgb_[i + 1] * t;
 }
 
+bool TemperatureEmission::tabulate(float largest) {
+  const float hottest = std::isinf(largest) ? 1e6f : kelvin(scale >= 0.f ? largest : -largest);
+  if (!(hottest > 100.f)) return false;
+  blackbody = BlackbodyTable(std::isfinite(hottest) ? std::min(hottest, 1e6f) : 1e6f);
+  return true;
+}
+
 RGB GridEmission::at(const Vec3& p) const {
   const float s = scale.density(p);
   if (!(s > 0.f)) return RGB(0.f);
   if (temperature.values.empty()) return Le * s;
-  return blackbody.at((temperature.density(p) - offset) * temperature_scale) * s;
+  return heat.at(temperature.density(p)) * s;
 }
 
 float GridEmission::bound(const Vec3& u0, const Vec3& u1) const {
@@ -43,9 +50,7 @@ float GridEmission::bound(const Vec3& u0, const Vec3& u1) const {
   // wherever an interpolated temperature is hot enough to emit, since some
   // sample then is too. Sampling in proportion to it stays unbiased.
   const DensityGrid& g = temperature;
-  return s * max_over(g, u0, u1, [&](int x, int y, int z) {
-    return max_component(blackbody.at((g.values[g.offset(x, y, z)] - offset) * temperature_scale));
-  });
+  return s * max_over(g, u0, u1, [&](int x, int y, int z) { return max_component(heat.at(g.values[g.offset(x, y, z)])); });
 }
 
 }  // namespace lantern

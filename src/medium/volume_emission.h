@@ -30,14 +30,28 @@ class BlackbodyTable {
   std::vector<RGB> rgb_;
 };
 
+// pbrt-v4's emission from temperatures (uniformgrid and nanovdb): a black
+// body at (value - offset) * scale kelvin ("temperatureoffset" or
+// "temperaturecutoff", "temperaturescale"), emitting above 100 K.
+struct TemperatureEmission {
+  float offset = 0.f, scale = 1.f;
+  BlackbodyTable blackbody;  // empty: nothing is hot enough to emit
+
+  float kelvin(float value) const { return (value - offset) * scale; }
+  RGB at(float value) const { return blackbody.at(kelvin(value)); }
+  bool emits() const { return !blackbody.empty(); }
+  // Tabulates the colours for values of magnitude at most `largest`
+  // (infinity: unbounded, up to 10^6 K); false when none is hot enough.
+  bool tabulate(float largest);
+};
+
 // A uniformgrid's emission, looked up at the same box coordinates as its
 // density.
 struct GridEmission {
   RGB Le{0.f};             // the "Le" spectrum as RGB, normalised as pbrt-v4 does (luminance 1)
   DensityGrid scale;       // "Lescale": one value per sample, or a single sample of 1
   DensityGrid temperature; // "temperature" samples; empty: Le is used
-  float offset = 0.f, temperature_scale = 1.f;  // kelvin = (sample - offset) * temperature_scale
-  BlackbodyTable blackbody;
+  TemperatureEmission heat;
 
   bool emits() const { return !temperature.values.empty() || max_component(Le) > 0.f; }
   // Le at a point of render space.

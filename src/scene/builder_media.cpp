@@ -127,11 +127,10 @@ GridEmission SceneBuilder::grid_emission(const ParamSet& ps, const DensityGrid& 
     for (double v : t.numbers)
       if (!std::isfinite(float(v))) ps.fail(t, "temperatures must be finite");
     e.temperature.values = ps.get_floats("temperature");
-    e.offset = offset, e.temperature_scale = tscale;
-    float hottest = 0.f;
-    for (float v : e.temperature.values) hottest = std::max(hottest, (v - offset) * tscale);
-    if (hottest > 100.f) e.blackbody = BlackbodyTable(hottest);
-    else e.temperature.values.clear();  // nothing emits
+    e.heat.offset = offset, e.heat.scale = tscale;
+    float largest = 0.f;
+    for (float v : e.temperature.values) largest = std::max(largest, std::fabs(v));
+    if (!e.heat.tabulate(largest)) e.temperature.values.clear();  // nothing emits
   }
   return e;
 }
@@ -266,18 +265,15 @@ VdbMedium SceneBuilder::vdb_medium(const ParamSet& ps, const Mat4& render_from_m
     // (when the file has one), times "Lescale".
     const std::string temperature = ps.get_string("temperaturename", "temperature");
     m.Le_scale = ps.get_float("Lescale", 1.f);
-    m.offset = ps.get_float("temperatureoffset", ps.get_float("temperaturecutoff", 0.f));
-    m.temperature_scale = ps.get_float("temperaturescale", 1.f);
-    if (!std::isfinite(m.Le_scale) || !std::isfinite(m.offset) || !std::isfinite(m.temperature_scale))
+    m.heat.offset = ps.get_float("temperatureoffset", ps.get_float("temperaturecutoff", 0.f));
+    m.heat.scale = ps.get_float("temperaturescale", 1.f);
+    if (!std::isfinite(m.Le_scale) || !std::isfinite(m.heat.offset) || !std::isfinite(m.heat.scale))
       ps.fail("\"Lescale\", \"temperatureoffset\" and \"temperaturescale\" must be finite");
     if (m.Le_scale > 0.f && VdbGrid::has_grid(path, temperature)) {
       m.temperature = VdbGrid::load(path, temperature, glm::inverse(render_from_medium));
-      float largest = 0.f;  // |sample|
+      float largest = 0.f;  // |sample|, infinity for a background that is not zero
       for (float t : m.temperature.block_maxima()) largest = std::max(largest, t);
-      const float hottest = m.temperature_scale >= 0.f ? (largest - m.offset) * m.temperature_scale
-                                                       : (-largest - m.offset) * m.temperature_scale;
-      if (std::isfinite(hottest) && hottest > 100.f) m.blackbody = BlackbodyTable(std::min(hottest, 1e6f));
-      else if (std::isinf(largest)) m.blackbody = BlackbodyTable(1e6f);  // a background that is not zero
+      m.heat.tabulate(largest);
     }
   } catch (const std::runtime_error& e) {
     if (dynamic_cast<const InputError*>(&e)) throw;
