@@ -201,5 +201,40 @@ TEST_P(MisWeights, WithMergingMatchExplicitDensitiesAndSumToOne) {
   }
 }
 
+// Without connections (bpm: vc = 0) the merges of a path are its only
+// strategies: each weighs p^beta / (the sum over the merges), and they sum
+// to one. Emission found by the eye subpath counts only where no vertex
+// can merge, which dVM tells.
+TEST_P(MisWeights, MergesAloneMatchExplicitDensitiesAndSumToOne) {
+  std::mt19937 rng(4242);
+  for (int trial = 0; trial < 300; ++trial) {
+    const double eta = std::pow(10.0, double(trial % 7) - 3.0);
+    MisPower mis{GetParam()};
+    mis.vm_weight = mis(float(eta));
+    const int k = 2 + trial % 5;
+    RandomPath p = make_path(k, rng);
+    std::vector<double> vm(size_t(k), 0.0);
+    double sum = 0.0, total = 0.0;
+    for (int i = 1; i <= k - 1; ++i) sum += std::pow(vm[size_t(i)] = explicit_merge_pdf(p, i, eta), double(mis.beta));
+    for (int i = 1; i <= k - 1; ++i) {
+      const double expected = std::pow(vm[size_t(i)], double(mis.beta)) / sum, w = recursive_merge_weight(p, i, mis);
+      EXPECT_NEAR(w, expected, 2e-3 * std::max(1.0, expected)) << "k=" << k << " merge at " << i << " trial " << trial;
+      total += w;
+    }
+    EXPECT_NEAR(total, 1.0, 2e-3) << "k=" << k << " trial " << trial;
+  }
+  MisPower mis{GetParam()};
+  mis.vm_weight = mis(0.5f);
+  MisState eye = mis_camera_start(0.3f, mis);
+  mis_after_hit(eye, 2.f, 0.5f, true, mis);
+  EXPECT_EQ(mis_weight_hit_light_merging_only(eye), 1.f);  // a light seen directly
+  mis_after_scatter(eye, 0.7f, 1.f, 1.f, true, mis);
+  mis_after_hit(eye, 2.f, 0.5f, true, mis);
+  EXPECT_EQ(mis_weight_hit_light_merging_only(eye), 1.f);  // through a mirror
+  mis_after_scatter(eye, 0.7f, 0.2f, 0.3f, false, mis);
+  mis_after_hit(eye, 2.f, 0.5f, true, mis);
+  EXPECT_EQ(mis_weight_hit_light_merging_only(eye), 0.f);  // past a diffuse vertex, where merges sample it
+}
+
 }  // namespace
 }  // namespace lantern

@@ -10,6 +10,7 @@
 
 #include "lantern/render.h"
 #include "lantern/scene.h"
+#include "expect_error.h"
 #include "sanitizer.h"
 #include "stat_compare.h"
 
@@ -79,6 +80,43 @@ TEST(Vcm, PhotonMappingAgreesWithBdptOnTheCornellBox) {
   expect_means_agree(bdpt, stats_of(render_runs(*scene, o, 8, 1000), regions), 0.03, "ppm");
 }
 
+// Bidirectional photon mapping: merges at every non-specular eye vertex,
+// weighted against each other, and no connections. With a disk of 2% of
+// the box its means match bdpt's within 4.5 standard errors plus 3%.
+TEST(Vcm, BidirectionalPhotonMappingAgreesWithBdptOnTheCornellBox) {
+  if (LANTERN_ASAN) GTEST_SKIP() << "the Release suite runs it";
+  const auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
+  const std::vector<Region> regions = {{0, 0, 32, 32}, {8, 20, 16, 10}, {2, 8, 8, 16}};
+  const RegionStats bdpt = render_stats(*scene, "bdpt", 32, 32, 16, 8, regions);
+  RenderOptions o;
+  o.integrator = "bpm";
+  o.spp = 16;
+  o.width = o.height = 32;
+  o.vcm_radius = 10.f;
+  expect_means_agree(bdpt, stats_of(render_runs(*scene, o, 8, 1000), regions), 0.03, "bpm");
+}
+
+// Without connections and with one bounce, the only strategies left are a
+// merge at the first eye vertex (whose weight, 1 / (1 + 0 + 0), is exactly
+// 1) and lights seen directly: bpm's image is ppm's, bit for bit.
+TEST(Vcm, OneBounceBpmIsPpmBitForBit) {
+  const auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
+  RenderOptions o;
+  o.width = o.height = 24;
+  o.spp = 4;
+  o.maxdepth = 1;
+  o.vcm_radius = 10.f;
+  o.integrator = "ppm";
+  const RenderResult ppm = render(*scene, o);
+  o.integrator = "bpm";
+  const RenderResult bpm = render(*scene, o);
+  EXPECT_GT(bpm.stats.merges, 0u);
+  EXPECT_EQ(bpm.stats.merges, ppm.stats.merges);
+  ASSERT_EQ(bpm.image.rgb.size(), ppm.image.rgb.size());
+  EXPECT_EQ(std::memcmp(bpm.image.rgb.data(), ppm.image.rgb.data(), bpm.image.rgb.size() * sizeof(float)), 0)
+      << "one-bounce bpm differs from ppm";
+}
+
 TEST(Vcm, ThreadCountsGiveTheSameBits) {
   const auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/pool.pbrt");
   RenderOptions o;
@@ -87,7 +125,7 @@ TEST(Vcm, ThreadCountsGiveTheSameBits) {
   o.spp = 2;
   o.maxdepth = 6;
   o.vcm_radius = 0.1f;  // merges happen even at this size
-  expect_thread_invariant(*scene, o, {"vcm", "ppm"});
+  expect_thread_invariant(*scene, o, {"vcm", "bpm", "ppm"});
 }
 
 // Merges do happen on the pool's floor (an SDS path), and the stats say
@@ -106,6 +144,19 @@ TEST(Vcm, MergesOnThePoolFloor) {
   EXPECT_FLOAT_EQ(r.stats.vcm_radius, 0.1f);
   EXPECT_NEAR(r.stats.vcm_last_radius, 0.1 * std::pow(33.0, -0.125), 1e-6);
   EXPECT_EQ(r.stats.nonfinite_samples, 0u);
+}
+
+// pbrt-v4's stochastic progressive photon mapper converges to vcm's image:
+// an "sppm" Integrator renders with vcm, its "radius" the first merging
+// radius.
+TEST(Vcm, SppmScenesRenderWithVcm) {
+  const std::string world = "WorldBegin\nLightSource \"point\" \"rgb I\" [1 1 1]\n";
+  const auto scene = load_scene_from_string("Integrator \"sppm\" \"float radius\" 0.25\n" + world, "sppm.pbrt", {});
+  EXPECT_EQ(scene->settings.integrator, "vcm");
+  EXPECT_FLOAT_EQ(scene->settings.merge_radius, 0.25f);
+  EXPECT_FLOAT_EQ(load_scene_from_string("Integrator \"sppm\"\n" + world, "sppm.pbrt", {})->settings.merge_radius, 0.f);
+  expect_load_error("Integrator \"sppm\"\n  \"float radius\" -1\n" + world, "bad.pbrt",
+                    {"bad.pbrt:2", "radius", "positive"});
 }
 
 TEST(Vcm, BadSettingsAreClearErrors) {

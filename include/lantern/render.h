@@ -24,9 +24,16 @@ struct RenderProgress {
   uint64_t samples_total = 0;  // the sample budget (with --time: one pass)
 };
 
+// The integrators that merge light and eye vertices (docs/vcm.md).
+inline bool merges_vertices(const std::string& integrator) {
+  return integrator == "vcm" || integrator == "bpm" || integrator == "ppm";
+}
+
 struct RenderOptions {
-  std::string integrator = "path";  // path, bdpt, lt (light tracing) or vcm (vertex connection and merging)
-  // vcm, ppm: the merging radius of the first sample pass (0: 0.003 of
+  // path, bdpt, lt (light tracing), vcm (vertex connection and merging),
+  // bpm (bidirectional photon mapping) or ppm (progressive photon mapping)
+  std::string integrator = "path";
+  // vcm, bpm, ppm: the merging radius of the first sample pass (0: 0.003 of
   // the scene's bounding radius; docs/vcm.md), and
   // alpha, by which the radius of pass i is radius * i^((alpha - 1) / 2).
   float vcm_radius = 0.f;

@@ -32,6 +32,8 @@ struct SceneSettings {
   SamplerSettings sampler;
   // The Integrator's "lightsampler" (pbrt-v4's names; bvh by default).
   std::string light_sampler = "bvh";
+  // An "sppm" Integrator's "radius": vcm's first merging radius (0: automatic).
+  float merge_radius = 0.f;
 };
 
 struct LoadOptions {

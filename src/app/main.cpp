@@ -53,7 +53,7 @@ struct RenderArgs {
   float vcm_radius = 0.f, vcm_alpha = 0.75f;
   std::string texture_dir, sampler, light_sampler, trace, part;
   uint64_t trace_waves = 1000;
-  int spp = 0, maxdepth = -1, threads = 0, wave_size = 0;  // 0: 4096, or 16384 for vcm (docs/vcm.md)
+  int spp = 0, maxdepth = -1, threads = 0, wave_size = 0;  // 0: 4096, or 16384 for vcm, bpm, ppm (docs/vcm.md)
   double time = 0.0, checkpoint = 0.0, texture_cache_mb = 1024.0;
   uint64_t seed = 0;
   bool resume = false;
@@ -213,7 +213,7 @@ int run_render(const RenderArgs& a) {
 
   RenderOptions o;
   o.integrator = a.integrator.empty() ? ss.integrator : a.integrator;
-  o.vcm_radius = a.vcm_radius;
+  o.vcm_radius = a.vcm_radius > 0.f ? a.vcm_radius : ss.merge_radius;
   o.vcm_alpha = a.vcm_alpha;
   o.mis = a.mis;
   o.strategies = !a.strategies.empty();
@@ -236,7 +236,7 @@ int run_render(const RenderArgs& a) {
     o.height = a.resolution[1];
   }
   o.ray_backend = a.rays;
-  o.wave_size = a.wave_size > 0 ? a.wave_size : o.integrator == "vcm" || o.integrator == "ppm" ? 16384 : 4096;
+  o.wave_size = a.wave_size > 0 ? a.wave_size : lantern::merges_vertices(o.integrator) ? 16384 : 4096;
   o.cancel = &g_cancel;
   std::string out = a.output.empty() ? ss.output : a.output;
   if (!a.part.empty()) {
@@ -442,13 +442,14 @@ int main(int argc, char** argv) {
   auto* spp = render->add_option("--spp", a.spp, "Samples per pixel (default: the scene's Sampler pixelsamples)")->check(lantern::cli::positive_integer());
   render->add_option("--time", a.time, "Render for this many seconds instead of a sample count")->check(lantern::cli::positive_seconds())->excludes(spp);
   render->add_option("--integrator", a.integrator,
-                     "Integrator: path, bdpt, lt (light tracing), vcm (vertex connection and merging) or ppm "
-                     "(progressive photon mapping); default: the scene's Integrator")
-      ->check(CLI::IsMember({"path", "bdpt", "lt", "vcm", "ppm"}));
+                     "Integrator: path, bdpt, lt (light tracing), vcm (vertex connection and merging), bpm "
+                     "(bidirectional photon mapping) or ppm (progressive photon mapping); default: the scene's "
+                     "Integrator")
+      ->check(CLI::IsMember({"path", "bdpt", "lt", "vcm", "bpm", "ppm"}));
   render->add_option("--vcm-radius", a.vcm_radius,
-                     "vcm, ppm: the merging radius of the first pass (default 0.003 of the scene's bounding radius)")
+                     "vcm, bpm, ppm: the merging radius of the first pass (default 0.003 of the scene's bounding radius)")
       ->check(CLI::PositiveNumber);
-  render->add_option("--vcm-alpha", a.vcm_alpha, "vcm, ppm: the radius of pass i is radius * i^((alpha - 1) / 2); default 0.75")
+  render->add_option("--vcm-alpha", a.vcm_alpha, "vcm, bpm, ppm: the radius of pass i is radius * i^((alpha - 1) / 2); default 0.75")
       ->check(CLI::Range(0.01, 1.0));
   render->add_option("--mis", a.mis, "bdpt's MIS heuristic: power or balance")
       ->check(CLI::IsMember({"power", "balance"}));
@@ -472,7 +473,7 @@ int main(int argc, char** argv) {
   render->add_option("--resolution", a.resolution, "Image size W H (default: the scene's Film)")->expected(2)->check(lantern::cli::integer_in(1, 65536, "an integer from 1 to 65536"));
   render->add_option("--rays", a.rays, "Ray query back end: stream (Embree Np streams), stream-1m, single, packet16")
       ->check(CLI::IsMember({"stream", "stream-1m", "single", "packet16"}));
-  render->add_option("--wave-size", a.wave_size, "Paths per wave (default 4096; 16384 for vcm, whose eye vertices merge with the light vertices of their wave)")->check(lantern::cli::integer_in(1, 1 << 22, "an integer from 1 to 4194304"));
+  render->add_option("--wave-size", a.wave_size, "Paths per wave (default 4096; 16384 for vcm, bpm and ppm, whose eye vertices merge with the light vertices of their wave)")->check(lantern::cli::integer_in(1, 1 << 22, "an integer from 1 to 4194304"));
   render->add_option("--checkpoint", a.checkpoint,
                      "Write the render's state every SECONDS (and on Ctrl-C/SIGTERM) to OUTPUT.ckpt")
       ->check(lantern::cli::positive_seconds());

@@ -92,7 +92,7 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
         float wt = w.depth == 1 ? 1.f
                                 : mis_weight_hit_light(m, infinite_lights_pdf(lights, scene_.textures, light_sampler_, prev, d),
                                                        infinite_emission_pdf(lights, scene_.textures, d), w.mis);
-        add_emission(w, slot, w.eye.beta[slot] * Le, weight(wt));
+        add_emission(w, slot, w.eye.beta[slot] * Le, emission_weight(m, wt));
       }
       continue;
     }
@@ -120,7 +120,7 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
                                                                w.eye.prev_n[slot], sp.p, sp.ng),
                                     area_emission_pdf(lights, shapes, a, sp.p, sp.ng, -d), w.mis);
         }
-        add_emission(w, slot, w.eye.beta[slot] * Le, weight(wt));
+        add_emission(w, slot, w.eye.beta[slot] * Le, emission_weight(m, wt));
       }
     }
     if (last) {
@@ -208,7 +208,7 @@ void Bdpt::prepare_merging(const WaveDesc& wave, BdptWave& w) const {
   w.vm_radius = settings_.vcm_radius * std::pow(pass, 0.5f * (settings_.vcm_alpha - 1.f));
   const float eta = kPi * w.vm_radius * w.vm_radius * float(wave.size());
   w.mis.vm_weight = mis_(eta);
-  w.mis.vc_weight = mis_(1.f / eta);
+  w.mis.vc_weight = settings_.connections ? mis_(1.f / eta) : 0.f;
   w.vm_normalization = 1.f / eta;
 }
 
@@ -229,7 +229,7 @@ void Bdpt::eye_connect_stage(BdptWave& w) const {
     const Vec3 wo = frame.to_local(h.wo[i]);
     const RGB& beta = w.eye.beta[slot];
     const MisState& m = w.eye.mis[slot];
-    if (settings_.photon_mapping) {  // ppm: merging is all there is
+    if (!settings_.connections) {  // bpm, ppm: merging is all there is
       merge_at_eye_vertex(w, i, bsdf, frame, wo);
       return;
     }

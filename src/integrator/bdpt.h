@@ -39,8 +39,12 @@ struct BdptSettings {
   // is radius * i^((alpha - 1) / 2).
   bool merging = false;
   float vcm_radius = 0.f, vcm_alpha = 0.75f;
-  // Progressive photon mapping (the `ppm` integrator, with merging): no
-  // connections; eye subpaths go through specular vertices only and
+  // Without connections (the `bpm` and `ppm` integrators, with merging),
+  // merges are the only strategies besides emission seen along a purely
+  // specular eye subpath.
+  bool connections = true;
+  // Progressive photon mapping (the `ppm` integrator, without
+  // connections): eye subpaths go through specular vertices only and
   // merge, unweighted, at the first other one.
   bool photon_mapping = false;
   bool unit_weights = false;        // every strategy weighted 1: deliberately wrong, for tests only
@@ -129,6 +133,10 @@ class Bdpt {
 
   // (ppm has one strategy per path: every weight is 1)
   float weight(float w) const { return settings_.unit_weights || settings_.photon_mapping ? 1.f : w; }
+  // s = 0's weight, for eye subpath state m (found before the weight w)
+  float emission_weight(const MisState& m, float w) const {
+    return settings_.connections ? weight(w) : mis_weight_hit_light_merging_only(m);
+  }
 
   // Whether light from `light` (index into LightPools::all) reaches p along -w_to_light: false
   // only for a portal light whose window does not let it through.

@@ -119,9 +119,9 @@ void Bdpt::begin_light_subpath(BdptWave& w, uint32_t slot, const EmissionSample&
     w.light.sigma_prev[slot] = sigma_origin;  // a volume light's point is reached by distance sampling
   }
   const Vec2 u_lens = w.sampler[slot].get2d(dims::kLightStartLens);
-  // s = 1, t = 1: the light's own point seen by the camera (ppm sees
-  // lights only through eye subpaths).
-  if (!es.infinite && !settings_.photon_mapping) {
+  // s = 1, t = 1: the light's own point seen by the camera (bpm and ppm
+  // see lights only through eye subpaths).
+  if (!es.infinite && settings_.connections) {
     if (auto cs = camera_.sample_wi(es.p, u_lens)) {
       float cos_l = on_surface ? std::fabs(glm::dot(es.n, cs->wi)) : 1.f;
       RGB Le = es.volume ? es.Le : emitted(lights, scene_.textures, es.light, es.n, es.uv, cs->wi);
@@ -282,7 +282,7 @@ void Bdpt::light_connect_stage(BdptWave& w) const {
           v.tangent.push_back(h.tangent[i]);
         }
       }
-      auto cs = ld <= maxdepth && !settings_.photon_mapping ? camera_.sample_wi(h.p[i], u_lens) : std::nullopt;
+      auto cs = ld <= maxdepth && settings_.connections ? camera_.sample_wi(h.p[i], u_lens) : std::nullopt;
       if (cs) {  // t = 1
         Vec3 wi = frame.to_local(cs->wi);
         RGB f = bsdf.f(wo, wi, TransportMode::Importance) *

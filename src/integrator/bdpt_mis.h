@@ -97,6 +97,13 @@ inline float mis_weight_hit_light_direct(const MisState& eye, float emission_pos
   return 1.f / (1.f + mis(emission_pos_pdf_A) * eye.dVCM);
 }
 
+// s = 0 without connections (bpm, ppm: vc_weight = 0, so no connection's
+// ratio enters any merge's weight): the emitter found counts only if no
+// merge samples the same path, that is if the eye subpath has passed no
+// non-specular vertex, the only vertices that add to dVM (Georgiev's
+// technical report, "Implementing Vertex Connection and Merging", sec. 2).
+inline float mis_weight_hit_light_merging_only(const MisState& eye) { return eye.dVM == 0.f ? 1.f : 0.f; }
+
 // s = 1: next-event estimation. light_pdf_W: the light sample's solid-angle
 // density (0 for delta lights, which BSDF sampling cannot hit); bsdf_pdf_W:
 // BSDF density of the same direction; emission_fwd_A: the light's emission

@@ -158,7 +158,7 @@ std::string sequence_fingerprint(const RenderOptions& o, int width, int height) 
   line("scene", o.checkpoint_key);
   line("integrator", o.integrator);
   if (o.integrator != "path") line("mis", o.mis);
-  if (o.integrator == "vcm" || o.integrator == "ppm") line("vcm", std::to_string(o.vcm_radius) + " " + std::to_string(o.vcm_alpha));
+  if (merges_vertices(o.integrator)) line("vcm", std::to_string(o.vcm_radius) + " " + std::to_string(o.vcm_alpha));
   line("maxdepth", std::to_string(o.maxdepth));
   line("seed", std::to_string(o.seed));
   line("light-sampler", o.light_sampler);
@@ -395,10 +395,10 @@ CheckpointInfo start_checkpointing(const RenderOptions& opt, const std::string& 
 }  // namespace
 
 RenderResult render(const Scene& scene, const RenderOptions& opt) {
-  const bool merging = opt.integrator == "vcm" || opt.integrator == "ppm";
+  const bool merging = merges_vertices(opt.integrator);
   const bool bidirectional = opt.integrator == "bdpt" || opt.integrator == "lt" || merging;
   if (opt.integrator != "path" && !bidirectional)
-    throw std::invalid_argument("unknown integrator \"" + opt.integrator + "\"; available: path, bdpt, lt, vcm, ppm");
+    throw std::invalid_argument("unknown integrator \"" + opt.integrator + "\"; available: path, bdpt, lt, vcm, bpm, ppm");
   if (merging && !scene.media.empty())
     throw std::invalid_argument(opt.integrator + " does not render participating media yet; use bdpt or path for this scene");
   if (merging && (!(opt.vcm_radius >= 0.f) || !std::isfinite(opt.vcm_radius) || !(opt.vcm_alpha > 0.f && opt.vcm_alpha <= 1.f)))
@@ -465,6 +465,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
       bs.mis_beta = opt.mis == "balance" ? 1.f : 2.f;
       bs.light_tracing_only = opt.integrator == "lt";
       bs.merging = merging;
+      bs.connections = !merging || opt.integrator == "vcm";
       bs.photon_mapping = opt.integrator == "ppm";
       bs.vcm_alpha = opt.vcm_alpha;
       bs.vcm_radius = opt.vcm_radius > 0.f ? opt.vcm_radius : 0.003f * scene.lights.scene_radius;

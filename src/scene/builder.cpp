@@ -3,6 +3,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -136,6 +137,22 @@ void SceneBuilder::integrator(const std::string& type, const ParamSet& ps) {
     scene_.settings.integrator = "lt";
   } else if (type == "volpath") {  // pbrt's path tracer with media: Lantern's path tracer has them
     scene_.settings.integrator = "path";
+  } else if (type == "sppm") {
+    // Stochastic progressive photon mapping converges to the same image as
+    // vertex connection and merging, which also merges photons.
+    // Its "radius" is the first merging radius, as in pbrt-v4; left out,
+    // Lantern's automatic one (pbrt-v4's default of 1 does not scale with
+    // the scene). Its "seed" changes only the noise.
+    scene_.settings.integrator = "vcm";
+    if (const pbrt::Param* r = ps.find("radius")) {
+      const float radius = ps.get_float("radius", 0.f);
+      if (!(radius > 0.f) || !std::isfinite(radius)) ps.fail(*r, "\"radius\" must be a positive number");
+      scene_.settings.merge_radius = radius;
+    }
+    if (ps.find("photonsperiteration"))
+      warn(ps.where, "sppm's \"photonsperiteration\" is not used: vcm merges with the light subpaths of its wave "
+                     "(see --wave-size)");
+    ps.find("seed");
   } else {
     warn(ps.where, "integrator \"" + printable(type) + "\" is not available; using \"path\" (choose with --integrator)");
     scene_.settings.integrator = "path";
