@@ -192,9 +192,10 @@ void trace_wave(const Tracer& tracer, const WaveDesc& wave, State& state, WaveOu
   track->end_wave();
 }
 
-// A wave in the pipeline: its number in the pass and its output slot.
+// A wave in the pipeline: its number in the pass, its output slot, and the
+// pass (its first sample index).
 struct WaveItem {
-  uint32_t wave, slot;  // trivial: oneTBB carries it in place
+  uint32_t wave, slot, first;  // trivial: oneTBB carries it in place
 };
 
 // Walks the units this render wants, pass by pass, stopping at those its
@@ -284,76 +285,88 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
   uint64_t issued_items = 0;
   TicketCursor tickets(opt.next_ticket);
   auto time_is_up = [&] { return timed && checkpoints.elapsed() >= opt.time_limit_seconds; };
-  for (uint32_t first = 0; first < total_spp && !stop; first += pass_spp) {
-    const uint32_t samples = std::min(pass_spp, total_spp - first);
-    uint32_t next = 0;
-    tbb::parallel_pipeline(
-        tokens,
-        tbb::make_filter<void, WaveItem>(tbb::filter_mode::serial_in_order,
-                                         [&](tbb::flow_control& fc) -> WaveItem {
-                                           // A time budget shorter than the set-up still
-                                           // renders one wave, so every run adds samples.
-                                           // Without tickets the next unit is found before a
-                                           // stop is looked at, so a stop after the last unit is
-                                           // no interruption; with them, after, so that no
-                                           // ticket is taken that will not be rendered.
-                                           const bool ticketed = bool(opt.next_ticket);
+  // One pipeline over all passes: the waves of the next pass start while
+  // the last of this one are still in flight, so a pass of fewer waves
+  // than threads (large vcm waves, small images) leaves no thread idle.
+  uint32_t first = 0, next = 0;  // the input stage's pass and wave
+  auto advance_pass = [&] {
+    first += pass_spp;
+    next = 0;
+    return first < total_spp;
+  };
+  tbb::parallel_pipeline(
+      tokens,
+      tbb::make_filter<void, WaveItem>(tbb::filter_mode::serial_in_order,
+                                       [&](tbb::flow_control& fc) -> WaveItem {
+                                         // A time budget shorter than the set-up still
+                                         // renders one wave, so every run adds samples.
+                                         // Without tickets the next unit is found before a
+                                         // stop is looked at, so a stop after the last unit is
+                                         // no interruption; with them, after, so that no
+                                         // ticket is taken that will not be rendered.
+                                         const bool ticketed = bool(opt.next_ticket);
+                                         for (;;) {
+                                           if (first >= total_spp) break;
                                            if (!ticketed && !tickets.next(first, next, waves, wanted)) {
-                                             fc.stop();  // this pass is done
-                                             return {};
+                                             if (advance_pass()) continue;
+                                             break;  // the last pass is done
                                            }
                                            bool cancelled = opt.cancel && opt.cancel->load();
                                            if (stop || cancelled || (issued && time_is_up())) {
                                              stop = true;
-                                             fc.stop();
-                                             return {};
+                                             break;
                                            }
                                            if (ticketed && !tickets.next(first, next, waves, wanted)) {
-                                             if (tickets.exhausted()) stop = true;
-                                             fc.stop();  // this pass has no unit left for us
-                                             return {};
+                                             if (tickets.exhausted()) {
+                                               stop = true;
+                                               break;
+                                             }
+                                             if (advance_pass()) continue;  // this pass has no unit left for us
+                                             break;
                                            }
                                            issued = true;
                                            // Slots by issue order: items retire in that order and
                                            // at most `tokens` are in flight, so a slot is free again
                                            // when it comes round (wave numbers may skip).
-                                           return WaveItem{next++, uint32_t(issued_items++ % tokens)};
-                                         }) &
-            tbb::make_filter<WaveItem, WaveItem>(tbb::filter_mode::parallel,
-                                                 [&](WaveItem item) {
-                                                   const uint32_t wi = item.wave;
-                                                   WaveDesc wave{order.data() + size_t(wi) * pixels_per_wave,
-                                                                 uint32_t(std::min<size_t>(
-                                                                     pixels_per_wave,
-                                                                     order.size() - size_t(wi) * pixels_per_wave)),
-                                                                 first, samples};
-                                                   WaveOutput& out = outputs[item.slot];
-                                                   out.clear();
-                                                   trace_wave(tracer, wave, *states.local(), out, opt.timeline,
-                                                              int64_t(unit_of(first, wi)));
-                                                   film.prepare(out);
-                                                   return item;
-                                                 }) &
-            tbb::make_filter<WaveItem, void>(tbb::filter_mode::serial_in_order, [&](WaveItem item) {
-              const uint32_t wi = item.wave;
-              const WaveOutput& out = outputs[item.slot];
-              TraceBuffer* track = opt.timeline ? &opt.timeline->pipeline() : nullptr;
-              if (track) track->begin_wave(int64_t(unit_of(first, wi)));
-              auto t0 = opt.collect_stats || track ? Clock::now() : Clock::time_point();
-              film.merge(out);
-              if (strategies) strategies->merge(out.strategies);
-              if (opt.collect_stats) film_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
-              if (track) {
-                const auto t1 = Clock::now();
-                track->span("film merge", TraceCategory::Pipeline, t0, t1, int64_t(out.samples.size()));
-                track->counter(kMergeQueue, t1, --opt.timeline->merge_queue(), true);
-                track->end_wave();
-              }
-              done += out.samples.size();
-              merged.insert(unit_of(first, wi));
-              checkpoints.maybe_write(film);
-            }));
-  }
+                                           return WaveItem{next++, uint32_t(issued_items++ % tokens), first};
+                                         }
+                                         fc.stop();
+                                         return {};
+                                       }) &
+          tbb::make_filter<WaveItem, WaveItem>(tbb::filter_mode::parallel,
+                                               [&](WaveItem item) {
+                                                 const uint32_t wi = item.wave;
+                                                 WaveDesc wave{order.data() + size_t(wi) * pixels_per_wave,
+                                                               uint32_t(std::min<size_t>(
+                                                                   pixels_per_wave,
+                                                                   order.size() - size_t(wi) * pixels_per_wave)),
+                                                               item.first, std::min(pass_spp, total_spp - item.first)};
+                                                 WaveOutput& out = outputs[item.slot];
+                                                 out.clear();
+                                                 trace_wave(tracer, wave, *states.local(), out, opt.timeline,
+                                                            int64_t(unit_of(item.first, wi)));
+                                                 film.prepare(out);
+                                                 return item;
+                                               }) &
+          tbb::make_filter<WaveItem, void>(tbb::filter_mode::serial_in_order, [&](WaveItem item) {
+            const uint64_t unit = unit_of(item.first, item.wave);
+            const WaveOutput& out = outputs[item.slot];
+            TraceBuffer* track = opt.timeline ? &opt.timeline->pipeline() : nullptr;
+            if (track) track->begin_wave(int64_t(unit));
+            auto t0 = opt.collect_stats || track ? Clock::now() : Clock::time_point();
+            film.merge(out);
+            if (strategies) strategies->merge(out.strategies);
+            if (opt.collect_stats) film_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+            if (track) {
+              const auto t1 = Clock::now();
+              track->span("film merge", TraceCategory::Pipeline, t0, t1, int64_t(out.samples.size()));
+              track->counter(kMergeQueue, t1, --opt.timeline->merge_queue(), true);
+              track->end_wave();
+            }
+            done += out.samples.size();
+            merged.insert(unit);
+            checkpoints.maybe_write(film);
+          }));
   gather_stats(states, film_seconds, stats);
   return stop;
 }
