@@ -1,7 +1,8 @@
 #!/bin/sh
 # Renders the reference images the equal-time benchmarks compare against:
-# bdpt (vcm for the pool, whose caustics bdpt cannot converge) for a fixed
-# time at a modest resolution, stored as half-float EXR.
+# bdpt (vcm for the pool, whose caustics bdpt cannot converge, from the
+# scene's merging radius) for a fixed time at a modest resolution, stored
+# as half-float EXR.
 # Usage: perf/make-references.sh [seconds per scene] [scenes...]   (from the repository root)
 set -eu
 secs=${1:-150}

@@ -33,8 +33,9 @@ struct RenderOptions {
   // path, bdpt, lt (light tracing), vcm (vertex connection and merging),
   // bpm (bidirectional photon mapping) or ppm (progressive photon mapping)
   std::string integrator = "path";
-  // vcm, bpm, ppm: the merging radius of the first sample pass (0: 0.003 of
-  // the scene's bounding radius; docs/vcm.md), and
+  // vcm, bpm, ppm: the merging radius of the first sample pass (0: the
+  // scene's, from an "sppm" Integrator's "radius", else 0.003 of the
+  // scene's bounding radius; docs/vcm.md), and
   // alpha, by which the radius of pass i is radius * i^((alpha - 1) / 2).
   float vcm_radius = 0.f;
   float vcm_alpha = 0.75f;

@@ -213,7 +213,7 @@ int run_render(const RenderArgs& a) {
 
   RenderOptions o;
   o.integrator = a.integrator.empty() ? ss.integrator : a.integrator;
-  o.vcm_radius = a.vcm_radius > 0.f ? a.vcm_radius : ss.merge_radius;
+  o.vcm_radius = a.vcm_radius;
   o.vcm_alpha = a.vcm_alpha;
   o.mis = a.mis;
   o.strategies = !a.strategies.empty();
@@ -447,7 +447,8 @@ int main(int argc, char** argv) {
                      "Integrator")
       ->check(CLI::IsMember({"path", "bdpt", "lt", "vcm", "bpm", "ppm"}));
   render->add_option("--vcm-radius", a.vcm_radius,
-                     "vcm, bpm, ppm: the merging radius of the first pass (default 0.003 of the scene's bounding radius)")
+                     "vcm, bpm, ppm: the merging radius of the first pass (default: an sppm Integrator's \"radius\", else 0.003 "
+                     "of the scene's bounding radius)")
       ->check(CLI::PositiveNumber);
   render->add_option("--vcm-alpha", a.vcm_alpha, "vcm, bpm, ppm: the radius of pass i is radius * i^((alpha - 1) / 2); default 0.75")
       ->check(CLI::Range(0.01, 1.0));

@@ -359,6 +359,7 @@ void Bdpt::flush_connections(BdptWave& w) const {
 
 // s = 0: emission the eye subpath found at its current depth.
 void Bdpt::add_emission(BdptWave& w, uint32_t slot, const RGB& unweighted, float weight) const {
+  if (weight == 0.f && !settings_.record_strategies) return;  // (bpm's emission past a merging vertex)
   w.L[slot] += unweighted * weight;
   if (settings_.record_strategies)
     w.out->strategies.push_back({w.pixel[slot], Vec2(0.f), 0, uint8_t(w.depth + 1), unweighted * weight, unweighted});

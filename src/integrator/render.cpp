@@ -481,7 +481,9 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
       bs.connections = !merging || opt.integrator == "vcm";
       bs.photon_mapping = opt.integrator == "ppm";
       bs.vcm_alpha = opt.vcm_alpha;
-      bs.vcm_radius = opt.vcm_radius > 0.f ? opt.vcm_radius : 0.003f * scene.lights.scene_radius;
+      bs.vcm_radius = opt.vcm_radius > 0.f                  ? opt.vcm_radius
+                      : scene.settings.merge_radius > 0.f ? scene.settings.merge_radius
+                                                          : 0.003f * scene.lights.scene_radius;
       res.stats.vcm_radius = bs.merging ? bs.vcm_radius : 0.f;
       bs.unit_weights = opt.debug_unit_mis_weights;
       bs.record_strategies = opt.strategies;
