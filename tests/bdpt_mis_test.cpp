@@ -201,6 +201,113 @@ TEST_P(MisWeights, WithMergingMatchExplicitDensitiesAndSumToOne) {
   }
 }
 
+// In a scene with media a vertex may lie in a medium: it connects (its
+// connections weighted once their transmittance is known, here 1) but
+// never merges. With `surface` marking the vertices that may merge, every
+// connection's and every surface merge's weight is p^beta over the sum over
+// those strategies, and they sum to one.
+struct MediaPath {
+  RandomPath p;
+  std::vector<bool> surface;  // per vertex; the ends (light, camera) are never merged
+};
+
+MisState light_subpath_to(const MediaPath& mp, int last, MisPower mis) {
+  const RandomPath& p = mp.p;
+  MisState light = mis_light_start(p.direct_pdf_A, p.emission_pos_A * p.emission_dir_W(1), p.cos_at(0, 1), false, mis);
+  mis_after_hit(light, p.dist2(0, 1), p.cos_at(1, 0), true, mis);
+  for (int m = 1; m <= last - 1; ++m) {
+    mis_after_scatter(light, p.cos_at(m, m + 1), p.bsdf_pdf(m, m + 1), p.bsdf_pdf(m, m - 1), false, mis,
+                      mp.surface[size_t(m)]);
+    mis_after_hit(light, p.dist2(m, m + 1), p.cos_at(m + 1, m), true, mis);
+  }
+  return light;
+}
+
+MisState eye_subpath_to(const MediaPath& mp, int last, MisPower mis) {
+  const RandomPath& p = mp.p;
+  const int k = p.k();
+  MisState eye = mis_camera_start(p.camera_dir_W(k - 1), mis);
+  mis_after_hit(eye, p.dist2(k, k - 1), p.cos_at(k - 1, k), true, mis);
+  for (int m = k - 1; m >= last + 1; --m) {
+    mis_after_scatter(eye, p.cos_at(m, m - 1), p.bsdf_pdf(m, m - 1), p.bsdf_pdf(m, m + 1), false, mis,
+                      mp.surface[size_t(m)]);
+    mis_after_hit(eye, p.dist2(m, m - 1), p.cos_at(m - 1, m), true, mis);
+  }
+  return eye;
+}
+
+// What the integrator computes for strategy s of a path through media:
+// connections weighted as deferred ones (transmittance 1).
+float media_connection_weight(const MediaPath& mp, int s, MisPower mis) {
+  const RandomPath& p = mp.p;
+  const int k = p.k(), t = k + 1 - s;
+  const RGB T(1.f);
+  DeferredMis d;
+  if (s == 0) {
+    if (k == 1) return mis_weight_hit_light_direct(eye_subpath_to(mp, 1, mis), p.emission_pos_A, mis);
+    MisState eye = eye_subpath_to(mp, 1, mis);
+    mis_after_scatter(eye, p.cos_at(1, 0), p.bsdf_pdf(1, 0), p.bsdf_pdf(1, 2), false, mis, mp.surface[1]);
+    mis_after_hit(eye, p.dist2(1, 0), p.cos_at(0, 1), true, mis);
+    return mis_weight_hit_light(eye, p.direct_pdf_A, p.emission_pos_A * p.emission_dir_W(1), mis);
+  }
+  if (s == 1 && t == 1)
+    return mis_weight_light_origin(p.camera_dir_W(0) * p.cos_at(0, 1) / p.dist2(0, 1), p.emission_pos_A, false, mis);
+  if (s == 1) {  // next-event estimation from x1
+    const float light_pdf_W = p.direct_pdf_A * p.dist2(0, 1) / p.cos_at(0, 1);
+    const float emission_fwd_A = p.emission_pos_A * p.emission_dir_W(1) * p.cos_at(1, 0) / p.dist2(0, 1);
+    d.a = mis(p.bsdf_pdf(1, 0) / light_pdf_W);
+    d.b = mis(emission_fwd_A / p.direct_pdf_A) *
+          mis_connection_sum(eye_subpath_to(mp, 1, mis), p.bsdf_pdf(1, 2), mp.surface[1], mis);
+    return mis_weight_deferred(d, T, mis);
+  }
+  if (t == 1) {  // light tracing from x_{k-1}
+    const float camera_pdf_A = p.camera_dir_W(k - 1) * p.cos_at(k - 1, k) / p.dist2(k - 1, k);
+    d.a = mis(camera_pdf_A) *
+          mis_connection_sum(light_subpath_to(mp, k - 1, mis), p.bsdf_pdf(k - 1, k - 2), mp.surface[size_t(k - 1)], mis);
+    return mis_weight_deferred(d, T, mis);
+  }
+  const int l = s - 1, e = s;
+  const float d2 = p.dist2(l, e);
+  d.a = mis(p.bsdf_pdf(e, l) * p.cos_at(l, e) / d2) *
+        mis_connection_sum(light_subpath_to(mp, l, mis), p.bsdf_pdf(l, l - 1), mp.surface[size_t(l)], mis);
+  d.b = mis(p.bsdf_pdf(l, e) * p.cos_at(e, l) / d2) *
+        mis_connection_sum(eye_subpath_to(mp, e, mis), p.bsdf_pdf(e, e + 1), mp.surface[size_t(e)], mis);
+  return mis_weight_deferred(d, T, mis);
+}
+
+TEST_P(MisWeights, MediumVerticesConnectButNeverMerge) {
+  std::mt19937 rng(31337);
+  std::bernoulli_distribution in_medium(0.4);
+  for (int trial = 0; trial < 300; ++trial) {
+    const double eta = std::pow(10.0, double(trial % 7) - 3.0);
+    MisPower mis{GetParam()};
+    mis.vm_weight = mis(float(eta));
+    mis.vc_weight = mis(float(1.0 / eta));
+    const int k = 1 + trial % 6;
+    MediaPath mp{make_path(k, rng), std::vector<bool>(size_t(k) + 1, false)};
+    for (int i = 1; i <= k - 1; ++i) mp.surface[size_t(i)] = !in_medium(rng);
+    std::vector<double> vc(size_t(k) + 1), vm(size_t(k) + 1, 0.0);
+    double sum = 0.0, total = 0.0;
+    for (int s = 0; s <= k; ++s) sum += std::pow(vc[size_t(s)] = explicit_pdf(mp.p, s), double(mis.beta));
+    for (int i = 1; i <= k - 1; ++i)
+      if (mp.surface[size_t(i)]) sum += std::pow(vm[size_t(i)] = explicit_merge_pdf(mp.p, i, eta), double(mis.beta));
+    for (int s = 0; s <= k; ++s) {
+      const double expected = std::pow(vc[size_t(s)], double(mis.beta)) / sum, w = media_connection_weight(mp, s, mis);
+      EXPECT_NEAR(w, expected, 2e-3 * std::max(1.0, expected)) << "k=" << k << " s=" << s << " trial " << trial;
+      total += w;
+    }
+    for (int i = 1; i <= k - 1; ++i) {
+      if (!mp.surface[size_t(i)]) continue;
+      const MisState light = light_subpath_to(mp, i, mis), eye = eye_subpath_to(mp, i, mis);
+      const double expected = std::pow(vm[size_t(i)], double(mis.beta)) / sum,
+                   w = mis_weight_merge(eye, light, mp.p.bsdf_pdf(i, i - 1), mp.p.bsdf_pdf(i, i + 1), mis);
+      EXPECT_NEAR(w, expected, 2e-3 * std::max(1.0, expected)) << "k=" << k << " merge at " << i << " trial " << trial;
+      total += w;
+    }
+    EXPECT_NEAR(total, 1.0, 2e-3) << "k=" << k << " trial " << trial;
+  }
+}
+
 // Without connections (bpm: vc = 0) the merges of a path are its only
 // strategies: each weighs p^beta / (the sum over the merges), and they sum
 // to one. Emission found by the eye subpath counts only where no vertex

@@ -156,10 +156,10 @@ void Bdpt::connect_eye_surface_vertex_media(BdptWave& w, uint32_t i, const BSDF&
     if (is_black(c)) continue;
     DeferredMis dm;
     dm.a = w.mis(bsdf.pdf(wo, wi, TransportMode::Radiance) * lv.cos / dist2) *
-           (v.mis[j].dVCM + v.mis[j].dVC * w.mis(lv.rev_W));
+           mis_connection_sum(v.mis[j], lv.rev_W, !v.in_medium(j), w.mis);
     dm.sigma_a = lv.sigma_t;
     dm.b = w.mis(lv.fwd_W * vertex_cos(h.ng[i], h.error_scale[i], tangent_or_null(h.tangent, i), wi_w) / dist2) *
-           (m.dVCM + m.dVC * w.mis(bsdf.pdf(wi, wo, TransportMode::Importance)));
+           mis_connection_sum(m, bsdf.pdf(wi, wo, TransportMode::Importance), true, w.mis);
     const Vec3 o = offset_ray_origin(h.p[i], h.ng[i], h.error_scale[i], wi_w);
     const MediumHandle start = medium_after(scene_, w.rays.geom_id[i], h.ng[i], wi_w, w.ends.medium[i]);
     w.shadow.push_deferred(o, lv.target - o, 1.f, slot, c, Vec2(0.f), {uint8_t(v.depth[j] + 1), uint8_t(depth + 1), c},
@@ -183,7 +183,8 @@ void Bdpt::merge_at_eye_vertex(BdptWave& w, uint32_t i, const BSDF& bsdf, const 
   w.grid.query(v.p, h.p[i], [&](uint32_t j) {
     if (v.depth[j] + depth > maxdepth + 1) return;
     // Only light vertices on a surface facing the same way: a thin wall's
-    // other face lies within the radius but not on this surface.
+    // other face lies within the radius but not on this surface. (A
+    // medium vertex, whose ng is zero, never merges.)
     if (!(glm::dot(v.ng[j], h.ng[i]) > 0.f)) return;
     const Vec3 wi = frame.to_local(v.wo[j]);  // where the light came from
     const RGB f = bsdf.f(wo, wi, TransportMode::Radiance);
@@ -260,7 +261,8 @@ void Bdpt::eye_connect_stage(BdptWave& w) const {
             DeferredMis dm;
             dm.a = ls->delta ? 0.f : w.mis(bsdf.pdf(wo, wi, TransportMode::Radiance) / ls->pdf);
             dm.sigma_a = vol.sigma_t;  // an eye ray would end at a volume light's point by distance sampling
-            dm.b = w.mis(emission_fwd_A / direct_pdf_A) * (m.dVCM + m.dVC * w.mis(bsdf.pdf(wi, wo, TransportMode::Importance)));
+            dm.b = w.mis(emission_fwd_A / direct_pdf_A) *
+                   mis_connection_sum(m, bsdf.pdf(wi, wo, TransportMode::Importance), true, w.mis);
             const MediumHandle start = medium_after(sc, w.rays.geom_id[i], h.ng[i], ls->wi, w.ends.medium[i]);
             Vec3 target = ls->infinite || ls->n_light == Vec3(0.f)
                               ? ls->p_light
@@ -278,12 +280,12 @@ void Bdpt::eye_connect_stage(BdptWave& w) const {
         }
       }
       const LightVertexPool& v = w.vertices;
+      if (settings_.merging) merge_at_eye_vertex(w, i, bsdf, frame, wo);
       if (media) {
         connect_eye_surface_vertex_media(w, i, bsdf, frame, wo);
         if (w.shadow.rays.count >= kMaxPendingConnections) flush_connections(w);
         return;
       }
-      if (settings_.merging) merge_at_eye_vertex(w, i, bsdf, frame, wo);
       for (uint32_t n = v.begin[slot]; n < v.begin[slot + 1]; ++n) {  // s >= 2
         const uint32_t j = v.order[n];
         if (v.depth[j] + depth > maxdepth) break;  // in depth order: the rest are deeper

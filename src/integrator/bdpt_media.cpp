@@ -98,7 +98,7 @@ void Bdpt::connect_eye_medium_vertex(BdptWave& w, uint32_t slot, const Vec3& p, 
       DeferredMis d;
       d.a = ls->delta ? 0.f : w.mis(f / ls->pdf);
       d.sigma_a = vol.sigma_t;  // an eye ray would end at a volume light's point by distance sampling
-      d.b = w.mis(emission_fwd_A / direct_pdf_A) * (em.dVCM + em.dVC * w.mis(f));
+      d.b = w.mis(emission_fwd_A / direct_pdf_A) * mis_connection_sum(em, f, false, w.mis);
       d.sigma_b = sigma_eye;
       const RGB u = beta * f * ls->L / ls->pdf;
       const StrategyTag tag{1, uint8_t(depth + 1), u};
@@ -126,9 +126,9 @@ void Bdpt::connect_eye_medium_vertex(BdptWave& w, uint32_t slot, const Vec3& p, 
     const RGB c = beta * f_eye * lv.f * v.beta[j] / dist2;
     if (is_black(c) || !(f_eye > 0.f)) continue;
     DeferredMis d;
-    d.a = w.mis(f_eye * lv.cos / dist2) * (v.mis[j].dVCM + v.mis[j].dVC * w.mis(lv.rev_W));
+    d.a = w.mis(f_eye * lv.cos / dist2) * mis_connection_sum(v.mis[j], lv.rev_W, !v.in_medium(j), w.mis);
     d.sigma_a = lv.sigma_t;
-    d.b = w.mis(lv.fwd_W / dist2) * (em.dVCM + em.dVC * w.mis(f_eye));
+    d.b = w.mis(lv.fwd_W / dist2) * mis_connection_sum(em, f_eye, false, w.mis);
     d.sigma_b = sigma_eye;
     w.shadow.push_deferred(p, lv.target - p, 1.f, slot, c, Vec2(0.f), {uint8_t(v.depth[j] + 1), uint8_t(depth + 1), c},
                            m, d);
@@ -176,16 +176,16 @@ void Bdpt::add_volume_emission(BdptWave& w, uint32_t i, const RGB& beta_before) 
   const LightPools& lights = scene_.lights;
   const int64_t light = lights.volume_light_of(w.ends.medium[i]);
   float wt = 1.f;
+  const MisState& m = w.eye.mis[slot];
   if (light >= 0) {
     const float density = volume_light_density(scene_, light, x);
     const float pos_pdf = lights.selection.discrete_pmf(size_t(light)) * density;  // light subpaths choose by power
-    const MisState& m = w.eye.mis[slot];
     wt = w.depth == 1 ? mis_weight_hit_light_direct(m, pos_pdf, w.mis)
                       : mis_weight_hit_light(m, light_sampler_.pmf(w.eye.prev_p[slot], w.eye.prev_n[slot], uint32_t(light)) * density,
                                              pos_pdf * uniform_sphere_pdf(), w.mis);
   }
   const RGB c = beta_before * w.ends.emission[i];
-  if (is_finite(c)) add_emission(w, slot, c, weight(wt));
+  if (is_finite(c)) add_emission(w, slot, c, emission_weight(m, wt));
 }
 
 // Stores a light vertex in a medium and prepares its camera connection.
@@ -216,14 +216,14 @@ void Bdpt::connect_light_medium_vertex(BdptWave& w, uint32_t slot, uint32_t i, V
     v.medium.push_back(m);
     v.sigma_t.push_back(w.ends.sigma_t[i]);
   }
-  auto cs = depth <= maxdepth ? camera_.sample_wi(p, u_lens) : std::nullopt;
+  auto cs = depth <= maxdepth && settings_.connections ? camera_.sample_wi(p, u_lens) : std::nullopt;
   if (!cs) return;  // t = 1
   const HenyeyGreenstein phase{sc.media.g(m)};
   const float f = phase.p(wo, cs->wi);
   if (!(f > 0.f)) return;
   DeferredMis d;
   if (!settings_.light_tracing_only && !settings_.unit_weights) {
-    d.a = w.mis(camera_.pdf_area(-cs->wi, sqr(cs->dist), 1.f)) * (lm.dVCM + lm.dVC * w.mis(f));
+    d.a = w.mis(camera_.pdf_area(-cs->wi, sqr(cs->dist), 1.f)) * mis_connection_sum(lm, f, false, w.mis);
     d.sigma_a = w.ends.sigma_t[i];
   }
   const RGB c = beta * f * (cs->We / cs->pdf);
@@ -240,7 +240,7 @@ PathEnd Bdpt::scatter_in_medium(BdptWave& w, SubpathPool& sub, uint32_t i, Vec2 
   const Vec3 wo = -glm::normalize(w.rays.direction(i));
   const Vec3 wi = phase.sample(wo, u2, &pdf);
   if (!(pdf > 0.f)) return PathEnd::Absorbed;
-  mis_after_scatter(sub.mis[slot], 1.f, pdf, pdf, false, w.mis);
+  mis_after_scatter(sub.mis[slot], 1.f, pdf, pdf, false, w.mis, false);  // (merging is on surfaces only)
   const float rr = max_component(sub.beta[slot] * sub.eta_scale[slot]) * (light ? sub.rr_scale[slot] : 1.f);
   if (rr < 1.f && w.depth >= 2) {
     const float q = std::fmax(0.f, 1.f - rr);
@@ -263,7 +263,7 @@ void Bdpt::eye_medium_stage(BdptWave& w) const {
     const uint32_t slot = w.active[i];
     const PathSampler& s = w.sampler[slot];
     const uint32_t dim = dims::vertex(depth);
-    if (depth <= maxdepth)
+    if (depth <= maxdepth && settings_.connections)
       connect_eye_medium_vertex(w, slot, w.ends.p[i], -glm::normalize(w.rays.direction(i)), w.ends.medium[i],
                                 w.ends.sigma_t[i], s.get1d(dim + dims::kEyeLightSelect), s.get2d(dim + dims::kEyeLightPosition));
     if (w.shadow.rays.count >= kMaxPendingConnections) flush_connections(w);

@@ -69,18 +69,31 @@ inline void mis_after_hit(MisState& m, float dist2, float cos_in, bool apply_dis
 }
 
 // After sampling a direction with density pdf_fwd (pdf_rev: the density of
-// the opposite sampling) leaving at cosine cos_out.
-inline void mis_after_scatter(MisState& m, float cos_out, float pdf_fwd, float pdf_rev, bool specular, MisPower mis) {
+// the opposite sampling) leaving at cosine cos_out. Merging happens at
+// non-specular surface vertices only: a medium vertex (mergeable = false)
+// connects but adds no merging strategy (its 1 in dVM, its vm in dVC).
+inline void mis_after_scatter(MisState& m, float cos_out, float pdf_fwd, float pdf_rev, bool specular, MisPower mis,
+                              bool mergeable = true) {
   if (specular) {
     m.dVCM = 0.f;
     m.dVC *= mis(cos_out);  // pdf_fwd == pdf_rev for every delta lobe here
     m.dVM *= mis(cos_out);
   } else {
     const float f = mis(cos_out / pdf_fwd);
-    m.dVM = f * (m.dVM * mis(pdf_rev) + m.dVCM * mis.vc_weight + 1.f);
-    m.dVC = f * (m.dVC * mis(pdf_rev) + m.dVCM + mis.vm_weight);
+    const float merge = mergeable ? 1.f : 0.f;
+    m.dVM = f * (m.dVM * mis(pdf_rev) + m.dVCM * mis.vc_weight + merge);
+    m.dVC = f * (m.dVC * mis(pdf_rev) + m.dVCM + merge * mis.vm_weight);
     m.dVCM = mis(1.f / pdf_fwd);
   }
+}
+
+// What a connection weighs the strategies of one of its subpaths by,
+// relative to itself, before the factor for the connection's own segment:
+// m and pdf_rev_W are that subpath's quantities at the connected vertex and
+// its density back towards its previous vertex. Merging at the connected
+// vertex (vm) is one of them where the vertex is on a surface.
+inline float mis_connection_sum(const MisState& m, float pdf_rev_W, bool mergeable, MisPower mis) {
+  return (mergeable ? mis.vm_weight : 0.f) + m.dVCM + m.dVC * mis(pdf_rev_W);
 }
 
 // s = 0: the eye subpath hit an emitter. direct_pdf_A: next-event density of
@@ -113,7 +126,7 @@ inline float mis_weight_hit_light_merging_only(const MisState& eye) { return eye
 inline float mis_weight_next_event(const MisState& eye, float light_pdf_W, float bsdf_pdf_W, float emission_fwd_A,
                                    float direct_pdf_A, float eye_rev_W, MisPower mis) {
   float w_light = light_pdf_W > 0.f ? mis(bsdf_pdf_W / light_pdf_W) : 0.f;
-  float w_eye = mis(emission_fwd_A / direct_pdf_A) * (mis.vm_weight + eye.dVCM + eye.dVC * mis(eye_rev_W));
+  float w_eye = mis(emission_fwd_A / direct_pdf_A) * mis_connection_sum(eye, eye_rev_W, true, mis);
   return 1.f / (w_light + 1.f + w_eye);
 }
 
@@ -123,15 +136,15 @@ inline float mis_weight_next_event(const MisState& eye, float light_pdf_W, float
 // the connection back to its own subpath's previous vertex.
 inline float mis_weight_connect(const MisState& eye, const MisState& light, float eye_fwd_A, float eye_rev_W,
                                 float light_fwd_A, float light_rev_W, MisPower mis) {
-  float w_light = mis(eye_fwd_A) * (mis.vm_weight + light.dVCM + light.dVC * mis(light_rev_W));
-  float w_eye = mis(light_fwd_A) * (mis.vm_weight + eye.dVCM + eye.dVC * mis(eye_rev_W));
+  float w_light = mis(eye_fwd_A) * mis_connection_sum(light, light_rev_W, true, mis);
+  float w_eye = mis(light_fwd_A) * mis_connection_sum(eye, eye_rev_W, true, mis);
   return 1.f / (w_light + 1.f + w_eye);
 }
 
 // t = 1: a light vertex connected to the camera. camera_pdf_A: the camera's
 // direction density towards it, per area there.
 inline float mis_weight_light_trace(const MisState& light, float camera_pdf_A, float light_rev_W, MisPower mis) {
-  return 1.f / (1.f + mis(camera_pdf_A) * (mis.vm_weight + light.dVCM + light.dVC * mis(light_rev_W)));
+  return 1.f / (1.f + mis(camera_pdf_A) * mis_connection_sum(light, light_rev_W, true, mis));
 }
 
 // Merging an eye vertex with a light vertex within the radius (vcm):
@@ -159,6 +172,7 @@ inline float mis_weight_light_origin(float camera_pdf_A, float emission_pos_pdf_
 inline void mis_after_segment(MisState& m, float fwd, float rev, MisPower mis) {
   m.dVCM /= mis(fwd);
   m.dVC *= mis(rev / fwd);
+  m.dVM *= mis(rev / fwd);
 }
 
 // A connection's segment is not sampled, but the strategies that would have

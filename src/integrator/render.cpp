@@ -412,8 +412,6 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
   const bool bidirectional = opt.integrator == "bdpt" || opt.integrator == "lt" || merging;
   if (opt.integrator != "path" && !bidirectional)
     throw std::invalid_argument("unknown integrator \"" + opt.integrator + "\"; available: path, bdpt, lt, vcm, bpm, ppm");
-  if (merging && !scene.media.empty())
-    throw std::invalid_argument(opt.integrator + " does not render participating media yet; use bdpt or path for this scene");
   if (merging && (!(opt.vcm_radius >= 0.f) || !std::isfinite(opt.vcm_radius) || !(opt.vcm_alpha > 0.f && opt.vcm_alpha <= 1.f)))
     throw std::invalid_argument(opt.integrator + " needs a radius >= 0 (0: automatic) and an alpha in (0, 1]");
   if (opt.mis != "power" && opt.mis != "balance")
