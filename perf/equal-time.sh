@@ -3,7 +3,7 @@
 # integrator renders for the same wall time at the reference's resolution,
 # and `lantern compare` measures relMSE against perf/references/<scene>.exr
 # (made by perf/make-references.sh). Prints a Markdown table; the last
-# column is each integrator's relMSE over bdpt's; bpm runs on the pool.
+# column is each integrator's relMSE over bdpt's; bpm runs on the pools.
 # Usage: perf/equal-time.sh [seconds] [scenes...]   (from the repository root)
 set -eu
 secs=${1:-20}
@@ -18,7 +18,7 @@ for s in $scenes; do
   ref="perf/references/$s.exr"
   res="240 180"; case "$s" in cornell-box*) res="256 256" ;; lamp-street) res="240 135" ;; esac
   integrators="bdpt path vcm"
-  case "$s" in pool) integrators="bdpt path vcm bpm" ;; esac
+  case "$s" in pool*) integrators="bdpt path vcm bpm" ;; esac
   bdpt_err=""
   for i in $integrators; do
     "$lantern" render "scenes/$s.pbrt" --integrator "$i" --time "$secs" --seed 7 --resolution $res \

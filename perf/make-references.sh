@@ -1,18 +1,18 @@
 #!/bin/sh
 # Renders the reference images the equal-time benchmarks compare against:
-# bdpt (vcm for the pool, whose caustics bdpt cannot converge, from the
+# bdpt (vcm for the pools, whose caustics bdpt cannot converge, from the
 # scene's merging radius) for a fixed time at a modest resolution, stored
 # as half-float EXR.
 # Usage: perf/make-references.sh [seconds per scene] [scenes...]   (from the repository root)
 set -eu
 secs=${1:-150}
 shift 2>/dev/null || true
-scenes=${*:-"cornell-box cornell-box-tiny-light lantern door-ajar caustics lamp-street volumetric-caustic pool"}
+scenes=${*:-"cornell-box cornell-box-tiny-light lantern door-ajar caustics lamp-street volumetric-caustic pool pool-water"}
 lantern=${LANTERN:-build/lantern}
 mkdir -p perf/references
 for s in $scenes; do
   res="240 180"; case "$s" in cornell-box*) res="256 256" ;; lamp-street) res="240 135" ;; esac
-  integrator=bdpt; [ "$s" = pool ] && integrator=vcm
+  integrator=bdpt; case "$s" in pool*) integrator=vcm ;; esac
   "$lantern" render "scenes/$s.pbrt" --integrator $integrator --time "$secs" --seed 424242 --resolution $res -q \
     -o "/tmp/ref-$s.exr"
   oiiotool "/tmp/ref-$s.exr" -d half --compression zip -o "perf/references/$s.exr"

@@ -42,6 +42,18 @@ TEST(Vcm, AgreesWithBdptOnTheCornellBoxes) {
   }
 }
 
+// Options for a merging integrator with render_stats' depth (6).
+RenderOptions merging_options(const char* integrator, int width, int height, int spp, float radius) {
+  RenderOptions o;
+  o.integrator = integrator;
+  o.width = width;
+  o.height = height;
+  o.spp = spp;
+  o.maxdepth = 6;
+  o.vcm_radius = radius;
+  return o;
+}
+
 double mse(const Image& a, const Image& b) {
   double sum = 0.0;
   for (size_t k = 0; k < a.rgb.size(); ++k) sum += double(a.rgb[k] - b.rgb[k]) * double(a.rgb[k] - b.rgb[k]);
@@ -100,13 +112,8 @@ TEST(Vcm, PhotonMappingAgreesWithBdptOnTheCornellBox) {
   const auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
   const std::vector<Region> regions = {{0, 0, 32, 32}, {8, 20, 16, 10}};
   const RegionStats bdpt = render_stats(*scene, "bdpt", 32, 32, 16, 8, regions);
-  RenderOptions o;
-  o.integrator = "ppm";
-  o.spp = 16;
-  o.maxdepth = 6;
-  o.width = o.height = 32;
-  o.vcm_radius = 10.f;
-  expect_means_agree(bdpt, stats_of(render_runs(*scene, o, 8, 1000), regions), 0.03, "ppm");
+  expect_means_agree(bdpt, stats_of(render_runs(*scene, merging_options("ppm", 32, 32, 16, 10.f), 8, 1000), regions),
+                     0.03, "ppm");
 }
 
 // Bidirectional photon mapping: merges at every non-specular eye vertex,
@@ -117,12 +124,8 @@ TEST(Vcm, BidirectionalPhotonMappingAgreesWithBdptOnTheCornellBox) {
   const auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
   const std::vector<Region> regions = {{0, 0, 32, 32}, {8, 20, 16, 10}, {2, 8, 8, 16}};
   const RegionStats bdpt = render_stats(*scene, "bdpt", 32, 32, 16, 8, regions);
-  RenderOptions o;
-  o.integrator = "bpm";
-  o.spp = 16;
-  o.width = o.height = 32;
-  o.vcm_radius = 10.f;
-  expect_means_agree(bdpt, stats_of(render_runs(*scene, o, 8, 1000), regions), 0.03, "bpm");
+  expect_means_agree(bdpt, stats_of(render_runs(*scene, merging_options("bpm", 32, 32, 16, 10.f), 8, 1000), regions),
+                     0.03, "bpm");
 }
 
 // Without connections and with one bounce, the only strategies left are a
@@ -216,13 +219,7 @@ TEST(Vcm, BidirectionalPhotonMappingAgreesWithBdptInMedia) {
   for (const char* name : {"perf/media/fog-sphere", "perf/media/glowing-fog"}) {
     const auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/" + name + ".pbrt");
     const RegionStats bdpt = render_stats(*scene, "bdpt", 32, 24, 16, 8, regions);
-    RenderOptions o;
-    o.integrator = "bpm";
-    o.spp = 16;
-    o.maxdepth = 6;
-    o.width = 32;
-    o.height = 24;
-    o.vcm_radius = 0.05f * scene->lights.scene_radius;
+    const RenderOptions o = merging_options("bpm", 32, 24, 16, 0.05f * scene->lights.scene_radius);
     expect_means_agree(bdpt, stats_of(render_runs(*scene, o, 8, 1000), regions), 0.03, name);
   }
 }
