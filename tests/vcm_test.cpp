@@ -149,6 +149,26 @@ TEST(Vcm, OneBounceBpmIsPpmBitForBit) {
       << "one-bounce bpm differs from ppm";
 }
 
+// Per-strategy images (--strategies): with merges among them, the weighted
+// images of all strategies add up to the image, pixel by pixel.
+TEST(Vcm, StrategyImagesAddUpToTheImage) {
+  const auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
+  for (const char* integrator : {"bdpt", "vcm", "bpm"}) {
+    RenderOptions o = merging_options(integrator, 24, 24, 4, 20.f);
+    o.strategies = true;
+    const RenderResult r = render(*scene, o);
+    std::vector<double> sum(r.image.rgb.size(), 0.0);
+    bool merges = false;
+    for (const StrategyImage& im : r.strategies) {
+      merges |= im.merge;
+      for (size_t k = 0; k < sum.size(); ++k) sum[k] += im.weighted.rgb[k];
+    }
+    EXPECT_EQ(merges, std::string(integrator) != "bdpt") << integrator;
+    for (size_t k = 0; k < sum.size(); ++k)
+      ASSERT_NEAR(sum[k], r.image.rgb[k], 1e-4 + 1e-4 * r.image.rgb[k]) << integrator << " at " << k / 3;
+  }
+}
+
 TEST(Vcm, ThreadCountsGiveTheSameBits) {
   const auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/pool.pbrt");
   RenderOptions o;

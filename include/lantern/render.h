@@ -151,6 +151,7 @@ struct RenderStats {
 struct StrategyImage {
   int s, t;
   Image weighted, unweighted;
+  bool merge = false;  // a merging strategy (vcm), whose s and t share the merged vertex
 };
 
 struct RenderResult {

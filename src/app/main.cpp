@@ -65,7 +65,7 @@ void write_strategy_images(const std::string& dir, const std::vector<lantern::St
                            const lantern::ImageMetadata& md) {
   std::filesystem::create_directories(dir);
   for (const lantern::StrategyImage& im : images) {
-    std::string base = dir + "/s" + std::to_string(im.s) + "_t" + std::to_string(im.t);
+    std::string base = dir + (im.merge ? "/merge_s" : "/s") + std::to_string(im.s) + "_t" + std::to_string(im.t);
     lantern::write_image(base + "_weighted.exr", im.weighted, md);
     lantern::write_image(base + "_unweighted.exr", im.unweighted, md);
   }
@@ -459,7 +459,7 @@ int main(int argc, char** argv) {
   render->add_option("--dump-rays", a.dump_rays,
                      "Write every ray batch given to Embree to FILE (32 bytes a ray; for perf/'s ray benchmark)");
   render->add_option("--strategies", a.strategies,
-                     "bdpt: write DIR/s<s>_t<t>_{weighted,unweighted}.exr, one pair per strategy");
+                     "bdpt, vcm, bpm, ppm: write DIR/s<s>_t<t>_{weighted,unweighted}.exr, one pair per strategy (merge_s<s>_t<t> for merges)");
   render->add_option("--maxdepth", a.maxdepth, "Maximum path depth, as pbrt defines it (default: the scene's)")->check(lantern::cli::integer_in(0, 2147483647, "an integer of 0 or more"));
   render->add_option("--threads", a.threads, "Worker threads (default: all cores)")->check(lantern::cli::positive_integer());
   render->add_option("--seed", a.seed, "Random seed");

@@ -31,12 +31,14 @@ struct Splat {
 };
 
 // One contribution of one bidirectional strategy (s light vertices, t eye
-// vertices), kept only when per-strategy images are asked for.
+// vertices), kept only when per-strategy images are asked for. A merge
+// (vcm) counts the merged vertex on both sides.
 struct StrategyRecord {
   uint32_t pixel;  // t >= 2: the pixel of the camera sample
   Vec2 p_raster;   // t = 1: where the splat lands
   uint8_t s, t;
   RGB weighted, unweighted;
+  bool merge = false;
 };
 
 // A sample or a splat's share of one pixel, converted to fixed point.

@@ -4,12 +4,13 @@
 
 namespace lantern {
 
-StrategyFilm::Sums& StrategyFilm::sums(int s, int t) {
+StrategyFilm::Sums& StrategyFilm::sums(int s, int t, bool merge) {
   for (Sums& x : strategies_)
-    if (x.s == s && x.t == t) return x;
+    if (x.s == s && x.t == t && x.merge == merge) return x;
   Sums& x = strategies_.emplace_back();
   x.s = s;
   x.t = t;
+  x.merge = merge;
   x.weighted.assign(3 * size_t(width_) * size_t(height_), 0.0);
   x.unweighted.assign(x.weighted.size(), 0.0);
   return x;
@@ -18,7 +19,7 @@ StrategyFilm::Sums& StrategyFilm::sums(int s, int t) {
 void StrategyFilm::merge(const std::vector<StrategyRecord>& records) {
   for (const StrategyRecord& r : records) {
     if (!is_finite(r.weighted) || !is_finite(r.unweighted)) continue;
-    Sums& x = sums(r.s, r.t);
+    Sums& x = sums(r.s, r.t, r.merge);
     auto add = [&](size_t pixel, float w) {
       for (size_t c = 0; c < 3; ++c) {
         x.weighted[3 * pixel + c] += double(w * r.weighted[int(c)]);
@@ -37,7 +38,7 @@ std::vector<StrategyImage> StrategyFilm::resolve(const Film& film) const {
   const size_t n = size_t(width_) * size_t(height_);
   const double splat_scale = film.light_paths() ? double(n) / double(film.light_paths()) : 0.0;
   for (const Sums& x : strategies_) {
-    StrategyImage img{x.s, x.t, {}, {}};
+    StrategyImage img{x.s, x.t, {}, {}, x.merge};
     for (Image* im : {&img.weighted, &img.unweighted}) {
       im->width = width_;
       im->height = height_;
@@ -53,8 +54,11 @@ std::vector<StrategyImage> StrategyFilm::resolve(const Film& film) const {
     }
     out.push_back(std::move(img));
   }
-  std::sort(out.begin(), out.end(), [](const StrategyImage& a, const StrategyImage& b) {
-    return a.s + a.t != b.s + b.t ? a.s + a.t < b.s + b.t : a.s < b.s;
+  // By path length (segments), connections before merges, then by s.
+  auto segments = [](const StrategyImage& x) { return x.s + x.t - (x.merge ? 2 : 1); };
+  std::sort(out.begin(), out.end(), [&](const StrategyImage& a, const StrategyImage& b) {
+    if (segments(a) != segments(b)) return segments(a) < segments(b);
+    return a.merge != b.merge ? b.merge : a.s < b.s;
   });
   return out;
 }

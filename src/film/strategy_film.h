@@ -1,7 +1,8 @@
 // Per-strategy images for the bidirectional tracer (`--strategies DIR`), as
-// pbrt's visualizestrategies: for each (s, t) one image of its weighted
-// contributions (they sum to the bdpt image) and one unweighted (each is an
-// estimator of all paths that strategy can sample). A debugging aid: memory
+// pbrt's visualizestrategies: for each (s, t), and for each merge (s, t)
+// of vcm, one image of its weighted contributions (they sum to the image)
+// and one unweighted (each is an estimator of all paths that strategy can
+// sample). A debugging aid: memory
 // grows with the number of strategies times the image size.
 #pragma once
 
@@ -24,9 +25,10 @@ class StrategyFilm {
  private:
   struct Sums {
     int s = -1, t = -1;
+    bool merge = false;
     std::vector<double> weighted, unweighted;
   };
-  Sums& sums(int s, int t);
+  Sums& sums(int s, int t, bool merge);
 
   int width_, height_;
   PixelFilter filter_;

@@ -194,6 +194,11 @@ void Bdpt::merge_at_eye_vertex(BdptWave& w, uint32_t i, const BSDF& bsdf, const 
                                                                  bsdf.pdf(wi, wo, TransportMode::Importance), w.mis);
     sum += f * v.beta[j] * weight(wt);
     ++w.stats.merges;
+    if (settings_.record_strategies) {
+      const RGB u = w.eye.beta[slot] * f * v.beta[j] * w.vm_normalization;
+      w.out->strategies.push_back(
+          {w.pixel[slot], Vec2(0.f), uint8_t(v.depth[j] + 1), uint8_t(depth + 1), u * weight(wt), u, true});
+    }
   });
   const RGB c = w.eye.beta[slot] * sum * w.vm_normalization;
   if (!is_black(c) && is_finite(c)) w.L[slot] += c;

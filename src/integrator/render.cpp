@@ -422,8 +422,8 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
     throw std::invalid_argument("light tracing (--integrator lt) cannot reach an orthographic camera without a lens: "
                                 "its rays are parallel, so no light path connects to it; use path or bdpt, or give the "
                                 "camera a \"lensradius\"");
-  if (opt.strategies && opt.integrator != "bdpt")
-    throw std::invalid_argument("per-strategy images need --integrator bdpt");
+  if (opt.strategies && opt.integrator != "bdpt" && !merging)
+    throw std::invalid_argument("per-strategy images need --integrator bdpt, vcm, bpm or ppm");
 
   if (opt.wave_size < 1 || opt.wave_size > (1 << 22)) throw std::invalid_argument("--wave-size must lie in [1, 4194304]");
   if (opt.strategies && !opt.checkpoint_path.empty())
