@@ -168,7 +168,7 @@ float recursive_merge_weight(const RandomPath& p, int i, MisPower mis) {
     mis_after_scatter(eye, p.cos_at(m, m - 1), p.bsdf_pdf(m, m - 1), p.bsdf_pdf(m, m + 1), false, mis);
     mis_after_hit(eye, p.dist2(m, m - 1), p.cos_at(m - 1, m), true, mis);
   }
-  return mis_weight_merge(eye, light, p.bsdf_pdf(i, i - 1), p.bsdf_pdf(i, i + 1), mis);
+  return mis_weight_merge(eye, light, p.bsdf_pdf(i, i - 1), p.bsdf_pdf(i, i + 1), MergeKind::Surface, mis);
 }
 
 // With merging, every connection strategy and every merge of a path weigh
@@ -179,7 +179,6 @@ TEST_P(MisWeights, WithMergingMatchExplicitDensitiesAndSumToOne) {
     const double eta = std::pow(10.0, double(trial % 7) - 3.0);  // from 1e-3 to 1e3
     MisPower mis{GetParam()};
     mis.vm_weight = mis(float(eta));
-    mis.vc_weight = mis(float(1.0 / eta));
     const int k = 1 + trial % 6;
     RandomPath p = make_path(k, rng);
     double sum = 0.0;
@@ -202,13 +201,14 @@ TEST_P(MisWeights, WithMergingMatchExplicitDensitiesAndSumToOne) {
 }
 
 // In a scene with media a vertex may lie in a medium: it connects (its
-// connections weighted once their transmittance is known, here 1) but
-// never merges. With `surface` marking the vertices that may merge, every
-// connection's and every surface merge's weight is p^beta over the sum over
-// those strategies, and they sum to one.
+// connections weighted once their transmittance is known, here 1) and
+// merges in a ball, with its own eta. With `merge` saying how each vertex
+// merges, every connection's and every merge's weight is p^beta over the
+// sum over all those strategies, and they sum to one; so too for merges
+// alone (bpm).
 struct MediaPath {
   RandomPath p;
-  std::vector<bool> surface;  // per vertex; the ends (light, camera) are never merged
+  std::vector<MergeKind> merge;  // per vertex; the ends (light, camera) never merge
 };
 
 MisState light_subpath_to(const MediaPath& mp, int last, MisPower mis) {
@@ -217,7 +217,7 @@ MisState light_subpath_to(const MediaPath& mp, int last, MisPower mis) {
   mis_after_hit(light, p.dist2(0, 1), p.cos_at(1, 0), true, mis);
   for (int m = 1; m <= last - 1; ++m) {
     mis_after_scatter(light, p.cos_at(m, m + 1), p.bsdf_pdf(m, m + 1), p.bsdf_pdf(m, m - 1), false, mis,
-                      mp.surface[size_t(m)]);
+                      mp.merge[size_t(m)]);
     mis_after_hit(light, p.dist2(m, m + 1), p.cos_at(m + 1, m), true, mis);
   }
   return light;
@@ -230,7 +230,7 @@ MisState eye_subpath_to(const MediaPath& mp, int last, MisPower mis) {
   mis_after_hit(eye, p.dist2(k, k - 1), p.cos_at(k - 1, k), true, mis);
   for (int m = k - 1; m >= last + 1; --m) {
     mis_after_scatter(eye, p.cos_at(m, m - 1), p.bsdf_pdf(m, m - 1), p.bsdf_pdf(m, m + 1), false, mis,
-                      mp.surface[size_t(m)]);
+                      mp.merge[size_t(m)]);
     mis_after_hit(eye, p.dist2(m, m - 1), p.cos_at(m - 1, m), true, mis);
   }
   return eye;
@@ -246,7 +246,7 @@ float media_connection_weight(const MediaPath& mp, int s, MisPower mis) {
   if (s == 0) {
     if (k == 1) return mis_weight_hit_light_direct(eye_subpath_to(mp, 1, mis), p.emission_pos_A, mis);
     MisState eye = eye_subpath_to(mp, 1, mis);
-    mis_after_scatter(eye, p.cos_at(1, 0), p.bsdf_pdf(1, 0), p.bsdf_pdf(1, 2), false, mis, mp.surface[1]);
+    mis_after_scatter(eye, p.cos_at(1, 0), p.bsdf_pdf(1, 0), p.bsdf_pdf(1, 2), false, mis, mp.merge[1]);
     mis_after_hit(eye, p.dist2(1, 0), p.cos_at(0, 1), true, mis);
     return mis_weight_hit_light(eye, p.direct_pdf_A, p.emission_pos_A * p.emission_dir_W(1), mis);
   }
@@ -257,50 +257,61 @@ float media_connection_weight(const MediaPath& mp, int s, MisPower mis) {
     const float emission_fwd_A = p.emission_pos_A * p.emission_dir_W(1) * p.cos_at(1, 0) / p.dist2(0, 1);
     d.a = mis(p.bsdf_pdf(1, 0) / light_pdf_W);
     d.b = mis(emission_fwd_A / p.direct_pdf_A) *
-          mis_connection_sum(eye_subpath_to(mp, 1, mis), p.bsdf_pdf(1, 2), mp.surface[1], mis);
+          mis_connection_sum(eye_subpath_to(mp, 1, mis), p.bsdf_pdf(1, 2), mp.merge[1], mis);
     return mis_weight_deferred(d, T, mis);
   }
   if (t == 1) {  // light tracing from x_{k-1}
     const float camera_pdf_A = p.camera_dir_W(k - 1) * p.cos_at(k - 1, k) / p.dist2(k - 1, k);
     d.a = mis(camera_pdf_A) *
-          mis_connection_sum(light_subpath_to(mp, k - 1, mis), p.bsdf_pdf(k - 1, k - 2), mp.surface[size_t(k - 1)], mis);
+          mis_connection_sum(light_subpath_to(mp, k - 1, mis), p.bsdf_pdf(k - 1, k - 2), mp.merge[size_t(k - 1)], mis);
     return mis_weight_deferred(d, T, mis);
   }
   const int l = s - 1, e = s;
   const float d2 = p.dist2(l, e);
   d.a = mis(p.bsdf_pdf(e, l) * p.cos_at(l, e) / d2) *
-        mis_connection_sum(light_subpath_to(mp, l, mis), p.bsdf_pdf(l, l - 1), mp.surface[size_t(l)], mis);
+        mis_connection_sum(light_subpath_to(mp, l, mis), p.bsdf_pdf(l, l - 1), mp.merge[size_t(l)], mis);
   d.b = mis(p.bsdf_pdf(l, e) * p.cos_at(e, l) / d2) *
-        mis_connection_sum(eye_subpath_to(mp, e, mis), p.bsdf_pdf(e, e + 1), mp.surface[size_t(e)], mis);
+        mis_connection_sum(eye_subpath_to(mp, e, mis), p.bsdf_pdf(e, e + 1), mp.merge[size_t(e)], mis);
   return mis_weight_deferred(d, T, mis);
 }
 
-TEST_P(MisWeights, MediumVerticesConnectButNeverMerge) {
+TEST_P(MisWeights, MediumVerticesMergeInABall) {
   std::mt19937 rng(31337);
   std::bernoulli_distribution in_medium(0.4);
-  for (int trial = 0; trial < 300; ++trial) {
-    const double eta = std::pow(10.0, double(trial % 7) - 3.0);
+  for (int trial = 0; trial < 400; ++trial) {
+    // eta of a surface merge (pi r^2 n) and of a medium merge (4/3 pi r^3 n),
+    // unrelated here; every fourth trial without medium merges (ppm's case)
+    const double eta = std::pow(10.0, double(trial % 7) - 3.0), eta_medium = std::pow(10.0, double(trial % 5) - 2.5);
+    const bool medium_merges = trial % 4 != 3, connections = trial % 3 != 2;  // bpm's case: merges alone
     MisPower mis{GetParam()};
     mis.vm_weight = mis(float(eta));
-    mis.vc_weight = mis(float(1.0 / eta));
+    mis.vm_medium = medium_merges ? mis(float(eta_medium)) : 0.f;
+    mis.connect = connections ? 1.f : 0.f;
     const int k = 1 + trial % 6;
-    MediaPath mp{make_path(k, rng), std::vector<bool>(size_t(k) + 1, false)};
-    for (int i = 1; i <= k - 1; ++i) mp.surface[size_t(i)] = !in_medium(rng);
+    MediaPath mp{make_path(k, rng), std::vector<MergeKind>(size_t(k) + 1, MergeKind::None)};
+    for (int i = 1; i <= k - 1; ++i)
+      mp.merge[size_t(i)] = !in_medium(rng) ? MergeKind::Surface : medium_merges ? MergeKind::Medium : MergeKind::None;
     std::vector<double> vc(size_t(k) + 1), vm(size_t(k) + 1, 0.0);
     double sum = 0.0, total = 0.0;
-    for (int s = 0; s <= k; ++s) sum += std::pow(vc[size_t(s)] = explicit_pdf(mp.p, s), double(mis.beta));
-    for (int i = 1; i <= k - 1; ++i)
-      if (mp.surface[size_t(i)]) sum += std::pow(vm[size_t(i)] = explicit_merge_pdf(mp.p, i, eta), double(mis.beta));
-    for (int s = 0; s <= k; ++s) {
+    for (int s = 0; s <= k && connections; ++s) sum += std::pow(vc[size_t(s)] = explicit_pdf(mp.p, s), double(mis.beta));
+    for (int i = 1; i <= k - 1; ++i) {
+      const MergeKind kind = mp.merge[size_t(i)];
+      if (kind == MergeKind::None) continue;
+      vm[size_t(i)] = explicit_merge_pdf(mp.p, i, kind == MergeKind::Medium ? eta_medium : eta);
+      sum += std::pow(vm[size_t(i)], double(mis.beta));
+    }
+    if (!(sum > 0.0)) continue;  // merges alone, and no vertex merges: emission's only (mis_weight_hit_light_merging_only)
+    for (int s = 0; s <= k && connections; ++s) {
       const double expected = std::pow(vc[size_t(s)], double(mis.beta)) / sum, w = media_connection_weight(mp, s, mis);
       EXPECT_NEAR(w, expected, 2e-3 * std::max(1.0, expected)) << "k=" << k << " s=" << s << " trial " << trial;
       total += w;
     }
     for (int i = 1; i <= k - 1; ++i) {
-      if (!mp.surface[size_t(i)]) continue;
+      if (mp.merge[size_t(i)] == MergeKind::None) continue;
       const MisState light = light_subpath_to(mp, i, mis), eye = eye_subpath_to(mp, i, mis);
       const double expected = std::pow(vm[size_t(i)], double(mis.beta)) / sum,
-                   w = mis_weight_merge(eye, light, mp.p.bsdf_pdf(i, i - 1), mp.p.bsdf_pdf(i, i + 1), mis);
+                   w = mis_weight_merge(eye, light, mp.p.bsdf_pdf(i, i - 1), mp.p.bsdf_pdf(i, i + 1),
+                                        mp.merge[size_t(i)], mis);
       EXPECT_NEAR(w, expected, 2e-3 * std::max(1.0, expected)) << "k=" << k << " merge at " << i << " trial " << trial;
       total += w;
     }
@@ -318,6 +329,7 @@ TEST_P(MisWeights, MergesAloneMatchExplicitDensitiesAndSumToOne) {
     const double eta = std::pow(10.0, double(trial % 7) - 3.0);
     MisPower mis{GetParam()};
     mis.vm_weight = mis(float(eta));
+    mis.connect = 0.f;
     const int k = 2 + trial % 5;
     RandomPath p = make_path(k, rng);
     std::vector<double> vm(size_t(k), 0.0);
@@ -332,6 +344,7 @@ TEST_P(MisWeights, MergesAloneMatchExplicitDensitiesAndSumToOne) {
   }
   MisPower mis{GetParam()};
   mis.vm_weight = mis(0.5f);
+  mis.connect = 0.f;
   MisState eye = mis_camera_start(0.3f, mis);
   mis_after_hit(eye, 2.f, 0.5f, true, mis);
   EXPECT_EQ(mis_weight_hit_light_merging_only(eye), 1.f);  // a light seen directly

@@ -156,10 +156,10 @@ void Bdpt::connect_eye_surface_vertex_media(BdptWave& w, uint32_t i, const BSDF&
     if (is_black(c)) continue;
     DeferredMis dm;
     dm.a = w.mis(bsdf.pdf(wo, wi, TransportMode::Radiance) * lv.cos / dist2) *
-           mis_connection_sum(v.mis[j], lv.rev_W, !v.in_medium(j), w.mis);
+           mis_connection_sum(v.mis[j], lv.rev_W, light_vertex_merging(v, j), w.mis);
     dm.sigma_a = lv.sigma_t;
     dm.b = w.mis(lv.fwd_W * vertex_cos(h.ng[i], h.error_scale[i], tangent_or_null(h.tangent, i), wi_w) / dist2) *
-           mis_connection_sum(m, bsdf.pdf(wi, wo, TransportMode::Importance), true, w.mis);
+           mis_connection_sum(m, bsdf.pdf(wi, wo, TransportMode::Importance), MergeKind::Surface, w.mis);
     const Vec3 o = offset_ray_origin(h.p[i], h.ng[i], h.error_scale[i], wi_w);
     const MediumHandle start = medium_after(scene_, w.rays.geom_id[i], h.ng[i], wi_w, w.ends.medium[i]);
     w.shadow.push_deferred(o, lv.target - o, 1.f, slot, c, Vec2(0.f), {uint8_t(v.depth[j] + 1), uint8_t(depth + 1), c},
@@ -191,7 +191,8 @@ void Bdpt::merge_at_eye_vertex(BdptWave& w, uint32_t i, const BSDF& bsdf, const 
     if (is_black(f)) return;
     const float wt = settings_.photon_mapping ? 1.f  // the only strategy
                                               : mis_weight_merge(m, v.mis[j], bsdf.pdf(wo, wi, TransportMode::Radiance),
-                                                                 bsdf.pdf(wi, wo, TransportMode::Importance), w.mis);
+                                                                 bsdf.pdf(wi, wo, TransportMode::Importance),
+                                                                 MergeKind::Surface, w.mis);
     sum += f * v.beta[j] * weight(wt);
     ++w.stats.merges;
     if (settings_.record_strategies) {
@@ -205,17 +206,21 @@ void Bdpt::merge_at_eye_vertex(BdptWave& w, uint32_t i, const BSDF& bsdf, const 
 }
 
 // vcm: this wave's merging radius (its first sample pass), the factors
-// eta = pi r^2 n of the MIS quantities (n: the wave's light subpaths,
-// all of which each eye vertex may merge with), and the grid.
+// eta of the MIS quantities, pi r^2 n on surfaces and 4/3 pi r^3 n in
+// media (n: the wave's light subpaths, all of which each eye vertex may
+// merge with), and the grid.
 void Bdpt::prepare_merging(const WaveDesc& wave, BdptWave& w) const {
   w.mis = mis_;
   if (!settings_.merging) return;
   const float pass = float(wave.first_sample + 1);
-  w.vm_radius = settings_.vcm_radius * std::pow(pass, 0.5f * (settings_.vcm_alpha - 1.f));
-  const float eta = kPi * w.vm_radius * w.vm_radius * float(wave.size());
+  const float r = settings_.vcm_radius * std::pow(pass, 0.5f * (settings_.vcm_alpha - 1.f));
+  const float eta = kPi * r * r * float(wave.size()), eta_medium = eta * r * (4.f / 3.f);
+  w.vm_radius = r;
   w.mis.vm_weight = mis_(eta);
-  w.mis.vc_weight = settings_.connections ? mis_(1.f / eta) : 0.f;
+  w.mis.vm_medium = medium_merging() == MergeKind::Medium ? mis_(eta_medium) : 0.f;
+  w.mis.connect = settings_.connections ? 1.f : 0.f;
   w.vm_normalization = 1.f / eta;
+  w.vm_normalization_medium = 1.f / eta_medium;
 }
 
 // Prepares the s = 1 and s >= 2 connections of every eye vertex.
@@ -267,7 +272,7 @@ void Bdpt::eye_connect_stage(BdptWave& w) const {
             dm.a = ls->delta ? 0.f : w.mis(bsdf.pdf(wo, wi, TransportMode::Radiance) / ls->pdf);
             dm.sigma_a = vol.sigma_t;  // an eye ray would end at a volume light's point by distance sampling
             dm.b = w.mis(emission_fwd_A / direct_pdf_A) *
-                   mis_connection_sum(m, bsdf.pdf(wi, wo, TransportMode::Importance), true, w.mis);
+                   mis_connection_sum(m, bsdf.pdf(wi, wo, TransportMode::Importance), MergeKind::Surface, w.mis);
             const MediumHandle start = medium_after(sc, w.rays.geom_id[i], h.ng[i], ls->wi, w.ends.medium[i]);
             Vec3 target = ls->infinite || ls->n_light == Vec3(0.f)
                               ? ls->p_light

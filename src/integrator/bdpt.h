@@ -111,6 +111,7 @@ class Bdpt {
   void connect_light_medium_vertex(BdptWave& w, uint32_t slot, uint32_t i, Vec2 u_lens) const;
   template <class BSDF>  // vcm: merging at a surface eye vertex (bdpt.cpp)
   void merge_at_eye_vertex(BdptWave& w, uint32_t i, const BSDF& bsdf, const Frame& frame, const Vec3& wo) const;
+  void merge_at_eye_medium_vertex(BdptWave& w, uint32_t i) const;  // (bdpt_media.cpp)
   void prepare_merging(const WaveDesc& wave, BdptWave& w) const;
   template <class BSDF>  // s >= 2 from a surface eye vertex (bdpt.cpp)
   void connect_eye_surface_vertex_media(BdptWave& w, uint32_t i, const BSDF& bsdf, const Frame& frame,
@@ -133,6 +134,12 @@ class Bdpt {
 
   // (ppm has one strategy per path: every weight is 1)
   float weight(float w) const { return settings_.unit_weights || settings_.photon_mapping ? 1.f : w; }
+  // How a vertex in a medium merges: in a ball with vcm and bpm; ppm
+  // merges on surfaces only.
+  MergeKind medium_merging() const {
+    return settings_.merging && !settings_.photon_mapping ? MergeKind::Medium : MergeKind::None;
+  }
+  MergeKind light_vertex_merging(const LightVertexPool& v, uint32_t j) const;
   // s = 0's weight, for eye subpath state m (found before the weight w)
   float emission_weight(const MisState& m, float w) const {
     return settings_.connections ? weight(w) : mis_weight_hit_light_merging_only(m);

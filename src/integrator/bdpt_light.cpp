@@ -299,7 +299,7 @@ void Bdpt::light_connect_stage(BdptWave& w) const {
             if (!settings_.light_tracing_only && !settings_.unit_weights)
               dm.a = w.mis(camera_.pdf_area(-cs->wi, sqr(cs->dist),
                                            vertex_cos(h.ng[i], h.error_scale[i], tangent_or_null(h.tangent, i), cs->wi))) *
-                     mis_connection_sum(m, bsdf.pdf(wi, wo, TransportMode::Radiance), true, w.mis);
+                     mis_connection_sum(m, bsdf.pdf(wi, wo, TransportMode::Radiance), MergeKind::Surface, w.mis);
             const Vec3 o = offset_ray_origin(h.p[i], h.ng[i], h.error_scale[i], cs->wi);
             const RGB c = beta * f * (cs->We / cs->pdf);
             w.shadow.push_deferred(o, cs->p_lens - o, 1.f, slot, c, cs->p_raster, {uint8_t(ld + 1), 1, c},

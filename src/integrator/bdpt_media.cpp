@@ -98,7 +98,7 @@ void Bdpt::connect_eye_medium_vertex(BdptWave& w, uint32_t slot, const Vec3& p, 
       DeferredMis d;
       d.a = ls->delta ? 0.f : w.mis(f / ls->pdf);
       d.sigma_a = vol.sigma_t;  // an eye ray would end at a volume light's point by distance sampling
-      d.b = w.mis(emission_fwd_A / direct_pdf_A) * mis_connection_sum(em, f, false, w.mis);
+      d.b = w.mis(emission_fwd_A / direct_pdf_A) * mis_connection_sum(em, f, medium_merging(), w.mis);
       d.sigma_b = sigma_eye;
       const RGB u = beta * f * ls->L / ls->pdf;
       const StrategyTag tag{1, uint8_t(depth + 1), u};
@@ -126,9 +126,9 @@ void Bdpt::connect_eye_medium_vertex(BdptWave& w, uint32_t slot, const Vec3& p, 
     const RGB c = beta * f_eye * lv.f * v.beta[j] / dist2;
     if (is_black(c) || !(f_eye > 0.f)) continue;
     DeferredMis d;
-    d.a = w.mis(f_eye * lv.cos / dist2) * mis_connection_sum(v.mis[j], lv.rev_W, !v.in_medium(j), w.mis);
+    d.a = w.mis(f_eye * lv.cos / dist2) * mis_connection_sum(v.mis[j], lv.rev_W, light_vertex_merging(v, j), w.mis);
     d.sigma_a = lv.sigma_t;
-    d.b = w.mis(lv.fwd_W / dist2) * mis_connection_sum(em, f_eye, false, w.mis);
+    d.b = w.mis(lv.fwd_W / dist2) * mis_connection_sum(em, f_eye, medium_merging(), w.mis);
     d.sigma_b = sigma_eye;
     w.shadow.push_deferred(p, lv.target - p, 1.f, slot, c, Vec2(0.f), {uint8_t(v.depth[j] + 1), uint8_t(depth + 1), c},
                            m, d);
@@ -188,6 +188,53 @@ void Bdpt::add_volume_emission(BdptWave& w, uint32_t i, const RGB& beta_before) 
   if (is_finite(c)) add_emission(w, slot, c, emission_weight(m, wt));
 }
 
+MergeKind Bdpt::light_vertex_merging(const LightVertexPool& v, uint32_t j) const {
+  return v.in_medium(j) ? medium_merging() : MergeKind::Surface;
+}
+
+// vcm, bpm: merges eye vertex i, in a medium, with the light vertices of
+// the wave in the same medium within the radius: a ball of volume
+// 4/3 pi r^3 (volumetric photon mapping as a strategy; Jarosz et al. 2011,
+// Křivánek et al. 2014's point-point estimator). Both throughputs carry
+// the scattering coefficient of their own vertex, and the path scatters
+// once there: the estimate divides by sigma_s at the eye vertex.
+void Bdpt::merge_at_eye_medium_vertex(BdptWave& w, uint32_t i) const {
+  const uint32_t slot = w.active[i], depth = w.depth, maxdepth = uint32_t(settings_.maxdepth);
+  const Vec3 x = w.ends.p[i], wo = -glm::normalize(w.rays.direction(i));
+  const MediumHandle medium = w.ends.medium[i];
+  const HenyeyGreenstein phase{scene_.media.g(medium)};
+  const LightVertexPool& v = w.vertices;
+  const MisState& m = w.eye.mis[slot];
+  // beta_E / (sigma_s 4/3 pi r^3 n), a channel without scattering none
+  RGB scale(-1.f);
+  auto eye_scale = [&] {
+    if (scale.x < 0.f) {
+      RGB sigma_a, sigma_s;
+      scene_.media.coefficients_at(medium, x, &sigma_a, &sigma_s);
+      for (int c = 0; c < 3; ++c)
+        scale[c] = sigma_s[c] > 0.f ? w.eye.beta[slot][c] / sigma_s[c] * w.vm_normalization_medium : 0.f;
+    }
+    return scale;
+  };
+  RGB sum(0.f);
+  w.grid.query(v.p, x, [&](uint32_t j) {
+    if (v.depth[j] + depth > maxdepth + 1 || !v.in_medium(j) || v.medium[j] != medium) return;
+    const float f = phase.p(wo, v.wo[j]);  // the phase function is its own density, both ways
+    if (!(f > 0.f)) return;
+    const float wt = mis_weight_merge(m, v.mis[j], f, f, MergeKind::Medium, w.mis);
+    sum += f * v.beta[j] * wt;
+    ++w.stats.merges;
+    if (settings_.record_strategies) {
+      const RGB u = eye_scale() * f * v.beta[j];
+      w.out->strategies.push_back(
+          {w.pixel[slot], Vec2(0.f), uint8_t(v.depth[j] + 1), uint8_t(depth + 1), u * wt, u, true});
+    }
+  });
+  if (is_black(sum)) return;
+  const RGB c = eye_scale() * sum;
+  if (is_finite(c)) w.L[slot] += c;
+}
+
 // Stores a light vertex in a medium and prepares its camera connection.
 void Bdpt::connect_light_medium_vertex(BdptWave& w, uint32_t slot, uint32_t i, Vec2 u_lens) const {
   const Scene& sc = scene_;
@@ -223,7 +270,7 @@ void Bdpt::connect_light_medium_vertex(BdptWave& w, uint32_t slot, uint32_t i, V
   if (!(f > 0.f)) return;
   DeferredMis d;
   if (!settings_.light_tracing_only && !settings_.unit_weights) {
-    d.a = w.mis(camera_.pdf_area(-cs->wi, sqr(cs->dist), 1.f)) * mis_connection_sum(lm, f, false, w.mis);
+    d.a = w.mis(camera_.pdf_area(-cs->wi, sqr(cs->dist), 1.f)) * mis_connection_sum(lm, f, medium_merging(), w.mis);
     d.sigma_a = w.ends.sigma_t[i];
   }
   const RGB c = beta * f * (cs->We / cs->pdf);
@@ -240,7 +287,7 @@ PathEnd Bdpt::scatter_in_medium(BdptWave& w, SubpathPool& sub, uint32_t i, Vec2 
   const Vec3 wo = -glm::normalize(w.rays.direction(i));
   const Vec3 wi = phase.sample(wo, u2, &pdf);
   if (!(pdf > 0.f)) return PathEnd::Absorbed;
-  mis_after_scatter(sub.mis[slot], 1.f, pdf, pdf, false, w.mis, false);  // (merging is on surfaces only)
+  mis_after_scatter(sub.mis[slot], 1.f, pdf, pdf, false, w.mis, medium_merging());
   const float rr = max_component(sub.beta[slot] * sub.eta_scale[slot]) * (light ? sub.rr_scale[slot] : 1.f);
   if (rr < 1.f && w.depth >= 2) {
     const float q = std::fmax(0.f, 1.f - rr);
@@ -263,6 +310,7 @@ void Bdpt::eye_medium_stage(BdptWave& w) const {
     const uint32_t slot = w.active[i];
     const PathSampler& s = w.sampler[slot];
     const uint32_t dim = dims::vertex(depth);
+    if (depth <= maxdepth && medium_merging() == MergeKind::Medium) merge_at_eye_medium_vertex(w, i);
     if (depth <= maxdepth && settings_.connections)
       connect_eye_medium_vertex(w, slot, w.ends.p[i], -glm::normalize(w.rays.direction(i)), w.ends.medium[i],
                                 w.ends.sigma_t[i], s.get1d(dim + dims::kEyeLightSelect), s.get2d(dim + dims::kEyeLightPosition));

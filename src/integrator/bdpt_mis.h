@@ -28,20 +28,31 @@
 
 namespace lantern {
 
+// Where a vertex may merge (vcm): on a surface (a disk of radius r), in a
+// medium (a ball of radius r), or not at all (specular, or merging off).
+enum class MergeKind : uint8_t { None, Surface, Medium };
+
 struct MisPower {
   float beta = 2.f;
-  // Vertex merging (vcm; Georgiev et al. 2012): Mis(eta) and Mis(1 / eta),
-  // eta = pi r^2 n, the merging strategies' density relative to connecting
-  // (n light subpaths merged with, radius r). Zero without merging, which
-  // leaves every other quantity as bdpt has it.
-  float vm_weight = 0.f, vc_weight = 0.f;
+  // Vertex merging (vcm; Georgiev et al. 2012): Mis(eta), eta the merging
+  // strategies' density relative to connecting: pi r^2 n on a surface,
+  // 4/3 pi r^3 n in a medium (n light subpaths merged with, radius r).
+  // Zero without merging, which leaves every other quantity as bdpt has it.
+  float vm_weight = 0.f, vm_medium = 0.f;
+  // 1 when connections are strategies too (bdpt, vcm), 0 when merges are
+  // all there is (bpm, ppm).
+  float connect = 1.f;
   float operator()(float x) const { return beta == 2.f ? x * x : x; }
+  float vm(MergeKind k) const { return k == MergeKind::Surface ? vm_weight : k == MergeKind::Medium ? vm_medium : 0.f; }
 };
 
+// dVM differs from Georgiev's: it is his times Mis(eta), so that merges of
+// both kinds (two etas) add up in one sum; each merge weight divides by its
+// own Mis(eta) (mis_weight_merge).
 struct MisState {
   float dVCM = 0.f;
   float dVC = 0.f;
-  float dVM = 0.f;  // vcm only: the merging strategies' sum
+  float dVM = 0.f;  // vcm only: the merging strategies' sum (with connections: dVC itself)
 };
 
 // Eye subpath from a camera ray whose direction has (whole-film) solid-angle
@@ -55,7 +66,7 @@ inline MisState mis_camera_start(float pdf_dir_W, MisPower mis) { return {mis(1.
 inline MisState mis_light_start(float direct_pdf_A, float emission_pdf_W, float cos_light, bool delta_light,
                                 MisPower mis) {
   const float dVC = delta_light ? 0.f : mis(cos_light / emission_pdf_W);
-  return {mis(direct_pdf_A / emission_pdf_W), dVC, dVC * mis.vc_weight};
+  return {mis(direct_pdf_A / emission_pdf_W), dVC, dVC * mis.connect};
 }
 
 // After a ray of squared length dist2 hits a surface at cosine cos_in. The
@@ -69,20 +80,18 @@ inline void mis_after_hit(MisState& m, float dist2, float cos_in, bool apply_dis
 }
 
 // After sampling a direction with density pdf_fwd (pdf_rev: the density of
-// the opposite sampling) leaving at cosine cos_out. Merging happens at
-// non-specular surface vertices only: a medium vertex (mergeable = false)
-// connects but adds no merging strategy (its 1 in dVM, its vm in dVC).
+// the opposite sampling) leaving at cosine cos_out, from a vertex that
+// merges as `kind` says (its merge adds Mis(eta) of its kind to dVC and dVM).
 inline void mis_after_scatter(MisState& m, float cos_out, float pdf_fwd, float pdf_rev, bool specular, MisPower mis,
-                              bool mergeable = true) {
+                              MergeKind kind = MergeKind::Surface) {
   if (specular) {
     m.dVCM = 0.f;
     m.dVC *= mis(cos_out);  // pdf_fwd == pdf_rev for every delta lobe here
     m.dVM *= mis(cos_out);
   } else {
-    const float f = mis(cos_out / pdf_fwd);
-    const float merge = mergeable ? 1.f : 0.f;
-    m.dVM = f * (m.dVM * mis(pdf_rev) + m.dVCM * mis.vc_weight + merge);
-    m.dVC = f * (m.dVC * mis(pdf_rev) + m.dVCM + merge * mis.vm_weight);
+    const float f = mis(cos_out / pdf_fwd), vm = mis.vm(kind);
+    m.dVM = f * (m.dVM * mis(pdf_rev) + m.dVCM * mis.connect + vm);
+    m.dVC = f * (m.dVC * mis(pdf_rev) + m.dVCM + vm);
     m.dVCM = mis(1.f / pdf_fwd);
   }
 }
@@ -90,10 +99,10 @@ inline void mis_after_scatter(MisState& m, float cos_out, float pdf_fwd, float p
 // What a connection weighs the strategies of one of its subpaths by,
 // relative to itself, before the factor for the connection's own segment:
 // m and pdf_rev_W are that subpath's quantities at the connected vertex and
-// its density back towards its previous vertex. Merging at the connected
-// vertex (vm) is one of them where the vertex is on a surface.
-inline float mis_connection_sum(const MisState& m, float pdf_rev_W, bool mergeable, MisPower mis) {
-  return (mergeable ? mis.vm_weight : 0.f) + m.dVCM + m.dVC * mis(pdf_rev_W);
+// its density back towards its previous vertex; merging at that vertex
+// (as `end` says) is one of them.
+inline float mis_connection_sum(const MisState& m, float pdf_rev_W, MergeKind end, MisPower mis) {
+  return mis.vm(end) + m.dVCM + m.dVC * mis(pdf_rev_W);
 }
 
 // s = 0: the eye subpath hit an emitter. direct_pdf_A: next-event density of
@@ -110,10 +119,10 @@ inline float mis_weight_hit_light_direct(const MisState& eye, float emission_pos
   return 1.f / (1.f + mis(emission_pos_pdf_A) * eye.dVCM);
 }
 
-// s = 0 without connections (bpm, ppm: vc_weight = 0, so no connection's
+// s = 0 without connections (bpm, ppm: connect = 0, so no connection's
 // ratio enters any merge's weight): the emitter found counts only if no
 // merge samples the same path, that is if the eye subpath has passed no
-// non-specular vertex, the only vertices that add to dVM (Georgiev's
+// vertex that merges, the only vertices that add to dVM (Georgiev's
 // technical report, "Implementing Vertex Connection and Merging", sec. 2).
 inline float mis_weight_hit_light_merging_only(const MisState& eye) { return eye.dVM == 0.f ? 1.f : 0.f; }
 
@@ -126,7 +135,7 @@ inline float mis_weight_hit_light_merging_only(const MisState& eye) { return eye
 inline float mis_weight_next_event(const MisState& eye, float light_pdf_W, float bsdf_pdf_W, float emission_fwd_A,
                                    float direct_pdf_A, float eye_rev_W, MisPower mis) {
   float w_light = light_pdf_W > 0.f ? mis(bsdf_pdf_W / light_pdf_W) : 0.f;
-  float w_eye = mis(emission_fwd_A / direct_pdf_A) * mis_connection_sum(eye, eye_rev_W, true, mis);
+  float w_eye = mis(emission_fwd_A / direct_pdf_A) * mis_connection_sum(eye, eye_rev_W, MergeKind::Surface, mis);
   return 1.f / (w_light + 1.f + w_eye);
 }
 
@@ -136,26 +145,30 @@ inline float mis_weight_next_event(const MisState& eye, float light_pdf_W, float
 // the connection back to its own subpath's previous vertex.
 inline float mis_weight_connect(const MisState& eye, const MisState& light, float eye_fwd_A, float eye_rev_W,
                                 float light_fwd_A, float light_rev_W, MisPower mis) {
-  float w_light = mis(eye_fwd_A) * mis_connection_sum(light, light_rev_W, true, mis);
-  float w_eye = mis(light_fwd_A) * mis_connection_sum(eye, eye_rev_W, true, mis);
+  float w_light = mis(eye_fwd_A) * mis_connection_sum(light, light_rev_W, MergeKind::Surface, mis);
+  float w_eye = mis(light_fwd_A) * mis_connection_sum(eye, eye_rev_W, MergeKind::Surface, mis);
   return 1.f / (w_light + 1.f + w_eye);
 }
 
 // t = 1: a light vertex connected to the camera. camera_pdf_A: the camera's
 // direction density towards it, per area there.
 inline float mis_weight_light_trace(const MisState& light, float camera_pdf_A, float light_rev_W, MisPower mis) {
-  return 1.f / (1.f + mis(camera_pdf_A) * mis_connection_sum(light, light_rev_W, true, mis));
+  return 1.f / (1.f + mis(camera_pdf_A) * mis_connection_sum(light, light_rev_W, MergeKind::Surface, mis));
 }
 
-// Merging an eye vertex with a light vertex within the radius (vcm):
-// eye_fwd_W is the eye vertex's density of sampling the direction the
-// light arrived from, eye_rev_W the density of the reverse (from there
-// back towards the eye subpath's previous vertex). The eye vertex's and
-// the light vertex's quantities are those at arrival.
-inline float mis_weight_merge(const MisState& eye, const MisState& light, float eye_fwd_W, float eye_rev_W, MisPower mis) {
-  const float w_light = light.dVCM * mis.vc_weight + light.dVM * mis(eye_fwd_W);
-  const float w_eye = eye.dVCM * mis.vc_weight + eye.dVM * mis(eye_rev_W);
-  return 1.f / (w_light + 1.f + w_eye);
+// Merging an eye vertex with a light vertex within the radius (vcm), on
+// a surface or in a medium (kind): eye_fwd_W is the eye vertex's density
+// of sampling the direction the light arrived from, eye_rev_W the density
+// of the reverse (from there back towards the eye subpath's previous
+// vertex). The eye vertex's and the light vertex's quantities are those at
+// arrival. The other strategies' ratios to this merge are the sums over
+// Mis(eta) of this kind: 1 / (1 + sums / Mis(eta)).
+inline float mis_weight_merge(const MisState& eye, const MisState& light, float eye_fwd_W, float eye_rev_W,
+                              MergeKind kind, MisPower mis) {
+  const float others = (light.dVCM + eye.dVCM) * mis.connect + light.dVM * mis(eye_fwd_W) + eye.dVM * mis(eye_rev_W);
+  if (!(others > 0.f)) return 1.f;  // the only strategy of its path
+  const float vm = mis.vm(kind);
+  return vm / (vm + others);
 }
 
 // s = 1, t = 1: the light's own vertex connected to the camera; the other

@@ -209,9 +209,10 @@ struct BdptWave {
   std::vector<Vec3> volume_points;
   std::vector<MediumHandle> volume_media;
   // The MIS exponent and, for vcm, this wave's merging factors; the
-  // merging radius, 1 / (pi r^2 n), and the grid over the light vertices.
+  // merging radius, 1 / (pi r^2 n) and 1 / (4/3 pi r^3 n), and the grid
+  // over the light vertices.
   MisPower mis;
-  float vm_radius = 0.f, vm_normalization = 0.f;
+  float vm_radius = 0.f, vm_normalization = 0.f, vm_normalization_medium = 0.f;
   VertexGrid grid;
   RayStream stream;
   WaveOutput* out = nullptr;  // of the wave being traced
