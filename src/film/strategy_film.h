@@ -2,8 +2,8 @@
 // pbrt's visualizestrategies: for each (s, t), and for each merge (s, t)
 // of vcm, one image of its weighted contributions (they sum to the image)
 // and one unweighted (each is an estimator of all paths that strategy can
-// sample). A debugging aid: memory
-// grows with the number of strategies times the image size.
+// sample). A debugging aid: memory grows with the number of strategies
+// times the image size.
 #pragma once
 
 #include <vector>
