@@ -21,6 +21,9 @@ namespace lantern {
 namespace {
 
 const char* const kIntegrators[] = {"path", "bdpt", "lt"};
+// With those that merge (docs/vcm.md), for the checks that do not compare
+// integrators with one another.
+const char* const kWithMerging[] = {"path", "bdpt", "lt", "vcm", "bpm"};
 
 RenderOptions options(const std::string& integrator, int w, int h, int spp, int maxdepth = 5) {
   RenderOptions o;
@@ -106,7 +109,12 @@ TEST_P(ScaleInvariance, SameImageFrom1em4To1e5WithoutLeaks) {
     for (int r = 0; r < 10; ++r) {
       o.seed = 100 + uint64_t(r);
       runs.push_back(render_checked(*scene, o).image);
-      EXPECT_EQ(channel_sum(runs.back(), 2), 0.0) << "blue light leaked into the box at scale " << s;
+      // Merging is biased where light lies within the radius of a surface
+      // it cannot reach: the blue light's vertices 0.1 mm above the
+      // ceiling merge with the ceiling's underside (docs/vcm.md). Its
+      // images must still not depend on the scale.
+      if (!merges_vertices(o.integrator))
+        EXPECT_EQ(channel_sum(runs.back(), 2), 0.0) << "blue light leaked into the box at scale " << s;
     }
     return stats_of(runs, regions);
   };
@@ -118,7 +126,7 @@ TEST_P(ScaleInvariance, SameImageFrom1em4To1e5WithoutLeaks) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Integrators, ScaleInvariance, ::testing::ValuesIn(kIntegrators));
+INSTANTIATE_TEST_SUITE_P(Integrators, ScaleInvariance, ::testing::ValuesIn(kWithMerging));
 
 // The Cornell box moved by d (camera included): rendered in camera-centred
 // space, coordinates near the camera stay as small as before the move, so
@@ -354,7 +362,7 @@ TEST(NearSpecular, RendersOfNearlySmoothMetalAndGlassAreFinite) {
                               "Shape \"trianglemesh\" \"point3 P\" [ -5 0 -5  5 0 -5  5 0 5  -5 0 5 ] \"integer indices\" [ 0 2 1 0 3 2 ]\n"
                               "Material " + mat + " \"float roughness\" [ " + rough + " ] \"bool remaproughness\" false\n"
                               "AttributeBegin\n Translate 0 0.6 0\n Shape \"sphere\" \"float radius\" [ 0.5 ]\nAttributeEnd\n");
-      for (const char* integrator : kIntegrators) {
+      for (const char* integrator : kWithMerging) {
         SCOPED_TRACE(std::string(mat) + " roughness " + rough + " " + integrator);
         render_checked(*scene, options(integrator, 16, 16, 4, 8));
       }
@@ -525,10 +533,12 @@ size_t peak_rss_bytes() {
 
 TEST(ExtremeSettings, OnePixelImage) {
   auto scene = scene_from(std::string(kFloorAndCamera) + "LightSource \"point\" \"rgb I\" [ 5 5 5 ] \"point3 from\" [ 0 2 0 ]\n");
-  for (const char* integrator : kIntegrators) {
+  for (const char* integrator : kWithMerging) {
     RenderResult r = render_checked(*scene, options(integrator, 1, 1, 64));
     EXPECT_EQ(r.stats.samples, 64u) << integrator;
-    EXPECT_GT(r.image.rgb[1], 0.f) << integrator;
+    // bpm sees a point light only through merges, and waves of 16 light
+    // subpaths rarely leave a vertex within the radius of the pixel's.
+    if (std::string(integrator) != "bpm") EXPECT_GT(r.image.rgb[1], 0.f) << integrator;
   }
 }
 
