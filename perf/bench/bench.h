@@ -35,6 +35,7 @@ std::string fmt(double v, int digits = 3);
 int throughput(const Common& c, const std::vector<std::string>& scenes, int spp, int width, int height);
 int backends(const Common& c, const std::string& scene, const std::string& integrator, int spp, int rounds);
 int scaling(const Common& c, const std::string& scene, const std::string& integrator, int spp);
-int convergence(const Common& c, const std::string& scene, const std::string& reference, double max_seconds);
+int convergence(const Common& c, const std::string& scene, const std::string& reference, double max_seconds,
+                const std::vector<std::string>& integrators);
 
 }  // namespace bench

@@ -17,6 +17,7 @@ lantern::RenderOptions scene_options(const Common& c, const lantern::Scene& scen
   lantern::RenderOptions o;
   o.integrator = integrator;
   o.maxdepth = lantern::scene_settings(scene).maxdepth;
+  if (lantern::merges_vertices(integrator)) o.wave_size = 16384;  // as the CLI (docs/vcm.md)
   o.threads = c.threads;
   return o;
 }

@@ -36,14 +36,14 @@ std::string time_to(const std::vector<Point>& pts, double target) {
 
 }  // namespace
 
-int convergence(const Common& c, const std::string& name, const std::string& reference_path, double max_seconds) {
+int convergence(const Common& c, const std::string& name, const std::string& reference_path, double max_seconds,
+                const std::vector<std::string>& integrators) {
   auto scene = load(c, name);
   lantern::Image reference = lantern::read_image(reference_path);
   Table t;
   t.header = {"integrator", "budget (s)", "render (s)", "spp", "relMSE"};
   std::map<std::string, std::vector<Point>> curves;
-  const char* integrators[] = {"path", "lt", "bdpt"};
-  for (const char* integrator : integrators) {
+  for (const std::string& integrator : integrators) {
     for (double budget = max_seconds / 32.0; budget <= max_seconds * 1.001; budget *= 2.0) {
       lantern::RenderOptions o = scene_options(c, *scene, integrator);
       o.time_limit_seconds = budget;
@@ -54,7 +54,7 @@ int convergence(const Common& c, const std::string& name, const std::string& ref
       double err = lantern::compare_images(r.image, reference).relmse;
       curves[integrator].push_back({r.stats.seconds, err});
       t.rows.push_back({integrator, fmt(budget), fmt(r.stats.seconds), std::to_string(r.stats.min_spp), fmt(err, 4)});
-      std::fprintf(stderr, "convergence: %s %s %.2f s -> relMSE %.4g\n", name.c_str(), integrator, budget, err);
+      std::fprintf(stderr, "convergence: %s %s %.2f s -> relMSE %.4g\n", name.c_str(), integrator.c_str(), budget, err);
     }
   }
   std::printf("Convergence: %s against %s\n\n", name.c_str(), reference_path.c_str());
@@ -63,7 +63,7 @@ int convergence(const Common& c, const std::string& name, const std::string& ref
 
   Table s;
   s.header = {"integrator", "time to relMSE 1e-2 (s)", "time to relMSE 1e-3 (s)"};
-  for (const char* integrator : integrators)
+  for (const std::string& integrator : integrators)
     s.rows.push_back({integrator, time_to(curves[integrator], 1e-2), time_to(curves[integrator], 1e-3)});
   std::printf("Time to reach an error, %s\n\n", name.c_str());
   s.print();

@@ -36,8 +36,12 @@ int main(int argc, char** argv) {
 
   std::string cscene = "lantern", reference;
   double max_seconds = 16.0;
-  auto* cv = app.add_subcommand("convergence", "relMSE against time for path, lt and bdpt");
+  std::vector<std::string> cintegrators = {"path", "lt", "bdpt"};
+  auto* cv = app.add_subcommand("convergence", "relMSE against time for path, lt and bdpt (or --integrators)");
   cv->add_option("--scene", cscene);
+  cv->add_option("--integrators", cintegrators, "Integrators to run, comma-separated (default path,lt,bdpt)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"path", "bdpt", "lt", "vcm", "bpm", "ppm"}));
   cv->add_option("--reference", reference, "Reference image (default: perf/references/<scene>.exr)");
   cv->add_option("--max-seconds", max_seconds, "Largest budget; budgets halve down to 1/32 of it");
 
@@ -47,7 +51,7 @@ int main(int argc, char** argv) {
     if (be->parsed()) return bench::backends(c, scene, integrator, bspp, rounds);
     if (sc->parsed()) return bench::scaling(c, sscene, sintegrator, sspp);
     if (reference.empty()) reference = "perf/references/" + cscene + ".exr";
-    return bench::convergence(c, cscene, reference, max_seconds);
+    return bench::convergence(c, cscene, reference, max_seconds, cintegrators);
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 1;

@@ -54,14 +54,14 @@ Fixture& fixture() {
 }
 
 // Coordinates: random over the image, or a sweep one texel apart.
-Vec2 coordinate(bool coherent, uint64_t i, PathSampler& s) {
+Vec2 coordinate(bool coherent, uint64_t i, RandomStream& s) {
   if (!coherent) return Vec2(s.get1d(), s.get1d());
   return Vec2(float(i % 1024) / 1024.f + 0.0005f, float((i / 1024) % 1024) / 1024.f + 0.0005f);
 }
 
 void Resident(benchmark::State& state) {
   Fixture& f = fixture();
-  PathSampler s = PathSampler::make(1, 2, 3);
+  RandomStream s = RandomStream::make(1, 2, 3);
   uint64_t i = 0;
   for (auto _ : state) {
     RGB v = f.resident.lookup_rgb(coordinate(state.range(0), i++, s), ImageFilter::Bilinear, WrapMode::Repeat);
@@ -72,7 +72,7 @@ void Resident(benchmark::State& state) {
 void Cached(benchmark::State& state, int filter) {
   Fixture& f = fixture();
   const int32_t id = filter == 0 ? f.bilinear : filter == 1 ? f.trilinear : f.ewa;
-  PathSampler s = PathSampler::make(1, 2, 3);
+  RandomStream s = RandomStream::make(1, 2, 3);
   uint64_t i = 0;
   // A footprint of about 4 texels across, stretched 4:1 for the anisotropic filter.
   const Vec2 dx(4.f / 1024.f, 0.f), dy(0.f, filter == 2 ? 1.f / 1024.f : 4.f / 1024.f);
