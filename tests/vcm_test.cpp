@@ -133,12 +133,8 @@ TEST(Vcm, BidirectionalPhotonMappingAgreesWithBdptOnTheCornellBox) {
 // 1) and lights seen directly: bpm's image is ppm's, bit for bit.
 TEST(Vcm, OneBounceBpmIsPpmBitForBit) {
   const auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
-  RenderOptions o;
-  o.width = o.height = 24;
-  o.spp = 4;
+  RenderOptions o = merging_options("ppm", 24, 24, 4, 10.f);
   o.maxdepth = 1;
-  o.vcm_radius = 10.f;
-  o.integrator = "ppm";
   const RenderResult ppm = render(*scene, o);
   o.integrator = "bpm";
   const RenderResult bpm = render(*scene, o);
@@ -171,12 +167,7 @@ TEST(Vcm, StrategyImagesAddUpToTheImage) {
 
 TEST(Vcm, ThreadCountsGiveTheSameBits) {
   const auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/pool.pbrt");
-  RenderOptions o;
-  o.width = 32;
-  o.height = 24;
-  o.spp = 2;
-  o.maxdepth = 6;
-  o.vcm_radius = 0.1f;  // merges happen even at this size
+  RenderOptions o = merging_options("vcm", 32, 24, 2, 0.1f);  // merges happen even at this size
   expect_thread_invariant(*scene, o, {"vcm", "bpm", "ppm"});
   const auto fog = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/volumetric-caustic.pbrt");
   o.vcm_radius = 0.f;
@@ -188,13 +179,7 @@ TEST(Vcm, ThreadCountsGiveTheSameBits) {
 // the last starting at sample 32, so r = 0.1 * 33^((0.75 - 1) / 2).
 TEST(Vcm, MergesOnThePoolFloor) {
   const auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/pool.pbrt");
-  RenderOptions o;
-  o.integrator = "vcm";
-  o.width = 32;
-  o.height = 24;
-  o.spp = 40;
-  o.vcm_radius = 0.1f;
-  const RenderResult r = render(*scene, o);
+  const RenderResult r = render(*scene, merging_options("vcm", 32, 24, 40, 0.1f));
   EXPECT_GT(r.stats.merges, 0u);
   EXPECT_FLOAT_EQ(r.stats.vcm_radius, 0.1f);
   EXPECT_NEAR(r.stats.vcm_last_radius, 0.1 * std::pow(33.0, -0.125), 1e-6);
@@ -248,11 +233,7 @@ TEST(Vcm, BidirectionalPhotonMappingAgreesWithBdptInMedia) {
 
 TEST(Vcm, BadSettingsAreClearErrors) {
   const auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
-  RenderOptions o;
-  o.integrator = "vcm";
-  o.width = 8;
-  o.height = 8;
-  o.spp = 1;
+  RenderOptions o = merging_options("vcm", 8, 8, 1, 0.f);
   o.vcm_alpha = 0.f;
   EXPECT_THROW(render(*scene, o), std::invalid_argument);
   o.vcm_alpha = 0.75f;
