@@ -106,7 +106,8 @@ TextureImage load_texture_image(const std::string& path, ColorEncoding encoding)
   if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, data.data()))
     throw InputError({path, 0, 0}, "cannot decode image: " + in->geterror());
   const bool integer = spec.format.basetype == OIIO::TypeDesc::UINT8 || spec.format.basetype == OIIO::TypeDesc::UINT16;
-  auto decode = [&](float v) { return integer ? encoding.to_linear(v) : v; };
+  const ColorEncoding decoding = file_encoding(path, int(spec.format.size()) * 8, encoding);
+  auto decode = [&](float v) { return integer ? decoding.to_linear(v) : v; };
   TextureImage img;
   img.filename = path;
   img.width = spec.width;

@@ -140,6 +140,9 @@ PreparedTexture prepare_texture(const std::string& source, ColorEncoding encodin
   t.width = spec.width;
   t.height = spec.height;
   const bool float_source = is_float_format(spec.format);
+  // Prepared files are named by the encoding the source is decoded with, so
+  // an 8-bit TGA asked for as linear shares the sRGB one (file_encoding).
+  encoding = file_encoding(source, int(spec.format.size()) * 8, encoding);
   if (usable_as_is(*in, encoding)) {
     t.path = source;
     return t;

@@ -85,13 +85,6 @@ float TextureImage::lookup_float(Vec2 st, ImageFilter filter, WrapMode wrap) con
   return bilerp<float>(st, [&](int x, int y) { return float_at(x, y, wrap); });
 }
 
-ColorEncoding default_texture_encoding(const std::string& filename) {
-  auto dot = filename.find_last_of('.');
-  std::string ext = dot == std::string::npos ? "" : filename.substr(dot + 1);
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return ColorEncoding{ext == "png" ? ColorEncoding::SRGB : ColorEncoding::Linear};
-}
-
 TextureImage load_texture_image(const std::string& path, ColorEncoding encoding) {
   return image_io_module().load_texture_image(path, encoding);
 }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "math/common.h"
+#include "texture/color_encoding.h"
 
 namespace lantern {
 
@@ -14,21 +15,6 @@ enum class WrapMode : uint8_t { Repeat, Black, Clamp, OctahedralSphere };
 // Trilinear and EWA filter over the footprint through the texture cache;
 // resident images read them as bilinear.
 enum class ImageFilter : uint8_t { Point, Bilinear, Trilinear, EWA };
-
-// How integer-valued (8- and 16-bit) files encode their values; float files
-// are always linear.
-struct ColorEncoding {
-  enum Kind : uint8_t { Linear, SRGB, Gamma } kind = SRGB;
-  float gamma = 2.2f;
-  float to_linear(float v) const {
-    switch (kind) {
-      case Linear: return v;
-      case Gamma: return std::pow(std::fmax(v, 0.f), gamma);
-      case SRGB: break;
-    }
-    return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
-  }
-};
 
 struct TextureImage {
   int width = 0, height = 0;
@@ -57,9 +43,5 @@ struct TextureImage {
 // Throws InputError naming the file for unreadable, empty, huge or
 // non-finite images.
 TextureImage load_texture_image(const std::string& path, ColorEncoding encoding);
-
-// pbrt-v4's default for an image texture without "encoding": sRGB for PNG
-// files, linear for every other format.
-ColorEncoding default_texture_encoding(const std::string& filename);
 
 }  // namespace lantern
