@@ -9,6 +9,7 @@
 
 #include "lantern/image.h"
 #include "scene/scene.h"
+#include "scene/shading_geometry.h"
 #include "stat_compare.h"
 #include "texture/footprint.h"
 
@@ -80,6 +81,69 @@ TEST(Footprint, SurfaceCoordinateDerivatives) {
 // anisotropically, under a small light. The footprint is a function of the
 // surface point, so every integrator shades a vertex alike and they
 // converge to one image; and it does not depend on the thread count.
+// The shading frame of a mesh with normals as pbrt-v4 builds it (ts = ns x
+// dp/du, ss = ts x ns, neither normalised), and the parameterisation's own
+// derivatives kept beside it for the footprint.
+TEST(Footprint, MeshShadingFrameKeepsTheParameterisation) {
+  TriangleMesh m;
+  m.positions = {Vec3(-80, 0, -80), Vec3(80, 0, -80), Vec3(80, 0, 80), Vec3(0.f)};
+  m.triangles = {glm::uvec3(0, 1, 2)};
+  m.uvs = {Vec2(0, 0), Vec2(4, 0), Vec2(4, 1)};
+  m.vertex_count = 3;
+  SurfacePoint sp{Vec3(40, 0, 0), Vec3(0, 1, 0), Vec3(0, 1, 0), Vec2(3, 0.5f), 1.f};
+  const ShadingGeometry plain = triangle_shading_geometry(m, 0, sp);
+  EXPECT_FALSE(plain.turned);
+  EXPECT_NEAR(glm::length(plain.dpdu - Vec3(40, 0, 0)), 0.f, 1e-4f);
+  EXPECT_NEAR(glm::length(plain.dpdv - Vec3(0, 0, 160)), 0.f, 1e-4f);
+  for (float side : {1.f, -1.f}) {
+    m.normals.assign(3, Vec3(0, side, 0));
+    sp.ns = sp.ng = Vec3(0, side, 0);
+    const ShadingGeometry g = triangle_shading_geometry(m, 0, sp);
+    EXPECT_TRUE(g.turned);
+    EXPECT_NEAR(glm::length(g.uv_dpdu() - plain.dpdu), 0.f, 1e-4f) << side;
+    EXPECT_NEAR(glm::length(g.uv_dpdv() - plain.dpdv), 0.f, 1e-4f) << side;
+    EXPECT_NEAR(glm::length(g.dpdu - Vec3(40, 0, 0)), 0.f, 1e-3f) << side;
+    EXPECT_NEAR(glm::length(g.dpdv - glm::cross(sp.ns, plain.dpdu)), 0.f, 1e-3f) << "|ts| = |dp/du|: " << side;
+  }
+}
+
+// A checkerboard floor (checks 4 units wide on a 160-unit quad whose u runs
+// 0..4 and v 0..1) seen from 1 unit above, under a white sky at maxdepth 1:
+// each near check's pixels are its reflectance, 0.9 or 0.1. Per-vertex
+// normals, up or down as exporters write them, must not change the
+// footprint: it maps pixel steps through the parameterisation's dp/du and
+// dp/dv (40 and 160 long here), not through the shading tangents (unit
+// long, which blurred the checks to 0.61 and 0.33, or both as long as
+// dp/du, as pbrt-v4 builds them).
+TEST(Footprint, MeshNormalsLeaveTheFootprintAlone) {
+  for (const char* normals : {"", "\"normal N\" [0 1 0 0 1 0 0 1 0 0 1 0]", "\"normal N\" [0 -1 0 0 -1 0 0 -1 0 0 -1 0]"}) {
+    auto scene = load_scene_from_string(std::string(R"(LookAt 0 1 0  0 0.6 10  0 1 0
+Camera "perspective" "float fov" 40
+WorldBegin
+LightSource "infinite" "rgb L" [1 1 1]
+Texture "check" "spectrum" "checkerboard" "float uscale" 5 "float vscale" 20 "rgb tex1" [0.1 0.1 0.1] "rgb tex2" [0.9 0.9 0.9]
+Material "diffuse" "texture reflectance" "check"
+Shape "trianglemesh" "point3 P" [-80 0 -80  80 0 -80  80 0 80  -80 0 80] "point2 uv" [0 0 4 0 4 1 0 1]
+      "integer indices" [0 1 2 0 2 3] )") + normals + "\n",
+                                        "floor.pbrt", {});
+    ASSERT_TRUE(scene->textures.uses_footprint);
+    RenderOptions o;
+    o.spp = 16;
+    o.maxdepth = 1;
+    o.width = 160;
+    o.height = 120;
+    const Image img = render(*scene, o).image;
+    auto mean = [&](int x0, int y0, int x1, int y1) {
+      double sum = 0.0;
+      for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) sum += img.at(x, y)[1];
+      return sum / double((x1 - x0) * (y1 - y0));
+    };
+    EXPECT_NEAR(mean(10, 100, 60, 118), 0.9, 0.01) << "bright check, normals: " << normals;
+    EXPECT_NEAR(mean(100, 100, 150, 118), 0.1, 0.01) << "dark check, normals: " << normals;
+  }
+}
+
 TEST(Footprint, FilteredTexturesRenderAlikeWithEveryIntegrator) {
   auto dir = std::filesystem::temp_directory_path() / ("lantern-footprint-test-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);

@@ -41,6 +41,8 @@ inline ShadingGeometry world_shading_geometry(const Scene& scene, const RayBatch
     const glm::mat3 M(in->world_from_object);
     g.dpdu = M * g.dpdu;
     g.dpdv = M * g.dpdv;
+    g.surface_dpdu = M * g.surface_dpdu;
+    g.surface_dpdv = M * g.surface_dpdv;
     g.dndu = in->normal_to_world * g.dndu;
     g.dndv = in->normal_to_world * g.dndv;
     g.n = sp.ns;
@@ -58,7 +60,7 @@ inline MaterialHandle hit_material(const Scene& scene, const FootprintModel& foo
   const Footprint* footprint = nullptr;
   if (footprints.enabled()) {
     g = world_shading_geometry(scene, rays, i, *sp);
-    *fp = footprints.at(sp->p, sp->ng, g->dpdu, g->dpdv);
+    *fp = footprints.at(sp->p, sp->ng, g->uv_dpdu(), g->uv_dpdv());
     footprint = fp;
   }
   MaterialHandle m = resolve_material(geo.material, scene.materials, scene.textures,

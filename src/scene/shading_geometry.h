@@ -3,8 +3,8 @@
 // definitions: for triangles dp/du and dp/dv from the (u, v) at the
 // vertices (any basis in the plane where those are degenerate); where a mesh
 // has per-vertex normals, the shading frame is the interpolated normal with
-// dp/du made orthogonal to it (unit length, as pbrt-v4 leaves it) and dn/du,
-// dn/dv from the normals; for spheres the analytic derivatives of pbrt's
+// dp/du made orthogonal to it (at dp/du's length, as pbrt-v4 leaves it) and
+// dn/du, dn/dv from the normals; for spheres the analytic derivatives of pbrt's
 // (phi, theta) parameterisation, dn/du and dn/dv from the Weingarten
 // equations; for the other quadrics likewise.
 #pragma once
@@ -15,8 +15,16 @@ namespace lantern {
 
 struct ShadingGeometry {
   Vec3 n;           // shading normal
-  Vec3 dpdu, dpdv;  // shading tangents
+  Vec3 dpdu, dpdv;  // shading tangents (pbrt-v4's shading.dpdu, shading.dpdv)
   Vec3 dndu{0.f}, dndv{0.f};
+  // A mesh's normals turn dpdu and dpdv around the interpolated normal; the
+  // parameterisation's own derivatives (pbrt-v4's SurfaceInteraction::dpdu,
+  // dpdv) are then kept here, for the texture footprint, which maps pixel
+  // steps to (u, v) through them.
+  bool turned = false;
+  Vec3 surface_dpdu{0.f}, surface_dpdv{0.f};
+  Vec3 uv_dpdu() const { return turned ? surface_dpdu : dpdu; }
+  Vec3 uv_dpdv() const { return turned ? surface_dpdv : dpdv; }
 };
 
 inline ShadingGeometry triangle_shading_geometry(const TriangleMesh& m, uint32_t prim, const SurfacePoint& sp) {
@@ -38,15 +46,20 @@ inline ShadingGeometry triangle_shading_geometry(const TriangleMesh& m, uint32_t
     coordinate_system(sp.ng, g.dpdu, g.dpdv);
   g.n = sp.ns;
   if (m.normals.empty()) return g;
-  // The shading frame of a mesh with normals: unit tangents around ns.
+  // The shading frame of a mesh with normals, as pbrt-v4 builds it: ts =
+  // ns x dp/du and ss = ts x ns, left unnormalised, so both have about the
+  // length of dp/du (bump and normal maps scale by it).
   Vec3 ss = g.dpdu, ts = glm::cross(sp.ns, ss);
   if (glm::dot(ts, ts) > 0.f) {
     ss = glm::cross(ts, sp.ns);
   } else {
     coordinate_system(sp.ns, ss, ts);
   }
-  g.dpdu = glm::normalize(ss);
-  g.dpdv = glm::normalize(ts);
+  g.turned = true;
+  g.surface_dpdu = g.dpdu;
+  g.surface_dpdv = g.dpdv;
+  g.dpdu = ss;
+  g.dpdv = ts;
   Vec3 dn1 = m.normals[t.x] - m.normals[t.z], dn2 = m.normals[t.y] - m.normals[t.z];
   if (!degenerate) {
     float inv = 1.f / det;

@@ -1,0 +1,81 @@
+// The conformance suite: each scene in tests/conformance/ rendered by
+// Lantern, its regions compared with pbrt-v4's (measured offline and kept in
+// the scene's data file, tests/conformance/README.md). A region fails where
+// a channel differs by more than z standard errors of the difference plus
+// the file's stated relative tolerance.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "conformance/reference_data.h"
+#include "lantern/render.h"
+#include "lantern/scene.h"
+
+namespace lantern::conformance {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> data_files() {
+  std::vector<std::string> files;
+  for (const auto& e : fs::directory_iterator(LANTERN_CONFORMANCE_DIR))
+    if (e.path().extension() == ".json") files.push_back(e.path().string());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+class Conformance : public ::testing::TestWithParam<std::string> {};
+
+Image render_with_lantern(const ReferenceData& d, const std::string& integrator) {
+  const std::string scene_path = (fs::path(d.path).parent_path() / d.scene).string();
+  auto scene = load_scene(scene_path);
+  const SceneSettings& ss = scene_settings(*scene);
+  RenderOptions o;
+  o.integrator = integrator;
+  o.spp = d.spp > 0 ? d.spp : ss.spp;
+  o.maxdepth = ss.maxdepth;
+  o.sampler = ss.sampler;
+  o.light_sampler = ss.light_sampler;
+  o.wave_size = merges_vertices(integrator) ? 16384 : 4096;
+  return render(*scene, o).image;
+}
+
+TEST_P(Conformance, RegionsMatchPbrtV4) {
+  const ReferenceData d = read_reference_data(GetParam());
+  ASSERT_FALSE(d.regions.empty()) << d.path;
+  for (const std::string& integrator : d.integrators) {
+    const Image image = render_with_lantern(d, integrator);
+    int failed = 0;
+    for (const Region& r : d.regions) {
+      const RegionStats l = region_stats(image, r.box);
+      for (int c = 0; c < 3; ++c) {
+        const double p = r.reference.mean[c];
+        const double se = std::hypot(l.stderr_[c], r.reference.stderr_[c]);
+        const double allowed = d.z * se + d.relative * std::fabs(p) + d.absolute;
+        const double diff = l.mean[c] - p;
+        if (std::fabs(diff) > allowed) ++failed;
+        EXPECT_LE(std::fabs(diff), allowed)
+            << d.scene << " (" << integrator << "), region " << r.name << ", channel " << "RGB"[c] << ": Lantern "
+            << l.mean[c] << " +- " << l.stderr_[c] << ", pbrt-v4 " << p << " +- " << r.reference.stderr_[c]
+            << " (ratio " << l.mean[c] / p << ")";
+      }
+    }
+    if (failed) std::printf("%s (%s): %d of %zu region channels differ\n", d.scene.c_str(), integrator.c_str(), failed,
+                            3 * d.regions.size());
+  }
+}
+
+std::string test_name(const ::testing::TestParamInfo<std::string>& info) {
+  std::string n = fs::path(info.param).stem().string();
+  for (char& c : n)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return n;
+}
+
+INSTANTIATE_TEST_SUITE_P(PbrtV4, Conformance, ::testing::ValuesIn(data_files()), test_name);
+
+}  // namespace
+}  // namespace lantern::conformance

@@ -1,0 +1,70 @@
+// A conformance scene's data file (tests/conformance/*.json): the scene,
+// its regions, pbrt-v4's region means and standard errors, the command and
+// version that measured them, how Lantern renders it, and the tolerance.
+#pragma once
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "conformance/region_stats.h"
+
+namespace lantern::conformance {
+
+struct Region {
+  std::string name;
+  Box box;
+  RegionStats reference;  // pbrt-v4's
+};
+
+struct ReferenceData {
+  std::string path;   // of the data file
+  std::string scene;  // relative to the data file
+  std::vector<std::string> integrators{"path"};
+  int spp = 0;  // Lantern's; 0: the scene's
+  // Allowed: z standard errors of the difference, plus `relative` of
+  // pbrt-v4's mean for what the two model differently (`why` says what).
+  double z = 4.5, relative = 0.005, absolute = 1e-4;
+  std::string why;
+  nlohmann::json json;  // the whole file, kept so the measuring tool rewrites it whole
+  std::vector<Region> regions;
+};
+
+inline ReferenceData read_reference_data(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot open");
+  ReferenceData d;
+  d.path = path;
+  try {
+    d.json = nlohmann::json::parse(in);
+    d.scene = d.json.at("scene").get<std::string>();
+    const auto& l = d.json.value("lantern", nlohmann::json::object());
+    if (l.contains("integrators")) d.integrators = l["integrators"].get<std::vector<std::string>>();
+    d.spp = l.value("spp", 0);
+    const auto& t = d.json.value("tolerance", nlohmann::json::object());
+    d.z = t.value("z", d.z);
+    d.relative = t.value("relative", d.relative);
+    d.absolute = t.value("absolute", d.absolute);
+    d.why = t.value("why", std::string());
+    for (const auto& r : d.json.at("regions")) {
+      Region g;
+      g.name = r.at("name").get<std::string>();
+      const auto b = r.at("box").get<std::vector<int>>();
+      if (b.size() != 4) throw std::runtime_error("region " + g.name + ": box is [x0 y0 x1 y1]");
+      g.box = Box{b[0], b[1], b[2], b[3]};
+      if (r.contains("pbrt")) {
+        const auto m = r["pbrt"].at("mean").get<std::vector<double>>();
+        const auto e = r["pbrt"].at("stderr").get<std::vector<double>>();
+        for (int c = 0; c < 3; ++c) g.reference.mean[c] = m.at(size_t(c)), g.reference.stderr_[c] = e.at(size_t(c));
+      }
+      d.regions.push_back(g);
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error(path + ": " + e.what());
+  }
+  return d;
+}
+
+}  // namespace lantern::conformance
