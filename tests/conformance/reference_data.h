@@ -17,6 +17,7 @@ struct Region {
   std::string name;
   Box box;
   RegionStats reference;  // pbrt-v4's
+  double relative = -1.0;  // >= 0: this region's own relative tolerance (its "why" says what differs)
 };
 
 struct ReferenceData {
@@ -54,6 +55,11 @@ inline ReferenceData read_reference_data(const std::string& path) {
       const auto b = r.at("box").get<std::vector<int>>();
       if (b.size() != 4) throw std::runtime_error("region " + g.name + ": box is [x0 y0 x1 y1]");
       g.box = Box{b[0], b[1], b[2], b[3]};
+      if (r.contains("tolerance")) {
+        g.relative = r["tolerance"].at("relative").get<double>();
+        if (r["tolerance"].value("why", std::string()).empty())
+          throw std::runtime_error("region " + g.name + ": a tolerance of its own needs a \"why\"");
+      }
       if (r.contains("pbrt")) {
         const auto m = r["pbrt"].at("mean").get<std::vector<double>>();
         const auto e = r["pbrt"].at("stderr").get<std::vector<double>>();
