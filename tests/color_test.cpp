@@ -2,8 +2,18 @@
 // against published figures.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
 #include "color/cie1931.h"
+#include "color/optical_constants.h"
+#include "color/piecewise_linear_spectrum.h"
+#include "expect_error.h"
 #include "scene/pbrt/params.h"
+#include "scene/scene.h"
 
 namespace lantern {
 namespace {
@@ -47,6 +57,75 @@ TEST(Color, BlackBodyChromaticities) {
   EXPECT_GT(cold.z, cold.x);
   EXPECT_EQ(pbrt::blackbody_rgb(0.f), RGB(0.f));
   EXPECT_EQ(pbrt::blackbody_rgb(-5.f), RGB(0.f));
+}
+
+// Sampled spectra: pbrt-v4's piecewise-linear interpolation, zero outside
+// the samples, and the colours of spectra whose colours are known.
+TEST(Color, SampledSpectra) {
+  const double pairs[] = {400, 1, 500, 3, 600, 2};
+  const PiecewiseLinearSpectrum s = spectrum_from_pairs(pairs);
+  EXPECT_DOUBLE_EQ(s(450), 2.0);
+  EXPECT_DOUBLE_EQ(s(600), 2.0);
+  EXPECT_DOUBLE_EQ(s(399.9), 0.0);
+  EXPECT_DOUBLE_EQ(s(600.1), 0.0);
+  // A constant reflectance over the visible range is that grey.
+  const double grey[] = {300, 0.35, 900, 0.35};
+  const RGB g = reflectance_rgb(spectrum_from_pairs(grey));
+  EXPECT_NEAR(g.x, 0.35f, 1e-5f);
+  EXPECT_NEAR(g.z, 0.35f, 1e-5f);
+  // Planck's law sampled every 5 nm has the black body's colour.
+  std::vector<double> planck;
+  for (double nm = 360; nm <= 830; nm += 5) {
+    const double l = nm * 1e-9, c = 299792458.0, h = 6.62606957e-34, kb = 1.3806488e-23;
+    planck.push_back(nm);
+    planck.push_back(1e-13 * 2.0 * h * c * c / (std::pow(l, 5) * std::expm1(h * c / (l * kb * 4000.0))));
+  }
+  const RGB b = illuminant_rgb(spectrum_from_pairs(planck)), want = pbrt::blackbody_rgb(4000.f);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(b[c], want[c], 0.003f * want[c]) << c;
+  const double odd[] = {400, 1, 500};
+  EXPECT_THROW(spectrum_from_pairs(odd), std::invalid_argument);
+  const double falling[] = {500, 1, 400, 1};
+  EXPECT_THROW(spectrum_from_pairs(falling), std::invalid_argument);
+}
+
+// Spectrum files as pbrt-v3 and pbrt-v4 read them: a conductor's eta and k
+// from files give the conductor the named metal gives, and bad files and
+// lists are errors naming the file and line.
+TEST(Color, SpectrumFilesInScenes) {
+  const auto dir = std::filesystem::temp_directory_path() / ("lantern-spd-test-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream eta(dir / "Au.eta.spd"), k(dir / "Au.k.spd");
+    eta << "# gold\n";
+    for (const OpticalConstant& row : optical_constants("Au")) {
+      eta << row.nm << " " << row.n << "\n";
+      k << row.nm << " " << row.k << "  # comment\n";
+    }
+    std::ofstream(dir / "bad.spd") << "400 0.5\n500 half\n";
+  }
+  // Relative to the scene file's folder, as pbrt resolves them.
+  std::ofstream(dir / "gold.pbrt") << "WorldBegin\nMaterial \"conductor\" \"spectrum eta\" \"Au.eta.spd\" "
+                                      "\"spectrum k\" \"Au.k.spd\"\nShape \"sphere\"\n";
+  auto s = load_scene((dir / "gold.pbrt").string());
+  const ConductorRGB named = *named_conductor_rgb("Au");
+  const ConductorMaterial& c = s->materials.conductor.at(0);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(c.eta.value[i], named.eta[i], 2e-3f * named.eta[i]) << i;
+    EXPECT_NEAR(c.k.value[i], named.k[i], 2e-3f * named.k[i]) << i;
+  }
+  const std::string bad = (dir / "bad.spd").string();
+  expect_load_error("WorldBegin\nMaterial \"diffuse\" \"spectrum reflectance\" \"" + bad + "\"\n", "b.pbrt",
+                    {"b.pbrt:2", "bad.spd:2", "\"half\" is not a number"});
+  expect_load_error("WorldBegin\nMaterial \"diffuse\" \"spectrum reflectance\" \"nothere.spd\"\n", "n.pbrt",
+                    {"n.pbrt:2", "nothere.spd", "is neither a named spectrum", "nor a spectrum file"});
+  expect_load_error("WorldBegin\nMaterial \"diffuse\" \"spectrum reflectance\" [400 0.5 500]\n", "o.pbrt",
+                    {"o.pbrt:2", "odd number of values"});
+  expect_load_error("WorldBegin\nMaterial \"diffuse\" \"spectrum reflectance\" [500 0.5 400 0.5]\n", "f.pbrt",
+                    {"f.pbrt:2", "wavelengths must increase"});
+  expect_load_error("WorldBegin\nAreaLightSource \"diffuse\" \"blackbody L\" [4000 -1]\nShape \"sphere\"\n", "k.pbrt",
+                    {"k.pbrt:2", "scale must be a finite number >= 0"});
+  std::error_code ec;
+  std::filesystem::remove_all(dir, ec);
 }
 
 }  // namespace

@@ -65,6 +65,16 @@ TEST(PbrtV3, ConstructsRenderAsTheirUpgrades) {
           Texture "s" "float" "scale" "texture tex" "c" "float scale" [ 0.02 ]
           Texture "k" "spectrum" "scale" "rgb tex" [ 0.9 0.5 0.2 ] "float scale" [ 0.5 ]
           MakeNamedMaterial "m" "string type" "diffuse" "texture reflectance" "k" "texture displacement" "s")"},
+      {"plastic without Ks", R"(MakeNamedMaterial "m" "string type" "plastic" "color Kd" [ 0.6 0.3 0.2 ] "color Ks" [ 0 0 0 ]
+          "float roughness" [ 0.2 ])",
+       R"(MakeNamedMaterial "m" "string type" "diffuse" "rgb reflectance" [ 0.6 0.3 0.2 ])"},
+      {"an unknown material is matte", R"(MakeNamedMaterial "m" "string type" "BUSH1" "color Kd" [ 0.2 0.5 0.1 ])",
+       R"(MakeNamedMaterial "m" "string type" "diffuse" "rgb reflectance" [ 0.2 0.5 0.1 ])"},
+      {"area light with a blackbody temperature and scale",
+       R"(AttributeBegin AreaLightSource "area" "blackbody L" [ 4000 2 ] Translate 0 1.2 0 Shape "sphere" "float radius" [ 0.2 ]
+          AttributeEnd MakeNamedMaterial "m" "string type" "matte")",
+       R"(AttributeBegin AreaLightSource "diffuse" "blackbody L" [ 4000 ] "float scale" [ 2 ] Translate 0 1.2 0
+          Shape "sphere" "float radius" [ 0.2 ] AttributeEnd MakeNamedMaterial "m" "string type" "diffuse")"},
       {"colour light scale", R"(LightSource "spot" "color I" [ 2 2 2 ] "color scale" [ 1 0.5 0.25 ] "point3 from" [ 0 3 0 ]
           "point3 to" [ 0 0 0 ] MakeNamedMaterial "m" "string type" "matte")",
        R"(LightSource "spot" "rgb I" [ 2 1 0.5 ] "point3 from" [ 0 3 0 ] "point3 to" [ 0 0 0 ]
@@ -125,6 +135,20 @@ TEST(PbrtV3, ImagemapFlags) {
                            *with("\"string encoding\" \"sRGB\" \"string filter\" \"trilinear\""), {"path"});
   expect_identical_renders(*with("\"bool gamma\" false \"bool trilinear\" false"),
                            *with("\"string encoding\" \"linear\" \"string filter\" \"bilinear\""), {"path"});
+}
+
+// pbrt-v3 renders a material type it does not know as matte and says so.
+TEST(PbrtV3, UnknownMaterialWarnsWithItsLine) {
+  std::vector<std::string> warnings;
+  LoadOptions o;
+  o.warn = [&](const std::string& w) { warnings.push_back(w); };
+  auto s = load_scene_from_string("WorldBegin\nMaterial \"BUSH1\" \"color Kd\" [0.2 0.5 0.1]\nShape \"sphere\"\n",
+                                  "bush.pbrt", o);
+  ASSERT_EQ(s->materials.diffuse.size(), 1u);
+  EXPECT_EQ(s->materials.diffuse[0].reflectance.value, RGB(0.2f, 0.5f, 0.1f));
+  ASSERT_FALSE(warnings.empty());
+  EXPECT_NE(warnings[0].find("bush.pbrt:2"), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[0].find("\"BUSH1\" is unknown"), std::string::npos) << warnings[0];
 }
 
 TEST(PbrtV3, UnsupportedMaterialsAreClearErrors) {

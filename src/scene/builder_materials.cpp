@@ -2,6 +2,8 @@
 // common ones): every parameter pbrt-v4 lets be a texture may be one.
 #include "scene/builder.h"
 
+#include "color/optical_constants.h"
+
 namespace lantern {
 
 using pbrt::ColorUsage;
@@ -40,7 +42,12 @@ TextureRef SceneBuilder::eta_param(const ParamSet& ps, float def) {
   if (!p) p = ps.find("index");
   if (!p) return TextureRef::constant(def);
   if (p->type == "texture") return float_texture(ps, p->name, def);
-  float eta = p->type == "float" ? ps.get_float(p->name, def) : ps.get_rgb(p->name, ColorUsage::Unbounded)->x;
+  // A sampled index (a file or pairs) at the sodium d-line (587.6 nm), as
+  // the named glasses are read: the RGB renderer has no dispersion.
+  const auto sampled = ps.get_sampled_spectrum(p->name);
+  float eta = sampled                ? float((*sampled)(587.6))
+              : p->type == "float" ? ps.get_float(p->name, def)
+                                   : ps.get_rgb(p->name, ColorUsage::Unbounded)->x;
   if (!(eta > 0.f)) ps.fail(*p, "index of refraction must be positive");
   return TextureRef::constant(eta);
 }
@@ -124,6 +131,18 @@ MaterialHandle SceneBuilder::concrete_material(const std::string& type, const Pa
     } else {
       c.eta = rgb_texture(ps, "eta", *pbrt::named_spectrum_rgb("metal-Cu-eta"), ColorUsage::Unbounded);
       c.k = rgb_texture(ps, "k", *pbrt::named_spectrum_rgb("metal-Cu-k"), ColorUsage::Unbounded);
+      // Sampled eta and k (files, inline pairs, named metals) are fitted
+      // together, as the named metals are: the RGB conductor whose Fresnel
+      // curve matches theirs (color/optical_constants.h).
+      const auto eta_s = ps.get_sampled_spectrum("eta"), k_s = ps.get_sampled_spectrum("k");
+      if (eta_s && k_s) {
+        std::vector<OpticalConstant> table;
+        for (int nm = 360; nm <= 830; ++nm)
+          table.push_back({float(nm), float((*eta_s)(nm)), float((*k_s)(nm))});
+        const ConductorRGB fit = fit_conductor_rgb(table);
+        c.eta = TextureRef::constant(fit.eta);
+        c.k = TextureRef::constant(fit.k);
+      }
       if (ps.has("reflectance")) {
         c.reflectance = rgb_texture(ps, "reflectance", RGB(0.f));
         c.by_reflectance = true;
@@ -152,7 +171,16 @@ MaterialHandle SceneBuilder::concrete_material(const std::string& type, const Pa
     CoatedDiffuseMaterial c;
     bool v3 = type == "plastic";
     c.reflectance = rgb_texture(ps, v3 ? "Kd" : "reflectance", RGB(v3 ? 0.25f : 0.5f));
-    if (v3 && ps.has("Ks")) ps.find("Ks");
+    if (const pbrt::Param* ks = v3 ? ps.find("Ks") : nullptr; ks && ks->type != "texture") {
+      // pbrt-v4's upgrade makes a plastic without a specular part diffuse.
+      const std::optional<RGB> k = ks->type == "float" ? std::optional<RGB>(RGB(ps.get_float("Ks", 0.f)))
+                                                       : ps.get_rgb("Ks", ColorUsage::Reflectance);
+      if (k && *k == RGB(0.f)) {
+        for (const char* p : {"eta", "index", "roughness", "uroughness", "vroughness", "remaproughness"}) ps.find(p);
+        m.diffuse.push_back({c.reflectance});
+        return MaterialHandle::make(MaterialKind::Diffuse, uint32_t(m.diffuse.size() - 1));
+      }
+    }
     TextureRef eta = eta_param(ps, 1.5f);
     if (!eta.is_constant()) ps.fail(*ps.find("eta"), "coateddiffuse's eta is a spectrum in pbrt-v4, not a texture");
     c.eta = eta.value.x;
@@ -177,9 +205,15 @@ MaterialHandle SceneBuilder::concrete_material(const std::string& type, const Pa
     m.thin_dielectric.push_back({eta_param(ps, 1.5f)});
     return MaterialHandle::make(MaterialKind::ThinDielectric, uint32_t(m.thin_dielectric.size() - 1));
   }
-  ps.fail("material type \"" + type +
-          "\" is not supported; expected diffuse, conductor, dielectric, thindielectric, diffusetransmission, "
-          "coateddiffuse, coatedconductor, hair, mix, interface (or matte, metal, glass, plastic, mirror)");
+  // pbrt-v3 renders a material type it does not know as matte, with a
+  // warning; so does Lantern (scenes exported for other renderers name
+  // their own types).
+  warn(ps.where, ps.directive + ": material type \"" + printable(type) +
+                     "\" is unknown and renders as \"diffuse\" (pbrt-v3's matte) from its \"Kd\" or \"reflectance\"; "
+                     "known: diffuse, conductor, dielectric, thindielectric, diffusetransmission, coateddiffuse, "
+                     "coatedconductor, hair, mix, interface (and pbrt-v3's matte, metal, glass, plastic, mirror, uber, "
+                     "substrate, translucent)");
+  return concrete_material("diffuse", ps);
 }
 
 // pbrt-v4's coatedconductor, with its parameter names and defaults.

@@ -3,7 +3,9 @@
 #include "color/cie1931.h"
 #include "color/optical_constants.h"
 
+#include <filesystem>
 #include <map>
+#include <stdexcept>
 
 namespace lantern::pbrt {
 
@@ -144,21 +146,73 @@ std::optional<RGB> ParamSet::get_rgb(const std::string& name, ColorUsage usage) 
     return c;
   }
   if (p->type == "blackbody") {
-    if (p->numbers.size() != 1) fail(*p, "expected one temperature in kelvin");
-    return blackbody_rgb(float(p->numbers[0]));
+    // pbrt-v4: the temperature; pbrt-v3: the temperature and a scale,
+    // which pbrt-v4's --upgrade moves into the light's "scale".
+    if (p->numbers.size() != 1 && p->numbers.size() != 2)
+      fail(*p, "expected a temperature in kelvin (pbrt-v3: a temperature and a scale)");
+    const float scale = p->numbers.size() == 2 ? float(p->numbers[1]) : 1.f;
+    if (!(scale >= 0.f) || !std::isfinite(scale)) fail(*p, "the blackbody's scale must be a finite number >= 0");
+    return blackbody_rgb(float(p->numbers[0])) * scale;
   }
   if (p->type == "spectrum") {
-    if (!p->strings.empty()) {
+    if (!p->strings.empty())
       if (auto c = named_spectrum_rgb(p->strings[0])) return *c;
-      fail(*p, "unknown named spectrum \"" + p->strings[0] +
-                   "\"; known: metal-{Cu,Au,Ag,Al,CuZn,MgO,TiO2}-{eta,k}, glass-{BK7,BAF10,FK51A,LASF9,F5,F10,F11}");
+    if (p->strings.empty() && p->numbers.size() == 1) return RGB(float(p->numbers[0]));
+    const PiecewiseLinearSpectrum s = *get_sampled_spectrum(name);
+    if (usage == ColorUsage::Illuminant) return illuminant_rgb(s);
+    RGB c = reflectance_rgb(s);
+    if (usage == ColorUsage::Reflectance) {
+      if (max_component(c) > 1.f && warn && *warn)
+        (*warn)(p->where.str() + ": warning: " + directive + ": reflectance \"" + printable(name) + "\" exceeds 1 and was clamped");
+      c = glm::clamp(c, RGB(0.f), RGB(1.f));
     }
-    if (p->numbers.size() == 1) return RGB(float(p->numbers[0]));
-    fail(*p, "sampled spectra (wavelength/value pairs) are not supported: give \"rgb\" values instead");
+    return c;
   }
   if (p->type == "float" && usage == ColorUsage::Unbounded && p->numbers.size() == 1)
     return RGB(float(p->numbers[0]));
   fail(*p, "has type \"" + p->type + "\", expected \"rgb\", \"spectrum\" or \"blackbody\"");
+}
+
+std::optional<PiecewiseLinearSpectrum> ParamSet::get_sampled_spectrum(const std::string& name) const {
+  const Param* p = find(name);
+  if (!p || p->type != "spectrum") return std::nullopt;
+  if (p->strings.empty()) {
+    if (p->numbers.size() < 2) return std::nullopt;
+    try {
+      return spectrum_from_pairs(p->numbers);
+    } catch (const std::invalid_argument& e) {
+      fail(*p, e.what());
+    }
+  }
+  if (p->strings.size() != 1) fail(*p, "expected one spectrum name or file");
+  const std::string& s = p->strings[0];
+  // A named metal's measured constants (color/optical_constants.h).
+  if (s.starts_with("metal-")) {
+    const size_t dash = s.rfind('-');
+    const std::string metal = s.substr(6, dash > 6 ? dash - 6 : 0), part = s.substr(dash + 1);
+    const auto table = optical_constants(metal);
+    if (!table.empty() && (part == "eta" || part == "k")) {
+      PiecewiseLinearSpectrum out;
+      for (const OpticalConstant& row : table) {
+        out.nm.push_back(row.nm);
+        out.value.push_back(part == "eta" ? row.n : row.k);
+      }
+      return out;
+    }
+  }
+  if (named_spectrum_rgb(s)) return std::nullopt;  // a named glass: a constant here
+  // Anything else names a spectrum file, relative to the scene's folder.
+  std::filesystem::path file(s);
+  if (file.is_relative() && !base_dir.empty()) file = std::filesystem::path(base_dir) / file;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec))
+    fail(*p, "\"" + printable(s) + "\" is neither a named spectrum (metal-{Cu,Au,Ag,Al,CuZn,MgO,TiO2}-{eta,k}, "
+             "glass-{BK7,BAF10,FK51A,LASF9,F5,F10,F11}) nor a spectrum file (" + printable(file.string()) + " not found)");
+  try {
+    return read_spectrum_file(file.string());
+  } catch (const InputError& e) {
+    fail(*p, e.what());
+  }
 }
 
 // A black body's colour: its spectrum against the tabulated CIE 1931

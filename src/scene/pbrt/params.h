@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "color/piecewise_linear_spectrum.h"
 #include "lantern/error.h"
 #include "math/common.h"
 
@@ -32,6 +33,7 @@ class ParamSet {
   SourceLocation where;        // of the directive
   std::string directive;      // e.g. Shape "sphere", for messages
   WarningSink* warn = nullptr;
+  std::string base_dir;       // relative file names (spectrum files) are resolved against it
 
   const Param* find(const std::string& name) const;
   bool has(const std::string& name) const { return find(name) != nullptr; }
@@ -45,8 +47,14 @@ class ParamSet {
   std::vector<Vec3> get_point3s(const std::string& name) const;  // point3, vector3, normal
   std::vector<Vec2> get_point2s(const std::string& name) const;
   Vec3 get_point3(const std::string& name, Vec3 def) const;
-  // rgb / color / spectrum / blackbody; nullopt when absent.
+  // rgb / color / spectrum / blackbody; nullopt when absent. A sampled
+  // spectrum (pairs or a file) becomes the colour a spectral renderer shows
+  // for it: a reflectance or unbounded value under D65, an illuminant
+  // normalised to luminance 1 (as pbrt-v4 normalises light spectra).
   std::optional<RGB> get_rgb(const std::string& name, ColorUsage usage) const;
+  // A "spectrum" parameter given by samples, inline or in a file, or a named
+  // metal's measured eta or k; nullopt for any other form or when absent.
+  std::optional<PiecewiseLinearSpectrum> get_sampled_spectrum(const std::string& name) const;
   // Name of a texture parameter ("texture reflectance" "tex"), if given that way.
   std::optional<std::string> get_texture(const std::string& name) const;
 

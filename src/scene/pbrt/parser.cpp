@@ -100,6 +100,7 @@ class Parser {
     ParamSet ps;
     ps.where = loc(at);
     ps.directive = directive;
+    ps.base_dir = base_dir_;
     ps.warn = &warn_sink_;
     while (peek().kind == TokenKind::String) {
       Token decl = next();
@@ -295,7 +296,9 @@ class Parser {
       world_only();
       std::string type = expect_string("an area light type");
       ParamSet ps = params(t, "AreaLightSource \"" + printable(type) + "\"");
-      if (type != "diffuse") ps.fail("area light type \"" + printable(type) + "\" is not supported; expected \"diffuse\"");
+      // pbrt-v3 calls the diffuse area light "area".
+      if (type != "diffuse" && type != "area")
+        ps.fail("area light type \"" + printable(type) + "\" is not supported; expected \"diffuse\" (pbrt-v3: \"area\")");
       gs_.area_light = std::move(ps);
       gs_.area_light_dir = base_dir_;
     } else if (d == "Shape") {

@@ -1,0 +1,37 @@
+// Spectra given as (wavelength, value) samples: pbrt's inline
+// `"spectrum NAME" [lambda0 v0 lambda1 v1 ...]` lists and its spectrum files
+// (pbrt-v3's .spd and pbrt-v4's: the same numbers in pairs, with # comments),
+// and their linear sRGB in the RGB renderer.
+#pragma once
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "math/common.h"
+
+namespace lantern {
+
+// pbrt-v4's PiecewiseLinearSpectrum: linear between samples, zero outside
+// them. Wavelengths in nm, strictly increasing.
+struct PiecewiseLinearSpectrum {
+  std::vector<double> nm, value;
+  double operator()(double lambda) const;
+};
+
+// From interleaved (wavelength, value) pairs. Throws std::invalid_argument
+// saying what is wrong: an odd count, no pairs, wavelengths not
+// increasing, or a value that is not finite.
+PiecewiseLinearSpectrum spectrum_from_pairs(std::span<const double> pairs);
+
+// Reads a spectrum file. Throws InputError naming the file (and line) for
+// an unreadable file, a word that is not a number, or bad pairs.
+PiecewiseLinearSpectrum read_spectrum_file(const std::string& path);
+
+// The linear sRGB an emitter with this spectrum shows, normalised to
+// luminance 1, as pbrt-v4 divides a light's spectrum by its photometric
+// integral (its "scale" then sets the brightness). Black for a spectrum
+// without luminance.
+RGB illuminant_rgb(const PiecewiseLinearSpectrum& s);
+
+}  // namespace lantern
