@@ -24,6 +24,8 @@ using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
 void write_image(const std::string& path, const Image& image, const ImageMetadata& metadata);
 // Whether write_image has a writer for path's extension.
 bool can_write_image_format(const std::string& path);
+// Linear values: float files as they are, integer files (8-bit PNG, JPEG,
+// ...) decoded as image textures are (docs/textures.md: sRGB for 8 bits).
 Image read_image(const std::string& path);
 // The string attributes of an image's header whose names start with prefix.
 ImageMetadata read_image_metadata(const std::string& path, const std::string& prefix = "lantern:");

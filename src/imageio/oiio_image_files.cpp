@@ -77,9 +77,17 @@ Image read_image(const std::string& path) {
   std::vector<float> data(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data.data()))
     throw std::runtime_error("cannot decode \"" + path + "\": " + in->geterror());
+  // Integer files hold encoded values: decoded by the rule textures follow
+  // (texture/color_encoding.h), so an 8-bit PNG or JPEG, which renderers
+  // write sRGB-encoded, compares with an EXR of the same render.
+  const bool integer = spec.format.basetype == OIIO::TypeDesc::UINT8 || spec.format.basetype == OIIO::TypeDesc::UINT16;
+  const ColorEncoding decoding = file_encoding(path, int(spec.format.size()) * 8, default_texture_encoding(path));
   img.rgb.resize(size_t(spec.width) * size_t(spec.height) * 3);
   for (size_t i = 0; i < size_t(spec.width) * size_t(spec.height); ++i)
-    for (int c = 0; c < 3; ++c) img.rgb[3 * i + size_t(c)] = data[i * size_t(spec.nchannels) + size_t(std::min(c, spec.nchannels - 1))];
+    for (int c = 0; c < 3; ++c) {
+      const float v = data[i * size_t(spec.nchannels) + size_t(std::min(c, spec.nchannels - 1))];
+      img.rgb[3 * i + size_t(c)] = integer ? decoding.to_linear(v) : v;
+    }
   return img;
 }
 
