@@ -67,6 +67,34 @@ expect_run(NAME strategies-need-bdpt EXIT 1 MATCH "need --integrator bdpt" ARGS 
            --integrator path --spp 1 --resolution 8 8 --strategies ${OUT}/strategies -o ${OUT}/x.exr)
 expect_run(NAME compare EXIT 0 MATCH "relmse [0-9.e+-]+\nmae" ARGS compare ${OUT}/lt.exr ${OUT}/bdpt.exr)
 expect_run(NAME compare-size-mismatch EXIT 1 MATCH "sizes differ" ARGS compare ${OUT}/cli.exr ${OUT}/bdpt.exr)
+# Outputs that are not plain files are written through, never renamed over:
+# standard output as "-" or /dev/stdout (which stays a link), and a link
+# to a file (the link stays, the file it names gets the statistics, and an
+# image through a link likewise).
+expect_run(NAME stats-dash EXIT 0 MATCH "\"integrator\": \"path\"" ARGS render ${SRC}/scenes/cornell-box.pbrt --spp 1
+           --resolution 8 8 --quiet -o ${OUT}/dash.exr --stats -)
+if(EXISTS ${OUT}/-)
+  message(FATAL_ERROR "--stats - wrote a file named -")
+endif()
+expect_run(NAME stats-dev-stdout EXIT 0 MATCH "\"integrator\": \"path\"" ARGS render ${SRC}/scenes/cornell-box.pbrt
+           --spp 1 --resolution 8 8 --quiet -o ${OUT}/dash.exr --stats /dev/stdout)
+if(NOT IS_SYMLINK /dev/stdout)
+  message(FATAL_ERROR "--stats /dev/stdout replaced the link /dev/stdout")
+endif()
+file(REMOVE ${OUT}/linked-stats.json ${OUT}/stats-link.json ${OUT}/linked.exr ${OUT}/image-link.exr)
+file(CREATE_LINK linked-stats.json ${OUT}/stats-link.json SYMBOLIC)
+file(CREATE_LINK linked.exr ${OUT}/image-link.exr SYMBOLIC)
+expect_run(NAME stats-through-link EXIT 0 ARGS render ${SRC}/scenes/cornell-box.pbrt --spp 1 --resolution 8 8 --quiet
+           -o ${OUT}/image-link.exr --stats ${OUT}/stats-link.json)
+foreach(link stats-link.json image-link.exr)
+  if(NOT IS_SYMLINK ${OUT}/${link})
+    message(FATAL_ERROR "writing through ${link} replaced the link with a file")
+  endif()
+endforeach()
+file(READ ${OUT}/linked-stats.json linked_stats)
+if(NOT linked_stats MATCHES "\"integrator\": \"path\"" OR NOT EXISTS ${OUT}/linked.exr)
+  message(FATAL_ERROR "the files the links name were not written")
+endif()
 # An 8-bit PNG is sRGB-encoded: compared with the EXR of the same render
 # (no value above 1 to clip) its means agree within 8-bit quantisation.
 # Read as linear, they were 1.6-2.8 times too bright.

@@ -17,6 +17,7 @@
 #include "app/stats_report.h"
 #include "trace/timeline.h"
 #include "film/image_metrics.h"
+#include "imageio/replace_file.h"
 #include "math/fnv1a.h"
 #include "lantern/render.h"
 #include "lantern/scene.h"
@@ -84,15 +85,21 @@ std::string scene_key(const std::string& path, const lantern::SceneInfo& info) {
          " spheres " + std::to_string(info.spheres) + " lights " + std::to_string(info.lights);
 }
 
-// Written to a temporary name and renamed, like the images.
+// Written to a temporary name and moved into place, like the images
+// (imageio/replace_file.h); "-" is standard output.
 void write_text_atomically(const std::string& path, const std::string& text) {
+  if (path == "-") {
+    std::fwrite(text.data(), 1, text.size(), stdout);
+    if (std::fflush(stdout) != 0) throw std::runtime_error("cannot write to standard output");
+    return;
+  }
   std::string tmp = path + ".tmp";
   {
     std::ofstream f(tmp, std::ios::binary);
     f << text;
     if (!f.flush()) throw std::runtime_error("cannot write " + tmp);
   }
-  std::filesystem::rename(tmp, path);
+  lantern::place_output(tmp, path);
 }
 
 // Loading as spans on the timeline's main track: the whole load, and each

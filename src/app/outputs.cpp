@@ -1,5 +1,7 @@
 #include "app/outputs.h"
 
+#include "imageio/replace_file.h"
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -13,7 +15,30 @@ namespace lantern {
 
 namespace fs = std::filesystem;
 
-void check_writable(const std::string& path, const std::string& what) {
+namespace {
+
+// check_writable, following at most `links` more symbolic links.
+void check_writable_at(const std::string& path, const std::string& what, int links) {
+  // A device, pipe or link is written through where it is (never renamed
+  // over); it is checked without opening it, as opening a pipe would block.
+  if (path == "-") return;  // standard output
+  if (is_special_output(path)) {
+    std::error_code ec;
+    // A link to nothing yet: where it points must be creatable. Anything
+    // that exists (through links too, /dev/stdout's among them) must be
+    // writable.
+    if (!fs::exists(fs::status(path, ec))) {
+      fs::path target = fs::read_symlink(path, ec);
+      if (target.is_relative()) target = fs::path(path).parent_path() / target;
+      if (links == 0)
+        throw std::runtime_error("cannot write " + what + " \"" + path + "\": too many levels of symbolic links");
+      check_writable_at(target.string(), what, links - 1);
+      return;
+    }
+    if (::access(path.c_str(), W_OK) != 0)
+      throw std::runtime_error("cannot write " + what + " \"" + path + "\": " + std::strerror(errno));
+    return;
+  }
   const fs::path p(path);
   const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
   std::error_code ec;
@@ -34,6 +59,10 @@ void check_writable(const std::string& path, const std::string& what) {
   }
   fs::remove(probe, ec);
 }
+
+}  // namespace
+
+void check_writable(const std::string& path, const std::string& what) { check_writable_at(path, what, 16); }
 
 void check_image_path(const std::string& path) {
   check_writable(path, "the output image");

@@ -1,5 +1,7 @@
 #include "film/checkpoint.h"
 
+#include "imageio/replace_file.h"
+
 #include <cmath>
 #include <cstdio>
 #include <algorithm>
@@ -95,9 +97,7 @@ void write_checkpoint(const std::string& path, const CheckpointInfo& info, const
       throw std::runtime_error("cannot write checkpoint \"" + tmp + "\" (disk full?)");
     }
   }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) throw std::runtime_error("cannot move checkpoint to \"" + path + "\": " + ec.message());
+  place_output(tmp, path);
 }
 
 namespace {

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "imageio/oiio_module.h"
+#include "imageio/replace_file.h"
 #include "lantern/error.h"
 
 namespace lantern::oiio {
@@ -59,12 +60,7 @@ void write_image(const std::string& path, const Image& image, const ImageMetadat
     std::remove(tmp.c_str());
     throw std::runtime_error("cannot write \"" + path + "\": " + err);
   }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error("cannot move finished image to \"" + path + "\": " + ec.message());
-  }
+  place_output(tmp, path);
 }
 
 Image read_image(const std::string& path) {
