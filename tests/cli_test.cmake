@@ -176,6 +176,14 @@ expect_run(NAME merge-missing EXIT 1 MATCH "part 2/3 is missing; merge the parts
            ARGS merge ${OUT}/part1.film ${OUT}/part3.film -o ${OUT}/merged.exr)
 expect_run(NAME merge-preview EXIT 0 MATCH "warning: preview: part 2/3 is missing"
            ARGS merge ${OUT}/part1.film ${OUT}/part3.film -o ${OUT}/preview.exr --preview)
+# A part of another scene (here the same box with another name and bytes)
+# is refused, naming the scene line that differs.
+file(READ ${SRC}/scenes/cornell-box.pbrt box)
+file(WRITE ${OUT}/other-box.pbrt "${box}\n# edited\n")
+expect_run(NAME part-other-scene EXIT 0 ARGS render ${OUT}/other-box.pbrt --integrator bdpt --spp 32 --resolution 24 24
+           --quiet --part 2/3 -o ${OUT}/other2.film)
+expect_run(NAME merge-other-scene EXIT 2 MATCH "other2.film: error: is a part of another render: it has \"scene=other-box.pbrt"
+           ARGS merge ${OUT}/part1.film ${OUT}/other2.film ${OUT}/part3.film -o ${OUT}/patchwork.exr)
 expect_run(NAME merge-twice EXIT 2 MATCH "part1.film: error: is part 1/3 again"
            ARGS merge ${OUT}/part1.film ${OUT}/part1.film -o ${OUT}/merged.exr)
 expect_run(NAME part-bad EXIT 105 MATCH "--part: must be K/N with 1 <= K <= N"

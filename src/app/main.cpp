@@ -256,11 +256,13 @@ int run_render(const RenderArgs& a) {
   // Across ranks always: a job ended from outside (a batch system's time
   // limit, a rank lost, Ctrl-C) leaves every surviving rank's work in its
   // piece of the checkpoint, for --resume; a job that completes leaves none.
+  // The scene's fingerprint goes into checkpoints and parts alike, so that
+  // neither is resumed or merged with another scene's.
+  o.checkpoint_key = scene_key(a.scene, scene_info(*scene));
   if (a.checkpoint > 0 || a.resume || g_ranks > 1) {
     o.checkpoint_path = a.checkpoint_file.empty() ? out + ".ckpt" : a.checkpoint_file;
     o.checkpoint_seconds = a.checkpoint;
     o.resume = a.resume;
-    o.checkpoint_key = scene_key(a.scene, scene_info(*scene));
   }
   // On a terminal, a line rewritten in place. Under mpirun the output goes
   // through pipes to the job's log: there rank 0 writes a whole line every
