@@ -68,5 +68,32 @@ TEST(AreaLightImage, LWithFilenameIsAnError) {
                     {"both.pbrt:7", "either \"L\" or \"filename\""});
 }
 
+// "power", as pbrt-v4 reads it: every primitive is a light of its own that
+// emits the whole power (pbrt-v4 makes one light per triangle), over its
+// own area, both sides when two-sided, and an image's mean luminance
+// (measured in pbrt-v4: a two-sided two-triangle quad of power 20 is twice
+// as bright as the quad's area alone would make it, tests/conformance).
+TEST(AreaLightImage, PowerIsPerPrimitiveAsInPbrtV4) {
+  // Two triangles of areas 0.5 and 1 (a right triangle split unevenly).
+  const std::string mesh = R"(
+  Shape "trianglemesh" "point3 P" [ 0 0 0  1 0 0  1 1 0  -1 1 0 ] "integer indices" [ 0 1 2  0 2 3 ] "point2 uv" [ 0 0 1 0 1 1 0 1 ]
+AttributeEnd
+)";
+  auto lights = [&](const std::string& params) {
+    auto s = load_scene_from_string("WorldBegin\nAttributeBegin\n  AreaLightSource \"diffuse\" " + params + mesh, "p.pbrt", {});
+    return s->lights.area;
+  };
+  auto a = lights(R"("rgb L" [ 1 0.5 0.25 ] "float power" [ 10 ] "bool twosided" true)");
+  ASSERT_EQ(a.size(), 2u);
+  EXPECT_NEAR(a[0].L.x, 10.f / (2.f * 0.5f * kPi), 1e-4f);
+  EXPECT_NEAR(a[1].L.x, 10.f / (2.f * 1.0f * kPi), 1e-4f);
+  EXPECT_NEAR(a[1].L.z, 0.25f * 10.f / (2.f * kPi), 1e-4f) << "the colour is kept";
+  // An image: normalised by its mean luminance (Y of sRGB), not its mean.
+  const std::string orange = image_file("orange.exr", {0.8f, 0.4f, 0.1f, 0.8f, 0.4f, 0.1f, 0.8f, 0.4f, 0.1f, 0.8f, 0.4f, 0.1f}, 2, 2);
+  auto b = lights("\"string filename\" \"" + orange + "\" \"float power\" [ 10 ]");
+  const float y = 0.2126f * 0.8f + 0.7152f * 0.4f + 0.0722f * 0.1f;
+  EXPECT_NEAR(b[1].L.x, 10.f / (kPi * y), 1e-3f);
+}
+
 }  // namespace
 }  // namespace lantern

@@ -47,6 +47,28 @@ TEST(Bdpt, AgreesWithPathAndLightTracingWithTinySphereLight) {
   EXPECT_LT(max_z(lt, path), kMaxZ);
 }
 
+// A point light in view: no camera ray finds it, so the path tracer (and
+// pbrt-v4) show only the floor it lights; bdpt and the light tracer must
+// not splat its own image (one pixel's worth of energy, 40x the floor's
+// mean in its region before they left s = 1, t = 1 out for lights of zero
+// size).
+TEST(Bdpt, PointLightInViewIsNotSeen) {
+  auto scene = load_scene_from_string(R"(LookAt 0 3 -4  0 0.5 0  0 1 0
+Camera "perspective" "float fov" 40
+WorldBegin
+LightSource "point" "point3 from" [0 1 0] "rgb I" [4 4 4]
+Material "diffuse" "rgb reflectance" [0.5 0.5 0.5]
+Shape "trianglemesh" "point3 P" [-3 0 -3  3 0 -3  3 0 3  -3 0 3] "integer indices" [0 1 2 0 2 3]
+)",
+                                      "point.pbrt", {});
+  const std::vector<Region> regions = {{0, 0, 16, 16}, {4, 4, 8, 8}, {6, 6, 4, 4}};
+  auto path = render_stats(*scene, "path", 16, 16, 16, 4, regions);
+  auto bdpt = render_stats(*scene, "bdpt", 16, 16, 16, 4, regions);
+  auto lt = render_stats(*scene, "lt", 16, 16, 16, 4, regions);
+  EXPECT_LT(max_z(bdpt, path), kMaxZ);
+  EXPECT_LT(max_z(lt, path), kMaxZ);
+}
+
 // Glass and a near-mirror ring. The caustics (under the ball, inside the
 // ring) are light that reached the floor through specular scattering: the
 // path tracer finds it only when a BSDF sample happens to hit the 2 cm light

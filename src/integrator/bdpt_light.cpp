@@ -120,8 +120,12 @@ void Bdpt::begin_light_subpath(BdptWave& w, uint32_t slot, const EmissionSample&
   }
   const Vec2 u_lens = w.sampler[slot].get2d(dims::kLightStartLens);
   // s = 1, t = 1: the light's own point seen by the camera (bpm and ppm
-  // see lights only through eye subpaths).
-  if (!es.infinite && settings_.connections) {
+  // see lights only through eye subpaths). Not for a point of zero size
+  // (point, spot, goniometric and projection lights): its image is one
+  // pixel's worth of energy that no camera ray can find, so the path tracer
+  // and pbrt-v4 (whose bdpt skips s = 1, t = 1) leave it out, and so does
+  // every integrator here.
+  if (!es.infinite && !es.delta_pos && settings_.connections) {
     if (auto cs = camera_.sample_wi(es.p, u_lens)) {
       float cos_l = on_surface ? std::fabs(glm::dot(es.n, cs->wi)) : 1.f;
       RGB Le = es.volume ? es.Le : emitted(lights, scene_.textures, es.light, es.n, es.uv, cs->wi);

@@ -432,22 +432,28 @@ void SceneBuilder::add_area_lights(uint32_t geometry, uint32_t primitives, const
     if (ps.has("L")) ps.fail(*ps.find("L"), "give either \"L\" or \"filename\", not both");
     image = texture_image(ps, resolve_path(gs.area_light_dir, file), ColorEncoding{ColorEncoding::SRGB});
   }
+  // "power": pbrt-v4 makes one light per primitive (each triangle of a
+  // mesh, each patch) and gives each that power, normalised by its own area
+  // and by the image's mean luminance (sRGB's Y weights).
+  const bool by_power = ps.has("power");
+  const float power = ps.get_float("power", 0.f);
+  float image_luminance = 1.f;
+  if (by_power && image >= 0) {
+    double sum = 0.0;
+    for (const RGB& t : scene_.textures.images[size_t(image)].texels) sum += double(luminance(t));
+    image_luminance = float(sum / double(std::max<size_t>(1, scene_.textures.images[size_t(image)].texels.size())));
+  }
   Geometry& g = scene_.shapes.geometries[geometry];
   g.light_offset = int32_t(scene_.lights.area.size());
-  float total = 0.f;
   for (uint32_t i = 0; i < primitives; ++i) {
     float area = g.kind == ShapeKind::Mesh       ? triangle_area(scene_.shapes.meshes[g.index], i)
                  : g.kind == ShapeKind::Quadric  ? scene_.shapes.quadrics[g.index].world_area
                  : g.kind == ShapeKind::Bilinear ? bilinear_area(patch_corners(scene_.shapes.patches[g.index], i))
                                                  : 4.f * kPi * sqr(scene_.shapes.spheres[g.index].radius);
-    total += area;
-    scene_.lights.area.push_back({geometry, i, L, two_sided, area, image});
-  }
-  if (ps.has("power")) {
-    float power = ps.get_float("power", 0.f);
-    float k = (two_sided ? 2.f : 1.f) * total * kPi * (image < 0 ? 1.f : scene_.textures.image_mean(image));
-    if (k > 0.f)
-      for (uint32_t i = 0; i < primitives; ++i) scene_.lights.area[size_t(g.light_offset) + i].L *= power / k;
+    RGB Li = L;
+    const float k = (two_sided ? 2.f : 1.f) * area * kPi * image_luminance;
+    if (by_power && k > 0.f) Li *= power / k;
+    scene_.lights.area.push_back({geometry, i, Li, two_sided, area, image});
   }
   ps.warn_unused();
 }

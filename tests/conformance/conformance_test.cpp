@@ -56,7 +56,8 @@ TEST_P(Conformance, RegionsMatchPbrtV4) {
         const double p = r.reference.mean[c];
         const double se = std::hypot(l.stderr_[c], r.reference.stderr_[c]);
         const double relative = r.relative >= 0.0 ? r.relative : d.relative;
-        const double allowed = d.z * se + relative * std::fabs(p) + d.absolute;
+        const double absolute = r.absolute >= 0.0 ? r.absolute : d.absolute;
+        const double allowed = d.z * se + relative * std::fabs(p) + absolute;
         const double diff = l.mean[c] - p;
         if (std::fabs(diff) > allowed) ++failed;
         EXPECT_LE(std::fabs(diff), allowed)

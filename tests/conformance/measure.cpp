@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    ReferenceData d = read_reference_data(data_path);
+    ReferenceData d = read_reference_data(data_path, false);
     const lantern::Image a = lantern::read_image(image_a), b = lantern::read_image(image_b);
     d.json["reference"] = {{"renderer", renderer}, {"command", command}};
     for (auto& r : d.json["regions"]) {
