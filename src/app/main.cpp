@@ -93,7 +93,7 @@ void write_text_atomically(const std::string& path, const std::string& text) {
     if (std::fflush(stdout) != 0) throw std::runtime_error("cannot write to standard output");
     return;
   }
-  std::string tmp = path + ".tmp";
+  std::string tmp = lantern::temporary_output(path, "");
   {
     std::ofstream f(tmp, std::ios::binary);
     f << text;

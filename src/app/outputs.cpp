@@ -15,31 +15,18 @@ namespace lantern {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-// check_writable, following at most `links` more symbolic links.
-void check_writable_at(const std::string& path, const std::string& what, int links) {
-  // A device, pipe or link is written through where it is (never renamed
-  // over); it is checked without opening it, as opening a pipe would block.
+void check_writable(const std::string& path, const std::string& what) {
   if (path == "-") return;  // standard output
-  if (is_special_output(path)) {
-    std::error_code ec;
-    // A link to nothing yet: where it points must be creatable. Anything
-    // that exists (through links too, /dev/stdout's among them) must be
-    // writable.
-    if (!fs::exists(fs::status(path, ec))) {
-      fs::path target = fs::read_symlink(path, ec);
-      if (target.is_relative()) target = fs::path(path).parent_path() / target;
-      if (links == 0)
-        throw std::runtime_error("cannot write " + what + " \"" + path + "\": too many levels of symbolic links");
-      check_writable_at(target.string(), what, links - 1);
-      return;
-    }
+  // A device or pipe is written through where it is, and checked without
+  // opening it (opening a pipe would block); a link, where it leads
+  // (imageio/replace_file.h).
+  const std::string plain = plain_output_file(path);
+  if (plain.empty()) {
     if (::access(path.c_str(), W_OK) != 0)
       throw std::runtime_error("cannot write " + what + " \"" + path + "\": " + std::strerror(errno));
     return;
   }
-  const fs::path p(path);
+  const fs::path p(plain);
   const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
   std::error_code ec;
   if (!fs::is_directory(dir, ec))
@@ -59,10 +46,6 @@ void check_writable_at(const std::string& path, const std::string& what, int lin
   }
   fs::remove(probe, ec);
 }
-
-}  // namespace
-
-void check_writable(const std::string& path, const std::string& what) { check_writable_at(path, what, 16); }
 
 void check_image_path(const std::string& path) {
   check_writable(path, "the output image");

@@ -69,7 +69,7 @@ std::pair<std::string, std::string> fingerprint_difference(const std::string& a,
 }
 
 void write_checkpoint(const std::string& path, const CheckpointInfo& info, const Film& film) {
-  std::string tmp = path + ".partial";
+  std::string tmp = temporary_output(path, "");
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw std::runtime_error("cannot write checkpoint \"" + tmp + "\"");

@@ -38,8 +38,7 @@ void write_image(const std::string& path, const Image& image, const ImageMetadat
   bool linear = is_float_format(ext);
   // Keep the real extension on the temporary name: OpenImageIO picks the
   // writer from it.
-  std::filesystem::path p(path);
-  std::string tmp = (p.parent_path() / ("." + p.stem().string() + ".partial" + p.extension().string())).string();
+  std::string tmp = temporary_output(path, std::filesystem::path(path).extension().string());
   auto out = OIIO::ImageOutput::create(tmp);
   if (!out) throw std::runtime_error("cannot write \"" + path + "\": no image writer for extension \"" + ext + "\"");
   OIIO::ImageSpec spec(image.width, image.height, 3, linear ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
