@@ -120,6 +120,8 @@ TEST(Color, SpectrumFilesInScenes) {
                     {"n.pbrt:2", "nothere.spd", "is neither a named spectrum", "nor a spectrum file"});
   expect_load_error("WorldBegin\nMaterial \"diffuse\" \"spectrum reflectance\" [400 0.5 500]\n", "o.pbrt",
                     {"o.pbrt:2", "odd number of values"});
+  expect_load_error("WorldBegin\nMaterial \"diffuse\" \"spectrum reflectance\" [ ]\n", "e.pbrt",
+                    {"e.pbrt:2", "expected a value, (wavelength, value) pairs"});
   expect_load_error("WorldBegin\nMaterial \"diffuse\" \"spectrum reflectance\" [500 0.5 400 0.5]\n", "f.pbrt",
                     {"f.pbrt:2", "wavelengths must increase"});
   expect_load_error("WorldBegin\nAreaLightSource \"diffuse\" \"blackbody L\" [4000 -1]\nShape \"sphere\"\n", "k.pbrt",

@@ -158,9 +158,10 @@ std::optional<RGB> ParamSet::get_rgb(const std::string& name, ColorUsage usage) 
     if (!p->strings.empty())
       if (auto c = named_spectrum_rgb(p->strings[0])) return *c;
     if (p->strings.empty() && p->numbers.size() == 1) return RGB(float(p->numbers[0]));
-    const PiecewiseLinearSpectrum s = *get_sampled_spectrum(name);
-    if (usage == ColorUsage::Illuminant) return illuminant_rgb(s);
-    RGB c = reflectance_rgb(s);
+    const std::optional<PiecewiseLinearSpectrum> sampled = get_sampled_spectrum(name);
+    if (!sampled) fail(*p, "expected a value, (wavelength, value) pairs, a named spectrum or a spectrum file");
+    if (usage == ColorUsage::Illuminant) return illuminant_rgb(*sampled);
+    RGB c = reflectance_rgb(*sampled);
     if (usage == ColorUsage::Reflectance) {
       if (max_component(c) > 1.f && warn && *warn)
         (*warn)(p->where.str() + ": warning: " + directive + ": reflectance \"" + printable(name) + "\" exceeds 1 and was clamped");
