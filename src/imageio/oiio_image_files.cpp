@@ -14,12 +14,6 @@
 
 namespace lantern::oiio {
 
-static std::string lower_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return ext;
-}
-
 static bool is_float_format(const std::string& ext) { return ext == ".exr" || ext == ".hdr" || ext == ".pfm"; }
 
 static unsigned char encode_srgb8(float v) {
@@ -34,7 +28,7 @@ bool can_write_format(const std::string& path) {
 }
 
 void write_image(const std::string& path, const Image& image, const ImageMetadata& metadata) {
-  std::string ext = lower_extension(path);
+  const std::string bare = lowercase_extension(path), ext = bare.empty() ? "" : "." + bare;
   bool linear = is_float_format(ext);
   // Keep the real extension on the temporary name: OpenImageIO picks the
   // writer from it.

@@ -129,11 +129,10 @@ MaterialHandle SceneBuilder::concrete_material(const std::string& type, const Pa
       c.mirror = true;
       c.mirror_reflectance = rgb_texture(ps, "Kr", RGB(0.9f));
     } else {
-      c.eta = rgb_texture(ps, "eta", *pbrt::named_spectrum_rgb("metal-Cu-eta"), ColorUsage::Unbounded);
-      c.k = rgb_texture(ps, "k", *pbrt::named_spectrum_rgb("metal-Cu-k"), ColorUsage::Unbounded);
       // Sampled eta and k (files, inline pairs, named metals) are fitted
       // together, as the named metals are: the RGB conductor whose Fresnel
-      // curve matches theirs (color/optical_constants.h).
+      // curve matches theirs (color/optical_constants.h). Otherwise each is
+      // read on its own (RGB, a texture, a named spectrum's fit).
       const auto eta_s = ps.get_sampled_spectrum("eta"), k_s = ps.get_sampled_spectrum("k");
       if (eta_s && k_s) {
         std::vector<OpticalConstant> table;
@@ -142,6 +141,9 @@ MaterialHandle SceneBuilder::concrete_material(const std::string& type, const Pa
         const ConductorRGB fit = fit_conductor_rgb(table);
         c.eta = TextureRef::constant(fit.eta);
         c.k = TextureRef::constant(fit.k);
+      } else {
+        c.eta = rgb_texture(ps, "eta", *pbrt::named_spectrum_rgb("metal-Cu-eta"), ColorUsage::Unbounded);
+        c.k = rgb_texture(ps, "k", *pbrt::named_spectrum_rgb("metal-Cu-k"), ColorUsage::Unbounded);
       }
       if (ps.has("reflectance")) {
         c.reflectance = rgb_texture(ps, "reflectance", RGB(0.f));
