@@ -2,6 +2,7 @@
 // them: s = 0 (the eye subpath finds an emitter), s = 1 (next-event
 // estimation) and s >= 2 (connections to the slot's stored light vertices).
 #include "integrator/bdpt.h"
+#include "integrator/bdpt_strategies.h"
 
 #include "film/pixel_filter.h"
 #include "integrator/bdpt_wave.h"
@@ -133,40 +134,6 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
   }
 }
 
-// s >= 2 in a scene with media: the light vertex may be in a medium, and
-// the weight waits for the connection's transmittance.
-template <class BSDF>
-void Bdpt::connect_eye_surface_vertex_media(BdptWave& w, uint32_t i, const BSDF& bsdf, const Frame& frame,
-                                            const Vec3& wo) const {
-  const HitPool& h = w.hits;
-  const uint32_t slot = w.active[i], depth = w.depth, maxdepth = uint32_t(settings_.maxdepth);
-  const MisState& m = w.eye.mis[slot];
-  const LightVertexPool& v = w.vertices;
-  for (uint32_t n = v.begin[slot]; n < v.begin[slot + 1]; ++n) {
-    const uint32_t j = v.order[n];
-    if (v.depth[j] + depth > maxdepth) break;
-    const Vec3 dir = v.p[j] - h.p[i];
-    const float dist2 = glm::dot(dir, dir);
-    if (!(dist2 > 0.f)) continue;
-    const Vec3 wi_w = dir / std::sqrt(dist2), wi = frame.to_local(wi_w);
-    const RGB f_eye = bsdf.f(wo, wi, TransportMode::Radiance) * std::fabs(wi.z);
-    if (is_black(f_eye)) continue;
-    const LightVertexResponse lv = light_vertex_response(v, j, wi_w);
-    const RGB c = w.eye.beta[slot] * f_eye * lv.f * v.beta[j] / dist2;
-    if (is_black(c)) continue;
-    DeferredMis dm;
-    dm.a = w.mis(bsdf.pdf(wo, wi, TransportMode::Radiance) * lv.cos / dist2) *
-           mis_connection_sum(v.mis[j], lv.rev_W, light_vertex_merging(v, j), w.mis);
-    dm.sigma_a = lv.sigma_t;
-    dm.b = w.mis(lv.fwd_W * vertex_cos(h.ng[i], h.error_scale[i], tangent_or_null(h.tangent, i), wi_w) / dist2) *
-           mis_connection_sum(m, bsdf.pdf(wi, wo, TransportMode::Importance), MergeKind::Surface, w.mis);
-    const Vec3 o = offset_ray_origin(h.p[i], h.ng[i], h.error_scale[i], wi_w);
-    const MediumHandle start = medium_after(scene_, w.rays.geom_id[i], h.ng[i], wi_w, w.ends.medium[i]);
-    w.shadow.push_deferred(o, lv.target - o, 1.f, slot, c, Vec2(0.f), {uint8_t(v.depth[j] + 1), uint8_t(depth + 1), c},
-                           start, dm);
-  }
-}
-
 // vcm: the light vertices of the whole wave within the merging radius of
 // eye vertex i, each a photon-mapping estimate (Georgiev et al. 2012,
 // eq. 17): the eye's BSDF times the light vertex's throughput over
@@ -223,105 +190,41 @@ void Bdpt::prepare_merging(const WaveDesc& wave, BdptWave& w) const {
   w.vm_normalization_medium = 1.f / eta_medium;
 }
 
-// Prepares the s = 1 and s >= 2 connections of every eye vertex.
+// Prepares the s = 1 and s >= 2 connections of every eye vertex on a
+// surface (and its merges, with vcm).
 void Bdpt::eye_connect_stage(BdptWave& w) const {
-  const Scene& sc = scene_;
-  const bool media = !sc.media.empty();
+  const bool media = !scene_.media.empty();
   const uint32_t depth = w.depth;
   const uint32_t maxdepth = uint32_t(settings_.maxdepth);
-  for_each_binned_bsdf(w.hits, sc, [&](uint32_t i, const auto& bsdf) {
+  for_each_binned_bsdf(w.hits, scene_, [&](uint32_t i, const auto& bsdf) {
     const uint32_t slot = w.active[i];
     const PathSampler& s = w.sampler[slot];
     float u_light = s.get1d(dims::vertex(depth) + dims::kEyeLightSelect);
     Vec2 u_light2 = s.get2d(dims::vertex(depth) + dims::kEyeLightPosition);
     if (bsdf.is_specular() || depth > maxdepth) return;
-    const HitPool& h = w.hits;
-    const Frame frame = Frame::from_z(h.ns[i]);
-    const Vec3 wo = frame.to_local(h.wo[i]);
-    const RGB& beta = w.eye.beta[slot];
-    const MisState& m = w.eye.mis[slot];
+    const auto v = surface_vertex(w.hits, i, bsdf, TransportMode::Radiance, w.rays.geom_id[i],
+                                  media ? w.ends.medium[i] : MediumHandle{});
     if (!settings_.connections) {  // bpm, ppm: merging is all there is
-      merge_at_eye_vertex(w, i, bsdf, frame, wo);
+      merge_at_eye_vertex(w, i, bsdf, v.frame, v.wo);
       return;
     }
-    {
-      ++w.stats.light_samples;
-      auto ls = sample_light(sc.lights, sc.shapes, sc.textures, light_sampler_, h.p[i], h.ns[i], u_light, u_light2,
-                             volume_number(w, slot));
-      VolumeSampleEnd vol;
-      if (ls && ls->volume) complete_volume_light_sample(*ls, depth, &vol);
-      if (ls && !is_black(ls->L)) {  // s = 1
-        Vec3 wi = frame.to_local(ls->wi);
-        RGB f = bsdf.f(wo, wi, TransportMode::Radiance) * std::fabs(wi.z);
-        float dist2 = ls->infinite ? 1.f : glm::dot(ls->p_light - h.p[i], ls->p_light - h.p[i]);
-        float direct_pdf_A = direct_density(*ls, dist2);
-        // A point exactly on a sphere light's silhouette (reached only through
-        // rounding: a set of measure zero) has zero density per area, and its
-        // MIS ratios would be 0/0.
-        if (!is_black(f) && direct_pdf_A > 0.f) {
-          float emission_fwd_A = emission_pdf(sc.lights, sc.shapes, sc.textures, ls->light, ls->p_light, ls->n_light, -ls->wi) *
-                                 vertex_cos(h.ng[i], h.error_scale[i], tangent_or_null(h.tangent, i), ls->wi) / dist2;
-          float wt =
-              mis_weight_next_event(m, ls->delta ? 0.f : ls->pdf, bsdf.pdf(wo, wi, TransportMode::Radiance),
-                                    emission_fwd_A, direct_pdf_A, bsdf.pdf(wi, wo, TransportMode::Importance), w.mis);
-          RGB u = beta * f * ls->L / ls->pdf;
-          StrategyTag tag{1, uint8_t(depth + 1), u};
-          Vec3 o = offset_ray_origin(h.p[i], h.ng[i], h.error_scale[i], ls->wi);
-          if (media) {  // weighted once the transmittance is known
-            DeferredMis dm;
-            dm.a = ls->delta ? 0.f : w.mis(bsdf.pdf(wo, wi, TransportMode::Radiance) / ls->pdf);
-            dm.sigma_a = vol.sigma_t;  // an eye ray would end at a volume light's point by distance sampling
-            dm.b = w.mis(emission_fwd_A / direct_pdf_A) *
-                   mis_connection_sum(m, bsdf.pdf(wi, wo, TransportMode::Importance), MergeKind::Surface, w.mis);
-            const MediumHandle start = medium_after(sc, w.rays.geom_id[i], h.ng[i], ls->wi, w.ends.medium[i]);
-            Vec3 target = ls->infinite || ls->n_light == Vec3(0.f)
-                              ? ls->p_light
-                              : offset_ray_origin(ls->p_light, ls->n_light, ls->error_scale, -ls->wi);
-            if (ls->infinite) w.shadow.push_deferred(o, ls->wi, kInfinity, slot, u, Vec2(0.f), tag, start, dm, true);
-            else w.shadow.push_deferred(o, target - o, 1.f, slot, u, Vec2(0.f), tag, start, dm, true, vol.medium);
-          } else if (ls->infinite) {
-            w.shadow.push(o, ls->wi, kInfinity, slot, u * weight(wt), Vec2(0.f), tag, true);
-          } else {
-            Vec3 target = ls->n_light == Vec3(0.f)
-                              ? ls->p_light
-                              : offset_ray_origin(ls->p_light, ls->n_light, ls->error_scale, -ls->wi);
-            w.shadow.push(o, target - o, 1.f, slot, u * weight(wt), Vec2(0.f), tag, true);
-          }
-        }
-      }
-      const LightVertexPool& v = w.vertices;
-      if (settings_.merging) merge_at_eye_vertex(w, i, bsdf, frame, wo);
-      if (media) {
-        connect_eye_surface_vertex_media(w, i, bsdf, frame, wo);
-        if (w.shadow.rays.count >= kMaxPendingConnections) flush_connections(w);
-        return;
-      }
-      for (uint32_t n = v.begin[slot]; n < v.begin[slot + 1]; ++n) {  // s >= 2
-        const uint32_t j = v.order[n];
-        if (v.depth[j] + depth > maxdepth) break;  // in depth order: the rest are deeper
-        Vec3 dir = v.p[j] - h.p[i];
-        float dist2 = glm::dot(dir, dir);
-        if (!(dist2 > 0.f)) continue;
-        Vec3 wi_w = dir / std::sqrt(dist2);
-        Vec3 wi = frame.to_local(wi_w);
-        RGB f_eye = bsdf.f(wo, wi, TransportMode::Radiance) * std::fabs(wi.z);
-        if (is_black(f_eye)) continue;
-        const LightVertexResponse lv = light_vertex_response(v, j, wi_w);
-        RGB c = beta * f_eye * lv.f * v.beta[j] / dist2;
-        if (is_black(c)) continue;
-        float eye_fwd_A = bsdf.pdf(wo, wi, TransportMode::Radiance) * lv.cos / dist2;
-        float light_fwd_A =
-            lv.fwd_W * vertex_cos(h.ng[i], h.error_scale[i], tangent_or_null(h.tangent, i), wi_w) / dist2;
-        float wt = mis_weight_connect(m, v.mis[j], eye_fwd_A, bsdf.pdf(wi, wo, TransportMode::Importance), light_fwd_A,
-                                      lv.rev_W, w.mis);
-        Vec3 o = offset_ray_origin(h.p[i], h.ng[i], h.error_scale[i], wi_w);
-        Vec3 target = lv.target;
-        w.shadow.push(o, target - o, 1.f, slot, c * weight(wt), Vec2(0.f),
-                      {uint8_t(v.depth[j] + 1), uint8_t(depth + 1), c});
-      }
-      if (w.shadow.rays.count >= kMaxPendingConnections) flush_connections(w);
-    }
+    next_event(w, slot, v, u_light, u_light2);
+    if (settings_.merging) merge_at_eye_vertex(w, i, bsdf, v.frame, v.wo);
+    connect_light_vertices(w, slot, v);
+    if (w.shadow.rays.count >= kMaxPendingConnections) flush_connections(w);
   });
+}
+
+// In a scene without media a connection's segment adds nothing to the
+// densities (its transmittance is 1): its weight is known now.
+void Bdpt::push_connection(BdptWave& w, uint32_t slot, const Connection& k) const {
+  if (!w.shadow.media) {
+    const float wt = weighted() ? mis_weight_vacuum(k.mis) : 1.f;
+    w.shadow.push(k.o, k.d, k.t_max, slot, k.unweighted * wt, k.p_raster, k.tag, k.light_sample);
+  } else {
+    w.shadow.push_deferred(k.o, k.d, k.t_max, slot, k.unweighted, k.p_raster, k.tag, k.start, k.mis, k.light_sample,
+                           k.expect);
+  }
 }
 
 // Samples each eye subpath's next direction.

@@ -19,6 +19,7 @@
 #include "texture/footprint.h"
 #include "film/film.h"
 #include "integrator/bdpt_mis.h"
+#include "integrator/vertex.h"
 #include "integrator/wave.h"
 #include "integrator/wave_stats.h"
 #include "light/light_sampler.h"
@@ -57,19 +58,21 @@ struct BdptSettings {
 };
 
 struct BdptWave;
+struct Connection;
 struct LightOriginPool;
 struct LightVertexPool;
 struct SubpathPool;
 
 // What a stored light vertex (surface or medium) does with light arriving
-// from direction -wi_w (wi_w points from the eye vertex to it).
+// from direction -wi_w (wi_w points from the eye vertex to it): e in its
+// own subpath's transport (importance), so e.pdf_fwd is its density of
+// sampling the direction to the eye vertex and e.pdf_rev that of its own
+// subpath's previous direction from there.
 struct LightVertexResponse {
-  RGB f{0.f};                // its BSDF (times the cosine) or phase function
-  float fwd_W = 0.f;         // its density of sampling the direction to the eye vertex
-  float rev_W = 0.f;         // and of sampling its own subpath's previous direction from there
-  float cos = 1.f;           // solid angle to area at it (1 in a medium)
-  RGB sigma_t{0.f};          // extinction there (zero on a surface)
-  Vec3 target{0.f};          // where a connection ray aims
+  VertexEval e;
+  float cos = 1.f;    // solid angle to area at it (1 in a medium)
+  RGB sigma_t{0.f};   // extinction there (zero on a surface)
+  Vec3 target{0.f};   // where a connection ray aims
 };
 
 // Occlusion queries are flushed when this many connections are waiting, so
@@ -106,16 +109,20 @@ class Bdpt {
   void segment_stage(BdptWave& w, RayKind kind, bool light_subpaths) const;
   bool apply_segment(BdptWave& w, SubpathPool& sub, uint32_t i) const;
   LightVertexResponse light_vertex_response(const LightVertexPool& v, uint32_t j, const Vec3& wi_w) const;
-  void connect_eye_medium_vertex(BdptWave& w, uint32_t slot, const Vec3& p, const Vec3& wo, MediumHandle m,
-                                 const RGB& sigma_eye, float u_light, Vec2 u_light2) const;
-  void connect_light_medium_vertex(BdptWave& w, uint32_t slot, uint32_t i, Vec2 u_lens) const;
+  // The connection strategies, each once for either kind of vertex (bdpt_strategies.h)
+  template <class Vertex>  // s = 1
+  void next_event(BdptWave& w, uint32_t slot, const Vertex& v, float u_light, Vec2 u_light2) const;
+  template <class Vertex>  // s >= 2
+  void connect_light_vertices(BdptWave& w, uint32_t slot, const Vertex& v) const;
+  template <class Vertex>  // t = 1
+  void connect_camera(BdptWave& w, uint32_t slot, uint32_t ld, const Vertex& v, Vec2 u_lens) const;
+  // Weights a connection now (vacuum) or queues it for its transmittance.
+  void push_connection(BdptWave& w, uint32_t slot, const Connection& k) const;
   template <class BSDF>  // vcm: merging at a surface eye vertex (bdpt.cpp)
   void merge_at_eye_vertex(BdptWave& w, uint32_t i, const BSDF& bsdf, const Frame& frame, const Vec3& wo) const;
   void merge_at_eye_medium_vertex(BdptWave& w, uint32_t i) const;  // (bdpt_media.cpp)
   void prepare_merging(const WaveDesc& wave, BdptWave& w) const;
-  template <class BSDF>  // s >= 2 from a surface eye vertex (bdpt.cpp)
-  void connect_eye_surface_vertex_media(BdptWave& w, uint32_t i, const BSDF& bsdf, const Frame& frame,
-                                        const Vec3& wo) const;
+  MediumVertex medium_vertex(const BdptWave& w, uint32_t i) const;  // ray i's scattering point
   PathEnd scatter_in_medium(BdptWave& w, SubpathPool& sub, uint32_t i, Vec2 u2, float u_rr, bool light) const;
   void eye_medium_stage(BdptWave& w) const;
   void light_medium_stage(BdptWave& w) const;
@@ -132,6 +139,9 @@ class Bdpt {
   void complete_volume_light_sample(LightSample& ls, uint32_t depth, VolumeSampleEnd* end) const;
   float direct_density(const LightSample& ls, float dist2) const;
 
+  // Whether connections are weighted (not lt, whose t = 1 strategies are
+  // all there is, nor the unit weights of tests).
+  bool weighted() const { return !settings_.light_tracing_only && !settings_.unit_weights && !settings_.photon_mapping; }
   // (ppm has one strategy per path: every weight is 1)
   float weight(float w) const { return settings_.unit_weights || settings_.photon_mapping ? 1.f : w; }
   // How a vertex in a medium merges: in a ball with vcm and bpm; ppm

@@ -1,6 +1,7 @@
 // Light subpaths of the bidirectional tracer: emission, bounces, the stored
 // light vertices, and the t = 1 strategies (light tracing onto the film).
 #include "integrator/bdpt.h"
+#include "integrator/bdpt_strategies.h"
 #include "integrator/bdpt_wave.h"
 #include "integrator/hit.h"
 #include "integrator/hit_material.h"
@@ -10,17 +11,6 @@
 #include "sampler/dimensions.h"
 
 namespace lantern {
-
-namespace {
-
-// Shadow ray from a point on a surface (or a point light when ng = 0) to the lens.
-void push_camera_ray(BdptWave& w, uint32_t slot, const Vec3& p, const Vec3& ng, float error_scale,
-                     const CameraSample& cs, const RGB& unweighted, float weight, uint32_t s) {
-  Vec3 o = ng == Vec3(0.f) ? p : offset_ray_origin(p, ng, error_scale, cs.wi);
-  w.shadow.push(o, cs.p_lens - o, 1.f, slot, unweighted * weight, cs.p_raster, {uint8_t(s), 1, unweighted});
-}
-
-}  // namespace
 
 void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
   const LightPools& lights = scene_.lights;
@@ -130,24 +120,16 @@ void Bdpt::begin_light_subpath(BdptWave& w, uint32_t slot, const EmissionSample&
       float cos_l = on_surface ? std::fabs(glm::dot(es.n, cs->wi)) : 1.f;
       RGB Le = es.volume ? es.Le : emitted(lights, scene_.textures, es.light, es.n, es.uv, cs->wi);
       if (!is_black(Le) && cos_l > 0.f) {
-        float wt = 1.f;
-        if (!settings_.light_tracing_only) {
-          float camera_pdf_A = camera_.pdf_area(-cs->wi, sqr(cs->dist), cos_l);
-          wt = weight(mis_weight_light_origin(camera_pdf_A, es.pdf_pos, es.delta_pos, w.mis));
-        }
-        RGB c = Le * (cos_l * cs->We / (cs->pdf * es.pdf_pos));
-        if (media) {  // the camera ray that would hit this point passes the same segment
-          DeferredMis dm;
-          if (!settings_.light_tracing_only && !settings_.unit_weights && !es.delta_pos) {
-            dm.a = w.mis(camera_.pdf_area(-cs->wi, sqr(cs->dist), cos_l) / es.pdf_pos);
-            dm.sigma_a = sigma_origin;  // and ends there by distance sampling, for a volume light
-          }
-          Vec3 org = on_surface ? offset_ray_origin(es.p, es.n, es.error_scale, cs->wi) : es.p;
-          w.shadow.push_deferred(org, cs->p_lens - org, 1.f, slot, c, cs->p_raster, {1, 1, c},
-                                 es.volume ? medium : light_start_medium(es.light, es.n, cs->wi), dm);
-        } else {
-          push_camera_ray(w, slot, es.p, es.n, es.error_scale, *cs, c, wt, 1);
-        }
+        Connection k;
+        k.mis = mis_sums_light_origin(camera_.pdf_area(-cs->wi, sqr(cs->dist), cos_l), es.pdf_pos, es.delta_pos, w.mis);
+        k.mis.sigma_a = sigma_origin;  // a camera ray would end at a volume light's point by distance sampling
+        k.unweighted = Le * (cos_l * cs->We / (cs->pdf * es.pdf_pos));
+        k.p_raster = cs->p_raster;
+        k.tag = {1, 1, k.unweighted};
+        k.o = on_surface ? offset_ray_origin(es.p, es.n, es.error_scale, cs->wi) : es.p;
+        k.d = cs->p_lens - k.o;
+        if (media) k.start = es.volume ? medium : light_start_medium(es.light, es.n, cs->wi);
+        push_connection(w, slot, k);
       }
     }
   }
@@ -255,66 +237,25 @@ bool Bdpt::reaches_through_portal(uint32_t light, const Vec3& p, const Vec3& w_t
 void Bdpt::light_connect_stage(BdptWave& w) const {
   const uint32_t depth = w.depth;
   const uint32_t maxdepth = uint32_t(settings_.maxdepth);
+  const bool media = !scene_.media.empty();
   for_each_binned_bsdf(w.hits, scene_, [&](uint32_t i, const auto& bsdf) {
     const uint32_t slot = w.active[i];
     Vec2 u_lens = w.sampler[slot].get2d(dims::vertex(depth) + dims::kLightLens);
     if (bsdf.is_specular()) return;
     const uint32_t ld = depth + w.origin.extra_depth[slot];  // the depth path lengths count
     const HitPool& h = w.hits;
-    const Frame frame = Frame::from_z(h.ns[i]);
-    const Vec3 wo = frame.to_local(h.wo[i]);
-    const RGB& beta = w.light.beta[slot];
-    const MisState& m = w.light.mis[slot];
-    {
-      // s >= 2 connections need t >= 2; merging (vcm) needs t >= 1
-      if (!settings_.light_tracing_only && (ld < maxdepth || (settings_.merging && ld <= maxdepth))) {
-        LightVertexPool& v = w.vertices;
-        v.slot.push_back(slot);
-        v.depth.push_back(ld);
-        v.p.push_back(h.p[i]);
-        v.ng.push_back(h.ng[i]);
-        v.ns.push_back(h.ns[i]);
-        v.wo.push_back(h.wo[i]);
-        v.uv.push_back(h.uv[i]);
-        v.error_scale.push_back(h.error_scale[i]);
-        v.beta.push_back(beta);
-        v.mis.push_back(m);
-        v.material.push_back(h.material[i]);
-        if (!h.footprint.empty()) v.footprint.push_back(h.footprint[i]);
-        if (!h.tangent.empty()) {
-          v.tangent.resize(v.p.size() - 1);  // vertices stored before the first curve hit have none
-          v.tangent.push_back(h.tangent[i]);
-        }
-      }
-      auto cs = ld <= maxdepth && settings_.connections ? camera_.sample_wi(h.p[i], u_lens) : std::nullopt;
-      if (cs) {  // t = 1
-        Vec3 wi = frame.to_local(cs->wi);
-        RGB f = bsdf.f(wo, wi, TransportMode::Importance) *
-                (std::fabs(wi.z) * shading_normal_correction(h.wo[i], cs->wi, h.ng[i], h.ns[i]));
-        if (!is_black(f)) {
-          float wt = 1.f;
-          if (!settings_.light_tracing_only) {
-            float camera_pdf_A = camera_.pdf_area(
-                -cs->wi, sqr(cs->dist), vertex_cos(h.ng[i], h.error_scale[i], tangent_or_null(h.tangent, i), cs->wi));
-            wt = weight(mis_weight_light_trace(m, camera_pdf_A, bsdf.pdf(wi, wo, TransportMode::Radiance), w.mis));
-          }
-          if (!scene_.media.empty()) {
-            DeferredMis dm;
-            if (!settings_.light_tracing_only && !settings_.unit_weights)
-              dm.a = w.mis(camera_.pdf_area(-cs->wi, sqr(cs->dist),
-                                           vertex_cos(h.ng[i], h.error_scale[i], tangent_or_null(h.tangent, i), cs->wi))) *
-                     mis_connection_sum(m, bsdf.pdf(wi, wo, TransportMode::Radiance), MergeKind::Surface, w.mis);
-            const Vec3 o = offset_ray_origin(h.p[i], h.ng[i], h.error_scale[i], cs->wi);
-            const RGB c = beta * f * (cs->We / cs->pdf);
-            w.shadow.push_deferred(o, cs->p_lens - o, 1.f, slot, c, cs->p_raster, {uint8_t(ld + 1), 1, c},
-                                   medium_after(scene_, w.rays.geom_id[i], h.ng[i], cs->wi, w.ends.medium[i]), dm);
-          } else {
-            push_camera_ray(w, slot, h.p[i], h.ng[i], h.error_scale[i], *cs, beta * f * (cs->We / cs->pdf), wt,
-                            ld + 1);
-          }
-        }
-      }
-    }
+    // s >= 2 connections need t >= 2; merging (vcm) needs t >= 1
+    if (!settings_.light_tracing_only && (ld < maxdepth || (settings_.merging && ld <= maxdepth)))
+      w.vertices.push(slot, ld, w.light.beta[slot], w.light.mis[slot],
+                      {.p = h.p[i], .ng = h.ng[i], .ns = h.ns[i], .wo = h.wo[i], .uv = h.uv[i],
+                       .error_scale = h.error_scale[i], .material = h.material[i],
+                       .footprint = h.footprint.empty() ? nullptr : &h.footprint[i],
+                       .tangent = tangent_or_null(h.tangent, i), .medium = {}, .sigma_t = RGB(0.f)},
+                      !h.footprint.empty());
+    connect_camera(w, slot, ld,
+                   surface_vertex(h, i, bsdf, TransportMode::Importance, w.rays.geom_id[i],
+                                  media ? w.ends.medium[i] : MediumHandle{}),
+                   u_lens);
   });
 }
 

@@ -9,6 +9,7 @@
 // "BSDF" is the phase function (no cosine), its area measure is volume (no
 // cosine in the density conversions), and rays leave it without an offset.
 #include "integrator/bdpt.h"
+#include "integrator/bdpt_strategies.h"
 #include "integrator/bdpt_wave.h"
 #include "integrator/hit.h"
 #include "integrator/shade.h"
@@ -46,93 +47,37 @@ bool Bdpt::apply_segment(BdptWave& w, SubpathPool& sub, uint32_t i) const {
   return true;
 }
 
+// A stored light vertex as a vertex again (integrator/vertex.h): its BSDF
+// rebuilt from the material, or its phase function.
 LightVertexResponse Bdpt::light_vertex_response(const LightVertexPool& v, uint32_t j, const Vec3& wi_w) const {
   const Scene& sc = scene_;
   LightVertexResponse r;
   if (v.in_medium(j)) {
-    const HenyeyGreenstein phase{sc.media.g(v.medium[j])};
-    const float p = phase.p(v.wo[j], -wi_w);
-    r.f = RGB(p);
-    r.fwd_W = r.rev_W = p;
-    r.cos = 1.f;
-    r.sigma_t = v.sigma_t[j];
-    r.target = v.p[j];
+    const MediumVertex x{HenyeyGreenstein{sc.media.g(v.medium[j])}, v.p[j], v.wo[j], v.medium[j], v.sigma_t[j]};
+    r.e = x.evaluate(-wi_w);
+    r.sigma_t = x.sigma_t();
+    r.target = x.ray_origin(-wi_w);
     return r;
   }
+  const Vec3* tangent = tangent_or_null(v.tangent, j);
   const TextureContext light_tc{v.p[j], v.ng[j], v.uv[j], v.footprint.empty() ? nullptr : &v.footprint[j],
-                                j < v.tangent.size() ? v.tangent[j] : Vec3(0.f)};
+                                tangent ? *tangent : Vec3(0.f)};
   with_bsdf(v.material[j], sc.materials, sc.textures, light_tc, [&](const auto& lb) {
-    Frame lf = Frame::from_z(v.ns[j]);
-    Vec3 lwo = lf.to_local(v.wo[j]), lwi = lf.to_local(-wi_w);
-    r.f = lb.f(lwo, lwi, TransportMode::Importance) *
-          (std::fabs(lwi.z) * shading_normal_correction(v.wo[j], -wi_w, v.ng[j], v.ns[j]));
-    r.fwd_W = lb.pdf(lwo, lwi, TransportMode::Importance);
-    r.rev_W = lb.pdf(lwi, lwo, TransportMode::Radiance);
+    const Frame lf = Frame::from_z(v.ns[j]);
+    const SurfaceVertex<std::decay_t<decltype(lb)>> x{
+        lb, TransportMode::Importance, lf, v.p[j], v.ng[j], v.ns[j], v.wo[j], lf.to_local(v.wo[j]), v.error_scale[j],
+        tangent, 0, {}};
+    r.e = x.evaluate(-wi_w);
+    r.cos = x.cos(wi_w);
+    r.target = x.ray_origin(-wi_w);
   });
-  r.cos = vertex_cos(v.ng[j], v.error_scale[j], tangent_or_null(v.tangent, j), wi_w);
-  r.target = offset_ray_origin(v.p[j], v.ng[j], v.error_scale[j], -wi_w);
   return r;
 }
 
-// s = 1 and s >= 2 for an eye vertex in a medium: point p, medium m,
-// towards the camera wo.
-void Bdpt::connect_eye_medium_vertex(BdptWave& w, uint32_t slot, const Vec3& p, const Vec3& wo, MediumHandle m,
-                                     const RGB& sigma_eye, float u_light, Vec2 u_light2) const {
-  const Scene& sc = scene_;
-  const HenyeyGreenstein phase{sc.media.g(m)};
-  const RGB& beta = w.eye.beta[slot];
-  const MisState& em = w.eye.mis[slot];
-  const uint32_t depth = w.depth;
-  ++w.stats.light_samples;
-  auto ls = sample_light(sc.lights, sc.shapes, sc.textures, light_sampler_, p, Vec3(0.f), u_light, u_light2,
-                         volume_number(w, slot));
-  VolumeSampleEnd vol;
-  if (ls && ls->volume) complete_volume_light_sample(*ls, depth, &vol);
-  if (ls && !is_black(ls->L)) {  // s = 1
-    const float f = phase.p(wo, ls->wi);
-    const float dist2 = ls->infinite ? 1.f : glm::dot(ls->p_light - p, ls->p_light - p);
-    const float direct_pdf_A = direct_density(*ls, dist2);
-    if (f > 0.f && direct_pdf_A > 0.f) {
-      const float emission_fwd_A =
-          emission_pdf(sc.lights, sc.shapes, sc.textures, ls->light, ls->p_light, ls->n_light, -ls->wi) / dist2;
-      DeferredMis d;
-      d.a = ls->delta ? 0.f : w.mis(f / ls->pdf);
-      d.sigma_a = vol.sigma_t;  // an eye ray would end at a volume light's point by distance sampling
-      d.b = w.mis(emission_fwd_A / direct_pdf_A) * mis_connection_sum(em, f, medium_merging(), w.mis);
-      d.sigma_b = sigma_eye;
-      const RGB u = beta * f * ls->L / ls->pdf;
-      const StrategyTag tag{1, uint8_t(depth + 1), u};
-      if (ls->infinite) {
-        w.shadow.push_deferred(p, ls->wi, kInfinity, slot, u, Vec2(0.f), tag, m, d, true);
-      } else {
-        const Vec3 target = ls->n_light == Vec3(0.f)
-                                ? ls->p_light
-                                : offset_ray_origin(ls->p_light, ls->n_light, ls->error_scale, -ls->wi);
-        w.shadow.push_deferred(p, target - p, 1.f, slot, u, Vec2(0.f), tag, m, d, true, vol.medium);
-      }
-    }
-  }
-  const LightVertexPool& v = w.vertices;
-  const uint32_t maxdepth = uint32_t(settings_.maxdepth);
-  for (uint32_t n = v.begin[slot]; n < v.begin[slot + 1]; ++n) {  // s >= 2
-    const uint32_t j = v.order[n];
-    if (v.depth[j] + depth > maxdepth) break;
-    const Vec3 dir = v.p[j] - p;
-    const float dist2 = glm::dot(dir, dir);
-    if (!(dist2 > 0.f)) continue;
-    const Vec3 wi_w = dir / std::sqrt(dist2);
-    const float f_eye = phase.p(wo, wi_w);
-    const LightVertexResponse lv = light_vertex_response(v, j, wi_w);
-    const RGB c = beta * f_eye * lv.f * v.beta[j] / dist2;
-    if (is_black(c) || !(f_eye > 0.f)) continue;
-    DeferredMis d;
-    d.a = w.mis(f_eye * lv.cos / dist2) * mis_connection_sum(v.mis[j], lv.rev_W, light_vertex_merging(v, j), w.mis);
-    d.sigma_a = lv.sigma_t;
-    d.b = w.mis(lv.fwd_W / dist2) * mis_connection_sum(em, f_eye, medium_merging(), w.mis);
-    d.sigma_b = sigma_eye;
-    w.shadow.push_deferred(p, lv.target - p, 1.f, slot, c, Vec2(0.f), {uint8_t(v.depth[j] + 1), uint8_t(depth + 1), c},
-                           m, d);
-  }
+// Ray i's scattering point in a medium, as a vertex.
+MediumVertex Bdpt::medium_vertex(const BdptWave& w, uint32_t i) const {
+  const MediumHandle m = w.ends.medium[i];
+  return {HenyeyGreenstein{scene_.media.g(m)}, w.ends.p[i], -glm::normalize(w.rays.direction(i)), m, w.ends.sigma_t[i]};
 }
 
 // The third number of a volume light's point sampled from the eye vertex
@@ -235,48 +180,6 @@ void Bdpt::merge_at_eye_medium_vertex(BdptWave& w, uint32_t i) const {
   if (is_finite(c)) w.L[slot] += c;
 }
 
-// Stores a light vertex in a medium and prepares its camera connection.
-void Bdpt::connect_light_medium_vertex(BdptWave& w, uint32_t slot, uint32_t i, Vec2 u_lens) const {
-  const Scene& sc = scene_;
-  const uint32_t depth = w.depth + w.origin.extra_depth[slot], maxdepth = uint32_t(settings_.maxdepth);
-  const Vec3 p = w.ends.p[i], wo = -glm::normalize(w.rays.direction(i));
-  const MediumHandle m = w.ends.medium[i];
-  const RGB& beta = w.light.beta[slot];
-  const MisState& lm = w.light.mis[slot];
-  if (!settings_.light_tracing_only && depth < maxdepth) {
-    LightVertexPool& v = w.vertices;
-    v.slot.push_back(slot);
-    v.depth.push_back(depth);
-    v.p.push_back(p);
-    v.ng.push_back(Vec3(0.f));
-    v.ns.push_back(Vec3(0.f));
-    v.wo.push_back(wo);
-    v.uv.push_back(Vec2(0.f));
-    v.error_scale.push_back(0.f);
-    v.beta.push_back(beta);
-    v.mis.push_back(lm);
-    v.material.push_back(MaterialHandle::make(MaterialKind::Interface, 0));
-    if (!w.hits.footprint.empty()) v.footprint.push_back(Footprint{});
-    if (!v.tangent.empty()) v.tangent.push_back(Vec3(0.f));
-    v.medium.resize(v.p.size() - 1);
-    v.sigma_t.resize(v.p.size() - 1);
-    v.medium.push_back(m);
-    v.sigma_t.push_back(w.ends.sigma_t[i]);
-  }
-  auto cs = depth <= maxdepth && settings_.connections ? camera_.sample_wi(p, u_lens) : std::nullopt;
-  if (!cs) return;  // t = 1
-  const HenyeyGreenstein phase{sc.media.g(m)};
-  const float f = phase.p(wo, cs->wi);
-  if (!(f > 0.f)) return;
-  DeferredMis d;
-  if (!settings_.light_tracing_only && !settings_.unit_weights) {
-    d.a = w.mis(camera_.pdf_area(-cs->wi, sqr(cs->dist), 1.f)) * mis_connection_sum(lm, f, medium_merging(), w.mis);
-    d.sigma_a = w.ends.sigma_t[i];
-  }
-  const RGB c = beta * f * (cs->We / cs->pdf);
-  w.shadow.push_deferred(p, cs->p_lens - p, 1.f, slot, c, cs->p_raster, {uint8_t(depth + 1), 1, c}, m, d);
-}
-
 // Continues a subpath from a medium vertex by sampling the phase function
 // (exactly: the throughput keeps its value). light: the subpath kind.
 PathEnd Bdpt::scatter_in_medium(BdptWave& w, SubpathPool& sub, uint32_t i, Vec2 u2, float u_rr, bool light) const {
@@ -288,12 +191,8 @@ PathEnd Bdpt::scatter_in_medium(BdptWave& w, SubpathPool& sub, uint32_t i, Vec2 
   const Vec3 wi = phase.sample(wo, u2, &pdf);
   if (!(pdf > 0.f)) return PathEnd::Absorbed;
   mis_after_scatter(sub.mis[slot], 1.f, pdf, pdf, false, w.mis, medium_merging());
-  const float rr = max_component(sub.beta[slot] * sub.eta_scale[slot]) * (light ? sub.rr_scale[slot] : 1.f);
-  if (rr < 1.f && w.depth >= 2) {
-    const float q = std::fmax(0.f, 1.f - rr);
-    if (u_rr < q) return PathEnd::Roulette;
-    sub.beta[slot] /= 1.f - q;
-  }
+  if (!survives_roulette(sub.beta[slot], sub.eta_scale[slot], light ? sub.rr_scale[slot] : 1.f, w.depth >= 2, u_rr))
+    return PathEnd::Roulette;
   if (!is_finite(sub.beta[slot])) return PathEnd::Absorbed;
   w.hits.alive[i] = 1;
   sub.prev_p[slot] = w.ends.p[i];
@@ -311,9 +210,11 @@ void Bdpt::eye_medium_stage(BdptWave& w) const {
     const PathSampler& s = w.sampler[slot];
     const uint32_t dim = dims::vertex(depth);
     if (depth <= maxdepth && medium_merging() == MergeKind::Medium) merge_at_eye_medium_vertex(w, i);
-    if (depth <= maxdepth && settings_.connections)
-      connect_eye_medium_vertex(w, slot, w.ends.p[i], -glm::normalize(w.rays.direction(i)), w.ends.medium[i],
-                                w.ends.sigma_t[i], s.get1d(dim + dims::kEyeLightSelect), s.get2d(dim + dims::kEyeLightPosition));
+    if (depth <= maxdepth && settings_.connections) {
+      const MediumVertex v = medium_vertex(w, i);
+      next_event(w, slot, v, s.get1d(dim + dims::kEyeLightSelect), s.get2d(dim + dims::kEyeLightPosition));
+      connect_light_vertices(w, slot, v);
+    }
     if (w.shadow.rays.count >= kMaxPendingConnections) flush_connections(w);
     const PathEnd end =
         scatter_in_medium(w, w.eye, i, s.get2d(dim + dims::kEyeBsdfDirection), s.get1d(dim + dims::kEyeRoulette), false);
@@ -327,8 +228,13 @@ void Bdpt::light_medium_stage(BdptWave& w) const {
     const uint32_t slot = w.active[i];
     const PathSampler& s = w.sampler[slot];
     const uint32_t dim = dims::vertex(depth);
-    connect_light_medium_vertex(w, slot, i, s.get2d(dim + dims::kLightLens));
-    if (depth + w.origin.extra_depth[slot] >= uint32_t(settings_.maxdepth)) {
+    const uint32_t ld = depth + w.origin.extra_depth[slot];  // the depth path lengths count
+    const MediumVertex v = medium_vertex(w, i);
+    if (!settings_.light_tracing_only && ld < uint32_t(settings_.maxdepth))
+      w.vertices.push(slot, ld, w.light.beta[slot], w.light.mis[slot],
+                      {.p = v.p, .wo = v.wo_world, .medium = v.medium, .sigma_t = v.sigma}, !w.hits.footprint.empty());
+    connect_camera(w, slot, ld, v, s.get2d(dim + dims::kLightLens));
+    if (ld >= uint32_t(settings_.maxdepth)) {
       ++w.stats.light_ends[size_t(PathEnd::MaxDepth)];
       continue;
     }
@@ -357,7 +263,7 @@ MediumHandle Bdpt::light_start_medium(uint32_t light, const Vec3& n, const Vec3&
 void Bdpt::trace_connections(BdptWave& w) const {
   ConnectionPool& c = w.shadow;
   trace_transmittance(scene_, w.stream, c.rays, c.medium, c.T, c.T_mis, w.crossing);
-  const bool weighted = !settings_.light_tracing_only && !settings_.unit_weights;
+  const bool weighted = this->weighted();
   for (uint32_t r = 0; r < c.rays.count; ++r) {
     if (c.rays.occluded(r)) continue;
     if (!c.expect[r].vacuum() && w.crossing.medium[r] != c.expect[r]) {  // not in the emitting medium

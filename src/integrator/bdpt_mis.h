@@ -96,6 +96,25 @@ inline void mis_after_scatter(MisState& m, float cos_out, float pdf_fwd, float p
   }
 }
 
+// A connection's segment is not sampled, but the strategies that would have
+// sampled it by distance sampling have densities that contain its
+// transmittance, known once its shadow ray is traced. So a connection
+// keeps the other strategies' two ratio sums without those densities (a:
+// the strategy whose distance sampling ends at the end with extinction
+// sigma_a, zero at a surface; b likewise) and is weighted afterwards.
+// Every connection strategy below is these two sums (in vacuum the
+// weight of Veach's eq. 10.9 in the recursive form: 1 / (1 + a + b)).
+struct DeferredMis {
+  float a = 0.f, b = 0.f;
+  RGB sigma_a{0.f}, sigma_b{0.f};
+};
+inline float mis_weight_deferred(const DeferredMis& d, const RGB& T, MisPower mis) {
+  return 1.f / (1.f + d.a * mis(mixture_density(d.sigma_a, T)) + d.b * mis(mixture_density(d.sigma_b, T)));
+}
+// The same in vacuum, where every segment's transmittance is 1 and so are
+// both mixture densities (mixture_density gives exactly 1 there).
+inline float mis_weight_vacuum(const DeferredMis& d) { return 1.f / (1.f + d.a + d.b); }
+
 // What a connection weighs the strategies of one of its subpaths by,
 // relative to itself, before the factor for the connection's own segment:
 // m and pdf_rev_W are that subpath's quantities at the connected vertex and
@@ -132,28 +151,46 @@ inline float mis_weight_hit_light_merging_only(const MisState& eye) { return eye
 // density towards the eye vertex, per area there; direct_pdf_A: the light
 // sample's density per area on the light; eye_rev_W: BSDF density from the
 // light direction back to the previous eye vertex.
+inline DeferredMis mis_sums_next_event(const MisState& eye, float light_pdf_W, float bsdf_pdf_W, float emission_fwd_A,
+                                       float direct_pdf_A, float eye_rev_W, MisPower mis,
+                                       MergeKind eye_merge = MergeKind::Surface) {
+  DeferredMis d;
+  d.a = light_pdf_W > 0.f ? mis(bsdf_pdf_W / light_pdf_W) : 0.f;
+  d.b = mis(emission_fwd_A / direct_pdf_A) * mis_connection_sum(eye, eye_rev_W, eye_merge, mis);
+  return d;
+}
 inline float mis_weight_next_event(const MisState& eye, float light_pdf_W, float bsdf_pdf_W, float emission_fwd_A,
                                    float direct_pdf_A, float eye_rev_W, MisPower mis) {
-  float w_light = light_pdf_W > 0.f ? mis(bsdf_pdf_W / light_pdf_W) : 0.f;
-  float w_eye = mis(emission_fwd_A / direct_pdf_A) * mis_connection_sum(eye, eye_rev_W, MergeKind::Surface, mis);
-  return 1.f / (w_light + 1.f + w_eye);
+  return mis_weight_vacuum(mis_sums_next_event(eye, light_pdf_W, bsdf_pdf_W, emission_fwd_A, direct_pdf_A, eye_rev_W, mis));
 }
 
 // s, t >= 2: connection of an eye vertex and a light vertex. eye_fwd_A: the
 // eye vertex's BSDF density towards the light vertex, per area there;
 // light_fwd_A likewise the other way; *_rev_W: each vertex's density from
 // the connection back to its own subpath's previous vertex.
+inline DeferredMis mis_sums_connect(const MisState& eye, const MisState& light, float eye_fwd_A, float eye_rev_W,
+                                    float light_fwd_A, float light_rev_W, MisPower mis,
+                                    MergeKind eye_merge = MergeKind::Surface, MergeKind light_merge = MergeKind::Surface) {
+  DeferredMis d;
+  d.a = mis(eye_fwd_A) * mis_connection_sum(light, light_rev_W, light_merge, mis);
+  d.b = mis(light_fwd_A) * mis_connection_sum(eye, eye_rev_W, eye_merge, mis);
+  return d;
+}
 inline float mis_weight_connect(const MisState& eye, const MisState& light, float eye_fwd_A, float eye_rev_W,
                                 float light_fwd_A, float light_rev_W, MisPower mis) {
-  float w_light = mis(eye_fwd_A) * mis_connection_sum(light, light_rev_W, MergeKind::Surface, mis);
-  float w_eye = mis(light_fwd_A) * mis_connection_sum(eye, eye_rev_W, MergeKind::Surface, mis);
-  return 1.f / (w_light + 1.f + w_eye);
+  return mis_weight_vacuum(mis_sums_connect(eye, light, eye_fwd_A, eye_rev_W, light_fwd_A, light_rev_W, mis));
 }
 
 // t = 1: a light vertex connected to the camera. camera_pdf_A: the camera's
 // direction density towards it, per area there.
+inline DeferredMis mis_sums_light_trace(const MisState& light, float camera_pdf_A, float light_rev_W, MisPower mis,
+                                        MergeKind light_merge = MergeKind::Surface) {
+  DeferredMis d;
+  d.a = mis(camera_pdf_A) * mis_connection_sum(light, light_rev_W, light_merge, mis);
+  return d;
+}
 inline float mis_weight_light_trace(const MisState& light, float camera_pdf_A, float light_rev_W, MisPower mis) {
-  return 1.f / (1.f + mis(camera_pdf_A) * mis_connection_sum(light, light_rev_W, MergeKind::Surface, mis));
+  return mis_weight_vacuum(mis_sums_light_trace(light, camera_pdf_A, light_rev_W, mis));
 }
 
 // Merging an eye vertex with a light vertex within the radius (vcm), on
@@ -173,8 +210,13 @@ inline float mis_weight_merge(const MisState& eye, const MisState& light, float 
 
 // s = 1, t = 1: the light's own vertex connected to the camera; the other
 // strategy is the camera ray hitting the light (impossible for delta lights).
+inline DeferredMis mis_sums_light_origin(float camera_pdf_A, float emission_pos_pdf_A, bool delta_pos, MisPower mis) {
+  DeferredMis d;
+  d.a = delta_pos ? 0.f : mis(camera_pdf_A / emission_pos_pdf_A);
+  return d;
+}
 inline float mis_weight_light_origin(float camera_pdf_A, float emission_pos_pdf_A, bool delta_pos, MisPower mis) {
-  return delta_pos ? 1.f : 1.f / (1.f + mis(camera_pdf_A / emission_pos_pdf_A));
+  return mis_weight_vacuum(mis_sums_light_origin(camera_pdf_A, emission_pos_pdf_A, delta_pos, mis));
 }
 
 // Participating media (docs/media.md). A segment sampled by distance
@@ -188,18 +230,5 @@ inline void mis_after_segment(MisState& m, float fwd, float rev, MisPower mis) {
   m.dVM *= mis(rev / fwd);
 }
 
-// A connection's segment is not sampled, but the strategies that would have
-// sampled it by distance sampling have densities that contain its
-// transmittance, known once its shadow ray is traced. So a connection
-// keeps the other strategies' two ratio sums without those densities (a:
-// the strategy whose distance sampling ends at the end with extinction
-// sigma_a, zero at a surface; b likewise) and is weighted afterwards.
-struct DeferredMis {
-  float a = 0.f, b = 0.f;
-  RGB sigma_a{0.f}, sigma_b{0.f};
-};
-inline float mis_weight_deferred(const DeferredMis& d, const RGB& T, MisPower mis) {
-  return 1.f / (1.f + d.a * mis(mixture_density(d.sigma_a, T)) + d.b * mis(mixture_density(d.sigma_b, T)));
-}
 
 }  // namespace lantern

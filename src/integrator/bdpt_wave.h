@@ -66,6 +66,19 @@ struct LightOriginPool {
   }
 };
 
+// A light vertex as stored for the eye subpaths: on a surface, or (ng and
+// ns zero, no material) in a medium.
+struct StoredLightVertex {
+  Vec3 p, ng{0.f}, ns{0.f}, wo;
+  Vec2 uv{0.f};
+  float error_scale = 0.f;
+  MaterialHandle material = MaterialHandle::make(MaterialKind::Interface, 0);
+  const Footprint* footprint = nullptr;
+  const Vec3* tangent = nullptr;  // a curve's
+  MediumHandle medium;            // a medium vertex's
+  RGB sigma_t{0.f};               // the extinction there
+};
+
 // Connectible (non-specular) light vertices, appended bounce by bounce and
 // then grouped by slot: the vertices of slot s are order[begin[s] .. begin[s+1]).
 struct LightVertexPool {
@@ -83,6 +96,33 @@ struct LightVertexPool {
   std::vector<uint32_t> begin, order;
 
   size_t size() const { return slot.size(); }
+  // Appends a vertex. The arrays only some scenes need are kept only once
+  // a vertex has the field (footprint: when the scene filters textures),
+  // padded for the vertices before it.
+  void push(uint32_t s, uint32_t d, const RGB& b, const MisState& m, const StoredLightVertex& x, bool footprints) {
+    slot.push_back(s);
+    depth.push_back(d);
+    p.push_back(x.p);
+    ng.push_back(x.ng);
+    ns.push_back(x.ns);
+    wo.push_back(x.wo);
+    uv.push_back(x.uv);
+    error_scale.push_back(x.error_scale);
+    beta.push_back(b);
+    mis.push_back(m);
+    material.push_back(x.material);
+    if (footprints) footprint.push_back(x.footprint ? *x.footprint : Footprint{});
+    if (x.tangent || !tangent.empty()) {
+      tangent.resize(size() - 1);
+      tangent.push_back(x.tangent ? *x.tangent : Vec3(0.f));
+    }
+    if (!x.medium.vacuum()) {
+      medium.resize(size() - 1);
+      sigma_t.resize(size() - 1);
+      medium.push_back(x.medium);
+      sigma_t.push_back(x.sigma_t);
+    }
+  }
   bool in_medium(uint32_t j) const { return j < medium.size() && !medium[j].vacuum(); }
   void clear() {
     for (auto* v : {&slot, &depth, &order}) v->clear();
@@ -104,6 +144,20 @@ struct LightVertexPool {
 struct StrategyTag {
   uint8_t s, t;
   RGB unweighted;
+};
+
+// A connection of two vertices (or of a vertex and the lens): its shadow
+// ray, what it carries if unoccluded, and its MIS weight's deferred part.
+struct Connection {
+  Vec3 o{0.f}, d{0.f};
+  float t_max = 1.f;  // (kInfinity towards a light at infinity, d its direction)
+  RGB unweighted{0.f};
+  DeferredMis mis;
+  Vec2 p_raster{0.f};  // t = 1: where it lands on the film
+  StrategyTag tag{};
+  bool light_sample = false;  // s = 1 (for --stats)
+  MediumHandle start;         // with media: the medium the ray starts in
+  MediumHandle expect;        // a volume light's point: the medium the ray must end in
 };
 
 // Shadow rays of one stage and what each carries if it is unoccluded.

@@ -4,6 +4,7 @@
 // weighted once their transmittance is known. Only scenes with media run
 // these; every other scene runs path_tracer.cpp alone.
 #include "integrator/path_tracer.h"
+#include "integrator/path_next_event.h"
 #include "integrator/path_wave.h"
 #include "integrator/volume_lights.h"
 #include "medium/henyey_greenstein.h"
@@ -62,27 +63,15 @@ void PathTracer::medium_scatter_stage(PathWave& w) const {
     const MediumHandle m = w.ends.medium[i];
     const HenyeyGreenstein phase{sc.media.g(m)};
     ++w.stats.eye_vertices;
-    ++w.stats.light_samples;
-    auto ls = sample_light(sc.lights, sc.shapes, sc.textures, light_sampler_, p, Vec3(0.f),
-                           s.get1d(dim + dims::kEyeLightSelect), s.get2d(dim + dims::kEyeLightPosition), volume_number(w, slot));
-    MediumHandle expect;
-    RGB sigma_end(0.f);
-    if (ls && ls->volume) {
-      if (int(w.depth) + 2 <= settings_.maxdepth) complete_volume_sample(sc, &ls->L, ls->p_light, ls->light, &expect, &sigma_end);
-      else ls->L = RGB(0.f);  // a path too long to end on volume emission
-    }
-    if (ls && !is_black(ls->L)) {
-      const float f = phase.p(wo, ls->wi);
-      if (f > 0.f)
-        push_media_shadow_ray(w, slot, p, *ls, m, ls->delta ? 0.f : ls->pdf, f, w.beta[slot] * f * ls->L / ls->pdf,
-                              expect, sigma_end);
-    }
+    path_next_event(sc, light_sampler_, w, slot, MediumVertex{phase, p, wo, m, w.ends.sigma_t[i]},
+                    s.get1d(dim + dims::kEyeLightSelect), s.get2d(dim + dims::kEyeLightPosition), volume_number(w, slot),
+                    settings_.maxdepth);
     float pdf = 0.f;
     const Vec3 wi = phase.sample(wo, s.get2d(dim + dims::kEyeBsdfDirection), &pdf);
     const float u_rr = s.get1d(dim + dims::kEyeRoulette);
     w.prev_pdf[slot] = pdf;
     w.prev_specular[slot] = 0;
-    if (!survives_roulette(w.beta[slot], w.eta_scale[slot], w.depth, u_rr)) {
+    if (!survives_roulette(w.beta[slot], w.eta_scale[slot], 1.f, w.depth >= 1, u_rr)) {
       ++w.stats.eye_ends[size_t(PathEnd::Roulette)];
       continue;
     }

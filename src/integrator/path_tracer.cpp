@@ -3,6 +3,7 @@
 #include "film/pixel_filter.h"
 #include "integrator/hit.h"
 #include "integrator/hit_material.h"
+#include "integrator/path_next_event.h"
 #include "integrator/path_wave.h"
 #include "integrator/shade.h"
 #include "integrator/volume_lights.h"
@@ -127,51 +128,6 @@ void PathTracer::surface_stage(PathWave& w) const {
   }
 }
 
-namespace {
-
-// Next-event estimation from hit i towards one light chosen by the light
-// sampler: appends a shadow ray with its MIS-weighted contribution.
-template <class BSDF>
-void next_event(const Scene& sc, const LightSampler& light_sampler, PathWave& w, uint32_t i, uint32_t slot,
-                const BSDF& bsdf, const Frame& frame, const Vec3& wo, float u_light, Vec2 u_light2, float u_volume,
-                int maxdepth) {
-  ++w.stats.light_samples;
-  auto ls = sample_light(sc.lights, sc.shapes, sc.textures, light_sampler, w.hits.p[i], w.hits.ns[i], u_light, u_light2,
-                         u_volume);
-  MediumHandle expect;
-  RGB sigma_end(0.f);
-  if (ls && ls->volume) {  // (volume_lights.h: such paths have at most maxdepth segments)
-    if (int(w.depth) + 2 <= maxdepth) complete_volume_sample(sc, &ls->L, ls->p_light, ls->light, &expect, &sigma_end);
-    else return;
-  }
-  if (!ls || is_black(ls->L)) return;
-  Vec3 wi = frame.to_local(ls->wi);
-  RGB f = bsdf.f(wo, wi, TransportMode::Radiance) * std::fabs(wi.z);
-  if (is_black(f)) return;
-  float weight = ls->delta ? 1.f : power_heuristic(ls->pdf, bsdf.pdf(wo, wi, TransportMode::Radiance));
-  RGB contrib = w.beta[slot] * f * ls->L * (weight / ls->pdf);
-  Vec3 o = offset_ray_origin(w.hits.p[i], w.hits.ng[i], w.hits.error_scale[i], ls->wi);
-  if (!sc.media.empty()) {  // the weight waits for the transmittance (PathTracer::media_shadow_stage)
-    contrib = w.beta[slot] * f * ls->L / ls->pdf;
-    MediumHandle m = medium_after(sc, w.rays.geom_id[i], w.hits.ng[i], ls->wi, w.ends.medium[i]);
-    push_media_shadow_ray(w, slot, o, *ls, m, ls->delta ? 0.f : ls->pdf, bsdf.pdf(wo, wi, TransportMode::Radiance), contrib,
-                          expect, sigma_end);
-    return;
-  }
-  uint32_t r;
-  if (ls->infinite) {
-    r = w.shadow.push(o, ls->wi, 0.f, kInfinity);
-  } else {
-    Vec3 target = ls->n_light == Vec3(0.f) ? ls->p_light
-                                           : offset_ray_origin(ls->p_light, ls->n_light, ls->error_scale, -ls->wi);
-    r = w.shadow.push(o, target - o, 0.f, 1.f);
-  }
-  w.shadow_slot[r] = slot;
-  w.shadow_contrib[r] = contrib;
-}
-
-}  // namespace
-
 // Next-event estimation and BSDF sampling in one loop per material kind.
 // (Two loops, as bdpt has, would let the stats tell them apart, but cost 3%
 // of the path tracer's throughput: docs/performance.md.)
@@ -182,12 +138,13 @@ void PathTracer::shade_stage(PathWave& w) const {
     uint32_t slot = w.active[i];
     const PathSampler& s = w.sampler[slot];
     const uint32_t dim = dims::vertex(w.depth);
-    Frame frame = Frame::from_z(w.hits.ns[i]);
-    Vec3 wo = frame.to_local(w.hits.wo[i]);
+    const auto v = surface_vertex(w.hits, i, bsdf, TransportMode::Radiance, w.rays.geom_id[i],
+                                  sc.media.empty() ? MediumHandle{} : w.ends.medium[i]);
+    const Vec3& wo = v.wo;
     float u_light = s.get1d(dim + dims::kEyeLightSelect);
     Vec2 u_light2 = s.get2d(dim + dims::kEyeLightPosition);
     if (!bsdf.is_specular())
-      next_event(sc, light_sampler_, w, i, slot, bsdf, frame, wo, u_light, u_light2, volume_number(w, slot), settings_.maxdepth);
+      path_next_event(sc, light_sampler_, w, slot, v, u_light, u_light2, volume_number(w, slot), settings_.maxdepth);
     // Continue the path by sampling the BSDF.
     float uc = s.get1d(dim + dims::kEyeBsdfComponent);
     Vec2 u2 = s.get2d(dim + dims::kEyeBsdfDirection);
@@ -197,12 +154,12 @@ void PathTracer::shade_stage(PathWave& w) const {
       ++w.stats.eye_ends[size_t(PathEnd::Absorbed)];
       return;
     }
-    Vec3 wi = frame.from_local(bs->wi);
+    Vec3 wi = v.frame.from_local(bs->wi);
     w.beta[slot] *= bs->f * (std::fabs(bs->wi.z) / bs->pdf);
     w.prev_pdf[slot] = bs->pdf_is_proportional ? bsdf.pdf(wo, bs->wi, TransportMode::Radiance) : bs->pdf;
     w.prev_specular[slot] = bs->specular;
     if (bs->transmission) w.eta_scale[slot] *= sqr(bs->etap);
-    if (!survives_roulette(w.beta[slot], w.eta_scale[slot], w.depth, u_rr)) {
+    if (!survives_roulette(w.beta[slot], w.eta_scale[slot], 1.f, w.depth >= 1, u_rr)) {
       ++w.stats.eye_ends[size_t(PathEnd::Roulette)];
       return;
     }

@@ -8,6 +8,7 @@
 #include "accel/ray_stream.h"
 #include "integrator/hit.h"
 #include "integrator/medium_events.h"
+#include "integrator/vertex.h"
 #include "integrator/wave_stats.h"
 #include "light/lights.h"
 #include "material/material.h"
@@ -98,19 +99,6 @@ struct PathWave {
   }
 };
 
-// Russian roulette on a path's throughput with refraction's scaling undone
-// (from the second vertex on): false if the path ends, else beta is
-// reweighted.
-inline bool survives_roulette(RGB& beta, float eta_scale, uint32_t depth, float u_rr) {
-  float rr = max_component(beta * eta_scale);
-  if (rr < 1.f && depth >= 1) {
-    float q = std::fmax(0.f, 1.f - rr);
-    if (u_rr < q) return false;
-    beta /= 1.f - q;
-  }
-  return true;
-}
-
 // A shadow ray of a scene with media, from o towards light sample ls,
 // starting in medium m; its MIS weight is formed once its transmittance is
 // known (light_pdf 0: a delta light). A sample of an emissive medium
@@ -122,8 +110,7 @@ inline void push_media_shadow_ray(PathWave& w, uint32_t slot, const Vec3& o, con
   if (ls.infinite) {
     r = w.shadow.push(o, ls.wi, 0.f, kInfinity);
   } else {
-    Vec3 target = ls.n_light == Vec3(0.f) ? ls.p_light : offset_ray_origin(ls.p_light, ls.n_light, ls.error_scale, -ls.wi);
-    r = w.shadow.push(o, target - o, 0.f, 1.f);
+    r = w.shadow.push(o, light_sample_target(ls) - o, 0.f, 1.f);
   }
   w.shadow_slot[r] = slot;
   w.shadow_contrib[r] = unweighted;

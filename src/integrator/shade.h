@@ -4,6 +4,7 @@
 
 #include "integrator/bdpt_mis.h"
 #include "integrator/hit.h"
+#include "integrator/vertex.h"
 #include "integrator/wave_stats.h"
 #include "material/bsdf_kernel.h"
 #include "scene/scene.h"
@@ -56,12 +57,7 @@ PathEnd continue_subpath(const BSDF& bsdf, TransportMode mode, HitPool& hits, ui
   mis_after_scatter(sub.mis, vertex_cos(hits.ng[i], hits.error_scale[i], tangent_or_null(hits.tangent, i), wi), pdf_fwd,
                     pdf_rev, bs->specular, mis);
   if (!importance && bs->transmission) sub.eta_scale *= sqr(bs->etap);
-  float rr = max_component(sub.beta * sub.eta_scale) * sub.rr_scale;
-  if (rr < 1.f && depth >= 2) {
-    float q = std::fmax(0.f, 1.f - rr);
-    if (u_rr < q) return PathEnd::Roulette;
-    sub.beta /= 1.f - q;
-  }
+  if (!survives_roulette(sub.beta, sub.eta_scale, sub.rr_scale, depth >= 2, u_rr)) return PathEnd::Roulette;
   if (!is_finite(sub.beta)) return PathEnd::Absorbed;
   hits.alive[i] = 1;
   sub.prev_p = hits.p[i];

@@ -1,0 +1,125 @@
+// The bidirectional tracer's connection strategies, each written once for
+// an eye or light vertex of either kind (integrator/vertex.h), in vacuum
+// and in media alike:
+//   s = 1       next_event              a light sample seen from eye vertex v
+//   s >= 2      connect_light_vertices  eye vertex v joined to its slot's stored light vertices
+//   t = 1       connect_camera          light vertex v joined to the lens
+// (s = 0, emission found by the eye subpath, is the eye surface stage's;
+// merges are in bdpt.cpp and bdpt_media.cpp.) Each builds a Connection:
+// the shadow ray, the unweighted contribution, and the other strategies'
+// two ratio sums without the densities of the connecting segment
+// (DeferredMis, integrator/bdpt_mis.h). push_connection weights it at once
+// in a scene without media, where those densities are 1, and otherwise
+// once its transmittance is known: one weight, one code path.
+//
+// Included by the files whose stages instantiate them (bdpt.cpp,
+// bdpt_light.cpp, bdpt_media.cpp).
+#pragma once
+
+#include "integrator/bdpt.h"
+#include "integrator/bdpt_wave.h"
+#include "integrator/vertex.h"
+#include "light/emission.h"
+
+namespace lantern {
+
+// s = 1: next-event estimation from eye vertex v (Veach 1997, sec. 10.2;
+// the weight's sums are Georgiev 2012's eq. 44, with the light's
+// emission density towards v for the eye subpath's side).
+template <class Vertex>
+void Bdpt::next_event(BdptWave& w, uint32_t slot, const Vertex& v, float u_light, Vec2 u_light2) const {
+  const Scene& sc = scene_;
+  ++w.stats.light_samples;
+  auto ls = sample_light(sc.lights, sc.shapes, sc.textures, light_sampler_, v.p, v.light_sampler_normal(), u_light,
+                         u_light2, volume_number(w, slot));
+  VolumeSampleEnd vol;
+  if (ls && ls->volume) complete_volume_light_sample(*ls, w.depth, &vol);
+  if (!ls || is_black(ls->L)) return;
+  const VertexEval e = v.evaluate(ls->wi);
+  const float dist2 = ls->infinite ? 1.f : glm::dot(ls->p_light - v.p, ls->p_light - v.p);
+  const float direct_pdf_A = direct_density(*ls, dist2);
+  // A point exactly on a sphere light's silhouette (reached only through
+  // rounding: a set of measure zero) has zero density per area, and its
+  // MIS ratios would be 0/0.
+  if (is_black(e.f) || !(direct_pdf_A > 0.f)) return;
+  const float emission_fwd_A =
+      emission_pdf(sc.lights, sc.shapes, sc.textures, ls->light, ls->p_light, ls->n_light, -ls->wi) * v.cos(ls->wi) /
+      dist2;
+  Connection k;
+  // (BSDF sampling cannot hit a delta light: its density is left out)
+  k.mis = mis_sums_next_event(w.eye.mis[slot], ls->delta ? 0.f : ls->pdf, e.pdf_fwd, emission_fwd_A, direct_pdf_A,
+                              e.pdf_rev, w.mis, v.merging(medium_merging()));
+  k.mis.sigma_a = vol.sigma_t;  // an eye ray would end at a volume light's point by distance sampling
+  k.mis.sigma_b = v.sigma_t();
+  k.unweighted = w.eye.beta[slot] * e.f * ls->L / ls->pdf;
+  k.tag = {1, uint8_t(w.depth + 1), k.unweighted};
+  k.light_sample = true;
+  k.o = v.ray_origin(ls->wi);
+  if (ls->infinite) {
+    k.d = ls->wi;
+    k.t_max = kInfinity;
+  } else {
+    k.d = light_sample_target(*ls) - k.o;
+    k.expect = vol.medium;
+  }
+  if (w.shadow.media) k.start = v.medium_towards(sc, ls->wi);
+  push_connection(w, slot, k);
+}
+
+// s >= 2: eye vertex v joined to each light vertex of its slot that keeps
+// the path within maxdepth (Veach 1997, eq. 10.8; the weight's sums are
+// Georgiev 2012's eqs. 40-41 for both subpaths).
+template <class Vertex>
+void Bdpt::connect_light_vertices(BdptWave& w, uint32_t slot, const Vertex& v) const {
+  const uint32_t depth = w.depth, maxdepth = uint32_t(settings_.maxdepth);
+  const LightVertexPool& lv = w.vertices;
+  for (uint32_t n = lv.begin[slot]; n < lv.begin[slot + 1]; ++n) {
+    const uint32_t j = lv.order[n];
+    if (lv.depth[j] + depth > maxdepth) break;  // in depth order: the rest are deeper
+    const Vec3 dir = lv.p[j] - v.p;
+    const float dist2 = glm::dot(dir, dir);
+    if (!(dist2 > 0.f)) continue;
+    const Vec3 wi = dir / std::sqrt(dist2);
+    const VertexEval e = v.evaluate(wi);
+    if (is_black(e.f)) continue;
+    const LightVertexResponse r = light_vertex_response(lv, j, wi);
+    Connection k;
+    k.unweighted = w.eye.beta[slot] * e.f * r.e.f * lv.beta[j] / dist2;
+    if (is_black(k.unweighted)) continue;
+    k.mis = mis_sums_connect(w.eye.mis[slot], lv.mis[j], e.pdf_fwd * r.cos / dist2, e.pdf_rev,
+                             r.e.pdf_fwd * v.cos(wi) / dist2, r.e.pdf_rev, w.mis, v.merging(medium_merging()),
+                             light_vertex_merging(lv, j));
+    k.mis.sigma_a = r.sigma_t;
+    k.mis.sigma_b = v.sigma_t();
+    k.tag = {uint8_t(lv.depth[j] + 1), uint8_t(depth + 1), k.unweighted};
+    k.o = v.ray_origin(wi);
+    k.d = r.target - k.o;
+    if (w.shadow.media) k.start = v.medium_towards(scene_, wi);
+    push_connection(w, slot, k);
+  }
+}
+
+// t = 1: light vertex v (at path depth ld) joined to a point on the lens,
+// a splat where it lands on the film (Veach 1997, sec. 10.2: light
+// tracing as a strategy).
+template <class Vertex>
+void Bdpt::connect_camera(BdptWave& w, uint32_t slot, uint32_t ld, const Vertex& v, Vec2 u_lens) const {
+  if (ld > uint32_t(settings_.maxdepth) || !settings_.connections) return;
+  auto cs = camera_.sample_wi(v.p, u_lens);
+  if (!cs) return;
+  const VertexEval e = v.evaluate(cs->wi);
+  if (is_black(e.f)) return;
+  Connection k;
+  k.mis = mis_sums_light_trace(w.light.mis[slot], camera_.pdf_area(-cs->wi, sqr(cs->dist), v.cos(cs->wi)), e.pdf_rev,
+                               w.mis, v.merging(medium_merging()));
+  k.mis.sigma_a = v.sigma_t();  // a camera ray would end here by distance sampling
+  k.unweighted = w.light.beta[slot] * e.f * (cs->We / cs->pdf);
+  k.p_raster = cs->p_raster;
+  k.tag = {uint8_t(ld + 1), 1, k.unweighted};
+  k.o = v.ray_origin(cs->wi);
+  k.d = cs->p_lens - k.o;
+  if (w.shadow.media) k.start = v.medium_towards(scene_, cs->wi);
+  push_connection(w, slot, k);
+}
+
+}  // namespace lantern

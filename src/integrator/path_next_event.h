@@ -1,0 +1,44 @@
+// The path tracer's next-event estimation, written once for a vertex on a
+// surface or in a medium (integrator/vertex.h): one light sample, weighted
+// against the scattering strategy by the power heuristic (Veach 1997,
+// sec. 9.2). In a scene with media the weight waits for the shadow ray's
+// transmittance, which the scattering strategy's density contains
+// (PathTracer::media_shadow_stage).
+#pragma once
+
+#include "integrator/path_wave.h"
+#include "integrator/vertex.h"
+#include "integrator/volume_lights.h"
+#include "light/light_sampler.h"
+
+namespace lantern {
+
+template <class Vertex>
+void path_next_event(const Scene& sc, const LightSampler& light_sampler, PathWave& w, uint32_t slot, const Vertex& v,
+                     float u_light, Vec2 u_light2, float u_volume, int maxdepth) {
+  ++w.stats.light_samples;
+  auto ls = sample_light(sc.lights, sc.shapes, sc.textures, light_sampler, v.p, v.light_sampler_normal(), u_light,
+                         u_light2, u_volume);
+  MediumHandle expect;
+  RGB sigma_end(0.f);
+  if (ls && ls->volume) {  // (volume_lights.h: such paths have at most maxdepth segments)
+    if (int(w.depth) + 2 > maxdepth) return;
+    complete_volume_sample(sc, &ls->L, ls->p_light, ls->light, &expect, &sigma_end);
+  }
+  if (!ls || is_black(ls->L)) return;
+  const VertexEval e = v.evaluate(ls->wi, false);
+  if (is_black(e.f)) return;
+  const Vec3 o = v.ray_origin(ls->wi);
+  if (!sc.media.empty()) {
+    push_media_shadow_ray(w, slot, o, *ls, v.medium_towards(sc, ls->wi), ls->delta ? 0.f : ls->pdf, e.pdf_fwd,
+                          w.beta[slot] * e.f * ls->L / ls->pdf, expect, sigma_end);
+    return;
+  }
+  const float weight = ls->delta ? 1.f : power_heuristic(ls->pdf, e.pdf_fwd);
+  const uint32_t r = ls->infinite ? w.shadow.push(o, ls->wi, 0.f, kInfinity)
+                                  : w.shadow.push(o, light_sample_target(*ls) - o, 0.f, 1.f);
+  w.shadow_slot[r] = slot;
+  w.shadow_contrib[r] = w.beta[slot] * e.f * ls->L * (weight / ls->pdf);
+}
+
+}  // namespace lantern
