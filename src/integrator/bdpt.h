@@ -139,6 +139,13 @@ class Bdpt {
   void complete_volume_light_sample(LightSample& ls, uint32_t depth, VolumeSampleEnd* end) const;
   float direct_density(const LightSample& ls, float dist2) const;
 
+  // Whether a light vertex at path depth ld is stored for the eye
+  // subpaths, on a surface or in a medium alike: s >= 2 connections need
+  // t >= 2, merging (vcm, bpm, ppm) t >= 1.
+  bool keeps_light_vertex(uint32_t ld) const {
+    const uint32_t maxdepth = uint32_t(settings_.maxdepth);
+    return !settings_.light_tracing_only && (ld < maxdepth || (settings_.merging && ld <= maxdepth));
+  }
   // Whether connections are weighted (not lt, whose t = 1 strategies are
   // all there is, nor the unit weights of tests).
   bool weighted() const { return !settings_.light_tracing_only && !settings_.unit_weights && !settings_.photon_mapping; }

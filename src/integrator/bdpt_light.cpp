@@ -236,7 +236,6 @@ bool Bdpt::reaches_through_portal(uint32_t light, const Vec3& p, const Vec3& w_t
 // Stores connectible vertices and prepares their camera connections (t = 1).
 void Bdpt::light_connect_stage(BdptWave& w) const {
   const uint32_t depth = w.depth;
-  const uint32_t maxdepth = uint32_t(settings_.maxdepth);
   const bool media = !scene_.media.empty();
   for_each_binned_bsdf(w.hits, scene_, [&](uint32_t i, const auto& bsdf) {
     const uint32_t slot = w.active[i];
@@ -244,8 +243,7 @@ void Bdpt::light_connect_stage(BdptWave& w) const {
     if (bsdf.is_specular()) return;
     const uint32_t ld = depth + w.origin.extra_depth[slot];  // the depth path lengths count
     const HitPool& h = w.hits;
-    // s >= 2 connections need t >= 2; merging (vcm) needs t >= 1
-    if (!settings_.light_tracing_only && (ld < maxdepth || (settings_.merging && ld <= maxdepth)))
+    if (keeps_light_vertex(ld))
       w.vertices.push(slot, ld, w.light.beta[slot], w.light.mis[slot],
                       {.p = h.p[i], .ng = h.ng[i], .ns = h.ns[i], .wo = h.wo[i], .uv = h.uv[i],
                        .error_scale = h.error_scale[i], .material = h.material[i],

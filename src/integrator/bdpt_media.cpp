@@ -230,7 +230,7 @@ void Bdpt::light_medium_stage(BdptWave& w) const {
     const uint32_t dim = dims::vertex(depth);
     const uint32_t ld = depth + w.origin.extra_depth[slot];  // the depth path lengths count
     const MediumVertex v = medium_vertex(w, i);
-    if (!settings_.light_tracing_only && ld < uint32_t(settings_.maxdepth))
+    if (keeps_light_vertex(ld))
       w.vertices.push(slot, ld, w.light.beta[slot], w.light.mis[slot],
                       {.p = v.p, .wo = v.wo_world, .medium = v.medium, .sigma_t = v.sigma}, !w.hits.footprint.empty());
     connect_camera(w, slot, ld, v, s.get2d(dim + dims::kLightLens));
