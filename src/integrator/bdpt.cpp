@@ -202,7 +202,7 @@ void Bdpt::eye_connect_stage(BdptWave& w) const {
     float u_light = s.get1d(dims::vertex(depth) + dims::kEyeLightSelect);
     Vec2 u_light2 = s.get2d(dims::vertex(depth) + dims::kEyeLightPosition);
     if (bsdf.is_specular() || depth > maxdepth) return;
-    const auto v = surface_vertex(w.hits, i, bsdf, TransportMode::Radiance, w.rays.geom_id[i],
+    const auto v = surface_vertex<TransportMode::Radiance>(w.hits, i, bsdf, w.rays.geom_id[i],
                                   media ? w.ends.medium[i] : MediumHandle{});
     if (!settings_.connections) {  // bpm, ppm: merging is all there is
       merge_at_eye_vertex(w, i, bsdf, v.frame, v.wo);
@@ -213,18 +213,6 @@ void Bdpt::eye_connect_stage(BdptWave& w) const {
     connect_light_vertices(w, slot, v);
     if (w.shadow.rays.count >= kMaxPendingConnections) flush_connections(w);
   });
-}
-
-// In a scene without media a connection's segment adds nothing to the
-// densities (its transmittance is 1): its weight is known now.
-void Bdpt::push_connection(BdptWave& w, uint32_t slot, const Connection& k) const {
-  if (!w.shadow.media) {
-    const float wt = weighted() ? mis_weight_vacuum(k.mis) : 1.f;
-    w.shadow.push(k.o, k.d, k.t_max, slot, k.unweighted * wt, k.p_raster, k.tag, k.light_sample);
-  } else {
-    w.shadow.push_deferred(k.o, k.d, k.t_max, slot, k.unweighted, k.p_raster, k.tag, k.start, k.mis, k.light_sample,
-                           k.expect);
-  }
 }
 
 // Samples each eye subpath's next direction.

@@ -125,7 +125,7 @@ void Bdpt::begin_light_subpath(BdptWave& w, uint32_t slot, const EmissionSample&
         k.mis.sigma_a = sigma_origin;  // a camera ray would end at a volume light's point by distance sampling
         k.unweighted = Le * (cos_l * cs->We / (cs->pdf * es.pdf_pos));
         k.p_raster = cs->p_raster;
-        k.tag = {1, 1, k.unweighted};
+        k.s = k.t = 1;
         k.o = on_surface ? offset_ray_origin(es.p, es.n, es.error_scale, cs->wi) : es.p;
         k.d = cs->p_lens - k.o;
         if (media) k.start = es.volume ? medium : light_start_medium(es.light, es.n, cs->wi);
@@ -251,7 +251,7 @@ void Bdpt::light_connect_stage(BdptWave& w) const {
                        .tangent = tangent_or_null(h.tangent, i), .medium = {}, .sigma_t = RGB(0.f)},
                       !h.footprint.empty());
     connect_camera(w, slot, ld,
-                   surface_vertex(h, i, bsdf, TransportMode::Importance, w.rays.geom_id[i],
+                   surface_vertex<TransportMode::Importance>(h, i, bsdf, w.rays.geom_id[i],
                                   media ? w.ends.medium[i] : MediumHandle{}),
                    u_lens);
   });

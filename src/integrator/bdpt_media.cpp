@@ -64,8 +64,8 @@ LightVertexResponse Bdpt::light_vertex_response(const LightVertexPool& v, uint32
                                 tangent ? *tangent : Vec3(0.f)};
   with_bsdf(v.material[j], sc.materials, sc.textures, light_tc, [&](const auto& lb) {
     const Frame lf = Frame::from_z(v.ns[j]);
-    const SurfaceVertex<std::decay_t<decltype(lb)>> x{
-        lb, TransportMode::Importance, lf, v.p[j], v.ng[j], v.ns[j], v.wo[j], lf.to_local(v.wo[j]), v.error_scale[j],
+    const SurfaceVertex<std::decay_t<decltype(lb)>, TransportMode::Importance> x{
+        lb, lf, v.p[j], v.ng[j], v.ns[j], v.wo[j], lf.to_local(v.wo[j]), v.error_scale[j],
         tangent, 0, {}};
     r.e = x.evaluate(-wi_w);
     r.cos = x.cos(wi_w);

@@ -23,6 +23,13 @@
 
 namespace lantern {
 
+// In a scene without media a connection's segment adds nothing to the
+// densities (its transmittance is 1): its weight is known now.
+inline void Bdpt::push_connection(BdptWave& w, uint32_t slot, const Connection& k) const {
+  if (w.shadow.media) w.shadow.push(slot, k, k.unweighted);
+  else w.shadow.push(slot, k, k.unweighted * (weighted() ? mis_weight_vacuum(k.mis) : 1.f));
+}
+
 // s = 1: next-event estimation from eye vertex v (Veach 1997, sec. 10.2;
 // the weight's sums are Georgiev 2012's eq. 44, with the light's
 // emission density towards v for the eye subpath's side).
@@ -52,7 +59,8 @@ void Bdpt::next_event(BdptWave& w, uint32_t slot, const Vertex& v, float u_light
   k.mis.sigma_a = vol.sigma_t;  // an eye ray would end at a volume light's point by distance sampling
   k.mis.sigma_b = v.sigma_t();
   k.unweighted = w.eye.beta[slot] * e.f * ls->L / ls->pdf;
-  k.tag = {1, uint8_t(w.depth + 1), k.unweighted};
+  k.s = 1;
+  k.t = uint8_t(w.depth + 1);
   k.light_sample = true;
   k.o = v.ray_origin(ls->wi);
   if (ls->infinite) {
@@ -83,15 +91,17 @@ void Bdpt::connect_light_vertices(BdptWave& w, uint32_t slot, const Vertex& v) c
     const VertexEval e = v.evaluate(wi);
     if (is_black(e.f)) continue;
     const LightVertexResponse r = light_vertex_response(lv, j, wi);
+    const RGB c = w.eye.beta[slot] * e.f * r.e.f * lv.beta[j] / dist2;
+    if (is_black(c)) continue;
     Connection k;
-    k.unweighted = w.eye.beta[slot] * e.f * r.e.f * lv.beta[j] / dist2;
-    if (is_black(k.unweighted)) continue;
+    k.unweighted = c;
     k.mis = mis_sums_connect(w.eye.mis[slot], lv.mis[j], e.pdf_fwd * r.cos / dist2, e.pdf_rev,
                              r.e.pdf_fwd * v.cos(wi) / dist2, r.e.pdf_rev, w.mis, v.merging(medium_merging()),
                              light_vertex_merging(lv, j));
     k.mis.sigma_a = r.sigma_t;
     k.mis.sigma_b = v.sigma_t();
-    k.tag = {uint8_t(lv.depth[j] + 1), uint8_t(depth + 1), k.unweighted};
+    k.s = uint8_t(lv.depth[j] + 1);
+    k.t = uint8_t(depth + 1);
     k.o = v.ray_origin(wi);
     k.d = r.target - k.o;
     if (w.shadow.media) k.start = v.medium_towards(scene_, wi);
@@ -115,7 +125,8 @@ void Bdpt::connect_camera(BdptWave& w, uint32_t slot, uint32_t ld, const Vertex&
   k.mis.sigma_a = v.sigma_t();  // a camera ray would end here by distance sampling
   k.unweighted = w.light.beta[slot] * e.f * (cs->We / cs->pdf);
   k.p_raster = cs->p_raster;
-  k.tag = {uint8_t(ld + 1), 1, k.unweighted};
+  k.s = uint8_t(ld + 1);
+  k.t = 1;
   k.o = v.ray_origin(cs->wi);
   k.d = cs->p_lens - k.o;
   if (w.shadow.media) k.start = v.medium_towards(scene_, cs->wi);

@@ -149,12 +149,12 @@ struct StrategyTag {
 // A connection of two vertices (or of a vertex and the lens): its shadow
 // ray, what it carries if unoccluded, and its MIS weight's deferred part.
 struct Connection {
-  Vec3 o{0.f}, d{0.f};
+  Vec3 o, d;
   float t_max = 1.f;  // (kInfinity towards a light at infinity, d its direction)
-  RGB unweighted{0.f};
+  RGB unweighted;
   DeferredMis mis;
-  Vec2 p_raster{0.f};  // t = 1: where it lands on the film
-  StrategyTag tag{};
+  Vec2 p_raster{0.f};         // t = 1: where it lands on the film
+  uint8_t s = 0, t = 0;       // its strategy (for per-strategy images)
   bool light_sample = false;  // s = 1 (for --stats)
   MediumHandle start;         // with media: the medium the ray starts in
   MediumHandle expect;        // a volume light's point: the medium the ray must end in
@@ -176,37 +176,33 @@ struct ConnectionPool {
   std::vector<MediumHandle> expect;  // a volume light's point: the medium the ray must end in (else vacuum)
   bool media = false;
   bool record = false;
-  uint32_t push(const Vec3& o, const Vec3& d, float t_max, uint32_t s, const RGB& c, Vec2 raster,
-                const StrategyTag& tag, bool light_sample = false) {
-    uint32_t i = rays.push(o, d, 0.f, t_max);
+  // Queues connection k of `slot` carrying contrib (weighted, or with
+  // media unweighted until traced).
+  void push(uint32_t s, const Connection& k, const RGB& c) {
+    const uint32_t i = rays.push(k.o, k.d, 0.f, k.t_max);
     if (slot.size() <= i) {
-      slot.resize(rays.capacity());
-      contrib.resize(rays.capacity());
-      p_raster.resize(rays.capacity());
-      next_event.resize(rays.capacity());
-      if (record) tags.resize(rays.capacity());
+      const size_t n = rays.capacity();
+      slot.resize(n);
+      contrib.resize(n);
+      p_raster.resize(n);
+      next_event.resize(n);
+      if (record) tags.resize(n);
+      if (media) {
+        medium.resize(n);
+        deferred.resize(n);
+        expect.resize(n);
+      }
     }
     slot[i] = s;
     contrib[i] = c;
-    p_raster[i] = raster;
-    next_event[i] = light_sample;
-    if (record) tags[i] = tag;
-    return i;
-  }
-  // A connection of a scene with media, weighted once traced.
-  uint32_t push_deferred(const Vec3& o, const Vec3& d, float t_max, uint32_t s, const RGB& unweighted, Vec2 raster,
-                         const StrategyTag& tag, MediumHandle m, const DeferredMis& mis, bool light_sample = false,
-                         MediumHandle must_end_in = {}) {
-    uint32_t i = push(o, d, t_max, s, unweighted, raster, tag, light_sample);
-    if (medium.size() <= i) {
-      medium.resize(rays.capacity());
-      deferred.resize(rays.capacity());
-      expect.resize(rays.capacity());
+    p_raster[i] = k.p_raster;
+    next_event[i] = k.light_sample;
+    if (record) tags[i] = {k.s, k.t, k.unweighted};
+    if (media) {
+      medium[i] = k.start;
+      deferred[i] = k.mis;
+      expect[i] = k.expect;
     }
-    medium[i] = m;
-    deferred[i] = mis;
-    expect[i] = must_end_in;
-    return i;
   }
 };
 

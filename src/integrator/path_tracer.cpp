@@ -138,7 +138,7 @@ void PathTracer::shade_stage(PathWave& w) const {
     uint32_t slot = w.active[i];
     const PathSampler& s = w.sampler[slot];
     const uint32_t dim = dims::vertex(w.depth);
-    const auto v = surface_vertex(w.hits, i, bsdf, TransportMode::Radiance, w.rays.geom_id[i],
+    const auto v = surface_vertex<TransportMode::Radiance>(w.hits, i, bsdf, w.rays.geom_id[i],
                                   sc.media.empty() ? MediumHandle{} : w.ends.medium[i]);
     const Vec3& wo = v.wo;
     float u_light = s.get1d(dim + dims::kEyeLightSelect);

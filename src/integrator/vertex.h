@@ -29,10 +29,10 @@ struct VertexEval {
   float pdf_rev = 0.f;  // and of sampling its subpath's previous direction from w, the opposite transport
 };
 
-template <class BSDF>
+// Mode: radiance on eye subpaths, importance on light subpaths.
+template <class BSDF, TransportMode Mode>
 struct SurfaceVertex {
   const BSDF& bsdf;
-  TransportMode mode;  // radiance on eye subpaths, importance on light subpaths
   Frame frame;         // the shading frame
   Vec3 p, ng, ns;
   Vec3 wo_world, wo;   // towards the subpath's previous vertex, in world and shading space
@@ -49,13 +49,13 @@ struct SurfaceVertex {
   VertexEval evaluate(const Vec3& w, bool with_reverse = true) const {
     VertexEval e;
     const Vec3 wl = frame.to_local(w);
-    e.f = bsdf.f(wo, wl, mode);
-    e.f *= mode == TransportMode::Importance ? std::fabs(wl.z) * shading_normal_correction(wo_world, w, ng, ns)
-                                             : std::fabs(wl.z);
+    e.f = bsdf.f(wo, wl, Mode);
+    if constexpr (Mode == TransportMode::Importance) e.f *= std::fabs(wl.z) * shading_normal_correction(wo_world, w, ng, ns);
+    else e.f *= std::fabs(wl.z);
     if (is_black(e.f)) return e;
-    const TransportMode reverse =
-        mode == TransportMode::Importance ? TransportMode::Radiance : TransportMode::Importance;
-    e.pdf_fwd = bsdf.pdf(wo, wl, mode);
+    constexpr TransportMode reverse =
+        Mode == TransportMode::Importance ? TransportMode::Radiance : TransportMode::Importance;
+    e.pdf_fwd = bsdf.pdf(wo, wl, Mode);
     if (with_reverse) e.pdf_rev = bsdf.pdf(wl, wo, reverse);
     return e;
   }
@@ -93,12 +93,12 @@ struct MediumVertex {
 };
 
 // Eye or light vertex i of a bounce's hit pool, with its BSDF.
-template <class BSDF>
-SurfaceVertex<BSDF> surface_vertex(const HitPool& h, uint32_t i, const BSDF& bsdf, TransportMode mode, uint32_t geom,
-                                   MediumHandle arrived_in) {
+template <TransportMode Mode, class BSDF>
+SurfaceVertex<BSDF, Mode> surface_vertex(const HitPool& h, uint32_t i, const BSDF& bsdf, uint32_t geom,
+                                         MediumHandle arrived_in) {
   const Frame frame = Frame::from_z(h.ns[i]);
-  return {bsdf,           mode, frame, h.p[i], h.ng[i], h.ns[i], h.wo[i], frame.to_local(h.wo[i]),
-          h.error_scale[i], tangent_or_null(h.tangent, i), geom, arrived_in};
+  return {bsdf,   frame, h.p[i], h.ng[i], h.ns[i], h.wo[i], frame.to_local(h.wo[i]), h.error_scale[i],
+          tangent_or_null(h.tangent, i), geom, arrived_in};
 }
 
 // Where a shadow ray towards light sample ls ends: just off the light's
