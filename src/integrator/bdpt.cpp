@@ -190,52 +190,37 @@ void Bdpt::prepare_merging(const WaveDesc& wave, BdptWave& w) const {
   w.vm_normalization_medium = 1.f / eta_medium;
 }
 
-// Prepares the s = 1 and s >= 2 connections of every eye vertex on a
-// surface (and its merges, with vcm).
-void Bdpt::eye_connect_stage(BdptWave& w) const {
+// Each eye vertex on a surface, with its BSDF built (its textures
+// evaluated) once: the s = 1 and s >= 2 connections that end on it (and
+// its merges, with vcm), then the sampling of the subpath's next direction.
+void Bdpt::eye_shade_stage(BdptWave& w) const {
   const bool media = !scene_.media.empty();
-  const uint32_t depth = w.depth;
-  const uint32_t maxdepth = uint32_t(settings_.maxdepth);
+  const uint32_t depth = w.depth, dim = dims::vertex(depth);
   for_each_binned_bsdf(w.hits, scene_, [&](uint32_t i, const auto& bsdf) {
     const uint32_t slot = w.active[i];
     const PathSampler& s = w.sampler[slot];
-    float u_light = s.get1d(dims::vertex(depth) + dims::kEyeLightSelect);
-    Vec2 u_light2 = s.get2d(dims::vertex(depth) + dims::kEyeLightPosition);
-    if (bsdf.is_specular() || depth > maxdepth) return;
     const auto v = surface_vertex<TransportMode::Radiance>(w.hits, i, bsdf, w.rays.geom_id[i],
-                                  media ? w.ends.medium[i] : MediumHandle{});
-    if (!settings_.connections) {  // bpm, ppm: merging is all there is
-      merge_at_eye_vertex(w, i, bsdf, v.frame, v.wo);
-      return;
+                                                           media ? w.ends.medium[i] : MediumHandle{});
+    if (!bsdf.is_specular()) {  // (eye vertices deeper than maxdepth are not shaded: eye_surface_stage)
+      if (settings_.connections) {
+        next_event(w, slot, v, s.get1d(dim + dims::kEyeLightSelect), s.get2d(dim + dims::kEyeLightPosition));
+        if (settings_.merging) merge_at_eye_vertex(w, i, bsdf, v.frame, v.wo);
+        connect_light_vertices(w, slot, v);
+        if (w.shadow.rays.count >= kMaxPendingConnections) flush_connections(w);
+      } else {  // bpm, ppm: merging is all there is
+        merge_at_eye_vertex(w, i, bsdf, v.frame, v.wo);
+      }
+      if (settings_.photon_mapping) {  // ppm: merged there, and ends
+        ++w.stats.eye_ends[size_t(PathEnd::MaxDepth)];
+        return;
+      }
     }
-    next_event(w, slot, v, u_light, u_light2);
-    if (settings_.merging) merge_at_eye_vertex(w, i, bsdf, v.frame, v.wo);
-    connect_light_vertices(w, slot, v);
-    if (w.shadow.rays.count >= kMaxPendingConnections) flush_connections(w);
-  });
-}
-
-// Samples each eye subpath's next direction.
-void Bdpt::eye_scatter_stage(BdptWave& w) const {
-  const uint32_t depth = w.depth;
-  for_each_binned_bsdf(w.hits, scene_, [&](uint32_t i, const auto& bsdf) {
-    const uint32_t slot = w.active[i];
-    const PathSampler& s = w.sampler[slot];
-    float uc = s.get1d(dims::vertex(depth) + dims::kEyeBsdfComponent);
-    Vec2 u2 = s.get2d(dims::vertex(depth) + dims::kEyeBsdfDirection);
-    float u_rr = s.get1d(dims::vertex(depth) + dims::kEyeRoulette);
-    if (settings_.photon_mapping && !bsdf.is_specular()) {  // ppm: merged there, and ends
-      ++w.stats.eye_ends[size_t(PathEnd::MaxDepth)];
-      return;
-    }
-    const Frame frame = Frame::from_z(w.hits.ns[i]);
-    PathEnd end =
-        continue_subpath(bsdf, TransportMode::Radiance, w.hits, i, frame, frame.to_local(w.hits.wo[i]), uc, u2, u_rr,
-                         depth, {w.eye.beta[slot], w.eye.mis[slot], w.eye.prev_p[slot], w.eye.prev_n[slot], w.eye.eta_scale[slot], 1.f},
-                         w.mis);
+    const PathEnd end = continue_subpath(
+        bsdf, TransportMode::Radiance, w.hits, i, v.frame, v.wo, s.get1d(dim + dims::kEyeBsdfComponent),
+        s.get2d(dim + dims::kEyeBsdfDirection), s.get1d(dim + dims::kEyeRoulette), depth,
+        {w.eye.beta[slot], w.eye.mis[slot], w.eye.prev_p[slot], w.eye.prev_n[slot], w.eye.eta_scale[slot], 1.f}, w.mis);
     if (end != PathEnd::Count) ++w.stats.eye_ends[size_t(end)];
-    else if (!scene_.media.empty())
-      w.eye.medium[slot] = medium_after(scene_, w.rays.geom_id[i], w.hits.ng[i], w.hits.next_d[i], w.ends.medium[i]);
+    else if (media) w.eye.medium[slot] = v.medium_towards(scene_, w.hits.next_d[i]);
   });
 }
 
@@ -289,12 +274,9 @@ void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
     w.stream.intersect(w.rays, RayKind::LightExtension);
     if (media) segment_stage(w, RayKind::LightExtension, true);
     timed(Stage::Surface, [&] { light_surface_stage(w); });
-    timed(Stage::Connect, [&] {
-      light_connect_stage(w);
+    timed(Stage::Shade, [&] {
+      light_shade_stage(w);
       if (media) light_medium_stage(w);
-    });
-    timed(Stage::Scatter, [&] {
-      light_scatter_stage(w);
       w.hits.compact(w.rays, w.active);
     });
     trace_shadows();
@@ -317,12 +299,9 @@ void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
       if (media) segment_stage(w, kind, false);
       timed(Stage::Surface, [&] { eye_surface_stage(w); });
       // (a flush of a full connection pool inside this stage is counted in it)
-      timed(Stage::Connect, [&] {
-        eye_connect_stage(w);
+      timed(Stage::Shade, [&] {
+        eye_shade_stage(w);
         if (media) eye_medium_stage(w);
-      });
-      timed(Stage::Scatter, [&] {
-        eye_scatter_stage(w);
         w.hits.compact(w.rays, w.active);
       });
       trace_shadows();

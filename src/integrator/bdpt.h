@@ -5,11 +5,14 @@
 // unweighted): a cross-check for the other integrators.
 //
 // Per wave: (1) light subpaths: emission, then bounce by bounce a surface
-// stage, a scatter stage that stores connectible vertices and prepares the
-// t = 1 camera connections, and one occlusion stream for those; (2) the light
-// vertices are grouped by slot; (3) eye subpaths: camera rays, then bounce by
-// bounce a surface stage (s = 0 emission), a shade stage that prepares the
-// s = 1 and s >= 2 connections and scatters, and one occlusion stream.
+// stage and a shade stage that, with each vertex's BSDF built once,
+// stores connectible vertices, prepares the t = 1 camera connections and
+// samples the next direction, and one occlusion stream; (2) the light
+// vertices are grouped by slot; (3) eye subpaths: camera rays, then bounce
+// by bounce a surface stage (s = 0 emission) and a shade stage that
+// prepares the s = 1 and s >= 2 connections and samples the next
+// direction, and one occlusion stream. Each connection strategy is written
+// once, for surface and medium vertices alike (bdpt_strategies.h).
 #pragma once
 
 #include <memory>
@@ -93,15 +96,13 @@ class Bdpt {
   void begin_light_subpath(BdptWave& w, uint32_t slot, const struct EmissionSample& es, MediumHandle medium,
                            const RGB& sigma_origin) const;
   void light_surface_stage(BdptWave& w) const;
-  void light_connect_stage(BdptWave& w) const;
-  void light_scatter_stage(BdptWave& w) const;
+  void light_shade_stage(BdptWave& w) const;
   void splat_stage(BdptWave& w) const;
   void group_light_vertices(BdptWave& w) const;
   // eye subpaths (bdpt.cpp)
   void start_eye_subpaths(const WaveDesc& wave, BdptWave& w) const;
   void eye_surface_stage(BdptWave& w) const;
-  void eye_connect_stage(BdptWave& w) const;
-  void eye_scatter_stage(BdptWave& w) const;
+  void eye_shade_stage(BdptWave& w) const;
   void connection_stage(BdptWave& w) const;
   // Traces the pending connections and adds what they carry.
   void flush_connections(BdptWave& w) const;

@@ -233,52 +233,41 @@ bool Bdpt::reaches_through_portal(uint32_t light, const Vec3& p, const Vec3& w_t
   return e.portal < 0 || through_portal(lights.portals[size_t(e.portal)], p, w_to_light);
 }
 
-// Stores connectible vertices and prepares their camera connections (t = 1).
-void Bdpt::light_connect_stage(BdptWave& w) const {
-  const uint32_t depth = w.depth;
+// Each light vertex on a surface, with its BSDF built (its textures
+// evaluated) once: stored for the eye subpaths, connected to the camera
+// (t = 1), then continued by sampling the BSDF with importance transport.
+void Bdpt::light_shade_stage(BdptWave& w) const {
+  const uint32_t depth = w.depth, dim = dims::vertex(depth), maxdepth = uint32_t(settings_.maxdepth);
   const bool media = !scene_.media.empty();
   for_each_binned_bsdf(w.hits, scene_, [&](uint32_t i, const auto& bsdf) {
     const uint32_t slot = w.active[i];
-    Vec2 u_lens = w.sampler[slot].get2d(dims::vertex(depth) + dims::kLightLens);
-    if (bsdf.is_specular()) return;
-    const uint32_t ld = depth + w.origin.extra_depth[slot];  // the depth path lengths count
-    const HitPool& h = w.hits;
-    if (keeps_light_vertex(ld))
-      w.vertices.push(slot, ld, w.light.beta[slot], w.light.mis[slot],
-                      {.p = h.p[i], .ng = h.ng[i], .ns = h.ns[i], .wo = h.wo[i], .uv = h.uv[i],
-                       .error_scale = h.error_scale[i], .material = h.material[i],
-                       .footprint = h.footprint.empty() ? nullptr : &h.footprint[i],
-                       .tangent = tangent_or_null(h.tangent, i), .medium = {}, .sigma_t = RGB(0.f)},
-                      !h.footprint.empty());
-    connect_camera(w, slot, ld,
-                   surface_vertex<TransportMode::Importance>(h, i, bsdf, w.rays.geom_id[i],
-                                  media ? w.ends.medium[i] : MediumHandle{}),
-                   u_lens);
-  });
-}
-
-// Samples each light subpath's next direction, with importance transport.
-void Bdpt::light_scatter_stage(BdptWave& w) const {
-  const uint32_t depth = w.depth;
-  for_each_binned_bsdf(w.hits, scene_, [&](uint32_t i, const auto& bsdf) {
-    const uint32_t slot = w.active[i];
     const PathSampler& s = w.sampler[slot];
-    float uc = s.get1d(dims::vertex(depth) + dims::kLightBsdfComponent);
-    Vec2 u2 = s.get2d(dims::vertex(depth) + dims::kLightBsdfDirection);
-    float u_rr = s.get1d(dims::vertex(depth) + dims::kLightRoulette);
-    if (depth + w.origin.extra_depth[slot] >= uint32_t(settings_.maxdepth)) {  // deeper vertices would only make paths longer than maxdepth
+    const HitPool& h = w.hits;
+    const uint32_t ld = depth + w.origin.extra_depth[slot];  // the depth path lengths count
+    const auto v = surface_vertex<TransportMode::Importance>(h, i, bsdf, w.rays.geom_id[i],
+                                                             media ? w.ends.medium[i] : MediumHandle{});
+    if (!bsdf.is_specular()) {
+      if (keeps_light_vertex(ld))
+        w.vertices.push(slot, ld, w.light.beta[slot], w.light.mis[slot],
+                        {.p = h.p[i], .ng = h.ng[i], .ns = h.ns[i], .wo = h.wo[i], .uv = h.uv[i],
+                         .error_scale = h.error_scale[i], .material = h.material[i],
+                         .footprint = h.footprint.empty() ? nullptr : &h.footprint[i],
+                         .tangent = tangent_or_null(h.tangent, i), .medium = {}, .sigma_t = RGB(0.f)},
+                        !h.footprint.empty());
+      connect_camera(w, slot, ld, v, s.get2d(dim + dims::kLightLens));
+    }
+    if (ld >= maxdepth) {  // deeper vertices would only make paths longer than maxdepth
       ++w.stats.light_ends[size_t(PathEnd::MaxDepth)];
       return;
     }
-    const Frame frame = Frame::from_z(w.hits.ns[i]);
-    PathEnd end = continue_subpath(
-        bsdf, TransportMode::Importance, w.hits, i, frame, frame.to_local(w.hits.wo[i]), uc, u2, u_rr, depth,
+    const PathEnd end = continue_subpath(
+        bsdf, TransportMode::Importance, w.hits, i, v.frame, v.wo, s.get1d(dim + dims::kLightBsdfComponent),
+        s.get2d(dim + dims::kLightBsdfDirection), s.get1d(dim + dims::kLightRoulette), depth,
         {w.light.beta[slot], w.light.mis[slot], w.light.prev_p[slot], w.light.prev_n[slot], w.light.eta_scale[slot],
          w.light.rr_scale[slot]},
         w.mis);
     if (end != PathEnd::Count) ++w.stats.light_ends[size_t(end)];
-    else if (!scene_.media.empty())
-      w.light.medium[slot] = medium_after(scene_, w.rays.geom_id[i], w.hits.ng[i], w.hits.next_d[i], w.ends.medium[i]);
+    else if (media) w.light.medium[slot] = v.medium_towards(scene_, w.hits.next_d[i]);
   });
 }
 
