@@ -138,9 +138,12 @@ float area_point_density(const ShapePools& shapes, const AreaLight& a, const Vec
   return 1.f / a.area;
 }
 
-static std::optional<LightSample> sample_area(const LightPools& L, const ShapePools& shapes, const TexturePools& tex,
-                                              const AreaLight& a,
-                                              const Vec3& p, Vec2 u) {
+// The samplers below fill a default LightSample in place and say whether
+// there is a sample: built where the caller keeps it, it is never copied
+// (copies of the optional, written field by field and read back whole,
+// were a tenth of the path tracer's time).
+static bool sample_area(const ShapePools& shapes, const TexturePools& tex, const AreaLight& a, const Vec3& p, Vec2 u,
+                        LightSample& ls) {
   const Geometry& g = shapes.geometries[a.geometry];
   SurfacePoint sp;
   float pdf;
@@ -175,43 +178,41 @@ static std::optional<LightSample> sample_area(const LightPools& L, const ShapePo
   }
   Vec3 d = sp.p - p;
   float dist2 = glm::dot(d, d);
-  if (!(dist2 > 0.f) || !std::isfinite(pdf) || pdf <= 0.f) return std::nullopt;
-  LightSample ls;
+  if (!(dist2 > 0.f) || !std::isfinite(pdf) || pdf <= 0.f) return false;
   ls.wi = d / std::sqrt(dist2);
   ls.L = area_light_Le(a, tex, sp.ng, sp.uv, -ls.wi);
   ls.pdf = pdf;
   ls.p_light = sp.p;
   ls.n_light = sp.ng;
   ls.error_scale = sp.error_scale;
-  return ls;
+  return true;
 }
 
-std::optional<LightSample> sample_light_from(const LightPools& L, const ShapePools& shapes, const TexturePools& tex,
-                                             uint32_t i, const Vec3& p, Vec2 u, float u_volume) {
+static bool sample_light_into(const LightPools& L, const ShapePools& shapes, const TexturePools& tex, uint32_t i,
+                              const Vec3& p, Vec2 u, float u_volume, LightSample& ls) {
   const LightRef r = L.all[i];
-  std::optional<LightSample> ls;
   switch (r.kind) {
     case LightKind::Volume: {
       float pdf_volume;
       const Vec3 x = sample_volume_point(L.volume[r.index], Vec3(u_volume, u.x, u.y), &pdf_volume);
       const Vec3 d = x - p;
       const float dist2 = glm::dot(d, d);
-      if (!(dist2 > 0.f) || !(pdf_volume > 0.f)) return std::nullopt;
-      LightSample s;
-      s.L = RGB(1.f);
-      s.wi = d / std::sqrt(dist2);
-      s.pdf = pdf_volume * dist2;
-      s.p_light = x;
-      s.volume = true;
-      ls = s;
+      if (!(dist2 > 0.f) || !(pdf_volume > 0.f)) return false;
+      ls.L = RGB(1.f);
+      ls.wi = d / std::sqrt(dist2);
+      ls.pdf = pdf_volume * dist2;
+      ls.p_light = x;
+      ls.volume = true;
       break;
     }
-    case LightKind::Area: ls = sample_area(L, shapes, tex, L.area[r.index], p, u); break;
+    case LightKind::Area:
+      if (!sample_area(shapes, tex, L.area[r.index], p, u, ls)) return false;
+      break;
     case LightKind::Point: {
       const PointLight& pl = L.point[r.index];
       Vec3 d = pl.p - p;
       float dist2 = glm::dot(d, d);
-      if (!(dist2 > 0.f)) return std::nullopt;
+      if (!(dist2 > 0.f)) return false;
       const Vec3 wi = d / std::sqrt(dist2);
       ls = LightSample{point_intensity(L, tex, pl, -wi) / dist2, wi, 1.f, pl.p, Vec3(0.f), max_abs_component(pl.p), true, false};
       break;
@@ -220,7 +221,7 @@ std::optional<LightSample> sample_light_from(const LightPools& L, const ShapePoo
       const SpotLight& s = L.spot[r.index];
       Vec3 d = s.p - p;
       float dist2 = glm::dot(d, d);
-      if (!(dist2 > 0.f)) return std::nullopt;
+      if (!(dist2 > 0.f)) return false;
       Vec3 wi = d / std::sqrt(dist2);
       float cos_t = glm::dot(-wi, s.frame.n);
       float falloff = glm::smoothstep(s.cos_falloff_end, s.cos_falloff_start, cos_t);
@@ -234,10 +235,10 @@ std::optional<LightSample> sample_light_from(const LightPools& L, const ShapePoo
     }
     case LightKind::Infinite: {
       const InfiniteLight& e = L.infinite[r.index];
-      LightSample s;
+      LightSample& s = ls;
       s.infinite = true;
       if (e.portal >= 0) {
-        if (!sample_portal(L.portals[size_t(e.portal)], p, u, &s.wi, &s.pdf, &s.L)) return std::nullopt;
+        if (!sample_portal(L.portals[size_t(e.portal)], p, u, &s.wi, &s.pdf, &s.L)) return false;
       } else if (e.image < 0) {
         s.wi = sample_uniform_sphere(u);
         s.pdf = uniform_sphere_pdf();
@@ -245,7 +246,7 @@ std::optional<LightSample> sample_light_from(const LightPools& L, const ShapePoo
       } else {
         float pdf_uv;
         Vec2 uv = e.distribution.sample_continuous(u, &pdf_uv);
-        if (pdf_uv == 0.f) return std::nullopt;
+        if (pdf_uv == 0.f) return false;
         Vec3 wl;
         if (e.equal_area) {
           wl = equal_area_square_to_sphere(uv);
@@ -253,29 +254,38 @@ std::optional<LightSample> sample_light_from(const LightPools& L, const ShapePoo
         } else {
           float sin_theta;
           wl = latlong_to_dir(uv, &sin_theta);
-          if (sin_theta <= 0.f) return std::nullopt;
+          if (sin_theta <= 0.f) return false;
           s.pdf = pdf_uv / (2.f * kPi * kPi * sin_theta);
         }
         s.wi = glm::normalize(e.world_from_light * wl);
         s.L = env_lookup(e, tex, uv);
       }
-      ls = s;
       break;
     }
   }
-  if (!ls || ls->pdf == 0.f) return std::nullopt;
-  ls->light = i;
+  if (ls.pdf == 0.f) return false;
+  ls.light = i;
+  return true;
+}
+
+std::optional<LightSample> sample_light_from(const LightPools& L, const ShapePools& shapes, const TexturePools& tex,
+                                             uint32_t i, const Vec3& p, Vec2 u, float u_volume) {
+  std::optional<LightSample> ls(std::in_place);
+  if (!sample_light_into(L, shapes, tex, i, p, u, u_volume, *ls)) ls.reset();
   return ls;
 }
 
 std::optional<LightSample> sample_light(const LightPools& L, const ShapePools& shapes, const TexturePools& tex,
                                         const LightSampler& sampler, const Vec3& p, const Vec3& n, float u_select,
                                         Vec2 u, float u_volume) {
+  std::optional<LightSample> ls;
   uint32_t i;
   float pmf;
-  if (!sampler.sample(p, n, u_select, &i, &pmf) || pmf == 0.f) return std::nullopt;
-  auto ls = sample_light_from(L, shapes, tex, i, p, u, u_volume);
-  if (ls) ls->pdf *= pmf;
+  if (sampler.sample(p, n, u_select, &i, &pmf) && pmf != 0.f) {
+    ls.emplace();
+    if (sample_light_into(L, shapes, tex, i, p, u, u_volume, *ls)) ls->pdf *= pmf;
+    else ls.reset();
+  }
   return ls;
 }
 
