@@ -1,4 +1,4 @@
-// Bilinear patches (scene/bilinear_patch.h): ray hits against a brute-force
+// Bilinear patches (geometry/bilinear_patch.h): ray hits against a brute-force
 // search of a fine tessellation, area and sampling density against
 // independent quadrature, emission in all three integrators, a scene
 // against pbrt-v4, and parallelograms staying triangles.
@@ -13,7 +13,7 @@
 #include "math/rng.h"
 #include "sanitizer.h"
 #include "scene/scene.h"
-#include "scene/surface.h"
+#include "geometry/surface.h"
 #include "stat_compare.h"
 
 namespace lantern {

@@ -1,4 +1,4 @@
-// Curves (scene/curve.h): pbrt's bases convert to the same curves, Embree's
+// Curves (geometry/curve.h): pbrt's bases convert to the same curves, Embree's
 // flat curves meet rays where the curve's ray-facing ribbon is (against a
 // dense search along the curve), hits carry pbrt's (u, v) and the tangent,
 // a hair ball renders as pbrt-v4 renders it, and bad curves are clear

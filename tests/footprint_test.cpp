@@ -9,7 +9,7 @@
 
 #include "lantern/image.h"
 #include "scene/scene.h"
-#include "scene/shading_geometry.h"
+#include "geometry/shading_geometry.h"
 #include "stat_compare.h"
 #include "texture/footprint.h"
 

@@ -1,8 +1,8 @@
-// Loop subdivision (scene/loop_subdivision.h): the limit of a vertex does
+// Loop subdivision (geometry/loop_subdivision.h): the limit of a vertex does
 // not depend on how far the mesh was refined, flat nets stay flat with
 // pbrt's orientation, bad topology gives clear errors, and a scene of
 // subdivision surfaces renders as pbrt-v4 renders it.
-#include "scene/loop_subdivision.h"
+#include "geometry/loop_subdivision.h"
 
 #include <gtest/gtest.h>
 

@@ -10,7 +10,7 @@
 #include "light/light_sampler.h"
 #include "light/lights.h"
 #include "math/rng.h"
-#include "scene/surface.h"
+#include "geometry/surface.h"
 #include "expect_error.h"
 #include "sanitizer.h"
 #include "stat_compare.h"

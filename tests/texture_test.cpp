@@ -12,7 +12,7 @@
 #include "material/bsdf_kernel.h"
 #include "math/rng.h"
 #include "scene/scene.h"
-#include "scene/surface.h"
+#include "geometry/surface.h"
 #include "texture/noise.h"
 
 namespace lantern {

@@ -3,7 +3,7 @@
 #include <bit>
 
 #include "math/rng.h"
-#include "scene/surface.h"
+#include "geometry/surface.h"
 
 namespace lantern {
 

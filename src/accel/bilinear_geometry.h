@@ -7,7 +7,7 @@
 #include <embree3/rtcore.h>
 
 #include "accel/alpha_filter.h"
-#include "scene/bilinear_patch.h"
+#include "geometry/bilinear_patch.h"
 
 namespace lantern {
 

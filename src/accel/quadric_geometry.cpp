@@ -1,7 +1,7 @@
 #include "accel/quadric_geometry.h"
 
 #include "accel/user_geometry.h"
-#include "scene/surface.h"
+#include "geometry/surface.h"
 
 namespace lantern {
 

@@ -9,7 +9,7 @@
 #include <embree3/rtcore.h>
 
 #include "accel/alpha_filter.h"
-#include "scene/quadric.h"
+#include "geometry/quadric.h"
 
 namespace lantern {
 

@@ -1,6 +1,6 @@
 // Images in and out, through the image module (imageio/): OpenImageIO is
 // loaded the first time an image is read or written.
-#include "imageio/image_io_module.h"
+#include "texture/image_io_module.h"
 #include "lantern/image.h"
 
 namespace lantern {

@@ -7,9 +7,17 @@
 #include <cmath>
 
 #include "math/sampling.h"
-#include "scene/scene.h"
+#include "film/gaussian_filter.h"
 
 namespace lantern {
+
+// The scene's pixel filter (pbrt-v4's Filter directive).
+struct PixelFilter {
+  enum class Type { Box, Triangle, Gaussian } type = Type::Gaussian;
+  Vec2 radius{1.5f};
+  float sigma = 0.5f;
+  GaussianFilterTable gaussian[2];  // per axis, for radius and sigma (pbrt-v4's defaults here)
+};
 
 inline Vec2 sample_pixel_filter(const PixelFilter& f, Vec2 u) {
   switch (f.type) {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "imageio/image_io_module.h"
+#include "texture/image_io_module.h"
 
 namespace lantern {
 namespace {

@@ -2,7 +2,7 @@
 // ImageIoModule table by oiio_module.cpp. Compiled into the module only.
 #pragma once
 
-#include "imageio/image_io_module.h"
+#include "texture/image_io_module.h"
 
 namespace lantern::oiio {
 

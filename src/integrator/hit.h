@@ -8,7 +8,7 @@
 
 #include "accel/ray_batch.h"
 #include "material/material.h"
-#include "scene/surface.h"
+#include "geometry/surface.h"
 #include "texture/mapping.h"
 
 namespace lantern {

@@ -8,7 +8,7 @@
 #include "material/bump.h"
 #include "material/mix.h"
 #include "scene/scene.h"
-#include "scene/shading_geometry.h"
+#include "geometry/shading_geometry.h"
 #include "texture/footprint.h"
 
 #include <optional>

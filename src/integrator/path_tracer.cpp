@@ -8,7 +8,7 @@
 #include "integrator/shade.h"
 #include "integrator/volume_lights.h"
 #include "sampler/dimensions.h"
-#include "scene/surface.h"
+#include "geometry/surface.h"
 
 namespace lantern {
 

@@ -1,7 +1,7 @@
 #include "light/emission.h"
 
 #include "math/sampling.h"
-#include "scene/surface.h"
+#include "geometry/surface.h"
 
 namespace lantern {
 

@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "scene/shapes.h"
-#include "scene/surface.h"
+#include "geometry/surface.h"
 
 namespace lantern {
 

@@ -2,7 +2,7 @@
 
 #include "light/light_sampler.h"
 #include "math/sampling.h"
-#include "scene/surface.h"
+#include "geometry/surface.h"
 #include "texture/texture.h"
 
 namespace lantern {

@@ -8,7 +8,7 @@
 #pragma once
 
 #include "material/material.h"
-#include "scene/shading_geometry.h"
+#include "geometry/shading_geometry.h"
 
 namespace lantern {
 

@@ -1,5 +1,5 @@
 #include "scene/builder.h"
-#include "scene/loop_subdivision.h"
+#include "geometry/loop_subdivision.h"
 
 #include <tbb/parallel_for.h>
 
@@ -12,7 +12,7 @@
 #include "material/fresnel.h"
 #include "sampler/sampler.h"
 #include "scene/ply.h"
-#include "scene/surface.h"
+#include "geometry/surface.h"
 
 namespace lantern {
 

@@ -6,7 +6,7 @@
 
 #include "accel/embree_scene.h"
 #include "camera/camera.h"
-#include "film/gaussian_filter.h"
+#include "film/pixel_filter.h"
 #include "lantern/scene.h"
 #include "light/lights.h"
 #include "material/material.h"
@@ -15,13 +15,6 @@
 #include "texture/texture.h"
 
 namespace lantern {
-
-struct PixelFilter {
-  enum class Type { Box, Triangle, Gaussian } type = Type::Gaussian;
-  Vec2 radius{1.5f};
-  float sigma = 0.5f;
-  GaussianFilterTable gaussian[2];  // per axis, for radius and sigma (pbrt-v4's defaults here)
-};
 
 struct Scene {
   SceneSettings settings;

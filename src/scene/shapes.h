@@ -10,29 +10,12 @@
 #include "material/material.h"
 #include "math/common.h"
 #include "medium/medium.h"
-#include "scene/bilinear_patch.h"
-#include "scene/curve.h"
-#include "scene/quadric.h"
+#include "geometry/bilinear_patch.h"
+#include "geometry/curve.h"
+#include "geometry/quadric.h"
+#include "geometry/triangle_mesh.h"
 
 namespace lantern {
-
-struct TriangleMesh {
-  // World-space positions. Embree reads 16 bytes per vertex, so the vector
-  // carries one padding element past `vertex_count`.
-  std::vector<Vec3> positions;
-  std::vector<glm::uvec3> triangles;
-  std::vector<Vec3> normals;  // empty, or one per vertex (already flipped by ReverseOrientation)
-  std::vector<Vec2> uvs;      // empty, or one per vertex
-  uint32_t vertex_count = 0;
-  bool flip_normal = false;  // ReverseOrientation xor a handedness-swapping transform (meshes without N)
-};
-
-struct Sphere {
-  Vec3 center;
-  float radius;
-  bool flip_normal;
-  Mat4 object_from_world;  // for (u, v): pbrt's parameterisation is in object space
-};
 
 // Sphere: a full sphere under uniform scale, traced by Embree's own sphere
 // primitive; every other sphere, cylinder and disk is a Quadric. Curve: a

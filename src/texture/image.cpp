@@ -1,6 +1,6 @@
 #include "texture/image.h"
 
-#include "imageio/image_io_module.h"
+#include "texture/image_io_module.h"
 
 namespace lantern {
 

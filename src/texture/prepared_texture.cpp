@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "imageio/image_io_module.h"
+#include "texture/image_io_module.h"
 
 namespace lantern {
 namespace fs = std::filesystem;

@@ -1,7 +1,7 @@
-#include "scene/curve.h"
+#include "geometry/curve.h"
 
 #include "math/frame.h"
-#include "scene/surface.h"
+#include "geometry/surface.h"
 
 namespace lantern {
 

@@ -4,7 +4,8 @@
 // normal, flipped by ReverseOrientation or a handedness-swapping transform).
 #pragma once
 
-#include "scene/shapes.h"
+#include "geometry/quadric.h"
+#include "geometry/triangle_mesh.h"
 
 namespace lantern {
 

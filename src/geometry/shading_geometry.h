@@ -9,7 +9,7 @@
 // equations; for the other quadrics likewise.
 #pragma once
 
-#include "scene/surface.h"
+#include "geometry/surface.h"
 
 namespace lantern {
 

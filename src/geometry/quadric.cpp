@@ -1,4 +1,4 @@
-#include "scene/quadric.h"
+#include "geometry/quadric.h"
 
 #include <glm/gtc/matrix_inverse.hpp>
 

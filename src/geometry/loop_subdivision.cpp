@@ -1,4 +1,4 @@
-#include "scene/loop_subdivision.h"
+#include "geometry/loop_subdivision.h"
 
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>

@@ -1,8 +1,8 @@
-#include "scene/bilinear_patch.h"
+#include "geometry/bilinear_patch.h"
 
 #include <cmath>
 
-#include "scene/surface.h"
+#include "geometry/surface.h"
 
 namespace lantern {
 
