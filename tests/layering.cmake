@@ -12,18 +12,15 @@ set(LAYERS
     "texture"
     "imageio|medium"
     "material"
-    "film"
+    "film|entity"
     "light"
     "accel"
     "scene"
     "integrator"
     "distributed"
     "app")
-# Known exceptions, to be removed by splitting the shape pools (the table
-# from an Embree geometry to its entity's components, which names material
-# and medium handles) out of scene/, below accel and light: each entry is
-# "folder>included/header.h".
-set(EXCEPTIONS "accel>scene/shapes.h" "light>scene/shapes.h")
+# Known exceptions, each "folder>included/header.h" (none today).
+set(EXCEPTIONS "")
 
 cmake_minimum_required(VERSION 3.20)
 

@@ -11,7 +11,7 @@
 
 #include <embree3/rtcore.h>
 
-#include "scene/shapes.h"
+#include "entity/shapes.h"
 
 namespace lantern {
 

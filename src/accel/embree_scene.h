@@ -14,7 +14,7 @@
 #include "accel/alpha_filter.h"
 #include "accel/bilinear_geometry.h"
 #include "accel/quadric_geometry.h"
-#include "scene/shapes.h"
+#include "entity/shapes.h"
 
 namespace lantern {
 

@@ -5,7 +5,7 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "scene/shapes.h"
+#include "entity/shapes.h"
 #include "geometry/surface.h"
 
 namespace lantern {

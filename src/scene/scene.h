@@ -11,7 +11,7 @@
 #include "light/lights.h"
 #include "material/material.h"
 #include "medium/medium.h"
-#include "scene/shapes.h"
+#include "entity/shapes.h"
 #include "texture/texture.h"
 
 namespace lantern {

@@ -7,13 +7,13 @@
 #include <glm/gtc/type_precision.hpp>
 #include <vector>
 
-#include "material/material.h"
-#include "math/common.h"
-#include "medium/medium.h"
 #include "geometry/bilinear_patch.h"
 #include "geometry/curve.h"
 #include "geometry/quadric.h"
 #include "geometry/triangle_mesh.h"
+#include "material/material.h"
+#include "math/common.h"
+#include "medium/medium.h"
 
 namespace lantern {
 
