@@ -128,7 +128,6 @@ class Bdpt {
   void eye_medium_stage(BdptWave& w) const;
   void light_medium_stage(BdptWave& w) const;
   void light_medium_arrival(BdptWave& w, uint32_t i) const;
-  MediumHandle light_start_medium(uint32_t light, const Vec3& n, const Vec3& d) const;
   void trace_connections(BdptWave& w) const;
   void add_emission(BdptWave& w, uint32_t slot, const RGB& unweighted, float weight) const;
   void add_volume_emission(BdptWave& w, uint32_t i, const RGB& beta_before) const;
@@ -138,7 +137,6 @@ class Bdpt {
     RGB sigma_t{0.f};
   };
   void complete_volume_light_sample(LightSample& ls, uint32_t depth, VolumeSampleEnd* end) const;
-  float direct_density(const LightSample& ls, float dist2) const;
 
   // Whether a light vertex at path depth ld is stored for the eye
   // subpaths, on a surface or in a medium alike: s >= 2 connections need
@@ -163,9 +161,6 @@ class Bdpt {
     return settings_.connections ? weight(w) : mis_weight_hit_light_merging_only(m);
   }
 
-  // Whether light from `light` (index into LightPools::all) reaches p along -w_to_light: false
-  // only for a portal light whose window does not let it through.
-  bool reaches_through_portal(uint32_t light, const Vec3& p, const Vec3& w_to_light) const;
   float first_hit_direct_pdf(const LightOriginPool& o, uint32_t slot, const Vec3& p, const Vec3& ns,
                              const Vec3& p_light) const;
 

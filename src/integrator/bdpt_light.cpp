@@ -6,7 +6,6 @@
 #include "integrator/hit.h"
 #include "integrator/hit_material.h"
 #include "integrator/shade.h"
-#include "integrator/volume_lights.h"
 #include "light/emission.h"
 #include "sampler/dimensions.h"
 
@@ -39,7 +38,7 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
       w.volume_slots.push_back(slot);
       continue;
     }
-    begin_light_subpath(w, slot, *es, !scene_.media.empty() ? light_start_medium(es->light, es->n, es->d) : MediumHandle{},
+    begin_light_subpath(w, slot, *es, !scene_.media.empty() ? emission_medium(lights, scene_.shapes, es->light, es->n, es->d) : MediumHandle{},
                         RGB(0.f));
   }
   if (!in_volume.empty()) start_volume_subpaths(w);
@@ -62,7 +61,7 @@ void Bdpt::start_volume_subpaths(BdptWave& w) const {
     EmissionSample es = w.volume_starts[k];
     MediumHandle m;
     RGB sigma_t;
-    complete_volume_sample(scene_, &es.Le, es.p, es.light, &m, &sigma_t);
+    complete_volume_sample(scene_.lights, scene_.media, &es.Le, es.p, es.light, &m, &sigma_t);
     if (w.volume_media[k] != m || is_black(es.Le)) continue;
     w.origin.extra_depth[w.volume_slots[k]] = 1;
     begin_light_subpath(w, w.volume_slots[k], es, m, sigma_t);
@@ -89,15 +88,8 @@ void Bdpt::begin_light_subpath(BdptWave& w, uint32_t slot, const EmissionSample&
   o.infinite[slot] = es.infinite;
   // Next-event estimation's density of this light point: for lights with a
   // position it depends on where it is seen from (the area density, and
-  // the light sampler's choice), so it waits for the first hit.
-  const LightKind kind = lights.all[es.light].kind;
-  const float nee_pmf = light_sampler_.pmf_infinite(es.light);  // used for lights at infinity only
-  // A portal light's next-event density depends on the point lit (its window) too.
-  const bool portal = kind == LightKind::Infinite && lights.infinite[lights.all[es.light].index].portal >= 0;
-  o.direct_pdf_A[slot] = portal                        ? -1.f
-                         : kind == LightKind::Infinite ? nee_pmf * es.pdf_dir
-                         : kind == LightKind::Distant ? nee_pmf
-                                                       : -1.f;
+  // the light sampler's choice), so it waits for the first hit (-1).
+  o.direct_pdf_A[slot] = emission_direct_pdf_fixed(lights, light_sampler_, es);
   RGB beta = es.Le * (cos_light / emission_pdf_W);
   w.light.beta[slot] = beta;
   w.light.rr_scale[slot] = max_component(beta) > 0.f ? 1.f / max_component(beta) : 0.f;
@@ -128,7 +120,7 @@ void Bdpt::begin_light_subpath(BdptWave& w, uint32_t slot, const EmissionSample&
         k.s = k.t = 1;
         k.o = on_surface ? offset_ray_origin(es.p, es.n, es.error_scale, cs->wi) : es.p;
         k.d = cs->p_lens - k.o;
-        if (media) k.start = es.volume ? medium : light_start_medium(es.light, es.n, cs->wi);
+        if (media) k.start = es.volume ? medium : emission_medium(lights, scene_.shapes, es.light, es.n, cs->wi);
         push_connection(w, slot, k);
       }
     }
@@ -167,7 +159,7 @@ void Bdpt::light_surface_stage(BdptWave& w) const {
     float cos_in = std::fabs(glm::dot(sp.ng, d));
     if (!(cos_in > 0.f) || !(dist2 > 0.f)) continue;
     // Light from a portal light arrives only through its window.
-    if (w.depth == 1 && !reaches_through_portal(w.origin.light[slot], sp.p, -d)) continue;
+    if (w.depth == 1 && !reaches_through_portal(scene_.lights, w.origin.light[slot], sp.p, -d)) continue;
     Footprint fp;
     MaterialHandle material = hit_material(scene_, footprints_, w.rays, i, d, &sp, &fp);
     w.hits.store(i, sp, d, material, footprints_.enabled() ? &fp : nullptr);
@@ -193,7 +185,7 @@ void Bdpt::light_medium_arrival(BdptWave& w, uint32_t i) const {
   const Vec3 d = glm::normalize(w.rays.direction(i));
   const float dist2 = glm::dot(p - prev, p - prev);
   if (!(dist2 > 0.f)) return;
-  if (w.depth == 1 && !reaches_through_portal(w.origin.light[slot], p, -d)) return;
+  if (w.depth == 1 && !reaches_through_portal(scene_.lights, w.origin.light[slot], p, -d)) return;
   MisState& m = w.light.mis[slot];
   if (w.depth == 1) {
     const LightOriginPool& o = w.origin;
@@ -213,24 +205,8 @@ void Bdpt::light_medium_arrival(BdptWave& w, uint32_t i) const {
 float Bdpt::first_hit_direct_pdf(const LightOriginPool& o, uint32_t slot, const Vec3& p, const Vec3& ns,
                                  const Vec3& p_light) const {
   if (o.direct_pdf_A[slot] >= 0.f) return o.direct_pdf_A[slot];  // at infinity: independent of p
-  const LightPools& lights = scene_.lights;
-  const uint32_t light = o.light[slot];
-  if (lights.all[light].kind == LightKind::Infinite)  // a portal light, seen through its window from p
-    return light_sampler_.pmf_infinite(light) *
-           infinite_light_pdf(lights, scene_.textures, lights.all[light].index, p, glm::normalize(p_light - p));
-  if (lights.all[light].kind == LightKind::Volume)  // per unit volume
-    return light_sampler_.pmf(p, ns, light) * volume_light_density(scene_, light, p_light);
-  if (lights.all[light].kind == LightKind::Area)
-    return area_light_direct_pdf_area(lights, scene_.shapes, light_sampler_, lights.all[light].index, p, ns, p_light,
-                                      o.n[slot]);
-  return light_sampler_.pmf(p, ns, light);  // point and spot lights: a delta position
-}
-
-bool Bdpt::reaches_through_portal(uint32_t light, const Vec3& p, const Vec3& w_to_light) const {
-  const LightPools& lights = scene_.lights;
-  if (lights.all[light].kind != LightKind::Infinite) return true;
-  const InfiniteLight& e = lights.infinite[lights.all[light].index];
-  return e.portal < 0 || through_portal(lights.portals[size_t(e.portal)], p, w_to_light);
+  return emission_direct_pdf_from(scene_.lights, scene_.shapes, scene_.textures, light_sampler_, o.light[slot], o.n[slot],
+                                  p, ns, p_light);
 }
 
 // Each light vertex on a surface, with its BSDF built (its textures

@@ -92,21 +92,11 @@ float Bdpt::volume_number(const BdptWave& w, uint32_t slot) const {
 // vertex at eye depth `depth` (paths ending on volume emission have at
 // most maxdepth segments; a longer one gets L = 0).
 void Bdpt::complete_volume_light_sample(LightSample& ls, uint32_t depth, VolumeSampleEnd* end) const {
-  if (int(depth) + 1 > settings_.maxdepth) {
+  if (!volume_sample_allowed(int(depth), settings_.maxdepth)) {
     ls.L = RGB(0.f);
     return;
   }
-  complete_volume_sample(scene_, &ls.L, ls.p_light, ls.light, &end->medium, &end->sigma_t);
-}
-
-// Next-event estimation's density of a light sample's point: per unit
-// area on an area light, per unit volume in a volume light, else the pmf.
-float Bdpt::direct_density(const LightSample& ls, float dist2) const {
-  switch (scene_.lights.all[ls.light].kind) {
-    case LightKind::Area: return ls.pdf * std::fabs(glm::dot(ls.n_light, ls.wi)) / dist2;
-    case LightKind::Volume: return ls.pdf / dist2;
-    default: return ls.pdf;
-  }
+  complete_volume_sample(scene_.lights, scene_.media, &ls.L, ls.p_light, ls.light, &end->medium, &end->sigma_t);
 }
 
 // s = 0 at an eye vertex in an emissive medium (beta_before: the
@@ -123,7 +113,7 @@ void Bdpt::add_volume_emission(BdptWave& w, uint32_t i, const RGB& beta_before) 
   float wt = 1.f;
   const MisState& m = w.eye.mis[slot];
   if (light >= 0) {
-    const float density = volume_light_density(scene_, light, x);
+    const float density = volume_light_density(scene_.lights, light, x);
     const float pos_pdf = lights.selection.discrete_pmf(size_t(light)) * density;  // light subpaths choose by power
     wt = w.depth == 1 ? mis_weight_hit_light_direct(m, pos_pdf, w.mis)
                       : mis_weight_hit_light(m, light_sampler_.pmf(w.eye.prev_p[slot], w.eye.prev_n[slot], uint32_t(light)) * density,
@@ -241,21 +231,6 @@ void Bdpt::light_medium_stage(BdptWave& w) const {
     const PathEnd end = scatter_in_medium(w, w.light, i, s.get2d(dim + dims::kLightBsdfDirection),
                                           s.get1d(dim + dims::kLightRoulette), true);
     if (end != PathEnd::Count) ++w.stats.light_ends[size_t(end)];
-  }
-}
-
-// The medium a light subpath starts in, leaving its light along d.
-MediumHandle Bdpt::light_start_medium(uint32_t light, const Vec3& n, const Vec3& d) const {
-  const LightPools& L = scene_.lights;
-  const LightRef& ref = L.all[light];
-  switch (ref.kind) {
-    case LightKind::Point: return L.point[ref.index].medium;
-    case LightKind::Spot: return L.spot[ref.index].medium;
-    case LightKind::Area: {
-      const MediumInterface& mi = scene_.shapes.geometries[L.area[ref.index].geometry].media;
-      return glm::dot(n, d) > 0.f ? mi.outside : mi.inside;
-    }
-    default: return {};  // lights at infinity emit into vacuum (docs/media.md)
   }
 }
 

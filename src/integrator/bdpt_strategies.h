@@ -44,7 +44,7 @@ void Bdpt::next_event(BdptWave& w, uint32_t slot, const Vertex& v, float u_light
   if (!ls || is_black(ls->L)) return;
   const VertexEval e = v.evaluate(ls->wi);
   const float dist2 = ls->infinite ? 1.f : glm::dot(ls->p_light - v.p, ls->p_light - v.p);
-  const float direct_pdf_A = direct_density(*ls, dist2);
+  const float direct_pdf_A = light_sample_density_at_light(sc.lights, *ls, dist2);
   // A point exactly on a sphere light's silhouette (reached only through
   // rounding: a set of measure zero) has zero density per area, and its
   // MIS ratios would be 0/0.

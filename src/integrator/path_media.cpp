@@ -6,7 +6,6 @@
 #include "integrator/path_tracer.h"
 #include "integrator/path_next_event.h"
 #include "integrator/path_wave.h"
-#include "integrator/volume_lights.h"
 #include "medium/henyey_greenstein.h"
 #include "sampler/dimensions.h"
 
@@ -43,7 +42,7 @@ void PathTracer::add_volume_emission(PathWave& w, uint32_t i, const RGB& beta_be
     const Vec3 d = x - w.prev_p[slot];
     const float light_pdf = light < 0 ? 0.f
                                       : light_sampler_.pmf(w.prev_p[slot], w.prev_n[slot], uint32_t(light)) *
-                                            volume_light_density(scene_, light, x) * glm::dot(d, d);
+                                            volume_light_density(scene_.lights, light, x) * glm::dot(d, d);
     weight = power_heuristic(prev_pdf, light_pdf);
   }
   const RGB c = beta_before * w.ends.emission[i] * weight;

@@ -21,9 +21,9 @@ void path_next_event(const Scene& sc, const LightSampler& light_sampler, PathWav
                          u_light2, u_volume);
   MediumHandle expect;
   RGB sigma_end(0.f);
-  if (ls && ls->volume) {  // (volume_lights.h: such paths have at most maxdepth segments)
-    if (int(w.depth) + 2 > maxdepth) return;
-    complete_volume_sample(sc, &ls->L, ls->p_light, ls->light, &expect, &sigma_end);
+  if (ls && ls->volume) {
+    if (!volume_sample_allowed(int(w.depth) + 1, maxdepth)) return;  // (w.depth counts from 0)
+    complete_volume_sample(sc.lights, sc.media, &ls->L, ls->p_light, ls->light, &expect, &sigma_end);
   }
   if (!ls || is_black(ls->L)) return;
   const VertexEval e = v.evaluate(ls->wi, false);

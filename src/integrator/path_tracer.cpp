@@ -6,7 +6,6 @@
 #include "integrator/path_next_event.h"
 #include "integrator/path_wave.h"
 #include "integrator/shade.h"
-#include "integrator/volume_lights.h"
 #include "sampler/dimensions.h"
 #include "geometry/surface.h"
 

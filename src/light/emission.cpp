@@ -194,4 +194,28 @@ float area_light_direct_pdf_area(const LightPools& L, const ShapePools& shapes, 
   return area_light_pdf(L, shapes, sampler, area_index, p, n, p_light, n_light) * cos_l / dist2;
 }
 
+float emission_direct_pdf_fixed(const LightPools& L, const LightSampler& sampler, const EmissionSample& es) {
+  const LightRef& ref = L.all[es.light];
+  const float nee_pmf = sampler.pmf_infinite(es.light);  // used for lights at infinity only
+  // A portal light's next-event density depends on the point lit (its window) too.
+  const bool portal = ref.kind == LightKind::Infinite && L.infinite[ref.index].portal >= 0;
+  return portal                            ? -1.f
+         : ref.kind == LightKind::Infinite ? nee_pmf * es.pdf_dir
+         : ref.kind == LightKind::Distant  ? nee_pmf
+                                           : -1.f;
+}
+
+float emission_direct_pdf_from(const LightPools& L, const ShapePools& shapes, const TexturePools& tex,
+                               const LightSampler& sampler, uint32_t light, const Vec3& n_light, const Vec3& p,
+                               const Vec3& ns, const Vec3& p_light) {
+  const LightRef& ref = L.all[light];
+  switch (ref.kind) {
+    case LightKind::Infinite:  // a portal light, seen through its window from p
+      return sampler.pmf_infinite(light) * infinite_light_pdf(L, tex, ref.index, p, glm::normalize(p_light - p));
+    case LightKind::Volume: return sampler.pmf(p, ns, light) * volume_light_density(L, light, p_light);  // per unit volume
+    case LightKind::Area: return area_light_direct_pdf_area(L, shapes, sampler, ref.index, p, ns, p_light, n_light);
+    default: return sampler.pmf(p, ns, light);  // point and spot lights: a delta position
+  }
+}
+
 }  // namespace lantern

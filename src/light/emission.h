@@ -50,4 +50,19 @@ float area_light_direct_pdf_area(const LightPools& lights, const ShapePools& sha
                                  uint32_t area_index, const Vec3& p, const Vec3& n, const Vec3& p_light,
                                  const Vec3& n_light);
 
+// Next-event estimation's density of the point a light subpath started
+// from, as the first vertex it reaches would have sampled it (the light
+// subpath's MIS start, Georgiev 2012's dVCM of the light's vertex). For
+// lights at infinity without a portal it does not depend on that vertex:
+// emission_direct_pdf_fixed gives it (the pmf, times the direction's
+// density for an environment); for every other light it returns -1, and
+// emission_direct_pdf_from gives it for the vertex p (shading normal ns,
+// zero in a medium): per unit area on an area light of normal n_light at
+// p_light, per unit volume in a volume light, the pmf for a delta
+// position, and a portal light's density through its window.
+float emission_direct_pdf_fixed(const LightPools& lights, const LightSampler& sampler, const EmissionSample& es);
+float emission_direct_pdf_from(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex,
+                               const LightSampler& sampler, uint32_t light, const Vec3& n_light, const Vec3& p,
+                               const Vec3& ns, const Vec3& p_light);
+
 }  // namespace lantern

@@ -352,4 +352,48 @@ float infinite_lights_pdf(const LightPools& L, const TexturePools& tex, const Li
   return pdf;
 }
 
+MediumHandle emission_medium(const LightPools& L, const ShapePools& shapes, uint32_t light, const Vec3& n,
+                             const Vec3& d) {
+  const LightRef& ref = L.all[light];
+  switch (ref.kind) {
+    case LightKind::Point: return L.point[ref.index].medium;
+    case LightKind::Spot: return L.spot[ref.index].medium;
+    case LightKind::Area: {
+      const MediumInterface& mi = shapes.geometries[L.area[ref.index].geometry].media;
+      return glm::dot(n, d) > 0.f ? mi.outside : mi.inside;
+    }
+    case LightKind::Volume: return L.volume[ref.index].medium;
+    default: return {};  // lights at infinity emit into vacuum (docs/media.md)
+  }
+}
+
+float light_sample_density_at_light(const LightPools& L, const LightSample& ls, float dist2) {
+  switch (L.all[ls.light].kind) {
+    case LightKind::Area: return ls.pdf * std::fabs(glm::dot(ls.n_light, ls.wi)) / dist2;
+    case LightKind::Volume: return ls.pdf / dist2;
+    default: return ls.pdf;
+  }
+}
+
+bool reaches_through_portal(const LightPools& L, uint32_t light, const Vec3& p, const Vec3& w_to_light) {
+  if (L.all[light].kind != LightKind::Infinite) return true;
+  const InfiniteLight& e = L.infinite[L.all[light].index];
+  return e.portal < 0 || through_portal(L.portals[size_t(e.portal)], p, w_to_light);
+}
+
+void complete_volume_sample(const LightPools& L, const MediumPools& media, RGB* Li, const Vec3& p, uint32_t light,
+                            MediumHandle* m, RGB* sigma_t) {
+  const VolumeLight& v = L.volume[L.all[light].index];
+  RGB a, s;
+  media.coefficients_at(v.medium, p, &a, &s);
+  *Li *= a * media.Le(v.medium, p);
+  *m = v.medium;
+  *sigma_t = a + s;
+}
+
+float volume_light_density(const LightPools& L, int64_t light, const Vec3& p) {
+  if (light < 0) return 0.f;
+  return volume_point_density(L.volume[L.all[size_t(light)].index], p);
+}
+
 }  // namespace lantern

@@ -169,4 +169,32 @@ float infinite_light_pdf(const LightPools& lights, const TexturePools& tex, uint
 // leaves infinite light `index`: a portal light draws from its whole map.
 float infinite_light_emission_dir_pdf(const LightPools& lights, const TexturePools& tex, uint32_t index, const Vec3& w);
 
+// What the integrators ask of a light whatever its kind, answered here so
+// that they never switch on LightKind:
+//
+// The medium light `light` (index into `all`) emits into along d from a
+// point of normal n: a point or spot light's own, the side of an area
+// light's shape that d leaves to; lights at infinity emit into vacuum
+// (docs/media.md), and a volume light's is its medium's (its samples
+// carry it).
+MediumHandle emission_medium(const LightPools& lights, const ShapePools& shapes, uint32_t light, const Vec3& n,
+                             const Vec3& d);
+// Next-event estimation's density of light sample ls per unit area on an
+// area light, per unit volume in a volume light, else (delta positions,
+// lights at infinity) its own; dist2: the squared distance to the sample's
+// point (1 at infinity).
+float light_sample_density_at_light(const LightPools& lights, const LightSample& ls, float dist2);
+// Whether light from `light` reaches p along -w_to_light: false only for a
+// portal light whose window does not let it through.
+bool reaches_through_portal(const LightPools& lights, uint32_t light, const Vec3& p, const Vec3& w_to_light);
+// A volume light's sample carries L = 1 at its point: multiplies *L by
+// sigma_a Le there, as the light's medium has it; *m is the light's medium
+// and *sigma_t the extinction there. Whether the point really lies in that
+// medium is decided by the ray that reaches it.
+void complete_volume_sample(const LightPools& lights, const MediumPools& media, RGB* L, const Vec3& p, uint32_t light,
+                            MediumHandle* m, RGB* sigma_t);
+// The density per unit volume with which a volume light emits from p
+// (without a selection pmf); zero when light `light` (or -1) is not one.
+float volume_light_density(const LightPools& lights, int64_t light, const Vec3& p);
+
 }  // namespace lantern
