@@ -155,22 +155,15 @@ struct MaterialPools {
   std::vector<MixMaterial> mix;
   std::vector<BumpParams> bumps;  // only for materials with a displacement or normal map
 
+  // Where a concrete material keeps the index of its bump or normal map
+  // (into `bumps`, -1: none), or nullptr for the kinds that take none
+  // (hair, as in pbrt-v4; mixes, whose materials keep their own).
+  const int32_t* bump_index(MaterialHandle m) const { return bump_index_of(*this, m); }
+  int32_t* bump_index(MaterialHandle m) { return bump_index_of(*this, m); }
   // The bump or normal map of a concrete material, or nullptr.
   const BumpParams* bump(MaterialHandle m) const {
-    int32_t b = -1;
-    switch (m.kind()) {
-      case MaterialKind::Diffuse: b = diffuse[m.index()].bump; break;
-      case MaterialKind::Conductor: b = conductor[m.index()].bump; break;
-      case MaterialKind::Dielectric: b = dielectric[m.index()].bump; break;
-      case MaterialKind::CoatedDiffuse: b = coated_diffuse[m.index()].bump; break;
-      case MaterialKind::CoatedConductor: b = coated_conductor[m.index()].bump; break;
-      case MaterialKind::DiffuseTransmission: b = diffuse_transmission[m.index()].bump; break;
-      case MaterialKind::ThinDielectric: b = thin_dielectric[m.index()].bump; break;
-      case MaterialKind::Hair:
-      case MaterialKind::Mix:
-      case MaterialKind::Interface: break;
-    }
-    return b < 0 ? nullptr : &bumps[size_t(b)];
+    const int32_t* b = bump_index(m);
+    return !b || *b < 0 ? nullptr : &bumps[size_t(*b)];
   }
 
   bool has(MaterialKind k) const {
@@ -187,6 +180,24 @@ struct MaterialPools {
       case MaterialKind::Interface: return false;
     }
     return false;
+  }
+
+ private:
+  template <class Pools>
+  static auto bump_index_of(Pools& p, MaterialHandle m) -> decltype(&p.diffuse[0].bump) {
+    switch (m.kind()) {
+      case MaterialKind::Diffuse: return &p.diffuse[m.index()].bump;
+      case MaterialKind::Conductor: return &p.conductor[m.index()].bump;
+      case MaterialKind::Dielectric: return &p.dielectric[m.index()].bump;
+      case MaterialKind::CoatedDiffuse: return &p.coated_diffuse[m.index()].bump;
+      case MaterialKind::CoatedConductor: return &p.coated_conductor[m.index()].bump;
+      case MaterialKind::DiffuseTransmission: return &p.diffuse_transmission[m.index()].bump;
+      case MaterialKind::ThinDielectric: return &p.thin_dielectric[m.index()].bump;
+      case MaterialKind::Hair:
+      case MaterialKind::Mix:
+      case MaterialKind::Interface: break;
+    }
+    return nullptr;
   }
 };
 

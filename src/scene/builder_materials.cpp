@@ -78,21 +78,8 @@ MaterialHandle SceneBuilder::material(const std::string& type, const ParamSet& p
   MaterialHandle h = concrete_material(type, ps);
   if (h.kind() == MaterialKind::Interface) return h;
   if (int32_t b = bump_map(ps, base_dir); b >= 0) {
-    MaterialPools& m = scene_.materials;
-    switch (h.kind()) {
-      case MaterialKind::Diffuse: m.diffuse[h.index()].bump = b; break;
-      case MaterialKind::Conductor: m.conductor[h.index()].bump = b; break;
-      case MaterialKind::Dielectric: m.dielectric[h.index()].bump = b; break;
-      case MaterialKind::CoatedDiffuse: m.coated_diffuse[h.index()].bump = b; break;
-      case MaterialKind::CoatedConductor: m.coated_conductor[h.index()].bump = b; break;
-      case MaterialKind::DiffuseTransmission: m.diffuse_transmission[h.index()].bump = b; break;
-      case MaterialKind::ThinDielectric: m.thin_dielectric[h.index()].bump = b; break;
-      case MaterialKind::Hair:
-        warn(ps.where, "hair takes no bump or normal map (nor does it in pbrt-v4); ignored");
-        break;
-      case MaterialKind::Mix:
-      case MaterialKind::Interface: break;
-    }
+    if (int32_t* slot = scene_.materials.bump_index(h)) *slot = b;
+    else if (h.kind() == MaterialKind::Hair) warn(ps.where, "hair takes no bump or normal map (nor does it in pbrt-v4); ignored");
   }
   return h;
 }
