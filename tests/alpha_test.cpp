@@ -54,8 +54,8 @@ const std::vector<Region> kRegions = {{0, 0, 16, 16}, {0, 0, 8, 8}, {8, 8, 8, 8}
 
 RegionStats stats(const Scene& s, const char* integrator, const char* backend, int spp, int runs = 8) {
   RenderOptions o;
-  o.integrator = integrator;
-  o.ray_backend = backend;
+  o.integrator = parse_integrator(integrator);
+  o.ray_backend = parse_ray_backend(backend);
   o.spp = spp;
   o.maxdepth = 4;
   return stats_of(render_runs(s, o, runs, 77), kRegions);

@@ -44,7 +44,7 @@ TEST(AreaLightImage, UniformImageIsThePlainLight) {
   RenderOptions o;
   o.spp = 4;
   for (const char* integrator : {"path", "bdpt", "lt"}) {
-    o.integrator = integrator;
+    o.integrator = parse_integrator(integrator);
     // The same paths: bilinear weights of an all-ones image sum to 1 up to rounding.
     Image a = render(*plain, o).image, b = render(*imaged, o).image;
     for (size_t k = 0; k < a.rgb.size(); ++k) ASSERT_NEAR(a.rgb[k], b.rgb[k], 1e-5f * (1.f + a.rgb[k])) << integrator;

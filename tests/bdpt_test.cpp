@@ -165,8 +165,8 @@ TEST(Bdpt, BalanceHeuristicAgreesWithPower) {
   auto scene = shipped("cornell-box-tiny-light.pbrt");
   auto power = render_stats(*scene, "bdpt", 32, 32, 16, kRuns, kCornellRegions);
   RenderOptions o;
-  o.integrator = "bdpt";
-  o.mis = "balance";
+  o.integrator = Integrator::Bdpt;
+  o.mis = MisHeuristic::Balance;
   o.spp = 16;
   o.maxdepth = 6;
   o.width = o.height = 32;
@@ -187,14 +187,14 @@ TEST(Bdpt, EachStrategyUnweightedAgreesWithPathAtItsDepth) {
   RenderOptions o;
   o.width = o.height = kSize;
   std::vector<std::vector<Image>> path(kMaxDepth + 1);  // path[k][run]
-  o.integrator = "path";
+  o.integrator = Integrator::Path;
   o.spp = 256;
   for (int k = 0; k <= kMaxDepth; ++k) {
     o.maxdepth = k;
     path[size_t(k)] = render_runs(*scene, o, kRunsHere, 100 * uint64_t(k));
   }
   std::map<std::pair<int, int>, std::vector<Image>> strategy;  // unweighted, per run
-  o.integrator = "bdpt";
+  o.integrator = Integrator::Bdpt;
   o.spp = 64;
   o.maxdepth = kMaxDepth;
   o.strategies = true;
@@ -225,7 +225,7 @@ TEST(Bdpt, SameImageWithOneOrTwoThreads) {
   auto scene = shipped("caustics.pbrt");
   for (const char* integrator : {"bdpt", "lt"}) {
     RenderOptions o;
-    o.integrator = integrator;
+    o.integrator = parse_integrator(integrator);
     o.spp = 4;
     o.width = 48;
     o.height = 36;

@@ -79,7 +79,7 @@ TEST(Bump, FlatNormalMapChangesNothing) {
   RenderOptions o;
   o.spp = 8;
   for (const char* integrator : {"path", "bdpt"}) {
-    o.integrator = integrator;
+    o.integrator = parse_integrator(integrator);
     Image a = render(*plain, o).image, b = render(*mapped, o).image;
     double sa = 0, sb = 0, diff = 0;
     for (size_t k = 0; k < a.rgb.size(); ++k) {

@@ -213,7 +213,7 @@ TEST(Camera, IntegratorsAgreeWithAnOrthographicCamera) {
       continue;
     }
     RenderOptions o;
-    o.integrator = "lt";
+    o.integrator = Integrator::Lt;
     EXPECT_THROW(render(*scene, o), std::invalid_argument);
   }
 }

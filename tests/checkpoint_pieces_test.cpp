@@ -27,7 +27,7 @@ void remove_pieces(const std::string& base) {
 
 RenderOptions pieces_render() {
   RenderOptions o;
-  o.integrator = "bdpt";
+  o.integrator = Integrator::Bdpt;
   o.spp = 40;
   o.width = 40;
   o.height = 30;

@@ -26,7 +26,7 @@ std::string checkpoint_file() {
 
 RenderOptions small_render(const std::string& integrator, const std::string& sampler = "zsobol") {
   RenderOptions o;
-  o.integrator = integrator;
+  o.integrator = parse_integrator(integrator);
   o.sampler.type = sampler;
   o.spp = 40;  // three passes of up to 16
   o.width = 48;
@@ -138,7 +138,7 @@ TEST(Checkpoint, RefusesACheckpointOfAnotherRender) {
   other.seed = 8;
   EXPECT_NE(resume_error(*scene, other).find("seed=7"), std::string::npos);
   other = o;
-  other.integrator = "bdpt";
+  other.integrator = Integrator::Bdpt;
   EXPECT_NE(resume_error(*scene, other).find("integrator=path"), std::string::npos);
   other = o;
   other.spp = 41;

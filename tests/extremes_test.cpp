@@ -27,7 +27,7 @@ const char* const kWithMerging[] = {"path", "bdpt", "lt", "vcm", "bpm"};
 
 RenderOptions options(const std::string& integrator, int w, int h, int spp, int maxdepth = 5) {
   RenderOptions o;
-  o.integrator = integrator;
+  o.integrator = parse_integrator(integrator);
   o.width = w;
   o.height = h;
   o.spp = spp;
@@ -38,10 +38,10 @@ RenderOptions options(const std::string& integrator, int w, int h, int spp, int 
 // Renders and checks what every render here must satisfy.
 RenderResult render_checked(const Scene& scene, const RenderOptions& o) {
   RenderResult r = render(scene, o);
-  EXPECT_EQ(r.stats.nonfinite_samples, 0u) << o.integrator;
+  EXPECT_EQ(r.stats.nonfinite_samples, 0u) << name(o.integrator);
   size_t bad = 0;
   for (float v : r.image.rgb) bad += !std::isfinite(v) || v < 0.f;
-  EXPECT_EQ(bad, 0u) << o.integrator << ": pixels that are negative or not finite";
+  EXPECT_EQ(bad, 0u) << name(o.integrator) << ": pixels that are negative or not finite";
   EXPECT_EQ(r.image.rgb.size(), size_t(o.width) * size_t(o.height) * 3);
   return r;
 }

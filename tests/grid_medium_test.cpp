@@ -96,7 +96,7 @@ TEST(GridMedium, SlabTransmittanceInARender) {
   "float density" [ )" + density + " ]");
   auto scene = load_scene_from_string(text, "slab.pbrt", {});
   RenderOptions o;
-  o.integrator = "path";
+  o.integrator = Integrator::Path;
   o.width = o.height = 16;
   o.maxdepth = 0;
   const RegionStats st = stats_of(render_runs(*scene, [&] { o.spp = 64; return o; }(), 4, 1), {{0, 0, 16, 16}});

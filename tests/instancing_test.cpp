@@ -125,7 +125,7 @@ TEST(Instancing, InstancedAndFlattenedScenesRenderTheSameImage) {
   for (const char* integrator : {"path", "bdpt"}) {
     SCOPED_TRACE(integrator);
     RenderOptions o;
-    o.integrator = integrator;
+    o.integrator = parse_integrator(integrator);
     o.width = 32;
     o.height = 24;
     o.spp = 8;

@@ -109,9 +109,9 @@ TEST(LightSampler, ProbabilitiesSumToOneAndMatchSampledFrequencies) {
         ++count[light];
       }
       if (kind != LightSamplerKind::Bvh) EXPECT_EQ(failed, 0);
-      EXPECT_NEAR(sum + double(failed) / N, 1.0, 64.0 / N) << light_sampler_name(kind);
+      EXPECT_NEAR(sum + double(failed) / N, 1.0, 64.0 / N) << name(kind);
       for (uint32_t l = 0; l < n; ++l)
-        EXPECT_NEAR(double(count[l]) / N, pmf[l], 64.0 / N) << light_sampler_name(kind) << " light " << l;
+        EXPECT_NEAR(double(count[l]) / N, pmf[l], 64.0 / N) << name(kind) << " light " << l;
     }
   }
 }
@@ -162,8 +162,8 @@ const std::vector<Region> kBvhRegions = {{0, 0, 32, 32}, {0, 0, 16, 16}, {16, 0,
 RegionStats many_light_stats(const Scene& scene, const char* integrator, const char* light_sampler, int spp,
                              int runs) {
   RenderOptions o;
-  o.integrator = integrator;
-  o.light_sampler = light_sampler;
+  o.integrator = parse_integrator(integrator);
+  o.light_sampler = parse_light_sampler(light_sampler);
   o.spp = spp;
   o.maxdepth = 4;
   return stats_of(render_runs(scene, o, runs, 300), kBvhRegions);

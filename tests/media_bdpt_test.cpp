@@ -85,7 +85,7 @@ TEST(BdptConnections, AFullPoolIsTracedBeforeItIsAdded) {
   if (LANTERN_ASAN) GTEST_SKIP() << "the Release suite runs it";
   auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
   RenderOptions o;
-  o.integrator = "bdpt";
+  o.integrator = Integrator::Bdpt;
   o.width = o.height = 64;
   o.spp = 8;
   o.maxdepth = 12;

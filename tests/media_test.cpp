@@ -21,7 +21,7 @@ namespace {
 
 RenderOptions small_path_render(int width, int height, int spp, int maxdepth, const char* integrator = "path") {
   RenderOptions o;
-  o.integrator = integrator;
+  o.integrator = parse_integrator(integrator);
   o.width = width;
   o.height = height;
   o.spp = spp;

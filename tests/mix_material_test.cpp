@@ -46,7 +46,7 @@ TEST(MixMaterial, AmountBlendsTheImages) {
   const std::vector<Region> regions = {{0, 0, 16, 16}, {4, 4, 8, 8}, {6, 2, 4, 4}};
   for (const char* integrator : {"path", "bdpt"}) {
     RenderOptions o;
-    o.integrator = integrator;
+    o.integrator = parse_integrator(integrator);
     o.spp = 16;
     auto red = render_runs(*mix_scene_with("NamedMaterial \"red\""), o, 10, 500);
     auto gold = render_runs(*mix_scene_with("NamedMaterial \"gold\""), o, 10, 600);

@@ -25,7 +25,7 @@ std::string part_file(int k, const std::string& tag = "") {
 
 RenderOptions parts_render(const std::string& integrator) {
   RenderOptions o;
-  o.integrator = integrator;
+  o.integrator = parse_integrator(integrator);
   o.spp = 20;  // two passes, the second short
   o.width = 40;
   o.height = 30;

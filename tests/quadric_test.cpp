@@ -313,7 +313,7 @@ Shape "trianglemesh" "point3 P" [ -9 -9 0 9 -9 0 9 9 0 -9 9 0 ] "integer indices
   RenderOptions o;
   o.spp = 16;
   for (const char* integrator : {"path", "bdpt"}) {
-    o.integrator = integrator;
+    o.integrator = parse_integrator(integrator);
     Image a = render(*direct, o).image, b = render(*instanced, o).image;
     double sa = 0.0, sb = 0.0, diff = 0.0;
     for (size_t i = 0; i < a.rgb.size(); ++i) {

@@ -42,7 +42,7 @@ RenderResult render_string(const std::string& scene_text, int spp, int maxdepth,
   o.maxdepth = maxdepth;
   o.threads = threads;
   o.seed = seed;
-  o.ray_backend = backend;
+  o.ray_backend = parse_ray_backend(backend);
   return render(*scene, o);
 }
 
@@ -157,7 +157,7 @@ TEST(Render, RayBackendsAgree) {
   o.width = o.height = 32;
   Mean ref{};
   for (const char* b : {"stream", "stream-1m", "single", "packet16"}) {
-    o.ray_backend = b;
+    o.ray_backend = parse_ray_backend(b);
     RenderResult r = render(*scene, o);
     Mean m = image_mean(r.image);
     if (std::string(b) == "stream") {
@@ -169,13 +169,27 @@ TEST(Render, RayBackendsAgree) {
   }
 }
 
+// Words that name no choice are refused where they are parsed, with the
+// words that would do; a value outside an enumeration (a cast, bindings)
+// is refused by render().
 TEST(Render, BadOptionsAreRejected) {
   auto scene = load_scene_from_string(furnace_sphere(0.5f, 1.f, 1.f), "test.pbrt");
+  try {
+    parse_integrator("nonsense");
+    ADD_FAILURE() << "an unknown integrator was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("expected path, bdpt, lt, vcm, bpm or ppm"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(parse_ray_backend("warp"), std::invalid_argument);
+  EXPECT_THROW(parse_mis("heuristic"), std::invalid_argument);
+  EXPECT_THROW(parse_light_sampler("exhaustive"), std::invalid_argument);
+  EXPECT_EQ(parse_integrator(name(Integrator::Bpm)), Integrator::Bpm);
+  EXPECT_EQ(parse_ray_backend("stream-np"), RayBackend::StreamNp);
   RenderOptions o;
-  o.integrator = "nonsense";
+  o.integrator = Integrator(200);
   EXPECT_THROW(render(*scene, o), std::invalid_argument);
-  o.integrator = "path";
-  o.ray_backend = "warp";
+  o.integrator = Integrator::Path;
+  o.ray_backend = RayBackend(9);
   EXPECT_THROW(render(*scene, o), std::invalid_argument);
 }
 

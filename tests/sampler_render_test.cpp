@@ -20,7 +20,7 @@ const std::vector<Region> kSamplerCornellRegions = {
 RegionStats sampler_stats(const Scene& scene, const char* sampler, const char* integrator, int spp) {
   RenderOptions o;
   o.sampler.type = sampler;
-  o.integrator = integrator;
+  o.integrator = parse_integrator(integrator);
   o.spp = spp;
   o.maxdepth = 6;
   o.width = o.height = 32;

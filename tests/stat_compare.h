@@ -77,7 +77,7 @@ inline RegionStats render_stats(const Scene& scene, const std::string& integrato
                          const std::vector<Region>& regions, bool unit_weights = false,
                          const std::string& sampler = "zsobol") {
   RenderOptions o;
-  o.integrator = integrator;
+  o.integrator = parse_integrator(integrator);
   o.sampler.type = sampler;
   o.spp = spp;
   o.maxdepth = 6;
@@ -95,7 +95,7 @@ inline void expect_matches_pbrt(const Scene& scene, int width, int height, int m
                                 const std::vector<Region>& regions, const std::vector<std::array<double, 3>>& pbrt,
                                 double allowance = 0.02) {
   RenderOptions o;
-  o.integrator = "path";
+  o.integrator = Integrator::Path;
   o.spp = spp;
   o.maxdepth = maxdepth;
   o.width = width;
@@ -114,7 +114,7 @@ inline void expect_identical_renders(const Scene& a, const Scene& b, std::initia
   RenderOptions o;
   o.spp = spp;
   for (const char* integrator : integrators) {
-    o.integrator = integrator;
+    o.integrator = parse_integrator(integrator);
     EXPECT_EQ(render(a, o).image.rgb, render(b, o).image.rgb) << integrator;
   }
 }
@@ -122,7 +122,7 @@ inline void expect_identical_renders(const Scene& a, const Scene& b, std::initia
 // The same image bit for bit on 1 and 2 threads, with each integrator.
 inline void expect_thread_invariant(const Scene& scene, RenderOptions o, std::initializer_list<const char*> integrators) {
   for (const char* integrator : integrators) {
-    o.integrator = integrator;
+    o.integrator = parse_integrator(integrator);
     o.threads = 1;
     Image one = render(scene, o).image;
     o.threads = 2;

@@ -24,7 +24,7 @@ TEST(RenderStats, CountsAgreeInAClosedScene) {
   auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/lantern.pbrt");
   for (const char* integrator : {"path", "bdpt", "lt"}) {
     RenderOptions o;
-    o.integrator = integrator;
+    o.integrator = parse_integrator(integrator);
     o.spp = 2;
     o.width = 40;
     o.height = 30;
@@ -56,7 +56,7 @@ TEST(RenderStats, RayCountsMatchTheRaysGivenToEmbree) {
   auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
   const std::string path = ::testing::TempDir() + "/lantern_stats_test_rays.bin";
   RenderOptions o;
-  o.integrator = "bdpt";
+  o.integrator = Integrator::Bdpt;
   o.spp = 2;
   o.width = o.height = 24;
   o.dump_rays = path;
@@ -88,7 +88,7 @@ Shape "bilinearmesh" "point3 P" [-9 0 -9  9 0 -9  -9 0 9  9 0 9]
 )";
   for (const char* integrator : {"path", "bdpt"}) {
     RenderOptions o;
-    o.integrator = integrator;
+    o.integrator = parse_integrator(integrator);
     o.spp = 1;
     o.width = 16;
     o.height = 16;

@@ -32,7 +32,7 @@ Traced traced_render(const std::string& integrator, uint64_t full_waves, int spp
   auto scene = cornell();
   Timeline timeline(full_waves);
   RenderOptions o;
-  o.integrator = integrator;
+  o.integrator = parse_integrator(integrator);
   o.spp = spp;
   o.width = 64;
   o.height = 48;
@@ -124,7 +124,7 @@ TEST(Trace, InterruptedRenderStillGivesAValidTimeline) {
   Timeline timeline;
   std::atomic<bool> cancel{false};
   RenderOptions o;
-  o.integrator = "bdpt";
+  o.integrator = Integrator::Bdpt;
   o.spp = 1024;
   o.width = 64;
   o.height = 48;

@@ -45,7 +45,7 @@ TEST(Vcm, AgreesWithBdptOnTheCornellBoxes) {
 // Options for a merging integrator with render_stats' depth (6).
 RenderOptions merging_options(const char* integrator, int width, int height, int spp, float radius) {
   RenderOptions o;
-  o.integrator = integrator;
+  o.integrator = parse_integrator(integrator);
   o.width = width;
   o.height = height;
   o.spp = spp;
@@ -70,11 +70,11 @@ TEST(Vcm, ErrorAgainstBdptFallsWithPasses) {
   const auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
   RenderOptions o;
   o.width = o.height = 32;
-  o.integrator = "bdpt";
+  o.integrator = Integrator::Bdpt;
   o.spp = 512;
   o.seed = 99;
   const Image reference = render(*scene, o).image;
-  o.integrator = "vcm";
+  o.integrator = Integrator::Vcm;
   o.seed = 1;
   o.spp = 8;
   const double coarse = mse(render(*scene, o).image, reference);
@@ -92,9 +92,9 @@ TEST(Vcm, VanishingRadiusIsBdptBitForBit) {
   o.width = 40;
   o.height = 30;
   o.spp = 4;
-  o.integrator = "bdpt";
+  o.integrator = Integrator::Bdpt;
   const Image bdpt = render(*scene, o).image;
-  o.integrator = "vcm";
+  o.integrator = Integrator::Vcm;
   o.vcm_radius = 1e-20f;
   const RenderResult vcm = render(*scene, o);
   EXPECT_EQ(vcm.stats.merges, 0u);
@@ -136,7 +136,7 @@ TEST(Vcm, OneBounceBpmIsPpmBitForBit) {
   RenderOptions o = merging_options("ppm", 24, 24, 4, 10.f);
   o.maxdepth = 1;
   const RenderResult ppm = render(*scene, o);
-  o.integrator = "bpm";
+  o.integrator = Integrator::Bpm;
   const RenderResult bpm = render(*scene, o);
   EXPECT_GT(bpm.stats.merges, 0u);
   EXPECT_EQ(bpm.stats.merges, ppm.stats.merges);
@@ -192,7 +192,7 @@ TEST(Vcm, MergesOnThePoolFloor) {
 TEST(Vcm, SppmScenesRenderWithVcm) {
   const std::string world = "WorldBegin\nLightSource \"point\" \"rgb I\" [1 1 1]\n";
   const auto scene = load_scene_from_string("Integrator \"sppm\" \"float radius\" 0.25\n" + world, "sppm.pbrt", {});
-  EXPECT_EQ(scene->settings.integrator, "vcm");
+  EXPECT_EQ(scene->settings.integrator, Integrator::Vcm);
   EXPECT_FLOAT_EQ(scene->settings.merge_radius, 0.25f);
   EXPECT_FLOAT_EQ(load_scene_from_string("Integrator \"sppm\"\n" + world, "sppm.pbrt", {})->settings.merge_radius, 0.f);
   expect_load_error("Integrator \"sppm\"\n  \"float radius\" -1\n" + world, "bad.pbrt",
@@ -242,7 +242,7 @@ TEST(Vcm, BidirectionalPhotonMappingKeepsTheLastMediumVertices) {
   RenderOptions o = merging_options("bpm", 32, 24, 16, 0.012f * scene->lights.scene_radius);
   o.maxdepth = 1;
   const RegionStats bpm = stats_of(render_runs(*scene, o, 8, 1000), regions);
-  o.integrator = "bdpt";
+  o.integrator = Integrator::Bdpt;
   expect_means_agree(stats_of(render_runs(*scene, o, 8, 1000), regions), bpm, 0.03, "maxdepth 1");
 }
 

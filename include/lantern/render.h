@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "lantern/image.h"
+#include "lantern/options.h"
 #include "lantern/scene.h"
 
 namespace lantern {
@@ -24,31 +25,24 @@ struct RenderProgress {
   uint64_t samples_total = 0;  // the sample budget (with --time: one pass)
 };
 
-// The integrators that merge light and eye vertices (docs/vcm.md).
-inline bool merges_vertices(const std::string& integrator) {
-  return integrator == "vcm" || integrator == "bpm" || integrator == "ppm";
-}
-
 struct RenderOptions {
-  // path, bdpt, lt (light tracing), vcm (vertex connection and merging),
-  // bpm (bidirectional photon mapping) or ppm (progressive photon mapping)
-  std::string integrator = "path";
+  Integrator integrator = Integrator::Path;
   // vcm, bpm, ppm: the merging radius of the first sample pass (0: the
   // scene's, from an "sppm" Integrator's "radius", else 0.003 of the
   // scene's bounding radius; docs/vcm.md), and
   // alpha, by which the radius of pass i is radius * i^((alpha - 1) / 2).
   float vcm_radius = 0.f;
   float vcm_alpha = 0.75f;
-  std::string mis = "power";        // bdpt's heuristic: power (beta = 2) or balance
+  MisHeuristic mis = MisHeuristic::Power;  // bdpt's
   int spp = 16;
   double time_limit_seconds = 0.0;  // > 0: render passes until the time is up (spp is then ignored)
   int maxdepth = 5;
   int threads = 0;  // 0: all cores
   uint64_t seed = 0;
   SamplerSettings sampler;  // the app passes the scene's (or --sampler's)
-  std::string light_sampler = "bvh";  // next-event estimation's choice of light: bvh, power or uniform
+  LightSamplerKind light_sampler = LightSamplerKind::Bvh;  // next-event estimation's choice of light
   int width = 0, height = 0;  // 0: the scene's Film resolution
-  std::string ray_backend = "stream";
+  RayBackend ray_backend = RayBackend::StreamNp;
   int wave_size = 4096;  // paths per wave
   std::function<void(const RenderProgress&)> progress;
   const std::atomic<bool>* cancel = nullptr;  // set it to stop after the waves in flight

@@ -1,6 +1,7 @@
 // Loading a scene in pbrt-v4 format.
 #pragma once
 
+#include "lantern/options.h"
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -24,14 +25,14 @@ struct SamplerSettings {
 };
 
 struct SceneSettings {
-  std::string integrator = "path";
+  Integrator integrator = Integrator::Path;
   int maxdepth = 5;
   int spp = 16;
   int width = 1280, height = 720;
   std::string output = "pbrt.exr";
   SamplerSettings sampler;
   // The Integrator's "lightsampler" (pbrt-v4's names; bvh by default).
-  std::string light_sampler = "bvh";
+  LightSamplerKind light_sampler = LightSamplerKind::Bvh;
   // An "sppm" Integrator's "radius": vcm's first merging radius (0: automatic).
   float merge_radius = 0.f;
 };

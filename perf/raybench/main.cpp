@@ -112,7 +112,7 @@ int main(int argc, char** argv) {
     if (count[k] == 0) continue;
     benchmark::RegisterBenchmark((std::string("embree_np/") + kKindNames[k]).c_str(), embree_np, k);
     for (RayBackend be : {RayBackend::StreamNp, RayBackend::Stream1M, RayBackend::Single, RayBackend::Packet16})
-      benchmark::RegisterBenchmark((std::string("lantern_") + ray_backend_name(be) + "/" + kKindNames[k]).c_str(),
+      benchmark::RegisterBenchmark((std::string("lantern_") + name(be) + "/" + kKindNames[k]).c_str(),
                                    lantern_stream, k, be);
   }
   argv[2] = argv[0];  // Google Benchmark reads its own flags after the program name

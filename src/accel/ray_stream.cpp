@@ -8,24 +8,6 @@
 
 namespace lantern {
 
-RayBackend parse_ray_backend(const std::string& n) {
-  if (n == "stream" || n == "stream-np") return RayBackend::StreamNp;
-  if (n == "stream-1m") return RayBackend::Stream1M;
-  if (n == "single") return RayBackend::Single;
-  if (n == "packet16") return RayBackend::Packet16;
-  throw std::invalid_argument("unknown ray back end \"" + n + "\"; expected stream, stream-1m, single or packet16");
-}
-
-const char* ray_backend_name(RayBackend b) {
-  switch (b) {
-    case RayBackend::StreamNp: return "stream";
-    case RayBackend::Stream1M: return "stream-1m";
-    case RayBackend::Single: return "single";
-    case RayBackend::Packet16: return "packet16";
-  }
-  return "?";
-}
-
 RayStream::RayStream(RTCScene scene, RayBackend backend, RayCounters* counters)
     : scene_(scene), backend_(backend), counters_(counters) {}
 

@@ -12,14 +12,10 @@
 #include <vector>
 
 #include "accel/ray_batch.h"
+#include "lantern/options.h"
 #include "trace/trace_buffer.h"
 
 namespace lantern {
-
-enum class RayBackend { StreamNp, Stream1M, Single, Packet16 };
-
-RayBackend parse_ray_backend(const std::string& name);  // throws std::invalid_argument
-const char* ray_backend_name(RayBackend b);
 
 enum class RayKind { Camera, Extension, LightExtension, Shadow };
 

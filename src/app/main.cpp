@@ -219,10 +219,10 @@ int run_render(const RenderArgs& a) {
   const SceneSettings& ss = scene_settings(*scene);
 
   RenderOptions o;
-  o.integrator = a.integrator.empty() ? ss.integrator : a.integrator;
+  o.integrator = a.integrator.empty() ? ss.integrator : lantern::parse_integrator(a.integrator);
   o.vcm_radius = a.vcm_radius;
   o.vcm_alpha = a.vcm_alpha;
-  o.mis = a.mis;
+  o.mis = lantern::parse_mis(a.mis);
   o.strategies = !a.strategies.empty();
   o.collect_stats = !a.stats.empty();
   o.dump_rays = a.dump_rays;
@@ -232,7 +232,7 @@ int run_render(const RenderArgs& a) {
   o.threads = a.threads;
   o.seed = a.seed;
   o.sampler = ss.sampler;
-  o.light_sampler = a.light_sampler.empty() ? ss.light_sampler : a.light_sampler;
+  o.light_sampler = a.light_sampler.empty() ? ss.light_sampler : lantern::parse_light_sampler(a.light_sampler);
   if (!a.sampler.empty() && a.sampler != ss.sampler.type) {
     o.sampler = lantern::SamplerSettings{};  // the scene's parameters belong to its own type
     o.sampler.type = a.sampler;
@@ -242,7 +242,7 @@ int run_render(const RenderArgs& a) {
     o.width = a.resolution[0];
     o.height = a.resolution[1];
   }
-  o.ray_backend = a.rays;
+  o.ray_backend = lantern::parse_ray_backend(a.rays);
   o.wave_size = a.wave_size > 0 ? a.wave_size : lantern::merges_vertices(o.integrator) ? 16384 : 4096;
   o.cancel = &g_cancel;
   std::string out = a.output.empty() ? ss.output : a.output;
@@ -330,8 +330,8 @@ int run_render(const RenderArgs& a) {
   if (o.progress && isatty(STDERR_FILENO)) std::fprintf(stderr, "\n");
   if (!writes) return r.interrupted ? 130 : 0;  // rank 0 has the image
   auto write_stats = [&] {
-    RunInfo run{a.scene, o.integrator, out, o.ray_backend, r.image.width, r.image.height, o.wave_size, load_s,
-                scene_info(*scene), scene_settings(*scene).sampler, o.sampler, scene_settings(*scene).light_sampler};
+    RunInfo run{a.scene, name(o.integrator), out, name(o.ray_backend), r.image.width, r.image.height, o.wave_size, load_s,
+                scene_info(*scene), scene_settings(*scene).sampler, o.sampler, name(scene_settings(*scene).light_sampler)};
     nlohmann::json j = stats_json(run, r.stats);
     if (!rank_stats.is_null()) j["mpi"] = rank_stats;
     write_text_atomically(a.stats, j.dump(2) + "\n");
@@ -341,7 +341,7 @@ int run_render(const RenderArgs& a) {
     return finish_part(a, o, r, timeline.get());
   }
 
-  ImageMetadata md = {{"lantern:integrator", o.integrator},
+  ImageMetadata md = {{"lantern:integrator", name(o.integrator)},
                       {"lantern:spp", std::to_string(r.stats.min_spp)},
                       {"lantern:samples", std::to_string(r.stats.samples)},
                       {"lantern:seed", std::to_string(o.seed)},

@@ -156,19 +156,19 @@ std::string sequence_fingerprint(const RenderOptions& o, int width, int height) 
   std::string f;
   auto line = [&](const std::string& k, const std::string& v) { f += k + "=" + v + "\n"; };
   line("scene", o.checkpoint_key);
-  line("integrator", o.integrator);
-  if (o.integrator != "path") line("mis", o.mis);
+  line("integrator", name(o.integrator));
+  if (o.integrator != Integrator::Path) line("mis", name(o.mis));
   if (merges_vertices(o.integrator)) line("vcm", std::to_string(o.vcm_radius) + " " + std::to_string(o.vcm_alpha));
   line("maxdepth", std::to_string(o.maxdepth));
   line("seed", std::to_string(o.seed));
-  line("light-sampler", o.light_sampler);
+  line("light-sampler", name(o.light_sampler));
   line("sampler", o.sampler.type + " " + o.sampler.randomization + " " + std::to_string(o.sampler.seed) + " " +
                       std::to_string(o.sampler.xsamples) + "x" + std::to_string(o.sampler.ysamples) +
                       (o.sampler.jitter ? " jitter" : ""));
   line("resolution", std::to_string(width) + "x" + std::to_string(height));
   line("budget", o.time_limit_seconds > 0 ? std::string("time") : "spp " + std::to_string(o.spp));
   line("wave-size", std::to_string(o.wave_size));
-  line("rays", o.ray_backend);
+  line("rays", name(o.ray_backend));
   return f;
 }
 
@@ -408,21 +408,20 @@ CheckpointInfo start_checkpointing(const RenderOptions& opt, const std::string& 
 }  // namespace
 
 RenderResult render(const Scene& scene, const RenderOptions& opt) {
+  if (uint8_t(opt.integrator) > uint8_t(Integrator::Ppm) || uint8_t(opt.mis) > uint8_t(MisHeuristic::Balance) ||
+      uint8_t(opt.light_sampler) > uint8_t(LightSamplerKind::Uniform) || uint8_t(opt.ray_backend) > uint8_t(RayBackend::Packet16))
+    throw std::invalid_argument("an integrator, MIS heuristic, light sampler or ray back end outside its enumeration");
   const bool merging = merges_vertices(opt.integrator);
-  const bool bidirectional = opt.integrator == "bdpt" || opt.integrator == "lt" || merging;
-  if (opt.integrator != "path" && !bidirectional)
-    throw std::invalid_argument("unknown integrator \"" + opt.integrator + "\"; available: path, bdpt, lt, vcm, bpm, ppm");
+  const bool bidirectional = opt.integrator != Integrator::Path;
   if (merging && (!(opt.vcm_radius >= 0.f) || !std::isfinite(opt.vcm_radius) || !(opt.vcm_alpha > 0.f && opt.vcm_alpha <= 1.f)))
-    throw std::invalid_argument(opt.integrator + " needs a radius >= 0 (0: automatic) and an alpha in (0, 1]");
-  if (opt.mis != "power" && opt.mis != "balance")
-    throw std::invalid_argument("unknown MIS heuristic \"" + opt.mis + "\"; available: power, balance");
+    throw std::invalid_argument(std::string(name(opt.integrator)) + " needs a radius >= 0 (0: automatic) and an alpha in (0, 1]");
   if (opt.spp <= 0 && opt.time_limit_seconds <= 0) throw std::invalid_argument("--spp must be positive");
   if (opt.maxdepth < 0) throw std::invalid_argument("--maxdepth must be >= 0");
-  if (opt.integrator == "lt" && scene.camera.projection == Projection::Orthographic && !(scene.camera.lens_radius > 0.f))
+  if (opt.integrator == Integrator::Lt && scene.camera.projection == Projection::Orthographic && !(scene.camera.lens_radius > 0.f))
     throw std::invalid_argument("light tracing (--integrator lt) cannot reach an orthographic camera without a lens: "
                                 "its rays are parallel, so no light path connects to it; use path or bdpt, or give the "
                                 "camera a \"lensradius\"");
-  if (opt.strategies && opt.integrator != "bdpt" && !merging)
+  if (opt.strategies && opt.integrator != Integrator::Bdpt && !merging)
     throw std::invalid_argument("per-strategy images need --integrator bdpt, vcm, bpm or ppm");
 
   if (opt.wave_size < 1 || opt.wave_size > (1 << 22)) throw std::invalid_argument("--wave-size must lie in [1, 4194304]");
@@ -435,13 +434,13 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
     throw std::invalid_argument("a part of a render (--part) needs a file for its film");
   if (opt.strategies && (opt.share_count > 1 || !opt.film_path.empty()))
     throw std::invalid_argument("per-strategy images cannot be rendered in parts");
-  RayBackend backend = parse_ray_backend(opt.ray_backend);
+  const RayBackend backend = opt.ray_backend;
   parse_sampler_kind(opt.sampler.type);  // throws for an unknown one, naming the choices
   if (!opt.sampler.randomization.empty()) parse_randomization(opt.sampler.randomization);
   // Low-discrepancy samplers lay a pixel's samples out for the count they
   // plan for; under a time budget the count is open.
   const uint32_t planned_spp = opt.time_limit_seconds > 0 ? 0u : uint32_t(opt.spp);
-  const LightSamplerKind light_kind = parse_light_sampler(opt.light_sampler);
+  const LightSamplerKind light_kind = opt.light_sampler;
 
   std::optional<tbb::global_control> limit;
   if (opt.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(opt.threads));
@@ -473,11 +472,11 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
       bs.seed = opt.seed;
       bs.width = width;
       bs.height = height;
-      bs.mis_beta = opt.mis == "balance" ? 1.f : 2.f;
-      bs.light_tracing_only = opt.integrator == "lt";
+      bs.mis_beta = opt.mis == MisHeuristic::Balance ? 1.f : 2.f;
+      bs.light_tracing_only = opt.integrator == Integrator::Lt;
       bs.merging = merging;
-      bs.connections = !merging || opt.integrator == "vcm";
-      bs.photon_mapping = opt.integrator == "ppm";
+      bs.connections = !merging || opt.integrator == Integrator::Vcm;
+      bs.photon_mapping = opt.integrator == Integrator::Ppm;
       bs.vcm_alpha = opt.vcm_alpha;
       bs.vcm_radius = opt.vcm_radius > 0.f                  ? opt.vcm_radius
                       : scene.settings.merge_radius > 0.f ? scene.settings.merge_radius
@@ -524,7 +523,7 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
   if (strategy_film) res.strategies = strategy_film->resolve(film);
   res.interrupted = interrupted;
   RenderStats& st = res.stats;
-  st.light_sampler = light_sampler_name(light_sampler.kind());
+  st.light_sampler = name(light_sampler.kind());
   st.light_sampler_seconds = light_sampler.build_seconds();
   st.light_sampler_bytes = light_sampler.memory_bytes();
   st.light_bvh_nodes = light_sampler.bvh().node_count();

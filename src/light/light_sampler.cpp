@@ -10,22 +10,6 @@
 
 namespace lantern {
 
-LightSamplerKind parse_light_sampler(const std::string& n) {
-  if (n == "bvh") return LightSamplerKind::Bvh;
-  if (n == "power") return LightSamplerKind::Power;
-  if (n == "uniform") return LightSamplerKind::Uniform;
-  throw std::invalid_argument("unknown light sampler \"" + n + "\" (expected bvh, power or uniform)");
-}
-
-const char* light_sampler_name(LightSamplerKind k) {
-  switch (k) {
-    case LightSamplerKind::Bvh: return "bvh";
-    case LightSamplerKind::Power: return "power";
-    case LightSamplerKind::Uniform: return "uniform";
-  }
-  return "?";
-}
-
 namespace {
 
 LightBounds triangle_bounds(const TriangleMesh& m, uint32_t prim, const AreaLight& a) {

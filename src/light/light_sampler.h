@@ -14,6 +14,8 @@
 // compares with next-event estimation's, which this sampler gives.
 #pragma once
 
+#include "lantern/options.h"
+
 #include <cstdint>
 #include <string>
 
@@ -22,10 +24,7 @@
 
 namespace lantern {
 
-enum class LightSamplerKind : uint8_t { Power, Uniform, Bvh };
 // Throws std::invalid_argument naming the choices.
-LightSamplerKind parse_light_sampler(const std::string& name);
-const char* light_sampler_name(LightSamplerKind k);
 
 class LightSampler {
  public:

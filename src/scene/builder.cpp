@@ -132,18 +132,18 @@ void SceneBuilder::integrator(const std::string& type, const ParamSet& ps) {
   if (maxdepth < 0) ps.fail("\"maxdepth\" must be >= 0");
   scene_.settings.maxdepth = maxdepth;
   if (type == "path" || type == "bdpt") {
-    scene_.settings.integrator = type;
+    scene_.settings.integrator = parse_integrator(type);
   } else if (type == "lightpath") {
-    scene_.settings.integrator = "lt";
+    scene_.settings.integrator = Integrator::Lt;
   } else if (type == "volpath") {  // pbrt's path tracer with media: Lantern's path tracer has them
-    scene_.settings.integrator = "path";
+    scene_.settings.integrator = Integrator::Path;
   } else if (type == "sppm") {
     // Stochastic progressive photon mapping converges to the same image as
     // vertex connection and merging, which also merges photons.
     // Its "radius" is the first merging radius, as in pbrt-v4; left out,
     // Lantern's automatic one (pbrt-v4's default of 1 does not scale with
     // the scene). Its "seed" changes only the noise.
-    scene_.settings.integrator = "vcm";
+    scene_.settings.integrator = Integrator::Vcm;
     if (const pbrt::Param* r = ps.find("radius")) {
       const float radius = ps.get_float("radius", 0.f);
       if (!(radius > 0.f) || !std::isfinite(radius)) ps.fail(*r, "\"radius\" must be a positive number");
@@ -155,7 +155,7 @@ void SceneBuilder::integrator(const std::string& type, const ParamSet& ps) {
     ps.find("seed");
   } else {
     warn(ps.where, "integrator \"" + printable(type) + "\" is not available; using \"path\" (choose with --integrator)");
-    scene_.settings.integrator = "path";
+    scene_.settings.integrator = Integrator::Path;
   }
   std::string light_sampler = ps.get_string("lightsampler", "bvh");
   if (light_sampler == "exhaustive") {
@@ -167,7 +167,7 @@ void SceneBuilder::integrator(const std::string& type, const ParamSet& ps) {
   if (light_sampler != "bvh" && light_sampler != "power" && light_sampler != "uniform")
     ps.fail(*ps.find("lightsampler"), "unknown light sampler \"" + printable(light_sampler) +
                                           "\" (expected bvh, power, uniform or exhaustive)");
-  scene_.settings.light_sampler = light_sampler;
+  scene_.settings.light_sampler = parse_light_sampler(light_sampler);
   for (const char* p : {"regularize", "visualizestrategies", "visualizeweights"})
     ps.find(p);  // affect noise or debug output only
 }

@@ -34,12 +34,12 @@ Image render_with_lantern(const ReferenceData& d, const std::string& integrator,
   auto scene = load_scene(scene_path);
   const SceneSettings& ss = scene_settings(*scene);
   RenderOptions o;
-  o.integrator = integrator;
+  o.integrator = parse_integrator(integrator);
   o.spp = d.spp > 0 ? d.spp : ss.spp;
   o.maxdepth = ss.maxdepth;
   o.sampler = ss.sampler;
   o.light_sampler = ss.light_sampler;
-  o.wave_size = merges_vertices(integrator) ? 16384 : 4096;
+  o.wave_size = merges_vertices(parse_integrator(integrator)) ? 16384 : 4096;
   o.seed = seed;
   return render(*scene, o).image;
 }

@@ -1,0 +1,83 @@
+// The render's choices as types: which integrator, MIS heuristic, light
+// sampler and ray back end. The command line, a scene file's Integrator
+// directive and bindings name them with the words below; parse_* turns a
+// word into the choice (std::invalid_argument for any other word, naming
+// those it accepts) and name() back.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace lantern {
+
+enum class Integrator : uint8_t {
+  Path,  // unidirectional path tracing with next-event estimation
+  Bdpt,  // bidirectional path tracing (docs/bdpt.md)
+  Lt,    // light tracing: bdpt's t = 1 strategies alone
+  Vcm,   // vertex connection and merging (docs/vcm.md)
+  Bpm,   // bidirectional photon mapping: merges without connections
+  Ppm,   // progressive photon mapping
+};
+enum class MisHeuristic : uint8_t { Power, Balance };  // bdpt's: beta = 2 or 1
+enum class LightSamplerKind : uint8_t { Bvh, Power, Uniform };  // next-event estimation's choice of light
+// Embree's interfaces, on the same batches: rtcIntersectNp (stream),
+// rtcIntersect1M, rtcIntersect1, 16-wide packets.
+enum class RayBackend : uint8_t { StreamNp, Stream1M, Single, Packet16 };
+
+namespace option_words {
+template <class E>
+struct Word {
+  E value;
+  const char* word;
+};
+inline constexpr std::array<Word<Integrator>, 6> kIntegrators{{{Integrator::Path, "path"},
+                                                               {Integrator::Bdpt, "bdpt"},
+                                                               {Integrator::Lt, "lt"},
+                                                               {Integrator::Vcm, "vcm"},
+                                                               {Integrator::Bpm, "bpm"},
+                                                               {Integrator::Ppm, "ppm"}}};
+inline constexpr std::array<Word<MisHeuristic>, 2> kMis{{{MisHeuristic::Power, "power"}, {MisHeuristic::Balance, "balance"}}};
+inline constexpr std::array<Word<LightSamplerKind>, 3> kLightSamplers{
+    {{LightSamplerKind::Bvh, "bvh"}, {LightSamplerKind::Power, "power"}, {LightSamplerKind::Uniform, "uniform"}}};
+inline constexpr std::array<Word<RayBackend>, 4> kRayBackends{{{RayBackend::StreamNp, "stream"},
+                                                               {RayBackend::Stream1M, "stream-1m"},
+                                                               {RayBackend::Single, "single"},
+                                                               {RayBackend::Packet16, "packet16"}}};
+
+template <class E, size_t N>
+E parse(std::string_view w, const std::array<Word<E>, N>& words, const char* what) {
+  for (const Word<E>& x : words)
+    if (w == x.word) return x.value;
+  std::string expected;
+  for (size_t i = 0; i < N; ++i) expected += (i == 0 ? "" : i + 1 == N ? " or " : ", ") + std::string(words[i].word);
+  throw std::invalid_argument("unknown " + std::string(what) + " \"" + std::string(w) + "\"; expected " + expected);
+}
+template <class E, size_t N>
+const char* name(E e, const std::array<Word<E>, N>& words) {
+  for (const Word<E>& x : words)
+    if (x.value == e) return x.word;
+  return "?";
+}
+}  // namespace option_words
+
+inline Integrator parse_integrator(std::string_view w) { return option_words::parse(w, option_words::kIntegrators, "integrator"); }
+inline MisHeuristic parse_mis(std::string_view w) { return option_words::parse(w, option_words::kMis, "MIS heuristic"); }
+inline LightSamplerKind parse_light_sampler(std::string_view w) {
+  return option_words::parse(w, option_words::kLightSamplers, "light sampler");
+}
+// ("stream-np" is accepted too, for the stream back end.)
+inline RayBackend parse_ray_backend(std::string_view w) {
+  return w == "stream-np" ? RayBackend::StreamNp : option_words::parse(w, option_words::kRayBackends, "ray back end");
+}
+inline const char* name(Integrator i) { return option_words::name(i, option_words::kIntegrators); }
+inline const char* name(MisHeuristic m) { return option_words::name(m, option_words::kMis); }
+inline const char* name(LightSamplerKind l) { return option_words::name(l, option_words::kLightSamplers); }
+inline const char* name(RayBackend b) { return option_words::name(b, option_words::kRayBackends); }
+
+// The integrators that merge light and eye vertices (docs/vcm.md).
+inline bool merges_vertices(Integrator i) { return i == Integrator::Vcm || i == Integrator::Bpm || i == Integrator::Ppm; }
+
+}  // namespace lantern
