@@ -24,10 +24,8 @@ Bdpt::Bdpt(const Scene& scene, const LightSampler& light_sampler, const BdptSett
   if (scene.textures.uses_footprint) footprints_ = FootprintModel(camera_, s.footprint_spp);
 }
 
-std::unique_ptr<BdptWave, void (*)(BdptWave*)> Bdpt::make_wave_state(uint32_t capacity, RayStream stream) const {
-  std::unique_ptr<BdptWave, void (*)(BdptWave*)> w{new BdptWave(capacity, std::move(stream)), [](BdptWave* p) { delete p; }};
-  if (!scene_.media.empty()) w->resize_media(capacity);
-  return w;
+WavePools<BdptWave> Bdpt::make_wave_state(uint32_t capacity, RayStream stream) const {
+  return make_wave_pools<BdptWave>(capacity, std::move(stream), !scene_.media.empty());
 }
 
 void Bdpt::start_eye_subpaths(const WaveDesc& wave, BdptWave& w) const {

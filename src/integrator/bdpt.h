@@ -86,7 +86,7 @@ class Bdpt {
  public:
   Bdpt(const Scene& scene, const LightSampler& light_sampler, const BdptSettings& settings);
 
-  std::unique_ptr<BdptWave, void (*)(BdptWave*)> make_wave_state(uint32_t capacity, RayStream stream) const;
+  WavePools<BdptWave> make_wave_state(uint32_t capacity, RayStream stream) const;
   void trace(const WaveDesc& wave, BdptWave& state, WaveOutput& out) const;
 
  private:

@@ -31,10 +31,8 @@ PathTracer::PathTracer(const Scene& scene, const LightSampler& light_sampler, co
   if (scene.textures.uses_footprint) footprints_ = FootprintModel(camera_, s.footprint_spp);
 }
 
-std::unique_ptr<PathWave, void (*)(PathWave*)> PathTracer::make_wave_state(uint32_t capacity, RayStream stream) const {
-  std::unique_ptr<PathWave, void (*)(PathWave*)> w{new PathWave(capacity, std::move(stream)), [](PathWave* p) { delete p; }};
-  if (!scene_.media.empty()) w->resize_media(capacity);
-  return w;
+WavePools<PathWave> PathTracer::make_wave_state(uint32_t capacity, RayStream stream) const {
+  return make_wave_pools<PathWave>(capacity, std::move(stream), !scene_.media.empty());
 }
 
 void PathTracer::generate_camera_rays(const WaveDesc& wave, PathWave& w) const {

@@ -31,7 +31,7 @@ class PathTracer {
  public:
   PathTracer(const Scene& scene, const LightSampler& light_sampler, const PathTracerSettings& settings);
 
-  std::unique_ptr<PathWave, void (*)(PathWave*)> make_wave_state(uint32_t capacity, RayStream stream) const;
+  WavePools<PathWave> make_wave_state(uint32_t capacity, RayStream stream) const;
   // Traces all paths of the wave and records one sample per slot; the wave
   // state's stats and ray stream keep the measurements.
   void trace(const WaveDesc& wave, PathWave& state, WaveOutput& out) const;

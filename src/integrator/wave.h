@@ -4,6 +4,8 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <utility>
 #include <vector>
 
 namespace lantern {
@@ -19,5 +21,17 @@ struct WaveDesc {
 // Pixel indices in 16x16 tiles, row-major inside a tile: neighbouring
 // camera rays stay together in a wave, which keeps primary rays coherent.
 std::vector<uint32_t> tile_order(int width, int height, int tile = 16);
+
+// A thread's pools for its waves (PathWave, BdptWave), behind a pointer
+// whose type an integrator's header can name before the pools' own header
+// is included; media's pools only for a scene that has media.
+template <class Pools>
+using WavePools = std::unique_ptr<Pools, void (*)(Pools*)>;
+template <class Pools, class Stream>
+WavePools<Pools> make_wave_pools(uint32_t capacity, Stream stream, bool media) {
+  WavePools<Pools> w{new Pools(capacity, std::move(stream)), [](Pools* p) { delete p; }};
+  if (media) w->resize_media(capacity);
+  return w;
+}
 
 }  // namespace lantern
