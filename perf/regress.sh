@@ -14,11 +14,12 @@ set -eu
 base=${1:?usage: perf/regress.sh BASELINE_COMMIT [rounds]}
 rounds=${2:-5}
 new=${LANTERN:-build/lantern}
+case $new in */*) ;; *) new=./$new ;; esac  # a name without a slash would be looked up on PATH
 [ -x "$new" ] || { echo "perf/regress.sh: $new is not built (cmake --build build)" >&2; exit 2; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 if [ -f "$base" ] && [ -x "$base" ]; then
-  old=$base
+  case $base in */*) old=$base ;; *) old=./$base ;; esac
 else
   git rev-parse --verify --quiet "$base^{commit}" >/dev/null || { echo "perf/regress.sh: no commit '$base'" >&2; exit 2; }
   mkdir "$tmp/src"
@@ -57,16 +58,19 @@ known() {
   echo "$out"
 }
 
-# Msamples/s of one render: the last line of its log says it.
+# Msamples/s of one render: its summary line says it (warnings may follow).
 rate() {
-  if ! "$1" render "scenes/$2.pbrt" --integrator "$3" --threads 2 --seed 1 $4 -o "$tmp/out.exr" 2>"$tmp/log" >/dev/null; then
+  if ! "$1" render "scenes/$2.pbrt" --integrator "$3" --threads 2 --seed 1 $4 -o "$tmp/out.exr" 2>"$tmp/log" \
+    >/dev/null </dev/null; then
     echo "perf/regress.sh: $1 failed on scenes/$2.pbrt ($3 $4):" >&2
     tail -n 3 "$tmp/log" >&2
     exit 1
   fi
-  tail -n 1 "$tmp/log" | sed -n 's/.* \([0-9.]*\) Msamples\/s.*/\1/p'
+  v=$(grep 'Msamples/s' "$tmp/log" | tail -n 1 | sed -n 's/.* \([0-9.]*\) Msamples\/s.*/\1/p')
+  [ -n "$v" ] || { echo "perf/regress.sh: no Msamples/s in the log of $1 on scenes/$2.pbrt" >&2; exit 1; }
+  echo "$v"
 }
-median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+median() { sort -n | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 
 echo "| scene | integrator | options | $base Msamples/s | working tree | ratio |"
 echo "|---|---|---|---|---|---|"

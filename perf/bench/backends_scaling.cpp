@@ -17,7 +17,7 @@ int backends(const Common& c, const std::string& name, const std::string& integr
     for (const char* b : kinds) {
       lantern::RenderOptions o = scene_options(c, *scene, integrator);
       o.spp = spp;
-      o.ray_backend = parse_ray_backend(b);
+      o.ray_backend = lantern::parse_ray_backend(b);
       lantern::RenderStats s = render_stats(*scene, o);
       sps[b].push_back(double(s.samples) / s.seconds);
       rps[b].push_back(double(s.camera_rays + s.extension_rays + s.light_rays + s.shadow_rays) / s.seconds);

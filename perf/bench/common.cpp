@@ -15,9 +15,9 @@ std::shared_ptr<lantern::Scene> load(const Common& c, const std::string& scene) 
 
 lantern::RenderOptions scene_options(const Common& c, const lantern::Scene& scene, const std::string& integrator) {
   lantern::RenderOptions o;
-  o.integrator = parse_integrator(integrator);
+  o.integrator = lantern::parse_integrator(integrator);
   o.maxdepth = lantern::scene_settings(scene).maxdepth;
-  if (lantern::merges_vertices(parse_integrator(integrator))) o.wave_size = 16384;  // as the CLI (docs/vcm.md)
+  if (lantern::merges_vertices(lantern::parse_integrator(integrator))) o.wave_size = 16384;  // as the CLI (docs/vcm.md)
   o.threads = c.threads;
   return o;
 }

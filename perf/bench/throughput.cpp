@@ -17,7 +17,7 @@ double stage(const lantern::RenderStats& s, const std::string& name) {
 int throughput(const Common& c, const std::vector<std::string>& scenes, int spp, int width, int height) {
   Table t;
   t.header = {"scene", "integrator", "Msamples/s", "Mrays/s", "camera", "eye ext.", "light ext.", "shadow/conn.",
-              "% rays", "% generate", "% surface", "% connect", "% scatter", "% shade", "% accumulate",
+              "% rays", "% generate", "% surface", "% shade", "% accumulate",
               "eye verts", "light verts"};
   for (const std::string& name : scenes) {
     auto scene = load(c, name);
@@ -36,8 +36,7 @@ int throughput(const Common& c, const std::vector<std::string>& scenes, int spp,
       uint64_t rays = s.camera_rays + s.extension_rays + s.light_rays + s.shadow_rays;
       t.rows.push_back({name, integrator, mps(s.samples), mps(rays), mps(s.camera_rays), mps(s.extension_rays),
                         mps(s.light_rays), mps(s.shadow_rays), pct(rays_t), pct(stage(s, "generate")),
-                        pct(stage(s, "surface")), pct(stage(s, "connect")), pct(stage(s, "scatter")),
-                        pct(stage(s, "shade")), pct(stage(s, "accumulate")),
+                        pct(stage(s, "surface")), pct(stage(s, "shade")), pct(stage(s, "accumulate")),
                         fmt(s.samples ? double(s.eye_vertices) / double(s.samples) : 0.0),
                         fmt(s.light_paths ? double(s.light_vertices) / double(s.light_paths) : 0.0)});
       std::fprintf(stderr, "throughput: %s %s done\n", name.c_str(), integrator);

@@ -1,4 +1,4 @@
-// Bilinear patches (scene/bilinear_patch.h) as Embree user geometry: one
+// Bilinear patches (geometry/bilinear_patch.h) as Embree user geometry: one
 // primitive per patch, intersected in double precision; a hit reports the
 // patch's (u, v), from which shading rebuilds the point, and the oriented
 // normal as Ng.

@@ -18,7 +18,7 @@ namespace lantern {
 static constexpr float kFlatCurveTessellation = 32.f;
 
 // pbrt's flat and cylinder curves are ribbons facing the ray, ribbons are
-// oriented by their normals (scene/curve.h). The control points and
+// oriented by their normals (geometry/curve.h). The control points and
 // normals are shared with the pool.
 static RTCGeometry new_curve_geometry(RTCDevice device, const CurveSet& c) {
   const bool ribbon = c.type == CurveType::Ribbon;

@@ -1,4 +1,4 @@
-// Quadrics (scene/quadric.h) as Embree user geometry: one primitive per
+// Quadrics (geometry/quadric.h) as Embree user geometry: one primitive per
 // shape, whose callbacks intersect in double precision in the shape's own
 // space. A hit reports pbrt's (u, v), from which shading rebuilds the
 // point, and the world normal as Ng. Embree calls no filter function on

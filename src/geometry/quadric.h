@@ -2,10 +2,10 @@
 // transform), cylinder and disk, as exact surfaces rather than
 // tessellations. Each lives in its own object space with pbrt's parameters
 // and is placed by a transform. Rays meet it there in double precision
-// (scene/quadric.cpp, through Embree user geometry); every point of the
+// (geometry/quadric.cpp, through Embree user geometry); every point of the
 // surface, hit or sampled, is rebuilt from its (u, v) by quadric_point, so
 // a hit and a light sample at the same place agree exactly
-// (scene/surface.h).
+// (geometry/surface.h).
 #pragma once
 
 #include <glm/mat3x3.hpp>

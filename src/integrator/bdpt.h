@@ -146,7 +146,7 @@ class Bdpt {
     return !settings_.light_tracing_only && (ld < maxdepth || (settings_.merging && ld <= maxdepth));
   }
   // Whether connections are weighted (not lt, whose t = 1 strategies are
-  // all there is, nor the unit weights of tests).
+  // all there is, nor the unit weights of tests; ppm makes none).
   bool weighted() const { return !settings_.light_tracing_only && !settings_.unit_weights && !settings_.photon_mapping; }
   // (ppm has one strategy per path: every weight is 1)
   float weight(float w) const { return settings_.unit_weights || settings_.photon_mapping ? 1.f : w; }

@@ -16,15 +16,13 @@ namespace lantern {
 enum class Stage : uint8_t {
   Generate,    // camera rays, light emission
   Surface,     // hit reconstruction, emission found by eye subpaths, binning
-  Connect,     // next-event estimation, connections, light tracing: densities, MIS, shadow rays
-  Scatter,     // BSDF sampling, throughput, Russian roulette, next rays
+  Shade,       // per vertex: next-event estimation, connections, light tracing, merges; then the next direction
   Accumulate,  // adding unoccluded contributions, splat records
-  Shade,       // the path tracer's fused Connect + Scatter loop
   Count
 };
 inline constexpr int kStageCount = int(Stage::Count);
 inline const char* stage_name(Stage s) {
-  static const char* names[] = {"generate", "surface", "connect", "scatter", "accumulate", "shade"};
+  static const char* names[] = {"generate", "surface", "shade", "accumulate"};
   return names[int(s)];
 }
 

@@ -24,8 +24,6 @@
 
 namespace lantern {
 
-// Throws std::invalid_argument naming the choices.
-
 class LightSampler {
  public:
   LightSampler(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex, LightSamplerKind kind);

@@ -262,7 +262,7 @@ void SceneBuilder::add_mesh(TriangleMesh mesh, const GraphicsState& gs, const Pa
 }
 
 // pbrt's "loopsubdiv": refined at load into a mesh with the limit
-// surface's normals (scene/loop_subdivision.h).
+// surface's normals (geometry/loop_subdivision.h).
 void SceneBuilder::add_subdivision_surface(const ParamSet& ps, const GraphicsState& gs) {
   const std::vector<Vec3> P = ps.get_point3s("P");
   const std::vector<int> indices = ps.get_ints("indices");

@@ -3,7 +3,7 @@
 // A mesh whose every patch is a parallelogram (positions, and normals and
 // uvs if given) is an affine image of the square: exactly two triangles per
 // patch, traced as a triangle mesh. Any other mesh keeps its patches
-// (scene/bilinear_patch.h).
+// (geometry/bilinear_patch.h).
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "scene/builder.h"

@@ -1,7 +1,7 @@
 // Shape "sphere", "cylinder" and "disk", with pbrt-v4's parameters and
 // defaults. A full sphere under uniform scale is Embree's own sphere
 // primitive; every other one, and every cylinder and disk, is an exact
-// quadric (scene/quadric.h).
+// quadric (geometry/quadric.h).
 #include "scene/builder.h"
 
 namespace lantern {
