@@ -132,44 +132,6 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
   }
 }
 
-// vcm: the light vertices of the whole wave within the merging radius of
-// eye vertex i, each a photon-mapping estimate (Georgiev et al. 2012,
-// eq. 17): the eye's BSDF times the light vertex's throughput over
-// pi r^2 n, weighted against every other strategy of the same path. A
-// merged path has v.depth + depth segments (the two vertices count as
-// one), at most maxdepth + 1 as a connected one has.
-template <class BSDF>
-void Bdpt::merge_at_eye_vertex(BdptWave& w, uint32_t i, const BSDF& bsdf, const Frame& frame, const Vec3& wo) const {
-  const HitPool& h = w.hits;
-  const uint32_t slot = w.active[i], depth = w.depth, maxdepth = uint32_t(settings_.maxdepth);
-  const LightVertexPool& v = w.vertices;
-  const MisState& m = w.eye.mis[slot];
-  RGB sum(0.f);
-  w.grid.query(v.p, h.p[i], [&](uint32_t j) {
-    if (v.depth[j] + depth > maxdepth + 1) return;
-    // Only light vertices on a surface facing the same way: a thin wall's
-    // other face lies within the radius but not on this surface. (A
-    // medium vertex, whose ng is zero, never merges.)
-    if (!(glm::dot(v.ng[j], h.ng[i]) > 0.f)) return;
-    const Vec3 wi = frame.to_local(v.wo[j]);  // where the light came from
-    const RGB f = bsdf.f(wo, wi, TransportMode::Radiance);
-    if (is_black(f)) return;
-    const float wt = settings_.photon_mapping ? 1.f  // the only strategy
-                                              : mis_weight_merge(m, v.mis[j], bsdf.pdf(wo, wi, TransportMode::Radiance),
-                                                                 bsdf.pdf(wi, wo, TransportMode::Importance),
-                                                                 MergeKind::Surface, w.mis);
-    sum += f * v.beta[j] * weight(wt);
-    ++w.stats.merges;
-    if (settings_.record_strategies) {
-      const RGB u = w.eye.beta[slot] * f * v.beta[j] * w.vm_normalization;
-      w.out->strategies.push_back(
-          {w.pixel[slot], Vec2(0.f), uint8_t(v.depth[j] + 1), uint8_t(depth + 1), u * weight(wt), u, true});
-    }
-  });
-  const RGB c = w.eye.beta[slot] * sum * w.vm_normalization;
-  if (!is_black(c) && is_finite(c)) w.L[slot] += c;
-}
-
 // vcm: this wave's merging radius (its first sample pass), the factors
 // eta of the MIS quantities, pi r^2 n on surfaces and 4/3 pi r^3 n in
 // media (n: the wave's light subpaths, all of which each eye vertex may
@@ -202,11 +164,11 @@ void Bdpt::eye_shade_stage(BdptWave& w) const {
     if (!bsdf.is_specular()) {  // (eye vertices deeper than maxdepth are not shaded: eye_surface_stage)
       if (settings_.connections) {
         next_event(w, slot, v, s.get1d(dim + dims::kEyeLightSelect), s.get2d(dim + dims::kEyeLightPosition));
-        if (settings_.merging) merge_at_eye_vertex(w, i, bsdf, v.frame, v.wo);
+        if (settings_.merging) merge_at_eye_vertex(w, slot, v);
         connect_light_vertices(w, slot, v);
         if (w.shadow.rays.count >= kMaxPendingConnections) flush_connections(w);
       } else {  // bpm, ppm: merging is all there is
-        merge_at_eye_vertex(w, i, bsdf, v.frame, v.wo);
+        merge_at_eye_vertex(w, slot, v);
       }
       if (settings_.photon_mapping) {  // ppm: merged there, and ends
         ++w.stats.eye_ends[size_t(PathEnd::MaxDepth)];

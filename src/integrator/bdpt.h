@@ -119,9 +119,8 @@ class Bdpt {
   void connect_camera(BdptWave& w, uint32_t slot, uint32_t ld, const Vertex& v, Vec2 u_lens) const;
   // Weights a connection now (vacuum) or queues it for its transmittance.
   void push_connection(BdptWave& w, uint32_t slot, const Connection& k) const;
-  template <class BSDF>  // vcm: merging at a surface eye vertex (bdpt.cpp)
-  void merge_at_eye_vertex(BdptWave& w, uint32_t i, const BSDF& bsdf, const Frame& frame, const Vec3& wo) const;
-  void merge_at_eye_medium_vertex(BdptWave& w, uint32_t i) const;  // (bdpt_media.cpp)
+  template <class Vertex>  // merges (vcm, bpm, ppm)
+  void merge_at_eye_vertex(BdptWave& w, uint32_t slot, const Vertex& v) const;
   void prepare_merging(const WaveDesc& wave, BdptWave& w) const;
   MediumVertex medium_vertex(const BdptWave& w, uint32_t i) const;  // ray i's scattering point
   PathEnd scatter_in_medium(BdptWave& w, SubpathPool& sub, uint32_t i, Vec2 u2, float u_rr, bool light) const;

@@ -127,49 +127,6 @@ MergeKind Bdpt::light_vertex_merging(const LightVertexPool& v, uint32_t j) const
   return v.in_medium(j) ? medium_merging() : MergeKind::Surface;
 }
 
-// vcm, bpm: merges eye vertex i, in a medium, with the light vertices of
-// the wave in the same medium within the radius: a ball of volume
-// 4/3 pi r^3 (volumetric photon mapping as a strategy; Jarosz et al. 2011,
-// Křivánek et al. 2014's point-point estimator). Both throughputs carry
-// the scattering coefficient of their own vertex, and the path scatters
-// once there: the estimate divides by sigma_s at the eye vertex.
-void Bdpt::merge_at_eye_medium_vertex(BdptWave& w, uint32_t i) const {
-  const uint32_t slot = w.active[i], depth = w.depth, maxdepth = uint32_t(settings_.maxdepth);
-  const Vec3 x = w.ends.p[i], wo = -glm::normalize(w.rays.direction(i));
-  const MediumHandle medium = w.ends.medium[i];
-  const HenyeyGreenstein phase{scene_.media.g(medium)};
-  const LightVertexPool& v = w.vertices;
-  const MisState& m = w.eye.mis[slot];
-  // beta_E / (sigma_s 4/3 pi r^3 n), a channel without scattering none
-  RGB scale(-1.f);
-  auto eye_scale = [&] {
-    if (scale.x < 0.f) {
-      RGB sigma_a, sigma_s;
-      scene_.media.coefficients_at(medium, x, &sigma_a, &sigma_s);
-      for (int c = 0; c < 3; ++c)
-        scale[c] = sigma_s[c] > 0.f ? w.eye.beta[slot][c] / sigma_s[c] * w.vm_normalization_medium : 0.f;
-    }
-    return scale;
-  };
-  RGB sum(0.f);
-  w.grid.query(v.p, x, [&](uint32_t j) {
-    if (v.depth[j] + depth > maxdepth + 1 || !v.in_medium(j) || v.medium[j] != medium) return;
-    const float f = phase.p(wo, v.wo[j]);  // the phase function is its own density, both ways
-    if (!(f > 0.f)) return;
-    const float wt = mis_weight_merge(m, v.mis[j], f, f, MergeKind::Medium, w.mis);
-    sum += f * v.beta[j] * wt;
-    ++w.stats.merges;
-    if (settings_.record_strategies) {
-      const RGB u = eye_scale() * f * v.beta[j];
-      w.out->strategies.push_back(
-          {w.pixel[slot], Vec2(0.f), uint8_t(v.depth[j] + 1), uint8_t(depth + 1), u * wt, u, true});
-    }
-  });
-  if (is_black(sum)) return;
-  const RGB c = eye_scale() * sum;
-  if (is_finite(c)) w.L[slot] += c;
-}
-
 // Continues a subpath from a medium vertex by sampling the phase function
 // (exactly: the throughput keeps its value). light: the subpath kind.
 PathEnd Bdpt::scatter_in_medium(BdptWave& w, SubpathPool& sub, uint32_t i, Vec2 u2, float u_rr, bool light) const {
@@ -199,9 +156,9 @@ void Bdpt::eye_medium_stage(BdptWave& w) const {
     const uint32_t slot = w.active[i];
     const PathSampler& s = w.sampler[slot];
     const uint32_t dim = dims::vertex(depth);
-    if (depth <= maxdepth && medium_merging() == MergeKind::Medium) merge_at_eye_medium_vertex(w, i);
+    const MediumVertex v = medium_vertex(w, i);
+    if (depth <= maxdepth && medium_merging() == MergeKind::Medium) merge_at_eye_vertex(w, slot, v);
     if (depth <= maxdepth && settings_.connections) {
-      const MediumVertex v = medium_vertex(w, i);
       next_event(w, slot, v, s.get1d(dim + dims::kEyeLightSelect), s.get2d(dim + dims::kEyeLightPosition));
       connect_light_vertices(w, slot, v);
     }

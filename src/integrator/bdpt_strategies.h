@@ -4,8 +4,8 @@
 //   s = 1       next_event              a light sample seen from eye vertex v
 //   s >= 2      connect_light_vertices  eye vertex v joined to its slot's stored light vertices
 //   t = 1       connect_camera          light vertex v joined to the lens
-// (s = 0, emission found by the eye subpath, is the eye surface stage's;
-// merges are in bdpt.cpp and bdpt_media.cpp.) Each builds a Connection:
+//   merges      merge_at_eye_vertex     eye vertex v merged with the wave's light vertices near it (vcm)
+// (s = 0, emission found by the eye subpath, is the eye surface stage's.) Each builds a Connection:
 // the shadow ray, the unweighted contribution, and the other strategies'
 // two ratio sums without the densities of the connecting segment
 // (DeferredMis, integrator/bdpt_mis.h). push_connection weights it at once
@@ -131,6 +131,62 @@ void Bdpt::connect_camera(BdptWave& w, uint32_t slot, uint32_t ld, const Vertex&
   k.d = cs->p_lens - k.o;
   if (w.shadow.media) k.start = v.medium_towards(scene_, cs->wi);
   push_connection(w, slot, k);
+}
+
+// Merges (vcm, bpm, ppm): eye vertex v with the light vertices of the
+// whole wave within the merging radius that it merges with, each a
+// photon-mapping estimate weighted against every other strategy of its
+// path. On a surface: a disk of radius r, the eye's BSDF times the light
+// vertex's throughput over pi r^2 n (Georgiev et al. 2012, eq. 17). In a
+// medium: a ball of volume 4/3 pi r^3 (volumetric photon mapping as a
+// strategy; Jarosz et al. 2011, Křivánek et al. 2014's point-point
+// estimator); both throughputs carry the scattering coefficient of their
+// own vertex and the path scatters once there, so the estimate divides by
+// sigma_s at the eye vertex. A merged path has lv.depth + depth segments
+// (the two vertices count as one), at most maxdepth + 1 as a connected one
+// has.
+template <class Vertex>
+void Bdpt::merge_at_eye_vertex(BdptWave& w, uint32_t slot, const Vertex& v) const {
+  const uint32_t depth = w.depth, maxdepth = uint32_t(settings_.maxdepth);
+  const LightVertexPool& lv = w.vertices;
+  const MisState& m = w.eye.mis[slot];
+  const MergeKind kind = v.merging(medium_merging());
+  // The eye subpath's factor on the summed light throughputs: beta over
+  // pi r^2 n on a surface; beta over sigma_s 4/3 pi r^3 n in a medium (a
+  // channel without scattering none), looked up once, when needed.
+  RGB medium_scale(-1.f);
+  auto estimate = [&](const RGB& x) -> RGB {
+    if constexpr (Vertex::kInMedium) {
+      if (medium_scale.x < 0.f) {
+        RGB sigma_a, sigma_s;
+        scene_.media.coefficients_at(v.medium, v.p, &sigma_a, &sigma_s);
+        for (int c = 0; c < 3; ++c)
+          medium_scale[c] = sigma_s[c] > 0.f ? w.eye.beta[slot][c] / sigma_s[c] * w.vm_normalization_medium : 0.f;
+      }
+      return medium_scale * x;
+    } else {
+      return w.eye.beta[slot] * x * w.vm_normalization;
+    }
+  };
+  RGB sum(0.f);
+  w.grid.query(lv.p, v.p, [&](uint32_t j) {
+    if (lv.depth[j] + depth > maxdepth + 1) return;
+    if (!v.merges_with(lv.ng[j], lv.in_medium(j) ? lv.medium[j] : MediumHandle{})) return;
+    const VertexEval e = v.evaluate_merge(lv.wo[j], !settings_.photon_mapping);  // towards where the light came from
+    if (is_black(e.f)) return;
+    const float wt = settings_.photon_mapping ? 1.f  // the only strategy
+                                              : mis_weight_merge(m, lv.mis[j], e.pdf_fwd, e.pdf_rev, kind, w.mis);
+    sum += e.f * lv.beta[j] * weight(wt);
+    ++w.stats.merges;
+    if (settings_.record_strategies) {
+      const RGB u = estimate(e.f * lv.beta[j]);
+      w.out->strategies.push_back(
+          {w.pixel[slot], Vec2(0.f), uint8_t(lv.depth[j] + 1), uint8_t(depth + 1), u * weight(wt), u, true});
+    }
+  });
+  if (is_black(sum)) return;
+  const RGB c = estimate(sum);
+  if (is_finite(c)) w.L[slot] += c;
 }
 
 }  // namespace lantern

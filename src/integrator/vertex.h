@@ -59,6 +59,24 @@ struct SurfaceVertex {
     if (with_reverse) e.pdf_rev = bsdf.pdf(wl, wo, reverse);
     return e;
   }
+  // Merging (vcm): the BSDF without the cosine (the light vertex's
+  // throughput carries its own arrival's), and the densities only when
+  // asked (ppm's merges are not weighted).
+  VertexEval evaluate_merge(const Vec3& w, bool densities) const {
+    VertexEval e;
+    const Vec3 wl = frame.to_local(w);
+    e.f = bsdf.f(wo, wl, Mode);
+    if (is_black(e.f) || !densities) return e;
+    constexpr TransportMode reverse =
+        Mode == TransportMode::Importance ? TransportMode::Radiance : TransportMode::Importance;
+    e.pdf_fwd = bsdf.pdf(wo, wl, Mode);
+    e.pdf_rev = bsdf.pdf(wl, wo, reverse);
+    return e;
+  }
+  // Only light vertices on a surface facing the same way: a thin wall's
+  // other face lies within the radius but not on this surface. (A medium
+  // vertex, whose ng is zero, never merges here.)
+  bool merges_with(const Vec3& ng_light, MediumHandle /*medium_light*/) const { return glm::dot(ng_light, ng) > 0.f; }
   float cos(const Vec3& w) const { return vertex_cos(ng, error_scale, tangent, w); }
   Vec3 ray_origin(const Vec3& w) const { return offset_ray_origin(p, ng, error_scale, w); }
   Vec3 light_sampler_normal() const { return ns; }  // the light sampler's context
@@ -84,6 +102,9 @@ struct MediumVertex {
     const float f = phase.p(wo_world, w);
     return {RGB(f), f, f};
   }
+  VertexEval evaluate_merge(const Vec3& w, bool /*densities*/) const { return evaluate(w); }
+  // Only light vertices in the same medium (a surface vertex's is vacuum).
+  bool merges_with(const Vec3& /*ng_light*/, MediumHandle medium_light) const { return medium_light == medium; }
   float cos(const Vec3& /*w*/) const { return 1.f; }
   Vec3 ray_origin(const Vec3& /*w*/) const { return p; }
   Vec3 light_sampler_normal() const { return Vec3(0.f); }  // none: a point in a volume
