@@ -99,23 +99,23 @@ float recursive_weight(const RandomPath& p, int s, MisPower mis) {
     return mis_weight_hit_light(eye, p.direct_pdf_A, emission_W(1), mis);
   }
   if (s == 1 && t == 1)
-    return mis_weight_light_origin(p.camera_dir_W(0) * p.cos_at(0, 1) / p.dist2(0, 1), p.emission_pos_A, false, mis);
+    return mis_weight_vacuum(mis_sums_light_origin(p.camera_dir_W(0) * p.cos_at(0, 1) / p.dist2(0, 1), p.emission_pos_A, false, mis));
   if (s == 1) {  // next-event estimation from x1
     float light_pdf_W = p.direct_pdf_A * p.dist2(0, 1) / p.cos_at(0, 1);
     float emission_fwd_A = emission_W(1) * p.cos_at(1, 0) / p.dist2(0, 1);
-    return mis_weight_next_event(eye, light_pdf_W, p.bsdf_pdf(1, 0), emission_fwd_A, p.direct_pdf_A, p.bsdf_pdf(1, 2),
-                                 mis);
+    return mis_weight_vacuum(mis_sums_next_event(eye, light_pdf_W, p.bsdf_pdf(1, 0), emission_fwd_A, p.direct_pdf_A,
+                                                 p.bsdf_pdf(1, 2), mis));
   }
   if (t == 1) {  // light tracing from x_{k-1}
     float camera_pdf_A = p.camera_dir_W(k - 1) * p.cos_at(k - 1, k) / p.dist2(k - 1, k);
-    return mis_weight_light_trace(light, camera_pdf_A, p.bsdf_pdf(k - 1, k - 2), mis);
+    return mis_weight_vacuum(mis_sums_light_trace(light, camera_pdf_A, p.bsdf_pdf(k - 1, k - 2), mis));
   }
   // connection between x_{s-1} (light) and x_s (eye)
   const int l = s - 1, e = s;
   float d2 = p.dist2(l, e);
   float eye_fwd_A = p.bsdf_pdf(e, l) * p.cos_at(l, e) / d2;
   float light_fwd_A = p.bsdf_pdf(l, e) * p.cos_at(e, l) / d2;
-  return mis_weight_connect(eye, light, eye_fwd_A, p.bsdf_pdf(e, e + 1), light_fwd_A, p.bsdf_pdf(l, l - 1), mis);
+  return mis_weight_vacuum(mis_sums_connect(eye, light, eye_fwd_A, p.bsdf_pdf(e, e + 1), light_fwd_A, p.bsdf_pdf(l, l - 1), mis));
 }
 
 class MisWeights : public ::testing::TestWithParam<float> {};
@@ -251,7 +251,7 @@ float media_connection_weight(const MediaPath& mp, int s, MisPower mis) {
     return mis_weight_hit_light(eye, p.direct_pdf_A, p.emission_pos_A * p.emission_dir_W(1), mis);
   }
   if (s == 1 && t == 1)
-    return mis_weight_light_origin(p.camera_dir_W(0) * p.cos_at(0, 1) / p.dist2(0, 1), p.emission_pos_A, false, mis);
+    return mis_weight_vacuum(mis_sums_light_origin(p.camera_dir_W(0) * p.cos_at(0, 1) / p.dist2(0, 1), p.emission_pos_A, false, mis));
   if (s == 1) {  // next-event estimation from x1
     const float light_pdf_W = p.direct_pdf_A * p.dist2(0, 1) / p.cos_at(0, 1);
     const float emission_fwd_A = p.emission_pos_A * p.emission_dir_W(1) * p.cos_at(1, 0) / p.dist2(0, 1);

@@ -103,7 +103,7 @@ inline void mis_after_scatter(MisState& m, float cos_out, float pdf_fwd, float p
 // the strategy whose distance sampling ends at the end with extinction
 // sigma_a, zero at a surface; b likewise) and is weighted afterwards.
 // Every connection strategy below is these two sums (in vacuum the
-// weight of Veach's eq. 10.9 in the recursive form: 1 / (1 + a + b)).
+// weight of Veach's eq. 10.9 in the recursive form: mis_weight_vacuum).
 struct DeferredMis {
   float a = 0.f, b = 0.f;
   RGB sigma_a{0.f}, sigma_b{0.f};
@@ -159,10 +159,6 @@ inline DeferredMis mis_sums_next_event(const MisState& eye, float light_pdf_W, f
   d.b = mis(emission_fwd_A / direct_pdf_A) * mis_connection_sum(eye, eye_rev_W, eye_merge, mis);
   return d;
 }
-inline float mis_weight_next_event(const MisState& eye, float light_pdf_W, float bsdf_pdf_W, float emission_fwd_A,
-                                   float direct_pdf_A, float eye_rev_W, MisPower mis) {
-  return mis_weight_vacuum(mis_sums_next_event(eye, light_pdf_W, bsdf_pdf_W, emission_fwd_A, direct_pdf_A, eye_rev_W, mis));
-}
 
 // s, t >= 2: connection of an eye vertex and a light vertex. eye_fwd_A: the
 // eye vertex's BSDF density towards the light vertex, per area there;
@@ -176,10 +172,6 @@ inline DeferredMis mis_sums_connect(const MisState& eye, const MisState& light, 
   d.b = mis(light_fwd_A) * mis_connection_sum(eye, eye_rev_W, eye_merge, mis);
   return d;
 }
-inline float mis_weight_connect(const MisState& eye, const MisState& light, float eye_fwd_A, float eye_rev_W,
-                                float light_fwd_A, float light_rev_W, MisPower mis) {
-  return mis_weight_vacuum(mis_sums_connect(eye, light, eye_fwd_A, eye_rev_W, light_fwd_A, light_rev_W, mis));
-}
 
 // t = 1: a light vertex connected to the camera. camera_pdf_A: the camera's
 // direction density towards it, per area there.
@@ -188,9 +180,6 @@ inline DeferredMis mis_sums_light_trace(const MisState& light, float camera_pdf_
   DeferredMis d;
   d.a = mis(camera_pdf_A) * mis_connection_sum(light, light_rev_W, light_merge, mis);
   return d;
-}
-inline float mis_weight_light_trace(const MisState& light, float camera_pdf_A, float light_rev_W, MisPower mis) {
-  return mis_weight_vacuum(mis_sums_light_trace(light, camera_pdf_A, light_rev_W, mis));
 }
 
 // Merging an eye vertex with a light vertex within the radius (vcm), on
@@ -214,9 +203,6 @@ inline DeferredMis mis_sums_light_origin(float camera_pdf_A, float emission_pos_
   DeferredMis d;
   d.a = delta_pos ? 0.f : mis(camera_pdf_A / emission_pos_pdf_A);
   return d;
-}
-inline float mis_weight_light_origin(float camera_pdf_A, float emission_pos_pdf_A, bool delta_pos, MisPower mis) {
-  return mis_weight_vacuum(mis_sums_light_origin(camera_pdf_A, emission_pos_pdf_A, delta_pos, mis));
 }
 
 // Participating media (docs/media.md). A segment sampled by distance
