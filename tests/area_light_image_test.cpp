@@ -85,14 +85,14 @@ AttributeEnd
   };
   auto a = lights(R"("rgb L" [ 1 0.5 0.25 ] "float power" [ 10 ] "bool twosided" true)");
   ASSERT_EQ(a.size(), 2u);
-  EXPECT_NEAR(a[0].L.x, 10.f / (2.f * 0.5f * kPi), 1e-4f);
-  EXPECT_NEAR(a[1].L.x, 10.f / (2.f * 1.0f * kPi), 1e-4f);
-  EXPECT_NEAR(a[1].L.z, 0.25f * 10.f / (2.f * kPi), 1e-4f) << "the colour is kept";
+  EXPECT_NEAR(a[0].L[0], 10.f / (2.f * 0.5f * kPi), 1e-4f);
+  EXPECT_NEAR(a[1].L[0], 10.f / (2.f * 1.0f * kPi), 1e-4f);
+  EXPECT_NEAR(a[1].L[2], 0.25f * 10.f / (2.f * kPi), 1e-4f) << "the colour is kept";
   // An image: normalised by its mean luminance (Y of sRGB), not its mean.
   const std::string orange = image_file("orange.exr", {0.8f, 0.4f, 0.1f, 0.8f, 0.4f, 0.1f, 0.8f, 0.4f, 0.1f, 0.8f, 0.4f, 0.1f}, 2, 2);
   auto b = lights("\"string filename\" \"" + orange + "\" \"float power\" [ 10 ]");
   const float y = 0.2126f * 0.8f + 0.7152f * 0.4f + 0.0722f * 0.1f;
-  EXPECT_NEAR(b[1].L.x, 10.f / (kPi * y), 1e-3f);
+  EXPECT_NEAR(b[1].L[0], 10.f / (kPi * y), 1e-3f);
 }
 
 }  // namespace

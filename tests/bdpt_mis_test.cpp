@@ -241,7 +241,7 @@ MisState eye_subpath_to(const MediaPath& mp, int last, MisPower mis) {
 float media_connection_weight(const MediaPath& mp, int s, MisPower mis) {
   const RandomPath& p = mp.p;
   const int k = p.k(), t = k + 1 - s;
-  const RGB T(1.f);
+  const Spectrum T(1.f);
   DeferredMis d;
   if (s == 0) {
     if (k == 1) return mis_weight_hit_light_direct(eye_subpath_to(mp, 1, mis), p.emission_pos_A, mis);

@@ -23,7 +23,7 @@ void expect_adjoint_reciprocity(const BSDF& bsdf, const std::string& what) {
   for (int i = 0; i < 2000; ++i) {
     Vec3 a = glm::normalize(Vec3(2.f * s.get1d() - 1.f, 2.f * s.get1d() - 1.f, 2.f * s.get1d() - 1.f));
     Vec3 b = glm::normalize(Vec3(2.f * s.get1d() - 1.f, 2.f * s.get1d() - 1.f, 2.f * s.get1d() - 1.f));
-    RGB f1 = bsdf.f(a, b, TransportMode::Radiance), f2 = bsdf.f(b, a, TransportMode::Importance);
+    Spectrum f1 = bsdf.f(a, b, TransportMode::Radiance), f2 = bsdf.f(b, a, TransportMode::Importance);
     for (int c = 0; c < 3; ++c) {
       // Relative to the value, but not below 1e-4: far in the tails of a
       // rough transmission lobe (f ~ 1e-5) the two half-vector computations
@@ -39,14 +39,14 @@ void expect_adjoint_reciprocity(const BSDF& bsdf, const std::string& what) {
 const float kAngles[] = {5.f, 40.f, 75.f, 85.f};
 
 TEST(BSDF, DiffuseSamplingMatchesPdf) {
-  DiffuseBSDF d{RGB(0.5f)};
+  DiffuseBSDF d{Spectrum(0.5f)};
   for (float t : kAngles) expect_sampling_matches_pdf(d, dir_from_angles(t, 30.f), TransportMode::Radiance, "diffuse");
   expect_sampling_matches_pdf(d, dir_from_angles(130.f, 30.f), TransportMode::Radiance, "diffuse from below");
 }
 
 TEST(BSDF, RoughConductorSamplingMatchesPdf) {
   for (float alpha : {0.1f, 0.3f, 0.8f}) {
-    ConductorBSDF c{{alpha, alpha * 0.5f}, RGB(0.2f, 0.9f, 1.1f), RGB(3.9f, 2.4f, 2.1f), RGB(1.f), false};
+    ConductorBSDF c{{alpha, alpha * 0.5f}, Spectrum(0.2f, 0.9f, 1.1f), Spectrum(3.9f, 2.4f, 2.1f), Spectrum(1.f), false};
     for (float t : kAngles)
       expect_sampling_matches_pdf(c, dir_from_angles(t, 60.f), TransportMode::Radiance, "conductor a=" + std::to_string(alpha) + " theta=" + std::to_string(t));
   }
@@ -64,7 +64,7 @@ TEST(BSDF, RoughDielectricSamplingMatchesPdf) {
 }
 
 TEST(BSDF, DiffuseTransmissionSamplingMatchesPdf) {
-  for (auto [R, T] : {std::pair{RGB(0.6f, 0.3f, 0.2f), RGB(0.2f, 0.5f, 0.1f)}, std::pair{RGB(0.f), RGB(0.7f)}})
+  for (auto [R, T] : {std::pair{Spectrum(0.6f, 0.3f, 0.2f), Spectrum(0.2f, 0.5f, 0.1f)}, std::pair{Spectrum(0.f), Spectrum(0.7f)}})
     for (float t : {5.f, 60.f, 120.f, 175.f})
       expect_sampling_matches_pdf(DiffuseTransmissionBSDF{R, T}, dir_from_angles(t, 30.f), TransportMode::Radiance,
                                   "diffuse transmission theta " + std::to_string(t));
@@ -81,7 +81,7 @@ TEST(BSDF, ThinDielectricReflectsTheInterreflectedFresnelTotal) {
     for (int i = 0; i < n; ++i) {
       auto bs = b.sample_f(wo, s.get1d(), s.get2d(), TransportMode::Radiance);
       ASSERT_TRUE(bs && bs->specular);
-      EXPECT_NEAR(luminance(bs->f) * std::fabs(bs->wi.z) / bs->pdf, 1.f, 1e-5f);
+      EXPECT_NEAR(luminance(film_rgb(bs->f)) * std::fabs(bs->wi.z) / bs->pdf, 1.f, 1e-5f);
       if (bs->transmission) {
         ASSERT_EQ(bs->wi, -wo);
       } else {
@@ -101,15 +101,15 @@ TEST(BSDF, WhiteFurnaceNoEnergyGain) {
   for (float t : kAngles) {
     Vec3 wo = dir_from_angles(t, 20.f);
     double se;
-    double a = albedo(DiffuseBSDF{RGB(1.f)}, wo, TransportMode::Radiance, &se);
+    double a = albedo(DiffuseBSDF{Spectrum(1.f)}, wo, TransportMode::Radiance, &se);
     EXPECT_NEAR(a, 1.0, 1e-3) << "a white Lambertian reflects everything";
-    a = albedo(DiffuseTransmissionBSDF{RGB(0.3f), RGB(0.7f)}, wo, TransportMode::Radiance, &se);
+    a = albedo(DiffuseTransmissionBSDF{Spectrum(0.3f), Spectrum(0.7f)}, wo, TransportMode::Radiance, &se);
     EXPECT_NEAR(a, 1.0, 4 * se + 1e-4) << "diffuse transmission, R + T = 1";
-    a = albedo(DiffuseTransmissionBSDF{RGB(0.2f), RGB(0.5f)}, -wo, TransportMode::Importance, &se);
+    a = albedo(DiffuseTransmissionBSDF{Spectrum(0.2f), Spectrum(0.5f)}, -wo, TransportMode::Importance, &se);
     EXPECT_NEAR(a, 0.7, 4 * se + 1e-4) << "diffuse transmission from below, R + T = 0.7";
     for (float alpha : {0.f, 0.01f, 0.2f, 0.7f}) {
       // A perfect reflector: microfacet models lose energy, never gain it.
-      ConductorBSDF c{{alpha, alpha}, RGB(1.f), RGB(0.f), RGB(1.f), true};
+      ConductorBSDF c{{alpha, alpha}, Spectrum(1.f), Spectrum(0.f), Spectrum(1.f), true};
       a = albedo(c, wo, TransportMode::Radiance, &se);
       EXPECT_LT(a, 1.0 + 4 * se + 1e-4) << "conductor alpha " << alpha << " theta " << t;
       if (alpha == 0.f) EXPECT_NEAR(a, 1.0, 1e-5);
@@ -122,7 +122,7 @@ TEST(BSDF, WhiteFurnaceNoEnergyGain) {
       ThinDielectricBSDF thin{1.f + 3.f * alpha};
       a = albedo(thin, wo, TransportMode::Radiance, &se);
       EXPECT_NEAR(a, 1.0, 1e-4) << "thin glass neither absorbs nor creates";
-      CoatedDiffuseBSDF cd{DielectricBSDF{{alpha, alpha}, 1.5f}, DiffuseBSDF{RGB(1.f)}, 1e-6f, RGB(0.f), 0.f, 100, 1};
+      CoatedDiffuseBSDF cd{DielectricBSDF{{alpha, alpha}, 1.5f}, DiffuseBSDF{Spectrum(1.f)}, 1e-6f, Spectrum(0.f), 0.f, 100, 1};
       a = albedo(cd, wo, TransportMode::Radiance, &se);
       EXPECT_LT(a, 1.0 + 4 * se + 1e-4) << "coated diffuse alpha " << alpha;
     }
@@ -130,10 +130,10 @@ TEST(BSDF, WhiteFurnaceNoEnergyGain) {
 }
 
 TEST(BSDF, AdjointReciprocity) {
-  expect_adjoint_reciprocity(DiffuseBSDF{RGB(0.7f)}, "diffuse");
-  expect_adjoint_reciprocity(ConductorBSDF{{0.3f, 0.1f}, RGB(0.2f), RGB(3.f), RGB(1.f), false}, "conductor");
+  expect_adjoint_reciprocity(DiffuseBSDF{Spectrum(0.7f)}, "diffuse");
+  expect_adjoint_reciprocity(ConductorBSDF{{0.3f, 0.1f}, Spectrum(0.2f), Spectrum(3.f), Spectrum(1.f), false}, "conductor");
   expect_adjoint_reciprocity(DielectricBSDF{{0.3f, 0.3f}, 1.5f}, "rough dielectric");
-  expect_adjoint_reciprocity(DiffuseTransmissionBSDF{RGB(0.6f, 0.2f, 0.1f), RGB(0.1f, 0.3f, 0.5f)}, "diffuse transmission");
+  expect_adjoint_reciprocity(DiffuseTransmissionBSDF{Spectrum(0.6f, 0.2f, 0.1f), Spectrum(0.1f, 0.3f, 0.5f)}, "diffuse transmission");
 }
 
 TEST(Fresnel, DielectricLimits) {

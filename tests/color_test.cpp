@@ -53,8 +53,8 @@ TEST(Color, BlackBodyChromaticities) {
   // In sRGB: luminance 1, warm below the D65 white point, bluish above.
   const RGB warm = pbrt::blackbody_rgb(2700.f), cold = pbrt::blackbody_rgb(12000.f);
   EXPECT_NEAR(luminance(warm), 1.f, 0.02f);
-  EXPECT_GT(warm.x, warm.z);
-  EXPECT_GT(cold.z, cold.x);
+  EXPECT_GT(warm[0], warm[2]);
+  EXPECT_GT(cold[2], cold[0]);
   EXPECT_EQ(pbrt::blackbody_rgb(0.f), RGB(0.f));
   EXPECT_EQ(pbrt::blackbody_rgb(-5.f), RGB(0.f));
 }
@@ -71,8 +71,8 @@ TEST(Color, SampledSpectra) {
   // A constant reflectance over the visible range is that grey.
   const double grey[] = {300, 0.35, 900, 0.35};
   const RGB g = reflectance_rgb(spectrum_from_pairs(grey));
-  EXPECT_NEAR(g.x, 0.35f, 1e-5f);
-  EXPECT_NEAR(g.z, 0.35f, 1e-5f);
+  EXPECT_NEAR(g[0], 0.35f, 1e-5f);
+  EXPECT_NEAR(g[2], 0.35f, 1e-5f);
   // Planck's law sampled every 5 nm has the black body's colour.
   std::vector<double> planck;
   for (double nm = 360; nm <= 830; nm += 5) {

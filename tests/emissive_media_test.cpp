@@ -68,11 +68,11 @@ TEST(EmissiveMedia, BlackbodyIsPbrtsPeakNormalisedSpectrum) {
     EXPECT_NEAR(blackbody_peak_xyz(float(T)).y, Y, 0.01 * Y) << T << " K";
   }
   const RGB white = xyz_to_linear_srgb(blackbody_peak_xyz(6500.f));
-  EXPECT_NEAR(white.x / white.z, 1.0, 0.1);
+  EXPECT_NEAR(white[0] / white[2], 1.0, 0.1);
   const BlackbodyTable table(3000.f);
   EXPECT_EQ(table.at(100.f), RGB(0.f));  // pbrt-v4's media emit above 100 K only
   const RGB exact = xyz_to_linear_srgb(blackbody_peak_xyz(2345.f)), tabled = table.at(2345.f);
-  for (int k = 0; k < 3; ++k) EXPECT_NEAR(tabled[k], exact[k], 1e-3 * std::fabs(exact.x) + 1e-6);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(tabled[k], exact[k], 1e-3 * std::fabs(exact[0]) + 1e-6);
 }
 
 // The glowing fog ball and the ember of perf/media/glowing-fog.pbrt.

@@ -262,14 +262,14 @@ double extreme_sampled_albedo(const BSDF& bsdf, const Vec3& wo, int n, int* nonf
     Vec2 u = s.get2d();
     auto bs = bsdf.sample_f(wo, uc, u, mode);
     if (!bs || !(bs->pdf > 0.f)) continue;
-    double v = double(bs->f.y) * std::fabs(bs->wi.z) / double(bs->pdf);
+    double v = double(bs->f[1]) * std::fabs(bs->wi.z) / double(bs->pdf);
     if (!std::isfinite(v) || !is_finite(bs->wi)) {
       ++*nonfinite;
       continue;
     }
     sum += v;
     // Evaluating the sampled pair directly must be finite too.
-    RGB f = bsdf.f(wo, bs->wi, mode);
+    Spectrum f = bsdf.f(wo, bs->wi, mode);
     float pdf = bsdf.pdf(wo, bs->wi, mode);
     if (!is_finite(f) || !std::isfinite(pdf)) ++*nonfinite;
   }
@@ -290,7 +290,7 @@ TEST(NearSpecular, RoughnessTowardsZeroApproachesSmooth) {
     for (int kind = 0; kind < 2; ++kind) {
       auto albedo = [&](float alpha, int* bad) {
         TrowbridgeReitz d{alpha, alpha};
-        return kind == 0 ? extreme_sampled_albedo(ConductorBSDF{d, RGB(0.2f), RGB(3.9f), RGB(1.f), false}, wo, 20000, bad)
+        return kind == 0 ? extreme_sampled_albedo(ConductorBSDF{d, Spectrum(0.2f), Spectrum(3.9f), Spectrum(1.f), false}, wo, 20000, bad)
                          : extreme_sampled_albedo(DielectricBSDF{d, 1.5f}, wo, 20000, bad);
       };
       int bad = 0;
@@ -345,7 +345,7 @@ TEST(NearSpecular, DielectricIndexExtremesAndTotalInternalReflection) {
       auto bs = DielectricBSDF{{0.f, 0.f}, 1.5f}.sample_f(wo, uc, Vec2(0.5f), TransportMode::Radiance);
       ASSERT_TRUE(bs);
       EXPECT_FALSE(bs->transmission) << theta;
-      EXPECT_NEAR(bs->f.y * std::fabs(bs->wi.z) / bs->pdf, 1.f, 1e-5f);
+      EXPECT_NEAR(bs->f[1] * std::fabs(bs->wi.z) / bs->pdf, 1.f, 1e-5f);
     }
   }
 }

@@ -160,8 +160,8 @@ TEST(RgbGrid, GivenAndConstantPartsIntegrate) {
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(depth[c], 0.9375f * g.sigma_a[0][c] + 0.5f, 1e-5f) << c;
   RGB a, sc;
   g.at(Vec3(0.f, 0.5f, 0.5f), &a, &sc);  // on the face: half the samples, all of the constant
-  EXPECT_NEAR(a.z, 2.f, 1e-5f);
-  EXPECT_NEAR(sc.x, 0.5f, 1e-6f);
+  EXPECT_NEAR(a[2], 2.f, 1e-5f);
+  EXPECT_NEAR(sc[0], 0.5f, 1e-6f);
 }
 
 TEST(RgbGrid, RandomRaysMatchABruteForceSumAndSamplingInvertsIt) {

@@ -22,14 +22,14 @@ const Vec3 kTangent = glm::normalize(Vec3(0.8f, 0.6f, 0.f));
 TEST(Hair, SamplingMatchesPdf) {
   struct Case {
     float h, beta_m, beta_n, alpha;
-    RGB sigma_a;
+    Spectrum sigma_a;
     Vec3 wo;
   };
   const Case cases[] = {
-      {0.3f, 0.3f, 0.3f, 2.f, RGB(0.2f, 0.4f, 0.8f), glm::normalize(Vec3(0.3f, -0.2f, 0.9f))},
-      {-0.8f, 0.15f, 0.5f, 4.f, RGB(0.f), glm::normalize(Vec3(-0.6f, 0.3f, 0.4f))},
-      {0.f, 0.6f, 0.2f, 0.f, RGB(1.5f), glm::normalize(Vec3(0.7f, 0.7f, 0.1f))},
-      {0.95f, 0.1f, 0.8f, 2.f, RGB(0.05f), glm::normalize(Vec3(0.1f, -0.9f, -0.3f))},
+      {0.3f, 0.3f, 0.3f, 2.f, Spectrum(0.2f, 0.4f, 0.8f), glm::normalize(Vec3(0.3f, -0.2f, 0.9f))},
+      {-0.8f, 0.15f, 0.5f, 4.f, Spectrum(0.f), glm::normalize(Vec3(-0.6f, 0.3f, 0.4f))},
+      {0.f, 0.6f, 0.2f, 0.f, Spectrum(1.5f), glm::normalize(Vec3(0.7f, 0.7f, 0.1f))},
+      {0.95f, 0.1f, 0.8f, 2.f, Spectrum(0.05f), glm::normalize(Vec3(0.1f, -0.9f, -0.3f))},
   };
   for (const Case& c : cases) {
     HairBSDF hair(c.h, 1.55f, c.sigma_a, c.beta_m, c.beta_n, c.alpha, kTangent);
@@ -51,9 +51,9 @@ TEST(Hair, WhiteFurnaceWithoutAbsorption) {
       const int n = LANTERN_ASAN ? 50000 : 200000;
       double sum = 0.0;
       for (int i = 0; i < n; ++i) {
-        HairBSDF hair(-1.f + 2.f * s.get1d(), 1.55f, RGB(0.f), beta_m, beta_n, 2.f, kTangent);
+        HairBSDF hair(-1.f + 2.f * s.get1d(), 1.55f, Spectrum(0.f), beta_m, beta_n, 2.f, kTangent);
         const Vec3 wi = random_direction(s);
-        sum += double(hair.f(wo, wi, TransportMode::Radiance).y) * std::fabs(wi.z) * 4.0 * kPi;
+        sum += double(hair.f(wo, wi, TransportMode::Radiance)[1]) * std::fabs(wi.z) * 4.0 * kPi;
       }
       const double avg = sum / n;
       EXPECT_GT(avg, 0.95) << "beta_m " << beta_m << " beta_n " << beta_n;
@@ -68,24 +68,24 @@ TEST(Hair, SampledAlbedoMatchesUniformAndAbsorptionOnlyRemoves) {
   const int n = LANTERN_ASAN ? 40000 : 160000;
   for (float h : {-0.7f, 0.1f, 0.9f}) {
     const Vec3 wo = random_direction(s);
-    for (RGB sigma : {RGB(0.f), RGB(0.1f, 0.3f, 1.f)}) {
+    for (Spectrum sigma : {Spectrum(0.f), Spectrum(0.1f, 0.3f, 1.f)}) {
       HairBSDF hair(h, 1.55f, sigma, 0.3f, 0.3f, 2.f, kTangent);
       double uni = 0.0, uni2 = 0.0, smp = 0.0, smp2 = 0.0;
-      RGB uni_rgb(0.f);
+      Spectrum uni_rgb(0.f);
       for (int i = 0; i < n; ++i) {
         const Vec3 wi = random_direction(s);
-        const RGB fu = hair.f(wo, wi, TransportMode::Radiance) * (std::fabs(wi.z) * 4.f * kPi);
-        uni += fu.y, uni2 += double(fu.y) * fu.y, uni_rgb += fu;
+        const Spectrum fu = hair.f(wo, wi, TransportMode::Radiance) * (std::fabs(wi.z) * 4.f * kPi);
+        uni += fu[1], uni2 += double(fu[1]) * fu[1], uni_rgb += fu;
         double v = 0.0;
         if (auto bs = hair.sample_f(wo, s.get1d(), s.get2d(), TransportMode::Radiance))
-          v = bs->f.y * std::fabs(bs->wi.z) / bs->pdf;
+          v = bs->f[1] * std::fabs(bs->wi.z) / bs->pdf;
         smp += v, smp2 += v * v;
       }
       uni /= n, smp /= n;
       const double se = std::sqrt((uni2 / n - uni * uni) / n + (smp2 / n - smp * smp) / n);
       EXPECT_LT(std::fabs(uni - smp), 5.0 * se + 1e-4) << "h " << h << " uniform " << uni << " sampled " << smp;
       EXPECT_LT(uni, 1.1) << "h " << h;
-      if (sigma.z > 0.f) EXPECT_LT(uni_rgb.z, uni_rgb.x) << "h " << h << ": blue is absorbed most";
+      if (sigma[2] > 0.f) EXPECT_LT(uni_rgb[2], uni_rgb[0]) << "h " << h << ": blue is absorbed most";
     }
   }
 }
@@ -96,13 +96,13 @@ TEST(Hair, AbsorptionFromReflectanceAndMelanin) {
   HairMaterial m;
   m.by = HairMaterial::Absorption::Melanin;
   RGB brown = hair_sigma_a(m, TextureContext{}, tex, 0.3f);  // eumelanin 1.3
-  EXPECT_NEAR(brown.x, 1.3f * 0.419f, 1e-5f);
-  EXPECT_NEAR(brown.z, 1.3f * 1.37f, 1e-5f);
+  EXPECT_NEAR(brown[0], 1.3f * 0.419f, 1e-5f);
+  EXPECT_NEAR(brown[2], 1.3f * 1.37f, 1e-5f);
   m.by = HairMaterial::Absorption::Reflectance;
   m.reflectance = TextureRef::constant(RGB(1.f, 0.5f, 0.1f));
   RGB s = hair_sigma_a(m, TextureContext{}, tex, 0.3f);
-  EXPECT_NEAR(s.x, 0.f, 1e-6f);  // white hair absorbs nothing
-  EXPECT_GT(s.z, s.y);
+  EXPECT_NEAR(s[0], 0.f, 1e-6f);  // white hair absorbs nothing
+  EXPECT_GT(s[2], s[1]);
 }
 
 }  // namespace

@@ -36,16 +36,16 @@ struct Layer {
 
 CoatedConductorBSDF make_coated_conductor(const Layer& l) {
   return CoatedConductorBSDF{DielectricBSDF{{l.alpha(), l.alpha()}, l.eta},
-                             ConductorBSDF{{l.cond_alpha(), l.cond_alpha()}, RGB(l.cond_eta / l.eta),
-                                           RGB(l.cond_k / l.eta), RGB(1.f), false},
+                             ConductorBSDF{{l.cond_alpha(), l.cond_alpha()}, Spectrum(l.cond_eta / l.eta),
+                                           Spectrum(l.cond_k / l.eta), Spectrum(1.f), false},
                              std::fmax(l.thickness, std::numeric_limits<float>::min()),
-                             RGB(l.albedo), l.g, l.max_depth, 1};
+                             Spectrum(l.albedo), l.g, l.max_depth, 1};
 }
 
 CoatedDiffuseBSDF make_coated(const Layer& l) {
-  return CoatedDiffuseBSDF{DielectricBSDF{{l.alpha(), l.alpha()}, l.eta}, DiffuseBSDF{RGB(l.R)},
+  return CoatedDiffuseBSDF{DielectricBSDF{{l.alpha(), l.alpha()}, l.eta}, DiffuseBSDF{Spectrum(l.R)},
                            std::fmax(l.thickness, std::numeric_limits<float>::min()),
-                           RGB(l.albedo), l.g, l.max_depth, 1};
+                           Spectrum(l.albedo), l.g, l.max_depth, 1};
 }
 
 // Fresnel reflectance for unpolarised light; n = n_t / n_i, cos_i > 0.
@@ -199,7 +199,7 @@ Estimate sampled_albedo(const BSDF& b, const Vec3& wo, TransportMode mode, int n
     float uc = s.get1d();
     Vec2 u = s.get2d();
     double v = 0.0;
-    if (auto bs = b.sample_f(wo, uc, u, mode); bs && bs->pdf > 0.f) v = double(bs->f.x) * std::fabs(bs->wi.z) / bs->pdf;
+    if (auto bs = b.sample_f(wo, uc, u, mode); bs && bs->pdf > 0.f) v = double(bs->f[0]) * std::fabs(bs->wi.z) / bs->pdf;
     sum += v;
     sum2 += v * v;
   }
@@ -216,7 +216,7 @@ Estimate evaluated_albedo(const BSDF& b, const Vec3& wo, int n, TransportMode mo
   for (int i = 0; i < n; ++i) {
     Vec3 wi = sample_cosine_hemisphere(s.get2d());
     if (wi.z <= 0.f) continue;
-    double v = double(b.f(wo, wi, mode).x) * kPi;
+    double v = double(b.f(wo, wi, mode)[0]) * kPi;
     sum += v;
     sum2 += v * v;
   }
@@ -331,7 +331,7 @@ TEST(LayeredBSDF, TwoSided) {
 TEST(LayeredBSDF, EvaluationIsDeterministic) {
   CoatedDiffuseBSDF b = make_coated({0.3f, 0.5f, 0.2f, 0.5f, 0.3f});
   Vec3 wo = view(40.f), wi = glm::normalize(Vec3(0.1f, -0.4f, 0.7f));
-  RGB f1 = b.f(wo, wi, TransportMode::Radiance);
+  Spectrum f1 = b.f(wo, wi, TransportMode::Radiance);
   EXPECT_EQ(f1, b.f(wo, wi, TransportMode::Radiance));
   auto s1 = b.sample_f(wo, 0.7f, Vec2(0.2f, 0.9f), TransportMode::Radiance);
   auto s2 = b.sample_f(wo, 0.7f, Vec2(0.2f, 0.9f), TransportMode::Radiance);
@@ -462,7 +462,7 @@ Shape "sphere"
   EXPECT_NEAR(b.bottom.distrib.alpha_x, 0.2f, 1e-6f);
   EXPECT_FLOAT_EQ(b.thickness, 0.2f);
   // pbrt-v4: the conductor's index relative to the coat's.
-  EXPECT_NEAR(b.bottom.k.x, 2.f * std::sqrt(0.5f) / std::sqrt(0.5f) / 1.33f, 1e-5f);
+  EXPECT_NEAR(b.bottom.k[0], 2.f * std::sqrt(0.5f) / std::sqrt(0.5f) / 1.33f, 1e-5f);
   expect_load_error(R"(WorldBegin
 Material "coatedconductor" "rgb reflectance" [ 0.5 0.5 0.5 ] "spectrum conductor.eta" "metal-Au-eta"
 )",

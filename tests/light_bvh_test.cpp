@@ -200,7 +200,7 @@ double irradiance_relative_variance(const Scene& scene, LightSamplerKind kind) {
     double s = 0.0, s2 = 0.0;
     for (int i = 0; i < n; ++i) {
       auto ls = sample_light(scene.lights, scene.shapes, scene.textures, sampler, p, nrm, r.get1d(), r.get2d());
-      const double v = ls ? luminance(ls->L) * std::fmax(0.f, glm::dot(nrm, ls->wi)) / ls->pdf : 0.0;
+      const double v = ls ? luminance(film_rgb(ls->L)) * std::fmax(0.f, glm::dot(nrm, ls->wi)) / ls->pdf : 0.0;
       s += v, s2 += v * v;
     }
     const double mean = s / n;

@@ -63,7 +63,7 @@ inline void expect_volume_light_integrates(const Scene& scene) {
   ASSERT_FALSE(scene.lights.volume.empty());
   for (const VolumeLight& v : scene.lights.volume) {
     auto f = [&](const Vec3& p) {
-      RGB a, s;
+      Spectrum a, s;
       scene.media.coefficients_at(v.medium, p, &a, &s);
       return a * scene.media.Le(v.medium, p);
     };
@@ -73,7 +73,7 @@ inline void expect_volume_light_integrates(const Scene& scene) {
       for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x) {
           const Vec3 u = (Vec3(float(x), float(y), float(z)) + 0.5f) / float(n);
-          const RGB e = f(Vec3(v.render_from_unit * Vec4(u, 1.f)));
+          const Spectrum e = f(Vec3(v.render_from_unit * Vec4(u, 1.f)));
           for (int c = 0; c < 3; ++c) brute[c] += double(e[c]) * double(v.volume) / double(n * n * n);
         }
     std::mt19937 rng(3);
@@ -85,7 +85,7 @@ inline void expect_volume_light_integrates(const Scene& scene) {
       const Vec3 p = sample_volume_point(v, Vec3(uni(rng), uni(rng), uni(rng)), &pdf);
       ASSERT_GT(pdf, 0.f);
       EXPECT_NEAR(volume_point_density(v, p), pdf, 1e-3f * pdf);
-      const RGB e = f(p) / pdf;
+      const Spectrum e = f(p) / pdf;
       for (int c = 0; c < 3; ++c) sum[c] += e[c], sum2[c] += double(e[c]) * e[c];
     }
     for (int c = 0; c < 3; ++c) {

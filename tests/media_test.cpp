@@ -249,8 +249,8 @@ TEST(Media, PresetsUsePublishedCoefficients) {
       "p.pbrt", {});
   ASSERT_EQ(scene->media.homogeneous.size(), 1u);
   const HomogeneousMedium& m = scene->media.homogeneous[0];
-  EXPECT_FLOAT_EQ(m.sigma_s.y, 12.2f);
-  EXPECT_FLOAT_EQ(m.sigma_a.z, 0.142f);
+  EXPECT_FLOAT_EQ(m.sigma_s[1], 12.2f);
+  EXPECT_FLOAT_EQ(m.sigma_a[2], 0.142f);
 }
 
 }  // namespace

@@ -33,15 +33,15 @@ TEST(OpticalConstants, ReflectanceToRGB) {
   // Constants map to themselves; a spectrum reflecting only long
   // wavelengths is red; reflectance is linear.
   const RGB half = reflectance_rgb([](double) { return 0.5; });
-  EXPECT_NEAR(half.x, 0.5f, 1e-6f);
-  EXPECT_NEAR(half.y, 0.5f, 1e-6f);
-  EXPECT_NEAR(half.z, 0.5f, 1e-6f);
+  EXPECT_NEAR(half[0], 0.5f, 1e-6f);
+  EXPECT_NEAR(half[1], 0.5f, 1e-6f);
+  EXPECT_NEAR(half[2], 0.5f, 1e-6f);
   const RGB red = reflectance_rgb([](double nm) { return nm > 600.0 ? 1.0 : 0.0; });
-  EXPECT_GT(red.x, 0.5f);
-  EXPECT_LT(red.z, 0.05f);
+  EXPECT_GT(red[0], 0.5f);
+  EXPECT_LT(red[2], 0.05f);
   const RGB rest = reflectance_rgb([](double nm) { return nm > 600.0 ? 0.0 : 1.0; });
-  EXPECT_NEAR(red.x + rest.x, 1.f, 1e-5f);
-  EXPECT_NEAR(red.y + rest.y, 1.f, 1e-5f);
+  EXPECT_NEAR(red[0] + rest[0], 1.f, 1e-5f);
+  EXPECT_NEAR(red[1] + rest[1], 1.f, 1e-5f);
 }
 
 TEST(OpticalConstants, FresnelConductorClosedForms) {
@@ -116,7 +116,7 @@ TEST(OpticalConstants, NamedMetalsMatchTheirSpectra) {
   };
   EXPECT_NEAR(index_at(optical_constants("MgO"), 589.3f), 1.7375f, 1e-3f);
   EXPECT_NEAR(index_at(optical_constants("TiO2"), 589.3f), 2.613f, 2e-3f);
-  EXPECT_NEAR(named_conductor_rgb("MgO")->k.y, 0.f, 1e-2f);  // to the fit's tint steps
+  EXPECT_NEAR(named_conductor_rgb("MgO")->k[1], 0.f, 1e-2f);  // to the fit's tint steps
 }
 
 // The parser's named spectra come from the fit; unknown names are refused.

@@ -75,11 +75,11 @@ TEST(Portal, SamplesThroughTheWindowEstimateIrradiance) {
     for (int k = 0; k < count; ++k) {
       Vec3 wi;
       float pdf;
-      RGB L;
+      Spectrum L;
       if (sample_portal(m, p, Vec2(rng.get1d(), rng.get1d()), &wi, &pdf, &L)) {
         EXPECT_TRUE(through_portal(m, p, wi));
         EXPECT_NEAR(portal_pdf(m, p, wi) / pdf, 1.f, 1e-3f);
-        by_sampling += double(L.z * std::fmax(glm::dot(n, wi), 0.f) / pdf);
+        by_sampling += double(L[2] * std::fmax(glm::dot(n, wi), 0.f) / pdf);
       }
       // Independently: a point uniform on the window, its direction's
       // density dist^2 / (area cos) at p.
@@ -88,7 +88,7 @@ TEST(Portal, SamplesThroughTheWindowEstimateIrradiance) {
       const float dist2 = glm::dot(d, d);
       const Vec3 w = d / std::sqrt(dist2);
       const float pdf_w = dist2 / (m.area * std::fabs(w.y));  // the window lies in the plane y = 2
-      by_uniform += double(portal_Le(m, p, w).z * std::fmax(glm::dot(n, w), 0.f) / pdf_w);
+      by_uniform += double(portal_Le(m, p, w)[2] * std::fmax(glm::dot(n, w), 0.f) / pdf_w);
     }
     EXPECT_NEAR(by_sampling / by_uniform, 1.0, 0.02) << p.x << " " << p.y << " " << p.z;
   }

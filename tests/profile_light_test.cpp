@@ -62,10 +62,10 @@ void expect_consistent(ProfileKind kind, const TexturePools& tex) {
     float pdf;
     if (sample_profile(p, Vec2(rng.get1d(), rng.get1d()), &w, &pdf)) {
       EXPECT_NEAR(profile_pdf(p, w) / pdf, 1.f, 2e-3f);
-      by_sampling += double(profile_value(p, tex, w).x) / double(pdf);
+      by_sampling += double(profile_value(p, tex, w)[0]) / double(pdf);
     }
     const Vec3 u = sample_uniform_sphere(Vec2(rng.get1d(), rng.get1d()));
-    by_uniform += double(profile_value(p, tex, u).x) / double(uniform_sphere_pdf());
+    by_uniform += double(profile_value(p, tex, u)[0]) / double(uniform_sphere_pdf());
     pdf_integral += double(profile_pdf(p, u)) / double(uniform_sphere_pdf());
   }
   by_sampling /= n;

@@ -178,7 +178,7 @@ double nee_irradiance_z(const Scene& s, const Vec3& p, const Vec3& n, int count,
   for (int i = 0; i < count; ++i) {
     auto ls = sample_light_from(s.lights, s.shapes, s.textures, 0, p, Vec2(rng.get1d(), rng.get1d()));
     double v = 0.0;
-    if (ls && ls->pdf > 0.f) v = double(ls->L.x) * std::fmax(0.f, glm::dot(n, ls->wi)) / ls->pdf;
+    if (ls && ls->pdf > 0.f) v = double(ls->L[0]) * std::fmax(0.f, glm::dot(n, ls->wi)) / ls->pdf;
     sum += v;
     sum2 += v * v;
   }

@@ -66,7 +66,7 @@ TEST(TextureCache, PreparedOnceAndRemadeWhenTheSourceChanges) {
   EXPECT_EQ(d.path, a.path);
   TextureCache cache(TextureCacheSettings{16.0, dir.string()});
   int32_t id = cache.add(d, ImageFilter::Bilinear, WrapMode::Repeat, 8.f);
-  EXPECT_FLOAT_EQ(cache.lookup_rgb(id, TextureLookup{Vec2(0.5f)}).x, 0.75f);
+  EXPECT_FLOAT_EQ(cache.lookup_rgb(id, TextureLookup{Vec2(0.5f)})[0], 0.75f);
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2) << "one file per source and encoding";
 }
 

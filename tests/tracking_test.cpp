@@ -25,7 +25,7 @@ namespace {
 struct ChannelMean {
   double sum[3] = {0, 0, 0}, sq[3] = {0, 0, 0};
   int n = 0;
-  void add(const RGB& v) {
+  void add(const Spectrum& v) {
     for (int c = 0; c < 3; ++c) sum[c] += v[c], sq[c] += double(v[c]) * v[c];
     ++n;
   }
@@ -37,11 +37,11 @@ struct ChannelMean {
 
 // A medium along one ray: sigma_t,c(t) = sigma_t,c rho(t), albedo per channel.
 struct RayMedium {
-  RGB sigma_t, albedo;
+  Spectrum sigma_t, albedo;
   std::function<float(float)> rho;  // the density along the ray
   std::function<float(float)> depth;  // its integral from 0
-  void at(float t, RGB* a, RGB* s) const {
-    const RGB st = sigma_t * rho(t);
+  void at(float t, Spectrum* a, Spectrum* s) const {
+    const Spectrum st = sigma_t * rho(t);
     *s = st * albedo;
     *a = st - *s;
   }
@@ -56,13 +56,13 @@ void expect_tracking_matches(const RayMedium& m, float L, float sigma_bar, int r
   const float x = 0.4f * L;
   for (int i = 0; i < runs; ++i) {
     RandomStream rng = RandomStream::make(7, uint64_t(i), 0);
-    ratio.add(tracking::ratio_track(L, sigma_bar, rng, [&](float t, RGB* a, RGB* s) { m.at(t, a, s); }));
+    ratio.add(tracking::ratio_track(L, sigma_bar, rng, [&](float t, Spectrum* a, Spectrum* s) { m.at(t, a, s); }));
     const tracking::Track tr =
-        tracking::delta_track(L, sigma_bar, rng.get1d(), rng, [&](float t, RGB* a, RGB* s) { m.at(t, a, s); });
+        tracking::delta_track(L, sigma_bar, rng.get1d(), rng, [&](float t, Spectrum* a, Spectrum* s) { m.at(t, a, s); });
     ASSERT_FALSE(tr.saturated);
-    pass.add(tr.real() ? RGB(0.f) : tr.weight);
-    early.add(tr.real() && tr.t < x ? tr.weight : RGB(0.f));
-    all.add(tr.real() ? tr.weight : RGB(0.f));
+    pass.add(tr.real() ? Spectrum(0.f) : tr.weight);
+    early.add(tr.real() && tr.t < x ? tr.weight : Spectrum(0.f));
+    all.add(tr.real() ? tr.weight : Spectrum(0.f));
   }
   for (int c = 0; c < 3; ++c) {
     const double a = m.albedo[c];
@@ -75,13 +75,13 @@ void expect_tracking_matches(const RayMedium& m, float L, float sigma_bar, int r
 
 TEST(Tracking, MatchesTheClosedFormsOfAHomogeneousMedium) {
   RayMedium m;
-  m.sigma_t = RGB(1.f, 2.f, 0.5f);
-  m.albedo = RGB(0.9f, 0.5f, 1.f);
+  m.sigma_t = Spectrum(1.f, 2.f, 0.5f);
+  m.albedo = Spectrum(0.9f, 0.5f, 1.f);
   m.rho = [](float) { return 1.f; };
   m.depth = [](float t) { return t; };
   expect_tracking_matches(m, 1.5f, 2.f, 40000);       // the majorant is the largest extinction
   expect_tracking_matches(m, 1.5f, 5.f, 40000);       // and far above it
-  m.sigma_t = RGB(0.f, 1.f, 1.f);                     // a channel that does not interact
+  m.sigma_t = Spectrum(0.f, 1.f, 1.f);                     // a channel that does not interact
   expect_tracking_matches(m, 1.5f, 1.f, 40000);
 }
 
@@ -99,8 +99,8 @@ TEST(Tracking, AgreesWithTheExactIntegralOfAHeterogeneousGrid) {
   }
   const Vec3 o(-0.2f, 0.1f, 0.3f), d = glm::normalize(Vec3(1.f, 0.7f, 0.4f));
   RayMedium m;
-  m.sigma_t = RGB(1.5f, 0.8f, 2.5f);
-  m.albedo = RGB(0.8f, 1.f, 0.6f);
+  m.sigma_t = Spectrum(1.5f, 0.8f, 2.5f);
+  m.albedo = Spectrum(0.8f, 1.f, 0.6f);
   m.rho = [&](float t) { return g.density(o + d * t); };
   m.depth = [&](float t) {
     float unused;
@@ -112,7 +112,7 @@ TEST(Tracking, AgreesWithTheExactIntegralOfAHeterogeneousGrid) {
 
 TEST(Tracking, AnAbsurdMajorantEndsInBoundedTime) {
   RandomStream rng = RandomStream::make(1, 2, 3);
-  auto none = [](float, RGB* a, RGB* s) { *a = *s = RGB(0.f); };
+  auto none = [](float, Spectrum* a, Spectrum* s) { *a = *s = Spectrum(0.f); };
   const tracking::Track tr = tracking::delta_track(1e3f, 1e9f, 0.5f, rng, none);
   EXPECT_TRUE(tr.saturated);
   EXPECT_TRUE(is_black(tr.weight));

@@ -66,7 +66,7 @@ RGB illuminant_rgb(const PiecewiseLinearSpectrum& s) {
   Vec3 xyz(0.f);
   for (int nm = 360; nm <= 830; ++nm) xyz += float(s(double(nm))) * cie1931_cmf(float(nm));
   if (!(xyz.y > 0.f)) return RGB(0.f);
-  return glm::max(xyz_to_linear_srgb(xyz / xyz.y), RGB(0.f));
+  return max(xyz_to_linear_srgb(xyz / xyz.y), RGB(0.f));
 }
 
 }  // namespace lantern

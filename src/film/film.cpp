@@ -15,10 +15,10 @@ Film::Film(int width, int height, const PixelFilter& filter)
 
 namespace {
 
-bool addable(const RGB& c) { return FixedSum::addable(c.x) && FixedSum::addable(c.y) && FixedSum::addable(c.z); }
+bool addable(const RGB& c) { return FixedSum::addable(c[0]) && FixedSum::addable(c[1]) && FixedSum::addable(c[2]); }
 
 FixedTerm fixed_term(uint32_t pixel, const RGB& c) {
-  return FixedTerm{pixel, {FixedSum::to_fixed(c.x), FixedSum::to_fixed(c.y), FixedSum::to_fixed(c.z)}};
+  return FixedTerm{pixel, {FixedSum::to_fixed(c[0]), FixedSum::to_fixed(c[1]), FixedSum::to_fixed(c[2])}};
 }
 
 }  // namespace
@@ -32,16 +32,18 @@ void Film::prepare(WaveOutput& out) const {
   out.nonfinite = 0;
   out.sample_terms.reserve(out.samples.size());
   for (const FilmSample& s : out.samples) {
-    if (addable(s.L)) out.sample_terms.push_back(fixed_term(s.pixel, s.L));
+    const RGB c = film_rgb(s.L);
+    if (addable(c)) out.sample_terms.push_back(fixed_term(s.pixel, c));
     else ++out.nonfinite;
   }
   for (const Splat& s : out.splats) {
-    if (!addable(s.L)) {
+    const RGB c = film_rgb(s.L);
+    if (!addable(c)) {
       ++out.nonfinite;
       continue;
     }
     for_each_splat_pixel(filter_, width_, height_, s.p_raster, [&](size_t pixel, float w) {
-      out.splat_terms.push_back(fixed_term(uint32_t(pixel), w * s.L));
+      out.splat_terms.push_back(fixed_term(uint32_t(pixel), w * c));
     });
   }
 }

@@ -21,13 +21,15 @@
 
 namespace lantern {
 
+// Transported values arrive as spectra; Film::prepare turns them into the
+// output colour (film_rgb), the one place where that happens.
 struct FilmSample {
   uint32_t pixel;
-  RGB L;
+  Spectrum L;
 };
 struct Splat {
   Vec2 p_raster;
-  RGB L;  // contribution, already divided by nothing: the film normalises by the light-path count
+  Spectrum L;  // contribution, already divided by nothing: the film normalises by the light-path count
 };
 
 // One contribution of one bidirectional strategy (s light vertices, t eye
@@ -37,7 +39,7 @@ struct StrategyRecord {
   uint32_t pixel;  // t >= 2: the pixel of the camera sample
   Vec2 p_raster;   // t = 1: where the splat lands
   uint8_t s, t;
-  RGB weighted, unweighted;
+  Spectrum weighted, unweighted;
   bool merge = false;
 };
 

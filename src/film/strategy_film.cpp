@@ -18,12 +18,13 @@ StrategyFilm::Sums& StrategyFilm::sums(int s, int t, bool merge) {
 
 void StrategyFilm::merge(const std::vector<StrategyRecord>& records) {
   for (const StrategyRecord& r : records) {
-    if (!is_finite(r.weighted) || !is_finite(r.unweighted)) continue;
+    const RGB weighted = film_rgb(r.weighted), unweighted = film_rgb(r.unweighted);
+    if (!is_finite(weighted) || !is_finite(unweighted)) continue;
     Sums& x = sums(r.s, r.t, r.merge);
     auto add = [&](size_t pixel, float w) {
       for (size_t c = 0; c < 3; ++c) {
-        x.weighted[3 * pixel + c] += double(w * r.weighted[int(c)]);
-        x.unweighted[3 * pixel + c] += double(w * r.unweighted[int(c)]);
+        x.weighted[3 * pixel + c] += double(w * weighted[int(c)]);
+        x.unweighted[3 * pixel + c] += double(w * unweighted[int(c)]);
       }
     };
     if (r.t == 1)

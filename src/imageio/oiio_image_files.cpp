@@ -117,8 +117,8 @@ TextureImage load_texture_image(const std::string& path, ColorEncoding encoding)
     const float* px = &data[i * size_t(nc)];
     RGB c = nc >= 3 ? RGB(decode(px[0]), decode(px[1]), decode(px[2])) : RGB(decode(px[0]));
     if (!is_finite(c)) throw InputError({path, 0, 0}, "image has a non-finite texel at (" + std::to_string(i % size_t(spec.width)) + ", " + std::to_string(i / size_t(spec.width)) + ")");
-    img.texels[i] = glm::max(c, RGB(0.f));
-    sum += double(img.texels[i].x + img.texels[i].y + img.texels[i].z) / 3.0;
+    img.texels[i] = max(c, RGB(0.f));
+    sum += double(img.texels[i][0] + img.texels[i][1] + img.texels[i][2]) / 3.0;
     // pbrt-v4 decodes every channel of an integer file, alpha included.
     if (img.channels == 4) img.alpha[i] = glm::clamp(decode(px[3]), 0.f, 1.f);
   }

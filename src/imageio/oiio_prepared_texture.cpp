@@ -87,8 +87,8 @@ void convert(const std::string& source, ColorEncoding encoding, bool float_sourc
     for (int x = 0; x < img.width; ++x) {
       size_t i = size_t(y) * size_t(img.width) + size_t(x);
       float* px = &row[size_t(x) * size_t(nc)];
-      px[0] = img.texels[i].x;
-      if (nc >= 3) px[1] = img.texels[i].y, px[2] = img.texels[i].z;
+      px[0] = img.texels[i][0];
+      if (nc >= 3) px[1] = img.texels[i][1], px[2] = img.texels[i][2];
       if (nc == 4) px[3] = img.alpha[i];
     }
     buf.set_pixels(OIIO::ROI(0, img.width, y, y + 1, 0, 1, 0, nc), OIIO::TypeDesc::FLOAT, row.data());

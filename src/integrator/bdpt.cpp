@@ -37,7 +37,7 @@ void Bdpt::start_eye_subpaths(const WaveDesc& wave, BdptWave& w) const {
     uint32_t pixel = w.pixel[slot];
     Vec2 p_raster = sample_raster_position(scene_.filter, pixel, width, s.get2d(dims::kFilm));
     CameraRay r = camera_.generate_ray(p_raster, s.get2d(dims::kLens));
-    w.eye.beta[slot] = RGB(1.f);
+    w.eye.beta[slot] = Spectrum(1.f);
     w.eye.mis[slot] = mis_camera_start(camera_.pdf_dir(r.d), w.mis);
     w.eye.prev_p[slot] = r.o;
     w.eye.prev_n[slot] = Vec3(0.f);
@@ -48,7 +48,7 @@ void Bdpt::start_eye_subpaths(const WaveDesc& wave, BdptWave& w) const {
   if (!scene_.media.empty())
     for (uint32_t slot = 0; slot < wave.size(); ++slot) {
       w.eye.medium[slot] = scene_.media.camera;
-      w.eye.sigma_prev[slot] = RGB(0.f);
+      w.eye.sigma_prev[slot] = Spectrum(0.f);
     }
 }
 
@@ -75,7 +75,7 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
       const float dist2 = glm::dot(p - prev, p - prev);
       if (!(dist2 > 0.f)) continue;
       mis_after_hit(m, dist2, 1.f, !(w.depth == 1 && camera_.area_sensor()), w.mis);
-      const RGB beta_before = w.eye.beta[slot];
+      const Spectrum beta_before = w.eye.beta[slot];
       apply_segment(w, w.eye, i);
       if (!last && !w.ends.emission.empty() && !is_black(w.ends.emission[i])) add_volume_emission(w, i, beta_before);
       if (last) ++w.stats.eye_ends[size_t(PathEnd::MaxDepth)];
@@ -87,7 +87,7 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
       if (media) apply_segment(w, w.eye, i);
       if (!lights.infinite.empty()) {
         const Vec3 prev = w.eye.prev_p[slot];
-        RGB Le = infinite_lights_Le(lights, scene_.textures, prev, d);
+        Spectrum Le = infinite_lights_Le(lights, scene_.textures, prev, d);
         float wt = w.depth == 1 ? 1.f
                                 : mis_weight_hit_light(m, infinite_lights_pdf(lights, scene_.textures, light_sampler_, prev, d),
                                                        infinite_emission_pdf(lights, scene_.textures, d), w.mis);
@@ -105,7 +105,7 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
     mis_after_hit(m, dist2, cos_in, !(w.depth == 1 && camera_.area_sensor()), w.mis);
     if (media) apply_segment(w, w.eye, i);
     if (int64_t light = hit_area_light(shapes, w.rays, i); light >= 0) {
-      RGB Le = area_light_Le(lights.area[size_t(light)], scene_.textures, sp.ng, sp.uv, -d);
+      Spectrum Le = area_light_Le(lights.area[size_t(light)], scene_.textures, sp.ng, sp.uv, -d);
       if (!is_black(Le)) {
         uint32_t a = uint32_t(light);
         float wt;
@@ -206,7 +206,7 @@ void Bdpt::flush_connections(BdptWave& w) const {
 }
 
 // s = 0: emission the eye subpath found at its current depth.
-void Bdpt::add_emission(BdptWave& w, uint32_t slot, const RGB& unweighted, float weight) const {
+void Bdpt::add_emission(BdptWave& w, uint32_t slot, const Spectrum& unweighted, float weight) const {
   if (weight == 0.f && !settings_.record_strategies) return;  // (bpm's emission past a merging vertex)
   w.L[slot] += unweighted * weight;
   if (settings_.record_strategies)

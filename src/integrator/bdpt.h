@@ -74,7 +74,7 @@ struct SubpathPool;
 struct LightVertexResponse {
   VertexEval e;
   float cos = 1.f;    // solid angle to area at it (1 in a medium)
-  RGB sigma_t{0.f};   // extinction there (zero on a surface)
+  Spectrum sigma_t{0.f};   // extinction there (zero on a surface)
   Vec3 target{0.f};   // where a connection ray aims
 };
 
@@ -94,7 +94,7 @@ class Bdpt {
   void start_light_subpaths(const WaveDesc& wave, BdptWave& w) const;
   void start_volume_subpaths(BdptWave& w) const;
   void begin_light_subpath(BdptWave& w, uint32_t slot, const struct EmissionSample& es, MediumHandle medium,
-                           const RGB& sigma_origin) const;
+                           const Spectrum& sigma_origin) const;
   void light_surface_stage(BdptWave& w) const;
   void light_shade_stage(BdptWave& w) const;
   void splat_stage(BdptWave& w) const;
@@ -128,12 +128,12 @@ class Bdpt {
   void light_medium_stage(BdptWave& w) const;
   void light_medium_arrival(BdptWave& w, uint32_t i) const;
   void trace_connections(BdptWave& w) const;
-  void add_emission(BdptWave& w, uint32_t slot, const RGB& unweighted, float weight) const;
-  void add_volume_emission(BdptWave& w, uint32_t i, const RGB& beta_before) const;
+  void add_emission(BdptWave& w, uint32_t slot, const Spectrum& unweighted, float weight) const;
+  void add_volume_emission(BdptWave& w, uint32_t i, const Spectrum& beta_before) const;
   float volume_number(const BdptWave& w, uint32_t slot) const;
   struct VolumeSampleEnd {
     MediumHandle medium;  // vacuum: not a volume light's sample
-    RGB sigma_t{0.f};
+    Spectrum sigma_t{0.f};
   };
   void complete_volume_light_sample(LightSample& ls, uint32_t depth, VolumeSampleEnd* end) const;
 

@@ -28,7 +28,7 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
     const float u_volume =
         emissive ? s.get1d(dims::volume_point(dims::vertex(maxdepth + 2), maxdepth, 0, true)) : 0.5f;
     w.pixel[slot] = pixel;
-    w.L[slot] = RGB(0.f);
+    w.L[slot] = Spectrum(0.f);
     w.sampler[slot] = s;
     w.origin.extra_depth[slot] = 0;
     auto es = sample_le(lights, scene_.shapes, scene_.textures, u_select, u_pos, u_dir, u_volume);
@@ -39,7 +39,7 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
       continue;
     }
     begin_light_subpath(w, slot, *es, !scene_.media.empty() ? emission_medium(lights, scene_.shapes, es->light, es->n, es->d) : MediumHandle{},
-                        RGB(0.f));
+                        Spectrum(0.f));
   }
   if (!in_volume.empty()) start_volume_subpaths(w);
 }
@@ -60,7 +60,7 @@ void Bdpt::start_volume_subpaths(BdptWave& w) const {
   for (size_t k = 0; k < points.size(); ++k) {
     EmissionSample es = w.volume_starts[k];
     MediumHandle m;
-    RGB sigma_t;
+    Spectrum sigma_t;
     complete_volume_sample(scene_.lights, scene_.media, &es.Le, es.p, es.light, &m, &sigma_t);
     if (w.volume_media[k] != m || is_black(es.Le)) continue;
     w.origin.extra_depth[w.volume_slots[k]] = 1;
@@ -74,7 +74,7 @@ void Bdpt::start_volume_subpaths(BdptWave& w) const {
 // starts (a volume light's; else the one towards es.d); sigma_origin: the
 // extinction at a volume light's point.
 void Bdpt::begin_light_subpath(BdptWave& w, uint32_t slot, const EmissionSample& es, MediumHandle medium,
-                               const RGB& sigma_origin) const {
+                               const Spectrum& sigma_origin) const {
   const LightPools& lights = scene_.lights;
   const bool on_surface = es.n != Vec3(0.f);
   const float cos_light = on_surface ? std::fabs(glm::dot(es.n, es.d)) : 1.f;
@@ -90,7 +90,7 @@ void Bdpt::begin_light_subpath(BdptWave& w, uint32_t slot, const EmissionSample&
   // position it depends on where it is seen from (the area density, and
   // the light sampler's choice), so it waits for the first hit (-1).
   o.direct_pdf_A[slot] = emission_direct_pdf_fixed(lights, light_sampler_, es);
-  RGB beta = es.Le * (cos_light / emission_pdf_W);
+  Spectrum beta = es.Le * (cos_light / emission_pdf_W);
   w.light.beta[slot] = beta;
   w.light.rr_scale[slot] = max_component(beta) > 0.f ? 1.f / max_component(beta) : 0.f;
   w.light.eta_scale[slot] = 1.f;
@@ -110,7 +110,7 @@ void Bdpt::begin_light_subpath(BdptWave& w, uint32_t slot, const EmissionSample&
   if (!es.infinite && !es.delta_pos && settings_.connections) {
     if (auto cs = camera_.sample_wi(es.p, u_lens)) {
       float cos_l = on_surface ? std::fabs(glm::dot(es.n, cs->wi)) : 1.f;
-      RGB Le = es.volume ? es.Le : emitted(lights, scene_.textures, es.light, es.n, es.uv, cs->wi);
+      Spectrum Le = es.volume ? es.Le : emitted(lights, scene_.textures, es.light, es.n, es.uv, cs->wi);
       if (!is_black(Le) && cos_l > 0.f) {
         Connection k;
         k.mis = mis_sums_light_origin(camera_.pdf_area(-cs->wi, sqr(cs->dist), cos_l), es.pdf_pos, es.delta_pos, w.mis);
@@ -228,7 +228,7 @@ void Bdpt::light_shade_stage(BdptWave& w) const {
                         {.p = h.p[i], .ng = h.ng[i], .ns = h.ns[i], .wo = h.wo[i], .uv = h.uv[i],
                          .error_scale = h.error_scale[i], .material = h.material[i],
                          .footprint = h.footprint.empty() ? nullptr : &h.footprint[i],
-                         .tangent = tangent_or_null(h.tangent, i), .medium = {}, .sigma_t = RGB(0.f)},
+                         .tangent = tangent_or_null(h.tangent, i), .medium = {}, .sigma_t = Spectrum(0.f)},
                         !h.footprint.empty());
       connect_camera(w, slot, ld, v, s.get2d(dim + dims::kLightLens));
     }

@@ -43,7 +43,7 @@ bool Bdpt::apply_segment(BdptWave& w, SubpathPool& sub, uint32_t i) const {
   if (e.end[i] == SegmentEnd::Absorbed) return false;
   const float rev = mixture_density(sub.sigma_prev[slot], e.T[i]);
   mis_after_segment(sub.mis[slot], e.fwd_density[i], rev, w.mis);
-  sub.sigma_prev[slot] = e.end[i] == SegmentEnd::Scatter ? e.sigma_t[i] : RGB(0.f);
+  sub.sigma_prev[slot] = e.end[i] == SegmentEnd::Scatter ? e.sigma_t[i] : Spectrum(0.f);
   return true;
 }
 
@@ -93,7 +93,7 @@ float Bdpt::volume_number(const BdptWave& w, uint32_t slot) const {
 // most maxdepth segments; a longer one gets L = 0).
 void Bdpt::complete_volume_light_sample(LightSample& ls, uint32_t depth, VolumeSampleEnd* end) const {
   if (!volume_sample_allowed(int(depth), settings_.maxdepth)) {
-    ls.L = RGB(0.f);
+    ls.L = Spectrum(0.f);
     return;
   }
   complete_volume_sample(scene_.lights, scene_.media, &ls.L, ls.p_light, ls.light, &end->medium, &end->sigma_t);
@@ -105,7 +105,7 @@ void Bdpt::complete_volume_light_sample(LightSample& ls, uint32_t depth, VolumeS
 // point on the medium's volume light: next-event estimation from the
 // previous vertex (s = 1) and light subpaths from it (s >= 2, or the
 // camera connection when the vertex is the first).
-void Bdpt::add_volume_emission(BdptWave& w, uint32_t i, const RGB& beta_before) const {
+void Bdpt::add_volume_emission(BdptWave& w, uint32_t i, const Spectrum& beta_before) const {
   const uint32_t slot = w.active[i];
   const Vec3 x = w.ends.p[i];
   const LightPools& lights = scene_.lights;
@@ -119,7 +119,7 @@ void Bdpt::add_volume_emission(BdptWave& w, uint32_t i, const RGB& beta_before) 
                       : mis_weight_hit_light(m, light_sampler_.pmf(w.eye.prev_p[slot], w.eye.prev_n[slot], uint32_t(light)) * density,
                                              pos_pdf * uniform_sphere_pdf(), w.mis);
   }
-  const RGB c = beta_before * w.ends.emission[i];
+  const Spectrum c = beta_before * w.ends.emission[i];
   if (is_finite(c)) add_emission(w, slot, c, emission_weight(m, wt));
 }
 

@@ -106,9 +106,9 @@ inline void mis_after_scatter(MisState& m, float cos_out, float pdf_fwd, float p
 // weight of Veach's eq. 10.9 in the recursive form: mis_weight_vacuum).
 struct DeferredMis {
   float a = 0.f, b = 0.f;
-  RGB sigma_a{0.f}, sigma_b{0.f};
+  Spectrum sigma_a{0.f}, sigma_b{0.f};
 };
-inline float mis_weight_deferred(const DeferredMis& d, const RGB& T, MisPower mis) {
+inline float mis_weight_deferred(const DeferredMis& d, const Spectrum& T, MisPower mis) {
   return 1.f / (1.f + d.a * mis(mixture_density(d.sigma_a, T)) + d.b * mis(mixture_density(d.sigma_b, T)));
 }
 // The same in vacuum, where every segment's transmittance is 1 and so are

@@ -91,7 +91,7 @@ void Bdpt::connect_light_vertices(BdptWave& w, uint32_t slot, const Vertex& v) c
     const VertexEval e = v.evaluate(wi);
     if (is_black(e.f)) continue;
     const LightVertexResponse r = light_vertex_response(lv, j, wi);
-    const RGB c = w.eye.beta[slot] * e.f * r.e.f * lv.beta[j] / dist2;
+    const Spectrum c = w.eye.beta[slot] * e.f * r.e.f * lv.beta[j] / dist2;
     if (is_black(c)) continue;
     Connection k;
     k.unweighted = c;
@@ -154,13 +154,13 @@ void Bdpt::merge_at_eye_vertex(BdptWave& w, uint32_t slot, const Vertex& v) cons
   // The eye subpath's factor on the summed light throughputs: beta over
   // pi r^2 n on a surface; beta over sigma_s 4/3 pi r^3 n in a medium (a
   // channel without scattering none), looked up once, when needed.
-  RGB medium_scale(-1.f);
-  auto estimate = [&](const RGB& x) -> RGB {
+  Spectrum medium_scale(-1.f);
+  auto estimate = [&](const Spectrum& x) -> Spectrum {
     if constexpr (Vertex::kInMedium) {
-      if (medium_scale.x < 0.f) {
-        RGB sigma_a, sigma_s;
+      if (medium_scale[0] < 0.f) {
+        Spectrum sigma_a, sigma_s;
         scene_.media.coefficients_at(v.medium, v.p, &sigma_a, &sigma_s);
-        for (int c = 0; c < 3; ++c)
+        for (int c = 0; c < Spectrum::kSize; ++c)
           medium_scale[c] = sigma_s[c] > 0.f ? w.eye.beta[slot][c] / sigma_s[c] * w.vm_normalization_medium : 0.f;
       }
       return medium_scale * x;
@@ -168,7 +168,7 @@ void Bdpt::merge_at_eye_vertex(BdptWave& w, uint32_t slot, const Vertex& v) cons
       return w.eye.beta[slot] * x * w.vm_normalization;
     }
   };
-  RGB sum(0.f);
+  Spectrum sum(0.f);
   w.grid.query(lv.p, v.p, [&](uint32_t j) {
     if (lv.depth[j] + depth > maxdepth + 1) return;
     if (!v.merges_with(lv.ng[j], lv.in_medium(j) ? lv.medium[j] : MediumHandle{})) return;
@@ -179,13 +179,13 @@ void Bdpt::merge_at_eye_vertex(BdptWave& w, uint32_t slot, const Vertex& v) cons
     sum += e.f * lv.beta[j] * weight(wt);
     ++w.stats.merges;
     if (settings_.record_strategies) {
-      const RGB u = estimate(e.f * lv.beta[j]);
+      const Spectrum u = estimate(e.f * lv.beta[j]);
       w.out->strategies.push_back(
           {w.pixel[slot], Vec2(0.f), uint8_t(lv.depth[j] + 1), uint8_t(depth + 1), u * weight(wt), u, true});
     }
   });
   if (is_black(sum)) return;
-  const RGB c = estimate(sum);
+  const Spectrum c = estimate(sum);
   if (is_finite(c)) w.L[slot] += c;
 }
 

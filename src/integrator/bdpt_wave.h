@@ -21,7 +21,7 @@ namespace lantern {
 // State of one subpath per slot, used once for the light and once for the
 // eye subpaths.
 struct SubpathPool {
-  std::vector<RGB> beta;
+  std::vector<Spectrum> beta;
   std::vector<MisState> mis;
   std::vector<Vec3> prev_p;  // origin of the ray that found the current vertex
   std::vector<Vec3> prev_n;  // its shading normal (the light sampler's context; zero at the camera)
@@ -29,7 +29,7 @@ struct SubpathPool {
   // With media only: the medium the subpath's ray travels in, and the
   // extinction at its last vertex (zero on a surface), for reverse densities.
   std::vector<MediumHandle> medium;
-  std::vector<RGB> sigma_prev;
+  std::vector<Spectrum> sigma_prev;
   void resize_media(uint32_t n) {
     medium.resize(n);
     sigma_prev.resize(n);
@@ -76,7 +76,7 @@ struct StoredLightVertex {
   const Footprint* footprint = nullptr;
   const Vec3* tangent = nullptr;  // a curve's
   MediumHandle medium;            // a medium vertex's
-  RGB sigma_t{0.f};               // the extinction there
+  Spectrum sigma_t{0.f};               // the extinction there
 };
 
 // Connectible (non-specular) light vertices, appended bounce by bounce and
@@ -86,20 +86,20 @@ struct LightVertexPool {
   std::vector<Vec3> p, ng, ns, wo;
   std::vector<Vec2> uv;
   std::vector<float> error_scale;
-  std::vector<RGB> beta;
+  std::vector<Spectrum> beta;
   std::vector<MisState> mis;
   std::vector<MaterialHandle> material;
   std::vector<Footprint> footprint;  // empty unless the scene's textures filter
   std::vector<Vec3> tangent;         // empty unless the scene has curves
   std::vector<MediumHandle> medium;  // empty unless the scene has media; a medium vertex's, else vacuum
-  std::vector<RGB> sigma_t;          // alongside medium: the extinction at a medium vertex
+  std::vector<Spectrum> sigma_t;          // alongside medium: the extinction at a medium vertex
   std::vector<uint32_t> begin, order;
 
   size_t size() const { return slot.size(); }
   // Appends a vertex. The arrays only some scenes need are kept only once
   // a vertex has the field (footprint: when the scene filters textures),
   // padded for the vertices before it.
-  void push(uint32_t s, uint32_t d, const RGB& b, const MisState& m, const StoredLightVertex& x, bool footprints) {
+  void push(uint32_t s, uint32_t d, const Spectrum& b, const MisState& m, const StoredLightVertex& x, bool footprints) {
     slot.push_back(s);
     depth.push_back(d);
     p.push_back(x.p);
@@ -143,7 +143,7 @@ struct LightVertexPool {
 // weight: recorded only for per-strategy images.
 struct StrategyTag {
   uint8_t s, t;
-  RGB unweighted;
+  Spectrum unweighted;
 };
 
 // A connection of two vertices (or of a vertex and the lens): its shadow
@@ -151,7 +151,7 @@ struct StrategyTag {
 struct Connection {
   Vec3 o, d;
   float t_max = 1.f;  // (kInfinity towards a light at infinity, d its direction)
-  RGB unweighted;
+  Spectrum unweighted;
   DeferredMis mis;
   Vec2 p_raster{0.f};         // t = 1: where it lands on the film
   uint8_t s = 0, t = 0;       // its strategy (for per-strategy images)
@@ -164,21 +164,21 @@ struct Connection {
 struct ConnectionPool {
   RayBatch rays;
   std::vector<uint32_t> slot;
-  std::vector<RGB> contrib;
+  std::vector<Spectrum> contrib;
   std::vector<Vec2> p_raster;     // light tracing: where the contribution lands on the film
   std::vector<StrategyTag> tags;  // filled only when strategies are recorded
   std::vector<uint8_t> next_event;  // s = 1: a light sample's ray (for --stats)
   // With media: the medium each ray starts in, its transmittance, and its
   // weight's deferred part (contrib then holds the unweighted value).
   std::vector<MediumHandle> medium;
-  std::vector<RGB> T, T_mis;  // the estimate, and what MIS sees (medium_events.h)
+  std::vector<Spectrum> T, T_mis;  // the estimate, and what MIS sees (medium_events.h)
   std::vector<DeferredMis> deferred;
   std::vector<MediumHandle> expect;  // a volume light's point: the medium the ray must end in (else vacuum)
   bool media = false;
   bool record = false;
   // Queues connection k of `slot` carrying contrib (weighted, or with
   // media unweighted until traced).
-  void push(uint32_t s, const Connection& k, const RGB& c) {
+  void push(uint32_t s, const Connection& k, const Spectrum& c) {
     const uint32_t i = rays.push(k.o, k.d, 0.f, k.t_max);
     if (slot.size() <= i) {
       const size_t n = rays.capacity();
@@ -234,7 +234,7 @@ struct BdptWave {
   // per slot
   std::vector<uint32_t> pixel;
   std::vector<PathSampler> sampler;
-  std::vector<RGB> L;
+  std::vector<Spectrum> L;
   SubpathPool eye, light;
   LightOriginPool origin;
   uint32_t depth = 0;  // bounce of the current phase

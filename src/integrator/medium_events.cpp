@@ -17,7 +17,7 @@ bool is_boundary(const Scene& sc, const RayBatch& rays, uint32_t i) {
 // blocked for a shadow ray. A bound, so a degenerate scene cannot hang.
 constexpr int kMaxCrossings = 256;
 
-RGB transmittance(const RGB& depth) { return RGB(std::exp(-depth.x), std::exp(-depth.y), std::exp(-depth.z)); }
+Spectrum transmittance(const Spectrum& depth) { return exp(-depth); }
 
 // Ray j of src (its hit included) becomes ray i of dst.
 void copy_ray(RayBatch& dst, uint32_t i, const RayBatch& src, uint32_t j) {
@@ -58,21 +58,21 @@ RandomStream stretch_stream(const Vec3& o, const Vec3& d, float u, uint32_t roun
 // tracked ones. At a scattering point (sigma_t > 0) found by the closed
 // forms, sigma_s completes the weight; one found by tracking has it in
 // `tracked` already.
-void end_segment(SegmentEnds& out, uint32_t i, MediumHandle m, const RGB& depth, const RGB& tracked,
-                 const RGB& tracked_depth, const RGB& sigma_a, const RGB& sigma_s, bool scatters, bool by_tracking,
-                 const RGB& Le = RGB(0.f)) {
-  const RGB T = transmittance(depth), sigma_x = sigma_a + sigma_s;
-  const RGB T_mis = is_black(tracked_depth) ? T : transmittance(depth + tracked_depth);
+void end_segment(SegmentEnds& out, uint32_t i, MediumHandle m, const Spectrum& depth, const Spectrum& tracked,
+                 const Spectrum& tracked_depth, const Spectrum& sigma_a, const Spectrum& sigma_s, bool scatters, bool by_tracking,
+                 const Spectrum& Le = Spectrum(0.f)) {
+  const Spectrum T = transmittance(depth), sigma_x = sigma_a + sigma_s;
+  const Spectrum T_mis = is_black(tracked_depth) ? T : transmittance(depth + tracked_depth);
   const bool closed_form_scatter = scatters && !by_tracking;
   // the density of what the closed forms sampled: scattering, or passing
-  const float p = mixture_density(closed_form_scatter ? sigma_x : RGB(0.f), T);
-  out.weight[i] = p > 0.f ? tracked * (closed_form_scatter ? T * sigma_s : T) / p : RGB(0.f);
+  const float p = mixture_density(closed_form_scatter ? sigma_x : Spectrum(0.f), T);
+  out.weight[i] = p > 0.f ? tracked * (closed_form_scatter ? T * sigma_s : T) / p : Spectrum(0.f);
   out.T[i] = T_mis;
   out.fwd_density[i] = mixture_density(sigma_x, T_mis);
   out.medium[i] = m;
   if (scatters) out.sigma_t[i] = sigma_x;
   if (!out.emission.empty())  // tracked media do not emit
-    out.emission[i] = closed_form_scatter && p > 0.f ? tracked * T * sigma_a * Le / p : RGB(0.f);
+    out.emission[i] = closed_form_scatter && p > 0.f ? tracked * T * sigma_a * Le / p : Spectrum(0.f);
 }
 
 }  // namespace
@@ -87,13 +87,13 @@ void find_segment_ends(const Scene& sc, RayStream& stream, RayKind kind, RayBatc
   s.medium.assign(medium.begin(), medium.begin() + n);
   s.tau.resize(n);
   s.channel.resize(n);
-  s.depth.assign(n, RGB(0.f));
-  s.tracked_weight.assign(n, RGB(1.f));
-  s.tracked_depth.assign(n, RGB(0.f));
+  s.depth.assign(n, Spectrum(0.f));
+  s.tracked_weight.assign(n, Spectrum(1.f));
+  s.tracked_depth.assign(n, Spectrum(0.f));
   s.owner.resize(n);
   for (uint32_t i = 0; i < n; ++i) {
-    const float x = 3.f * u[i];
-    const int c = std::min(int(x), 2);
+    const float x = float(kSpectrumSamples) * u[i];  // a channel, and tau from the rest of u
+    const int c = std::min(int(x), kSpectrumSamples - 1);
     s.channel[i] = uint8_t(c);
     s.tau[i] = -std::log1p(-std::min(x - float(c), 0x1.fffffep-1f));
     s.owner[i] = i;
@@ -106,10 +106,10 @@ void find_segment_ends(const Scene& sc, RayStream& stream, RayKind kind, RayBatc
       const uint32_t i = s.owner[k];
       if (round == kMaxCrossings) {
         out.end[i] = SegmentEnd::Absorbed;
-        out.weight[i] = out.T[i] = RGB(0.f);
+        out.weight[i] = out.T[i] = Spectrum(0.f);
         out.fwd_density[i] = 1.f;
         out.medium[i] = s.medium[i];
-        if (!out.emission.empty()) out.emission[i] = RGB(0.f);
+        if (!out.emission.empty()) out.emission[i] = Spectrum(0.f);
         continue;
       }
       const Vec3 d = rays.direction(i);
@@ -117,11 +117,11 @@ void find_segment_ends(const Scene& sc, RayStream& stream, RayKind kind, RayBatc
       const bool hit = rays.hit(i);
       const float len = hit ? rays.tfar[i] * d_len : kInfinity;
       const MediumHandle m = s.medium[i];
-      RGB& depth = s.depth[i];
+      Spectrum& depth = s.depth[i];
       if (!m.vacuum()) {
         const Vec3 o = rays.origin(i), dir = d / d_len;
         float s_hit = kInfinity;
-        RGB sigma_a, sigma_s;
+        Spectrum sigma_a, sigma_s;
         const bool by_tracking = sc.media.tracked(m);
         if (by_tracking) {
           RandomStream rng = stretch_stream(o, dir, u[i], uint32_t(round));
@@ -130,9 +130,9 @@ void find_segment_ends(const Scene& sc, RayStream& stream, RayKind kind, RayBatc
           s_hit = tr.t, sigma_a = tr.sigma_a, sigma_s = tr.sigma_s;
           float unused;
           s.tracked_depth[i] += sc.media.optical_depth(m, o, dir, 0.f, tr.real() ? tr.t : len, 0, -1.f, &unused);
-          if (tr.saturated) s.tau[i] = kInfinity, depth = RGB(kInfinity);  // ends absorbed below
+          if (tr.saturated) s.tau[i] = kInfinity, depth = Spectrum(kInfinity);  // ends absorbed below
         } else {
-          const RGB stretch = sc.media.optical_depth(m, o, dir, 0.f, len, s.channel[i], s.tau[i], &s_hit);
+          const Spectrum stretch = sc.media.optical_depth(m, o, dir, 0.f, len, s.channel[i], s.tau[i], &s_hit);
           depth += stretch;
           if (s_hit < kInfinity) sc.media.coefficients_at(m, o + dir * s_hit, &sigma_a, &sigma_s);
           else s.tau[i] -= stretch[s.channel[i]];
@@ -140,7 +140,7 @@ void find_segment_ends(const Scene& sc, RayStream& stream, RayKind kind, RayBatc
         if (s_hit < kInfinity) {  // scatters inside this stretch
           out.end[i] = SegmentEnd::Scatter;
           out.p[i] = o + dir * s_hit;
-          const RGB Le = emissive && !by_tracking ? sc.media.Le(m, out.p[i]) : RGB(0.f);
+          const Spectrum Le = emissive && !by_tracking ? sc.media.Le(m, out.p[i]) : Spectrum(0.f);
           end_segment(out, i, m, depth, s.tracked_weight[i], s.tracked_depth[i], sigma_a, sigma_s, true, by_tracking, Le);
           continue;
         }
@@ -150,7 +150,7 @@ void find_segment_ends(const Scene& sc, RayStream& stream, RayKind kind, RayBatc
         s.next.push_back(i);
         continue;
       }
-      end_segment(out, i, m, depth, s.tracked_weight[i], s.tracked_depth[i], RGB(0.f), RGB(0.f), false, false);
+      end_segment(out, i, m, depth, s.tracked_weight[i], s.tracked_depth[i], Spectrum(0.f), Spectrum(0.f), false, false);
       out.end[i] = !(out.fwd_density[i] > 0.f) || is_black(out.weight[i]) ? SegmentEnd::Absorbed
                    : hit                                                 ? SegmentEnd::Surface
                                                                          : SegmentEnd::Escaped;
@@ -164,14 +164,14 @@ void find_segment_ends(const Scene& sc, RayStream& stream, RayKind kind, RayBatc
 }
 
 void trace_transmittance(const Scene& sc, RayStream& stream, RayBatch& rays, const std::vector<MediumHandle>& medium,
-                         std::vector<RGB>& T, std::vector<RGB>& T_mis, CrossingScratch& s) {
+                         std::vector<Spectrum>& T, std::vector<Spectrum>& T_mis, CrossingScratch& s) {
   const uint32_t n = rays.count;
   if (T.size() < n) T.resize(rays.capacity());
   if (T_mis.size() < n) T_mis.resize(rays.capacity());
   s.medium.assign(medium.begin(), medium.begin() + n);
-  s.depth.assign(n, RGB(0.f));
-  s.tracked_weight.assign(n, RGB(1.f));  // the ratio tracking estimates
-  s.tracked_depth.assign(n, RGB(0.f));
+  s.depth.assign(n, Spectrum(0.f));
+  s.tracked_weight.assign(n, Spectrum(1.f));  // the ratio tracking estimates
+  s.tracked_depth.assign(n, Spectrum(0.f));
   s.rays.count = 0;
   s.next.clear();
   for (uint32_t r = 0; r < n; ++r) {
@@ -182,7 +182,7 @@ void trace_transmittance(const Scene& sc, RayStream& stream, RayBatch& rays, con
   for (int round = 0; s.rays.count > 0; ++round) {
     if (round == kMaxCrossings) {
       for (uint32_t j = 0; j < s.rays.count; ++j) {
-        T[s.next[j]] = T_mis[s.next[j]] = RGB(0.f);
+        T[s.next[j]] = T_mis[s.next[j]] = Spectrum(0.f);
         rays.tfar[s.next[j]] = -kInfinity;
       }
       break;
@@ -200,7 +200,7 @@ void trace_transmittance(const Scene& sc, RayStream& stream, RayBatch& rays, con
         const Vec3 d = s.rays.direction(j), o = s.rays.origin(j);
         const float d_len = glm::length(d), len = s.rays.tfar[j] * d_len;
         float unused;
-        const RGB depth = sc.media.optical_depth(m, o, d / d_len, 0.f, len, 0, -1.f, &unused);
+        const Spectrum depth = sc.media.optical_depth(m, o, d / d_len, 0.f, len, 0, -1.f, &unused);
         if (sc.media.tracked(m)) {
           RandomStream rng = stretch_stream(o, d / d_len, rays.tfar[r], uint32_t(round));
           s.tracked_weight[r] *= sc.media.ratio_track(m, o, d / d_len, len, rng);
@@ -220,9 +220,9 @@ void trace_transmittance(const Scene& sc, RayStream& stream, RayBatch& rays, con
         s.owner.push_back(r);
         continue;
       }
-      const RGB closed = transmittance(s.depth[r]);
-      T[r] = hit ? RGB(0.f) : closed * s.tracked_weight[r];
-      T_mis[r] = hit ? RGB(0.f) : is_black(s.tracked_depth[r]) ? closed : transmittance(s.depth[r] + s.tracked_depth[r]);
+      const Spectrum closed = transmittance(s.depth[r]);
+      T[r] = hit ? Spectrum(0.f) : closed * s.tracked_weight[r];
+      T_mis[r] = hit ? Spectrum(0.f) : is_black(s.tracked_depth[r]) ? closed : transmittance(s.depth[r] + s.tracked_depth[r]);
       if (is_black(T[r])) rays.tfar[r] = -kInfinity;  // reads as occluded
     }
     std::swap(s.rays, cont);

@@ -6,7 +6,7 @@
 // connection rays are followed the same way to their end, collecting the
 // transmittance; any other surface blocks them.
 //
-// Distance sampling with RGB coefficients (docs/media.md): each ray picks
+// Distance sampling with Spectrum coefficients (docs/media.md): each ray picks
 // one channel c uniformly and samples the optical depth of that channel,
 // tau_c ~ Exp(1). The density of the point reached is then the mixture
 //   p(t) = 1/3 sum_c sigma_t,c(t) T_c(t)      (scattering at t)
@@ -26,23 +26,25 @@ namespace lantern {
 enum class SegmentEnd : uint8_t { Surface, Scatter, Escaped, Absorbed };
 
 // The mixture densities of a segment with transmittance T, ending at a
-// medium point of extinction sigma_t (zero: a surface or infinity).
-inline float mixture_density(const RGB& sigma_t, const RGB& T) {
-  return is_black(sigma_t) ? (T.x + T.y + T.z) * (1.f / 3.f) : glm::dot(sigma_t, T) * (1.f / 3.f);
+// medium point of extinction sigma_t (zero: a surface or infinity): each
+// channel chosen with probability 1 / kSpectrumSamples.
+inline float mixture_density(const Spectrum& sigma_t, const Spectrum& T) {
+  constexpr float kChannelProbability = 1.f / float(kSpectrumSamples);
+  return is_black(sigma_t) ? sum(T) * kChannelProbability : sum(sigma_t * T) * kChannelProbability;
 }
 
 // Per ray of a batch: where its segment ended, and what it contributes.
 struct SegmentEnds {
   std::vector<SegmentEnd> end;
   std::vector<Vec3> p;              // the scattering point
-  std::vector<RGB> weight;          // the segment's throughput factor, T sigma_s / p or T / P
-  std::vector<RGB> T;               // its transmittance, as the MIS densities see it
+  std::vector<Spectrum> weight;          // the segment's throughput factor, T sigma_s / p or T / P
+  std::vector<Spectrum> T;               // its transmittance, as the MIS densities see it
   std::vector<float> fwd_density;   // p or P of the end reached (for MIS)
   std::vector<MediumHandle> medium;  // the medium the segment ends in
-  std::vector<RGB> sigma_t;          // the extinction at the scattering point
+  std::vector<Spectrum> sigma_t;          // the extinction at the scattering point
   // Scenes with emissive media only: at a scattering point, T sigma_a Le / p
   // (the segment's emission estimate, per unit of the throughput before it).
-  std::vector<RGB> emission;
+  std::vector<Spectrum> emission;
 
   void resize(uint32_t n) {
     sigma_t.resize(n);
@@ -67,10 +69,10 @@ struct CrossingScratch {
   std::vector<MediumHandle> medium;
   std::vector<float> tau;
   std::vector<uint8_t> channel;
-  std::vector<RGB> depth;  // optical depth so far, per channel
+  std::vector<Spectrum> depth;  // optical depth so far, per channel
   // Tracked media (scenes with them only): the weights so far, and the
   // proxy's depth so far.
-  std::vector<RGB> tracked_weight, tracked_depth;
+  std::vector<Spectrum> tracked_weight, tracked_depth;
   size_t memory_bytes() const {
     return rays.memory_bytes() + continued.memory_bytes() + vector_bytes(owner) + vector_bytes(next) + vector_bytes(medium) + vector_bytes(tau) +
            vector_bytes(channel) + vector_bytes(depth) + vector_bytes(tracked_weight) + vector_bytes(tracked_depth);
@@ -93,7 +95,7 @@ void find_segment_ends(const Scene& scene, RayStream& stream, RayKind kind, RayB
 // Afterwards scratch.medium[i] is the medium ray i ends in (emissive
 // media: a light sample counts only if it lies in its medium).
 void trace_transmittance(const Scene& scene, RayStream& stream, RayBatch& rays, const std::vector<MediumHandle>& medium,
-                         std::vector<RGB>& T, std::vector<RGB>& T_mis, CrossingScratch& scratch);
+                         std::vector<Spectrum>& T, std::vector<Spectrum>& T_mis, CrossingScratch& scratch);
 
 // The medium each point p[i] lies in, found along a ray from it to
 // `known`, a point in medium `known_medium`: the side facing p[i] of the

@@ -33,7 +33,7 @@ float PathTracer::volume_number(const PathWave& w, uint32_t slot) const {
 // Volume emission found by distance sampling (s = 0 for a medium point):
 // beta_before is the throughput before the segment. Weighted against
 // next-event estimation of the same point from the previous vertex.
-void PathTracer::add_volume_emission(PathWave& w, uint32_t i, const RGB& beta_before, float prev_pdf) const {
+void PathTracer::add_volume_emission(PathWave& w, uint32_t i, const Spectrum& beta_before, float prev_pdf) const {
   const uint32_t slot = w.active[i];
   const Vec3 x = w.ends.p[i];
   float weight = 1.f;
@@ -45,7 +45,7 @@ void PathTracer::add_volume_emission(PathWave& w, uint32_t i, const RGB& beta_be
                                             volume_light_density(scene_.lights, light, x) * glm::dot(d, d);
     weight = power_heuristic(prev_pdf, light_pdf);
   }
-  const RGB c = beta_before * w.ends.emission[i] * weight;
+  const Spectrum c = beta_before * w.ends.emission[i] * weight;
   if (is_finite(c)) w.L[slot] += c;
 }
 
@@ -95,13 +95,13 @@ void PathTracer::media_shadow_stage(PathWave& w) const {
   for (uint32_t r = 0; r < w.shadow.count; ++r) {
     if (w.shadow.occluded(r)) continue;
     if (!w.shadow_expect[r].vacuum() && w.crossing.medium[r] != w.shadow_expect[r]) continue;  // not in the emitting medium
-    const RGB& T = w.shadow_T[r];
+    const Spectrum& T = w.shadow_T[r];
     const float light_pdf = w.shadow_light_pdf[r];
     const float weight =
         light_pdf == 0.f ? 1.f
                          : power_heuristic(light_pdf, w.shadow_scatter_pdf[r] *
                                                           mixture_density(w.shadow_sigma_end[r], w.shadow_T_mis[r]));
-    const RGB c = w.shadow_contrib[r] * T * weight;
+    const Spectrum c = w.shadow_contrib[r] * T * weight;
     if (!is_finite(c)) continue;
     w.L[w.shadow_slot[r]] += c;
     ++w.stats.light_samples_unoccluded;

@@ -20,7 +20,7 @@ void path_next_event(const Scene& sc, const LightSampler& light_sampler, PathWav
   auto ls = sample_light(sc.lights, sc.shapes, sc.textures, light_sampler, v.p, v.light_sampler_normal(), u_light,
                          u_light2, u_volume);
   MediumHandle expect;
-  RGB sigma_end(0.f);
+  Spectrum sigma_end(0.f);
   if (ls && ls->volume) {
     if (!volume_sample_allowed(int(w.depth) + 1, maxdepth)) return;  // (w.depth counts from 0)
     complete_volume_sample(sc.lights, sc.media, &ls->L, ls->p_light, ls->light, &expect, &sigma_end);

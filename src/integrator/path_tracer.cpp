@@ -46,8 +46,8 @@ void PathTracer::generate_camera_rays(const WaveDesc& wave, PathWave& w) const {
     CameraRay r = camera_.generate_ray(p_raster, s.get2d(dims::kLens));
     w.pixel[slot] = pixel;
     w.sampler[slot] = s;
-    w.beta[slot] = RGB(1.f);
-    w.L[slot] = RGB(0.f);
+    w.beta[slot] = Spectrum(1.f);
+    w.L[slot] = Spectrum(0.f);
     w.prev_pdf[slot] = 1.f;
     w.eta_scale[slot] = 1.f;
     w.prev_specular[slot] = 1;
@@ -77,7 +77,7 @@ void PathTracer::surface_stage(PathWave& w) const {
     float prev_pdf = w.prev_pdf[slot];
     if (media) {
       const SegmentEnd end = w.ends.end[i];
-      const RGB beta_before = w.beta[slot];
+      const Spectrum beta_before = w.beta[slot];
       w.beta[slot] *= w.ends.weight[i];
       prev_pdf *= w.ends.fwd_density[i];
       if (end == SegmentEnd::Absorbed) {
@@ -94,7 +94,7 @@ void PathTracer::surface_stage(PathWave& w) const {
     if (!w.rays.hit(i)) {
       ++w.stats.eye_ends[size_t(PathEnd::Escaped)];
       if (!lights.infinite.empty()) {
-        RGB Le = infinite_lights_Le(lights, scene_.textures, w.prev_p[slot], d);
+        Spectrum Le = infinite_lights_Le(lights, scene_.textures, w.prev_p[slot], d);
         float weight = unweighted ? 1.f
                                   : power_heuristic(prev_pdf, infinite_lights_pdf(lights, scene_.textures,
                                                                                   light_sampler_, w.prev_p[slot], d));
@@ -106,7 +106,7 @@ void PathTracer::surface_stage(PathWave& w) const {
     SurfacePoint sp = hit_point(shapes, w.rays, i);
     if (int64_t area = hit_area_light(shapes, w.rays, i); area >= 0) {
       uint32_t light = uint32_t(area);
-      RGB Le = area_light_Le(lights.area[light], scene_.textures, sp.ng, sp.uv, -d);
+      Spectrum Le = area_light_Le(lights.area[light], scene_.textures, sp.ng, sp.uv, -d);
       if (!is_black(Le)) {
         float weight = unweighted ? 1.f
                                   : power_heuristic(prev_pdf,

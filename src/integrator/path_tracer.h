@@ -46,7 +46,7 @@ class PathTracer {
   void medium_scatter_stage(PathWave& w) const;
   void media_shadow_stage(PathWave& w) const;
   float volume_number(const PathWave& w, uint32_t slot) const;
-  void add_volume_emission(PathWave& w, uint32_t i, const RGB& beta_before, float prev_pdf) const;
+  void add_volume_emission(PathWave& w, uint32_t i, const Spectrum& beta_before, float prev_pdf) const;
 
   const Scene& scene_;
   const LightSampler& light_sampler_;  // next-event estimation's choice of light

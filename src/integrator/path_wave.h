@@ -22,7 +22,7 @@ struct PathWave {
   // per slot
   std::vector<uint32_t> pixel;
   std::vector<PathSampler> sampler;
-  std::vector<RGB> beta, L;
+  std::vector<Spectrum> beta, L;
   std::vector<float> prev_pdf, eta_scale;
   std::vector<Vec3> prev_p;  // origin of the ray that found the current vertex
   std::vector<Vec3> prev_n;  // its shading normal (the light sampler's context; zero at the camera)
@@ -37,7 +37,7 @@ struct PathWave {
   // next-event estimation
   RayBatch shadow;
   std::vector<uint32_t> shadow_slot;
-  std::vector<RGB> shadow_contrib;
+  std::vector<Spectrum> shadow_contrib;
 
   // Participating media (empty in a scene without them): per slot, the
   // medium the path's ray travels in; per ray, the distance numbers, where
@@ -49,12 +49,12 @@ struct PathWave {
   SegmentEnds ends;
   std::vector<uint32_t> scattered;
   std::vector<MediumHandle> shadow_medium;
-  std::vector<RGB> shadow_T, shadow_T_mis;  // the estimate, and what MIS sees (medium_events.h)
+  std::vector<Spectrum> shadow_T, shadow_T_mis;  // the estimate, and what MIS sees (medium_events.h)
   std::vector<float> shadow_light_pdf, shadow_scatter_pdf;  // light_pdf 0: a delta light, weight 1
   // A sample of an emissive medium: the medium the ray must end in, and
   // the extinction there (zero for other lights).
   std::vector<MediumHandle> shadow_expect;
-  std::vector<RGB> shadow_sigma_end;
+  std::vector<Spectrum> shadow_sigma_end;
   CrossingScratch crossing;
 
   RayStream stream;
@@ -104,8 +104,8 @@ struct PathWave {
 // known (light_pdf 0: a delta light). A sample of an emissive medium
 // counts only if the ray ends in `expect`, of extinction sigma_end there.
 inline void push_media_shadow_ray(PathWave& w, uint32_t slot, const Vec3& o, const LightSample& ls, MediumHandle m,
-                                  float light_pdf, float scatter_pdf, const RGB& unweighted,
-                                  MediumHandle expect = {}, const RGB& sigma_end = RGB(0.f)) {
+                                  float light_pdf, float scatter_pdf, const Spectrum& unweighted,
+                                  MediumHandle expect = {}, const Spectrum& sigma_end = Spectrum(0.f)) {
   uint32_t r;
   if (ls.infinite) {
     r = w.shadow.push(o, ls.wi, 0.f, kInfinity);

@@ -28,7 +28,7 @@ void for_each_binned_bsdf(const HitPool& hits, const Scene& scene, Fn&& fn) {
 
 // The state a bidirectional subpath carries from vertex to vertex.
 struct SubpathRef {
-  RGB& beta;
+  Spectrum& beta;
   MisState& mis;
   Vec3& prev_p;
   Vec3& prev_n;

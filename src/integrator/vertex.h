@@ -24,7 +24,7 @@ namespace lantern {
 // A vertex's response to light leaving along w (or, for the opposite
 // transport, arriving from w).
 struct VertexEval {
-  RGB f{0.f};           // the BSDF times |cos| at the vertex (shading-normal corrected for importance), or the phase function
+  Spectrum f{0.f};           // the BSDF times |cos| at the vertex (shading-normal corrected for importance), or the phase function
   float pdf_fwd = 0.f;  // the vertex's density of sampling w (solid angle), in its subpath's own transport
   float pdf_rev = 0.f;  // and of sampling its subpath's previous direction from w, the opposite transport
 };
@@ -80,7 +80,7 @@ struct SurfaceVertex {
   float cos(const Vec3& w) const { return vertex_cos(ng, error_scale, tangent, w); }
   Vec3 ray_origin(const Vec3& w) const { return offset_ray_origin(p, ng, error_scale, w); }
   Vec3 light_sampler_normal() const { return ns; }  // the light sampler's context
-  RGB sigma_t() const { return RGB(0.f); }  // distance sampling never ends on a surface
+  Spectrum sigma_t() const { return Spectrum(0.f); }  // distance sampling never ends on a surface
   MergeKind merging(MergeKind /*in_media*/) const { return MergeKind::Surface; }
   // The medium a ray leaving along w travels in (scenes with media only).
   MediumHandle medium_towards(const Scene& scene, const Vec3& w) const {
@@ -93,14 +93,14 @@ struct MediumVertex {
   Vec3 p;
   Vec3 wo_world;  // towards the subpath's previous vertex
   MediumHandle medium;
-  RGB sigma;  // the extinction at p
+  Spectrum sigma;  // the extinction at p
 
   static constexpr bool kInMedium = true;
 
   // The phase function is its own density, both ways.
   VertexEval evaluate(const Vec3& w, bool /*with_reverse*/ = true) const {
     const float f = phase.p(wo_world, w);
-    return {RGB(f), f, f};
+    return {Spectrum(f), f, f};
   }
   VertexEval evaluate_merge(const Vec3& w, bool /*densities*/) const { return evaluate(w); }
   // Only light vertices in the same medium (a surface vertex's is vacuum).
@@ -108,7 +108,7 @@ struct MediumVertex {
   float cos(const Vec3& /*w*/) const { return 1.f; }
   Vec3 ray_origin(const Vec3& /*w*/) const { return p; }
   Vec3 light_sampler_normal() const { return Vec3(0.f); }  // none: a point in a volume
-  RGB sigma_t() const { return sigma; }
+  Spectrum sigma_t() const { return sigma; }
   MergeKind merging(MergeKind in_media) const { return in_media; }
   MediumHandle medium_towards(const Scene& /*scene*/, const Vec3& /*w*/) const { return medium; }
 };
@@ -134,7 +134,7 @@ inline Vec3 light_sample_target(const LightSample& ls) {
 // they started with), when that is below 1 and the vertex is `eligible`
 // (past the first bounces); a survivor's throughput is divided by it.
 // Returns false when the subpath ends.
-inline bool survives_roulette(RGB& beta, float eta_scale, float rr_scale, bool eligible, float u_rr) {
+inline bool survives_roulette(Spectrum& beta, float eta_scale, float rr_scale, bool eligible, float u_rr) {
   const float rr = max_component(beta * eta_scale) * rr_scale;
   if (rr < 1.f && eligible) {
     const float q = std::fmax(0.f, 1.f - rr);

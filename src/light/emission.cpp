@@ -50,7 +50,7 @@ std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& s
       es.pdf_pos *= pdf_volume;
       es.d = sample_uniform_sphere(u_dir);
       es.pdf_dir = uniform_sphere_pdf();
-      es.Le = RGB(1.f);
+      es.Le = Spectrum(1.f);
       es.error_scale = max_abs_component(es.p);
       es.volume = true;
       break;
@@ -95,7 +95,7 @@ std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& s
       es.p = s.p;
       es.d = s.frame.from_local(sample_uniform_cone(u_dir, s.cos_falloff_end));
       es.pdf_dir = uniform_cone_pdf(s.cos_falloff_end);
-      es.Le = s.I * spot_falloff(s, es.d);
+      es.Le = illuminant_spectrum(s.I) * spot_falloff(s, es.d);
       es.error_scale = max_abs_component(s.p);
       es.delta_pos = true;
       break;
@@ -103,7 +103,7 @@ std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& s
     case LightKind::Distant: {
       const DistantLight& dl = L.distant[r.index];
       es.d = -dl.w;
-      es.Le = dl.L;
+      es.Le = illuminant_spectrum(dl.L);
       es.delta_dir = true;
       start_on_disk(L, u_pos, &es);
       break;
@@ -170,7 +170,7 @@ float emission_pdf(const LightPools& L, const ShapePools& shapes, const TextureP
   return 0.f;
 }
 
-RGB emitted(const LightPools& L, const TexturePools& tex, uint32_t light, const Vec3& n, Vec2 uv, const Vec3& w) {
+Spectrum emitted(const LightPools& L, const TexturePools& tex, uint32_t light, const Vec3& n, Vec2 uv, const Vec3& w) {
   const LightRef r = L.all[light];
   switch (r.kind) {
     case LightKind::Area:
@@ -178,9 +178,9 @@ RGB emitted(const LightPools& L, const TexturePools& tex, uint32_t light, const 
     case LightKind::Point:
       return point_intensity(L, tex, L.point[r.index], w);
     case LightKind::Spot:
-      return L.spot[r.index].I * spot_falloff(L.spot[r.index], w);
+      return illuminant_spectrum(L.spot[r.index].I) * spot_falloff(L.spot[r.index], w);
     default:
-      return RGB(0.f);
+      return Spectrum(0.f);
   }
 }
 

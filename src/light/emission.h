@@ -14,7 +14,7 @@ struct EmissionSample {
   Vec3 n{0.f};          // surface normal of an area light; zero otherwise
   Vec2 uv{0.f};         // surface coordinates of an area light's point
   Vec3 d{0.f};          // unit direction of emission
-  RGB Le{0.f};          // radiance (area, infinite, distant) or intensity (point, spot) along d
+  Spectrum Le{0.f};     // radiance (area, infinite, distant) or intensity (point, spot) along d
   float pdf_pos = 0.f;  // area density of p times the selection pmf (delta position: the pmf)
   float pdf_dir = 0.f;  // solid-angle density of d (delta direction: 1)
   float error_scale = 0.f;
@@ -41,7 +41,7 @@ float area_emission_pdf(const LightPools& lights, const ShapePools& shapes, uint
 float infinite_emission_pdf(const LightPools& lights, const TexturePools& tex, const Vec3& w_to_light);
 
 // Radiance or intensity a light with finite position emits from (p, n) in w.
-RGB emitted(const LightPools& lights, const TexturePools& tex, uint32_t light, const Vec3& n, Vec2 uv, const Vec3& w);
+Spectrum emitted(const LightPools& lights, const TexturePools& tex, uint32_t light, const Vec3& n, Vec2 uv, const Vec3& w);
 
 // Area density (times the pmf) with which sample_light picks p_light when
 // called from p with normal n: next-event estimation's density of a light

@@ -6,7 +6,7 @@ namespace lantern {
 
 namespace {
 
-float grey(const RGB& c) { return (c.x + c.y + c.z) / 3.f; }
+float grey(const RGB& c) { return (c[0] + c[1] + c[2]) / 3.f; }
 
 // pbrt-v4 reads light images at the nearest texel.
 RGB texel(const TextureImage& img, Vec2 uv) { return img.lookup_rgb(uv, ImageFilter::Point, WrapMode::Clamp); }

@@ -60,7 +60,7 @@ LightBounds patch_bounds(const BilinearPatchSet& s, uint32_t prim, const AreaLig
 // light by 2 / (1 - cos theta) and a sphere by 4 over what they deliver.
 LightBounds light_bounds(const LightPools& L, const ShapePools& shapes, const TexturePools& tex, uint32_t light) {
   const LightRef r = L.all[light];
-  auto avg = [](const RGB& c) { return std::max((c.x + c.y + c.z) / 3.f, 0.f); };
+  auto avg = [](const RGB& c) { return std::max((c[0] + c[1] + c[2]) / 3.f, 0.f); };
   LightBounds b;
   switch (r.kind) {
     case LightKind::Area: {

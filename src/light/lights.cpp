@@ -27,7 +27,7 @@ static RGB env_lookup(const InfiniteLight& l, const TexturePools& tex, Vec2 uv) 
 }
 
 float light_power(const LightPools& L, const LightRef& r, const TexturePools& tex) {
-  auto avg = [](const RGB& c) { return (c.x + c.y + c.z) / 3.f; };
+  auto avg = [](const RGB& c) { return (c[0] + c[1] + c[2]) / 3.f; };
   float disk = kPi * sqr(L.scene_radius);
   switch (r.kind) {
     case LightKind::Area: {
@@ -88,7 +88,7 @@ void finalize_lights(LightPools& L, const ShapePools& shapes, const TexturePools
       float sin_theta = e.equal_area ? 1.f : std::sin(kPi * (float(y) + 0.5f) / float(img.height));
       for (int x = 0; x < img.width; ++x) {
         const RGB& c = img.texels[size_t(y) * size_t(img.width) + size_t(x)];
-        w[size_t(y) * size_t(img.width) + size_t(x)] = (c.x + c.y + c.z) * sin_theta;
+        w[size_t(y) * size_t(img.width) + size_t(x)] = (c[0] + c[1] + c[2]) * sin_theta;
       }
     }
     e.distribution = Distribution2D(w, img.width, img.height);
@@ -198,7 +198,7 @@ static bool sample_light_into(const LightPools& L, const ShapePools& shapes, con
       const Vec3 d = x - p;
       const float dist2 = glm::dot(d, d);
       if (!(dist2 > 0.f) || !(pdf_volume > 0.f)) return false;
-      ls.L = RGB(1.f);
+      ls.L = Spectrum(1.f);
       ls.wi = d / std::sqrt(dist2);
       ls.pdf = pdf_volume * dist2;
       ls.p_light = x;
@@ -225,12 +225,12 @@ static bool sample_light_into(const LightPools& L, const ShapePools& shapes, con
       Vec3 wi = d / std::sqrt(dist2);
       float cos_t = glm::dot(-wi, s.frame.n);
       float falloff = glm::smoothstep(s.cos_falloff_end, s.cos_falloff_start, cos_t);
-      ls = LightSample{s.I * falloff / dist2, wi, 1.f, s.p, Vec3(0.f), max_abs_component(s.p), true, false};
+      ls = LightSample{illuminant_spectrum(s.I) * falloff / dist2, wi, 1.f, s.p, Vec3(0.f), max_abs_component(s.p), true, false};
       break;
     }
     case LightKind::Distant: {
       const DistantLight& dl = L.distant[r.index];
-      ls = LightSample{dl.L, dl.w, 1.f, Vec3(0.f), Vec3(0.f), 0.f, true, true};
+      ls = LightSample{illuminant_spectrum(dl.L), dl.w, 1.f, Vec3(0.f), Vec3(0.f), 0.f, true, true};
       break;
     }
     case LightKind::Infinite: {
@@ -242,7 +242,7 @@ static bool sample_light_into(const LightPools& L, const ShapePools& shapes, con
       } else if (e.image < 0) {
         s.wi = sample_uniform_sphere(u);
         s.pdf = uniform_sphere_pdf();
-        s.L = e.scale;
+        s.L = illuminant_spectrum(e.scale);
       } else {
         float pdf_uv;
         Vec2 uv = e.distribution.sample_continuous(u, &pdf_uv);
@@ -258,7 +258,7 @@ static bool sample_light_into(const LightPools& L, const ShapePools& shapes, con
           s.pdf = pdf_uv / (2.f * kPi * kPi * sin_theta);
         }
         s.wi = glm::normalize(e.world_from_light * wl);
-        s.L = env_lookup(e, tex, uv);
+        s.L = illuminant_spectrum(env_lookup(e, tex, uv));
       }
       break;
     }
@@ -310,19 +310,19 @@ float area_light_pdf(const LightPools& L, const ShapePools& shapes, const LightS
   return pmf * dist2 * area_point_density(shapes, a, p_light, n_light) / cos_l;
 }
 
-RGB infinite_lights_Le(const LightPools& L, const TexturePools& tex, const Vec3& p, const Vec3& w) {
-  RGB sum(0.f);
+Spectrum infinite_lights_Le(const LightPools& L, const TexturePools& tex, const Vec3& p, const Vec3& w) {
+  Spectrum sum(0.f);
   for (const InfiniteLight& e : L.infinite) {
     if (e.portal >= 0) {
       sum += portal_Le(L.portals[size_t(e.portal)], p, w);
       continue;
     }
     if (e.image < 0) {
-      sum += e.scale;
+      sum += illuminant_spectrum(e.scale);
       continue;
     }
     Vec3 wl = glm::normalize(e.light_from_world * w);
-    sum += env_lookup(e, tex, e.equal_area ? equal_area_sphere_to_square(wl) : dir_to_latlong(wl));
+    sum += illuminant_spectrum(env_lookup(e, tex, e.equal_area ? equal_area_sphere_to_square(wl) : dir_to_latlong(wl)));
   }
   return sum;
 }
@@ -381,10 +381,10 @@ bool reaches_through_portal(const LightPools& L, uint32_t light, const Vec3& p, 
   return e.portal < 0 || through_portal(L.portals[size_t(e.portal)], p, w_to_light);
 }
 
-void complete_volume_sample(const LightPools& L, const MediumPools& media, RGB* Li, const Vec3& p, uint32_t light,
-                            MediumHandle* m, RGB* sigma_t) {
+void complete_volume_sample(const LightPools& L, const MediumPools& media, Spectrum* Li, const Vec3& p,
+                            uint32_t light, MediumHandle* m, Spectrum* sigma_t) {
   const VolumeLight& v = L.volume[L.all[light].index];
-  RGB a, s;
+  Spectrum a, s;
   media.coefficients_at(v.medium, p, &a, &s);
   *Li *= a * media.Le(v.medium, p);
   *m = v.medium;

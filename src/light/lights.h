@@ -90,7 +90,7 @@ struct LightPools {
 };
 
 struct LightSample {
-  RGB L{0.f};        // radiance (or intensity / dist^2) arriving at the reference point
+  Spectrum L{0.f};   // radiance (or intensity / dist^2) arriving at the reference point
   Vec3 wi{0.f};      // towards the light
   float pdf = 0.f;   // solid angle density at the reference point, times the selection pmf; 1 for delta lights
   Vec3 p_light{0.f};
@@ -107,12 +107,12 @@ struct LightSample {
 };
 
 // A point light's intensity leaving in world direction w.
-inline RGB point_intensity(const LightPools& L, const TexturePools& tex, const PointLight& pl, const Vec3& w) {
-  return pl.profile < 0 ? pl.I : pl.I * profile_value(L.profiles[size_t(pl.profile)], tex, w);
+inline Spectrum point_intensity(const LightPools& L, const TexturePools& tex, const PointLight& pl, const Vec3& w) {
+  return illuminant_spectrum(pl.profile < 0 ? pl.I : pl.I * profile_value(L.profiles[size_t(pl.profile)], tex, w));
 }
 // Its mean over all directions (power / 4 pi), averaged over the channels.
 inline float point_mean_intensity(const LightPools& L, const PointLight& pl) {
-  const float avg = (pl.I.x + pl.I.y + pl.I.z) / 3.f;
+  const float avg = (pl.I[0] + pl.I[1] + pl.I[2]) / 3.f;
   return pl.profile < 0 ? avg : avg * L.profiles[size_t(pl.profile)].mean_intensity;
 }
 
@@ -144,16 +144,17 @@ float area_point_density(const ShapePools& shapes, const AreaLight& a, const Vec
 
 // Radiance leaving an area light at a point of normal n and surface
 // coordinates uv, in direction w.
-inline RGB area_light_Le(const AreaLight& l, const TexturePools& tex, const Vec3& n, Vec2 uv, const Vec3& w) {
-  if (!l.two_sided && !(glm::dot(n, w) > 0.f)) return RGB(0.f);
-  if (l.image < 0) return l.L;
+inline Spectrum area_light_Le(const AreaLight& l, const TexturePools& tex, const Vec3& n, Vec2 uv, const Vec3& w) {
+  if (!l.two_sided && !(glm::dot(n, w) > 0.f)) return Spectrum(0.f);
+  if (l.image < 0) return illuminant_spectrum(l.L);
   // As pbrt-v4: t flipped, bilinear, repeating.
-  return l.L * tex.images[size_t(l.image)].lookup_rgb(Vec2(uv.x, 1.f - uv.y), ImageFilter::Bilinear, WrapMode::Repeat);
+  return illuminant_spectrum(
+      l.L * tex.images[size_t(l.image)].lookup_rgb(Vec2(uv.x, 1.f - uv.y), ImageFilter::Bilinear, WrapMode::Repeat));
 }
 
 // Radiance from infinite lights along a ray from p leaving the scene in
 // direction w (a portal light's only through its window).
-RGB infinite_lights_Le(const LightPools& lights, const TexturePools& tex, const Vec3& p, const Vec3& w);
+Spectrum infinite_lights_Le(const LightPools& lights, const TexturePools& tex, const Vec3& p, const Vec3& w);
 // The same for one given light (index into `all`), without the selection pmf.
 std::optional<LightSample> sample_light_from(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex,
                                              uint32_t light, const Vec3& p, Vec2 u, float u_volume = 0.5f);
@@ -191,8 +192,8 @@ bool reaches_through_portal(const LightPools& lights, uint32_t light, const Vec3
 // sigma_a Le there, as the light's medium has it; *m is the light's medium
 // and *sigma_t the extinction there. Whether the point really lies in that
 // medium is decided by the ray that reaches it.
-void complete_volume_sample(const LightPools& lights, const MediumPools& media, RGB* L, const Vec3& p, uint32_t light,
-                            MediumHandle* m, RGB* sigma_t);
+void complete_volume_sample(const LightPools& lights, const MediumPools& media, Spectrum* L, const Vec3& p,
+                            uint32_t light, MediumHandle* m, Spectrum* sigma_t);
 // The density per unit volume with which a volume light emits from p
 // (without a selection pmf); zero when light `light` (or -1) is not one.
 float volume_light_density(const LightPools& lights, int64_t light, const Vec3& p);

@@ -21,7 +21,7 @@ enum class Lobes : uint8_t { Reflection = 1, Transmission = 2, All = 3 };
 inline bool has(Lobes set, Lobes l) { return (uint8_t(set) & uint8_t(l)) != 0; }
 
 struct BSDFSample {
-  RGB f{0.f};
+  Spectrum f{0.f};
   Vec3 wi{0.f};
   float pdf = 0.f;
   float etap = 1.f;  // relative index of refraction along wi (1 for reflection)

@@ -18,18 +18,34 @@
 
 namespace lantern {
 
+// Where textures' colours become spectra: a reflectance (clamped to [0, 1])
+// or an unbounded coefficient (eta, k, sigma_a).
+inline Spectrum reflectance(const TexturePools& tex, const TextureRef& t, const TextureContext& c) {
+  return albedo_spectrum(tex.evaluate_reflectance(t, c));
+}
+inline Spectrum coefficient(const TexturePools& tex, const TextureRef& t, const TextureContext& c) {
+  return unbounded_spectrum(tex.evaluate(t, c));
+}
+// pbrt-v4's conductor given by its head-on reflectance r: eta 1 and the k
+// that gives r.
+inline void conductor_from_reflectance(const TexturePools& tex, const TextureRef& t, const TextureContext& c,
+                                       Spectrum* eta, Spectrum* k) {
+  const Spectrum r = albedo_spectrum(clamp(tex.evaluate(t, c), 0.f, 0.9999f));
+  *eta = Spectrum(1.f);
+  *k = 2.f * sqrt(r) / sqrt(Spectrum(1.f) - r);
+}
+
 inline DiffuseBSDF make_bsdf(const DiffuseMaterial& m, const TextureContext& c, const TexturePools& tex) {
-  return DiffuseBSDF{tex.evaluate_reflectance(m.reflectance, c)};
+  return DiffuseBSDF{reflectance(tex, m.reflectance, c)};
 }
 inline ConductorBSDF make_bsdf(const ConductorMaterial& m, const TextureContext& c, const TexturePools& tex) {
-  if (m.mirror) return ConductorBSDF{{0.f, 0.f}, RGB(1.f), RGB(0.f), tex.evaluate_reflectance(m.mirror_reflectance, c), true};
+  if (m.mirror)
+    return ConductorBSDF{{0.f, 0.f}, Spectrum(1.f), Spectrum(0.f), reflectance(tex, m.mirror_reflectance, c), true};
   TrowbridgeReitz d = m.roughness.distribution(tex, c);
-  if (m.by_reflectance) {
-    // pbrt-v4: eta = 1 and the k that gives reflectance r head-on.
-    RGB r = glm::clamp(tex.evaluate(m.reflectance, c), RGB(0.f), RGB(0.9999f));
-    return ConductorBSDF{d, RGB(1.f), 2.f * glm::sqrt(r) / glm::sqrt(RGB(1.f) - r), RGB(1.f), false};
-  }
-  return ConductorBSDF{d, tex.evaluate(m.eta, c), tex.evaluate(m.k, c), RGB(1.f), false};
+  Spectrum eta, k;
+  if (m.by_reflectance) conductor_from_reflectance(tex, m.reflectance, c, &eta, &k);
+  else eta = coefficient(tex, m.eta, c), k = coefficient(tex, m.k, c);
+  return ConductorBSDF{d, eta, k, Spectrum(1.f), false};
 }
 inline DielectricBSDF make_bsdf(const DielectricMaterial& m, const TextureContext& c, const TexturePools& tex) {
   float eta = tex.evaluate_float(m.eta, c);
@@ -37,25 +53,26 @@ inline DielectricBSDF make_bsdf(const DielectricMaterial& m, const TextureContex
 }
 inline DiffuseTransmissionBSDF make_bsdf(const DiffuseTransmissionMaterial& m, const TextureContext& c,
                                          const TexturePools& tex) {
-  return DiffuseTransmissionBSDF{glm::clamp(m.scale * tex.evaluate(m.reflectance, c), RGB(0.f), RGB(1.f)),
-                                 glm::clamp(m.scale * tex.evaluate(m.transmittance, c), RGB(0.f), RGB(1.f))};
+  return DiffuseTransmissionBSDF{albedo_spectrum(clamp(m.scale * tex.evaluate(m.reflectance, c), 0.f, 1.f)),
+                                 albedo_spectrum(clamp(m.scale * tex.evaluate(m.transmittance, c), 0.f, 1.f))};
 }
 inline ThinDielectricBSDF make_bsdf(const ThinDielectricMaterial& m, const TextureContext& c, const TexturePools& tex) {
   float eta = tex.evaluate_float(m.eta, c);
   return ThinDielectricBSDF{eta > 0.f ? eta : 1.f};
 }
-// The fibre's absorption from pbrt-v4's three ways of giving it: the
-// reflectance inversion is Chiang et al. 2016, eq. 9; the melanin
-// absorption coefficients are d'Eon et al. 2011's (as pbrt-v4 uses them).
+// The fibre's absorption from pbrt-v4's three ways of giving it, as colour
+// (pbrt-v4 turns the result into an unbounded spectrum): the reflectance
+// inversion is Chiang et al. 2016, eq. 9; the melanin absorption
+// coefficients are d'Eon et al. 2011's (as pbrt-v4 uses them).
 inline RGB hair_sigma_a(const HairMaterial& m, const TextureContext& c, const TexturePools& tex, float beta_n) {
   switch (m.by) {
-    case HairMaterial::Absorption::SigmaA: return glm::max(tex.evaluate(m.sigma_a, c), RGB(0.f));
+    case HairMaterial::Absorption::SigmaA: return max(tex.evaluate(m.sigma_a, c), RGB(0.f));
     case HairMaterial::Absorption::Reflectance: {
-      const RGB r = glm::clamp(tex.evaluate(m.reflectance, c), RGB(1e-4f), RGB(1.f));
+      const RGB r = clamp(tex.evaluate(m.reflectance, c), 1e-4f, 1.f);
       const float b = beta_n;
       const float d = 5.969f - 0.215f * b + 2.532f * b * b - 10.73f * b * b * b + 5.574f * b * b * b * b +
                       0.245f * b * b * b * b * b;
-      const RGB l = glm::log(r) / d;
+      const RGB l = log(r) / d;
       return l * l;
     }
     case HairMaterial::Absorption::Melanin: break;
@@ -71,8 +88,8 @@ inline HairBSDF make_bsdf(const HairMaterial& m, const TextureContext& c, const 
   const float beta_m = glm::clamp(tex.evaluate_float(m.beta_m, c), 0.f, 1.f);
   const float eta = tex.evaluate_float(m.eta, c);
   const Vec3 tangent = Frame::from_z(c.n).to_local(c.dpdu);
-  return HairBSDF(2.f * c.uv.y - 1.f, eta > 0.f ? eta : 1.55f, hair_sigma_a(m, c, tex, beta_n), beta_m, beta_n,
-                  tex.evaluate_float(m.alpha, c), tangent);
+  return HairBSDF(2.f * c.uv.y - 1.f, eta > 0.f ? eta : 1.55f, unbounded_spectrum(hair_sigma_a(m, c, tex, beta_n)),
+                  beta_m, beta_n, tex.evaluate_float(m.alpha, c), tangent);
 }
 // The layer parameters of a coated material at a point, as pbrt-v4 clamps them.
 template <class Top, class Bottom>
@@ -81,30 +98,23 @@ LayeredBSDF<Top, Bottom> make_layered(const Top& top, const Bottom& bottom, cons
   return LayeredBSDF<Top, Bottom>{top,
                                   bottom,
                                   std::fmax(tex.evaluate_float(l.thickness, c), std::numeric_limits<float>::min()),
-                                  tex.evaluate_reflectance(l.albedo, c),
+                                  reflectance(tex, l.albedo, c),
                                   glm::clamp(tex.evaluate_float(l.g, c), -0.999f, 0.999f),
                                   l.max_depth,
                                   l.n_samples};
 }
 inline CoatedDiffuseBSDF make_bsdf(const CoatedDiffuseMaterial& m, const TextureContext& c, const TexturePools& tex) {
   return make_layered(DielectricBSDF{m.roughness.distribution(tex, c), m.eta},
-                      DiffuseBSDF{tex.evaluate_reflectance(m.reflectance, c)}, m.layer, c, tex);
+                      DiffuseBSDF{reflectance(tex, m.reflectance, c)}, m.layer, c, tex);
 }
 inline CoatedConductorBSDF make_bsdf(const CoatedConductorMaterial& m, const TextureContext& c,
                                      const TexturePools& tex) {
-  RGB eta, k;
-  if (m.by_reflectance) {
-    // pbrt-v4: eta 1 and the k that gives reflectance r head-on.
-    RGB r = glm::clamp(tex.evaluate(m.reflectance, c), RGB(0.f), RGB(0.9999f));
-    eta = RGB(1.f);
-    k = 2.f * glm::sqrt(r) / glm::sqrt(RGB(1.f) - r);
-  } else {
-    eta = tex.evaluate(m.conductor_eta, c);
-    k = tex.evaluate(m.conductor_k, c);
-  }
+  Spectrum eta, k;
+  if (m.by_reflectance) conductor_from_reflectance(tex, m.reflectance, c, &eta, &k);
+  else eta = coefficient(tex, m.conductor_eta, c), k = coefficient(tex, m.conductor_k, c);
   // The conductor sits in the coat: its index relative to the coat's.
-  ConductorBSDF base{m.conductor_roughness.distribution(tex, c), eta / m.interface_eta, k / m.interface_eta, RGB(1.f),
-                     false};
+  ConductorBSDF base{m.conductor_roughness.distribution(tex, c), eta / m.interface_eta, k / m.interface_eta,
+                     Spectrum(1.f), false};
   return make_layered(DielectricBSDF{m.interface_roughness.distribution(tex, c), m.interface_eta}, base, m.layer, c,
                       tex);
 }

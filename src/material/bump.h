@@ -16,8 +16,8 @@ inline Vec3 bumped_normal(const BumpParams& b, const TexturePools& tex, const Su
                           const ShadingGeometry& g) {
   Vec3 dpdu, dpdv;
   if (b.normal_map >= 0) {
-    RGB c = tex.cache->lookup_rgb(b.normal_map, TextureLookup{Vec2(sp.uv.x, 1.f - sp.uv.y)});
-    Vec3 nl = 2.f * c - Vec3(1.f);
+    const RGB c = tex.cache->lookup_rgb(b.normal_map, TextureLookup{Vec2(sp.uv.x, 1.f - sp.uv.y)});
+    Vec3 nl = 2.f * Vec3(c[0], c[1], c[2]) - Vec3(1.f);  // a normal map's colour is a direction
     float len = glm::length(nl);
     if (!(len > 0.f)) return g.n;
     nl /= len;

@@ -9,21 +9,21 @@ namespace lantern {
 
 struct ConductorBSDF {
   TrowbridgeReitz distrib;
-  RGB eta, k;
-  RGB mirror_reflectance;
+  Spectrum eta, k;
+  Spectrum mirror_reflectance;
   bool mirror;  // constant reflectance instead of Fresnel
 
   bool is_specular() const { return distrib.effectively_smooth(); }
-  RGB fresnel(float cos_i) const { return mirror ? mirror_reflectance : fr_complex(cos_i, eta, k); }
+  Spectrum fresnel(float cos_i) const { return mirror ? mirror_reflectance : fr_complex(cos_i, eta, k); }
 
-  RGB f(const Vec3& wo, const Vec3& wi, TransportMode) const {
-    if (!same_hemisphere(wo, wi) || distrib.effectively_smooth()) return RGB(0.f);
+  Spectrum f(const Vec3& wo, const Vec3& wi, TransportMode) const {
+    if (!same_hemisphere(wo, wi) || distrib.effectively_smooth()) return Spectrum(0.f);
     float cos_o = abs_cos_theta(wo), cos_i = abs_cos_theta(wi);
-    if (cos_i == 0.f || cos_o == 0.f) return RGB(0.f);
+    if (cos_i == 0.f || cos_o == 0.f) return Spectrum(0.f);
     Vec3 wm = wi + wo;
-    if (glm::dot(wm, wm) == 0.f) return RGB(0.f);
+    if (glm::dot(wm, wm) == 0.f) return Spectrum(0.f);
     wm = glm::normalize(wm);
-    RGB F = fresnel(std::fabs(glm::dot(wo, wm)));
+    Spectrum F = fresnel(std::fabs(glm::dot(wo, wm)));
     return distrib.D(wm) * F * distrib.G(wo, wi) / (4.f * cos_i * cos_o);
   }
 
@@ -44,7 +44,7 @@ struct ConductorBSDF {
     float pdf = distrib.pdf(wo, wm) / (4.f * std::fabs(glm::dot(wo, wm)));
     float cos_o = abs_cos_theta(wo), cos_i = abs_cos_theta(wi);
     if (cos_i == 0.f || cos_o == 0.f || !(pdf > 0.f)) return std::nullopt;
-    RGB F = fresnel(std::fabs(glm::dot(wo, wm)));
+    Spectrum F = fresnel(std::fabs(glm::dot(wo, wm)));
     s.f = distrib.D(wm) * F * distrib.G(wo, wi) / (4.f * cos_i * cos_o);
     s.wi = wi;
     s.pdf = pdf;

@@ -23,19 +23,19 @@ struct DielectricBSDF {
     return is_specular() ? sample_smooth(wo, uc, mode, lobes) : sample_rough(wo, uc, u, mode, lobes);
   }
 
-  RGB f(const Vec3& wo, const Vec3& wi, TransportMode mode) const {
-    if (is_specular()) return RGB(0.f);
+  Spectrum f(const Vec3& wo, const Vec3& wi, TransportMode mode) const {
+    if (is_specular()) return Spectrum(0.f);
     float etap;
     Vec3 wm;
-    if (!half_vector(wo, wi, &wm, &etap)) return RGB(0.f);
+    if (!half_vector(wo, wi, &wm, &etap)) return Spectrum(0.f);
     float cos_o = cos_theta(wo), cos_i = cos_theta(wi);
     float F = fr_dielectric(glm::dot(wo, wm), eta);
     if (cos_i * cos_o > 0.f)
-      return RGB(distrib.D(wm) * distrib.G(wo, wi) * F / std::fabs(4.f * cos_i * cos_o));
+      return Spectrum(distrib.D(wm) * distrib.G(wo, wi) * F / std::fabs(4.f * cos_i * cos_o));
     float denom = sqr(glm::dot(wi, wm) + glm::dot(wo, wm) / etap) * cos_i * cos_o;
     float ft = distrib.D(wm) * (1.f - F) * distrib.G(wo, wi) * std::fabs(glm::dot(wi, wm) * glm::dot(wo, wm) / denom);
     if (mode == TransportMode::Radiance) ft /= sqr(etap);
-    return RGB(ft);
+    return Spectrum(ft);
   }
 
   float pdf(const Vec3& wo, const Vec3& wi, TransportMode, Lobes lobes = Lobes::All) const {
@@ -86,7 +86,7 @@ struct DielectricBSDF {
     s.specular = true;
     if (uc < pr / (pr + pt)) {
       s.wi = Vec3(-wo.x, -wo.y, wo.z);
-      s.f = RGB(R / abs_cos_theta(s.wi));
+      s.f = Spectrum(R / abs_cos_theta(s.wi));
       s.pdf = pr / (pr + pt);
       return s;
     }
@@ -96,7 +96,7 @@ struct DielectricBSDF {
     float ft = T / abs_cos_theta(wi);
     if (mode == TransportMode::Radiance) ft /= sqr(etap);
     s.wi = wi;
-    s.f = RGB(ft);
+    s.f = Spectrum(ft);
     s.pdf = pt / (pr + pt);
     s.etap = etap;
     s.transmission = true;
@@ -114,7 +114,7 @@ struct DielectricBSDF {
       Vec3 wi = reflect(wo, wm);
       if (!same_hemisphere(wo, wi)) return std::nullopt;
       s.pdf = distrib.pdf(wo_up, wm) / (4.f * std::fabs(glm::dot(wo, wm))) * pr / (pr + pt);
-      s.f = RGB(distrib.D(wm) * distrib.G(wo, wi) * R / (4.f * cos_theta(wi) * cos_theta(wo)));
+      s.f = Spectrum(distrib.D(wm) * distrib.G(wo, wi) * R / (4.f * cos_theta(wi) * cos_theta(wo)));
       s.wi = wi;
     } else {
       float etap;
@@ -127,7 +127,7 @@ struct DielectricBSDF {
       float ft = T * distrib.D(wm) * distrib.G(wo, wi) *
                  std::fabs(glm::dot(wi, wm) * glm::dot(wo, wm) / (cos_theta(wi) * cos_theta(wo) * denom));
       if (mode == TransportMode::Radiance) ft /= sqr(etap);
-      s.f = RGB(ft);
+      s.f = Spectrum(ft);
       s.wi = wi;
       s.etap = etap;
       s.transmission = true;

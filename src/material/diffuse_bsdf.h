@@ -7,13 +7,13 @@
 namespace lantern {
 
 struct DiffuseBSDF {
-  RGB R;
+  Spectrum R;
 
   static constexpr bool kAlwaysSpecular = false;
   bool is_specular() const { return false; }
 
-  RGB f(const Vec3& wo, const Vec3& wi, TransportMode) const {
-    return same_hemisphere(wo, wi) ? R * kInvPi : RGB(0.f);
+  Spectrum f(const Vec3& wo, const Vec3& wi, TransportMode) const {
+    return same_hemisphere(wo, wi) ? R * kInvPi : Spectrum(0.f);
   }
   std::optional<BSDFSample> sample_f(const Vec3& wo, float, Vec2 u, TransportMode mode,
                                      Lobes lobes = Lobes::All) const {

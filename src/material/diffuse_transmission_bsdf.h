@@ -11,11 +11,11 @@
 namespace lantern {
 
 struct DiffuseTransmissionBSDF {
-  RGB R, T;
+  Spectrum R, T;
 
   bool is_specular() const { return false; }
 
-  RGB f(const Vec3& wo, const Vec3& wi, TransportMode) const {
+  Spectrum f(const Vec3& wo, const Vec3& wi, TransportMode) const {
     return (same_hemisphere(wo, wi) ? R : T) * kInvPi;
   }
 

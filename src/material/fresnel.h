@@ -37,8 +37,10 @@ inline float fr_complex(float cos_i, float eta, float k) {
   return 0.5f * (std::norm(r_parl) + std::norm(r_perp));
 }
 
-inline RGB fr_complex(float cos_i, const RGB& eta, const RGB& k) {
-  return RGB(fr_complex(cos_i, eta.x, k.x), fr_complex(cos_i, eta.y, k.y), fr_complex(cos_i, eta.z, k.z));
+inline Spectrum fr_complex(float cos_i, const Spectrum& eta, const Spectrum& k) {
+  Spectrum r;
+  for (int c = 0; c < Spectrum::kSize; ++c) r[c] = fr_complex(cos_i, eta[c], k[c]);
+  return r;
 }
 
 }  // namespace lantern

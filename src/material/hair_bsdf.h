@@ -34,7 +34,7 @@ struct HairBSDF {
   // diameter; beta_m, beta_n: longitudinal and azimuthal roughness in
   // [0, 1]; alpha_deg: the scales' tilt in degrees; tangent: the fibre's
   // direction in the shading frame.
-  HairBSDF(float h, float eta, const RGB& sigma_a, float beta_m, float beta_n, float alpha_deg, const Vec3& tangent)
+  HairBSDF(float h, float eta, const Spectrum& sigma_a, float beta_m, float beta_n, float alpha_deg, const Vec3& tangent)
       : h_(glm::clamp(h, -1.f, 1.f)), eta_(eta), sigma_a_(sigma_a) {
     Vec3 x(tangent.x, tangent.y, 0.f);
     float l = glm::length(x);
@@ -66,13 +66,13 @@ struct HairBSDF {
   // S(wi, wo) times the ratio of the two directions' cosines to the fibre's
   // normal plane. Without it bdpt was up to 20% brighter than the path
   // tracer on a hair ball (docs/materials.md, hair).
-  RGB f(const Vec3& wo, const Vec3& wi, TransportMode mode) const {
-    RGB s;
+  Spectrum f(const Vec3& wo, const Vec3& wi, TransportMode mode) const {
+    Spectrum s;
     if (mode == TransportMode::Radiance) {
       s = scattering(angles(wo), angles(wi));
     } else {
       const Angles o = angles(wo), i = angles(wi);
-      s = o.cos_theta > 0.f ? scattering(i, o) * (i.cos_theta / o.cos_theta) : RGB(0.f);
+      s = o.cos_theta > 0.f ? scattering(i, o) * (i.cos_theta / o.cos_theta) : Spectrum(0.f);
     }
     float c = std::fabs(wi.z);
     return c > 0.f ? s / c : s;
@@ -130,16 +130,16 @@ struct HairBSDF {
   // the transmittance of one crossing.
   struct Internal {
     float gamma_t;
-    RGB T;
+    Spectrum T;
   };
 
   // S: the sum of the terms for light leaving towards o from i, with h and
   // the internal path taken for o.
-  RGB scattering(const Angles& o, const Angles& i) const {
+  Spectrum scattering(const Angles& o, const Angles& i) const {
     const Internal in = internal(o);
-    const std::array<RGB, kPMax + 1> ap = attenuation(o.cos_theta, in.T);
+    const std::array<Spectrum, kPMax + 1> ap = attenuation(o.cos_theta, in.T);
     const float phi = i.phi - o.phi;
-    RGB sum(0.f);
+    Spectrum sum(0.f);
     for (int p = 0; p < kPMax; ++p) {
       const Angles t = tilted(o, p);
       sum += mp(i.cos_theta, t.cos_theta, i.sin_theta, t.sin_theta, v_[p]) * ap[size_t(p)] * np(phi, p, in.gamma_t);
@@ -158,7 +158,7 @@ struct HairBSDF {
     const float etap = o.cos_theta > 0.f ? safe_sqrt(sqr(eta_) - sqr(o.sin_theta)) / o.cos_theta : 1e30f;
     const float sin_gt = glm::clamp(h_ / etap, -1.f, 1.f), cos_gt = safe_sqrt(1.f - sqr(sin_gt));
     const float len = cos_tt > 0.f ? 2.f * cos_gt / cos_tt : 1e30f;
-    return {std::asin(sin_gt), glm::exp(-sigma_a_ * len)};
+    return {std::asin(sin_gt), exp(-sigma_a_ * len)};
   }
 
   // The direction a term's lobe is centred on: theta_o tilted by -2 alpha
@@ -170,22 +170,22 @@ struct HairBSDF {
             std::fabs(o.cos_theta * cos2k_alpha_[k] - sg * o.sin_theta * sin2k_alpha_[k]), o.phi};
   }
 
-  std::array<RGB, kPMax + 1> attenuation(float cos_theta_o, const RGB& T) const {
+  std::array<Spectrum, kPMax + 1> attenuation(float cos_theta_o, const Spectrum& T) const {
     const float cos_gamma_o = safe_sqrt(1.f - sqr(h_));
     const float fr = fr_dielectric(cos_theta_o * cos_gamma_o, eta_);
-    std::array<RGB, kPMax + 1> ap;
-    ap[0] = RGB(fr);
+    std::array<Spectrum, kPMax + 1> ap;
+    ap[0] = Spectrum(fr);
     ap[1] = sqr(1.f - fr) * T;
     ap[2] = ap[1] * T * fr;
-    ap[3] = ap[2] * fr * T / glm::max(RGB(1.f) - T * fr, RGB(1e-12f));
+    ap[3] = ap[2] * fr * T / max(Spectrum(1.f) - T * fr, Spectrum(1e-12f));
     return ap;
   }
 
-  std::array<float, kPMax + 1> term_weights(float cos_theta_o, const RGB& T) const {
-    const std::array<RGB, kPMax + 1> ap = attenuation(cos_theta_o, T);
+  std::array<float, kPMax + 1> term_weights(float cos_theta_o, const Spectrum& T) const {
+    const std::array<Spectrum, kPMax + 1> ap = attenuation(cos_theta_o, T);
     std::array<float, kPMax + 1> w;
     float total = 0.f;
-    for (int p = 0; p <= kPMax; ++p) total += (w[size_t(p)] = (ap[size_t(p)].x + ap[size_t(p)].y + ap[size_t(p)].z) / 3.f);
+    for (int p = 0; p <= kPMax; ++p) total += (w[size_t(p)] = average(ap[size_t(p)]));
     for (float& x : w) x = total > 0.f ? x / total : 0.f;
     return w;
   }
@@ -239,7 +239,7 @@ struct HairBSDF {
   }
 
   float h_, eta_;
-  RGB sigma_a_;
+  Spectrum sigma_a_;
   Vec3 x_, y_;  // the fibre's frame in the shading frame (z shared)
   float gamma_o_;
   float v_[kPMax + 1];

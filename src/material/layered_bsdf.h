@@ -74,7 +74,7 @@ struct LayeredBSDF {
   Top top;
   Bottom bottom;
   float thickness;  // in units of the medium's mean free path
-  RGB albedo;       // single-scattering albedo of the medium (0: none)
+  Spectrum albedo;       // single-scattering albedo of the medium (0: none)
   float g;          // Henyey-Greenstein asymmetry of the medium
   int max_depth;    // scattering events a walk may have
   int n_samples;    // walks per evaluation of f
@@ -83,13 +83,13 @@ struct LayeredBSDF {
   // smooth conductor, nothing between): then f is 0 and every sample a delta.
   bool is_specular() const { return top.is_specular() && bottom.is_specular() && !has_medium(); }
 
-  RGB f(Vec3 wo, Vec3 wi, TransportMode mode) const {
+  Spectrum f(Vec3 wo, Vec3 wi, TransportMode mode) const {
     if (wo.z < 0.f) {
       wo = -wo;
       wi = -wi;
     }
-    if (!(wi.z > 0.f) || !(wo.z > 0.f)) return RGB(0.f);
-    RGB sum = float(n_samples) * top.f(wo, wi, mode);  // reflection at the coat
+    if (!(wi.z > 0.f) || !(wo.z > 0.f)) return Spectrum(0.f);
+    Spectrum sum = float(n_samples) * top.f(wo, wi, mode);  // reflection at the coat
     HashedRng r{wo.x, wo.y, wo.z, wi.x, wi.y, wi.z};
     for (int s = 0; s < n_samples; ++s) sum += walk_estimate(wo, wi, mode, r);
     return sum / float(n_samples);
@@ -143,18 +143,18 @@ struct LayeredBSDF {
   // vertex, the light that leaves through the coat towards wi, each vertex
   // combining two strategies by MIS: the pre-sampled direction wis through
   // the coat, and the direction the walk samples next.
-  RGB walk_estimate(const Vec3& wo, const Vec3& wi, TransportMode mode, HashedRng& r) const {
+  Spectrum walk_estimate(const Vec3& wo, const Vec3& wi, TransportMode mode, HashedRng& r) const {
     float uc = r.next();
     auto wos = top.sample_f(wo, uc, r.next2(), mode, Lobes::Transmission);
-    if (!valid(wos)) return RGB(0.f);
+    if (!valid(wos)) return Spectrum(0.f);
     uc = r.next();
     auto wis = top.sample_f(wi, uc, r.next2(), adjoint(mode), Lobes::Transmission);
-    if (!valid(wis)) return RGB(0.f);
+    if (!valid(wis)) return Spectrum(0.f);
     const bool top_specular = top.is_specular();
-    const RGB wis_weight = wis->f / wis->pdf;
+    const Spectrum wis_weight = wis->f / wis->pdf;
     const HenyeyGreenstein phase{g};
-    RGB sum(0.f);
-    RGB beta = wos->f * (abs_cos_theta(wos->wi) / wos->pdf);
+    Spectrum sum(0.f);
+    Spectrum beta = wos->f * (abs_cos_theta(wos->wi) / wos->pdf);
     float z = thickness;
     Vec3 w = wos->wi;
     // Light gathered at step d leaves at step d + 1; a sampled walk leaves
@@ -182,7 +182,7 @@ struct LayeredBSDF {
           w = wn;
           z = zp;
           if (w.z > 0.f && !top_specular) {
-            RGB f_exit = top.f(-w, wi, mode);
+            Spectrum f_exit = top.f(-w, wi, mode);
             if (!is_black(f_exit)) {
               float wt2 = power_heuristic(ps_pdf, exit_pdf(wi, w, mode));
               sum += beta * f_exit * (tr(zp - thickness, w) * wt2);
@@ -212,7 +212,7 @@ struct LayeredBSDF {
       beta *= bs->f * (abs_cos_theta(bs->wi) / bs->pdf);
       w = bs->wi;
       if (!top_specular) {
-        RGB f_exit = top.f(-w, wi, mode);
+        Spectrum f_exit = top.f(-w, wi, mode);
         if (!is_black(f_exit)) {
           float wt = bottom.is_specular() ? 1.f : power_heuristic(bs->pdf, exit_pdf(wi, w, mode));
           sum += beta * f_exit * (tr(thickness, bs->wi) * wt);
@@ -230,7 +230,7 @@ struct LayeredBSDF {
     bool specular_path = entry.specular;
     // The walk's f / pdf, kept as one ratio: the products alone overflow
     // after a few bounces on a nearly smooth coat.
-    RGB beta = entry.f * (abs_cos_theta(entry.wi) / entry.pdf);
+    Spectrum beta = entry.f * (abs_cos_theta(entry.wi) / entry.pdf);
     float z = thickness;
     for (int depth = 0; depth < max_depth; ++depth) {
       float rr_beta = max_component(beta);

@@ -16,7 +16,7 @@ struct ThinDielectricBSDF {
   float eta;
 
   bool is_specular() const { return true; }
-  RGB f(const Vec3&, const Vec3&, TransportMode) const { return RGB(0.f); }
+  Spectrum f(const Vec3&, const Vec3&, TransportMode) const { return Spectrum(0.f); }
   float pdf(const Vec3&, const Vec3&, TransportMode, Lobes = Lobes::All) const { return 0.f; }
 
   std::optional<BSDFSample> sample_f(const Vec3& wo, float uc, Vec2, TransportMode,
@@ -33,11 +33,11 @@ struct ThinDielectricBSDF {
     s.specular = true;
     if (uc < pr / (pr + pt)) {
       s.wi = Vec3(-wo.x, -wo.y, wo.z);
-      s.f = RGB(R / std::fabs(wo.z));
+      s.f = Spectrum(R / std::fabs(wo.z));
       s.pdf = pr / (pr + pt);
     } else {
       s.wi = -wo;
-      s.f = RGB(T / std::fabs(wo.z));
+      s.f = Spectrum(T / std::fabs(wo.z));
       s.pdf = pt / (pr + pt);
       s.transmission = true;
     }

@@ -1,6 +1,8 @@
 // Small value types and constants shared by every part of the renderer.
 #pragma once
 
+#include "math/spectrum.h"
+
 #include <glm/glm.hpp>
 
 #include <cmath>
@@ -13,7 +15,6 @@ using Vec2 = glm::vec2;
 using Vec3 = glm::vec3;
 using Vec4 = glm::vec4;
 using Mat4 = glm::mat4;
-using RGB = glm::vec3;  // linear sRGB radiance / reflectance
 
 inline constexpr float kPi = 3.14159265358979323846f;
 inline constexpr float kInvPi = 0.31830988618379067154f;
@@ -24,12 +25,10 @@ inline constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
 
 inline float sqr(float x) { return x * x; }
 inline float safe_sqrt(float x) { return std::sqrt(std::fmax(0.f, x)); }
-inline float luminance(const RGB& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 inline float max_component(const Vec3& v) { return std::fmax(v.x, std::fmax(v.y, v.z)); }
 inline float max_abs_component(const Vec3& v) {
   return std::fmax(std::fabs(v.x), std::fmax(std::fabs(v.y), std::fabs(v.z)));
 }
-inline bool is_black(const RGB& c) { return c.x == 0.f && c.y == 0.f && c.z == 0.f; }
 inline bool is_finite(const Vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }

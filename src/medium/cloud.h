@@ -33,13 +33,14 @@ struct CloudMedium {
   float density_in_medium(Vec3 p) const;
   float density_at(const Vec3& p_render) const;
   // The coefficients at a point of render space.
-  void coefficients(const Vec3& p_render, RGB* a, RGB* s) const {
+  void coefficients(const Vec3& p_render, Spectrum* a, Spectrum* s) const {
     const float rho = density_at(p_render);
-    *a = sigma_a * rho;
-    *s = sigma_s * rho;
+    *a = unbounded_spectrum(sigma_a) * rho;
+    *s = unbounded_spectrum(sigma_s) * rho;
   }
+  Spectrum sigma_t() const { return unbounded_spectrum(sigma_a) + unbounded_spectrum(sigma_s); }
   // The grey majorant: the largest extinction of any channel.
-  float sigma_bar() const { return max_component(sigma_a + sigma_s); }
+  float sigma_bar() const { return max_component(sigma_t()); }
   // The part [*ta, *tb] of [t0, t1] along o + t d (render space) that lies
   // in the box; false when there is none.
   bool clip(const Vec3& o, const Vec3& d, float t0, float t1, float* ta, float* tb) const;

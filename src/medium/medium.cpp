@@ -2,16 +2,17 @@
 
 namespace lantern {
 
-RGB MediumPools::optical_depth(MediumHandle h, const Vec3& o, const Vec3& d, float s0, float s1, int c, float tau,
+Spectrum MediumPools::optical_depth(MediumHandle h, const Vec3& o, const Vec3& d, float s0, float s1, int c, float tau,
                                float* s_hit) const {
   *s_hit = kInfinity;
-  if (h.kind() == MediumKind::RgbGrid) return rgb_grid[h.index()].grid.integrate(o, d, s0, s1, c, tau, s_hit);
+  if (h.kind() == MediumKind::RgbGrid)
+    return unbounded_spectrum(rgb_grid[h.index()].grid.integrate(o, d, s0, s1, c, tau, s_hit));
   if (h.kind() == MediumKind::Cloud) {
     const CloudMedium& m = cloud[h.index()];
-    return (m.sigma_a + m.sigma_s) * m.proxy.integrate(o, d, s0, s1, -1.f, s_hit);
+    return m.sigma_t() * m.proxy.integrate(o, d, s0, s1, -1.f, s_hit);
   }
   const MediumKind kind = h.kind();
-  const RGB sigma_t = kind == MediumKind::Grid  ? grid[h.index()].per_density.sigma_t()
+  const Spectrum sigma_t = kind == MediumKind::Grid  ? grid[h.index()].per_density.sigma_t()
                       : kind == MediumKind::Vdb ? vdb[h.index()].per_density.sigma_t()
                                                 : homogeneous[h.index()].sigma_t();
   const float target = tau >= 0.f && sigma_t[c] > 0.f ? tau / sigma_t[c] : -1.f;
@@ -28,8 +29,8 @@ RGB MediumPools::optical_depth(MediumHandle h, const Vec3& o, const Vec3& d, flo
     D = s1 - s0;
   }
   // Channels that do not interact stay at zero, even over an infinite stretch.
-  RGB depth(0.f);
-  for (int k = 0; k < 3; ++k)
+  Spectrum depth(0.f);
+  for (int k = 0; k < Spectrum::kSize; ++k)
     if (sigma_t[k] > 0.f) depth[k] = sigma_t[k] * D;
   return depth;
 }
@@ -40,17 +41,17 @@ tracking::Track MediumPools::track(MediumHandle h, const Vec3& o, const Vec3& d,
   float ta, tb;
   if (!m.clip(o, d, 0.f, len, &ta, &tb)) return {};
   tracking::Track r = tracking::delta_track(tb - ta, m.sigma_bar(), u, rng,
-                                            [&](float t, RGB* a, RGB* s) { m.coefficients(o + d * (ta + t), a, s); });
+                                            [&](float t, Spectrum* a, Spectrum* s) { m.coefficients(o + d * (ta + t), a, s); });
   if (r.real()) r.t += ta;
   return r;
 }
 
-RGB MediumPools::ratio_track(MediumHandle h, const Vec3& o, const Vec3& d, float len, RandomStream& rng) const {
+Spectrum MediumPools::ratio_track(MediumHandle h, const Vec3& o, const Vec3& d, float len, RandomStream& rng) const {
   const CloudMedium& m = cloud[h.index()];
   float ta, tb;
-  if (!m.clip(o, d, 0.f, len, &ta, &tb)) return RGB(1.f);
+  if (!m.clip(o, d, 0.f, len, &ta, &tb)) return Spectrum(1.f);
   return tracking::ratio_track(tb - ta, m.sigma_bar(), rng,
-                               [&](float t, RGB* a, RGB* s) { m.coefficients(o + d * (ta + t), a, s); });
+                               [&](float t, Spectrum* a, Spectrum* s) { m.coefficients(o + d * (ta + t), a, s); });
 }
 
 }  // namespace lantern

@@ -54,7 +54,7 @@ struct HomogeneousMedium {
   RGB sigma_a{0.f}, sigma_s{0.f};
   float g = 0.f;
   RGB Le{0.f};  // emitted radiance per unit sigma_a ("Le" times "Lescale"); unused per density
-  RGB sigma_t() const { return sigma_a + sigma_s; }
+  Spectrum sigma_t() const { return unbounded_spectrum(sigma_a) + unbounded_spectrum(sigma_s); }
 };
 
 // pbrt-v4's "uniformgrid": the coefficients scaled by a density grid.
@@ -105,25 +105,32 @@ struct MediumPools {
     }
   }
   // The coefficients at point p.
-  void coefficients_at(MediumHandle h, const Vec3& p, RGB* sigma_a, RGB* sigma_s) const {
+  void coefficients_at(MediumHandle h, const Vec3& p, Spectrum* sigma_a, Spectrum* sigma_s) const {
     switch (h.kind()) {
       case MediumKind::Grid: {
         const GridMedium& m = grid[h.index()];
         const float rho = m.density.density(p);
-        *sigma_a = m.per_density.sigma_a * rho;
-        *sigma_s = m.per_density.sigma_s * rho;
+        *sigma_a = unbounded_spectrum(m.per_density.sigma_a) * rho;
+        *sigma_s = unbounded_spectrum(m.per_density.sigma_s) * rho;
         return;
       }
-      case MediumKind::RgbGrid: rgb_grid[h.index()].grid.at(p, sigma_a, sigma_s); return;
+      case MediumKind::RgbGrid: {
+        RGB a, s;
+        rgb_grid[h.index()].grid.at(p, &a, &s);
+        *sigma_a = unbounded_spectrum(a), *sigma_s = unbounded_spectrum(s);
+        return;
+      }
       case MediumKind::Vdb: {
         const VdbMedium& m = vdb[h.index()];
         const float rho = m.density.density(p);
-        *sigma_a = m.per_density.sigma_a * rho;
-        *sigma_s = m.per_density.sigma_s * rho;
+        *sigma_a = unbounded_spectrum(m.per_density.sigma_a) * rho;
+        *sigma_s = unbounded_spectrum(m.per_density.sigma_s) * rho;
         return;
       }
       case MediumKind::Cloud: cloud[h.index()].coefficients(p, sigma_a, sigma_s); return;
-      default: *sigma_a = homogeneous[h.index()].sigma_a, *sigma_s = homogeneous[h.index()].sigma_s;
+      default:
+        *sigma_a = unbounded_spectrum(homogeneous[h.index()].sigma_a);
+        *sigma_s = unbounded_spectrum(homogeneous[h.index()].sigma_s);
     }
   }
   // The optical depth per channel along o + s d (d unit length, s a
@@ -132,7 +139,7 @@ struct MediumPools {
   // and the depth returned is the depth up to it.
   // A tracked medium (below) answers with its proxy's depth, and only
   // with tau < 0: the transmittance bidirectional MIS uses for it.
-  RGB optical_depth(MediumHandle h, const Vec3& o, const Vec3& d, float s0, float s1, int c, float tau,
+  Spectrum optical_depth(MediumHandle h, const Vec3& o, const Vec3& d, float s0, float s1, int c, float tau,
                     float* s_hit) const;
 
   // Emissive media (medium/volume_emission.h): whether h emits, and its
@@ -146,13 +153,14 @@ struct MediumPools {
       default: return false;
     }
   }
-  RGB Le(MediumHandle h, const Vec3& p) const {
+  Spectrum Le(MediumHandle h, const Vec3& p) const {
     switch (h.kind()) {
-      case MediumKind::Homogeneous: return homogeneous[h.index()].Le;
-      case MediumKind::Grid: return grid[h.index()].emission.at(p);
-      case MediumKind::RgbGrid: return rgb_grid[h.index()].grid.Le_at(p) * rgb_grid[h.index()].Le_scale;
-      case MediumKind::Vdb: return vdb[h.index()].emits() ? vdb[h.index()].Le(p) : RGB(0.f);
-      default: return RGB(0.f);
+      case MediumKind::Homogeneous: return illuminant_spectrum(homogeneous[h.index()].Le);
+      case MediumKind::Grid: return illuminant_spectrum(grid[h.index()].emission.at(p));
+      case MediumKind::RgbGrid:
+        return illuminant_spectrum(rgb_grid[h.index()].grid.Le_at(p)) * rgb_grid[h.index()].Le_scale;
+      case MediumKind::Vdb: return vdb[h.index()].emits() ? illuminant_spectrum(vdb[h.index()].Le(p)) : Spectrum(0.f);
+      default: return Spectrum(0.f);
     }
   }
   bool any_emissive() const { return !emissive_media.empty(); }
@@ -165,7 +173,7 @@ struct MediumPools {
   // collision's distance s (infinity: none) and the weights.
   tracking::Track track(MediumHandle h, const Vec3& o, const Vec3& d, float len, float u, RandomStream& rng) const;
   // Ratio tracking over the same: an unbiased transmittance estimate.
-  RGB ratio_track(MediumHandle h, const Vec3& o, const Vec3& d, float len, RandomStream& rng) const;
+  Spectrum ratio_track(MediumHandle h, const Vec3& o, const Vec3& d, float len, RandomStream& rng) const;
 };
 
 }  // namespace lantern

@@ -29,10 +29,14 @@ namespace lantern::tracking {
 // majorant over a long stretch cannot hang a render.
 constexpr int kMaxSteps = 1 << 20;
 
+// Each channel is the one a collision is decided by with this probability
+// (the mean of the channels' extinctions).
+constexpr float kChannelProbability = 1.f / float(kSpectrumSamples);
+
 struct Track {
   float t = kInfinity;  // the real collision's distance; infinity: passed the stretch
-  RGB weight{1.f};      // per channel, the product of the collision weights
-  RGB sigma_a{0.f}, sigma_s{0.f};  // at the real collision
+  Spectrum weight{1.f};  // per channel, the product of the collision weights
+  Spectrum sigma_a{0.f}, sigma_s{0.f};  // at the real collision
   bool saturated = false;          // ended by kMaxSteps
   bool real() const { return t < kInfinity; }
 };
@@ -50,10 +54,10 @@ Track delta_track(float L, float sigma_bar, float u, RandomStream& rng, Coeffici
   for (int step = 0; step < kMaxSteps; ++step) {
     t += exponential_step(u, sigma_bar);
     if (!(t < L)) return r;
-    RGB a, s;
+    Spectrum a, s;
     at(t, &a, &s);
-    const RGB st = a + s;
-    const float mean_t = (st.x + st.y + st.z) * (1.f / 3.f);
+    const Spectrum st = a + s;
+    const float mean_t = sum(st) * kChannelProbability;
     if (rng.get1d() * sigma_bar < mean_t) {
       r.t = t;
       r.sigma_a = a;
@@ -61,12 +65,12 @@ Track delta_track(float L, float sigma_bar, float u, RandomStream& rng, Coeffici
       r.weight *= s / mean_t;
       return r;
     }
-    const RGB sn = glm::max(RGB(sigma_bar) - st, RGB(0.f));
-    r.weight *= sn / ((sn.x + sn.y + sn.z) * (1.f / 3.f));
+    const Spectrum sn = max(Spectrum(sigma_bar) - st, Spectrum(0.f));
+    r.weight *= sn / (sum(sn) * kChannelProbability);
     u = rng.get1d();
   }
   r.saturated = true;
-  r.weight = RGB(0.f);
+  r.weight = Spectrum(0.f);
   return r;
 }
 
@@ -75,23 +79,23 @@ Track delta_track(float L, float sigma_bar, float u, RandomStream& rng, Coeffici
 // probability 10 max T, divided by it (Russian roulette), so deep
 // stretches end early.
 template <class Coefficients>
-RGB ratio_track(float L, float sigma_bar, RandomStream& rng, Coefficients&& at) {
-  RGB T(1.f);
+Spectrum ratio_track(float L, float sigma_bar, RandomStream& rng, Coefficients&& at) {
+  Spectrum T(1.f);
   if (!(sigma_bar > 0.f)) return T;
   float t = 0.f;
   for (int step = 0; step < kMaxSteps; ++step) {
     t += exponential_step(rng.get1d(), sigma_bar);
     if (!(t < L)) return T;
-    RGB a, s;
+    Spectrum a, s;
     at(t, &a, &s);
-    T *= glm::max(RGB(1.f) - (a + s) / sigma_bar, RGB(0.f));
+    T *= max(Spectrum(1.f) - (a + s) / sigma_bar, Spectrum(0.f));
     const float m = max_component(T);
     if (m < 0.1f) {
-      if (!(rng.get1d() < 10.f * m)) return RGB(0.f);
+      if (!(rng.get1d() < 10.f * m)) return Spectrum(0.f);
       T /= 10.f * m;
     }
   }
-  return RGB(0.f);
+  return Spectrum(0.f);
 }
 
 }  // namespace lantern::tracking

@@ -370,11 +370,11 @@ void SceneBuilder::shape(const std::string& type, const ParamSet& ps, const Grap
   const bool interface = gs.material && gs.material->kind() == MaterialKind::Interface;
   if (gs.area_light && interface) ps.fail("an emitting shape cannot have the \"interface\" material");
   if (interface && medium_interface(gs).transition()) {
-    if (!alpha.is_constant() || alpha.value.x < 1.f) ps.fail(*ps.find("alpha"), "alpha on an \"interface\" shape is not supported");
+    if (!alpha.is_constant() || alpha.value[0] < 1.f) ps.fail(*ps.find("alpha"), "alpha on an \"interface\" shape is not supported");
     return;
   }
   if (interface) alpha = TextureRef::constant(0.f);
-  if (scene_.shapes.geometries.size() == before || (alpha.is_constant() && alpha.value.x >= 1.f)) return;
+  if (scene_.shapes.geometries.size() == before || (alpha.is_constant() && alpha.value[0] >= 1.f)) return;
   if (gs.area_light)
     ps.fail(*ps.find("alpha"), "alpha on an emitting shape is not supported; cut the shape out of the light instead");
   ShapePools& s = scene_.shapes;

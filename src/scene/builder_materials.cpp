@@ -26,10 +26,10 @@ RoughnessParams SceneBuilder::roughness(const ParamSet& ps, float def, const std
 void SceneBuilder::coat_layer(const ParamSet& ps, CoatLayer* c) {
   c->albedo = rgb_texture(ps, "albedo", RGB(0.f));
   c->thickness = float_texture(ps, "thickness", 0.01f);
-  if (c->thickness.is_constant() && !(c->thickness.value.x >= 0.f && std::isfinite(c->thickness.value.x)))
+  if (c->thickness.is_constant() && !(c->thickness.value[0] >= 0.f && std::isfinite(c->thickness.value[0])))
     ps.fail(*ps.find("thickness"), "thickness must be a finite number >= 0");
   c->g = float_texture(ps, "g", 0.f);
-  if (c->g.is_constant() && !std::isfinite(c->g.value.x)) ps.fail(*ps.find("g"), "g must be finite");
+  if (c->g.is_constant() && !std::isfinite(c->g.value[0])) ps.fail(*ps.find("g"), "g must be finite");
   // Bounded so that no scene can make one evaluation take seconds.
   c->max_depth = ps.get_int("maxdepth", 10);
   if (c->max_depth < 0 || c->max_depth > 100) ps.fail(*ps.find("maxdepth"), "maxdepth must be in [0, 100]");
@@ -47,7 +47,7 @@ TextureRef SceneBuilder::eta_param(const ParamSet& ps, float def) {
   const auto sampled = ps.get_sampled_spectrum(p->name);
   float eta = sampled                ? float((*sampled)(587.6))
               : p->type == "float" ? ps.get_float(p->name, def)
-                                   : ps.get_rgb(p->name, ColorUsage::Unbounded)->x;
+                                   : (*ps.get_rgb(p->name, ColorUsage::Unbounded))[0];
   if (!(eta > 0.f)) ps.fail(*p, "index of refraction must be positive");
   return TextureRef::constant(eta);
 }
@@ -137,9 +137,9 @@ MaterialHandle SceneBuilder::concrete_material(const std::string& type, const Pa
         c.by_reflectance = true;
         if (c.reflectance.is_constant()) {
           // pbrt-v4: a conductor given by its reflectance at normal incidence.
-          RGB r = glm::clamp(c.reflectance.value, RGB(0.f), RGB(0.9999f));
+          RGB r = clamp(c.reflectance.value, RGB(0.f), RGB(0.9999f));
           c.eta = TextureRef::constant(RGB(1.f));
-          c.k = TextureRef::constant(2.f * glm::sqrt(r) / glm::sqrt(RGB(1.f) - r));
+          c.k = TextureRef::constant(2.f * sqrt(r) / sqrt(RGB(1.f) - r));
           c.by_reflectance = false;
         }
       }
@@ -172,7 +172,7 @@ MaterialHandle SceneBuilder::concrete_material(const std::string& type, const Pa
     }
     TextureRef eta = eta_param(ps, 1.5f);
     if (!eta.is_constant()) ps.fail(*ps.find("eta"), "coateddiffuse's eta is a spectrum in pbrt-v4, not a texture");
-    c.eta = eta.value.x;
+    c.eta = eta.value[0];
     c.roughness = roughness(ps, v3 ? 0.1f : 0.f);
     coat_layer(ps, &c.layer);
     m.coated_diffuse.push_back(c);
@@ -211,7 +211,7 @@ MaterialHandle SceneBuilder::coated_conductor(const ParamSet& ps) {
   c.interface_roughness = roughness(ps, 0.f, "interface.");
   c.conductor_roughness = roughness(ps, 0.f, "conductor.");
   if (const pbrt::Param* p = ps.find("interface.eta")) {
-    float eta = p->type == "float" ? ps.get_float(p->name, 1.5f) : ps.get_rgb(p->name, ColorUsage::Unbounded)->x;
+    float eta = p->type == "float" ? ps.get_float(p->name, 1.5f) : (*ps.get_rgb(p->name, ColorUsage::Unbounded))[0];
     if (!(eta >= 0.f) || !std::isfinite(eta)) ps.fail(*p, "index of refraction must be a finite number >= 0");
     c.interface_eta = eta == 0.f ? 1.f : eta;  // pbrt-v4 reads 0 as 1
   }

@@ -12,7 +12,7 @@ namespace {
 
 RGB checked_coefficient(const ParamSet& ps, const char* name, RGB value, float scale) {
   RGB v = value * scale;
-  if (!is_finite(v) || v.x < 0.f || v.y < 0.f || v.z < 0.f) {
+  if (!is_finite(v) || v[0] < 0.f || v[1] < 0.f || v[2] < 0.f) {
     std::string what = std::string("\"") + name + "\" times \"scale\" must be finite and not negative";
     if (const pbrt::Param* p = ps.find(name)) ps.fail(*p, what);
     ps.fail(what);

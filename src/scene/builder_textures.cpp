@@ -229,7 +229,7 @@ void SceneBuilder::texture(const std::string& name, const std::string& value_typ
         if (!q || q->type == "float") return true;
         if (q->type == "texture") return is_float || float_textures_.count(ps.get_texture(p).value_or("")) > 0;
         std::optional<RGB> c = ps.get_rgb(p, ColorUsage::Unbounded);
-        return c && c->x == c->y && c->y == c->z;
+        return c && (*c)[0] == (*c)[1] && (*c)[1] == (*c)[2];
       };
       const bool swap = !scalar("tex2") && scalar("tex1");
       if (!scalar(swap ? "tex1" : "tex2"))
@@ -240,13 +240,13 @@ void SceneBuilder::texture(const std::string& name, const std::string& value_typ
       n.tex1 = child(tex, 1.f);
       const pbrt::Param* q = ps.find(by);
       n.tex2 = q && q->type != "float" && q->type != "texture"
-                   ? TextureRef::constant(ps.get_rgb(by, ColorUsage::Unbounded)->x)
+                   ? TextureRef::constant((*ps.get_rgb(by, ColorUsage::Unbounded))[0])
                    : float_texture(ps, by, 1.f);
     } else {
       n.tex1 = child("tex", 1.f);
       n.tex2 = float_texture(ps, "scale", 1.f);
     }
-    result = n.tex1.is_constant() && n.tex2.is_constant() ? TextureRef::constant(n.tex1.value * n.tex2.value.x)
+    result = n.tex1.is_constant() && n.tex2.is_constant() ? TextureRef::constant(n.tex1.value * n.tex2.value[0])
                                                           : add_texture_node(n);
   } else if (cls == "mix" || cls == "directionmix") {
     n.kind = cls == "mix" ? TextureKind::Mix : TextureKind::DirectionMix;

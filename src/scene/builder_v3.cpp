@@ -54,7 +54,7 @@ std::optional<MaterialHandle> SceneBuilder::v3_material(const std::string& type,
     c.reflectance = rgb_texture(ps, "Kd", RGB(0.5f));
     TextureRef eta = eta_param(ps, 1.5f);
     if (!eta.is_constant()) ps.fail("coateddiffuse's eta is a spectrum in pbrt-v4, not a texture");
-    c.eta = eta.value.x;
+    c.eta = eta.value[0];
     c.roughness = roughness(ps, 0.f);
     coat_layer(ps, &c.layer);
     m.coated_diffuse.push_back(c);
@@ -98,9 +98,9 @@ MaterialHandle SceneBuilder::mix_material_v3(const ParamSet& ps, const std::map<
   const pbrt::Param* a = ps.find("amount");
   if (a && a->type != "float" && a->type != "texture") {
     RGB c = ps.get_rgb("amount", ColorUsage::Reflectance).value_or(RGB(0.5f));
-    float avg = (c.x + c.y + c.z) / 3.f;
-    if (c.x != c.y || c.y != c.z)
-      warn(a->where, "mix \"amount\" (" + std::to_string(c.x) + ", " + std::to_string(c.y) + ", " + std::to_string(c.z) +
+    float avg = (c[0] + c[1] + c[2]) / 3.f;
+    if (c[0] != c[1] || c[1] != c[2])
+      warn(a->where, "mix \"amount\" (" + std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " + std::to_string(c[2]) +
                          ") is coloured: its average " + std::to_string(avg) + " is used (as pbrt-v4's upgrade does)");
     mix.amount = TextureRef::constant(avg);
   } else {

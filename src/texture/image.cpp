@@ -52,7 +52,7 @@ float TextureImage::float_at(int x, int y, WrapMode wrap) const {
   size_t i = size_t(y) * size_t(width) + size_t(x);
   if (channels == 4) return alpha[i];
   const RGB& c = texels[i];
-  return channels == 1 ? c.x : (c.x + c.y + c.z) / 3.f;
+  return channels == 1 ? c[0] : (c[0] + c[1] + c[2]) / 3.f;
 }
 
 template <class T, class Fetch>
@@ -80,7 +80,7 @@ float TextureImage::lookup_float(Vec2 st, ImageFilter filter, WrapMode wrap) con
     // pbrt-v4 reads the first channel for point lookups.
     float x = std::round(st.x * float(width) - 0.5f), y = std::round(st.y * float(height) - 0.5f);
     if (!(std::fabs(x) < 1e9f) || !(std::fabs(y) < 1e9f)) return 0.f;
-    return rgb_at(int(x), int(y), wrap).x;
+    return rgb_at(int(x), int(y), wrap)[0];
   }
   return bilerp<float>(st, [&](int x, int y) { return float_at(x, y, wrap); });
 }

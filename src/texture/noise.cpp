@@ -129,9 +129,9 @@ RGB marble(Vec3 p, Vec3 dpdx, Vec3 dpdy, float omega, int octaves, float scale, 
   t = t * segments - float(first);
   const RGB* q = c + first;
   // de Casteljau
-  RGB a = glm::mix(q[0], q[1], t), b = glm::mix(q[1], q[2], t), d = glm::mix(q[2], q[3], t);
-  RGB e = glm::mix(a, b, t), f = glm::mix(b, d, t);
-  return 1.5f * glm::mix(e, f, t);
+  RGB a = mix(q[0], q[1], t), b = mix(q[1], q[2], t), d = mix(q[2], q[3], t);
+  RGB e = mix(a, b, t), f = mix(b, d, t);
+  return 1.5f * mix(e, f, t);
 }
 
 }  // namespace lantern

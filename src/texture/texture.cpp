@@ -23,7 +23,7 @@ RGB image_value(const TexturePools& pools, const TextureNode& n, const TextureCo
     v = n.is_float ? RGB(img.lookup_float(st, n.filter, n.wrap)) : img.lookup_rgb(st, n.filter, n.wrap);
   }
   v *= n.scale;
-  return n.invert ? glm::max(RGB(0.f), RGB(1.f) - v) : v;
+  return n.invert ? max(RGB(0.f), RGB(1.f) - v) : v;
 }
 
 // (1 - w) a + w b, skipping a side whose weight is zero; as a + w (b - a),
@@ -72,7 +72,7 @@ RGB TexturePools::evaluate_node(const TextureNode& n, const TextureContext& c) c
     }
     case TextureKind::Marble: {
       TexCoord3D q = n.mapping.map3d(c);
-      return glm::clamp(marble(q.p, q.dpdx, q.dpdy, n.roughness, n.octaves, n.scale, n.variation), RGB(0.f), RGB(1.f));
+      return clamp(marble(q.p, q.dpdx, q.dpdy, n.roughness, n.octaves, n.scale, n.variation), RGB(0.f), RGB(1.f));
     }
   }
   return RGB(0.f);

@@ -60,11 +60,11 @@ struct TexturePools {
   RGB evaluate(const TextureRef& t, const TextureContext& c) const {
     return t.node < 0 ? t.value : evaluate_node(nodes[size_t(t.node)], c);
   }
-  float evaluate_float(const TextureRef& t, const TextureContext& c) const { return evaluate(t, c).x; }
+  float evaluate_float(const TextureRef& t, const TextureContext& c) const { return evaluate(t, c)[0]; }
   float image_mean(int32_t image) const { return images[size_t(image)].mean; }
   // Reflectances are clamped to [0, 1], as pbrt-v4's materials do.
   RGB evaluate_reflectance(const TextureRef& t, const TextureContext& c) const {
-    return glm::clamp(evaluate(t, c), RGB(0.f), RGB(1.f));
+    return clamp(evaluate(t, c), RGB(0.f), RGB(1.f));
   }
 
  private:

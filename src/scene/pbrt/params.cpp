@@ -139,10 +139,10 @@ std::optional<RGB> ParamSet::get_rgb(const std::string& name, ColorUsage usage) 
   if (p->type == "rgb" || p->type == "color") {
     if (p->numbers.size() != 3) fail(*p, "expected three values (r g b), got " + std::to_string(p->numbers.size()));
     RGB c(float(p->numbers[0]), float(p->numbers[1]), float(p->numbers[2]));
-    if (c.x < 0.f || c.y < 0.f || c.z < 0.f) fail(*p, "RGB values must not be negative");
+    if (c[0] < 0.f || c[1] < 0.f || c[2] < 0.f) fail(*p, "RGB values must not be negative");
     if (usage == ColorUsage::Reflectance && max_component(c) > 1.f && warn && *warn)
       (*warn)(p->where.str() + ": warning: " + directive + ": reflectance \"" + printable(name) + "\" exceeds 1 and was clamped");
-    if (usage == ColorUsage::Reflectance) c = glm::min(c, RGB(1.f));
+    if (usage == ColorUsage::Reflectance) c = min(c, RGB(1.f));
     return c;
   }
   if (p->type == "blackbody") {
@@ -165,7 +165,7 @@ std::optional<RGB> ParamSet::get_rgb(const std::string& name, ColorUsage usage) 
     if (usage == ColorUsage::Reflectance) {
       if (max_component(c) > 1.f && warn && *warn)
         (*warn)(p->where.str() + ": warning: " + directive + ": reflectance \"" + printable(name) + "\" exceeds 1 and was clamped");
-      c = glm::clamp(c, RGB(0.f), RGB(1.f));
+      c = clamp(c, RGB(0.f), RGB(1.f));
     }
     return c;
   }
@@ -222,7 +222,7 @@ std::optional<PiecewiseLinearSpectrum> ParamSet::get_sampled_spectrum(const std:
 RGB blackbody_rgb(float kelvin) {
   const Vec3 xyz = blackbody_xyz(kelvin);
   if (xyz.y <= 0.f) return RGB(0.f);
-  return glm::max(xyz_to_linear_srgb(xyz), RGB(0.f));
+  return max(xyz_to_linear_srgb(xyz), RGB(0.f));
 }
 
 std::optional<RGB> named_spectrum_rgb(const std::string& name) {
