@@ -45,7 +45,8 @@ RenderResult render_rank(const Scene& scene, RenderOptions o, const std::string&
   std::atomic<bool> cancel{false};
   int written = 0;
   uint64_t run = uint64_t(r), left = 0, ticket = 0;
-  o.next_ticket = [&]() -> uint64_t {
+  RenderHooks hooks;
+  hooks.next_ticket = [&]() -> uint64_t {
     if (left == 0) {
       ticket = 4 * run;
       run += uint64_t(ranks);
@@ -58,11 +59,11 @@ RenderResult render_rank(const Scene& scene, RenderOptions o, const std::string&
   o.checkpoint_rank = file_rank >= 0 ? file_rank : r;
   o.resume_reads = false;  // as a rank other than 0: leaves the others' pieces alone
   o.checkpoint_seconds = 1e-9;
-  o.cancel = &cancel;
-  o.checkpoint_written = [&] {
+  hooks.cancel = &cancel;
+  hooks.checkpoint_written = [&] {
     if (++written == checkpoints) cancel = true;
   };
-  return render(scene, o);
+  return render(scene, o, hooks);
 }
 
 bool same_image(const Image& a, const Image& b) {
@@ -86,14 +87,14 @@ TEST(CheckpointPieces, StoppedRanksResumedByOneProcess) {
   resume.checkpoint_seconds = 1e-9;
   resume.resume = true;
   std::atomic<bool> cancel{false};
-  resume.cancel = &cancel;
+  RenderHooks hooks;
+  hooks.cancel = &cancel;
   int written = 0;
-  resume.checkpoint_written = [&] {
+  hooks.checkpoint_written = [&] {
     if (++written == 4) cancel = true;
   };
-  EXPECT_TRUE(render(*scene, resume).interrupted);
+  EXPECT_TRUE(render(*scene, resume, hooks).interrupted);
   EXPECT_EQ(checkpoint_pieces(base), std::vector<std::string>{base});
-  resume.cancel = nullptr;
   const RenderResult resumed = render(*scene, resume);
   EXPECT_FALSE(resumed.interrupted);
   EXPECT_EQ(resumed.stats.samples, straight.stats.samples);
@@ -119,11 +120,11 @@ TEST(CheckpointPieces, AbsorbedPiecesAreSkippedPartialOverlapsRefused) {
   resume.checkpoint_seconds = 1e-9;
   resume.resume = true;
   std::atomic<bool> cancel{false};
-  resume.cancel = &cancel;
-  resume.checkpoint_written = [&] { cancel = true; };
-  EXPECT_TRUE(render(*scene, resume).interrupted);
+  RenderHooks hooks;
+  hooks.cancel = &cancel;
+  hooks.checkpoint_written = [&] { cancel = true; };
+  EXPECT_TRUE(render(*scene, resume, hooks).interrupted);
   std::filesystem::copy_file(saved, rank1, std::filesystem::copy_options::overwrite_existing);
-  resume.cancel = nullptr;
   EXPECT_TRUE(same_image(render(*scene, resume).image, straight.image)) << "a piece was counted twice";
 
   // Pieces of two different splits of the same render share some units

@@ -54,8 +54,9 @@ void expect_resumes_bit_for_bit(const std::string& integrator, const std::string
   RenderOptions o = small_render(integrator, sampler);
   o.checkpoint_path = kCheckpoint;
   o.checkpoint_seconds = 1e-9;  // after every wave
-  o.cancel = &cancel;
-  o.checkpoint_written = [&] {
+  RenderHooks hooks;
+  hooks.cancel = &cancel;
+  hooks.checkpoint_written = [&] {
     if (++written == stop_after) cancel = true;
   };
   RenderResult r;
@@ -64,7 +65,7 @@ void expect_resumes_bit_for_bit(const std::string& integrator, const std::string
     cancel = false;
     o.threads = 1 + runs % 2;
     stop_after = 3 + 5 * runs;  // a different stop point each run
-    r = render(*scene, o);
+    r = render(*scene, o, hooks);
     o.resume = true;
     ASSERT_LT(++runs, 50) << "never finished";
     if (r.interrupted) {
@@ -112,9 +113,10 @@ void make_checkpoint(const Scene& scene, RenderOptions o) {
   std::atomic<bool> cancel{false};
   o.checkpoint_path = checkpoint_file();
   o.checkpoint_seconds = 1e-9;
-  o.cancel = &cancel;
-  o.checkpoint_written = [&] { cancel = true; };
-  ASSERT_TRUE(render(scene, o).interrupted);
+  RenderHooks hooks;
+  hooks.cancel = &cancel;
+  hooks.checkpoint_written = [&] { cancel = true; };
+  ASSERT_TRUE(render(scene, o, hooks).interrupted);
 }
 
 std::string resume_error(const Scene& scene, RenderOptions o) {

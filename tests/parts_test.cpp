@@ -36,12 +36,13 @@ RenderOptions parts_render(const std::string& integrator) {
 }
 
 // Renders part k+1 of n into its file; returns the path.
-std::string render_part(const Scene& scene, RenderOptions o, uint32_t k, uint32_t n, const std::string& tag = "") {
+std::string render_part(const Scene& scene, RenderOptions o, uint32_t k, uint32_t n, const std::string& tag = "",
+                        const RenderHooks& hooks = {}) {
   o.share_index = k;
   o.share_count = n;
   o.film_path = part_file(int(k), tag);
   o.threads = 1 + int(k % 2);
-  render(scene, o);
+  render(scene, o, hooks);
   return o.film_path;
 }
 
@@ -130,8 +131,9 @@ TEST(PartsMerge, AnInterruptedPartIsUnfinished) {
   RenderOptions o = parts_render("path");
   const std::string p1 = render_part(*scene, o, 0, 2);
   std::atomic<bool> cancel{true};  // stops after the waves in flight
-  o.cancel = &cancel;
-  const std::string p2 = render_part(*scene, o, 1, 2);
+  RenderHooks hooks;
+  hooks.cancel = &cancel;
+  const std::string p2 = render_part(*scene, o, 1, 2, "", hooks);
   try {
     merge_parts({p1, p2}, false);
     ADD_FAILURE() << "an unfinished part was merged";

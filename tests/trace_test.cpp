@@ -39,9 +39,10 @@ Traced traced_render(const std::string& integrator, uint64_t full_waves, int spp
   o.wave_size = 512;
   o.threads = 2;
   o.collect_stats = true;
-  o.timeline = &timeline;
+  RenderHooks hooks;
+  hooks.timeline = &timeline;
   Traced t;
-  t.result = render(*scene, o);
+  t.result = render(*scene, o, hooks);
   t.trace = json::parse(timeline.json());  // throws on malformed JSON
   const size_t pixels_per_wave = size_t(o.wave_size) / size_t(std::min(spp, 16));
   t.waves = (size_t(64 * 48) + pixels_per_wave - 1) / pixels_per_wave * size_t((spp + 15) / 16);
@@ -128,13 +129,14 @@ TEST(Trace, InterruptedRenderStillGivesAValidTimeline) {
   o.spp = 1024;
   o.width = 64;
   o.height = 48;
-  o.cancel = &cancel;
-  o.timeline = &timeline;
+  RenderHooks hooks;
+  hooks.cancel = &cancel;
+  hooks.timeline = &timeline;
   std::thread stopper([&] {
     std::this_thread::sleep_for(std::chrono::milliseconds(300));
     cancel = true;
   });
-  const RenderResult r = render(*scene, o);
+  const RenderResult r = render(*scene, o, hooks);
   stopper.join();
   EXPECT_TRUE(r.interrupted);
   const json trace = json::parse(timeline.json());

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -44,10 +45,7 @@ struct RenderOptions {
   int width = 0, height = 0;  // 0: the scene's Film resolution
   RayBackend ray_backend = RayBackend::StreamNp;
   int wave_size = 4096;  // paths per wave
-  std::function<void(const RenderProgress&)> progress;
-  const std::atomic<bool>* cancel = nullptr;  // set it to stop after the waves in flight
   bool collect_stats = false;  // time stages and ray queries (two clock reads per stage and batch)
-  Timeline* timeline = nullptr;  // --trace: record every wave, stage and ray query on it
   std::string dump_rays;       // when set: write every ray batch given to Embree to this file (perf/ replays it)
   bool strategies = false;  // bdpt: also produce one weighted and one unweighted image per (s, t)
   bool debug_unit_mis_weights = false;  // tests only: weight every bdpt strategy 1 (a deliberately biased estimator)
@@ -68,11 +66,9 @@ struct RenderOptions {
   // itself). Resuming reads every piece, whatever the number of ranks that
   // wrote them, in the process with resume_reads; the others learn the
   // units done from sync_checkpoint, which every process calls once before
-  // rendering (the reading one passes what it read on).
+  // rendering (the reading one passes what it read on; RenderHooks).
   int checkpoint_rank = -1;
   bool resume_reads = true;
-  std::function<void(UnitSet& done, double& elapsed_seconds)> sync_checkpoint;
-  std::function<void()> checkpoint_written;  // called after each checkpoint (from the merging thread)
 
   // Shares (--part K/N): render only the units u (one wave of one pass
   // each, numbered through the render) with u % share_count == share_index,
@@ -81,14 +77,33 @@ struct RenderOptions {
   // shares equals the whole render bit for bit (film/unit_set.h).
   uint32_t share_index = 0, share_count = 1;
   std::string film_path;
+};
 
-  // Work handed out by another party (MPI ranks, src/distributed/). The
-  // units this render wants (of its share, not yet in the film) form a
-  // sequence in increasing unit order; next_ticket, called serially before
-  // each unit, returns the position in that sequence of the next unit this
-  // process renders, increasing from call to call, or UINT64_MAX to stop. It
-  // is not called once the render is cancelled or out of time, so every
-  // ticket handed out is rendered. Unset: every wanted unit in turn.
+// What other parties add to a render, none of it needed: a progress
+// report, a stop flag, a timeline, the end of each pass, and the hooks by
+// which several processes (MPI ranks, src/distributed/) share one render.
+// RenderOptions say what to render; these say who watches and who helps.
+struct RenderHooks {
+  std::function<void(const RenderProgress&)> progress;  // twice a second, from a thread of its own, and at the end
+  const std::atomic<bool>* cancel = nullptr;  // set it to stop after the waves in flight
+  Timeline* timeline = nullptr;  // --trace: record every wave, stage and ray query on it
+  // Called from the film's merging thread when every wave of a pass has
+  // been merged and before any wave of the next one is: `spp` samples per
+  // pixel are in the film (of this process's share). RenderSession::snapshot
+  // called from here shows exactly that pass.
+  std::function<void(uint32_t spp)> pass_done;
+  std::function<void()> checkpoint_written;  // after each checkpoint (from the merging thread)
+  // The other processes of a checkpointed render learn the units done
+  // (RenderOptions::resume_reads) from this, which every process calls
+  // once before rendering.
+  std::function<void(UnitSet& done, double& elapsed_seconds)> sync_checkpoint;
+  // Work handed out by another party. The units this render wants (of its
+  // share, not yet in the film) form a sequence in increasing unit order;
+  // next_ticket, called serially before each unit, returns the position in
+  // that sequence of the next unit this process renders, increasing from
+  // call to call, or UINT64_MAX to stop. It is not called once the render is
+  // cancelled or out of time, so every ticket handed out is rendered.
+  // Unset: every wanted unit in turn.
   std::function<uint64_t()> next_ticket;
   // Called once at the end, with the film, before the image is made from
   // it: the place to add other processes' films into it.
@@ -157,7 +172,40 @@ struct RenderResult {
   double total_render_seconds = 0;  // this run plus the runs before a resume
 };
 
-// Throws std::invalid_argument for bad options.
-RenderResult render(const Scene& scene, const RenderOptions& options);
+// One render of a scene, which the command line, MPI ranks and a viewer
+// drive alike: run() renders on the calling thread to the end of the budget
+// (or a cancel); start() does the same on a thread of the session's, while
+// the caller watches the image grow (snapshot, progress) or stops it
+// (cancel). One pipeline runs over all passes either way, so watching
+// costs the render nothing but the snapshots taken.
+class RenderSession {
+ public:
+  // Throws std::invalid_argument for bad options. The scene must outlive
+  // the session.
+  RenderSession(const Scene& scene, RenderOptions options, RenderHooks hooks = {});
+  ~RenderSession();  // cancels a started render and waits for it
+  RenderSession(const RenderSession&) = delete;
+  RenderSession& operator=(const RenderSession&) = delete;
+
+  RenderResult run();   // once per session
+  void start();         // run() on the session's thread
+  RenderResult wait();  // after start(): its result (rethrows what it threw)
+  void cancel();        // stop after the waves in flight (a signal handler may call it)
+
+  // The image of every wave merged so far: the film resolved under its lock
+  // (empty until the render has begun).
+  Image snapshot() const;
+  RenderProgress progress() const;
+  int width() const;
+  int height() const;
+
+ private:
+  RenderResult render_all();
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+// A whole render on the calling thread: RenderSession(...).run().
+RenderResult render(const Scene& scene, const RenderOptions& options, const RenderHooks& hooks = {});
 
 }  // namespace lantern

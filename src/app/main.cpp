@@ -244,7 +244,8 @@ int run_render(const RenderArgs& a) {
   }
   o.ray_backend = lantern::parse_ray_backend(a.rays);
   o.wave_size = a.wave_size > 0 ? a.wave_size : lantern::merges_vertices(o.integrator) ? 16384 : 4096;
-  o.cancel = &g_cancel;
+  RenderHooks hooks;
+  hooks.cancel = &g_cancel;
   std::string out = a.output.empty() ? ss.output : a.output;
   if (!a.part.empty()) {
     // The part file instead of an image: `lantern merge` makes the image.
@@ -269,7 +270,7 @@ int run_render(const RenderArgs& a) {
   // ten seconds instead.
   const bool tty = isatty(STDERR_FILENO), logged = g_ranks > 1;
   if (!a.quiet && writes && (tty || logged)) {
-    o.progress = [tty, last = -1e9](const RenderProgress& p) mutable {
+    hooks.progress = [tty, last = -1e9](const RenderProgress& p) mutable {
       if (!tty && p.elapsed_seconds - last < 10.0 && p.fraction < 1.0) return;
       last = p.elapsed_seconds;
       double eta = p.fraction > 0 ? p.elapsed_seconds * (1.0 - p.fraction) / p.fraction : 0.0;
@@ -286,19 +287,19 @@ int run_render(const RenderArgs& a) {
   }
   if (!o.checkpoint_path.empty() && writes) check_writable(o.checkpoint_path, "the checkpoint");
   if (!a.strategies.empty()) std::filesystem::create_directories(a.strategies);
-  o.timeline = timeline.get();
+  hooks.timeline = timeline.get();
   RenderResult r;
   nlohmann::json rank_stats;  // under mpirun: per-rank figures for --stats
   {
 #ifdef LANTERN_HAVE_MPI
     std::optional<MpiRender> ranks;
     if (g_mpi && g_ranks > 1) {
-      ranks.emplace(*g_mpi, o);
+      ranks.emplace(*g_mpi, o, hooks);
       if (g_rank != 0) {
-        o.progress = [&ranks](const RenderProgress& p) { ranks->note_local_samples(p.samples_done); };
-      } else if (o.progress) {
+        hooks.progress = [&ranks](const RenderProgress& p) { ranks->note_local_samples(p.samples_done); };
+      } else if (hooks.progress) {
         // One line for the job: the other ranks' samples added to ours.
-        o.progress = [&ranks, show = o.progress, timed = o.time_limit_seconds > 0](RenderProgress p) {
+        hooks.progress = [&ranks, show = hooks.progress, timed = o.time_limit_seconds > 0](RenderProgress p) {
           p.samples_done += ranks->remote_samples();
           if (!timed) p.fraction = std::min(1.0, double(p.samples_done) / double(std::max<uint64_t>(p.samples_total, 1)));
           show(p);
@@ -308,7 +309,7 @@ int run_render(const RenderArgs& a) {
 #endif
     {
       TraceSpan span(timeline ? &timeline->main() : nullptr, "render", TraceCategory::Render);
-      r = render(*scene, o);
+      r = render(*scene, o, hooks);
     }
 #ifdef LANTERN_HAVE_MPI
     if (ranks) {
@@ -327,7 +328,7 @@ int run_render(const RenderArgs& a) {
     }
 #endif
   }
-  if (o.progress && isatty(STDERR_FILENO)) std::fprintf(stderr, "\n");
+  if (hooks.progress && isatty(STDERR_FILENO)) std::fprintf(stderr, "\n");
   if (!writes) return r.interrupted ? 130 : 0;  // rank 0 has the image
   auto write_stats = [&] {
     RunInfo run{a.scene, name(o.integrator), out, name(o.ray_backend), r.image.width, r.image.height, o.wave_size, load_s,

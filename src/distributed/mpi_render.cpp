@@ -68,12 +68,12 @@ void MpiSession::abort_all(int code) {
   std::abort();  // MPI_Abort does not return
 }
 
-MpiRender::MpiRender(const MpiSession& session, RenderOptions& o)
+MpiRender::MpiRender(const MpiSession& session, RenderOptions& o, RenderHooks& h)
     : session_(session), remote_(session.rank() == 0 ? size_t(session.size()) : 0) {
   if (session_.size() == 1) return;  // one rank: a plain render
-  o.next_ticket = [this] { return next_ticket(); };
-  o.reduce_film = [this](Film& film) { reduce(film); };
-  o.sync_checkpoint = [this](UnitSet& done, double& elapsed) { sync_checkpoint(done, elapsed); };
+  h.next_ticket = [this] { return next_ticket(); };
+  h.reduce_film = [this](Film& film) { reduce(film); };
+  h.sync_checkpoint = [this](UnitSet& done, double& elapsed) { sync_checkpoint(done, elapsed); };
   o.checkpoint_rank = session_.rank();
   o.resume_reads = session_.rank() == 0;
 }

@@ -42,14 +42,14 @@ class MpiSession {
   int rank_ = 0, size_ = 1;
 };
 
-// Installs the hooks (RenderOptions::next_ticket, reduce_film,
+// Installs the hooks (RenderHooks::next_ticket, reduce_film,
 // sync_checkpoint) that make one rank's render() its part of the whole;
 // lives across the render() call. With a checkpoint, rank r writes its own
 // piece (FILE.rank<r>) and rank 0 alone reads them all on --resume, then
 // tells the others which units are done.
 class MpiRender {
  public:
-  MpiRender(const MpiSession& session, RenderOptions& options);
+  MpiRender(const MpiSession& session, RenderOptions& options, RenderHooks& hooks);
   ~MpiRender();  // stops the scheduler if the render threw
   MpiRender(const MpiRender&) = delete;
   MpiRender& operator=(const MpiRender&) = delete;

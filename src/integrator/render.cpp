@@ -12,6 +12,7 @@
 
 #include <chrono>
 #include <condition_variable>
+#include <exception>
 #include <filesystem>
 #include <mutex>
 #include <optional>
@@ -19,11 +20,11 @@
 #include <thread>
 
 #include "accel/ray_dump.h"
-#include "film/checkpoint.h"
 #include "film/strategy_film.h"
 #include "integrator/bdpt.h"
 #include "integrator/bdpt_wave.h"
 #include "integrator/path_tracer.h"
+#include "integrator/render_checkpoints.h"
 #include "trace/timeline.h"
 #include "integrator/path_wave.h"
 #include "integrator/wave_stats.h"
@@ -36,12 +37,25 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Calls the progress callback twice a second from its own thread.
+// The progress of a render that began at `start`.
+RenderProgress progress_at(const RenderOptions& o, Clock::time_point start, uint64_t done, uint64_t total) {
+  RenderProgress p;
+  p.elapsed_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  p.samples_done = done;
+  p.samples_total = total;
+  p.fraction = o.time_limit_seconds > 0 ? std::min(1.0, p.elapsed_seconds / o.time_limit_seconds)
+                                        : double(p.samples_done) / double(std::max<uint64_t>(total, 1));
+  return p;
+}
+
+// Calls the progress hook twice a second from its own thread, and once at
+// the end.
 class ProgressReporter {
  public:
-  ProgressReporter(const RenderOptions& o, Clock::time_point start, const std::atomic<uint64_t>& done, uint64_t total)
-      : opts_(o), start_(start), done_(done), total_(total) {
-    if (o.progress) thread_ = std::thread([this] { loop(); });
+  ProgressReporter(const RenderOptions& o, const RenderHooks& hooks, Clock::time_point start,
+                   const std::atomic<uint64_t>& done, uint64_t total)
+      : opts_(o), hooks_(hooks), start_(start), done_(done), total_(total) {
+    if (hooks.progress) thread_ = std::thread([this] { loop(); });
   }
   ~ProgressReporter() {
     {
@@ -50,24 +64,17 @@ class ProgressReporter {
     }
     cv_.notify_all();
     if (thread_.joinable()) thread_.join();
-    if (opts_.progress) opts_.progress(snapshot());
+    if (hooks_.progress) hooks_.progress(snapshot());
   }
 
  private:
-  RenderProgress snapshot() const {
-    RenderProgress p;
-    p.elapsed_seconds = std::chrono::duration<double>(Clock::now() - start_).count();
-    p.samples_done = done_.load();
-    p.samples_total = total_;
-    p.fraction = opts_.time_limit_seconds > 0 ? std::min(1.0, p.elapsed_seconds / opts_.time_limit_seconds)
-                                              : double(p.samples_done) / double(std::max<uint64_t>(total_, 1));
-    return p;
-  }
+  RenderProgress snapshot() const { return progress_at(opts_, start_, done_.load(), total_); }
   void loop() {
     std::unique_lock<std::mutex> l(m_);
-    while (!cv_.wait_for(l, std::chrono::milliseconds(500), [this] { return stop_; })) opts_.progress(snapshot());
+    while (!cv_.wait_for(l, std::chrono::milliseconds(500), [this] { return stop_; })) hooks_.progress(snapshot());
   }
   const RenderOptions& opts_;
+  const RenderHooks& hooks_;
   Clock::time_point start_;
   const std::atomic<uint64_t>& done_;
   uint64_t total_;
@@ -108,68 +115,6 @@ void gather_stats(States& states, double film_seconds, RenderStats& st) {
   st.light_ray_seconds = ray_seconds[size_t(RayKind::LightExtension)];
   st.shadow_ray_seconds = ray_seconds[size_t(RayKind::Shadow)];
   st.film_seconds = film_seconds;
-}
-
-// This process's piece of the checkpoint.
-std::string own_checkpoint_piece(const RenderOptions& o) {
-  return o.checkpoint_rank < 0 ? o.checkpoint_path : o.checkpoint_path + ".rank" + std::to_string(o.checkpoint_rank);
-}
-
-// Writes checkpoints from the merge stage: the one place that sees the film
-// between two waves.
-class Checkpointer {
- public:
-  Checkpointer(const RenderOptions& o, CheckpointInfo info, Clock::time_point start)
-      : opt_(o), info_(std::move(info)), start_(start), last_(start), prior_seconds_(info_.elapsed_seconds) {}
-  bool enabled() const { return !opt_.checkpoint_path.empty(); }
-  std::string own_path() const { return own_checkpoint_piece(opt_); }
-  double elapsed() const { return prior_seconds_ + std::chrono::duration<double>(Clock::now() - start_).count(); }
-  UnitSet& done() { return info_.done; }
-  void set_units(uint64_t passes, uint32_t waves) {
-    info_.passes = passes;
-    info_.waves = waves;
-  }
-  void maybe_write(const Film& film) {
-    if (enabled() && opt_.checkpoint_seconds > 0 &&
-        std::chrono::duration<double>(Clock::now() - last_).count() >= opt_.checkpoint_seconds)
-      write(film);
-  }
-  void write(const Film& film) { write_to(own_path(), film); }
-  void write_to(const std::string& path, const Film& film) {
-    info_.elapsed_seconds = elapsed();
-    write_checkpoint(path, info_, film);
-    last_ = Clock::now();
-    if (opt_.checkpoint_written && path == own_path()) opt_.checkpoint_written();
-  }
-
- private:
-  const RenderOptions& opt_;
-  CheckpointInfo info_;
-  Clock::time_point start_, last_;
-  double prior_seconds_;
-};
-
-// Everything that decides which samples a render takes and the order the
-// film sums them in: a checkpoint continues only a render that agrees on
-// all of it. Thread count is not here: it changes neither.
-std::string sequence_fingerprint(const RenderOptions& o, int width, int height) {
-  std::string f;
-  auto line = [&](const std::string& k, const std::string& v) { f += k + "=" + v + "\n"; };
-  line("scene", o.checkpoint_key);
-  line("integrator", name(o.integrator));
-  if (o.integrator != Integrator::Path) line("mis", name(o.mis));
-  if (merges_vertices(o.integrator)) line("vcm", std::to_string(o.vcm_radius) + " " + std::to_string(o.vcm_alpha));
-  line("maxdepth", std::to_string(o.maxdepth));
-  line("seed", std::to_string(o.seed));
-  line("light-sampler", name(o.light_sampler));
-  line("sampler", o.sampler.type + " " + o.sampler.randomization + " " + std::to_string(o.sampler.seed) + " " +
-                      std::to_string(o.sampler.xsamples) + "x" + std::to_string(o.sampler.ysamples) +
-                      (o.sampler.jitter ? " jitter" : ""));
-  line("resolution", std::to_string(width) + "x" + std::to_string(height));
-  line("budget", o.time_limit_seconds > 0 ? std::string("time") : "spp " + std::to_string(o.spp));
-  line("wave-size", std::to_string(o.wave_size));
-  line("rays", name(o.ray_backend));
-  return f;
 }
 
 constexpr const char* kMergeQueue = "waves waiting for the film merge";
@@ -238,9 +183,31 @@ class TicketCursor {
 // Runs one integrator over all passes. Waves flow through a pipeline whose
 // last stage adds their output to the film, one wave at a time (in wave
 // order, though the fixed-point sums would not mind another).
+// What run_passes works with, besides the integrator.
+struct PassContext {
+  const Scene& scene;
+  const RenderOptions& opt;
+  const RenderHooks& hooks;
+  RayCounters& counters;
+  Film& film;
+  std::mutex& film_mutex;  // held while a wave is merged (RenderSession::snapshot reads under it)
+  StrategyFilm* strategies;
+  std::atomic<uint64_t>& done;
+  RenderStats& stats;
+  RayDump* dump;
+  Checkpointer& checkpoints;
+  const std::atomic<bool>& cancelled;  // RenderSession::cancel
+  bool stop_requested() const { return cancelled.load() || (hooks.cancel && hooks.cancel->load()); }
+};
+
 template <class Tracer>
-bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& opt, RayBackend backend,
-                RayCounters& counters, Film& film, StrategyFilm* strategies, std::atomic<uint64_t>& done, RenderStats& stats, RayDump* dump, Checkpointer& checkpoints) {
+bool run_passes(const Tracer& tracer, PassContext& cx) {
+  const Scene& scene = cx.scene;
+  const RenderOptions& opt = cx.opt;
+  const RenderHooks& hooks = cx.hooks;
+  Film& film = cx.film;
+  Checkpointer& checkpoints = cx.checkpoints;
+  const RayBackend backend = opt.ray_backend;
   const std::vector<uint32_t> order = tile_order(film.width(), film.height());
   const bool timed = opt.time_limit_seconds > 0;  // the budget counts earlier runs too
   const uint32_t total_spp = timed ? 0xFFFFFFFFu : uint32_t(opt.spp);
@@ -264,10 +231,10 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
     return share.holds(first / pass_spp, wi) && !done_before.contains(unit_of(first, wi));
   };
   tbb::enumerable_thread_specific<std::unique_ptr<State, void (*)(State*)>> states([&] {
-    auto state = tracer.make_wave_state(capacity, RayStream(scene.accel->handle(), backend, &counters));
+    auto state = tracer.make_wave_state(capacity, RayStream(scene.accel->handle(), backend, &cx.counters));
     state->stats.timing = opt.collect_stats;
     state->stream.set_timing(opt.collect_stats);
-    state->stream.set_dump(dump);
+    state->stream.set_dump(cx.dump);
     state->stream.set_instances(scene.accel->instance_base(), &scene.accel->instance_first());
     return state;
   });
@@ -283,12 +250,18 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
   std::atomic<bool> stop{false};
   bool issued = false;  // a wave was started in this run
   uint64_t issued_items = 0;
-  TicketCursor tickets(opt.next_ticket);
+  TicketCursor tickets(hooks.next_ticket);
   auto time_is_up = [&] { return timed && checkpoints.elapsed() >= opt.time_limit_seconds; };
   // One pipeline over all passes: the waves of the next pass start while
   // the last of this one are still in flight, so a pass of fewer waves
   // than threads (large vcm waves, small images) leaves no thread idle.
   uint32_t first = 0, next = 0;  // the input stage's pass and wave
+  // The end of each pass, for hooks.pass_done: the samples per pixel reached.
+  constexpr uint32_t kNoPass = 0xFFFFFFFFu;
+  uint32_t merged_pass_first = kNoPass;
+  auto pass_done = [&](uint32_t pass_first) {
+    if (hooks.pass_done) hooks.pass_done(pass_first + std::min(pass_spp, total_spp - pass_first));
+  };
   auto advance_pass = [&] {
     first += pass_spp;
     next = 0;
@@ -304,15 +277,14 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
                                          // stop is looked at, so a stop after the last unit is
                                          // no interruption; with them, after, so that no
                                          // ticket is taken that will not be rendered.
-                                         const bool ticketed = bool(opt.next_ticket);
+                                         const bool ticketed = bool(hooks.next_ticket);
                                          for (;;) {
                                            if (first >= total_spp) break;
                                            if (!ticketed && !tickets.next(first, next, waves, wanted)) {
                                              if (advance_pass()) continue;
                                              break;  // the last pass is done
                                            }
-                                           bool cancelled = opt.cancel && opt.cancel->load();
-                                           if (stop || cancelled || (issued && time_is_up())) {
+                                           if (stop || cx.stop_requested() || (issued && time_is_up())) {
                                              stop = true;
                                              break;
                                            }
@@ -343,76 +315,51 @@ bool run_passes(const Tracer& tracer, const Scene& scene, const RenderOptions& o
                                                                item.first, std::min(pass_spp, total_spp - item.first)};
                                                  WaveOutput& out = outputs[item.slot];
                                                  out.clear();
-                                                 trace_wave(tracer, wave, *states.local(), out, opt.timeline,
+                                                 trace_wave(tracer, wave, *states.local(), out, hooks.timeline,
                                                             int64_t(unit_of(item.first, wi)));
                                                  film.prepare(out);
                                                  return item;
                                                }) &
           tbb::make_filter<WaveItem, void>(tbb::filter_mode::serial_in_order, [&](WaveItem item) {
+            // Items arrive in issue order, pass after pass: the first wave of
+            // a new pass means the one before is complete.
+            if (merged_pass_first != item.first) {
+              if (merged_pass_first != kNoPass) pass_done(merged_pass_first);
+              merged_pass_first = item.first;
+            }
             const uint64_t unit = unit_of(item.first, item.wave);
             const WaveOutput& out = outputs[item.slot];
-            TraceBuffer* track = opt.timeline ? &opt.timeline->pipeline() : nullptr;
+            TraceBuffer* track = hooks.timeline ? &hooks.timeline->pipeline() : nullptr;
             if (track) track->begin_wave(int64_t(unit));
             auto t0 = opt.collect_stats || track ? Clock::now() : Clock::time_point();
-            film.merge(out);
-            if (strategies) strategies->merge(out.strategies);
+            {
+              std::lock_guard<std::mutex> lock(cx.film_mutex);
+              film.merge(out);
+            }
+            if (cx.strategies) cx.strategies->merge(out.strategies);
             if (opt.collect_stats) film_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
             if (track) {
               const auto t1 = Clock::now();
               track->span("film merge", TraceCategory::Pipeline, t0, t1, int64_t(out.samples.size()));
-              track->counter(kMergeQueue, t1, --opt.timeline->merge_queue(), true);
+              track->counter(kMergeQueue, t1, --hooks.timeline->merge_queue(), true);
               track->end_wave();
             }
-            done += out.samples.size();
+            cx.done += out.samples.size();
             merged.insert(unit);
             checkpoints.maybe_write(film);
           }));
-  gather_stats(states, film_seconds, stats);
+  // The last pass merged is complete unless the render stopped inside it.
+  if (merged_pass_first != kNoPass && !stop) pass_done(merged_pass_first);
+  gather_stats(states, film_seconds, cx.stats);
   return stop;
 }
 
-// The units already in the film when this run starts: none, or those of
-// the checkpoint's pieces (read here, or passed on by the process that
-// read them), and the time they took.
-CheckpointInfo start_checkpointing(const RenderOptions& opt, const std::string& fingerprint, Film& film) {
-  CheckpointInfo info;
-  info.fingerprint = fingerprint;
-  info.share = UnitShare{opt.share_index, opt.share_count};
-  if (opt.resume && opt.resume_reads) {
-    std::vector<std::string> pieces;
-    info = read_checkpoint_pieces(opt.checkpoint_path, fingerprint, film, pieces);
-    if (info.share.index != opt.share_index || info.share.count != opt.share_count)
-      throw InputError({opt.checkpoint_path, 0, 0},
-                       "checkpoint was made for part " + std::to_string(info.share.index + 1) + "/" +
-                           std::to_string(info.share.count) + ", this render is part " +
-                           std::to_string(opt.share_index + 1) + "/" + std::to_string(opt.share_count));
-    // The pieces read are in this film now: saved as this process's piece
-    // first, then the others removed, so that no moment has them twice (a
-    // resume skips a piece another holds entirely anyway). Before the other
-    // processes hear of it (sync_checkpoint), so none of their new pieces
-    // is taken for an old one.
-    const std::string own = own_checkpoint_piece(opt);
-    if (pieces.size() > 1 || pieces[0] != own) write_checkpoint(own, info, film);
-    std::error_code ec;
-    for (const std::string& piece : pieces)
-      if (piece != own) std::filesystem::remove(piece, ec);
-  } else if (!opt.resume && opt.resume_reads && !opt.checkpoint_path.empty()) {
-    // A fresh render: pieces of an older one must not join a later resume.
-    std::error_code ec;
-    for (const std::string& piece : checkpoint_pieces(opt.checkpoint_path)) std::filesystem::remove(piece, ec);
-  }
-  if (opt.sync_checkpoint && !opt.checkpoint_path.empty()) opt.sync_checkpoint(info.done, info.elapsed_seconds);
-  return info;
-}
-
-}  // namespace
-
-RenderResult render(const Scene& scene, const RenderOptions& opt) {
+// Refuses options no render could follow (std::invalid_argument).
+void check_options(const Scene& scene, const RenderOptions& opt) {
   if (uint8_t(opt.integrator) > uint8_t(Integrator::Ppm) || uint8_t(opt.mis) > uint8_t(MisHeuristic::Balance) ||
       uint8_t(opt.light_sampler) > uint8_t(LightSamplerKind::Uniform) || uint8_t(opt.ray_backend) > uint8_t(RayBackend::Packet16))
     throw std::invalid_argument("an integrator, MIS heuristic, light sampler or ray back end outside its enumeration");
   const bool merging = merges_vertices(opt.integrator);
-  const bool bidirectional = opt.integrator != Integrator::Path;
   if (merging && (!(opt.vcm_radius >= 0.f) || !std::isfinite(opt.vcm_radius) || !(opt.vcm_alpha > 0.f && opt.vcm_alpha <= 1.f)))
     throw std::invalid_argument(std::string(name(opt.integrator)) + " needs a radius >= 0 (0: automatic) and an alpha in (0, 1]");
   if (opt.spp <= 0 && opt.time_limit_seconds <= 0) throw std::invalid_argument("--spp must be positive");
@@ -423,7 +370,6 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
                                 "camera a \"lensradius\"");
   if (opt.strategies && opt.integrator != Integrator::Bdpt && !merging)
     throw std::invalid_argument("per-strategy images need --integrator bdpt, vcm, bpm or ppm");
-
   if (opt.wave_size < 1 || opt.wave_size > (1 << 22)) throw std::invalid_argument("--wave-size must lie in [1, 4194304]");
   if (opt.strategies && !opt.checkpoint_path.empty())
     throw std::invalid_argument("per-strategy images cannot be checkpointed or resumed");
@@ -434,102 +380,56 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
     throw std::invalid_argument("a part of a render (--part) needs a file for its film");
   if (opt.strategies && (opt.share_count > 1 || !opt.film_path.empty()))
     throw std::invalid_argument("per-strategy images cannot be rendered in parts");
-  const RayBackend backend = opt.ray_backend;
   parse_sampler_kind(opt.sampler.type);  // throws for an unknown one, naming the choices
   if (!opt.sampler.randomization.empty()) parse_randomization(opt.sampler.randomization);
-  // Low-discrepancy samplers lay a pixel's samples out for the count they
-  // plan for; under a time budget the count is open.
-  const uint32_t planned_spp = opt.time_limit_seconds > 0 ? 0u : uint32_t(opt.spp);
-  const LightSamplerKind light_kind = opt.light_sampler;
+}
 
-  std::optional<tbb::global_control> limit;
-  if (opt.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(opt.threads));
+BdptSettings bdpt_settings(const Scene& scene, const RenderOptions& opt, int width, int height, uint32_t planned_spp) {
+  BdptSettings bs;
+  const bool merging = merges_vertices(opt.integrator);
+  bs.maxdepth = opt.maxdepth;
+  bs.seed = opt.seed;
+  bs.width = width;
+  bs.height = height;
+  bs.mis_beta = opt.mis == MisHeuristic::Balance ? 1.f : 2.f;
+  bs.light_tracing_only = opt.integrator == Integrator::Lt;
+  bs.merging = merging;
+  bs.connections = !merging || opt.integrator == Integrator::Vcm;
+  bs.photon_mapping = opt.integrator == Integrator::Ppm;
+  bs.vcm_alpha = opt.vcm_alpha;
+  bs.vcm_radius = opt.vcm_radius > 0.f                  ? opt.vcm_radius
+                  : scene.settings.merge_radius > 0.f ? scene.settings.merge_radius
+                                                      : 0.003f * scene.lights.scene_radius;
+  bs.unit_weights = opt.debug_unit_mis_weights;
+  bs.record_strategies = opt.strategies;
+  bs.footprint_spp = scene.settings.spp;
+  bs.sampler = opt.sampler;
+  bs.planned_spp = planned_spp;
+  return bs;
+}
 
-  const int width = opt.width > 0 ? opt.width : scene.settings.width;
-  const int height = opt.height > 0 ? opt.height : scene.settings.height;
-  Film film(width, height, scene.filter);
-  const LightSampler light_sampler(scene.lights, scene.shapes, scene.textures, light_kind);
-  std::optional<StrategyFilm> strategy_film;
-  RayCounters counters;
-  RenderResult res;
-  std::unique_ptr<RayDump> dump;
-  if (!opt.dump_rays.empty()) dump = std::make_unique<RayDump>(opt.dump_rays);
-  const std::string fingerprint = sequence_fingerprint(opt, width, height);
-  CheckpointInfo info = start_checkpointing(opt, fingerprint, film);
-  res.resumed_samples = film.total_samples();
-  const double prior_seconds = info.elapsed_seconds;
-  const auto start = Clock::now();
-  Checkpointer checkpoints(opt, std::move(info), start);
-  if (scene.textures.cache) scene.textures.cache->reset_lookup_stats(opt.collect_stats);
-  std::atomic<uint64_t> done{res.resumed_samples};
-  bool interrupted = false, stopped = false;
-  {
-    const uint64_t total = uint64_t(width) * uint64_t(height) * (opt.time_limit_seconds > 0 ? 1 : uint64_t(opt.spp));
-    ProgressReporter reporter(opt, start, done, total);
-    if (bidirectional) {
-      BdptSettings bs;
-      bs.maxdepth = opt.maxdepth;
-      bs.seed = opt.seed;
-      bs.width = width;
-      bs.height = height;
-      bs.mis_beta = opt.mis == MisHeuristic::Balance ? 1.f : 2.f;
-      bs.light_tracing_only = opt.integrator == Integrator::Lt;
-      bs.merging = merging;
-      bs.connections = !merging || opt.integrator == Integrator::Vcm;
-      bs.photon_mapping = opt.integrator == Integrator::Ppm;
-      bs.vcm_alpha = opt.vcm_alpha;
-      bs.vcm_radius = opt.vcm_radius > 0.f                  ? opt.vcm_radius
-                      : scene.settings.merge_radius > 0.f ? scene.settings.merge_radius
-                                                          : 0.003f * scene.lights.scene_radius;
-      res.stats.vcm_radius = bs.merging ? bs.vcm_radius : 0.f;
-      bs.unit_weights = opt.debug_unit_mis_weights;
-      bs.record_strategies = opt.strategies;
-      bs.footprint_spp = scene.settings.spp;
-      bs.sampler = opt.sampler;
-      bs.planned_spp = planned_spp;
-      if (opt.strategies) strategy_film.emplace(width, height, scene.filter);
-      stopped = run_passes(Bdpt(scene, light_sampler, bs), scene, opt, backend, counters, film, strategy_film ? &*strategy_film : nullptr,
-                 done, res.stats, dump.get(), checkpoints);
-      if (bs.merging)  // the radius of the last pass traced (Bdpt::prepare_merging)
-        res.stats.vcm_last_radius =
-            bs.vcm_radius * std::pow(float(res.stats.vcm_last_first_sample + 1), 0.5f * (bs.vcm_alpha - 1.f));
-    } else {
-      PathTracerSettings ps;
-      ps.maxdepth = opt.maxdepth;
-      ps.seed = opt.seed;
-      ps.width = width;
-      ps.height = height;
-      ps.footprint_spp = scene.settings.spp;
-      ps.sampler = opt.sampler;
-      ps.planned_spp = planned_spp;
-      stopped = run_passes(PathTracer(scene, light_sampler, ps), scene, opt, backend, counters, film, nullptr, done, res.stats, dump.get(),
-                 checkpoints);
-    }
-    // A stop that came after the last unit left nothing undone.
-    interrupted = stopped && opt.cancel && opt.cancel->load();
-  }
-  if (checkpoints.enabled()) {
-    if (interrupted) {
-      checkpoints.write(film);
-    } else {
-      std::error_code ec;
-      std::filesystem::remove(checkpoints.own_path(), ec);  // done: nothing left to resume
-    }
-  }
-  if (!opt.film_path.empty()) checkpoints.write_to(opt.film_path, film);
-  if (opt.reduce_film) opt.reduce_film(film);
+PathTracerSettings path_settings(const Scene& scene, const RenderOptions& opt, int width, int height,
+                                 uint32_t planned_spp) {
+  PathTracerSettings ps;
+  ps.maxdepth = opt.maxdepth;
+  ps.seed = opt.seed;
+  ps.width = width;
+  ps.height = height;
+  ps.footprint_spp = scene.settings.spp;
+  ps.sampler = opt.sampler;
+  ps.planned_spp = planned_spp;
+  return ps;
+}
 
-  res.image = film.resolve();
-  if (strategy_film) res.strategies = strategy_film->resolve(film);
-  res.interrupted = interrupted;
-  RenderStats& st = res.stats;
+// The figures of a finished run that the film, the counters, the light
+// sampler and the texture cache hold.
+void finish_stats(const Scene& scene, const Film& film, const RayCounters& counters, const LightSampler& light_sampler,
+                  RenderStats& st) {
   st.light_sampler = name(light_sampler.kind());
   st.light_sampler_seconds = light_sampler.build_seconds();
   st.light_sampler_bytes = light_sampler.memory_bytes();
   st.light_bvh_nodes = light_sampler.bvh().node_count();
   st.light_bvh_depth = light_sampler.bvh().depth();
-  st.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  res.total_render_seconds = prior_seconds + st.seconds;
   st.samples = film.total_samples();
   st.light_paths = film.light_paths();
   st.camera_rays = counters.camera;
@@ -549,7 +449,153 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
     st.texture_lookups = tc.lookups;
     st.texture_lookup_seconds = tc.lookup_seconds;
   }
+}
+
+}  // namespace
+
+struct RenderSession::State {
+  State(const Scene& s, RenderOptions o, RenderHooks h)
+      : scene(s), opt(std::move(o)), hooks(std::move(h)), width(opt.width > 0 ? opt.width : s.settings.width),
+        height(opt.height > 0 ? opt.height : s.settings.height), film(width, height, s.filter) {}
+  const Scene& scene;
+  const RenderOptions opt;
+  const RenderHooks hooks;
+  const int width, height;
+  Film film;
+  mutable std::mutex film_mutex;
+  std::atomic<bool> cancelled{false}, began{false}, ran{false};
+  std::atomic<uint64_t> done{0};
+  uint64_t total = 0;
+  Clock::time_point start;
+  std::thread thread;
+  RenderResult result;
+  std::exception_ptr error;
+};
+
+RenderSession::RenderSession(const Scene& scene, RenderOptions options, RenderHooks hooks) {
+  check_options(scene, options);
+  state_ = std::make_unique<State>(scene, std::move(options), std::move(hooks));
+}
+
+RenderSession::~RenderSession() {
+  if (state_ && state_->thread.joinable()) {
+    cancel();
+    state_->thread.join();
+  }
+}
+
+void RenderSession::cancel() { state_->cancelled.store(true); }
+int RenderSession::width() const { return state_->width; }
+int RenderSession::height() const { return state_->height; }
+
+Image RenderSession::snapshot() const {
+  std::lock_guard<std::mutex> lock(state_->film_mutex);
+  return state_->film.resolve();
+}
+
+RenderProgress RenderSession::progress() const {
+  const State& s = *state_;
+  if (!s.began.load()) return RenderProgress{};
+  return progress_at(s.opt, s.start, s.done.load(), s.total);
+}
+
+void RenderSession::start() {
+  if (state_->ran.exchange(true)) throw std::logic_error("a render session runs once");
+  state_->thread = std::thread([this] {
+    try {
+      state_->result = render_all();
+    } catch (...) {
+      state_->error = std::current_exception();
+    }
+  });
+}
+
+RenderResult RenderSession::wait() {
+  if (!state_->thread.joinable()) throw std::logic_error("wait() needs a started render session");
+  state_->thread.join();
+  if (state_->error) std::rethrow_exception(state_->error);
+  return std::move(state_->result);
+}
+
+RenderResult RenderSession::run() {
+  if (state_->ran.exchange(true)) throw std::logic_error("a render session runs once");
+  return render_all();
+}
+
+RenderResult RenderSession::render_all() {
+  State& s = *state_;
+  const Scene& scene = s.scene;
+  const RenderOptions& opt = s.opt;
+  // Low-discrepancy samplers lay a pixel's samples out for the count they
+  // plan for; under a time budget the count is open.
+  const uint32_t planned_spp = opt.time_limit_seconds > 0 ? 0u : uint32_t(opt.spp);
+  std::optional<tbb::global_control> limit;
+  if (opt.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(opt.threads));
+
+  Film& film = s.film;
+  const LightSampler light_sampler(scene.lights, scene.shapes, scene.textures, opt.light_sampler);
+  std::optional<StrategyFilm> strategy_film;
+  if (opt.strategies) strategy_film.emplace(s.width, s.height, scene.filter);
+  RayCounters counters;
+  RenderResult res;
+  std::unique_ptr<RayDump> dump;
+  if (!opt.dump_rays.empty()) dump = std::make_unique<RayDump>(opt.dump_rays);
+  CheckpointInfo info = [&] {
+    std::lock_guard<std::mutex> lock(s.film_mutex);
+    return start_checkpointing(opt, s.hooks, sequence_fingerprint(opt, s.width, s.height), film);
+  }();
+  res.resumed_samples = film.total_samples();
+  const double prior_seconds = info.elapsed_seconds;
+  s.start = Clock::now();
+  s.done = res.resumed_samples;
+  s.total = uint64_t(s.width) * uint64_t(s.height) * (opt.time_limit_seconds > 0 ? 1 : uint64_t(opt.spp));
+  s.began = true;
+  Checkpointer checkpoints(opt, s.hooks, std::move(info), s.start);
+  if (scene.textures.cache) scene.textures.cache->reset_lookup_stats(opt.collect_stats);
+  PassContext cx{scene,       opt, s.hooks,  counters,         film, s.film_mutex, strategy_film ? &*strategy_film : nullptr,
+                 s.done, res.stats, dump.get(), checkpoints, s.cancelled};
+  bool interrupted = false;
+  {
+    ProgressReporter reporter(opt, s.hooks, s.start, s.done, s.total);
+    bool stopped;
+    if (opt.integrator != Integrator::Path) {
+      const BdptSettings bs = bdpt_settings(scene, opt, s.width, s.height, planned_spp);
+      res.stats.vcm_radius = bs.merging ? bs.vcm_radius : 0.f;
+      stopped = run_passes(Bdpt(scene, light_sampler, bs), cx);
+      if (bs.merging)  // the radius of the last pass traced (Bdpt::prepare_merging)
+        res.stats.vcm_last_radius =
+            bs.vcm_radius * std::pow(float(res.stats.vcm_last_first_sample + 1), 0.5f * (bs.vcm_alpha - 1.f));
+    } else {
+      stopped = run_passes(PathTracer(scene, light_sampler, path_settings(scene, opt, s.width, s.height, planned_spp)), cx);
+    }
+    // A stop that came after the last unit left nothing undone.
+    interrupted = stopped && cx.stop_requested();
+  }
+  if (checkpoints.enabled()) {
+    if (interrupted) {
+      checkpoints.write(film);
+    } else {
+      std::error_code ec;
+      std::filesystem::remove(checkpoints.own_path(), ec);  // done: nothing left to resume
+    }
+  }
+  if (!opt.film_path.empty()) checkpoints.write_to(opt.film_path, film);
+  if (s.hooks.reduce_film) {
+    std::lock_guard<std::mutex> lock(s.film_mutex);
+    s.hooks.reduce_film(film);
+  }
+
+  res.image = snapshot();
+  if (strategy_film) res.strategies = strategy_film->resolve(film);
+  res.interrupted = interrupted;
+  finish_stats(scene, film, counters, light_sampler, res.stats);
+  res.stats.seconds = std::chrono::duration<double>(Clock::now() - s.start).count();
+  res.total_render_seconds = prior_seconds + res.stats.seconds;
   return res;
+}
+
+RenderResult render(const Scene& scene, const RenderOptions& options, const RenderHooks& hooks) {
+  return RenderSession(scene, options, hooks).run();
 }
 
 }  // namespace lantern

@@ -1,0 +1,60 @@
+// What a render keeps of itself between runs: checkpoints written from the
+// film's merging thread, the fingerprint that decides which checkpoint may
+// continue which render, and the units a resumed run starts with.
+#pragma once
+
+#include <chrono>
+#include <string>
+
+#include "film/checkpoint.h"
+#include "lantern/render.h"
+
+namespace lantern {
+
+// Everything that decides which samples a render takes and the order the
+// film sums them in: a checkpoint continues only a render that agrees on
+// all of it. Thread count is not here: it changes neither.
+std::string sequence_fingerprint(const RenderOptions& o, int width, int height);
+
+// This process's piece of the checkpoint.
+std::string own_checkpoint_piece(const RenderOptions& o);
+
+// The units already in the film when this run starts: none, or those of
+// the checkpoint's pieces (read here, or passed on by the process that
+// read them, through hooks.sync_checkpoint), and the time they took.
+CheckpointInfo start_checkpointing(const RenderOptions& opt, const RenderHooks& hooks, const std::string& fingerprint,
+                                   Film& film);
+
+// Writes checkpoints from the merge stage: the one place that sees the film
+// between two waves.
+class Checkpointer {
+ public:
+  using Clock = std::chrono::steady_clock;
+  Checkpointer(const RenderOptions& o, const RenderHooks& hooks, CheckpointInfo info, Clock::time_point start)
+      : opt_(o), hooks_(hooks), info_(std::move(info)), start_(start), last_(start),
+        prior_seconds_(info_.elapsed_seconds) {}
+  bool enabled() const { return !opt_.checkpoint_path.empty(); }
+  std::string own_path() const { return own_checkpoint_piece(opt_); }
+  double elapsed() const { return prior_seconds_ + std::chrono::duration<double>(Clock::now() - start_).count(); }
+  UnitSet& done() { return info_.done; }
+  void set_units(uint64_t passes, uint32_t waves) {
+    info_.passes = passes;
+    info_.waves = waves;
+  }
+  void maybe_write(const Film& film) {
+    if (enabled() && opt_.checkpoint_seconds > 0 &&
+        std::chrono::duration<double>(Clock::now() - last_).count() >= opt_.checkpoint_seconds)
+      write(film);
+  }
+  void write(const Film& film) { write_to(own_path(), film); }
+  void write_to(const std::string& path, const Film& film);
+
+ private:
+  const RenderOptions& opt_;
+  const RenderHooks& hooks_;
+  CheckpointInfo info_;
+  Clock::time_point start_, last_;
+  double prior_seconds_;
+};
+
+}  // namespace lantern
