@@ -99,7 +99,7 @@ TEST(Hair, AbsorptionFromReflectanceAndMelanin) {
   EXPECT_NEAR(brown[0], 1.3f * 0.419f, 1e-5f);
   EXPECT_NEAR(brown[2], 1.3f * 1.37f, 1e-5f);
   m.by = HairMaterial::Absorption::Reflectance;
-  m.reflectance = TextureRef::constant(RGB(1.f, 0.5f, 0.1f));
+  m.reflectance = RGBTextureRef::constant(RGB(1.f, 0.5f, 0.1f));
   RGB s = hair_sigma_a(m, TextureContext{}, tex, 0.3f);
   EXPECT_NEAR(s[0], 0.f, 1e-6f);  // white hair absorbs nothing
   EXPECT_GT(s[2], s[1]);

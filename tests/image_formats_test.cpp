@@ -150,7 +150,7 @@ TEST(ImageFormats, SceneImageTexturesFollowTheRule) {
                                             path + "\" \"string filter\" \"" + filter + "\" " + c.param +
                                             "\nMaterial \"diffuse\" \"texture reflectance\" \"t\"\nShape \"sphere\"\n",
                                         "t.pbrt", opts);
-        const TextureRef& t = s->materials.diffuse.at(0).reflectance;
+        const RGBTextureRef& t = s->materials.diffuse.at(0).reflectance;
         const float got = s->textures.evaluate(t, TextureContext{Vec3(0.f), Vec3(0, 0, 1), Vec2(0.5f)})[0];
         const float want = expected(*f, c.asked);
         EXPECT_NEAR(got, want, want * 0.01f) << name << " " << c.param << " " << filter;

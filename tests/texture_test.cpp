@@ -22,10 +22,13 @@ std::shared_ptr<Scene> load_texture_scene(const std::string& text) { return load
 
 // The scene's float or spectrum texture bound to material parameter
 // "reflectance" of its only diffuse material.
-const TextureRef& diffuse_reflectance(const Scene& s) { return s.materials.diffuse.at(0).reflectance; }
+const RGBTextureRef& diffuse_reflectance(const Scene& s) { return s.materials.diffuse.at(0).reflectance; }
 
-RGB eval(const Scene& s, const TextureRef& t, Vec2 uv, Vec3 p = Vec3(0.f), Vec3 n = Vec3(0, 0, 1)) {
+RGB eval(const Scene& s, const RGBTextureRef& t, Vec2 uv, Vec3 p = Vec3(0.f), Vec3 n = Vec3(0, 0, 1)) {
   return s.textures.evaluate(t, TextureContext{p, n, uv});
+}
+float eval_float(const Scene& s, const FloatTextureRef& t, Vec2 uv) {
+  return s.textures.evaluate_float(t, TextureContext{Vec3(0.f), Vec3(0, 0, 1), uv});
 }
 
 std::string tmp_path(const std::string& name) {
@@ -41,7 +44,7 @@ Texture "c3" "float" "checkerboard" "integer dimension" 3 "float tex1" 0.1 "floa
 Material "diffuse" "texture reflectance" "c"
 Shape "trianglemesh" "point3 P" [0 0 0 1 0 0 0 1 0] "integer indices" [0 1 2]
 )");
-  const TextureRef& c = diffuse_reflectance(*s);
+  const RGBTextureRef& c = diffuse_reflectance(*s);
   EXPECT_FLOAT_EQ(eval(*s, c, Vec2(0.1f, 0.1f))[0], 0.2f) << "cell (0, 0) is even: tex1";
   EXPECT_FLOAT_EQ(eval(*s, c, Vec2(0.3f, 0.1f))[0], 0.8f) << "cell (1, 0) is odd: tex2";
   EXPECT_FLOAT_EQ(eval(*s, c, Vec2(0.3f, 0.3f))[0], 0.2f);
@@ -51,7 +54,7 @@ Shape "trianglemesh" "point3 P" [0 0 0 1 0 0 0 1 0] "integer indices" [0 1 2]
     for (int j = 0; j < n; ++j) sum += eval(*s, c, Vec2((i + 0.5f) / n, (j + 0.5f) / n))[0];
   EXPECT_NEAR(sum / (n * n), 0.5, 1e-6);
   // The 3D one, over a 4x4x4 block of cells.
-  TextureRef c3{RGB(0.f), int32_t(s->textures.nodes.size() - 1)};
+  RGBTextureRef c3{RGB(0.f), int32_t(s->textures.nodes.size() - 1)};
   sum = 0.0;
   const int m = 40;
   for (int i = 0; i < m; ++i)
@@ -79,7 +82,7 @@ Shape "trianglemesh" "point3 P" [0 0 0 1 0 0 0 1 0] "integer indices" [0 1 2]
   EXPECT_NEAR(max_component(abs(sc - RGB(0.1f, 0.2f, 0.3f))), 0.f, 1e-6f);
   RGB mx = eval(*s, s->materials.diffuse[1].reflectance, Vec2(0.5f));
   EXPECT_NEAR(max_component(abs(mx - RGB(0.7f, 0.f, 0.3f))), 0.f, 1e-6f);
-  const TextureRef& d = s->materials.diffuse[2].reflectance;
+  const RGBTextureRef& d = s->materials.diffuse[2].reflectance;
   EXPECT_NEAR(max_component(abs(eval(*s, d, Vec2(0.f), Vec3(0.f), Vec3(0, 0, 1)) - RGB(1, 0, 0))), 0.f, 1e-6f) << "|n.dir| = 1: tex1";
   EXPECT_NEAR(max_component(abs(eval(*s, d, Vec2(0.f), Vec3(0.f), Vec3(1, 0, 0)) - RGB(0, 0, 1))), 0.f, 1e-6f) << "|n.dir| = 0: tex2";
   Vec3 n45 = glm::normalize(Vec3(1, 0, 1));
@@ -92,12 +95,12 @@ Texture "b" "float" "bilerp" "float v00" 1 "float v01" 2 "float v10" 3 "float v1
 Material "conductor" "texture roughness" "b"
 Shape "trianglemesh" "point3 P" [0 0 0 1 0 0 0 1 0] "integer indices" [0 1 2]
 )");
-  const TextureRef& b = s->materials.conductor[0].roughness.u;
-  EXPECT_FLOAT_EQ(eval(*s, b, Vec2(0, 0))[0], 1.f);
-  EXPECT_FLOAT_EQ(eval(*s, b, Vec2(0, 1))[0], 2.f);
-  EXPECT_FLOAT_EQ(eval(*s, b, Vec2(1, 0))[0], 3.f);
-  EXPECT_FLOAT_EQ(eval(*s, b, Vec2(1, 1))[0], 4.f);
-  EXPECT_FLOAT_EQ(eval(*s, b, Vec2(0.5f, 0.5f))[0], 2.5f);
+  const FloatTextureRef& b = s->materials.conductor[0].roughness.u;
+  EXPECT_FLOAT_EQ(eval_float(*s, b, Vec2(0, 0)), 1.f);
+  EXPECT_FLOAT_EQ(eval_float(*s, b, Vec2(0, 1)), 2.f);
+  EXPECT_FLOAT_EQ(eval_float(*s, b, Vec2(1, 0)), 3.f);
+  EXPECT_FLOAT_EQ(eval_float(*s, b, Vec2(1, 1)), 4.f);
+  EXPECT_FLOAT_EQ(eval_float(*s, b, Vec2(0.5f, 0.5f)), 2.5f);
 }
 
 // A 2x2 image: row 0 (top) red, green; row 1 (bottom) blue, white. pbrt-v4

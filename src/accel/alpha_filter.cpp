@@ -9,8 +9,8 @@ namespace lantern {
 
 float alpha_at(const ShapePools& shapes, const TexturePools& textures, uint32_t g, uint32_t prim, Vec2 b, Vec3 p) {
   const Geometry& geo = shapes.geometries[g];
-  const TextureRef& a = shapes.alpha_masks[size_t(geo.alpha)].alpha;
-  if (a.is_constant()) return a.value[0];
+  const FloatTextureRef& a = shapes.alpha_masks[size_t(geo.alpha)].alpha;
+  if (a.is_constant()) return a.value;
   // A curve's v across its width depends on the ray: textures on curves
   // read u along the curve (pbrt's) and the middle of v.
   if (geo.kind == ShapeKind::Curve)

@@ -35,7 +35,7 @@ struct Geometry {
 // pbrt's shape parameter "alpha": where it is below 1 the surface is cut
 // out, fully (0) or stochastically (accel/alpha_filter.h).
 struct AlphaMask {
-  TextureRef alpha;
+  FloatTextureRef alpha;
 };
 
 // A named object (pbrt's ObjectBegin/ObjectEnd): the geometries

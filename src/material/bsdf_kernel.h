@@ -20,15 +20,15 @@ namespace lantern {
 
 // Where textures' colours become spectra: a reflectance (clamped to [0, 1])
 // or an unbounded coefficient (eta, k, sigma_a).
-inline Spectrum reflectance(const TexturePools& tex, const TextureRef& t, const TextureContext& c) {
+inline Spectrum reflectance(const TexturePools& tex, const RGBTextureRef& t, const TextureContext& c) {
   return albedo_spectrum(tex.evaluate_reflectance(t, c));
 }
-inline Spectrum coefficient(const TexturePools& tex, const TextureRef& t, const TextureContext& c) {
+inline Spectrum coefficient(const TexturePools& tex, const RGBTextureRef& t, const TextureContext& c) {
   return unbounded_spectrum(tex.evaluate(t, c));
 }
 // pbrt-v4's conductor given by its head-on reflectance r: eta 1 and the k
 // that gives r.
-inline void conductor_from_reflectance(const TexturePools& tex, const TextureRef& t, const TextureContext& c,
+inline void conductor_from_reflectance(const TexturePools& tex, const RGBTextureRef& t, const TextureContext& c,
                                        Spectrum* eta, Spectrum* k) {
   const Spectrum r = albedo_spectrum(clamp(tex.evaluate(t, c), 0.f, 0.9999f));
   *eta = Spectrum(1.f);

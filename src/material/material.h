@@ -40,7 +40,7 @@ struct MaterialHandle {
 // pbrt's roughness parameters: uroughness / vroughness (textures), mapped
 // to GGX alphas by sqrt when remaproughness is true.
 struct RoughnessParams {
-  TextureRef u = TextureRef::constant(0.f), v = TextureRef::constant(0.f);
+  FloatTextureRef u = FloatTextureRef::constant(0.f), v = FloatTextureRef::constant(0.f);
   bool remap = true;
 
   TrowbridgeReitz distribution(const TexturePools& tex, const TextureContext& c) const {
@@ -50,24 +50,24 @@ struct RoughnessParams {
 };
 
 struct DiffuseMaterial {
-  TextureRef reflectance;
+  RGBTextureRef reflectance;
   int32_t bump = -1;  // index into MaterialPools::bumps
 };
 
 struct ConductorMaterial {
-  TextureRef eta = TextureRef::constant(1.f), k = TextureRef::constant(0.f);
+  RGBTextureRef eta = RGBTextureRef::constant(RGB(1.f)), k = RGBTextureRef::constant(RGB(0.f));
   // pbrt-v4's conductor given by its reflectance at normal incidence, when
   // that is a texture (a constant one is turned into eta and k at load).
-  TextureRef reflectance;
+  RGBTextureRef reflectance;
   bool by_reflectance = false;
-  TextureRef mirror_reflectance = TextureRef::constant(1.f);  // pbrt's "mirror" (Kr)
+  RGBTextureRef mirror_reflectance = RGBTextureRef::constant(RGB(1.f));  // pbrt's "mirror" (Kr)
   bool mirror = false;
   RoughnessParams roughness;
   int32_t bump = -1;
 };
 
 struct DielectricMaterial {
-  TextureRef eta = TextureRef::constant(1.5f);
+  FloatTextureRef eta = FloatTextureRef::constant(1.5f);
   RoughnessParams roughness;
   int32_t bump = -1;  // index into MaterialPools::bumps
 };
@@ -75,15 +75,15 @@ struct DielectricMaterial {
 // The layer between the coat and the base of pbrt-v4's coated materials,
 // with its defaults.
 struct CoatLayer {
-  TextureRef albedo = TextureRef::constant(0.f);  // of the medium between coat and base
-  TextureRef thickness = TextureRef::constant(0.01f);
-  TextureRef g = TextureRef::constant(0.f);
+  RGBTextureRef albedo = RGBTextureRef::constant(RGB(0.f));  // of the medium between coat and base
+  FloatTextureRef thickness = FloatTextureRef::constant(0.01f);
+  FloatTextureRef g = FloatTextureRef::constant(0.f);
   int max_depth = 10;
   int n_samples = 1;
 };
 
 struct CoatedDiffuseMaterial {
-  TextureRef reflectance = TextureRef::constant(0.5f);
+  RGBTextureRef reflectance = RGBTextureRef::constant(RGB(0.5f));
   float eta = 1.5f;
   RoughnessParams roughness;
   CoatLayer layer;
@@ -95,8 +95,8 @@ struct CoatedDiffuseMaterial {
 struct CoatedConductorMaterial {
   float interface_eta = 1.5f;
   RoughnessParams interface_roughness;
-  TextureRef conductor_eta, conductor_k;
-  TextureRef reflectance;
+  RGBTextureRef conductor_eta, conductor_k;
+  RGBTextureRef reflectance;
   bool by_reflectance = false;
   RoughnessParams conductor_roughness;
   CoatLayer layer;
@@ -106,13 +106,13 @@ struct CoatedConductorMaterial {
 // pbrt-v4's diffusetransmission: reflectance and transmittance (default
 // 0.25 each), both scaled by "scale" and clamped to [0, 1].
 struct DiffuseTransmissionMaterial {
-  TextureRef reflectance = TextureRef::constant(0.25f), transmittance = TextureRef::constant(0.25f);
+  RGBTextureRef reflectance = RGBTextureRef::constant(RGB(0.25f)), transmittance = RGBTextureRef::constant(RGB(0.25f));
   float scale = 1.f;
   int32_t bump = -1;
 };
 
 struct ThinDielectricMaterial {
-  TextureRef eta = TextureRef::constant(1.5f);
+  FloatTextureRef eta = FloatTextureRef::constant(1.5f);
   int32_t bump = -1;
 };
 
@@ -123,16 +123,16 @@ struct ThinDielectricMaterial {
 struct HairMaterial {
   enum class Absorption : uint8_t { SigmaA, Reflectance, Melanin };
   Absorption by = Absorption::Melanin;
-  TextureRef sigma_a, reflectance;
-  TextureRef eumelanin = TextureRef::constant(1.3f), pheomelanin = TextureRef::constant(0.f);
-  TextureRef eta = TextureRef::constant(1.55f);
-  TextureRef beta_m = TextureRef::constant(0.3f), beta_n = TextureRef::constant(0.3f);
-  TextureRef alpha = TextureRef::constant(2.f);  // degrees
+  RGBTextureRef sigma_a, reflectance;
+  FloatTextureRef eumelanin = FloatTextureRef::constant(1.3f), pheomelanin = FloatTextureRef::constant(0.f);
+  FloatTextureRef eta = FloatTextureRef::constant(1.55f);
+  FloatTextureRef beta_m = FloatTextureRef::constant(0.3f), beta_n = FloatTextureRef::constant(0.3f);
+  FloatTextureRef alpha = FloatTextureRef::constant(2.f);  // degrees
 };
 
 // A material's bump or normal map (applied by material/bump.h).
 struct BumpParams {
-  TextureRef displacement = TextureRef::constant(0.f);
+  FloatTextureRef displacement = FloatTextureRef::constant(0.f);
   int32_t normal_map = -1;  // id in TexturePools::cache
 };
 
@@ -140,7 +140,7 @@ struct BumpParams {
 // otherwise, chosen per hit by a hash of the point and direction.
 struct MixMaterial {
   MaterialHandle materials[2];
-  TextureRef amount = TextureRef::constant(0.5f);
+  FloatTextureRef amount = FloatTextureRef::constant(0.5f);
 };
 
 struct MaterialPools {

@@ -366,15 +366,15 @@ void SceneBuilder::shape(const std::string& type, const ParamSet& ps, const Grap
   // pbrt's "alpha": a float or a float texture; 1 (the default) is opaque.
   // A shape of "interface" material has no surface: unless it bounds a
   // medium (integrator/medium_*.h cross it), it is cut out entirely.
-  TextureRef alpha = float_texture(ps, "alpha", 1.f);
+  FloatTextureRef alpha = float_texture(ps, "alpha", 1.f);
   const bool interface = gs.material && gs.material->kind() == MaterialKind::Interface;
   if (gs.area_light && interface) ps.fail("an emitting shape cannot have the \"interface\" material");
   if (interface && medium_interface(gs).transition()) {
-    if (!alpha.is_constant() || alpha.value[0] < 1.f) ps.fail(*ps.find("alpha"), "alpha on an \"interface\" shape is not supported");
+    if (!alpha.is_constant() || alpha.value < 1.f) ps.fail(*ps.find("alpha"), "alpha on an \"interface\" shape is not supported");
     return;
   }
-  if (interface) alpha = TextureRef::constant(0.f);
-  if (scene_.shapes.geometries.size() == before || (alpha.is_constant() && alpha.value[0] >= 1.f)) return;
+  if (interface) alpha = FloatTextureRef::constant(0.f);
+  if (scene_.shapes.geometries.size() == before || (alpha.is_constant() && alpha.value >= 1.f)) return;
   if (gs.area_light)
     ps.fail(*ps.find("alpha"), "alpha on an emitting shape is not supported; cut the shape out of the light instead");
   ShapePools& s = scene_.shapes;

@@ -90,9 +90,9 @@ class SceneBuilder {
 
  private:
   // A material or texture parameter that may name a texture (builder_textures.cpp).
-  TextureRef rgb_texture(const pbrt::ParamSet& ps, const std::string& name, RGB def,
-                         pbrt::ColorUsage usage = pbrt::ColorUsage::Reflectance);
-  TextureRef float_texture(const pbrt::ParamSet& ps, const std::string& name, float def);
+  RGBTextureRef rgb_texture(const pbrt::ParamSet& ps, const std::string& name, RGB def,
+                            pbrt::ColorUsage usage = pbrt::ColorUsage::Reflectance);
+  FloatTextureRef float_texture(const pbrt::ParamSet& ps, const std::string& name, float def);
   TextureMapping texture_mapping(const pbrt::ParamSet& ps, const Mat4& ctm, bool two_d);
   // The image at path, read once per encoding; errors name parameter `param`.
   int32_t texture_image(const pbrt::ParamSet& ps, const std::string& path, ColorEncoding encoding,
@@ -104,13 +104,13 @@ class SceneBuilder {
   // Whether an image read by `filter` stays resident: small, and within the
   // scene's budget (counted once per file and encoding).
   bool resident_fits(const pbrt::ParamSet& ps, const std::string& path, ColorEncoding encoding, ImageFilter filter);
-  TextureRef add_texture_node(TextureNode n);
+  RGBTextureRef add_texture_node(TextureNode n);
   // Material parameters (builder_materials.cpp).
   // pbrt's roughness, uroughness and vroughness (after prefix) and remaproughness.
   RoughnessParams roughness(const pbrt::ParamSet& ps, float def, const std::string& prefix = "");
   // "eta" (or pbrt-v3's "index"): a number, a named or RGB spectrum (its
   // first channel), or a float texture.
-  TextureRef eta_param(const pbrt::ParamSet& ps, float def);
+  FloatTextureRef eta_param(const pbrt::ParamSet& ps, float def);
   // "displacement" and "normalmap": an index into MaterialPools::bumps, or -1.
   int32_t bump_map(const pbrt::ParamSet& ps, const std::string& base_dir);
   MaterialHandle concrete_material(const std::string& type, const pbrt::ParamSet& ps);
@@ -176,8 +176,8 @@ class SceneBuilder {
   Scene& scene_;
   WarningSink warn_;
   std::function<void(const std::string&)> progress_;
-  std::map<std::string, TextureRef> rgb_textures_;
-  std::map<std::string, TextureRef> float_textures_;
+  std::map<std::string, RGBTextureRef> rgb_textures_;
+  std::map<std::string, FloatTextureRef> float_textures_;
   std::map<std::string, int32_t> images_;  // "encoding|path" -> TexturePools::images
   std::map<std::string, PreparedTexture> prepared_;  // "encoding|path" -> its prepared file
   TextureCacheSettings texture_cache_;

@@ -12,7 +12,7 @@ using pbrt::ParamSet;
 RoughnessParams SceneBuilder::roughness(const ParamSet& ps, float def, const std::string& prefix) {
   RoughnessParams r;
   const std::string names[3] = {prefix + "roughness", prefix + "uroughness", prefix + "vroughness"};
-  TextureRef both = float_texture(ps, names[0], def);
+  FloatTextureRef both = float_texture(ps, names[0], def);
   r.u = ps.has(names[1]) ? float_texture(ps, names[1], def) : both;
   r.v = ps.has(names[2]) ? float_texture(ps, names[2], def) : both;
   for (const std::string& name : names)
@@ -26,10 +26,10 @@ RoughnessParams SceneBuilder::roughness(const ParamSet& ps, float def, const std
 void SceneBuilder::coat_layer(const ParamSet& ps, CoatLayer* c) {
   c->albedo = rgb_texture(ps, "albedo", RGB(0.f));
   c->thickness = float_texture(ps, "thickness", 0.01f);
-  if (c->thickness.is_constant() && !(c->thickness.value[0] >= 0.f && std::isfinite(c->thickness.value[0])))
+  if (c->thickness.is_constant() && !(c->thickness.value >= 0.f && std::isfinite(c->thickness.value)))
     ps.fail(*ps.find("thickness"), "thickness must be a finite number >= 0");
   c->g = float_texture(ps, "g", 0.f);
-  if (c->g.is_constant() && !std::isfinite(c->g.value[0])) ps.fail(*ps.find("g"), "g must be finite");
+  if (c->g.is_constant() && !std::isfinite(c->g.value)) ps.fail(*ps.find("g"), "g must be finite");
   // Bounded so that no scene can make one evaluation take seconds.
   c->max_depth = ps.get_int("maxdepth", 10);
   if (c->max_depth < 0 || c->max_depth > 100) ps.fail(*ps.find("maxdepth"), "maxdepth must be in [0, 100]");
@@ -37,10 +37,10 @@ void SceneBuilder::coat_layer(const ParamSet& ps, CoatLayer* c) {
   if (c->n_samples < 1 || c->n_samples > 100) ps.fail(*ps.find("nsamples"), "nsamples must be in [1, 100]");
 }
 
-TextureRef SceneBuilder::eta_param(const ParamSet& ps, float def) {
+FloatTextureRef SceneBuilder::eta_param(const ParamSet& ps, float def) {
   const pbrt::Param* p = ps.find("eta");
   if (!p) p = ps.find("index");
-  if (!p) return TextureRef::constant(def);
+  if (!p) return FloatTextureRef::constant(def);
   if (p->type == "texture") return float_texture(ps, p->name, def);
   // A sampled index (a file or pairs) at the sodium d-line (587.6 nm), as
   // the named glasses are read: the RGB renderer has no dispersion.
@@ -49,7 +49,7 @@ TextureRef SceneBuilder::eta_param(const ParamSet& ps, float def) {
               : p->type == "float" ? ps.get_float(p->name, def)
                                    : (*ps.get_rgb(p->name, ColorUsage::Unbounded))[0];
   if (!(eta > 0.f)) ps.fail(*p, "index of refraction must be positive");
-  return TextureRef::constant(eta);
+  return FloatTextureRef::constant(eta);
 }
 
 int32_t SceneBuilder::bump_map(const ParamSet& ps, const std::string& base_dir) {
@@ -126,8 +126,8 @@ MaterialHandle SceneBuilder::concrete_material(const std::string& type, const Pa
         for (int nm = 360; nm <= 830; ++nm)
           table.push_back({float(nm), float((*eta_s)(nm)), float((*k_s)(nm))});
         const ConductorRGB fit = fit_conductor_rgb(table);
-        c.eta = TextureRef::constant(fit.eta);
-        c.k = TextureRef::constant(fit.k);
+        c.eta = RGBTextureRef::constant(fit.eta);
+        c.k = RGBTextureRef::constant(fit.k);
       } else {
         c.eta = rgb_texture(ps, "eta", *pbrt::named_spectrum_rgb("metal-Cu-eta"), ColorUsage::Unbounded);
         c.k = rgb_texture(ps, "k", *pbrt::named_spectrum_rgb("metal-Cu-k"), ColorUsage::Unbounded);
@@ -138,8 +138,8 @@ MaterialHandle SceneBuilder::concrete_material(const std::string& type, const Pa
         if (c.reflectance.is_constant()) {
           // pbrt-v4: a conductor given by its reflectance at normal incidence.
           RGB r = clamp(c.reflectance.value, RGB(0.f), RGB(0.9999f));
-          c.eta = TextureRef::constant(RGB(1.f));
-          c.k = TextureRef::constant(2.f * sqrt(r) / sqrt(RGB(1.f) - r));
+          c.eta = RGBTextureRef::constant(RGB(1.f));
+          c.k = RGBTextureRef::constant(2.f * sqrt(r) / sqrt(RGB(1.f) - r));
           c.by_reflectance = false;
         }
       }
@@ -170,9 +170,9 @@ MaterialHandle SceneBuilder::concrete_material(const std::string& type, const Pa
         return MaterialHandle::make(MaterialKind::Diffuse, uint32_t(m.diffuse.size() - 1));
       }
     }
-    TextureRef eta = eta_param(ps, 1.5f);
+    FloatTextureRef eta = eta_param(ps, 1.5f);
     if (!eta.is_constant()) ps.fail(*ps.find("eta"), "coateddiffuse's eta is a spectrum in pbrt-v4, not a texture");
-    c.eta = eta.value[0];
+    c.eta = eta.value;
     c.roughness = roughness(ps, v3 ? 0.1f : 0.f);
     coat_layer(ps, &c.layer);
     m.coated_diffuse.push_back(c);
@@ -261,7 +261,7 @@ MaterialHandle SceneBuilder::hair_material(const ParamSet& ps) {
 
 MaterialHandle SceneBuilder::default_material() {
   if (!default_material_) {
-    scene_.materials.diffuse.push_back({TextureRef::constant(0.5f)});
+    scene_.materials.diffuse.push_back({RGBTextureRef::constant(RGB(0.5f))});
     default_material_ = MaterialHandle::make(MaterialKind::Diffuse, uint32_t(scene_.materials.diffuse.size() - 1));
   }
   return *default_material_;

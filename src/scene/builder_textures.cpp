@@ -10,18 +10,19 @@ namespace lantern {
 using pbrt::ColorUsage;
 using pbrt::ParamSet;
 
-TextureRef SceneBuilder::rgb_texture(const ParamSet& ps, const std::string& name, RGB def, ColorUsage usage) {
+RGBTextureRef SceneBuilder::rgb_texture(const ParamSet& ps, const std::string& name, RGB def, ColorUsage usage) {
   if (auto tex = ps.get_texture(name)) {
     if (auto it = rgb_textures_.find(*tex); it != rgb_textures_.end()) return it->second;
     if (float_textures_.count(*tex))
       ps.fail(*ps.find(name), "\"" + printable(*tex) + "\" is a float texture; \"" + name + "\" needs a spectrum texture");
     ps.fail(*ps.find(name), "no spectrum texture named \"" + printable(*tex) + "\" was defined");
   }
-  if (const pbrt::Param* p = ps.find(name); p && p->type == "float") return TextureRef::constant(ps.get_float(name, 0.f));
-  return TextureRef::constant(ps.get_rgb(name, usage).value_or(def));
+  if (const pbrt::Param* p = ps.find(name); p && p->type == "float")
+    return RGBTextureRef::constant(RGB(ps.get_float(name, 0.f)));
+  return RGBTextureRef::constant(ps.get_rgb(name, usage).value_or(def));
 }
 
-TextureRef SceneBuilder::float_texture(const ParamSet& ps, const std::string& name, float def) {
+FloatTextureRef SceneBuilder::float_texture(const ParamSet& ps, const std::string& name, float def) {
   if (auto tex = ps.get_texture(name)) {
     if (auto it = float_textures_.find(*tex); it != float_textures_.end()) return it->second;
     if (rgb_textures_.count(*tex))
@@ -30,12 +31,12 @@ TextureRef SceneBuilder::float_texture(const ParamSet& ps, const std::string& na
   }
   float v = ps.get_float(name, def);
   if (!std::isfinite(v)) ps.fail(*ps.find(name), "must be finite");
-  return TextureRef::constant(v);
+  return FloatTextureRef::constant(v);
 }
 
-TextureRef SceneBuilder::add_texture_node(TextureNode n) {
+RGBTextureRef SceneBuilder::add_texture_node(TextureNode n) {
   scene_.textures.nodes.push_back(std::move(n));
-  return TextureRef{RGB(0.f), int32_t(scene_.textures.nodes.size() - 1)};
+  return RGBTextureRef{RGB(0.f), int32_t(scene_.textures.nodes.size() - 1)};
 }
 
 TextureMapping SceneBuilder::texture_mapping(const ParamSet& ps, const Mat4& ctm, bool two_d) {
@@ -171,16 +172,16 @@ void SceneBuilder::texture(const std::string& name, const std::string& value_typ
   if (!is_float && value_type != "spectrum" && value_type != "color" && value_type != "rgb")
     ps.fail("texture value type \"" + printable(value_type) + "\" is unknown; expected \"spectrum\" or \"float\"");
   auto child = [&](const char* p, float def) {
-    return is_float ? float_texture(ps, p, def) : rgb_texture(ps, p, RGB(def));
+    return is_float ? broadcast(float_texture(ps, p, def)) : rgb_texture(ps, p, RGB(def));
   };
   auto constant = [&](const char* p, float def) {
     return is_float ? RGB(ps.get_float(p, def)) : ps.get_rgb(p, ColorUsage::Reflectance).value_or(RGB(def));
   };
   TextureNode n;
   n.is_float = is_float;
-  TextureRef result;
+  RGBTextureRef result;  // a float texture's value in every channel
   if (cls == "constant") {
-    result = TextureRef::constant(constant("value", 1.f));
+    result = RGBTextureRef::constant(constant("value", 1.f));
   } else if (cls == "imagemap") {
     std::string file = ps.get_string("filename", "");
     if (file.empty()) ps.fail("imagemap texture needs a \"filename\"");
@@ -240,13 +241,13 @@ void SceneBuilder::texture(const std::string& name, const std::string& value_typ
       n.tex1 = child(tex, 1.f);
       const pbrt::Param* q = ps.find(by);
       n.tex2 = q && q->type != "float" && q->type != "texture"
-                   ? TextureRef::constant((*ps.get_rgb(by, ColorUsage::Unbounded))[0])
-                   : float_texture(ps, by, 1.f);
+                   ? RGBTextureRef::constant(RGB((*ps.get_rgb(by, ColorUsage::Unbounded))[0]))
+                   : broadcast(float_texture(ps, by, 1.f));
     } else {
       n.tex1 = child("tex", 1.f);
-      n.tex2 = float_texture(ps, "scale", 1.f);
+      n.tex2 = broadcast(float_texture(ps, "scale", 1.f));
     }
-    result = n.tex1.is_constant() && n.tex2.is_constant() ? TextureRef::constant(n.tex1.value * n.tex2.value[0])
+    result = n.tex1.is_constant() && n.tex2.is_constant() ? RGBTextureRef::constant(n.tex1.value * n.tex2.value[0])
                                                           : add_texture_node(n);
   } else if (cls == "mix" || cls == "directionmix") {
     n.kind = cls == "mix" ? TextureKind::Mix : TextureKind::DirectionMix;
@@ -291,9 +292,10 @@ void SceneBuilder::texture(const std::string& name, const std::string& value_typ
             (is_float ? "constant, imagemap, checkerboard, dots, scale, mix, directionmix, bilerp, fbm, wrinkled or windy"
                       : "constant, imagemap, checkerboard, dots, scale, mix, directionmix, bilerp or marble"));
   }
-  auto& names = is_float ? float_textures_ : rgb_textures_;
-  if (names.count(name)) warn(ps.where, "texture \"" + printable(name) + "\" is redefined");
-  names[name] = result;
+  if ((is_float ? float_textures_.count(name) : rgb_textures_.count(name)) > 0)
+    warn(ps.where, "texture \"" + printable(name) + "\" is redefined");
+  if (is_float) float_textures_[name] = FloatTextureRef{result.value[0], result.node};
+  else rgb_textures_[name] = result;
 }
 
 }  // namespace lantern

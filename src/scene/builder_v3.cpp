@@ -52,9 +52,9 @@ std::optional<MaterialHandle> SceneBuilder::v3_material(const std::string& type,
     }
     CoatedDiffuseMaterial c;
     c.reflectance = rgb_texture(ps, "Kd", RGB(0.5f));
-    TextureRef eta = eta_param(ps, 1.5f);
+    FloatTextureRef eta = eta_param(ps, 1.5f);
     if (!eta.is_constant()) ps.fail("coateddiffuse's eta is a spectrum in pbrt-v4, not a texture");
-    c.eta = eta.value[0];
+    c.eta = eta.value;
     c.roughness = roughness(ps, 0.f);
     coat_layer(ps, &c.layer);
     m.coated_diffuse.push_back(c);
@@ -102,7 +102,7 @@ MaterialHandle SceneBuilder::mix_material_v3(const ParamSet& ps, const std::map<
     if (c[0] != c[1] || c[1] != c[2])
       warn(a->where, "mix \"amount\" (" + std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " + std::to_string(c[2]) +
                          ") is coloured: its average " + std::to_string(avg) + " is used (as pbrt-v4's upgrade does)");
-    mix.amount = TextureRef::constant(avg);
+    mix.amount = FloatTextureRef::constant(avg);
   } else {
     mix.amount = float_texture(ps, "amount", 0.5f);
   }

@@ -28,7 +28,7 @@ RGB image_value(const TexturePools& pools, const TextureNode& n, const TextureCo
 
 // (1 - w) a + w b, skipping a side whose weight is zero; as a + w (b - a),
 // which is exactly a where the two agree.
-RGB blend(const TexturePools& pools, float w, const TextureRef& a, const TextureRef& b, const TextureContext& c) {
+RGB blend(const TexturePools& pools, float w, const RGBTextureRef& a, const RGBTextureRef& b, const TextureContext& c) {
   if (w == 0.f) return pools.evaluate(a, c);
   if (w == 1.f) return pools.evaluate(b, c);
   RGB va = pools.evaluate(a, c);
@@ -46,7 +46,7 @@ RGB TexturePools::evaluate_node(const TextureNode& n, const TextureContext& c) c
     }
     case TextureKind::Dots: return evaluate(inside_polka_dot(n.mapping.map(c)) ? n.tex1 : n.tex2, c);
     case TextureKind::Scale: {
-      float s = evaluate_float(n.tex2, c);
+      const float s = evaluate(n.tex2, c)[0];  // a float texture, held broadcast
       return s == 0.f ? RGB(0.f) : s * evaluate(n.tex1, c);
     }
     case TextureKind::Mix: return blend(*this, evaluate_float(n.amount, c), n.tex1, n.tex2, c);

@@ -1,5 +1,5 @@
 // Textures: every material parameter pbrt-v4 lets be a texture is a
-// TextureRef, a constant or a node in TexturePools. A constant is read from
+// FloatTextureRef or an RGBTextureRef, a constant or a node in TexturePools. A constant is read from
 // the material's own pool entry with one branch, so a scene without
 // textures pays nothing more. Nodes are evaluated by kind (texture.cpp);
 // the families live in their own files: image (image.h), checkerboard and
@@ -16,14 +16,23 @@
 
 namespace lantern {
 
-struct TextureRef {
-  RGB value{0.f};    // the constant, when node < 0
+// A float parameter and a colour parameter are distinct types, as pbrt-v4's
+// FloatTexture and SpectrumTexture are: a float is never turned into a
+// spectrum, and a colour is never read as one of its channels.
+template <class T>
+struct TextureRefOf {
+  T value{0.f};       // the constant, when node < 0
   int32_t node = -1;  // index into TexturePools::nodes
 
-  static TextureRef constant(RGB v) { return TextureRef{v, -1}; }
-  static TextureRef constant(float v) { return TextureRef{RGB(v), -1}; }
+  static TextureRefOf constant(T v) { return TextureRefOf{v, -1}; }
   bool is_constant() const { return node < 0; }
 };
+using FloatTextureRef = TextureRefOf<float>;
+using RGBTextureRef = TextureRefOf<RGB>;
+
+// A float texture where a node's children are held: nodes evaluate to
+// colour, a float node's in every channel.
+inline RGBTextureRef broadcast(const FloatTextureRef& f) { return RGBTextureRef{RGB(f.value), f.node}; }
 
 enum class TextureKind : uint8_t {
   Image, Checkerboard, Dots, Scale, Mix, DirectionMix, Bilerp, FBm, Wrinkled, Windy, Marble
@@ -34,8 +43,8 @@ struct TextureNode {
   TextureKind kind = TextureKind::Image;
   bool is_float = false;
   TextureMapping mapping;
-  TextureRef tex1, tex2;  // checkerboard, mix, directionmix; dots: off, on the dots; scale: tex, scale
-  TextureRef amount;      // mix
+  RGBTextureRef tex1, tex2;  // checkerboard, mix, directionmix; dots: off, on the dots; scale: tex, scale
+  FloatTextureRef amount;    // mix
   Vec3 dir{0.f, 1.f, 0.f};  // directionmix, world space
   RGB v00{0.f}, v01{1.f}, v10{0.f}, v11{1.f};  // bilerp
   int dimension = 2;      // checkerboard
@@ -57,13 +66,15 @@ struct TexturePools {
   // only then do the integrators compute one per hit.
   bool uses_footprint = false;
 
-  RGB evaluate(const TextureRef& t, const TextureContext& c) const {
+  RGB evaluate(const RGBTextureRef& t, const TextureContext& c) const {
     return t.node < 0 ? t.value : evaluate_node(nodes[size_t(t.node)], c);
   }
-  float evaluate_float(const TextureRef& t, const TextureContext& c) const { return evaluate(t, c)[0]; }
+  float evaluate_float(const FloatTextureRef& t, const TextureContext& c) const {
+    return t.node < 0 ? t.value : evaluate_node(nodes[size_t(t.node)], c)[0];
+  }
   float image_mean(int32_t image) const { return images[size_t(image)].mean; }
   // Reflectances are clamped to [0, 1], as pbrt-v4's materials do.
-  RGB evaluate_reflectance(const TextureRef& t, const TextureContext& c) const {
+  RGB evaluate_reflectance(const RGBTextureRef& t, const TextureContext& c) const {
     return clamp(evaluate(t, c), RGB(0.f), RGB(1.f));
   }
 
