@@ -1,4 +1,4 @@
-# The folders of src/ in layers, bottom first: a file may include headers of
+# The folders of src/ in layers (src/layers.cmake), bottom first: a file may include headers of
 # its own folder and of folders in lower layers only, so the folders depend
 # downwards and a circle cannot form (docs/architecture.md, "Layers").
 # Folders in one layer do not include each other.
@@ -6,19 +6,7 @@
 #   cmake -DSRC=<repository>/src -P tests/layering.cmake
 #
 # fails, naming each file, line and header, on any other include.
-set(LAYERS
-    "math"
-    "color|sampler|camera|geometry|trace"
-    "texture"
-    "imageio|medium"
-    "material"
-    "film|entity"
-    "light"
-    "accel"
-    "scene"
-    "integrator"
-    "distributed"
-    "app")
+include(${CMAKE_CURRENT_LIST_DIR}/../src/layers.cmake)
 # Known exceptions, each "folder>included/header.h" (none today).
 set(EXCEPTIONS "")
 
@@ -28,19 +16,17 @@ if(NOT SRC)
   message(FATAL_ERROR "usage: cmake -DSRC=<repository>/src -P layering.cmake")
 endif()
 
-set(level 0)
-foreach(layer IN LISTS LAYERS)
+foreach(layer IN LISTS LANTERN_LAYERS)
   string(REPLACE "|" ";" folders "${layer}")
   foreach(f IN LISTS folders)
-    set(LEVEL_${f} ${level})
+    set(LEVEL_${f} ${LANTERN_LEVEL_${f}})
   endforeach()
-  math(EXPR level "${level} + 1")
 endforeach()
 
 file(GLOB children RELATIVE "${SRC}" "${SRC}/*")
 foreach(child IN LISTS children)
   if(IS_DIRECTORY "${SRC}/${child}" AND NOT DEFINED LEVEL_${child})
-    message(SEND_ERROR "src/${child}/ is in no layer: add it to tests/layering.cmake")
+    message(SEND_ERROR "src/${child}/ is in no layer: add it to src/layers.cmake")
   endif()
 endforeach()
 

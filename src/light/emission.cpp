@@ -1,4 +1,5 @@
 #include "light/emission.h"
+#include "light/light_sampler.h"
 
 #include "math/sampling.h"
 #include "geometry/surface.h"
