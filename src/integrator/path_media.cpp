@@ -17,7 +17,7 @@ void PathTracer::segment_stage(PathWave& w, RayKind kind) const {
   for (uint32_t i = 0; i < w.rays.count; ++i) {
     const uint32_t slot = w.active[i];
     w.ray_medium[i] = w.medium[slot];
-    w.u_distance[i] = w.sampler[slot].get1d(dims::distance(base, w.depth, false));
+    w.u_distance[i] = w.sampler[slot].get1d(dims::distance(base, w.bounce(), false));
   }
   find_segment_ends(scene_, w.stream, kind, w.rays, w.ray_medium, w.u_distance, w.ends, w.crossing);
 }
@@ -27,7 +27,7 @@ void PathTracer::segment_stage(PathWave& w, RayKind kind) const {
 float PathTracer::volume_number(const PathWave& w, uint32_t slot) const {
   if (!scene_.media.any_emissive()) return 0.5f;
   const uint32_t maxdepth = uint32_t(settings_.maxdepth);
-  return w.sampler[slot].get1d(dims::volume_point(dims::vertex(maxdepth + 2), maxdepth, w.depth, false));
+  return w.sampler[slot].get1d(dims::volume_point(dims::vertex(maxdepth + 2), maxdepth, w.bounce(), false));
 }
 
 // Volume emission found by distance sampling (s = 0 for a medium point):
@@ -54,7 +54,7 @@ void PathTracer::add_volume_emission(PathWave& w, uint32_t i, const Spectrum& be
 // throughput does not change).
 void PathTracer::medium_scatter_stage(PathWave& w) const {
   const Scene& sc = scene_;
-  const uint32_t dim = dims::vertex(w.depth);
+  const uint32_t dim = dims::vertex(w.bounce());
   for (uint32_t i : w.scattered) {
     const uint32_t slot = w.active[i];
     const PathSampler& s = w.sampler[slot];
@@ -70,7 +70,7 @@ void PathTracer::medium_scatter_stage(PathWave& w) const {
     const float u_rr = s.get1d(dim + dims::kEyeRoulette);
     w.prev_pdf[slot] = pdf;
     w.prev_specular[slot] = 0;
-    if (!survives_roulette(w.beta[slot], w.eta_scale[slot], 1.f, w.depth >= 1, u_rr)) {
+    if (!survives_roulette(w.beta[slot], w.eta_scale[slot], 1.f, w.depth >= 2, u_rr)) {
       ++w.stats.eye_ends[size_t(PathEnd::Roulette)];
       continue;
     }

@@ -22,7 +22,7 @@ void path_next_event(const Scene& sc, const LightSampler& light_sampler, PathWav
   MediumHandle expect;
   Spectrum sigma_end(0.f);
   if (ls && ls->volume) {
-    if (!volume_sample_allowed(int(w.depth) + 1, maxdepth)) return;  // (w.depth counts from 0)
+    if (!volume_sample_allowed(int(w.depth), maxdepth)) return;
     complete_volume_sample(sc.lights, sc.media, &ls->L, ls->p_light, ls->light, &expect, &sigma_end);
   }
   if (!ls || is_black(ls->L)) return;

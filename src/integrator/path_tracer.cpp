@@ -64,7 +64,7 @@ void PathTracer::surface_stage(PathWave& w) const {
   w.hits.clear_bins();
   const ShapePools& shapes = scene_.shapes;
   const LightPools& lights = scene_.lights;
-  const bool last = int(w.depth) == settings_.maxdepth;
+  const bool last = int(w.depth) == settings_.maxdepth + 1;  // only emission counts this deep
   const bool media = !scene_.media.empty();
   if (media) w.scattered.clear();
   for (uint32_t i = 0; i < w.rays.count; ++i) {
@@ -134,7 +134,7 @@ void PathTracer::shade_stage(PathWave& w) const {
   for_each_binned_bsdf(w.hits, sc, [&](uint32_t i, const auto& bsdf) {
     uint32_t slot = w.active[i];
     const PathSampler& s = w.sampler[slot];
-    const uint32_t dim = dims::vertex(w.depth);
+    const uint32_t dim = dims::vertex(w.bounce());
     const auto v = surface_vertex<TransportMode::Radiance>(w.hits, i, bsdf, w.rays.geom_id[i],
                                   sc.media.empty() ? MediumHandle{} : w.ends.medium[i]);
     const Vec3& wo = v.wo;
@@ -156,7 +156,7 @@ void PathTracer::shade_stage(PathWave& w) const {
     w.prev_pdf[slot] = bs->pdf_is_proportional ? bsdf.pdf(wo, bs->wi, TransportMode::Radiance) : bs->pdf;
     w.prev_specular[slot] = bs->specular;
     if (bs->transmission) w.eta_scale[slot] *= sqr(bs->etap);
-    if (!survives_roulette(w.beta[slot], w.eta_scale[slot], 1.f, w.depth >= 1, u_rr)) {
+    if (!survives_roulette(w.beta[slot], w.eta_scale[slot], 1.f, w.depth >= 2, u_rr)) {
       ++w.stats.eye_ends[size_t(PathEnd::Roulette)];
       return;
     }
@@ -187,11 +187,11 @@ void PathTracer::trace(const WaveDesc& wave, PathWave& w, WaveOutput& out) const
     StageTimer t(st, Stage::Generate);
     generate_camera_rays(wave, w);
   }
-  w.depth = 0;
+  w.depth = 1;
   const bool media = !scene_.media.empty();
   w.stream.intersect(w.rays, RayKind::Camera);
   for (;;) {
-    if (media) segment_stage(w, w.depth == 0 ? RayKind::Camera : RayKind::Extension);
+    if (media) segment_stage(w, w.depth == 1 ? RayKind::Camera : RayKind::Extension);
     {
       StageTimer t(st, Stage::Surface);
       surface_stage(w);

@@ -27,7 +27,10 @@ struct PathWave {
   std::vector<Vec3> prev_p;  // origin of the ray that found the current vertex
   std::vector<Vec3> prev_n;  // its shading normal (the light sampler's context; zero at the camera)
   std::vector<uint8_t> prev_specular;
-  uint32_t depth = 0;  // all active paths share the bounce count
+  // The segments all active paths have: 1 at the first hit, as bdpt counts
+  // (bdpt_wave.h). The sample dimensions are laid out by bounce (depth - 1).
+  uint32_t depth = 1;
+  uint32_t bounce() const { return depth - 1; }
 
   // per ray of the current bounce
   std::vector<uint32_t> active;

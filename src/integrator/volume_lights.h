@@ -14,7 +14,7 @@ namespace lantern {
 
 // Whether a path may end on a volume light's point sampled by next-event
 // estimation from the eye vertex at depth `vertex` (1: the camera ray's
-// hit, whatever the integrator's own count): that path has vertex + 1
+// hit, as both integrators count): that path has vertex + 1
 // segments, at most maxdepth. (Completing such a sample is the light's:
 // complete_volume_sample, light/lights.h.)
 inline bool volume_sample_allowed(int vertex, int maxdepth) { return vertex + 1 <= maxdepth; }

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "scene/pbrt/params.h"
+#include "scene/pbrt/parser_target.h"
 #include "scene/scene.h"
 
 namespace lantern {
@@ -23,72 +24,54 @@ void prepare_patches(BilinearPatchSet& s, const Mat4& render_from_object, bool r
                      const pbrt::ParamSet& ps, const std::string& source);
 std::string resolve_path(const std::string& base_dir, const std::string& file);
 
-// The part of pbrt's graphics state that shapes and lights read.
-struct GraphicsState {
-  // pbrt's current transformation matrix, world from object, composed in
-  // double precision so that a scene far from the origin keeps its detail.
-  glm::dmat4 world_from_object{1.0};
-  // Where shapes are stored: the render space (docs/scene-format.md, "Far
-  // from the origin"), from the object; set by the parser before each use.
-  glm::dmat4 render_from_object{1.0};
-  bool reverse_orientation = false;
-  std::optional<MaterialHandle> material;  // none yet: pbrt's default diffuse
-  std::optional<pbrt::ParamSet> area_light;
-  std::string area_light_dir;  // folder of the file that gave the AreaLightSource (for its "filename")
-  // pbrt's current MediumInterface, by name ("" is vacuum), and where it was given.
-  std::string inside_medium, outside_medium;
-  SourceLocation medium_where;
-};
-
 // A light's "scale": a float (pbrt-v4) or a colour (pbrt-v3).
 RGB light_scale(const pbrt::ParamSet& ps);
 
-class SceneBuilder {
+// Turns the parser's directives into entities and component pools.
+class SceneBuilder final : public pbrt::ParserTarget {
  public:
   SceneBuilder(Scene& scene, WarningSink warn, std::function<void(const std::string&)> progress = nullptr)
       : scene_(scene), warn_(std::move(warn)), progress_(std::move(progress)) {}
 
-  void warn(const SourceLocation& where, const std::string& what) const;
+  void warn(const SourceLocation& where, const std::string& what) const override;
   void set_texture_cache(const TextureCacheSettings& s) { texture_cache_ = s; }
-  void warn_line(const std::string& line) const {
+  void warn_line(const std::string& line) const override {
     if (warn_) warn_(line);
   }
 
-  void camera(const std::string& type, const pbrt::ParamSet& ps, const glm::dmat4& camera_from_world);
-  // At WorldBegin: everything from here on is stored in render space.
-  void begin_world(const glm::dmat4& render_from_world);
-  void film(const std::string& type, const pbrt::ParamSet& ps);
-  void sampler(const std::string& type, const pbrt::ParamSet& ps);
-  void integrator(const std::string& type, const pbrt::ParamSet& ps);
-  void pixel_filter(const std::string& type, const pbrt::ParamSet& ps);
-
-  // named: the materials MakeNamedMaterial defined so far (for "mix").
+  // The directives (pbrt/parser_target.h).
+  void camera(const std::string& type, const pbrt::ParamSet& ps, const glm::dmat4& camera_from_world) override;
+  void begin_world(const glm::dmat4& render_from_world) override;
+  void film(const std::string& type, const pbrt::ParamSet& ps) override;
+  void sampler(const std::string& type, const pbrt::ParamSet& ps) override;
+  void integrator(const std::string& type, const pbrt::ParamSet& ps) override;
+  void pixel_filter(const std::string& type, const pbrt::ParamSet& ps) override;
   MaterialHandle material(const std::string& type, const pbrt::ParamSet& ps,
-                          const std::map<std::string, MaterialHandle>& named, const std::string& base_dir);
+                          const std::map<std::string, MaterialHandle>& named, const std::string& base_dir) override;
   void texture(const std::string& name, const std::string& value_type, const std::string& cls, const pbrt::ParamSet& ps,
-               const Mat4& ctm, const std::string& base_dir);
-  void shape(const std::string& type, const pbrt::ParamSet& ps, const GraphicsState& gs, const std::string& base_dir);
-  void light(const std::string& type, const pbrt::ParamSet& ps, const Mat4& ctm, const std::string& base_dir);
-  // Participating media (builder_media.cpp): MakeNamedMedium; the medium
-  // named by the graphics state when the camera was declared; the media
-  // of lights added since the given pool sizes.
+               const Mat4& ctm, const std::string& base_dir) override;
+  void shape(const std::string& type, const pbrt::ParamSet& ps, const GraphicsState& gs,
+             const std::string& base_dir) override;
+  void light(const std::string& type, const pbrt::ParamSet& ps, const Mat4& ctm, const std::string& base_dir,
+             const std::string& medium, const SourceLocation& medium_where) override;
+  // Participating media (builder_media.cpp): MakeNamedMedium, and the
+  // medium named by the graphics state when the camera was declared.
   void medium(const std::string& name, const pbrt::ParamSet& ps, const Mat4& render_from_medium,
-              const std::string& base_dir = {});
-  const LightPools& lights() const { return scene_.lights; }
-  void camera_medium(const std::string& name, const SourceLocation& where);
-  void assign_light_media(size_t points, size_t spots, size_t at_infinity, const std::string& name,
-                          const SourceLocation& where);
-
-  // Object instancing: shapes between begin_object and end_object form a
-  // prototype; object_instance places it with a transform.
-  void begin_object(const std::string& name, const SourceLocation& where);
-  void end_object(const SourceLocation& where);
-  void object_instance(const std::string& name, const Mat4& world_from_object, const SourceLocation& where);
+              const std::string& base_dir) override;
+  void camera_medium(const std::string& name, const SourceLocation& where) override;
+  void begin_object(const std::string& name, const SourceLocation& where) override;
+  void end_object(const SourceLocation& where) override;
+  void object_instance(const std::string& name, const Mat4& world_from_object, const SourceLocation& where) override;
 
   // Builds the acceleration structure and light tables.
   void finish();
 
  private:
+  // The media of the point and spot lights added since the given pool
+  // sizes: the medium named `name` (builder_media.cpp).
+  void assign_light_media(size_t points, size_t spots, size_t at_infinity, const std::string& name,
+                          const SourceLocation& where);
+  void add_light(const std::string& type, const pbrt::ParamSet& ps, const Mat4& ctm, const std::string& base_dir);
   // A material or texture parameter that may name a texture (builder_textures.cpp).
   RGBTextureRef rgb_texture(const pbrt::ParamSet& ps, const std::string& name, RGB def,
                             pbrt::ColorUsage usage = pbrt::ColorUsage::Reflectance);

@@ -14,7 +14,15 @@ RGB light_scale(const ParamSet& ps) {
   return RGB(ps.get_float("scale", 1.f));
 }
 
-void SceneBuilder::light(const std::string& type, const ParamSet& ps, const Mat4& ctm, const std::string& base_dir) {
+void SceneBuilder::light(const std::string& type, const ParamSet& ps, const Mat4& ctm, const std::string& base_dir,
+                         const std::string& medium, const SourceLocation& medium_where) {
+  const LightPools& L = scene_.lights;
+  const size_t points = L.point.size(), spots = L.spot.size(), at_infinity = L.distant.size() + L.infinite.size();
+  add_light(type, ps, ctm, base_dir);
+  assign_light_media(points, spots, at_infinity, medium, medium_where);
+}
+
+void SceneBuilder::add_light(const std::string& type, const ParamSet& ps, const Mat4& ctm, const std::string& base_dir) {
   const RGB scale = light_scale(ps);
   LightPools& L = scene_.lights;
   if (type == "point") {

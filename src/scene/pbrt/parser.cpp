@@ -16,7 +16,7 @@ constexpr size_t kMaxAttributeDepth = 10000;
 
 class Parser {
  public:
-  Parser(SceneBuilder& b, std::string base_dir) : b_(b), base_dir_(std::move(base_dir)) {}
+  Parser(ParserTarget& b, std::string base_dir) : b_(b), base_dir_(std::move(base_dir)) {}
 
   void run(std::unique_ptr<Tokenizer> root) {
     files_.push_back(std::move(root));
@@ -286,11 +286,7 @@ class Parser {
       world_only();
       std::string type = expect_string("a light type");
       ParamSet ps = params(t, "LightSource \"" + printable(type) + "\"");
-      const LightPools& lights = b_.lights();
-      const size_t points = lights.point.size(), spots = lights.spot.size(),
-                   at_infinity = lights.distant.size() + lights.infinite.size();
-      b_.light(type, ps, render(ctm), base_dir_);
-      b_.assign_light_media(points, spots, at_infinity, gs_.outside_medium, gs_.medium_where);
+      b_.light(type, ps, render(ctm), base_dir_, gs_.outside_medium, gs_.medium_where);
       ps.warn_unused();
     } else if (d == "AreaLightSource") {
       world_only();
@@ -422,7 +418,7 @@ class Parser {
     files_.push_back(Tokenizer::from_file(p.string(), loc(t)));
   }
 
-  SceneBuilder& b_;
+  ParserTarget& b_;
   std::string base_dir_;
   WarningSink warn_sink_ = [this](const std::string& s) { b_.warn_line(s); };
   std::vector<std::unique_ptr<Tokenizer>> files_;
@@ -442,14 +438,14 @@ class Parser {
 
 }  // namespace
 
-void parse_file(const std::string& path, SceneBuilder& builder) {
+void parse_file(const std::string& path, ParserTarget& target) {
   std::string dir = std::filesystem::path(path).parent_path().string();
-  Parser p(builder, dir);
+  Parser p(target, dir);
   p.run(Tokenizer::from_file(path, SourceLocation{path, 0, 0}));
 }
 
-void parse_string(const std::string& text, const std::string& name, const std::string& base_dir, SceneBuilder& builder) {
-  Parser p(builder, base_dir);
+void parse_string(const std::string& text, const std::string& name, const std::string& base_dir, ParserTarget& target) {
+  Parser p(target, base_dir);
   p.run(std::make_unique<Tokenizer>(text, name));
 }
 
