@@ -27,7 +27,7 @@ std::string checkpoint_file() {
 RenderOptions small_render(const std::string& integrator, const std::string& sampler = "zsobol") {
   RenderOptions o;
   o.integrator = parse_integrator(integrator);
-  o.sampler.type = sampler;
+  o.sampler.type = parse_sampler(sampler);
   o.spp = 40;  // three passes of up to 16
   o.width = 48;
   o.height = 36;

@@ -19,7 +19,7 @@ const std::vector<Region> kSamplerCornellRegions = {
 
 RegionStats sampler_stats(const Scene& scene, const char* sampler, const char* integrator, int spp) {
   RenderOptions o;
-  o.sampler.type = sampler;
+  o.sampler.type = parse_sampler(sampler);
   o.integrator = parse_integrator(integrator);
   o.spp = spp;
   o.maxdepth = 6;
@@ -45,7 +45,7 @@ TEST_P(SamplerRender, PathBdptAndLightTracingAgree) {
 TEST_P(SamplerRender, SameImageWithOneOrTwoThreads) {
   auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/caustics.pbrt");
   RenderOptions o;
-  o.sampler.type = GetParam();
+  o.sampler.type = parse_sampler(GetParam());
   o.spp = 4;
   o.width = 48;
   o.height = 36;

@@ -22,7 +22,7 @@ const char* const kSobolKinds[] = {"paddedsobol", "zsobol"};
 SamplerSpec spec_for(const char* kind, const char* randomization = "", int spp = 64, int w = 64, int h = 48,
                      uint64_t seed = 3) {
   SamplerSettings st;
-  st.type = kind;
+  st.type = parse_sampler(kind);
   st.randomization = randomization;
   st.xsamples = st.ysamples = int(std::lround(std::sqrt(double(spp))));
   return make_sampler_spec(st, w, h, uint32_t(spp), seed);

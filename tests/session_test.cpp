@@ -26,7 +26,7 @@ RenderOptions session_render(Integrator integrator, int spp) {
   o.threads = 2;
   // A sampler whose samples do not depend on the planned count, so that
   // the first 16 samples of a 48-sample render are those of a 16-sample one.
-  o.sampler.type = "independent";
+  o.sampler.type = SamplerKind::Independent;
   return o;
 }
 

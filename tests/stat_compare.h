@@ -78,7 +78,7 @@ inline RegionStats render_stats(const Scene& scene, const std::string& integrato
                          const std::string& sampler = "zsobol") {
   RenderOptions o;
   o.integrator = parse_integrator(integrator);
-  o.sampler.type = sampler;
+  o.sampler.type = parse_sampler(sampler);
   o.spp = spp;
   o.maxdepth = 6;
   o.width = width;

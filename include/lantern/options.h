@@ -1,5 +1,5 @@
-// The render's choices as types: which integrator, MIS heuristic, light
-// sampler and ray back end. The command line, a scene file's Integrator
+// The render's choices as types: which integrator, MIS heuristic, sampler,
+// light sampler and ray back end. The command line, a scene file's Integrator
 // directive and bindings name them with the words below; parse_* turns a
 // word into the choice (std::invalid_argument for any other word, naming
 // those it accepts) and name() back.
@@ -22,6 +22,8 @@ enum class Integrator : uint8_t {
   Ppm,   // progressive photon mapping
 };
 enum class MisHeuristic : uint8_t { Power, Balance };  // bdpt's: beta = 2 or 1
+// pbrt-v4's samplers (docs/samplers.md).
+enum class SamplerKind : uint8_t { Independent, Stratified, Halton, Sobol, PaddedSobol, ZSobol };
 enum class LightSamplerKind : uint8_t { Bvh, Power, Uniform };  // next-event estimation's choice of light
 // Embree's interfaces, on the same batches: rtcIntersectNp (stream),
 // rtcIntersect1M, rtcIntersect1, 16-wide packets.
@@ -40,6 +42,12 @@ inline constexpr std::array<Word<Integrator>, 6> kIntegrators{{{Integrator::Path
                                                                {Integrator::Bpm, "bpm"},
                                                                {Integrator::Ppm, "ppm"}}};
 inline constexpr std::array<Word<MisHeuristic>, 2> kMis{{{MisHeuristic::Power, "power"}, {MisHeuristic::Balance, "balance"}}};
+inline constexpr std::array<Word<SamplerKind>, 6> kSamplers{{{SamplerKind::ZSobol, "zsobol"},
+                                                             {SamplerKind::PaddedSobol, "paddedsobol"},
+                                                             {SamplerKind::Sobol, "sobol"},
+                                                             {SamplerKind::Halton, "halton"},
+                                                             {SamplerKind::Stratified, "stratified"},
+                                                             {SamplerKind::Independent, "independent"}}};
 inline constexpr std::array<Word<LightSamplerKind>, 3> kLightSamplers{
     {{LightSamplerKind::Bvh, "bvh"}, {LightSamplerKind::Power, "power"}, {LightSamplerKind::Uniform, "uniform"}}};
 inline constexpr std::array<Word<RayBackend>, 4> kRayBackends{{{RayBackend::StreamNp, "stream"},
@@ -65,6 +73,7 @@ const char* name(E e, const std::array<Word<E>, N>& words) {
 
 inline Integrator parse_integrator(std::string_view w) { return option_words::parse(w, option_words::kIntegrators, "integrator"); }
 inline MisHeuristic parse_mis(std::string_view w) { return option_words::parse(w, option_words::kMis, "MIS heuristic"); }
+inline SamplerKind parse_sampler(std::string_view w) { return option_words::parse(w, option_words::kSamplers, "sampler"); }
 inline LightSamplerKind parse_light_sampler(std::string_view w) {
   return option_words::parse(w, option_words::kLightSamplers, "light sampler");
 }
@@ -74,6 +83,7 @@ inline RayBackend parse_ray_backend(std::string_view w) {
 }
 inline const char* name(Integrator i) { return option_words::name(i, option_words::kIntegrators); }
 inline const char* name(MisHeuristic m) { return option_words::name(m, option_words::kMis); }
+inline const char* name(SamplerKind s) { return option_words::name(s, option_words::kSamplers); }
 inline const char* name(LightSamplerKind l) { return option_words::name(l, option_words::kLightSamplers); }
 inline const char* name(RayBackend b) { return option_words::name(b, option_words::kRayBackends); }
 

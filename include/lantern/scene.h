@@ -17,7 +17,7 @@ struct Scene;  // entities and component pools; see src/scene/scene.h
 // The scene's Sampler: pbrt-v4's types, parameters and defaults
 // (docs/samplers.md).
 struct SamplerSettings {
-  std::string type = "zsobol";  // zsobol, paddedsobol, sobol, halton, stratified, independent
+  SamplerKind type = SamplerKind::ZSobol;
   std::string randomization;    // fastowen, owen, permutedigits, none; empty: the type's default
   uint64_t seed = 0;
   int xsamples = 4, ysamples = 4;  // stratified

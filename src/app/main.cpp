@@ -233,9 +233,9 @@ int run_render(const RenderArgs& a) {
   o.seed = a.seed;
   o.sampler = ss.sampler;
   o.light_sampler = a.light_sampler.empty() ? ss.light_sampler : lantern::parse_light_sampler(a.light_sampler);
-  if (!a.sampler.empty() && a.sampler != ss.sampler.type) {
+  if (!a.sampler.empty() && lantern::parse_sampler(a.sampler) != ss.sampler.type) {
     o.sampler = lantern::SamplerSettings{};  // the scene's parameters belong to its own type
-    o.sampler.type = a.sampler;
+    o.sampler.type = lantern::parse_sampler(a.sampler);
     o.sampler.seed = ss.sampler.seed;
   }
   if (a.resolution.size() == 2) {

@@ -67,8 +67,8 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
                    {"light", subpath_entry(s.light_vertices, s.light_paths, s.light_ends)}};
   j["nonfinite_samples"] = s.nonfinite_samples;
   auto describe = [](const SamplerSettings& s) {
-    nlohmann::json d = {{"type", s.type}, {"seed", s.seed}};
-    SamplerKind kind = parse_sampler_kind(s.type);
+    nlohmann::json d = {{"type", name(s.type)}, {"seed", s.seed}};
+    const SamplerKind kind = s.type;
     d["randomization"] = s.randomization.empty() ? randomization_name(default_randomization(kind)) : s.randomization;
     if (kind == SamplerKind::Stratified) d["strata"] = {s.xsamples, s.ysamples}, d["jitter"] = s.jitter;
     return d;

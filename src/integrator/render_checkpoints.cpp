@@ -21,7 +21,7 @@ std::string sequence_fingerprint(const RenderOptions& o, int width, int height) 
   line("maxdepth", std::to_string(o.maxdepth));
   line("seed", std::to_string(o.seed));
   line("light-sampler", name(o.light_sampler));
-  line("sampler", o.sampler.type + " " + o.sampler.randomization + " " + std::to_string(o.sampler.seed) + " " +
+  line("sampler", std::string(name(o.sampler.type)) + " " + o.sampler.randomization + " " + std::to_string(o.sampler.seed) + " " +
                       std::to_string(o.sampler.xsamples) + "x" + std::to_string(o.sampler.ysamples) +
                       (o.sampler.jitter ? " jitter" : ""));
   line("resolution", std::to_string(width) + "x" + std::to_string(height));

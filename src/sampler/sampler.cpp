@@ -11,17 +11,6 @@ constexpr int kTimeBudgetLog2Block = 16;
 
 }  // namespace
 
-SamplerKind parse_sampler_kind(const std::string& n) {
-  if (n == "independent") return SamplerKind::Independent;
-  if (n == "stratified") return SamplerKind::Stratified;
-  if (n == "halton") return SamplerKind::Halton;
-  if (n == "sobol") return SamplerKind::Sobol;
-  if (n == "paddedsobol") return SamplerKind::PaddedSobol;
-  if (n == "zsobol") return SamplerKind::ZSobol;
-  throw std::invalid_argument("unknown sampler \"" + n +
-                              "\" (expected zsobol, paddedsobol, sobol, halton, stratified or independent)");
-}
-
 Randomization parse_randomization(const std::string& n) {
   if (n == "none") return Randomization::None;
   if (n == "permutedigits") return Randomization::PermuteDigits;
@@ -48,7 +37,7 @@ const char* randomization_name(Randomization r) {
 
 SamplerSpec make_sampler_spec(const SamplerSettings& st, int width, int height, uint32_t planned_spp, uint64_t seed) {
   SamplerSpec s;
-  s.kind = parse_sampler_kind(st.type);
+  s.kind = st.type;
   s.randomize = st.randomization.empty() ? default_randomization(s.kind) : parse_randomization(st.randomization);
   s.seed = mix64(seed ^ mix64(st.seed + 0x2545F4914F6CDD1DULL));
   s.width = uint32_t(std::max(width, 1));

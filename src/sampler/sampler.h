@@ -19,7 +19,6 @@
 
 namespace lantern {
 
-enum class SamplerKind : uint8_t { Independent, Stratified, Halton, Sobol, PaddedSobol, ZSobol };
 
 // Everything a render's samples depend on besides pixel, index, dimension.
 struct SamplerSpec {
@@ -40,7 +39,6 @@ struct SamplerSpec {
 // samples per pixel continues with a freshly randomised block).
 SamplerSpec make_sampler_spec(const SamplerSettings& s, int width, int height, uint32_t planned_spp, uint64_t seed);
 // Throws std::invalid_argument naming the valid choices.
-SamplerKind parse_sampler_kind(const std::string& name);
 Randomization parse_randomization(const std::string& name);
 // pbrt-v4's: permutedigits for halton, fastowen for the Sobol samplers.
 Randomization default_randomization(SamplerKind k);

@@ -95,11 +95,10 @@ void SceneBuilder::sampler(const std::string& type, const ParamSet& ps) {
     // Its point tables come from an optimisation Lantern does not run; the
     // pattern changes noise, not the expected image.
     warn(ps.where, "sampler \"pmj02bn\" is not available; using \"zsobol\" (the same image, different noise)");
-    s.type = "zsobol";
+    s.type = SamplerKind::ZSobol;
   } else {
-    s.type = type;
     try {
-      parse_sampler_kind(type);
+      s.type = parse_sampler(type);
     } catch (const std::invalid_argument& e) {
       ps.fail(e.what());
     }
