@@ -32,7 +32,10 @@ class Channels {
  public:
   static constexpr int kSize = N;
 
-  constexpr Channels() = default;
+  // Uninitialised, as a float is (and as glm's vectors were): pools of
+  // these are sized per wave and filled, and a zeroing constructor costs
+  // bdpt a few percent.
+  Channels() = default;
   constexpr explicit Channels(float v) {
     for (int i = 0; i < N; ++i) c_[i] = v;
   }
@@ -140,7 +143,7 @@ class Channels {
     return r;
   }
 
-  float c_[N] = {};
+  float c_[N];
 };
 
 struct RGBTag {};
