@@ -32,37 +32,34 @@ class Channels {
  public:
   static constexpr int kSize = N;
 
-  // Uninitialised, as a float is (and as glm's vectors were): pools of
-  // these are sized per wave and filled, and a zeroing constructor costs
-  // bdpt a few percent.
+  // Uninitialised, as a float is and as the glm vectors these replace
+  // were: no code relies on zeroes it did not write.
   Channels() = default;
   constexpr explicit Channels(float v) {
     for (int i = 0; i < N; ++i) c_[i] = v;
   }
-  constexpr Channels(float a, float b, float d)
-    requires(N == 3)
-      : c_{a, b, d} {}
+  constexpr Channels(float a, float b, float d) requires(N == 3) : c_{a, b, d} {}
 
   constexpr float& operator[](int i) { return c_[i]; }
   constexpr float operator[](int i) const { return c_[i]; }
   constexpr const float* data() const { return c_; }
   constexpr float* data() { return c_; }
 
-#define LANTERN_CHANNEL_OP(op)                                                   \
-  constexpr Channels& operator op##=(const Channels& o) {                \
-    for (int i = 0; i < N; ++i) c_[i] op## = o.c_[i];                            \
-    return *this;                                                                \
-  }                                                                              \
-  constexpr Channels& operator op##=(float s) {                              \
-    for (int i = 0; i < N; ++i) c_[i] op## = s;                                  \
-    return *this;                                                                \
-  }                                                                              \
+#define LANTERN_CHANNEL_OP(op)                                                                \
+  constexpr Channels& operator op##=(const Channels& o) {                                     \
+    for (int i = 0; i < N; ++i) c_[i] op## = o.c_[i];                                         \
+    return *this;                                                                             \
+  }                                                                                           \
+  constexpr Channels& operator op##=(float s) {                                               \
+    for (int i = 0; i < N; ++i) c_[i] op## = s;                                               \
+    return *this;                                                                             \
+  }                                                                                           \
   friend constexpr Channels operator op(Channels a, const Channels& b) { return a op## = b; } \
-  friend constexpr Channels operator op(Channels a, float s) { return a op## = s; }              \
-  friend constexpr Channels operator op(float s, const Channels& b) {    \
-    Channels r;                                                              \
-    for (int i = 0; i < N; ++i) r.c_[i] = s op b.c_[i];                          \
-    return r;                                                                    \
+  friend constexpr Channels operator op(Channels a, float s) { return a op## = s; }           \
+  friend constexpr Channels operator op(float s, const Channels& b) {                         \
+    Channels r;                                                                               \
+    for (int i = 0; i < N; ++i) r.c_[i] = s op b.c_[i];                                       \
+    return r;                                                                                 \
   }
   LANTERN_CHANNEL_OP(+)
   LANTERN_CHANNEL_OP(-)
@@ -70,7 +67,9 @@ class Channels {
   LANTERN_CHANNEL_OP(/)
 #undef LANTERN_CHANNEL_OP
 
-  friend constexpr Channels operator-(const Channels& a) { return map(a, [](float x) { return -x; }); }
+  friend constexpr Channels operator-(const Channels& a) {
+    return map(a, [](float x) { return -x; });
+  }
   friend constexpr bool operator==(const Channels& a, const Channels& b) {
     for (int i = 0; i < N; ++i)
       if (a.c_[i] != b.c_[i]) return false;
@@ -78,11 +77,21 @@ class Channels {
   }
 
   // Channel-wise functions.
-  friend Channels exp(const Channels& a) { return map(a, [](float x) { return std::exp(x); }); }
-  friend Channels log(const Channels& a) { return map(a, [](float x) { return std::log(x); }); }
-  friend Channels sqrt(const Channels& a) { return map(a, [](float x) { return std::sqrt(x); }); }
-  friend Channels abs(const Channels& a) { return map(a, [](float x) { return std::fabs(x); }); }
-  friend Channels pow(const Channels& a, float e) { return map(a, [e](float x) { return std::pow(x, e); }); }
+  friend Channels exp(const Channels& a) {
+    return map(a, [](float x) { return std::exp(x); });
+  }
+  friend Channels log(const Channels& a) {
+    return map(a, [](float x) { return std::log(x); });
+  }
+  friend Channels sqrt(const Channels& a) {
+    return map(a, [](float x) { return std::sqrt(x); });
+  }
+  friend Channels abs(const Channels& a) {
+    return map(a, [](float x) { return std::fabs(x); });
+  }
+  friend Channels pow(const Channels& a, float e) {
+    return map(a, [e](float x) { return std::pow(x, e); });
+  }
   friend constexpr Channels min(const Channels& a, const Channels& b) {
     Channels r;
     for (int i = 0; i < N; ++i) r.c_[i] = b.c_[i] < a.c_[i] ? b.c_[i] : a.c_[i];
@@ -100,9 +109,7 @@ class Channels {
     return min(max(a, lo), hi);
   }
   // (1 - t) a + t b (as glm::mix), by one weight or channel-wise.
-  friend constexpr Channels mix(const Channels& a, const Channels& b, float t) {
-    return a * (1.f - t) + b * t;
-  }
+  friend constexpr Channels mix(const Channels& a, const Channels& b, float t) { return a * (1.f - t) + b * t; }
   friend constexpr Channels mix(const Channels& a, const Channels& b, const Channels& t) {
     return a * (Channels(1.f) - t) + b * t;
   }

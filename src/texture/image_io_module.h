@@ -1,6 +1,6 @@
 // The boundary between Lantern and its image module, liblantern_imageio.so:
-// the only code that uses OpenImageIO (the oiio_*.cpp files here). The
-// module is loaded on first use (loader.cpp), so a run that reads and
+// the only code that uses OpenImageIO (src/imageio/oiio_*.cpp). The
+// module is loaded on first use (image_io_loader.cpp), so a run that reads and
 // writes no image (--help, a render that fails at load, a benchmark of the
 // core) never loads OpenImageIO and the ~260 libraries Debian's build pulls
 // in at start-up. One table of functions, filled by the module; both sides
