@@ -486,8 +486,9 @@ RenderResult RenderSession::render_all() {
   s.began = true;
   Checkpointer checkpoints(opt, s.hooks, std::move(info), s.start);
   if (scene.textures.cache) scene.textures.cache->reset_lookup_stats(opt.collect_stats);
-  PassContext cx{scene,       opt, s.hooks,  counters,         film, s.film_mutex, strategy_film ? &*strategy_film : nullptr,
-                 s.done, res.stats, dump.get(), checkpoints, s.cancelled};
+  StrategyFilm* strategies = strategy_film ? &*strategy_film : nullptr;
+  PassContext cx{scene, opt, s.hooks, counters, film, s.film_mutex, strategies, s.done, res.stats, dump.get(),
+                 checkpoints, s.cancelled};
   bool interrupted = false;
   {
     ProgressReporter reporter(opt, s.hooks, s.start, s.done, s.total);
