@@ -152,11 +152,18 @@ void for_each_splat_pixel(const PixelFilter& f, int width, int height, Vec2 p, F
   int x1 = std::min(width - 1, int(std::floor(p.x - 0.5f + f.radius.x)));
   int y0 = std::max(0, int(std::ceil(p.y - 0.5f - f.radius.y)));
   int y1 = std::min(height - 1, int(std::floor(p.y - 0.5f + f.radius.y)));
+  // The filter is separable: its column densities are looked up once per
+  // splat, not once per pixel (unless the support is wider than the table).
+  constexpr int kColumns = 32;
+  float wx[kColumns];
+  const bool tabulated = x1 - x0 < kColumns;
+  if (tabulated)
+    for (int x = x0; x <= x1; ++x) wx[x - x0] = pixel_filter_density_1d(f, p.x - (float(x) + 0.5f), 0);
   for (int y = y0; y <= y1; ++y) {
     float wy = pixel_filter_density_1d(f, p.y - (float(y) + 0.5f), 1);
     if (wy == 0.f) continue;
     for (int x = x0; x <= x1; ++x) {
-      float w = wy * pixel_filter_density_1d(f, p.x - (float(x) + 0.5f), 0);
+      float w = wy * (tabulated ? wx[x - x0] : pixel_filter_density_1d(f, p.x - (float(x) + 0.5f), 0));
       if (w != 0.f) fn(size_t(y) * size_t(width) + size_t(x), w);
     }
   }

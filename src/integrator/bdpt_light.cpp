@@ -225,11 +225,9 @@ void Bdpt::light_shade_stage(BdptWave& w) const {
     if (!bsdf.is_specular()) {
       if (keeps_light_vertex(ld))
         w.vertices.push(slot, ld, w.light.beta[slot], w.light.mis[slot],
-                        {.p = h.p[i], .ng = h.ng[i], .ns = h.ns[i], .wo = h.wo[i], .uv = h.uv[i],
-                         .error_scale = h.error_scale[i], .material = h.material[i],
-                         .footprint = h.footprint.empty() ? nullptr : &h.footprint[i],
-                         .tangent = tangent_or_null(h.tangent, i), .medium = {}, .sigma_t = Spectrum(0.f)},
-                        !h.footprint.empty());
+                        {.p = h.p[i], .ng = h.ng[i], .ns = h.ns[i], .wo = h.wo[i], .error_scale = h.error_scale[i],
+                         .bsdf = settings_.connections ? w.vertices.bsdfs.push(bsdf) : BsdfRef{},
+                         .tangent = tangent_or_null(h.tangent, i), .medium = {}, .sigma_t = Spectrum(0.f)});
       connect_camera(w, slot, ld, v, s.get2d(dim + dims::kLightLens));
     }
     if (ld >= maxdepth) {  // deeper vertices would only make paths longer than maxdepth

@@ -48,25 +48,21 @@ bool Bdpt::apply_segment(BdptWave& w, SubpathPool& sub, uint32_t i) const {
 }
 
 // A stored light vertex as a vertex again (integrator/vertex.h): its BSDF
-// rebuilt from the material, or its phase function.
+// as the light subpath built it, or its phase function.
 LightVertexResponse Bdpt::light_vertex_response(const LightVertexPool& v, uint32_t j, const Vec3& wi_w) const {
-  const Scene& sc = scene_;
   LightVertexResponse r;
   if (v.in_medium(j)) {
-    const MediumVertex x{HenyeyGreenstein{sc.media.g(v.medium[j])}, v.p[j], v.wo[j], v.medium[j], v.sigma_t[j]};
+    const MediumVertex x{HenyeyGreenstein{scene_.media.g(v.medium[j])}, v.p[j], v.wo[j], v.medium[j], v.sigma_t[j]};
     r.e = x.evaluate(-wi_w);
     r.sigma_t = x.sigma_t();
     r.target = x.ray_origin(-wi_w);
     return r;
   }
-  const Vec3* tangent = tangent_or_null(v.tangent, j);
-  const TextureContext light_tc{v.p[j], v.ng[j], v.uv[j], v.footprint.empty() ? nullptr : &v.footprint[j],
-                                tangent ? *tangent : Vec3(0.f)};
-  with_bsdf(v.material[j], sc.materials, sc.textures, light_tc, [&](const auto& lb) {
+  v.bsdfs.visit(v.bsdf[j], [&](const auto& lb) {
     const Frame lf = Frame::from_z(v.ns[j]);
     const SurfaceVertex<std::decay_t<decltype(lb)>, TransportMode::Importance> x{
         lb, lf, v.p[j], v.ng[j], v.ns[j], v.wo[j], lf.to_local(v.wo[j]), v.error_scale[j],
-        tangent, 0, {}};
+        tangent_or_null(v.tangent, j), 0, {}};
     r.e = x.evaluate(-wi_w);
     r.cos = x.cos(wi_w);
     r.target = x.ray_origin(-wi_w);
@@ -179,7 +175,7 @@ void Bdpt::light_medium_stage(BdptWave& w) const {
     const MediumVertex v = medium_vertex(w, i);
     if (keeps_light_vertex(ld))
       w.vertices.push(slot, ld, w.light.beta[slot], w.light.mis[slot],
-                      {.p = v.p, .wo = v.wo_world, .medium = v.medium, .sigma_t = v.sigma}, !w.hits.footprint.empty());
+                      {.p = v.p, .wo = v.wo_world, .bsdf = {}, .medium = v.medium, .sigma_t = v.sigma});
     connect_camera(w, slot, ld, v, s.get2d(dim + dims::kLightLens));
     if (ld >= uint32_t(settings_.maxdepth)) {
       ++w.stats.light_ends[size_t(PathEnd::MaxDepth)];

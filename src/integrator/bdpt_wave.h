@@ -13,6 +13,7 @@
 #include "integrator/vertex_grid.h"
 #include "integrator/wave_stats.h"
 #include "light/emission.h"
+#include "material/bsdf_store.h"
 #include "material/material.h"
 #include "sampler/sampler.h"
 
@@ -67,16 +68,14 @@ struct LightOriginPool {
 };
 
 // A light vertex as stored for the eye subpaths: on a surface, or (ng and
-// ns zero, no material) in a medium.
+// ns zero, no BSDF) in a medium.
 struct StoredLightVertex {
   Vec3 p, ng{0.f}, ns{0.f}, wo;
-  Vec2 uv{0.f};
   float error_scale = 0.f;
-  MaterialHandle material = MaterialHandle::make(MaterialKind::Interface, 0);
-  const Footprint* footprint = nullptr;
+  BsdfRef bsdf;                   // its BSDF, built once (none in a medium, or when no eye vertex connects)
   const Vec3* tangent = nullptr;  // a curve's
   MediumHandle medium;            // a medium vertex's
-  Spectrum sigma_t{0.f};               // the extinction there
+  Spectrum sigma_t{0.f};          // the extinction there
 };
 
 // Connectible (non-specular) light vertices, appended bounce by bounce and
@@ -84,12 +83,11 @@ struct StoredLightVertex {
 struct LightVertexPool {
   std::vector<uint32_t> slot, depth;
   std::vector<Vec3> p, ng, ns, wo;
-  std::vector<Vec2> uv;
   std::vector<float> error_scale;
   std::vector<Spectrum> beta;
   std::vector<MisState> mis;
-  std::vector<MaterialHandle> material;
-  std::vector<Footprint> footprint;  // empty unless the scene's textures filter
+  std::vector<BsdfRef> bsdf;         // into bsdfs
+  BsdfStore bsdfs;
   std::vector<Vec3> tangent;         // empty unless the scene has curves
   std::vector<MediumHandle> medium;  // empty unless the scene has media; a medium vertex's, else vacuum
   std::vector<Spectrum> sigma_t;          // alongside medium: the extinction at a medium vertex
@@ -97,21 +95,18 @@ struct LightVertexPool {
 
   size_t size() const { return slot.size(); }
   // Appends a vertex. The arrays only some scenes need are kept only once
-  // a vertex has the field (footprint: when the scene filters textures),
-  // padded for the vertices before it.
-  void push(uint32_t s, uint32_t d, const Spectrum& b, const MisState& m, const StoredLightVertex& x, bool footprints) {
+  // a vertex has the field, padded for the vertices before it.
+  void push(uint32_t s, uint32_t d, const Spectrum& b, const MisState& m, const StoredLightVertex& x) {
     slot.push_back(s);
     depth.push_back(d);
     p.push_back(x.p);
     ng.push_back(x.ng);
     ns.push_back(x.ns);
     wo.push_back(x.wo);
-    uv.push_back(x.uv);
     error_scale.push_back(x.error_scale);
     beta.push_back(b);
     mis.push_back(m);
-    material.push_back(x.material);
-    if (footprints) footprint.push_back(x.footprint ? *x.footprint : Footprint{});
+    bsdf.push_back(x.bsdf);
     if (x.tangent || !tangent.empty()) {
       tangent.resize(size() - 1);
       tangent.push_back(x.tangent ? *x.tangent : Vec3(0.f));
@@ -127,12 +122,11 @@ struct LightVertexPool {
   void clear() {
     for (auto* v : {&slot, &depth, &order}) v->clear();
     for (auto* v : {&p, &ng, &ns, &wo}) v->clear();
-    uv.clear();
     error_scale.clear();
     beta.clear();
     mis.clear();
-    material.clear();
-    footprint.clear();
+    bsdf.clear();
+    bsdfs.clear();
     tangent.clear();
     medium.clear();
     sigma_t.clear();
@@ -282,8 +276,8 @@ struct BdptWave {
          vector_bytes(o.direct_pdf_A) + vector_bytes(o.delta) + vector_bytes(o.infinite);
     const LightVertexPool& v = vertices;
     b += vector_bytes(v.slot) + vector_bytes(v.depth) + vector_bytes(v.p) + vector_bytes(v.ng) + vector_bytes(v.ns) +
-         vector_bytes(v.wo) + vector_bytes(v.uv) + vector_bytes(v.footprint) + vector_bytes(v.tangent) + vector_bytes(v.error_scale) + vector_bytes(v.beta) +
-         vector_bytes(v.mis) + vector_bytes(v.material) + vector_bytes(v.begin) + vector_bytes(v.order) +
+         vector_bytes(v.wo) + vector_bytes(v.tangent) + vector_bytes(v.error_scale) + vector_bytes(v.beta) +
+         vector_bytes(v.mis) + vector_bytes(v.bsdf) + v.bsdfs.memory_bytes() + vector_bytes(v.begin) + vector_bytes(v.order) +
          vector_bytes(v.medium) + vector_bytes(v.sigma_t);
     for (const SubpathPool* p : subpaths) b += vector_bytes(p->medium) + vector_bytes(p->sigma_prev);
     b += vector_bytes(shadow.medium) + vector_bytes(shadow.T) + vector_bytes(shadow.T_mis) + vector_bytes(shadow.deferred) + vector_bytes(ray_medium) +
