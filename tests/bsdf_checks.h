@@ -105,7 +105,7 @@ double albedo(const BSDF& bsdf, const Vec3& wo, TransportMode mode, double* std_
     Vec2 u = s.get2d();
     double v = 0.0;
     if (auto bs = bsdf.sample_f(wo, uc, u, mode); bs && bs->pdf > 0.f)
-      v = double(luminance(film_rgb(bs->f))) * std::fabs(bs->wi.z) / bs->pdf;
+      v = double(luminance(film_rgb(bs->f, SampledWavelengths::rgb()))) * std::fabs(bs->wi.z) / bs->pdf;
     sum += v;
     sum2 += v * v;
   }

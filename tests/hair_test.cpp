@@ -26,7 +26,7 @@ TEST(Hair, SamplingMatchesPdf) {
     Vec3 wo;
   };
   const Case cases[] = {
-      {0.3f, 0.3f, 0.3f, 2.f, Spectrum(0.2f, 0.4f, 0.8f), glm::normalize(Vec3(0.3f, -0.2f, 0.9f))},
+      {0.3f, 0.3f, 0.3f, 2.f, Spectrum(0.2f, 0.4f, 0.8f, 0.4f), glm::normalize(Vec3(0.3f, -0.2f, 0.9f))},
       {-0.8f, 0.15f, 0.5f, 4.f, Spectrum(0.f), glm::normalize(Vec3(-0.6f, 0.3f, 0.4f))},
       {0.f, 0.6f, 0.2f, 0.f, Spectrum(1.5f), glm::normalize(Vec3(0.7f, 0.7f, 0.1f))},
       {0.95f, 0.1f, 0.8f, 2.f, Spectrum(0.05f), glm::normalize(Vec3(0.1f, -0.9f, -0.3f))},
@@ -68,7 +68,7 @@ TEST(Hair, SampledAlbedoMatchesUniformAndAbsorptionOnlyRemoves) {
   const int n = LANTERN_ASAN ? 40000 : 160000;
   for (float h : {-0.7f, 0.1f, 0.9f}) {
     const Vec3 wo = random_direction(s);
-    for (Spectrum sigma : {Spectrum(0.f), Spectrum(0.1f, 0.3f, 1.f)}) {
+    for (Spectrum sigma : {Spectrum(0.f), Spectrum(0.1f, 0.3f, 1.f, 0.3f)}) {
       HairBSDF hair(h, 1.55f, sigma, 0.3f, 0.3f, 2.f, kTangent);
       double uni = 0.0, uni2 = 0.0, smp = 0.0, smp2 = 0.0;
       Spectrum uni_rgb(0.f);

@@ -456,7 +456,7 @@ Shape "sphere"
   EXPECT_TRUE(m.by_reflectance);
   EXPECT_EQ(m.layer.max_depth, 7);
   EXPECT_EQ(m.layer.n_samples, 2);
-  CoatedConductorBSDF b = make_bsdf(m, TextureContext{}, s->textures);
+  CoatedConductorBSDF b = make_bsdf(m, TextureContext{}, s->textures, SampledWavelengths::rgb());
   EXPECT_NEAR(b.top.distrib.alpha_x, std::sqrt(0.1f), 1e-6f);
   EXPECT_NEAR(b.top.distrib.alpha_y, std::sqrt(0.2f), 1e-6f);
   EXPECT_NEAR(b.bottom.distrib.alpha_x, 0.2f, 1e-6f);

@@ -141,7 +141,7 @@ TEST(LightSampler, ZeroProbabilityOnlyWhereTheLightCannotReach) {
       }
       ++zeros;
       for (int k = 0; k < 64; ++k) {
-        auto ls = sample_light_from(L, scene->shapes, scene->textures, l, p, r.get2d());
+        auto ls = sample_light_from(L, scene->shapes, scene->textures, l, p, r.get2d(), SampledWavelengths::rgb());
         if (!ls) continue;
         const bool grazing = nrm != Vec3(0.f) && glm::dot(nrm, ls->wi) == 0.f;
         EXPECT_TRUE(is_black(ls->L) || grazing) << "light " << l << " has probability 0 at (" << p.x << ", " << p.y
@@ -199,8 +199,9 @@ double irradiance_relative_variance(const Scene& scene, LightSamplerKind kind) {
     const Vec3 p(-7.f + 14.f * a.x, 0.f, -4.f + 8.f * a.y), nrm(0.f, 1.f, 0.f);
     double s = 0.0, s2 = 0.0;
     for (int i = 0; i < n; ++i) {
-      auto ls = sample_light(scene.lights, scene.shapes, scene.textures, sampler, p, nrm, r.get1d(), r.get2d());
-      const double v = ls ? luminance(film_rgb(ls->L)) * std::fmax(0.f, glm::dot(nrm, ls->wi)) / ls->pdf : 0.0;
+      auto ls = sample_light(scene.lights, scene.shapes, scene.textures, sampler, p, nrm, r.get1d(), r.get2d(),
+                             SampledWavelengths::rgb());
+      const double v = ls ? luminance(film_rgb(ls->L, SampledWavelengths::rgb())) * std::fmax(0.f, glm::dot(nrm, ls->wi)) / ls->pdf : 0.0;
       s += v, s2 += v * v;
     }
     const double mean = s / n;

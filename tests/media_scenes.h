@@ -64,8 +64,8 @@ inline void expect_volume_light_integrates(const Scene& scene) {
   for (const VolumeLight& v : scene.lights.volume) {
     auto f = [&](const Vec3& p) {
       Spectrum a, s;
-      scene.media.coefficients_at(v.medium, p, &a, &s);
-      return a * scene.media.Le(v.medium, p);
+      scene.media.coefficients_at(v.medium, p, SampledWavelengths::rgb(), &a, &s);
+      return a * scene.media.Le(v.medium, p, SampledWavelengths::rgb());
     };
     const int n = 96;
     double brute[3] = {0, 0, 0};

@@ -75,7 +75,7 @@ TEST(Portal, SamplesThroughTheWindowEstimateIrradiance) {
     for (int k = 0; k < count; ++k) {
       Vec3 wi;
       float pdf;
-      Spectrum L;
+      RGB L;
       if (sample_portal(m, p, Vec2(rng.get1d(), rng.get1d()), &wi, &pdf, &L)) {
         EXPECT_TRUE(through_portal(m, p, wi));
         EXPECT_NEAR(portal_pdf(m, p, wi) / pdf, 1.f, 1e-3f);

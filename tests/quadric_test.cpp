@@ -176,7 +176,7 @@ double nee_irradiance_z(const Scene& s, const Vec3& p, const Vec3& n, int count,
   RandomStream rng = RandomStream::make(3, 0, 0);
   double sum = 0.0, sum2 = 0.0;
   for (int i = 0; i < count; ++i) {
-    auto ls = sample_light_from(s.lights, s.shapes, s.textures, 0, p, Vec2(rng.get1d(), rng.get1d()));
+    auto ls = sample_light_from(s.lights, s.shapes, s.textures, 0, p, Vec2(rng.get1d(), rng.get1d()), SampledWavelengths::rgb());
     double v = 0.0;
     if (ls && ls->pdf > 0.f) v = double(ls->L[0]) * std::fmax(0.f, glm::dot(n, ls->wi)) / ls->pdf;
     sum += v;

@@ -75,13 +75,13 @@ void expect_tracking_matches(const RayMedium& m, float L, float sigma_bar, int r
 
 TEST(Tracking, MatchesTheClosedFormsOfAHomogeneousMedium) {
   RayMedium m;
-  m.sigma_t = Spectrum(1.f, 2.f, 0.5f);
-  m.albedo = Spectrum(0.9f, 0.5f, 1.f);
+  m.sigma_t = Spectrum(1.f, 2.f, 0.5f, 2.f);
+  m.albedo = Spectrum(0.9f, 0.5f, 1.f, 0.5f);
   m.rho = [](float) { return 1.f; };
   m.depth = [](float t) { return t; };
   expect_tracking_matches(m, 1.5f, 2.f, 40000);       // the majorant is the largest extinction
   expect_tracking_matches(m, 1.5f, 5.f, 40000);       // and far above it
-  m.sigma_t = Spectrum(0.f, 1.f, 1.f);                     // a channel that does not interact
+  m.sigma_t = Spectrum(0.f, 1.f, 1.f, 1.f);                     // a channel that does not interact
   expect_tracking_matches(m, 1.5f, 1.f, 40000);
 }
 
@@ -99,8 +99,8 @@ TEST(Tracking, AgreesWithTheExactIntegralOfAHeterogeneousGrid) {
   }
   const Vec3 o(-0.2f, 0.1f, 0.3f), d = glm::normalize(Vec3(1.f, 0.7f, 0.4f));
   RayMedium m;
-  m.sigma_t = Spectrum(1.5f, 0.8f, 2.5f);
-  m.albedo = Spectrum(0.8f, 1.f, 0.6f);
+  m.sigma_t = Spectrum(1.5f, 0.8f, 2.5f, 0.8f);
+  m.albedo = Spectrum(0.8f, 1.f, 0.6f, 1.f);
   m.rho = [&](float t) { return g.density(o + d * t); };
   m.depth = [&](float t) {
     float unused;

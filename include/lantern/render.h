@@ -45,6 +45,7 @@ struct RenderOptions {
   int width = 0, height = 0;  // 0: the scene's Film resolution
   RayBackend ray_backend = RayBackend::StreamNp;
   int wave_size = 4096;  // paths per wave
+  bool spectral = false;  // sample wavelengths as pbrt-v4 does (docs/spectral.md) instead of rendering in RGB
   bool collect_stats = false;  // time stages and ray queries (two clock reads per stage and batch)
   std::string dump_rays;       // when set: write every ray batch given to Embree to this file (perf/ replays it)
   bool strategies = false;  // bdpt: also produce one weighted and one unweighted image per (s, t)

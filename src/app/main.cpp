@@ -58,6 +58,7 @@ struct RenderArgs {
   double time = 0.0, checkpoint = 0.0, texture_cache_mb = 1024.0;
   uint64_t seed = 0;
   bool resume = false;
+  bool spectral = false;
   std::vector<int> resolution;
   bool quiet = false;
 };
@@ -223,6 +224,7 @@ int run_render(const RenderArgs& a) {
   o.vcm_radius = a.vcm_radius;
   o.vcm_alpha = a.vcm_alpha;
   o.mis = lantern::parse_mis(a.mis);
+  o.spectral = a.spectral;
   o.strategies = !a.strategies.empty();
   o.collect_stats = !a.stats.empty();
   o.dump_rays = a.dump_rays;
@@ -464,6 +466,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.01, 1.0));
   render->add_option("--mis", a.mis, "bdpt's MIS heuristic: power or balance")
       ->check(CLI::IsMember({"power", "balance"}));
+  render->add_flag("--spectral", a.spectral,
+                   "Render with sampled wavelengths, four per camera sample, as pbrt-v4 does, instead of in RGB "
+                   "(docs/spectral.md)");
   render->add_option("--stats", a.stats,
                      "Write measurements as JSON: time per stage, rays by kind, subpath lengths, memory");
   render->add_option("--dump-rays", a.dump_rays,

@@ -32,12 +32,12 @@ void Film::prepare(WaveOutput& out) const {
   out.nonfinite = 0;
   out.sample_terms.reserve(out.samples.size());
   for (const FilmSample& s : out.samples) {
-    const RGB c = film_rgb(s.L);
+    const RGB c = s.L;
     if (addable(c)) out.sample_terms.push_back(fixed_term(s.pixel, c));
     else ++out.nonfinite;
   }
   for (const Splat& s : out.splats) {
-    const RGB c = film_rgb(s.L);
+    const RGB c = s.L;
     if (!addable(c)) {
       ++out.nonfinite;
       continue;

@@ -21,15 +21,16 @@
 
 namespace lantern {
 
-// Transported values arrive as spectra; Film::prepare turns them into the
-// output colour (film_rgb), the one place where that happens.
+// Transported values arrive as the film's colour: an integrator turns each
+// sample's spectrum into it with the sample's wavelengths (film_rgb,
+// color/spectrum_conversion.h) when it records the sample.
 struct FilmSample {
   uint32_t pixel;
-  Spectrum L;
+  RGB L;
 };
 struct Splat {
   Vec2 p_raster;
-  Spectrum L;  // contribution, already divided by nothing: the film normalises by the light-path count
+  RGB L;  // contribution, already divided by nothing: the film normalises by the light-path count
 };
 
 // One contribution of one bidirectional strategy (s light vertices, t eye
@@ -39,7 +40,7 @@ struct StrategyRecord {
   uint32_t pixel;  // t >= 2: the pixel of the camera sample
   Vec2 p_raster;   // t = 1: where the splat lands
   uint8_t s, t;
-  Spectrum weighted, unweighted;
+  RGB weighted, unweighted;
   bool merge = false;
 };
 

@@ -18,7 +18,7 @@ StrategyFilm::Sums& StrategyFilm::sums(int s, int t, bool merge) {
 
 void StrategyFilm::merge(const std::vector<StrategyRecord>& records) {
   for (const StrategyRecord& r : records) {
-    const RGB weighted = film_rgb(r.weighted), unweighted = film_rgb(r.unweighted);
+    const RGB weighted = r.weighted, unweighted = r.unweighted;
     if (!is_finite(weighted) || !is_finite(unweighted)) continue;
     Sums& x = sums(r.s, r.t, r.merge);
     auto add = [&](size_t pixel, float w) {

@@ -87,7 +87,7 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
       if (media) apply_segment(w, w.eye, i);
       if (!lights.infinite.empty()) {
         const Vec3 prev = w.eye.prev_p[slot];
-        Spectrum Le = infinite_lights_Le(lights, scene_.textures, prev, d);
+        Spectrum Le = infinite_lights_Le(lights, scene_.textures, prev, d, w.lambda[slot]);
         float wt = w.depth == 1 ? 1.f
                                 : mis_weight_hit_light(m, infinite_lights_pdf(lights, scene_.textures, light_sampler_, prev, d),
                                                        infinite_emission_pdf(lights, scene_.textures, d), w.mis);
@@ -105,7 +105,7 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
     mis_after_hit(m, dist2, cos_in, !(w.depth == 1 && camera_.area_sensor()), w.mis);
     if (media) apply_segment(w, w.eye, i);
     if (int64_t light = hit_area_light(shapes, w.rays, i); light >= 0) {
-      Spectrum Le = area_light_Le(lights.area[size_t(light)], scene_.textures, sp.ng, sp.uv, -d);
+      Spectrum Le = area_light_Le(lights.area[size_t(light)], scene_.textures, sp.ng, sp.uv, -d, w.lambda[slot]);
       if (!is_black(Le)) {
         uint32_t a = uint32_t(light);
         float wt;
@@ -128,7 +128,7 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
     }
     Footprint fp;
     MaterialHandle material = hit_material(scene_, footprints_, w.rays, i, d, &sp, &fp);
-    w.hits.store(i, sp, d, material, footprints_.enabled() ? &fp : nullptr);
+    w.hits.store(i, sp, d, material, w.lambda[slot], footprints_.enabled() ? &fp : nullptr);
   }
 }
 
@@ -192,9 +192,11 @@ void Bdpt::connection_stage(BdptWave& w) const {
     if (c.rays.occluded(r)) continue;
     w.L[c.slot[r]] += c.contrib[r];
     w.stats.light_samples_unoccluded += c.next_event[r];
-    if (c.record)
-      w.out->strategies.push_back(
-          {w.pixel[c.slot[r]], Vec2(0.f), c.tags[r].s, c.tags[r].t, c.contrib[r], c.tags[r].unweighted});
+    if (c.record) {
+      const SampledWavelengths& l = w.lambda[c.slot[r]];
+      w.out->strategies.push_back({w.pixel[c.slot[r]], Vec2(0.f), c.tags[r].s, c.tags[r].t, film_rgb(c.contrib[r], l),
+                                   film_rgb(c.tags[r].unweighted, l)});
+    }
   }
   c.rays.count = 0;
 }
@@ -210,7 +212,8 @@ void Bdpt::add_emission(BdptWave& w, uint32_t slot, const Spectrum& unweighted, 
   if (weight == 0.f && !settings_.record_strategies) return;  // (bpm's emission past a merging vertex)
   w.L[slot] += unweighted * weight;
   if (settings_.record_strategies)
-    w.out->strategies.push_back({w.pixel[slot], Vec2(0.f), 0, uint8_t(w.depth + 1), unweighted * weight, unweighted});
+    w.out->strategies.push_back({w.pixel[slot], Vec2(0.f), 0, uint8_t(w.depth + 1),
+                                 film_rgb(unweighted * weight, w.lambda[slot]), film_rgb(unweighted, w.lambda[slot])});
 }
 
 void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
@@ -268,7 +271,8 @@ void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
       timed(Stage::Accumulate, [&] { connection_stage(w); });
     }
   }
-  for (uint32_t slot = 0; slot < wave.size(); ++slot) out.samples.push_back({w.pixel[slot], w.L[slot]});
+  for (uint32_t slot = 0; slot < wave.size(); ++slot)
+    out.samples.push_back({w.pixel[slot], film_rgb(w.L[slot], w.lambda[slot])});
   out.light_paths += wave.size();
 }
 

@@ -58,6 +58,7 @@ struct BdptSettings {
   int footprint_spp = 16;
   SamplerSettings sampler;
   uint32_t planned_spp = 0;  // 0 under a time budget
+  bool spectral = false;  // sampled wavelengths instead of RGB
 };
 
 struct BdptWave;
@@ -135,7 +136,7 @@ class Bdpt {
     MediumHandle medium;  // vacuum: not a volume light's sample
     Spectrum sigma_t{0.f};
   };
-  void complete_volume_light_sample(LightSample& ls, uint32_t depth, VolumeSampleEnd* end) const;
+  void complete_volume_light_sample(LightSample& ls, uint32_t depth, const SampledWavelengths& lambda, VolumeSampleEnd* end) const;
 
   // Whether a light vertex at path depth ld is stored for the eye
   // subpaths, on a surface or in a medium alike: s >= 2 connections need

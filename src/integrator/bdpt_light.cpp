@@ -7,6 +7,7 @@
 #include "integrator/hit_material.h"
 #include "integrator/shade.h"
 #include "light/emission.h"
+#include "integrator/wavelengths.h"
 #include "sampler/dimensions.h"
 
 namespace lantern {
@@ -20,9 +21,16 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
   const uint32_t maxdepth = uint32_t(settings_.maxdepth);
   std::vector<EmissionSample>& in_volume = w.volume_starts;  // waiting to learn which medium they are in
   in_volume.clear();
+  // With merging, one set of wavelengths for the whole wave (wavelengths.h).
+  const SampledWavelengths wave_lambda =
+      settings_.merging ? sample_wavelengths(settings_.spectral, PathSampler::make(sampler_, wave.pixels[0], wave.first_sample),
+                                             settings_.maxdepth)
+                        : SampledWavelengths::rgb();
   for (uint32_t slot = 0; slot < wave.size(); ++slot) {
     uint32_t pixel = wave.pixels[slot / wave.samples];
     PathSampler s = PathSampler::make(sampler_, pixel, wave.first_sample + slot % wave.samples);
+    const SampledWavelengths& lambda = w.lambda[slot] =
+        settings_.merging ? wave_lambda : sample_wavelengths(settings_.spectral, s, settings_.maxdepth);
     float u_select = s.get1d(dims::kLightSelect);
     Vec2 u_pos = s.get2d(dims::kLightPosition), u_dir = s.get2d(dims::kLightDirection);
     const float u_volume =
@@ -31,7 +39,7 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
     w.L[slot] = Spectrum(0.f);
     w.sampler[slot] = s;
     w.origin.extra_depth[slot] = 0;
-    auto es = sample_le(lights, scene_.shapes, scene_.textures, u_select, u_pos, u_dir, u_volume);
+    auto es = sample_le(lights, scene_.shapes, scene_.textures, u_select, u_pos, u_dir, lambda, u_volume);
     if (!es) continue;
     if (es->volume) {
       in_volume.push_back(*es);
@@ -61,7 +69,8 @@ void Bdpt::start_volume_subpaths(BdptWave& w) const {
     EmissionSample es = w.volume_starts[k];
     MediumHandle m;
     Spectrum sigma_t;
-    complete_volume_sample(scene_.lights, scene_.media, &es.Le, es.p, es.light, &m, &sigma_t);
+    complete_volume_sample(scene_.lights, scene_.media, &es.Le, es.p, es.light, w.lambda[w.volume_slots[k]], &m,
+                           &sigma_t);
     if (w.volume_media[k] != m || is_black(es.Le)) continue;
     w.origin.extra_depth[w.volume_slots[k]] = 1;
     begin_light_subpath(w, w.volume_slots[k], es, m, sigma_t);
@@ -110,7 +119,7 @@ void Bdpt::begin_light_subpath(BdptWave& w, uint32_t slot, const EmissionSample&
   if (!es.infinite && !es.delta_pos && settings_.connections) {
     if (auto cs = camera_.sample_wi(es.p, u_lens)) {
       float cos_l = on_surface ? std::fabs(glm::dot(es.n, cs->wi)) : 1.f;
-      Spectrum Le = es.volume ? es.Le : emitted(lights, scene_.textures, es.light, es.n, es.uv, cs->wi);
+      Spectrum Le = es.volume ? es.Le : emitted(lights, scene_.textures, es.light, es.n, es.uv, cs->wi, w.lambda[slot]);
       if (!is_black(Le) && cos_l > 0.f) {
         Connection k;
         k.mis = mis_sums_light_origin(camera_.pdf_area(-cs->wi, sqr(cs->dist), cos_l), es.pdf_pos, es.delta_pos, w.mis);
@@ -162,7 +171,7 @@ void Bdpt::light_surface_stage(BdptWave& w) const {
     if (w.depth == 1 && !reaches_through_portal(scene_.lights, w.origin.light[slot], sp.p, -d)) continue;
     Footprint fp;
     MaterialHandle material = hit_material(scene_, footprints_, w.rays, i, d, &sp, &fp);
-    w.hits.store(i, sp, d, material, footprints_.enabled() ? &fp : nullptr);
+    w.hits.store(i, sp, d, material, w.lambda[slot], footprints_.enabled() ? &fp : nullptr);
     MisState& m = w.light.mis[slot];
     if (w.depth == 1) {
       const LightOriginPool& o = w.origin;
@@ -251,11 +260,14 @@ void Bdpt::splat_stage(BdptWave& w) const {
   ConnectionPool& c = w.shadow;
   for (uint32_t r = 0; r < c.rays.count; ++r) {
     if (c.rays.occluded(r)) continue;
-    w.out->splats.push_back({c.p_raster[r], c.contrib[r]});
+    const SampledWavelengths& l = w.lambda[c.slot[r]];
+    const RGB contrib = film_rgb(c.contrib[r], l);
+    w.out->splats.push_back({c.p_raster[r], contrib});
     Vec2 images[2];
     for (int k = camera_.seam_images(c.p_raster[r], scene_.filter.radius, images); k-- > 0;)
-      w.out->splats.push_back({images[k], c.contrib[r]});
-    if (c.record) w.out->strategies.push_back({0, c.p_raster[r], c.tags[r].s, 1, c.contrib[r], c.tags[r].unweighted});
+      w.out->splats.push_back({images[k], contrib});
+    if (c.record)
+      w.out->strategies.push_back({0, c.p_raster[r], c.tags[r].s, 1, contrib, film_rgb(c.tags[r].unweighted, l)});
   }
   c.rays.count = 0;
 }

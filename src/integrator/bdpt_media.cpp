@@ -28,9 +28,10 @@ void Bdpt::segment_stage(BdptWave& w, RayKind kind, bool light_subpaths) const {
   for (uint32_t i = 0; i < w.rays.count; ++i) {
     const uint32_t slot = w.active[i];
     w.ray_medium[i] = sub.medium[slot];
+    w.ray_lambda[i] = w.lambda[slot];
     w.u_distance[i] = w.sampler[slot].get1d(dims::distance(base, segment, light_subpaths));
   }
-  find_segment_ends(scene_, w.stream, kind, w.rays, w.ray_medium, w.u_distance, w.ends, w.crossing);
+  find_segment_ends(scene_, w.stream, kind, w.rays, w.ray_medium, w.u_distance, w.ray_lambda, w.ends, w.crossing);
 }
 
 // The segment's throughput and the densities it adds to the MIS quantities
@@ -87,12 +88,14 @@ float Bdpt::volume_number(const BdptWave& w, uint32_t slot) const {
 // Completes a volume light sample of next-event estimation from the eye
 // vertex at eye depth `depth` (paths ending on volume emission have at
 // most maxdepth segments; a longer one gets L = 0).
-void Bdpt::complete_volume_light_sample(LightSample& ls, uint32_t depth, VolumeSampleEnd* end) const {
+void Bdpt::complete_volume_light_sample(LightSample& ls, uint32_t depth, const SampledWavelengths& lambda,
+                                        VolumeSampleEnd* end) const {
   if (!volume_sample_allowed(int(depth), settings_.maxdepth)) {
     ls.L = Spectrum(0.f);
     return;
   }
-  complete_volume_sample(scene_.lights, scene_.media, &ls.L, ls.p_light, ls.light, &end->medium, &end->sigma_t);
+  complete_volume_sample(scene_.lights, scene_.media, &ls.L, ls.p_light, ls.light, lambda, &end->medium,
+                         &end->sigma_t);
 }
 
 // s = 0 at an eye vertex in an emissive medium (beta_before: the
@@ -190,7 +193,7 @@ void Bdpt::light_medium_stage(BdptWave& w) const {
 // Traces the pending connections through the media and weights them.
 void Bdpt::trace_connections(BdptWave& w) const {
   ConnectionPool& c = w.shadow;
-  trace_transmittance(scene_, w.stream, c.rays, c.medium, c.T, c.T_mis, w.crossing);
+  trace_transmittance(scene_, w.stream, c.rays, c.medium, c.lambda, c.T, c.T_mis, w.crossing);
   const bool weighted = this->weighted();
   for (uint32_t r = 0; r < c.rays.count; ++r) {
     if (c.rays.occluded(r)) continue;

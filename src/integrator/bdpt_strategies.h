@@ -26,8 +26,8 @@ namespace lantern {
 // In a scene without media a connection's segment adds nothing to the
 // densities (its transmittance is 1): its weight is known now.
 inline void Bdpt::push_connection(BdptWave& w, uint32_t slot, const Connection& k) const {
-  if (w.shadow.media) w.shadow.push(slot, k, k.unweighted);
-  else w.shadow.push(slot, k, k.unweighted * (weighted() ? mis_weight_vacuum(k.mis) : 1.f));
+  if (w.shadow.media) w.shadow.push(slot, k, k.unweighted, w.lambda[slot]);
+  else w.shadow.push(slot, k, k.unweighted * (weighted() ? mis_weight_vacuum(k.mis) : 1.f), w.lambda[slot]);
 }
 
 // s = 1: next-event estimation from eye vertex v (Veach 1997, sec. 10.2;
@@ -38,9 +38,9 @@ void Bdpt::next_event(BdptWave& w, uint32_t slot, const Vertex& v, float u_light
   const Scene& sc = scene_;
   ++w.stats.light_samples;
   auto ls = sample_light(sc.lights, sc.shapes, sc.textures, light_sampler_, v.p, v.light_sampler_normal(), u_light,
-                         u_light2, volume_number(w, slot));
+                         u_light2, w.lambda[slot], volume_number(w, slot));
   VolumeSampleEnd vol;
-  if (ls && ls->volume) complete_volume_light_sample(*ls, w.depth, &vol);
+  if (ls && ls->volume) complete_volume_light_sample(*ls, w.depth, w.lambda[slot], &vol);
   if (!ls || is_black(ls->L)) return;
   const VertexEval e = v.evaluate(ls->wi);
   const float dist2 = ls->infinite ? 1.f : glm::dot(ls->p_light - v.p, ls->p_light - v.p);
@@ -159,7 +159,7 @@ void Bdpt::merge_at_eye_vertex(BdptWave& w, uint32_t slot, const Vertex& v) cons
     if constexpr (Vertex::kInMedium) {
       if (medium_scale[0] < 0.f) {
         Spectrum sigma_a, sigma_s;
-        scene_.media.coefficients_at(v.medium, v.p, &sigma_a, &sigma_s);
+        scene_.media.coefficients_at(v.medium, v.p, w.lambda[slot], &sigma_a, &sigma_s);
         for (int c = 0; c < Spectrum::kSize; ++c)
           medium_scale[c] = sigma_s[c] > 0.f ? w.eye.beta[slot][c] / sigma_s[c] * w.vm_normalization_medium : 0.f;
       }
@@ -180,8 +180,9 @@ void Bdpt::merge_at_eye_vertex(BdptWave& w, uint32_t slot, const Vertex& v) cons
     ++w.stats.merges;
     if (settings_.record_strategies) {
       const Spectrum u = estimate(e.f * lv.beta[j]);
-      w.out->strategies.push_back(
-          {w.pixel[slot], Vec2(0.f), uint8_t(lv.depth[j] + 1), uint8_t(depth + 1), u * weight(wt), u, true});
+      const SampledWavelengths& l = w.lambda[slot];
+      w.out->strategies.push_back({w.pixel[slot], Vec2(0.f), uint8_t(lv.depth[j] + 1), uint8_t(depth + 1),
+                                   film_rgb(u * weight(wt), l), film_rgb(u, l), true});
     }
   });
   if (is_black(sum)) return;

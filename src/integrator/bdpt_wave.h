@@ -168,11 +168,12 @@ struct ConnectionPool {
   std::vector<Spectrum> T, T_mis;  // the estimate, and what MIS sees (medium_events.h)
   std::vector<DeferredMis> deferred;
   std::vector<MediumHandle> expect;  // a volume light's point: the medium the ray must end in (else vacuum)
+  std::vector<SampledWavelengths> lambda;  // its sample's wavelengths
   bool media = false;
   bool record = false;
-  // Queues connection k of `slot` carrying contrib (weighted, or with
-  // media unweighted until traced).
-  void push(uint32_t s, const Connection& k, const Spectrum& c) {
+  // Queues connection k of `slot` (whose wavelengths are l) carrying
+  // contrib (weighted, or with media unweighted until traced).
+  void push(uint32_t s, const Connection& k, const Spectrum& c, const SampledWavelengths& l) {
     const uint32_t i = rays.push(k.o, k.d, 0.f, k.t_max);
     if (slot.size() <= i) {
       const size_t n = rays.capacity();
@@ -185,6 +186,7 @@ struct ConnectionPool {
         medium.resize(n);
         deferred.resize(n);
         expect.resize(n);
+        lambda.resize(n);
       }
     }
     slot[i] = s;
@@ -196,6 +198,7 @@ struct ConnectionPool {
       medium[i] = k.start;
       deferred[i] = k.mis;
       expect[i] = k.expect;
+      lambda[i] = l;
     }
   }
 };
@@ -206,6 +209,7 @@ struct BdptWave {
     light.resize_media(capacity);
     ray_medium.resize(capacity);
     u_distance.resize(capacity);
+    ray_lambda.resize(capacity);
     ends.resize(capacity);
     scattered.reserve(capacity);
     shadow.media = true;
@@ -214,6 +218,7 @@ struct BdptWave {
   BdptWave(uint32_t capacity, RayStream s) : stream(std::move(s)) {
     pixel.resize(capacity);
     sampler.resize(capacity);
+    lambda.resize(capacity);
     L.resize(capacity);
     eye.resize(capacity);
     light.resize(capacity);
@@ -228,6 +233,7 @@ struct BdptWave {
   // per slot
   std::vector<uint32_t> pixel;
   std::vector<PathSampler> sampler;
+  std::vector<SampledWavelengths> lambda;  // shared by the slot's eye and light subpaths
   std::vector<Spectrum> L;
   SubpathPool eye, light;
   LightOriginPool origin;
@@ -244,6 +250,7 @@ struct BdptWave {
   // the rays that scattered in a medium this bounce.
   std::vector<MediumHandle> ray_medium;
   std::vector<float> u_distance;
+  std::vector<SampledWavelengths> ray_lambda;
   SegmentEnds ends;
   std::vector<uint32_t> scattered;
   CrossingScratch crossing;
@@ -264,7 +271,7 @@ struct BdptWave {
 
   size_t memory_bytes() const {
     const SubpathPool* subpaths[] = {&eye, &light};
-    size_t b = vector_bytes(pixel) + vector_bytes(sampler) + vector_bytes(L) + vector_bytes(active) +
+    size_t b = vector_bytes(pixel) + vector_bytes(sampler) + vector_bytes(lambda) + vector_bytes(L) + vector_bytes(active) +
                rays.memory_bytes() + hits.memory_bytes() + shadow.rays.memory_bytes() + vector_bytes(shadow.slot) +
                vector_bytes(shadow.contrib) + vector_bytes(shadow.p_raster) + vector_bytes(shadow.tags) +
                vector_bytes(shadow.next_event);
@@ -282,7 +289,7 @@ struct BdptWave {
     for (const SubpathPool* p : subpaths) b += vector_bytes(p->medium) + vector_bytes(p->sigma_prev);
     b += vector_bytes(shadow.medium) + vector_bytes(shadow.T) + vector_bytes(shadow.T_mis) + vector_bytes(shadow.deferred) + vector_bytes(ray_medium) +
          vector_bytes(u_distance) + ends.memory_bytes() + vector_bytes(scattered) + crossing.memory_bytes() +
-         vector_bytes(shadow.expect) + vector_bytes(o.extra_depth) + vector_bytes(volume_starts) + vector_bytes(volume_slots) +
+         vector_bytes(shadow.expect) + vector_bytes(shadow.lambda) + vector_bytes(ray_lambda) + vector_bytes(o.extra_depth) + vector_bytes(volume_starts) + vector_bytes(volume_slots) +
          vector_bytes(volume_points) + vector_bytes(volume_media) + grid.memory_bytes();
     return b;
   }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "accel/ray_batch.h"
+#include "color/sampled_wavelengths.h"
 #include "material/material.h"
 #include "geometry/surface.h"
 #include "texture/mapping.h"
@@ -97,6 +98,7 @@ struct HitPool {
   std::vector<MaterialHandle> material;
   std::vector<Footprint> footprint;  // empty unless the scene's textures filter
   std::vector<Vec3> tangent;         // empty until a curve is hit
+  std::vector<SampledWavelengths> lambda;  // the wavelengths of the hit's sample
   std::vector<uint8_t> alive;  // the path continues past this bounce
   std::vector<Vec3> next_o, next_d;
   std::array<std::vector<uint32_t>, kMaterialKindCount> bins;
@@ -106,12 +108,13 @@ struct HitPool {
     uv.resize(n);
     error_scale.resize(n);
     material.resize(n);
+    lambda.resize(n);
     alive.resize(n);
     for (auto& b : bins) b.reserve(n);
   }
   size_t memory_bytes() const {
     size_t b = vector_bytes(p) + vector_bytes(ng) + vector_bytes(ns) + vector_bytes(wo) + vector_bytes(uv) +
-               vector_bytes(error_scale) + vector_bytes(material) + vector_bytes(footprint) + vector_bytes(tangent) +
+               vector_bytes(error_scale) + vector_bytes(material) + vector_bytes(lambda) + vector_bytes(footprint) + vector_bytes(tangent) +
                vector_bytes(alive) + vector_bytes(next_o) + vector_bytes(next_d);
     for (const auto& bin : bins) b += vector_bytes(bin);
     return b;
@@ -119,9 +122,11 @@ struct HitPool {
   void clear_bins() {
     for (auto& b : bins) b.clear();
   }
-  // Records hit i (reached travelling along d) and puts it in its material's
-  // bin; fp: its footprint, when the integrator computes them.
-  void store(uint32_t i, const SurfacePoint& sp, const Vec3& d, MaterialHandle m, const Footprint* fp) {
+  // Records hit i (reached travelling along d by a sample of wavelengths l)
+  // and puts it in its material's bin; fp: its footprint, when the
+  // integrator computes them.
+  void store(uint32_t i, const SurfacePoint& sp, const Vec3& d, MaterialHandle m, const SampledWavelengths& l,
+             const Footprint* fp) {
     if (fp) {
       if (footprint.size() != p.size()) footprint.resize(p.size());
       footprint[i] = *fp;
@@ -137,6 +142,7 @@ struct HitPool {
     wo[i] = -d;
     error_scale[i] = sp.error_scale;
     material[i] = m;
+    lambda[i] = l;
     bins[size_t(m.kind())].push_back(i);
   }
   // The next rays of the bounce's surviving paths, in order; active[] is

@@ -78,8 +78,8 @@ void end_segment(SegmentEnds& out, uint32_t i, MediumHandle m, const Spectrum& d
 }  // namespace
 
 void find_segment_ends(const Scene& sc, RayStream& stream, RayKind kind, RayBatch& rays,
-                       const std::vector<MediumHandle>& medium, const std::vector<float>& u, SegmentEnds& out,
-                       CrossingScratch& s) {
+                       const std::vector<MediumHandle>& medium, const std::vector<float>& u,
+                       const std::vector<SampledWavelengths>& lambda, SegmentEnds& out, CrossingScratch& s) {
   const uint32_t n = rays.count;
   if (out.end.size() < n) out.resize(rays.capacity());
   const bool emissive = sc.media.any_emissive();
@@ -125,22 +125,23 @@ void find_segment_ends(const Scene& sc, RayStream& stream, RayKind kind, RayBatc
         const bool by_tracking = sc.media.tracked(m);
         if (by_tracking) {
           RandomStream rng = stretch_stream(o, dir, u[i], uint32_t(round));
-          const tracking::Track tr = sc.media.track(m, o, dir, len, rng.get1d(), rng);
+          const tracking::Track tr = sc.media.track(m, o, dir, len, rng.get1d(), lambda[i], rng);
           s.tracked_weight[i] *= tr.weight;
           s_hit = tr.t, sigma_a = tr.sigma_a, sigma_s = tr.sigma_s;
           float unused;
-          s.tracked_depth[i] += sc.media.optical_depth(m, o, dir, 0.f, tr.real() ? tr.t : len, 0, -1.f, &unused);
+          s.tracked_depth[i] += sc.media.optical_depth(m, o, dir, 0.f, tr.real() ? tr.t : len, 0, -1.f, lambda[i], &unused);
           if (tr.saturated) s.tau[i] = kInfinity, depth = Spectrum(kInfinity);  // ends absorbed below
         } else {
-          const Spectrum stretch = sc.media.optical_depth(m, o, dir, 0.f, len, s.channel[i], s.tau[i], &s_hit);
+          const Spectrum stretch =
+              sc.media.optical_depth(m, o, dir, 0.f, len, s.channel[i], s.tau[i], lambda[i], &s_hit);
           depth += stretch;
-          if (s_hit < kInfinity) sc.media.coefficients_at(m, o + dir * s_hit, &sigma_a, &sigma_s);
+          if (s_hit < kInfinity) sc.media.coefficients_at(m, o + dir * s_hit, lambda[i], &sigma_a, &sigma_s);
           else s.tau[i] -= stretch[s.channel[i]];
         }
         if (s_hit < kInfinity) {  // scatters inside this stretch
           out.end[i] = SegmentEnd::Scatter;
           out.p[i] = o + dir * s_hit;
-          const Spectrum Le = emissive && !by_tracking ? sc.media.Le(m, out.p[i]) : Spectrum(0.f);
+          const Spectrum Le = emissive && !by_tracking ? sc.media.Le(m, out.p[i], lambda[i]) : Spectrum(0.f);
           end_segment(out, i, m, depth, s.tracked_weight[i], s.tracked_depth[i], sigma_a, sigma_s, true, by_tracking, Le);
           continue;
         }
@@ -164,7 +165,8 @@ void find_segment_ends(const Scene& sc, RayStream& stream, RayKind kind, RayBatc
 }
 
 void trace_transmittance(const Scene& sc, RayStream& stream, RayBatch& rays, const std::vector<MediumHandle>& medium,
-                         std::vector<Spectrum>& T, std::vector<Spectrum>& T_mis, CrossingScratch& s) {
+                         const std::vector<SampledWavelengths>& lambda, std::vector<Spectrum>& T,
+                         std::vector<Spectrum>& T_mis, CrossingScratch& s) {
   const uint32_t n = rays.count;
   if (T.size() < n) T.resize(rays.capacity());
   if (T_mis.size() < n) T_mis.resize(rays.capacity());
@@ -200,10 +202,10 @@ void trace_transmittance(const Scene& sc, RayStream& stream, RayBatch& rays, con
         const Vec3 d = s.rays.direction(j), o = s.rays.origin(j);
         const float d_len = glm::length(d), len = s.rays.tfar[j] * d_len;
         float unused;
-        const Spectrum depth = sc.media.optical_depth(m, o, d / d_len, 0.f, len, 0, -1.f, &unused);
+        const Spectrum depth = sc.media.optical_depth(m, o, d / d_len, 0.f, len, 0, -1.f, lambda[r], &unused);
         if (sc.media.tracked(m)) {
           RandomStream rng = stretch_stream(o, d / d_len, rays.tfar[r], uint32_t(round));
-          s.tracked_weight[r] *= sc.media.ratio_track(m, o, d / d_len, len, rng);
+          s.tracked_weight[r] *= sc.media.ratio_track(m, o, d / d_len, len, lambda[r], rng);
           s.tracked_depth[r] += depth;
         } else {
           s.depth[r] += depth;

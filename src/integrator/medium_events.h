@@ -80,12 +80,13 @@ struct CrossingScratch {
 };
 
 // Follows each ray i of `rays` (already intersected) that starts in
-// medium[i], sampling its distance with the uniform number u[i]. Rays that
-// end on a surface keep that hit in `rays` (their origin moved to the last
-// boundary crossed, their direction unchanged).
+// medium[i], sampling its distance with the uniform number u[i], its
+// coefficients at its sample's wavelengths lambda[i]. Rays that end on a
+// surface keep that hit in `rays` (their origin moved to the last boundary
+// crossed, their direction unchanged).
 void find_segment_ends(const Scene& scene, RayStream& stream, RayKind kind, RayBatch& rays,
-                       const std::vector<MediumHandle>& medium, const std::vector<float>& u, SegmentEnds& out,
-                       CrossingScratch& scratch);
+                       const std::vector<MediumHandle>& medium, const std::vector<float>& u,
+                       const std::vector<SampledWavelengths>& lambda, SegmentEnds& out, CrossingScratch& scratch);
 
 // The transmittance of each shadow ray of `rays` (origin, direction and
 // t_max set, not yet traced) that starts in medium[i]: zero when a surface
@@ -93,9 +94,11 @@ void find_segment_ends(const Scene& scene, RayStream& stream, RayKind kind, RayB
 // estimate to weight the contribution by; T_mis the transmittance the MIS
 // densities use (the same but where the ray crosses tracked media).
 // Afterwards scratch.medium[i] is the medium ray i ends in (emissive
-// media: a light sample counts only if it lies in its medium).
+// media: a light sample counts only if it lies in its medium). lambda[i]:
+// ray i's wavelengths.
 void trace_transmittance(const Scene& scene, RayStream& stream, RayBatch& rays, const std::vector<MediumHandle>& medium,
-                         std::vector<Spectrum>& T, std::vector<Spectrum>& T_mis, CrossingScratch& scratch);
+                         const std::vector<SampledWavelengths>& lambda, std::vector<Spectrum>& T,
+                         std::vector<Spectrum>& T_mis, CrossingScratch& scratch);
 
 // The medium each point p[i] lies in, found along a ray from it to
 // `known`, a point in medium `known_medium`: the side facing p[i] of the

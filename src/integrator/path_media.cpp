@@ -17,9 +17,10 @@ void PathTracer::segment_stage(PathWave& w, RayKind kind) const {
   for (uint32_t i = 0; i < w.rays.count; ++i) {
     const uint32_t slot = w.active[i];
     w.ray_medium[i] = w.medium[slot];
+    w.ray_lambda[i] = w.lambda[slot];
     w.u_distance[i] = w.sampler[slot].get1d(dims::distance(base, w.bounce(), false));
   }
-  find_segment_ends(scene_, w.stream, kind, w.rays, w.ray_medium, w.u_distance, w.ends, w.crossing);
+  find_segment_ends(scene_, w.stream, kind, w.rays, w.ray_medium, w.u_distance, w.ray_lambda, w.ends, w.crossing);
 }
 
 // The third number of a point sampled on a volume light from the current

@@ -17,13 +17,14 @@ template <class Vertex>
 void path_next_event(const Scene& sc, const LightSampler& light_sampler, PathWave& w, uint32_t slot, const Vertex& v,
                      float u_light, Vec2 u_light2, float u_volume, int maxdepth) {
   ++w.stats.light_samples;
+  const SampledWavelengths& lambda = w.lambda[slot];
   auto ls = sample_light(sc.lights, sc.shapes, sc.textures, light_sampler, v.p, v.light_sampler_normal(), u_light,
-                         u_light2, u_volume);
+                         u_light2, lambda, u_volume);
   MediumHandle expect;
   Spectrum sigma_end(0.f);
   if (ls && ls->volume) {
     if (!volume_sample_allowed(int(w.depth), maxdepth)) return;
-    complete_volume_sample(sc.lights, sc.media, &ls->L, ls->p_light, ls->light, &expect, &sigma_end);
+    complete_volume_sample(sc.lights, sc.media, &ls->L, ls->p_light, ls->light, lambda, &expect, &sigma_end);
   }
   if (!ls || is_black(ls->L)) return;
   const VertexEval e = v.evaluate(ls->wi, false);

@@ -6,6 +6,7 @@
 #include "integrator/path_next_event.h"
 #include "integrator/path_wave.h"
 #include "integrator/shade.h"
+#include "integrator/wavelengths.h"
 #include "sampler/dimensions.h"
 #include "geometry/surface.h"
 
@@ -46,6 +47,7 @@ void PathTracer::generate_camera_rays(const WaveDesc& wave, PathWave& w) const {
     CameraRay r = camera_.generate_ray(p_raster, s.get2d(dims::kLens));
     w.pixel[slot] = pixel;
     w.sampler[slot] = s;
+    w.lambda[slot] = sample_wavelengths(settings_.spectral, s, settings_.maxdepth);
     w.beta[slot] = Spectrum(1.f);
     w.L[slot] = Spectrum(0.f);
     w.prev_pdf[slot] = 1.f;
@@ -94,7 +96,7 @@ void PathTracer::surface_stage(PathWave& w) const {
     if (!w.rays.hit(i)) {
       ++w.stats.eye_ends[size_t(PathEnd::Escaped)];
       if (!lights.infinite.empty()) {
-        Spectrum Le = infinite_lights_Le(lights, scene_.textures, w.prev_p[slot], d);
+        Spectrum Le = infinite_lights_Le(lights, scene_.textures, w.prev_p[slot], d, w.lambda[slot]);
         float weight = unweighted ? 1.f
                                   : power_heuristic(prev_pdf, infinite_lights_pdf(lights, scene_.textures,
                                                                                   light_sampler_, w.prev_p[slot], d));
@@ -106,7 +108,7 @@ void PathTracer::surface_stage(PathWave& w) const {
     SurfacePoint sp = hit_point(shapes, w.rays, i);
     if (int64_t area = hit_area_light(shapes, w.rays, i); area >= 0) {
       uint32_t light = uint32_t(area);
-      Spectrum Le = area_light_Le(lights.area[light], scene_.textures, sp.ng, sp.uv, -d);
+      Spectrum Le = area_light_Le(lights.area[light], scene_.textures, sp.ng, sp.uv, -d, w.lambda[slot]);
       if (!is_black(Le)) {
         float weight = unweighted ? 1.f
                                   : power_heuristic(prev_pdf,
@@ -121,7 +123,7 @@ void PathTracer::surface_stage(PathWave& w) const {
     }
     Footprint fp;
     MaterialHandle material = hit_material(scene_, footprints_, w.rays, i, d, &sp, &fp);
-    w.hits.store(i, sp, d, material, footprints_.enabled() ? &fp : nullptr);
+    w.hits.store(i, sp, d, material, w.lambda[slot], footprints_.enabled() ? &fp : nullptr);
   }
 }
 
@@ -202,7 +204,8 @@ void PathTracer::trace(const WaveDesc& wave, PathWave& w, WaveOutput& out) const
       if (media) medium_scatter_stage(w);
     }
     if (media) {
-      trace_transmittance(scene_, w.stream, w.shadow, w.shadow_medium, w.shadow_T, w.shadow_T_mis, w.crossing);
+      trace_transmittance(scene_, w.stream, w.shadow, w.shadow_medium, w.shadow_lambda, w.shadow_T, w.shadow_T_mis,
+                          w.crossing);
     } else {
       w.stream.occluded(w.shadow);
     }
@@ -219,7 +222,8 @@ void PathTracer::trace(const WaveDesc& wave, PathWave& w, WaveOutput& out) const
     ++w.depth;
     w.stream.intersect(w.rays, RayKind::Extension);
   }
-  for (uint32_t slot = 0; slot < wave.size(); ++slot) out.samples.push_back({w.pixel[slot], w.L[slot]});
+  for (uint32_t slot = 0; slot < wave.size(); ++slot)
+    out.samples.push_back({w.pixel[slot], film_rgb(w.L[slot], w.lambda[slot])});
 }
 
 }  // namespace lantern

@@ -23,6 +23,7 @@ struct PathTracerSettings {
   int footprint_spp = 16;
   SamplerSettings sampler;
   uint32_t planned_spp = 0;  // 0 under a time budget
+  bool spectral = false;     // sampled wavelengths instead of RGB
 };
 
 struct PathWave;  // the SoA pools, reused wave after wave by one thread

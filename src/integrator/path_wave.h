@@ -23,6 +23,7 @@ struct PathWave {
   std::vector<uint32_t> pixel;
   std::vector<PathSampler> sampler;
   std::vector<Spectrum> beta, L;
+  std::vector<SampledWavelengths> lambda;
   std::vector<float> prev_pdf, eta_scale;
   std::vector<Vec3> prev_p;  // origin of the ray that found the current vertex
   std::vector<Vec3> prev_n;  // its shading normal (the light sampler's context; zero at the camera)
@@ -49,6 +50,7 @@ struct PathWave {
   // for (the transmittance enters the BSDF strategy's density).
   std::vector<MediumHandle> medium, ray_medium;
   std::vector<float> u_distance;
+  std::vector<SampledWavelengths> ray_lambda, shadow_lambda;
   SegmentEnds ends;
   std::vector<uint32_t> scattered;
   std::vector<MediumHandle> shadow_medium;
@@ -67,6 +69,8 @@ struct PathWave {
     medium.resize(n);
     ray_medium.resize(n);
     u_distance.resize(n);
+    ray_lambda.resize(n);
+    shadow_lambda.resize(n);
     ends.resize(n);
     scattered.reserve(n);
     shadow_medium.resize(n);
@@ -79,10 +83,11 @@ struct PathWave {
   }
 
   size_t memory_bytes() const {
-    return vector_bytes(pixel) + vector_bytes(sampler) + vector_bytes(beta) + vector_bytes(L) + vector_bytes(prev_pdf) +
+    return vector_bytes(pixel) + vector_bytes(sampler) + vector_bytes(beta) + vector_bytes(L) + vector_bytes(lambda) + vector_bytes(prev_pdf) +
            vector_bytes(eta_scale) + vector_bytes(prev_p) + vector_bytes(prev_n) + vector_bytes(prev_specular) + vector_bytes(active) +
            rays.memory_bytes() + hits.memory_bytes() + shadow.memory_bytes() + vector_bytes(shadow_slot) +
            vector_bytes(shadow_contrib) + vector_bytes(medium) + vector_bytes(ray_medium) + vector_bytes(u_distance) +
+           vector_bytes(ray_lambda) + vector_bytes(shadow_lambda) +
            ends.memory_bytes() + vector_bytes(scattered) + vector_bytes(shadow_medium) + vector_bytes(shadow_T) + vector_bytes(shadow_T_mis) +
            vector_bytes(shadow_light_pdf) + vector_bytes(shadow_scatter_pdf) + vector_bytes(shadow_expect) +
            vector_bytes(shadow_sigma_end) + crossing.memory_bytes();
@@ -92,6 +97,7 @@ struct PathWave {
     for (auto* v : {&pixel, &active, &shadow_slot}) v->resize(n);
     sampler.resize(n);
     for (auto* v : {&beta, &L, &shadow_contrib}) v->resize(n);
+    lambda.resize(n);
     for (auto* v : {&prev_pdf, &eta_scale}) v->resize(n);
     prev_p.resize(n);
     prev_n.resize(n);
@@ -122,6 +128,7 @@ inline void push_media_shadow_ray(PathWave& w, uint32_t slot, const Vec3& o, con
   w.shadow_scatter_pdf[r] = scatter_pdf;
   w.shadow_expect[r] = expect;
   w.shadow_sigma_end[r] = sigma_end;
+  w.shadow_lambda[r] = w.lambda[slot];
 }
 
 }  // namespace lantern

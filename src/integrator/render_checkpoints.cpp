@@ -16,6 +16,7 @@ std::string sequence_fingerprint(const RenderOptions& o, int width, int height) 
   auto line = [&](const std::string& k, const std::string& v) { f += k + "=" + v + "\n"; };
   line("scene", o.checkpoint_key);
   line("integrator", name(o.integrator));
+  if (o.spectral) line("colour", "spectral");  // (RGB renders keep the fingerprint they always had)
   if (o.integrator != Integrator::Path) line("mis", name(o.mis));
   if (merges_vertices(o.integrator)) line("vcm", std::to_string(o.vcm_radius) + " " + std::to_string(o.vcm_alpha));
   line("maxdepth", std::to_string(o.maxdepth));

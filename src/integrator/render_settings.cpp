@@ -18,6 +18,9 @@ void check_options(const Scene& scene, const RenderOptions& opt) {
     throw std::invalid_argument(std::string(name(opt.integrator)) + " needs a radius >= 0 (0: automatic) and an alpha in (0, 1]");
   if (opt.spp <= 0 && opt.time_limit_seconds <= 0) throw std::invalid_argument("--spp must be positive");
   if (opt.maxdepth < 0) throw std::invalid_argument("--maxdepth must be >= 0");
+  if (opt.spectral && !scene.media.rgb_grid.empty())
+    throw std::invalid_argument("an \"rgbgrid\" medium is not rendered with sampled wavelengths yet (its optical depth is "
+                                "integrated as colour): render it without --spectral");
   if (opt.integrator == Integrator::Lt && scene.camera.projection == Projection::Orthographic && !(scene.camera.lens_radius > 0.f))
     throw std::invalid_argument("light tracing (--integrator lt) cannot reach an orthographic camera without a lens: "
                                 "its rays are parallel, so no light path connects to it; use path or bdpt, or give the "
@@ -58,6 +61,7 @@ BdptSettings bdpt_settings(const Scene& scene, const RenderOptions& opt, int wid
   bs.footprint_spp = scene.settings.spp;
   bs.sampler = opt.sampler;
   bs.planned_spp = planned_spp;
+  bs.spectral = opt.spectral;
   return bs;
 }
 
@@ -71,6 +75,7 @@ PathTracerSettings path_settings(const Scene& scene, const RenderOptions& opt, i
   ps.footprint_spp = scene.settings.spp;
   ps.sampler = opt.sampler;
   ps.planned_spp = planned_spp;
+  ps.spectral = opt.spectral;
   return ps;
 }
 

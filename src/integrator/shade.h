@@ -21,7 +21,7 @@ void for_each_binned_bsdf(const HitPool& hits, const Scene& scene, Fn&& fn) {
                     hits.material.data(),
                     SurfaceAttributes{hits.p.data(), hits.ng.data(), hits.uv.data(),
                                       hits.footprint.empty() ? nullptr : hits.footprint.data(),
-                                      hits.tangent.empty() ? nullptr : hits.tangent.data()},
+                                      hits.tangent.empty() ? nullptr : hits.tangent.data(), hits.lambda.data()},
                     fn);
   }
 }

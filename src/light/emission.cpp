@@ -34,7 +34,8 @@ void start_on_disk(const LightPools& L, Vec2 u, EmissionSample* es) {
 }  // namespace
 
 std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& shapes, const TexturePools& tex,
-                                        float u_select, Vec2 u_pos, Vec2 u_dir, float u_volume) {
+                                        float u_select, Vec2 u_pos, Vec2 u_dir, const SampledWavelengths& l,
+                                        float u_volume) {
   if (L.all.empty()) return std::nullopt;
   float pmf;
   size_t i = L.selection.sample_discrete(u_select, &pmf);
@@ -73,7 +74,7 @@ std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& s
       es.d = f.from_local(wl);
       es.pdf_pos *= area_point_density(shapes, a, sp.p, sp.ng);
       es.pdf_dir = area_dir_pdf(a, sp.ng, es.d);
-      es.Le = area_light_Le(a, tex, sp.ng, sp.uv, es.d);
+      es.Le = area_light_Le(a, tex, sp.ng, sp.uv, es.d, l);
       es.error_scale = sp.error_scale;
       break;
     }
@@ -86,7 +87,7 @@ std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& s
       } else if (!sample_profile(L.profiles[size_t(pl.profile)], u_dir, &es.d, &es.pdf_dir)) {
         return std::nullopt;
       }
-      es.Le = point_intensity(L, tex, pl, es.d);
+      es.Le = illuminant_spectrum(point_intensity(L, tex, pl, es.d), l);
       es.error_scale = max_abs_component(pl.p);
       es.delta_pos = true;
       break;
@@ -96,7 +97,7 @@ std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& s
       es.p = s.p;
       es.d = s.frame.from_local(sample_uniform_cone(u_dir, s.cos_falloff_end));
       es.pdf_dir = uniform_cone_pdf(s.cos_falloff_end);
-      es.Le = illuminant_spectrum(s.I) * spot_falloff(s, es.d);
+      es.Le = illuminant_spectrum(s.I, l) * spot_falloff(s, es.d);
       es.error_scale = max_abs_component(s.p);
       es.delta_pos = true;
       break;
@@ -104,7 +105,7 @@ std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& s
     case LightKind::Distant: {
       const DistantLight& dl = L.distant[r.index];
       es.d = -dl.w;
-      es.Le = illuminant_spectrum(dl.L);
+      es.Le = illuminant_spectrum(dl.L, l);
       es.delta_dir = true;
       start_on_disk(L, u_pos, &es);
       break;
@@ -113,13 +114,15 @@ std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& s
       const InfiniteLight& e = L.infinite[r.index];
       if (e.portal >= 0) {  // any direction of the map; the first hit applies the window
         Vec3 w;
-        if (!sample_portal_emission(L.portals[size_t(e.portal)], u_dir, &w, &es.pdf_dir, &es.Le)) return std::nullopt;
+        RGB c;
+        if (!sample_portal_emission(L.portals[size_t(e.portal)], u_dir, &w, &es.pdf_dir, &c)) return std::nullopt;
+        es.Le = illuminant_spectrum(c, l);
         es.d = -w;
         start_on_disk(L, u_pos, &es);
         break;
       }
       // The direction is drawn exactly as next-event estimation draws it.
-      auto ls = sample_light_from(L, shapes, tex, uint32_t(i), Vec3(0.f), u_dir);
+      auto ls = sample_light_from(L, shapes, tex, uint32_t(i), Vec3(0.f), u_dir, l);
       if (!ls || ls->pdf == 0.f) return std::nullopt;
       es.d = -ls->wi;
       es.Le = ls->L;
@@ -171,15 +174,16 @@ float emission_pdf(const LightPools& L, const ShapePools& shapes, const TextureP
   return 0.f;
 }
 
-Spectrum emitted(const LightPools& L, const TexturePools& tex, uint32_t light, const Vec3& n, Vec2 uv, const Vec3& w) {
+Spectrum emitted(const LightPools& L, const TexturePools& tex, uint32_t light, const Vec3& n, Vec2 uv, const Vec3& w,
+                 const SampledWavelengths& l) {
   const LightRef r = L.all[light];
   switch (r.kind) {
     case LightKind::Area:
-      return area_light_Le(L.area[r.index], tex, n, uv, w);
+      return area_light_Le(L.area[r.index], tex, n, uv, w, l);
     case LightKind::Point:
-      return point_intensity(L, tex, L.point[r.index], w);
+      return illuminant_spectrum(point_intensity(L, tex, L.point[r.index], w), l);
     case LightKind::Spot:
-      return illuminant_spectrum(L.spot[r.index].I) * spot_falloff(L.spot[r.index], w);
+      return illuminant_spectrum(L.spot[r.index].I, l) * spot_falloff(L.spot[r.index], w);
     default:
       return Spectrum(0.f);
   }

@@ -25,9 +25,11 @@ struct EmissionSample {
   bool volume = false;
 };
 
-// Chooses a light by power, a point on it and a direction leaving it.
+// Chooses a light by power, a point on it and a direction leaving it; Le
+// at the wavelengths l.
 std::optional<EmissionSample> sample_le(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex,
-                                        float u_select, Vec2 u_pos, Vec2 u_dir, float u_volume = 0.5f);
+                                        float u_select, Vec2 u_pos, Vec2 u_dir, const SampledWavelengths& l,
+                                        float u_volume = 0.5f);
 
 // Emission density (pos incl. the selection pmf, times dir) with which
 // sample_le would start at p_light with normal n_light and leave in w.
@@ -40,8 +42,10 @@ float area_emission_pdf(const LightPools& lights, const ShapePools& shapes, uint
 // Emission density of the infinite lights (summed) sending light along -w_to_light.
 float infinite_emission_pdf(const LightPools& lights, const TexturePools& tex, const Vec3& w_to_light);
 
-// Radiance or intensity a light with finite position emits from (p, n) in w.
-Spectrum emitted(const LightPools& lights, const TexturePools& tex, uint32_t light, const Vec3& n, Vec2 uv, const Vec3& w);
+// Radiance or intensity a light with finite position emits from (p, n) in
+// w, at the wavelengths l.
+Spectrum emitted(const LightPools& lights, const TexturePools& tex, uint32_t light, const Vec3& n, Vec2 uv, const Vec3& w,
+                 const SampledWavelengths& l);
 
 // Area density (times the pmf) with which sample_light picks p_light when
 // called from p with normal n: next-event estimation's density of a light

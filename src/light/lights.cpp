@@ -143,7 +143,7 @@ float area_point_density(const ShapePools& shapes, const AreaLight& a, const Vec
 // (copies of the optional, written field by field and read back whole,
 // were a tenth of the path tracer's time).
 static bool sample_area(const ShapePools& shapes, const TexturePools& tex, const AreaLight& a, const Vec3& p, Vec2 u,
-                        LightSample& ls) {
+                        const SampledWavelengths& l, LightSample& ls) {
   const Geometry& g = shapes.geometries[a.geometry];
   SurfacePoint sp;
   float pdf;
@@ -180,7 +180,7 @@ static bool sample_area(const ShapePools& shapes, const TexturePools& tex, const
   float dist2 = glm::dot(d, d);
   if (!(dist2 > 0.f) || !std::isfinite(pdf) || pdf <= 0.f) return false;
   ls.wi = d / std::sqrt(dist2);
-  ls.L = area_light_Le(a, tex, sp.ng, sp.uv, -ls.wi);
+  ls.L = area_light_Le(a, tex, sp.ng, sp.uv, -ls.wi, l);
   ls.pdf = pdf;
   ls.p_light = sp.p;
   ls.n_light = sp.ng;
@@ -189,7 +189,7 @@ static bool sample_area(const ShapePools& shapes, const TexturePools& tex, const
 }
 
 static bool sample_light_into(const LightPools& L, const ShapePools& shapes, const TexturePools& tex, uint32_t i,
-                              const Vec3& p, Vec2 u, float u_volume, LightSample& ls) {
+                              const Vec3& p, Vec2 u, float u_volume, const SampledWavelengths& l, LightSample& ls) {
   const LightRef r = L.all[i];
   switch (r.kind) {
     case LightKind::Volume: {
@@ -206,7 +206,7 @@ static bool sample_light_into(const LightPools& L, const ShapePools& shapes, con
       break;
     }
     case LightKind::Area:
-      if (!sample_area(shapes, tex, L.area[r.index], p, u, ls)) return false;
+      if (!sample_area(shapes, tex, L.area[r.index], p, u, l, ls)) return false;
       break;
     case LightKind::Point: {
       const PointLight& pl = L.point[r.index];
@@ -214,7 +214,7 @@ static bool sample_light_into(const LightPools& L, const ShapePools& shapes, con
       float dist2 = glm::dot(d, d);
       if (!(dist2 > 0.f)) return false;
       const Vec3 wi = d / std::sqrt(dist2);
-      ls = LightSample{point_intensity(L, tex, pl, -wi) / dist2, wi, 1.f, pl.p, Vec3(0.f), max_abs_component(pl.p), true, false};
+      ls = LightSample{illuminant_spectrum(point_intensity(L, tex, pl, -wi), l) / dist2, wi, 1.f, pl.p, Vec3(0.f), max_abs_component(pl.p), true, false};
       break;
     }
     case LightKind::Spot: {
@@ -225,12 +225,12 @@ static bool sample_light_into(const LightPools& L, const ShapePools& shapes, con
       Vec3 wi = d / std::sqrt(dist2);
       float cos_t = glm::dot(-wi, s.frame.n);
       float falloff = glm::smoothstep(s.cos_falloff_end, s.cos_falloff_start, cos_t);
-      ls = LightSample{illuminant_spectrum(s.I) * falloff / dist2, wi, 1.f, s.p, Vec3(0.f), max_abs_component(s.p), true, false};
+      ls = LightSample{illuminant_spectrum(s.I, l) * falloff / dist2, wi, 1.f, s.p, Vec3(0.f), max_abs_component(s.p), true, false};
       break;
     }
     case LightKind::Distant: {
       const DistantLight& dl = L.distant[r.index];
-      ls = LightSample{illuminant_spectrum(dl.L), dl.w, 1.f, Vec3(0.f), Vec3(0.f), 0.f, true, true};
+      ls = LightSample{illuminant_spectrum(dl.L, l), dl.w, 1.f, Vec3(0.f), Vec3(0.f), 0.f, true, true};
       break;
     }
     case LightKind::Infinite: {
@@ -238,11 +238,13 @@ static bool sample_light_into(const LightPools& L, const ShapePools& shapes, con
       LightSample& s = ls;
       s.infinite = true;
       if (e.portal >= 0) {
-        if (!sample_portal(L.portals[size_t(e.portal)], p, u, &s.wi, &s.pdf, &s.L)) return false;
+        RGB c;
+        if (!sample_portal(L.portals[size_t(e.portal)], p, u, &s.wi, &s.pdf, &c)) return false;
+        s.L = illuminant_spectrum(c, l);
       } else if (e.image < 0) {
         s.wi = sample_uniform_sphere(u);
         s.pdf = uniform_sphere_pdf();
-        s.L = illuminant_spectrum(e.scale);
+        s.L = illuminant_spectrum(e.scale, l);
       } else {
         float pdf_uv;
         Vec2 uv = e.distribution.sample_continuous(u, &pdf_uv);
@@ -258,7 +260,7 @@ static bool sample_light_into(const LightPools& L, const ShapePools& shapes, con
           s.pdf = pdf_uv / (2.f * kPi * kPi * sin_theta);
         }
         s.wi = glm::normalize(e.world_from_light * wl);
-        s.L = illuminant_spectrum(env_lookup(e, tex, uv));
+        s.L = illuminant_spectrum(env_lookup(e, tex, uv), l);
       }
       break;
     }
@@ -269,21 +271,22 @@ static bool sample_light_into(const LightPools& L, const ShapePools& shapes, con
 }
 
 std::optional<LightSample> sample_light_from(const LightPools& L, const ShapePools& shapes, const TexturePools& tex,
-                                             uint32_t i, const Vec3& p, Vec2 u, float u_volume) {
+                                             uint32_t i, const Vec3& p, Vec2 u, const SampledWavelengths& l,
+                                             float u_volume) {
   std::optional<LightSample> ls(std::in_place);
-  if (!sample_light_into(L, shapes, tex, i, p, u, u_volume, *ls)) ls.reset();
+  if (!sample_light_into(L, shapes, tex, i, p, u, u_volume, l, *ls)) ls.reset();
   return ls;
 }
 
 std::optional<LightSample> sample_light(const LightPools& L, const ShapePools& shapes, const TexturePools& tex,
                                         const LightSampler& sampler, const Vec3& p, const Vec3& n, float u_select,
-                                        Vec2 u, float u_volume) {
+                                        Vec2 u, const SampledWavelengths& l, float u_volume) {
   std::optional<LightSample> ls;
   uint32_t i;
   float pmf;
   if (sampler.sample(p, n, u_select, &i, &pmf) && pmf != 0.f) {
     ls.emplace();
-    if (sample_light_into(L, shapes, tex, i, p, u, u_volume, *ls)) ls->pdf *= pmf;
+    if (sample_light_into(L, shapes, tex, i, p, u, u_volume, l, *ls)) ls->pdf *= pmf;
     else ls.reset();
   }
   return ls;
@@ -310,21 +313,24 @@ float area_light_pdf(const LightPools& L, const ShapePools& shapes, const LightS
   return pmf * dist2 * area_point_density(shapes, a, p_light, n_light) / cos_l;
 }
 
-Spectrum infinite_lights_Le(const LightPools& L, const TexturePools& tex, const Vec3& p, const Vec3& w) {
-  Spectrum sum(0.f);
+// (Summed as colour and converted once: the same with one infinite light,
+// as scenes have; several are mixed before they become spectra.)
+Spectrum infinite_lights_Le(const LightPools& L, const TexturePools& tex, const Vec3& p, const Vec3& w,
+                            const SampledWavelengths& l) {
+  RGB sum(0.f);
   for (const InfiniteLight& e : L.infinite) {
     if (e.portal >= 0) {
       sum += portal_Le(L.portals[size_t(e.portal)], p, w);
       continue;
     }
     if (e.image < 0) {
-      sum += illuminant_spectrum(e.scale);
+      sum += e.scale;
       continue;
     }
     Vec3 wl = glm::normalize(e.light_from_world * w);
-    sum += illuminant_spectrum(env_lookup(e, tex, e.equal_area ? equal_area_sphere_to_square(wl) : dir_to_latlong(wl)));
+    sum += env_lookup(e, tex, e.equal_area ? equal_area_sphere_to_square(wl) : dir_to_latlong(wl));
   }
-  return sum;
+  return illuminant_spectrum(sum, l);
 }
 
 float infinite_light_emission_dir_pdf(const LightPools& L, const TexturePools& tex, uint32_t index, const Vec3& w) {
@@ -382,11 +388,11 @@ bool reaches_through_portal(const LightPools& L, uint32_t light, const Vec3& p, 
 }
 
 void complete_volume_sample(const LightPools& L, const MediumPools& media, Spectrum* Li, const Vec3& p,
-                            uint32_t light, MediumHandle* m, Spectrum* sigma_t) {
+                            uint32_t light, const SampledWavelengths& l, MediumHandle* m, Spectrum* sigma_t) {
   const VolumeLight& v = L.volume[L.all[light].index];
   Spectrum a, s;
-  media.coefficients_at(v.medium, p, &a, &s);
-  *Li *= a * media.Le(v.medium, p);
+  media.coefficients_at(v.medium, p, l, &a, &s);
+  *Li *= a * media.Le(v.medium, p, l);
   *m = v.medium;
   *sigma_t = a + s;
 }

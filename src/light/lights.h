@@ -106,9 +106,10 @@ struct LightSample {
   bool volume = false;
 };
 
-// A point light's intensity leaving in world direction w.
-inline Spectrum point_intensity(const LightPools& L, const TexturePools& tex, const PointLight& pl, const Vec3& w) {
-  return illuminant_spectrum(pl.profile < 0 ? pl.I : pl.I * profile_value(L.profiles[size_t(pl.profile)], tex, w));
+// A point light's intensity leaving in world direction w, as colour (the
+// functions that answer integrators turn colour into spectrum).
+inline RGB point_intensity(const LightPools& L, const TexturePools& tex, const PointLight& pl, const Vec3& w) {
+  return pl.profile < 0 ? pl.I : pl.I * profile_value(L.profiles[size_t(pl.profile)], tex, w);
 }
 // Its mean over all directions (power / 4 pi), averaged over the channels.
 inline float point_mean_intensity(const LightPools& L, const PointLight& pl) {
@@ -124,10 +125,10 @@ float light_power(const LightPools& lights, const LightRef& light, const Texture
 void finalize_lights(LightPools& lights, const ShapePools& shapes, const TexturePools& tex, Vec3 center, float radius);
 
 // Chooses a light for the point p with shading normal n (zero: none) and
-// samples a direction to it from p.
+// samples a direction to it from p; L at the wavelengths l.
 std::optional<LightSample> sample_light(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex,
                                         const LightSampler& sampler, const Vec3& p, const Vec3& n, float u_select,
-                                        Vec2 u, float u_volume = 0.5f);
+                                        Vec2 u, const SampledWavelengths& l, float u_volume = 0.5f);
 
 // Density (solid angle at p, times the light sampler's pmf for (p, n)) that
 // sample_light picks area light `area_index` at point p_light with normal
@@ -143,21 +144,28 @@ SurfacePoint sample_area_point(const ShapePools& shapes, const AreaLight& a, Vec
 float area_point_density(const ShapePools& shapes, const AreaLight& a, const Vec3& p, const Vec3& n);
 
 // Radiance leaving an area light at a point of normal n and surface
-// coordinates uv, in direction w.
-inline Spectrum area_light_Le(const AreaLight& l, const TexturePools& tex, const Vec3& n, Vec2 uv, const Vec3& w) {
-  if (!l.two_sided && !(glm::dot(n, w) > 0.f)) return Spectrum(0.f);
-  if (l.image < 0) return illuminant_spectrum(l.L);
+// coordinates uv, in direction w, as colour.
+inline RGB area_light_rgb(const AreaLight& l, const TexturePools& tex, const Vec3& n, Vec2 uv, const Vec3& w) {
+  if (!l.two_sided && !(glm::dot(n, w) > 0.f)) return RGB(0.f);
+  if (l.image < 0) return l.L;
   // As pbrt-v4: t flipped, bilinear, repeating.
-  return illuminant_spectrum(
-      l.L * tex.images[size_t(l.image)].lookup_rgb(Vec2(uv.x, 1.f - uv.y), ImageFilter::Bilinear, WrapMode::Repeat));
+  return l.L * tex.images[size_t(l.image)].lookup_rgb(Vec2(uv.x, 1.f - uv.y), ImageFilter::Bilinear, WrapMode::Repeat);
+}
+
+// The same at the wavelengths lambda.
+inline Spectrum area_light_Le(const AreaLight& l, const TexturePools& tex, const Vec3& n, Vec2 uv, const Vec3& w,
+                              const SampledWavelengths& lambda) {
+  return illuminant_spectrum(area_light_rgb(l, tex, n, uv, w), lambda);
 }
 
 // Radiance from infinite lights along a ray from p leaving the scene in
-// direction w (a portal light's only through its window).
-Spectrum infinite_lights_Le(const LightPools& lights, const TexturePools& tex, const Vec3& p, const Vec3& w);
+// direction w (a portal light's only through its window), at wavelengths l.
+Spectrum infinite_lights_Le(const LightPools& lights, const TexturePools& tex, const Vec3& p, const Vec3& w,
+                            const SampledWavelengths& l);
 // The same for one given light (index into `all`), without the selection pmf.
 std::optional<LightSample> sample_light_from(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex,
-                                             uint32_t light, const Vec3& p, Vec2 u, float u_volume = 0.5f);
+                                             uint32_t light, const Vec3& p, Vec2 u, const SampledWavelengths& l,
+                                             float u_volume = 0.5f);
 
 // Density (times the light sampler's pmf) that sample_light produces
 // direction w from p, from the infinite lights.
@@ -193,7 +201,7 @@ bool reaches_through_portal(const LightPools& lights, uint32_t light, const Vec3
 // and *sigma_t the extinction there. Whether the point really lies in that
 // medium is decided by the ray that reaches it.
 void complete_volume_sample(const LightPools& lights, const MediumPools& media, Spectrum* L, const Vec3& p,
-                            uint32_t light, MediumHandle* m, Spectrum* sigma_t);
+                            uint32_t light, const SampledWavelengths& l, MediumHandle* m, Spectrum* sigma_t);
 // The density per unit volume with which a volume light emits from p
 // (without a selection pmf); zero when light `light` (or -1) is not one.
 float volume_light_density(const LightPools& lights, int64_t light, const Vec3& p);

@@ -82,11 +82,11 @@ PortalMap make_portal(const Vec3 corners[4], const TextureImage& map, const glm:
   return m;
 }
 
-Spectrum portal_Le(const PortalMap& m, const Vec3& p, const Vec3& w) {
+RGB portal_Le(const PortalMap& m, const Vec3& p, const Vec3& w) {
   Vec2 uv, lo, hi;
-  if (!uv_of(m, w, &uv, nullptr) || !window(m, p, &lo, &hi)) return Spectrum(0.f);
-  if (uv.x < lo.x || uv.y < lo.y || uv.x > hi.x || uv.y > hi.y) return Spectrum(0.f);
-  return illuminant_spectrum(texel(m, uv));
+  if (!uv_of(m, w, &uv, nullptr) || !window(m, p, &lo, &hi)) return RGB(0.f);
+  if (uv.x < lo.x || uv.y < lo.y || uv.x > hi.x || uv.y > hi.y) return RGB(0.f);
+  return texel(m, uv);
 }
 
 bool through_portal(const PortalMap& m, const Vec3& p, const Vec3& w_to_light) {
@@ -95,14 +95,14 @@ bool through_portal(const PortalMap& m, const Vec3& p, const Vec3& w_to_light) {
   return uv.x >= lo.x && uv.y >= lo.y && uv.x <= hi.x && uv.y <= hi.y;
 }
 
-bool sample_portal(const PortalMap& m, const Vec3& p, Vec2 u, Vec3* wi, float* pdf, Spectrum* L) {
+bool sample_portal(const PortalMap& m, const Vec3& p, Vec2 u, Vec3* wi, float* pdf, RGB* L) {
   Vec2 lo, hi, uv;
   float pdf_uv, dw_duv;
   if (!window(m, p, &lo, &hi) || !m.distribution.sample(u, lo, hi, &uv, &pdf_uv)) return false;
   *wi = dir_of(m, uv, &dw_duv);
   if (!(dw_duv > 0.f)) return false;
   *pdf = pdf_uv / dw_duv;
-  *L = illuminant_spectrum(texel(m, uv));
+  *L = texel(m, uv);
   return std::isfinite(*pdf);
 }
 
@@ -113,14 +113,14 @@ float portal_pdf(const PortalMap& m, const Vec3& p, const Vec3& w) {
   return m.distribution.pdf(uv, lo, hi) / dw_duv;
 }
 
-bool sample_portal_emission(const PortalMap& m, Vec2 u, Vec3* w_to_light, float* pdf, Spectrum* L) {
+bool sample_portal_emission(const PortalMap& m, Vec2 u, Vec3* w_to_light, float* pdf, RGB* L) {
   Vec2 uv;
   float pdf_uv, dw_duv;
   if (!m.distribution.sample(u, Vec2(0.f), Vec2(1.f), &uv, &pdf_uv)) return false;
   *w_to_light = dir_of(m, uv, &dw_duv);
   if (!(dw_duv > 0.f)) return false;
   *pdf = pdf_uv / dw_duv;
-  *L = illuminant_spectrum(texel(m, uv));
+  *L = texel(m, uv);
   return std::isfinite(*pdf);
 }
 

@@ -39,13 +39,13 @@ PortalMap make_portal(const Vec3 corners[4], const TextureImage& equal_area_map,
 
 // Radiance arriving at p from direction w (unit, towards the light): zero
 // unless w passes through the window from p.
-Spectrum portal_Le(const PortalMap& m, const Vec3& p, const Vec3& w);
+RGB portal_Le(const PortalMap& m, const Vec3& p, const Vec3& w);
 // Next-event estimation from p: a direction through the window.
-bool sample_portal(const PortalMap& m, const Vec3& p, Vec2 u, Vec3* wi, float* pdf, Spectrum* L);
+bool sample_portal(const PortalMap& m, const Vec3& p, Vec2 u, Vec3* wi, float* pdf, RGB* L);
 float portal_pdf(const PortalMap& m, const Vec3& p, const Vec3& w);
 // Light subpaths: a direction towards the light from the whole map (its
 // radiance without the window), and its density.
-bool sample_portal_emission(const PortalMap& m, Vec2 u, Vec3* w_to_light, float* pdf, Spectrum* L);
+bool sample_portal_emission(const PortalMap& m, Vec2 u, Vec3* w_to_light, float* pdf, RGB* L);
 float portal_emission_pdf(const PortalMap& m, const Vec3& w_to_light);
 // Whether light travelling along -w_to_light reaches p through the window.
 bool through_portal(const PortalMap& m, const Vec3& p, const Vec3& w_to_light);

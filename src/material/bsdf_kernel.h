@@ -6,6 +6,7 @@
 
 #include <cstdint>
 
+#include "color/spectrum_conversion.h"
 #include "material/coated_conductor_bsdf.h"
 #include "material/coated_diffuse_bsdf.h"
 #include "material/conductor_bsdf.h"
@@ -13,50 +14,70 @@
 #include "material/diffuse_bsdf.h"
 #include "material/diffuse_transmission_bsdf.h"
 #include "material/hair_bsdf.h"
-#include "material/thin_dielectric_bsdf.h"
 #include "material/material.h"
+#include "material/thin_dielectric_bsdf.h"
 
 namespace lantern {
 
 // Where textures' colours become spectra: a reflectance (clamped to [0, 1])
 // or an unbounded coefficient (eta, k, sigma_a).
-inline Spectrum reflectance(const TexturePools& tex, const RGBTextureRef& t, const TextureContext& c) {
-  return albedo_spectrum(tex.evaluate_reflectance(t, c));
+// A constant given as a spectrum is read at the wavelengths themselves.
+inline Spectrum sampled_constant(const TexturePools& tex, const RGBTextureRef& t, const SampledWavelengths& l) {
+  const DenselySampledSpectrum& s = tex.spectra[size_t(t.spectrum)];
+  Spectrum v;
+  for (int i = 0; i < kSpectrumSamples; ++i) v[i] = s(l.nm[size_t(i)]);
+  return v;
 }
-inline Spectrum coefficient(const TexturePools& tex, const RGBTextureRef& t, const TextureContext& c) {
-  return unbounded_spectrum(tex.evaluate(t, c));
+inline bool reads_spectrum(const RGBTextureRef& t, const SampledWavelengths& l) {
+  return t.spectrum >= 0 && t.node < 0 && !l.is_rgb();
+}
+inline Spectrum reflectance(const TexturePools& tex, const RGBTextureRef& t, const TextureContext& c,
+                            const SampledWavelengths& l) {
+  if (reads_spectrum(t, l)) return clamp(sampled_constant(tex, t, l), 0.f, 1.f);
+  return albedo_spectrum(tex.evaluate_reflectance(t, c), l);
+}
+inline Spectrum coefficient(const TexturePools& tex, const RGBTextureRef& t, const TextureContext& c,
+                            const SampledWavelengths& l) {
+  if (reads_spectrum(t, l)) return max(sampled_constant(tex, t, l), Spectrum(0.f));
+  return unbounded_spectrum(tex.evaluate(t, c), l);
 }
 // pbrt-v4's conductor given by its head-on reflectance r: eta 1 and the k
 // that gives r.
 inline void conductor_from_reflectance(const TexturePools& tex, const RGBTextureRef& t, const TextureContext& c,
-                                       Spectrum* eta, Spectrum* k) {
-  const Spectrum r = albedo_spectrum(clamp(tex.evaluate(t, c), 0.f, 0.9999f));
+                                       const SampledWavelengths& l, Spectrum* eta, Spectrum* k) {
+  const Spectrum r = min(albedo_spectrum(clamp(tex.evaluate(t, c), 0.f, 0.9999f), l), Spectrum(0.9999f));
   *eta = Spectrum(1.f);
   *k = 2.f * sqrt(r) / sqrt(Spectrum(1.f) - r);
 }
 
-inline DiffuseBSDF make_bsdf(const DiffuseMaterial& m, const TextureContext& c, const TexturePools& tex) {
-  return DiffuseBSDF{reflectance(tex, m.reflectance, c)};
+inline DiffuseBSDF make_bsdf(const DiffuseMaterial& m, const TextureContext& c, const TexturePools& tex,
+                             const SampledWavelengths& l) {
+  return DiffuseBSDF{reflectance(tex, m.reflectance, c, l)};
 }
-inline ConductorBSDF make_bsdf(const ConductorMaterial& m, const TextureContext& c, const TexturePools& tex) {
+inline ConductorBSDF make_bsdf(const ConductorMaterial& m, const TextureContext& c, const TexturePools& tex,
+                               const SampledWavelengths& l) {
   if (m.mirror)
-    return ConductorBSDF{{0.f, 0.f}, Spectrum(1.f), Spectrum(0.f), reflectance(tex, m.mirror_reflectance, c), true};
+    return ConductorBSDF{{0.f, 0.f}, Spectrum(1.f), Spectrum(0.f), reflectance(tex, m.mirror_reflectance, c, l), true};
   TrowbridgeReitz d = m.roughness.distribution(tex, c);
   Spectrum eta, k;
-  if (m.by_reflectance) conductor_from_reflectance(tex, m.reflectance, c, &eta, &k);
-  else eta = coefficient(tex, m.eta, c), k = coefficient(tex, m.k, c);
+  if (m.by_reflectance)
+    conductor_from_reflectance(tex, m.reflectance, c, l, &eta, &k);
+  else
+    eta = coefficient(tex, m.eta, c, l), k = coefficient(tex, m.k, c, l);
   return ConductorBSDF{d, eta, k, Spectrum(1.f), false};
 }
-inline DielectricBSDF make_bsdf(const DielectricMaterial& m, const TextureContext& c, const TexturePools& tex) {
+inline DielectricBSDF make_bsdf(const DielectricMaterial& m, const TextureContext& c, const TexturePools& tex,
+                                const SampledWavelengths& l) {
   float eta = tex.evaluate_float(m.eta, c);
   return DielectricBSDF{m.roughness.distribution(tex, c), eta > 0.f ? eta : 1.f};
 }
 inline DiffuseTransmissionBSDF make_bsdf(const DiffuseTransmissionMaterial& m, const TextureContext& c,
-                                         const TexturePools& tex) {
-  return DiffuseTransmissionBSDF{albedo_spectrum(clamp(m.scale * tex.evaluate(m.reflectance, c), 0.f, 1.f)),
-                                 albedo_spectrum(clamp(m.scale * tex.evaluate(m.transmittance, c), 0.f, 1.f))};
+                                         const TexturePools& tex, const SampledWavelengths& l) {
+  return DiffuseTransmissionBSDF{albedo_spectrum(clamp(m.scale * tex.evaluate(m.reflectance, c), 0.f, 1.f), l),
+                                 albedo_spectrum(clamp(m.scale * tex.evaluate(m.transmittance, c), 0.f, 1.f), l)};
 }
-inline ThinDielectricBSDF make_bsdf(const ThinDielectricMaterial& m, const TextureContext& c, const TexturePools& tex) {
+inline ThinDielectricBSDF make_bsdf(const ThinDielectricMaterial& m, const TextureContext& c, const TexturePools& tex,
+                                    const SampledWavelengths& l) {
   float eta = tex.evaluate_float(m.eta, c);
   return ThinDielectricBSDF{eta > 0.f ? eta : 1.f};
 }
@@ -66,7 +87,8 @@ inline ThinDielectricBSDF make_bsdf(const ThinDielectricMaterial& m, const Textu
 // coefficients are d'Eon et al. 2011's (as pbrt-v4 uses them).
 inline RGB hair_sigma_a(const HairMaterial& m, const TextureContext& c, const TexturePools& tex, float beta_n) {
   switch (m.by) {
-    case HairMaterial::Absorption::SigmaA: return max(tex.evaluate(m.sigma_a, c), RGB(0.f));
+    case HairMaterial::Absorption::SigmaA:
+      return max(tex.evaluate(m.sigma_a, c), RGB(0.f));
     case HairMaterial::Absorption::Reflectance: {
       const RGB r = clamp(tex.evaluate(m.reflectance, c), 1e-4f, 1.f);
       const float b = beta_n;
@@ -75,7 +97,8 @@ inline RGB hair_sigma_a(const HairMaterial& m, const TextureContext& c, const Te
       const RGB l = log(r) / d;
       return l * l;
     }
-    case HairMaterial::Absorption::Melanin: break;
+    case HairMaterial::Absorption::Melanin:
+      break;
   }
   const float ce = std::fmax(tex.evaluate_float(m.eumelanin, c), 0.f);
   const float cp = std::fmax(tex.evaluate_float(m.pheomelanin, c), 0.f);
@@ -83,40 +106,44 @@ inline RGB hair_sigma_a(const HairMaterial& m, const TextureContext& c, const Te
 }
 // h from pbrt's v across the curve; the fibre's direction from the curve's
 // tangent, in the shading frame (a curve's shading normal is its normal).
-inline HairBSDF make_bsdf(const HairMaterial& m, const TextureContext& c, const TexturePools& tex) {
+inline HairBSDF make_bsdf(const HairMaterial& m, const TextureContext& c, const TexturePools& tex,
+                          const SampledWavelengths& l) {
   const float beta_n = glm::clamp(tex.evaluate_float(m.beta_n, c), 0.f, 1.f);
   const float beta_m = glm::clamp(tex.evaluate_float(m.beta_m, c), 0.f, 1.f);
   const float eta = tex.evaluate_float(m.eta, c);
   const Vec3 tangent = Frame::from_z(c.n).to_local(c.dpdu);
-  return HairBSDF(2.f * c.uv.y - 1.f, eta > 0.f ? eta : 1.55f, unbounded_spectrum(hair_sigma_a(m, c, tex, beta_n)),
+  return HairBSDF(2.f * c.uv.y - 1.f, eta > 0.f ? eta : 1.55f, unbounded_spectrum(hair_sigma_a(m, c, tex, beta_n), l),
                   beta_m, beta_n, tex.evaluate_float(m.alpha, c), tangent);
 }
 // The layer parameters of a coated material at a point, as pbrt-v4 clamps them.
 template <class Top, class Bottom>
-LayeredBSDF<Top, Bottom> make_layered(const Top& top, const Bottom& bottom, const CoatLayer& l, const TextureContext& c,
-                                      const TexturePools& tex) {
+LayeredBSDF<Top, Bottom> make_layered(const Top& top, const Bottom& bottom, const CoatLayer& layer,
+                                      const TextureContext& c, const TexturePools& tex, const SampledWavelengths& l) {
   return LayeredBSDF<Top, Bottom>{top,
                                   bottom,
-                                  std::fmax(tex.evaluate_float(l.thickness, c), std::numeric_limits<float>::min()),
-                                  reflectance(tex, l.albedo, c),
-                                  glm::clamp(tex.evaluate_float(l.g, c), -0.999f, 0.999f),
-                                  l.max_depth,
-                                  l.n_samples};
+                                  std::fmax(tex.evaluate_float(layer.thickness, c), std::numeric_limits<float>::min()),
+                                  reflectance(tex, layer.albedo, c, l),
+                                  glm::clamp(tex.evaluate_float(layer.g, c), -0.999f, 0.999f),
+                                  layer.max_depth,
+                                  layer.n_samples};
 }
-inline CoatedDiffuseBSDF make_bsdf(const CoatedDiffuseMaterial& m, const TextureContext& c, const TexturePools& tex) {
+inline CoatedDiffuseBSDF make_bsdf(const CoatedDiffuseMaterial& m, const TextureContext& c, const TexturePools& tex,
+                                   const SampledWavelengths& l) {
   return make_layered(DielectricBSDF{m.roughness.distribution(tex, c), m.eta},
-                      DiffuseBSDF{reflectance(tex, m.reflectance, c)}, m.layer, c, tex);
+                      DiffuseBSDF{reflectance(tex, m.reflectance, c, l)}, m.layer, c, tex, l);
 }
-inline CoatedConductorBSDF make_bsdf(const CoatedConductorMaterial& m, const TextureContext& c,
-                                     const TexturePools& tex) {
+inline CoatedConductorBSDF make_bsdf(const CoatedConductorMaterial& m, const TextureContext& c, const TexturePools& tex,
+                                     const SampledWavelengths& l) {
   Spectrum eta, k;
-  if (m.by_reflectance) conductor_from_reflectance(tex, m.reflectance, c, &eta, &k);
-  else eta = coefficient(tex, m.conductor_eta, c), k = coefficient(tex, m.conductor_k, c);
+  if (m.by_reflectance)
+    conductor_from_reflectance(tex, m.reflectance, c, l, &eta, &k);
+  else
+    eta = coefficient(tex, m.conductor_eta, c, l), k = coefficient(tex, m.conductor_k, c, l);
   // The conductor sits in the coat: its index relative to the coat's.
   ConductorBSDF base{m.conductor_roughness.distribution(tex, c), eta / m.interface_eta, k / m.interface_eta,
                      Spectrum(1.f), false};
   return make_layered(DielectricBSDF{m.interface_roughness.distribution(tex, c), m.interface_eta}, base, m.layer, c,
-                      tex);
+                      tex, l);
 }
 
 // The surface attributes textures read, one array per attribute, indexed by
@@ -125,8 +152,9 @@ struct SurfaceAttributes {
   const Vec3* p;
   const Vec3* ng;
   const Vec2* uv;
-  const Footprint* fp;  // null: no footprints
-  const Vec3* tangent;  // null: no curves
+  const Footprint* fp;               // null: no footprints
+  const Vec3* tangent;               // null: no curves
+  const SampledWavelengths* lambda;  // the wavelengths of each hit's sample
   TextureContext at(uint32_t slot) const {
     return TextureContext{p[slot], ng[slot], uv[slot], fp ? &fp[slot] : nullptr, tangent ? tangent[slot] : Vec3(0.f)};
   }
@@ -140,18 +168,34 @@ void for_each_bsdf(MaterialKind kind, const MaterialPools& pools, const TextureP
   auto run = [&](const auto& pool) {
     for (size_t j = 0; j < count; ++j) {
       uint32_t slot = bin[j];
-      fn(slot, make_bsdf(pool[material[slot].index()], surface.at(slot), tex));
+      fn(slot, make_bsdf(pool[material[slot].index()], surface.at(slot), tex, surface.lambda[slot]));
     }
   };
   switch (kind) {
-    case MaterialKind::Diffuse: run(pools.diffuse); break;
-    case MaterialKind::Conductor: run(pools.conductor); break;
-    case MaterialKind::Dielectric: run(pools.dielectric); break;
-    case MaterialKind::CoatedDiffuse: run(pools.coated_diffuse); break;
-    case MaterialKind::CoatedConductor: run(pools.coated_conductor); break;
-    case MaterialKind::DiffuseTransmission: run(pools.diffuse_transmission); break;
-    case MaterialKind::ThinDielectric: run(pools.thin_dielectric); break;
-    case MaterialKind::Hair: run(pools.hair); break;
+    case MaterialKind::Diffuse:
+      run(pools.diffuse);
+      break;
+    case MaterialKind::Conductor:
+      run(pools.conductor);
+      break;
+    case MaterialKind::Dielectric:
+      run(pools.dielectric);
+      break;
+    case MaterialKind::CoatedDiffuse:
+      run(pools.coated_diffuse);
+      break;
+    case MaterialKind::CoatedConductor:
+      run(pools.coated_conductor);
+      break;
+    case MaterialKind::DiffuseTransmission:
+      run(pools.diffuse_transmission);
+      break;
+    case MaterialKind::ThinDielectric:
+      run(pools.thin_dielectric);
+      break;
+    case MaterialKind::Hair:
+      run(pools.hair);
+      break;
     case MaterialKind::Mix:        // resolved when the hit was stored
     case MaterialKind::Interface:  // cut out of the scene
       break;
@@ -161,22 +205,29 @@ void for_each_bsdf(MaterialKind kind, const MaterialPools& pools, const TextureP
 // Calls fn(bsdf) for one material: a switch, not a virtual call. For the
 // scattered lookups of connections, where hits of one kind are not binned.
 template <class Fn>
-decltype(auto) with_bsdf(MaterialHandle m, const MaterialPools& pools, const TexturePools& tex,
-                         const TextureContext& c, Fn&& fn) {
+decltype(auto) with_bsdf(MaterialHandle m, const MaterialPools& pools, const TexturePools& tex, const TextureContext& c,
+                         const SampledWavelengths& l, Fn&& fn) {
   switch (m.kind()) {
-    case MaterialKind::Diffuse: return fn(make_bsdf(pools.diffuse[m.index()], c, tex));
-    case MaterialKind::Conductor: return fn(make_bsdf(pools.conductor[m.index()], c, tex));
-    case MaterialKind::Dielectric: return fn(make_bsdf(pools.dielectric[m.index()], c, tex));
-    case MaterialKind::CoatedConductor: return fn(make_bsdf(pools.coated_conductor[m.index()], c, tex));
-    case MaterialKind::DiffuseTransmission: return fn(make_bsdf(pools.diffuse_transmission[m.index()], c, tex));
-    case MaterialKind::ThinDielectric: return fn(make_bsdf(pools.thin_dielectric[m.index()], c, tex));
-    case MaterialKind::Hair: return fn(make_bsdf(pools.hair[m.index()], c, tex));
+    case MaterialKind::Diffuse:
+      return fn(make_bsdf(pools.diffuse[m.index()], c, tex, l));
+    case MaterialKind::Conductor:
+      return fn(make_bsdf(pools.conductor[m.index()], c, tex, l));
+    case MaterialKind::Dielectric:
+      return fn(make_bsdf(pools.dielectric[m.index()], c, tex, l));
+    case MaterialKind::CoatedConductor:
+      return fn(make_bsdf(pools.coated_conductor[m.index()], c, tex, l));
+    case MaterialKind::DiffuseTransmission:
+      return fn(make_bsdf(pools.diffuse_transmission[m.index()], c, tex, l));
+    case MaterialKind::ThinDielectric:
+      return fn(make_bsdf(pools.thin_dielectric[m.index()], c, tex, l));
+    case MaterialKind::Hair:
+      return fn(make_bsdf(pools.hair[m.index()], c, tex, l));
     case MaterialKind::CoatedDiffuse:
-    case MaterialKind::Mix:        // never stored in a hit
+    case MaterialKind::Mix:  // never stored in a hit
     case MaterialKind::Interface:
       break;
   }
-  return fn(make_bsdf(pools.coated_diffuse[m.index()], c, tex));
+  return fn(make_bsdf(pools.coated_diffuse[m.index()], c, tex, l));
 }
 
 // pbrt's correction for shading normals when importance is transported

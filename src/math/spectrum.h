@@ -6,11 +6,11 @@
 //   parameters and the output image hold.
 // - `Spectrum` is what light transport carries: radiance, throughput, BSDF
 //   values, transmittance and medium coefficients, with kSpectrumSamples
-//   channels fixed at compile time. In the RGB build a Spectrum's channels
-//   are the three RGB coefficients; a spectral build samples wavelengths
-//   instead, so the two types meet only where colour becomes spectrum (the
-//   *_spectrum functions below, where a material, light or medium reads its
-//   parameters) and where spectrum becomes colour (film_rgb, in the film).
+//   channels: a sample's values at its wavelengths in the spectral
+//   renderer, R, G, B (and G again) in the RGB renderer. The two types meet
+//   only where colour becomes spectrum (where a material, light or medium
+//   reads its parameters) and where spectrum becomes colour (the film):
+//   color/spectrum_conversion.h.
 //
 // Operations are hidden friends, found by argument-dependent lookup only, so
 // `exp`, `sqrt`, `min`, `max` and `clamp` on floats are not shadowed.
@@ -20,10 +20,7 @@
 
 namespace lantern {
 
-#ifndef LANTERN_SPECTRUM_SAMPLES
-#define LANTERN_SPECTRUM_SAMPLES 3
-#endif
-inline constexpr int kSpectrumSamples = LANTERN_SPECTRUM_SAMPLES;
+inline constexpr int kSpectrumSamples = 4;  // as pbrt-v4 samples
 
 // N coefficients with channel-wise arithmetic; Tag keeps colour and spectrum
 // apart as types.
@@ -39,6 +36,7 @@ class Channels {
     for (int i = 0; i < N; ++i) c_[i] = v;
   }
   constexpr Channels(float a, float b, float d) requires(N == 3) : c_{a, b, d} {}
+  constexpr Channels(float a, float b, float d, float e) requires(N == 4) : c_{a, b, d, e} {}
 
   constexpr float& operator[](int i) { return c_[i]; }
   constexpr float operator[](int i) const { return c_[i]; }
@@ -160,17 +158,5 @@ using Spectrum = Channels<kSpectrumSamples, SpectrumTag>;
 
 // Relative luminance Y of linear sRGB (ITU-R BT.709 primaries, D65 white).
 constexpr float luminance(const RGB& c) { return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2]; }
-
-// Where colour becomes spectrum. Each names what the colour means, as a
-// spectral build must know it (Jakob & Hanika 2019: a reflectance is bounded
-// to [0, 1], an unbounded coefficient is scaled, an illuminant is multiplied
-// by the colour space's white); in the RGB build all three are the colour.
-static_assert(kSpectrumSamples == 3, "a spectral build samples wavelengths; this build carries RGB");
-constexpr Spectrum albedo_spectrum(const RGB& c) { return Spectrum(c[0], c[1], c[2]); }
-constexpr Spectrum unbounded_spectrum(const RGB& c) { return Spectrum(c[0], c[1], c[2]); }
-constexpr Spectrum illuminant_spectrum(const RGB& c) { return Spectrum(c[0], c[1], c[2]); }
-
-// Where spectrum becomes colour: the film.
-constexpr RGB film_rgb(const Spectrum& s) { return RGB(s[0], s[1], s[2]); }
 
 }  // namespace lantern

@@ -13,6 +13,7 @@
 // exactly (docs/media.md, "Tracked media").
 #pragma once
 
+#include "color/spectrum_conversion.h"
 #include "medium/grid_density.h"
 
 namespace lantern {
@@ -33,14 +34,16 @@ struct CloudMedium {
   float density_in_medium(Vec3 p) const;
   float density_at(const Vec3& p_render) const;
   // The coefficients at a point of render space.
-  void coefficients(const Vec3& p_render, Spectrum* a, Spectrum* s) const {
+  void coefficients(const Vec3& p_render, const SampledWavelengths& l, Spectrum* a, Spectrum* s) const {
     const float rho = density_at(p_render);
-    *a = unbounded_spectrum(sigma_a) * rho;
-    *s = unbounded_spectrum(sigma_s) * rho;
+    *a = unbounded_spectrum(sigma_a, l) * rho;
+    *s = unbounded_spectrum(sigma_s, l) * rho;
   }
-  Spectrum sigma_t() const { return unbounded_spectrum(sigma_a) + unbounded_spectrum(sigma_s); }
+  Spectrum sigma_t(const SampledWavelengths& l) const {
+    return unbounded_spectrum(sigma_a, l) + unbounded_spectrum(sigma_s, l);
+  }
   // The grey majorant: the largest extinction of any channel.
-  float sigma_bar() const { return max_component(sigma_t()); }
+  float sigma_bar(const SampledWavelengths& l) const { return max_component(sigma_t(l)); }
   // The part [*ta, *tb] of [t0, t1] along o + t d (render space) that lies
   // in the box; false when there is none.
   bool clip(const Vec3& o, const Vec3& d, float t0, float t1, float* ta, float* tb) const;

@@ -54,7 +54,9 @@ struct HomogeneousMedium {
   RGB sigma_a{0.f}, sigma_s{0.f};
   float g = 0.f;
   RGB Le{0.f};  // emitted radiance per unit sigma_a ("Le" times "Lescale"); unused per density
-  Spectrum sigma_t() const { return unbounded_spectrum(sigma_a) + unbounded_spectrum(sigma_s); }
+  Spectrum sigma_t(const SampledWavelengths& l) const {
+    return unbounded_spectrum(sigma_a, l) + unbounded_spectrum(sigma_s, l);
+  }
 };
 
 // pbrt-v4's "uniformgrid": the coefficients scaled by a density grid.
@@ -105,32 +107,33 @@ struct MediumPools {
     }
   }
   // The coefficients at point p.
-  void coefficients_at(MediumHandle h, const Vec3& p, Spectrum* sigma_a, Spectrum* sigma_s) const {
+  void coefficients_at(MediumHandle h, const Vec3& p, const SampledWavelengths& l, Spectrum* sigma_a,
+                       Spectrum* sigma_s) const {
     switch (h.kind()) {
       case MediumKind::Grid: {
         const GridMedium& m = grid[h.index()];
         const float rho = m.density.density(p);
-        *sigma_a = unbounded_spectrum(m.per_density.sigma_a) * rho;
-        *sigma_s = unbounded_spectrum(m.per_density.sigma_s) * rho;
+        *sigma_a = unbounded_spectrum(m.per_density.sigma_a, l) * rho;
+        *sigma_s = unbounded_spectrum(m.per_density.sigma_s, l) * rho;
         return;
       }
       case MediumKind::RgbGrid: {
         RGB a, s;
         rgb_grid[h.index()].grid.at(p, &a, &s);
-        *sigma_a = unbounded_spectrum(a), *sigma_s = unbounded_spectrum(s);
+        *sigma_a = unbounded_spectrum(a, l), *sigma_s = unbounded_spectrum(s, l);
         return;
       }
       case MediumKind::Vdb: {
         const VdbMedium& m = vdb[h.index()];
         const float rho = m.density.density(p);
-        *sigma_a = unbounded_spectrum(m.per_density.sigma_a) * rho;
-        *sigma_s = unbounded_spectrum(m.per_density.sigma_s) * rho;
+        *sigma_a = unbounded_spectrum(m.per_density.sigma_a, l) * rho;
+        *sigma_s = unbounded_spectrum(m.per_density.sigma_s, l) * rho;
         return;
       }
-      case MediumKind::Cloud: cloud[h.index()].coefficients(p, sigma_a, sigma_s); return;
+      case MediumKind::Cloud: cloud[h.index()].coefficients(p, l, sigma_a, sigma_s); return;
       default:
-        *sigma_a = unbounded_spectrum(homogeneous[h.index()].sigma_a);
-        *sigma_s = unbounded_spectrum(homogeneous[h.index()].sigma_s);
+        *sigma_a = unbounded_spectrum(homogeneous[h.index()].sigma_a, l);
+        *sigma_s = unbounded_spectrum(homogeneous[h.index()].sigma_s, l);
     }
   }
   // The optical depth per channel along o + s d (d unit length, s a
@@ -138,9 +141,10 @@ struct MediumPools {
   // where channel c's depth reaches tau: *s_hit is there (else infinity)
   // and the depth returned is the depth up to it.
   // A tracked medium (below) answers with its proxy's depth, and only
-  // with tau < 0: the transmittance bidirectional MIS uses for it.
+  // with tau < 0: the transmittance bidirectional MIS uses for it. (An
+  // RGB grid's depth is integrated as colour: the RGB renderer's only.)
   Spectrum optical_depth(MediumHandle h, const Vec3& o, const Vec3& d, float s0, float s1, int c, float tau,
-                    float* s_hit) const;
+                         const SampledWavelengths& l, float* s_hit) const;
 
   // Emissive media (medium/volume_emission.h): whether h emits, and its
   // Le at p (radiance per unit sigma_a; zero outside its box).
@@ -153,13 +157,14 @@ struct MediumPools {
       default: return false;
     }
   }
-  Spectrum Le(MediumHandle h, const Vec3& p) const {
+  Spectrum Le(MediumHandle h, const Vec3& p, const SampledWavelengths& l) const {
     switch (h.kind()) {
-      case MediumKind::Homogeneous: return illuminant_spectrum(homogeneous[h.index()].Le);
-      case MediumKind::Grid: return illuminant_spectrum(grid[h.index()].emission.at(p));
+      case MediumKind::Homogeneous: return illuminant_spectrum(homogeneous[h.index()].Le, l);
+      case MediumKind::Grid: return illuminant_spectrum(grid[h.index()].emission.at(p), l);
       case MediumKind::RgbGrid:
-        return illuminant_spectrum(rgb_grid[h.index()].grid.Le_at(p)) * rgb_grid[h.index()].Le_scale;
-      case MediumKind::Vdb: return vdb[h.index()].emits() ? illuminant_spectrum(vdb[h.index()].Le(p)) : Spectrum(0.f);
+        return illuminant_spectrum(rgb_grid[h.index()].grid.Le_at(p), l) * rgb_grid[h.index()].Le_scale;
+      case MediumKind::Vdb:
+        return vdb[h.index()].emits() ? illuminant_spectrum(vdb[h.index()].Le(p), l) : Spectrum(0.f);
       default: return Spectrum(0.f);
     }
   }
@@ -171,9 +176,11 @@ struct MediumPools {
   bool tracked(MediumHandle h) const { return h.kind() == MediumKind::Cloud; }
   // Delta tracking along o + s d (d unit length) over [0, len]: the real
   // collision's distance s (infinity: none) and the weights.
-  tracking::Track track(MediumHandle h, const Vec3& o, const Vec3& d, float len, float u, RandomStream& rng) const;
+  tracking::Track track(MediumHandle h, const Vec3& o, const Vec3& d, float len, float u, const SampledWavelengths& l,
+                        RandomStream& rng) const;
   // Ratio tracking over the same: an unbiased transmittance estimate.
-  Spectrum ratio_track(MediumHandle h, const Vec3& o, const Vec3& d, float len, RandomStream& rng) const;
+  Spectrum ratio_track(MediumHandle h, const Vec3& o, const Vec3& d, float len, const SampledWavelengths& l,
+                       RandomStream& rng) const;
 };
 
 }  // namespace lantern

@@ -52,4 +52,9 @@ inline constexpr uint32_t volume_point(uint32_t base, uint32_t maxdepth, uint32_
   return base + 2 * (maxdepth + 3) + 2 * vertex + (light ? 1 : 0);
 }
 
+// The spectral renderer's wavelengths (one number per camera sample),
+// after every number above, so the RGB renderer reads exactly the
+// dimensions it always did.
+inline constexpr uint32_t wavelengths(uint32_t base, uint32_t maxdepth) { return base + 4 * (maxdepth + 3); }
+
 }  // namespace lantern::dims

@@ -73,6 +73,9 @@ class SceneBuilder final : public pbrt::ParserTarget {
                           const SourceLocation& where);
   void add_light(const std::string& type, const pbrt::ParamSet& ps, const Mat4& ctm, const std::string& base_dir);
   // A material or texture parameter that may name a texture (builder_textures.cpp).
+  RGBTextureRef conductor_param(const pbrt::ParamSet& ps, const std::string& name, const std::string& def);
+  // A spectrum kept for the spectral renderer (TexturePools::spectra).
+  int32_t add_spectrum(const PiecewiseLinearSpectrum& s);
   RGBTextureRef rgb_texture(const pbrt::ParamSet& ps, const std::string& name, RGB def,
                             pbrt::ColorUsage usage = pbrt::ColorUsage::Reflectance);
   FloatTextureRef float_texture(const pbrt::ParamSet& ps, const std::string& name, float def);

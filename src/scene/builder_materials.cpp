@@ -37,6 +37,15 @@ void SceneBuilder::coat_layer(const ParamSet& ps, CoatLayer* c) {
   if (c->n_samples < 1 || c->n_samples > 100) ps.fail(*ps.find("nsamples"), "nsamples must be in [1, 100]");
 }
 
+// A conductor's eta or k: as given, or pbrt-v4's default, copper's
+// measured constants (named metal `def`), kept as a spectrum too.
+RGBTextureRef SceneBuilder::conductor_param(const ParamSet& ps, const std::string& name, const std::string& def) {
+  if (ps.has(name)) return rgb_texture(ps, name, RGB(0.f), ColorUsage::Unbounded);
+  RGBTextureRef ref = RGBTextureRef::constant(*pbrt::named_spectrum_rgb(def));
+  if (auto s = pbrt::named_sampled_spectrum(def)) ref.spectrum = add_spectrum(*s);
+  return ref;
+}
+
 FloatTextureRef SceneBuilder::eta_param(const ParamSet& ps, float def) {
   const pbrt::Param* p = ps.find("eta");
   if (!p) p = ps.find("index");
@@ -128,9 +137,11 @@ MaterialHandle SceneBuilder::concrete_material(const std::string& type, const Pa
         const ConductorRGB fit = fit_conductor_rgb(table);
         c.eta = RGBTextureRef::constant(fit.eta);
         c.k = RGBTextureRef::constant(fit.k);
+        c.eta.spectrum = add_spectrum(*eta_s);
+        c.k.spectrum = add_spectrum(*k_s);
       } else {
-        c.eta = rgb_texture(ps, "eta", *pbrt::named_spectrum_rgb("metal-Cu-eta"), ColorUsage::Unbounded);
-        c.k = rgb_texture(ps, "k", *pbrt::named_spectrum_rgb("metal-Cu-k"), ColorUsage::Unbounded);
+        c.eta = conductor_param(ps, "eta", "metal-Cu-eta");
+        c.k = conductor_param(ps, "k", "metal-Cu-k");
       }
       if (ps.has("reflectance")) {
         c.reflectance = rgb_texture(ps, "reflectance", RGB(0.f));
@@ -221,8 +232,8 @@ MaterialHandle SceneBuilder::coated_conductor(const ParamSet& ps) {
     c.reflectance = rgb_texture(ps, "reflectance", RGB(0.f));
     c.by_reflectance = true;
   } else {
-    c.conductor_eta = rgb_texture(ps, "conductor.eta", *pbrt::named_spectrum_rgb("metal-Cu-eta"), ColorUsage::Unbounded);
-    c.conductor_k = rgb_texture(ps, "conductor.k", *pbrt::named_spectrum_rgb("metal-Cu-k"), ColorUsage::Unbounded);
+    c.conductor_eta = conductor_param(ps, "conductor.eta", "metal-Cu-eta");
+    c.conductor_k = conductor_param(ps, "conductor.k", "metal-Cu-k");
   }
   coat_layer(ps, &c.layer);
   MaterialPools& m = scene_.materials;

@@ -19,7 +19,17 @@ RGBTextureRef SceneBuilder::rgb_texture(const ParamSet& ps, const std::string& n
   }
   if (const pbrt::Param* p = ps.find(name); p && p->type == "float")
     return RGBTextureRef::constant(RGB(ps.get_float(name, 0.f)));
-  return RGBTextureRef::constant(ps.get_rgb(name, usage).value_or(def));
+  RGBTextureRef ref = RGBTextureRef::constant(ps.get_rgb(name, usage).value_or(def));
+  // A spectrum given by samples is kept for the spectral renderer too
+  // (emitters' spectra are the lights' to keep).
+  if (usage != ColorUsage::Illuminant)
+    if (auto sampled = ps.get_sampled_spectrum(name)) ref.spectrum = add_spectrum(*sampled);
+  return ref;
+}
+
+int32_t SceneBuilder::add_spectrum(const PiecewiseLinearSpectrum& s) {
+  scene_.textures.spectra.emplace_back(s);
+  return int32_t(scene_.textures.spectra.size() - 1);
 }
 
 FloatTextureRef SceneBuilder::float_texture(const ParamSet& ps, const std::string& name, float def) {
@@ -36,7 +46,7 @@ FloatTextureRef SceneBuilder::float_texture(const ParamSet& ps, const std::strin
 
 RGBTextureRef SceneBuilder::add_texture_node(TextureNode n) {
   scene_.textures.nodes.push_back(std::move(n));
-  return RGBTextureRef{RGB(0.f), int32_t(scene_.textures.nodes.size() - 1)};
+  return RGBTextureRef{RGB(0.f), int32_t(scene_.textures.nodes.size() - 1), -1};
 }
 
 TextureMapping SceneBuilder::texture_mapping(const ParamSet& ps, const Mat4& ctm, bool two_d) {
@@ -294,7 +304,7 @@ void SceneBuilder::texture(const std::string& name, const std::string& value_typ
   }
   if ((is_float ? float_textures_.count(name) : rgb_textures_.count(name)) > 0)
     warn(ps.where, "texture \"" + printable(name) + "\" is redefined");
-  if (is_float) float_textures_[name] = FloatTextureRef{result.value[0], result.node};
+  if (is_float) float_textures_[name] = FloatTextureRef{result.value[0], result.node, -1};
   else rgb_textures_[name] = result;
 }
 

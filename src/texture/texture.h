@@ -10,6 +10,7 @@
 #include <memory>
 #include <vector>
 
+#include "color/densely_sampled_spectrum.h"
 #include "texture/image.h"
 #include "texture/mapping.h"
 #include "texture/texture_cache.h"
@@ -23,8 +24,12 @@ template <class T>
 struct TextureRefOf {
   T value{0.f};       // the constant, when node < 0
   int32_t node = -1;  // index into TexturePools::nodes
+  // A constant given as a spectrum (a file, pairs, a named metal): index
+  // into TexturePools::spectra, which the spectral renderer reads; value
+  // holds its colour for the RGB renderer.
+  int32_t spectrum = -1;
 
-  static TextureRefOf constant(T v) { return TextureRefOf{v, -1}; }
+  static TextureRefOf constant(T v) { return TextureRefOf{v, -1, -1}; }
   bool is_constant() const { return node < 0; }
 };
 using FloatTextureRef = TextureRefOf<float>;
@@ -32,7 +37,7 @@ using RGBTextureRef = TextureRefOf<RGB>;
 
 // A float texture where a node's children are held: nodes evaluate to
 // colour, a float node's in every channel.
-inline RGBTextureRef broadcast(const FloatTextureRef& f) { return RGBTextureRef{RGB(f.value), f.node}; }
+inline RGBTextureRef broadcast(const FloatTextureRef& f) { return RGBTextureRef{RGB(f.value), f.node, -1}; }
 
 enum class TextureKind : uint8_t {
   Image, Checkerboard, Dots, Scale, Mix, DirectionMix, Bilerp, FBm, Wrinkled, Windy, Marble
@@ -61,6 +66,7 @@ struct TextureNode {
 struct TexturePools {
   std::vector<TextureImage> images;
   std::vector<TextureNode> nodes;
+  std::vector<DenselySampledSpectrum> spectra;  // constants given as spectra (TextureRefOf::spectrum)
   std::shared_ptr<TextureCache> cache;  // made when the first image texture is
   // Some texture filters over the pixel footprint (texture/footprint.h):
   // only then do the integrators compute one per hit.

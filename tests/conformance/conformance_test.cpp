@@ -29,7 +29,7 @@ std::vector<std::string> data_files() {
 
 class Conformance : public ::testing::TestWithParam<std::string> {};
 
-Image render_with_lantern(const ReferenceData& d, const std::string& integrator, uint64_t seed) {
+Image render_with_lantern(const ReferenceData& d, const std::string& integrator, bool spectral, uint64_t seed) {
   const std::string scene_path = (fs::path(d.path).parent_path() / d.scene).string();
   auto scene = load_scene(scene_path);
   const SceneSettings& ss = scene_settings(*scene);
@@ -41,33 +41,40 @@ Image render_with_lantern(const ReferenceData& d, const std::string& integrator,
   o.light_sampler = ss.light_sampler;
   o.wave_size = merges_vertices(parse_integrator(integrator)) ? 16384 : 4096;
   o.seed = seed;
+  o.spectral = spectral;
   return render(*scene, o).image;
 }
 
 TEST_P(Conformance, RegionsMatchPbrtV4) {
   const ReferenceData d = read_reference_data(GetParam());
   ASSERT_FALSE(d.regions.empty()) << d.path;
+  for (const std::string& mode : d.modes)
   for (const std::string& integrator : d.integrators) {
-    const Image a = render_with_lantern(d, integrator, 1), b = render_with_lantern(d, integrator, 2);
+    const bool spectral = mode == "spectral";
+    const Image a = render_with_lantern(d, integrator, spectral, 1), b = render_with_lantern(d, integrator, spectral, 2);
     int failed = 0;
     for (const Region& r : d.regions) {
       const RegionStats l = region_stats(a, b, r.box);
+      const bool own = !(spectral && r.rgb_only);  // the region's own tolerance applies
       for (int c = 0; c < 3; ++c) {
         const double p = r.reference.mean[c];
         const double se = std::hypot(l.stderr_[c], r.reference.stderr_[c]);
-        const double relative = r.relative >= 0.0 ? r.relative : d.relative;
-        const double absolute = r.absolute >= 0.0 ? r.absolute : d.absolute;
+        const ReferenceData defaults;
+        const bool file_own = !(spectral && d.rgb_only);
+        const double relative = own && r.relative >= 0.0 ? r.relative : file_own ? d.relative : defaults.relative;
+        const double absolute = own && r.absolute >= 0.0 ? r.absolute : file_own ? d.absolute : defaults.absolute;
         const double allowed = d.z * se + relative * std::fabs(p) + absolute;
         const double diff = l.mean[c] - p;
         if (std::fabs(diff) > allowed) ++failed;
         EXPECT_LE(std::fabs(diff), allowed)
-            << d.scene << " (" << integrator << "), region " << r.name << ", channel " << "RGB"[c] << ": Lantern "
+            << d.scene << " (" << integrator << ", " << mode << "), region " << r.name << ", channel " << "RGB"[c] << ": Lantern "
             << l.mean[c] << " +- " << l.stderr_[c] << ", pbrt-v4 " << p << " +- " << r.reference.stderr_[c]
             << " (ratio " << l.mean[c] / p << ")";
       }
     }
-    if (failed) std::printf("%s (%s): %d of %zu region channels differ\n", d.scene.c_str(), integrator.c_str(), failed,
-                            3 * d.regions.size());
+    if (failed)
+      std::printf("%s (%s, %s): %d of %zu region channels differ\n", d.scene.c_str(), integrator.c_str(), mode.c_str(),
+                  failed, 3 * d.regions.size());
   }
 }
 

@@ -17,19 +17,24 @@ struct Region {
   std::string name;
   Box box;
   RegionStats reference;  // pbrt-v4's
-  // >= 0: this region's own tolerances (its "why" says what differs)
+  // >= 0: this region's own tolerances (its "why" says what differs); with
+  // rgb_only, only for the RGB renderer (what it models differently from
+  // pbrt-v4's sampled wavelengths), the spectral one held to the file's
   double relative = -1.0, absolute = -1.0;
+  bool rgb_only = false;
 };
 
 struct ReferenceData {
   std::string path;   // of the data file
   std::string scene;  // relative to the data file
   std::vector<std::string> integrators{"path"};
+  std::vector<std::string> modes{"rgb", "spectral"};  // Lantern's colour: RGB, sampled wavelengths
   int spp = 0;  // Lantern's; 0: the scene's
   // Allowed: z standard errors of the difference, plus `relative` of
   // pbrt-v4's mean for what the two model differently (`why` says what).
   double z = 4.5, relative = 0.005, absolute = 1e-4;
   std::string why;
+  bool rgb_only = false;  // the tolerance is RGB's against spectral: the spectral renderer keeps the defaults
   nlohmann::json json;  // the whole file, kept so the measuring tool rewrites it whole
   std::vector<Region> regions;
 };
@@ -47,11 +52,13 @@ inline ReferenceData read_reference_data(const std::string& path, bool measured 
     const auto& l = d.json.value("lantern", nlohmann::json::object());
     if (l.contains("integrators")) d.integrators = l["integrators"].get<std::vector<std::string>>();
     d.spp = l.value("spp", 0);
+    if (l.contains("modes")) d.modes = l["modes"].get<std::vector<std::string>>();
     const auto& t = d.json.value("tolerance", nlohmann::json::object());
     d.z = t.value("z", d.z);
     d.relative = t.value("relative", d.relative);
     d.absolute = t.value("absolute", d.absolute);
     d.why = t.value("why", std::string());
+    d.rgb_only = t.value("rgb_only", false);
     for (const auto& r : d.json.at("regions")) {
       Region g;
       g.name = r.at("name").get<std::string>();
@@ -61,6 +68,7 @@ inline ReferenceData read_reference_data(const std::string& path, bool measured 
       if (r.contains("tolerance")) {
         g.relative = r["tolerance"].value("relative", -1.0);
         g.absolute = r["tolerance"].value("absolute", -1.0);
+        g.rgb_only = r["tolerance"].value("rgb_only", false);
         if (r["tolerance"].value("why", std::string()).empty())
           throw std::runtime_error("region " + g.name + ": a tolerance of its own needs a \"why\"");
       }

@@ -187,20 +187,7 @@ std::optional<PiecewiseLinearSpectrum> ParamSet::get_sampled_spectrum(const std:
   }
   if (p->strings.size() != 1) fail(*p, "expected one spectrum name or file");
   const std::string& s = p->strings[0];
-  // A named metal's measured constants (color/optical_constants.h).
-  if (s.starts_with("metal-")) {
-    const size_t dash = s.rfind('-');
-    const std::string metal = s.substr(6, dash > 6 ? dash - 6 : 0), part = s.substr(dash + 1);
-    const auto table = optical_constants(metal);
-    if (!table.empty() && (part == "eta" || part == "k")) {
-      PiecewiseLinearSpectrum out;
-      for (const OpticalConstant& row : table) {
-        out.nm.push_back(row.nm);
-        out.value.push_back(part == "eta" ? row.n : row.k);
-      }
-      return out;
-    }
-  }
+  if (auto metal = named_sampled_spectrum(s)) return metal;  // a named metal's measured constants
   if (named_spectrum_rgb(s)) return std::nullopt;  // a named glass: a constant here
   // Anything else names a spectrum file, relative to the scene's folder.
   std::filesystem::path file(s);
@@ -214,6 +201,20 @@ std::optional<PiecewiseLinearSpectrum> ParamSet::get_sampled_spectrum(const std:
   } catch (const InputError& e) {
     fail(*p, e.what());
   }
+}
+
+std::optional<PiecewiseLinearSpectrum> named_sampled_spectrum(const std::string& s) {
+  if (!s.starts_with("metal-")) return std::nullopt;
+  const size_t dash = s.rfind('-');
+  const std::string metal = s.substr(6, dash > 6 ? dash - 6 : 0), part = s.substr(dash + 1);
+  const auto table = optical_constants(metal);
+  if (table.empty() || (part != "eta" && part != "k")) return std::nullopt;
+  PiecewiseLinearSpectrum out;
+  for (const OpticalConstant& row : table) {
+    out.nm.push_back(row.nm);
+    out.value.push_back(part == "eta" ? row.n : row.k);
+  }
+  return out;
 }
 
 // A black body's colour: its spectrum against the tabulated CIE 1931

@@ -71,5 +71,8 @@ class ParamSet {
 RGB blackbody_rgb(float kelvin);
 // A named spectrum of pbrt-v4 (metal-Cu-eta, glass-BK7, ...) as RGB.
 std::optional<RGB> named_spectrum_rgb(const std::string& name);
+// A named metal's measured eta or k (metal-Au-k, ...) as samples; nullopt
+// for other names.
+std::optional<PiecewiseLinearSpectrum> named_sampled_spectrum(const std::string& name);
 
 }  // namespace lantern::pbrt

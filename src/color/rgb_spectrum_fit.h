@@ -1,0 +1,40 @@
+// Fitting sigmoid polynomials to RGB reflectances (Jakob & Hanika 2019,
+// sec. 3): the coefficients whose spectrum, lit by the colour space's white
+// and seen by the CIE 1931 observer, has the target's colour, found by
+// Gauss-Newton iteration on the CIELAB difference (CIE76). What builds the
+// tables of color/rgb_spectrum_table.h.
+#pragma once
+
+#include <array>
+
+#include "color/color_space.h"
+#include "color/rgb_spectrum_table.h"
+
+namespace lantern {
+
+struct SigmoidFit {
+  std::array<double, 3> c{0.0, 0.0, 0.0};  // c0, c1, c2 over t in [0, 1]
+  double residual = 0.0;                    // CIELAB distance left
+};
+
+class SigmoidFitter {
+ public:
+  explicit SigmoidFitter(const ColorSpace& cs);
+  // Fits reflectance rgb (channels in [0, 1]) starting from `start`.
+  SigmoidFit fit(const std::array<double, 3>& rgb, const std::array<double, 3>& start) const;
+  // The linear RGB of the spectrum with coefficients c under the white.
+  std::array<double, 3> rgb_of(const std::array<double, 3>& c) const;
+
+ private:
+  static constexpr int kSamples = 471;  // 360-830 nm at 1 nm
+  const ColorSpace& cs_;
+  std::array<double, kSamples> t_;                     // wavelength mapped onto [0, 1]
+  std::array<std::array<double, 3>, kSamples> xyz_;    // quadrature weight * white * cmf / white's Y
+
+  std::array<double, 3> xyz_of(const std::array<double, 3>& c, std::array<double, 9>* jacobian) const;
+};
+
+// The whole table for colour space cs at res nodes per axis (parallel).
+RGBToSpectrumTable fit_rgb_to_spectrum_table(const ColorSpace& cs, int res);
+
+}  // namespace lantern

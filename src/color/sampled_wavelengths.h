@@ -1,0 +1,64 @@
+// The wavelengths a camera sample carries through the spectral renderer:
+// kSpectrumSamples of them, the first drawn from a density that follows
+// the eye's sensitivity over 360-830 nm and the others spaced evenly after
+// it (wrapping around), so every sample covers the range. A path's
+// Spectrum values are its radiance at these wavelengths; the film weighs
+// each by the matching functions over its density (color/spectrum_conversion.h).
+//
+// The RGB renderer carries no wavelengths: SampledWavelengths::rgb(), and
+// then a Spectrum's channels are R, G, B and G again (the fourth repeats
+// green, so every rule that treats the channels alike, such as choosing one
+// to sample a distance in a medium, sees a proper value there).
+#pragma once
+
+#include <array>
+#include <cmath>
+
+#include "color/sigmoid_spectrum.h"
+#include "math/spectrum.h"
+
+namespace lantern {
+
+// The density over visible wavelengths, and its inversion: p(l)
+// proportional to 1 / cosh^2(0.0072 (l - 538)) on 360-830 nm
+// (Physically Based Rendering, 4th edition, sampling visible wavelengths).
+inline float visible_wavelength_pdf(float nm) {
+  if (!(nm >= kLambdaMin && nm <= kLambdaMax)) return 0.f;
+  const float c = std::cosh(0.0072f * (nm - 538.f));
+  return 0.0039398042f / (c * c);
+}
+inline float sample_visible_wavelength(float u) {
+  return 538.f - 138.888889f * std::atanh(0.85691062f - 1.82750197f * u);
+}
+
+struct SampledWavelengths {
+  std::array<float, kSpectrumSamples> nm{}, pdf{};
+
+  // The RGB renderer's: no wavelengths.
+  static SampledWavelengths rgb() { return {}; }
+  bool is_rgb() const { return nm[0] == 0.f; }
+
+  // Stratified over u: wavelength i from u + i / kSpectrumSamples.
+  static SampledWavelengths sample_visible(float u) {
+    SampledWavelengths l;
+    for (int i = 0; i < kSpectrumSamples; ++i) {
+      float up = u + float(i) / float(kSpectrumSamples);
+      if (up >= 1.f) up -= 1.f;
+      l.nm[size_t(i)] = std::fmin(std::fmax(sample_visible_wavelength(up), kLambdaMin), kLambdaMax);
+      l.pdf[size_t(i)] = visible_wavelength_pdf(l.nm[size_t(i)]);
+    }
+    return l;
+  }
+
+  // Where the physics separates wavelengths (dispersion), only the first
+  // goes on: the others' densities become zero, and the first's is that of
+  // having drawn it among kSpectrumSamples.
+  void terminate_secondary() {
+    if (is_rgb() || secondary_terminated()) return;
+    for (int i = 1; i < kSpectrumSamples; ++i) pdf[size_t(i)] = 0.f;
+    pdf[0] /= float(kSpectrumSamples);
+  }
+  bool secondary_terminated() const { return pdf[1] == 0.f && !is_rgb(); }
+};
+
+}  // namespace lantern
