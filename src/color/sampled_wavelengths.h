@@ -30,6 +30,14 @@ inline float visible_wavelength_pdf(float nm) {
 inline float sample_visible_wavelength(float u) {
   return 538.f - 138.888889f * std::atanh(0.85691062f - 1.82750197f * u);
 }
+// Both at once: with x = 0.85691062 - 1.82750197 u, 0.0072 (l - 538) is
+// -atanh(x) (0.0072 * 138.888889 = 1), and 1 / cosh^2(atanh x) = 1 - x^2,
+// so the density needs no hyperbolic function.
+inline float sample_visible_wavelength(float u, float* pdf) {
+  const float x = 0.85691062f - 1.82750197f * u;
+  *pdf = 0.0039398042f * (1.f - x * x);
+  return 538.f - 69.4444445f * std::log((1.f + x) / (1.f - x));  // atanh(x) = log((1 + x) / (1 - x)) / 2
+}
 
 struct SampledWavelengths {
   std::array<float, kSpectrumSamples> nm{}, pdf{};
@@ -44,8 +52,14 @@ struct SampledWavelengths {
     for (int i = 0; i < kSpectrumSamples; ++i) {
       float up = u + float(i) / float(kSpectrumSamples);
       if (up >= 1.f) up -= 1.f;
-      l.nm[size_t(i)] = std::fmin(std::fmax(sample_visible_wavelength(up), kLambdaMin), kLambdaMax);
-      l.pdf[size_t(i)] = visible_wavelength_pdf(l.nm[size_t(i)]);
+      float pdf;
+      const float nm = sample_visible_wavelength(up, &pdf);
+      if (nm >= kLambdaMin && nm <= kLambdaMax) {
+        l.nm[size_t(i)] = nm, l.pdf[size_t(i)] = pdf;
+      } else {  // (rounding at the ends of the range)
+        l.nm[size_t(i)] = std::fmin(std::fmax(nm, kLambdaMin), kLambdaMax);
+        l.pdf[size_t(i)] = visible_wavelength_pdf(l.nm[size_t(i)]);
+      }
     }
     return l;
   }

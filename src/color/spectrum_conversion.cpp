@@ -1,5 +1,8 @@
 #include "color/spectrum_conversion.h"
 
+#include <bit>
+#include <cstdint>
+
 #include "color/cie1931.h"
 #include "color/color_space.h"
 #include "color/rgb_spectrum_table.h"
@@ -15,12 +18,32 @@ float white_normalisation() {
   return float(1.0 / y);
 }
 
+// Scenes repeat their colours (a material's constant, a light's), and the
+// table's lookup is a search and 24 loads: each thread keeps the last
+// answers in a small direct-mapped cache keyed by the colour's bits. A hit
+// returns exactly what the table would, so images do not depend on it.
+SigmoidPolynomial table_lookup(const RGB& c) {
+  struct Entry {
+    uint32_t key[3];
+    SigmoidPolynomial p;
+    bool valid = false;
+  };
+  thread_local std::array<Entry, 64> cache;
+  const uint32_t k[3] = {std::bit_cast<uint32_t>(c[0]), std::bit_cast<uint32_t>(c[1]), std::bit_cast<uint32_t>(c[2])};
+  Entry& e = cache[((k[0] * 0x9E3779B1u) ^ (k[1] * 0x85EBCA77u) ^ (k[2] * 0xC2B2AE3Du)) >> 26];
+  if (e.valid && e.key[0] == k[0] && e.key[1] == k[1] && e.key[2] == k[2]) return e.p;
+  e.key[0] = k[0], e.key[1] = k[1], e.key[2] = k[2];
+  e.p = RGBToSpectrumTable::srgb()(c);
+  e.valid = true;
+  return e.p;
+}
+
 // The reflectance-shaped part of an unbounded colour and its scale.
 SigmoidPolynomial unbounded_shape(const RGB& c, float* scale) {
   const float m = std::fmax(std::fmax(c[0], c[1]), c[2]);
   *scale = 2.f * m;
   if (!(m > 0.f)) return SigmoidPolynomial::constant(0.f);
-  return RGBToSpectrumTable::srgb()(c / *scale);
+  return table_lookup(c / *scale);
 }
 
 }  // namespace
@@ -31,7 +54,7 @@ float white_illuminant(float nm) {
 }
 
 Spectrum albedo_spectrum_sampled(const RGB& c, const SampledWavelengths& l) {
-  const SigmoidPolynomial p = RGBToSpectrumTable::srgb()(clamp(c, 0.f, 1.f));
+  const SigmoidPolynomial p = table_lookup(clamp(c, 0.f, 1.f));
   Spectrum s;
   for (int i = 0; i < kSpectrumSamples; ++i) s[i] = p(l.nm[size_t(i)]);
   return s;
@@ -54,16 +77,20 @@ Spectrum illuminant_spectrum_sampled(const RGB& c, const SampledWavelengths& l) 
 }
 
 RGB film_rgb_sampled(const Spectrum& s, const SampledWavelengths& l) {
-  double xyz[3] = {0.0, 0.0, 0.0};
+  static const auto m = [] {
+    std::array<std::array<float, 3>, 3> f;
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 3; ++j) f[i][j] = float(ColorSpace::srgb().xyz_to_rgb[i][j] / double(kSpectrumSamples));
+    return f;
+  }();
+  Vec3 xyz(0.f);
   for (int i = 0; i < kSpectrumSamples; ++i) {
     const float pdf = l.pdf[size_t(i)];
-    if (!(pdf > 0.f)) continue;  // a terminated wavelength
-    const Vec3 cmf = cie1931_cmf(l.nm[size_t(i)]);
-    for (int k = 0; k < 3; ++k) xyz[k] += double(s[i]) * double(cmf[k]) / double(pdf);
+    if (pdf > 0.f) xyz += cie1931_cmf(l.nm[size_t(i)]) * (s[i] / pdf);  // (a terminated wavelength has none)
   }
-  for (double& v : xyz) v /= double(kSpectrumSamples);
-  const std::array<double, 3> rgb = multiply(ColorSpace::srgb().xyz_to_rgb, {xyz[0], xyz[1], xyz[2]});
-  return RGB(float(rgb[0]), float(rgb[1]), float(rgb[2]));
+  RGB rgb;
+  for (size_t i = 0; i < 3; ++i) rgb[int(i)] = m[i][0] * xyz.x + m[i][1] * xyz.y + m[i][2] * xyz.z;
+  return rgb;
 }
 
 }  // namespace lantern
