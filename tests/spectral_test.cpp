@@ -252,6 +252,33 @@ Shape "sphere" "float radius" 1
   }
 }
 
+// What the spectral renderer cannot do yet it refuses, saying why.
+TEST(Spectral, RgbGridMediaAreRefused) {
+  const auto scene = load_scene_from_string(R"(
+LookAt 0 0 -3 0 0 0 0 1 0
+Camera "perspective"
+Film "rgb" "integer xresolution" 8 "integer yresolution" 8
+WorldBegin
+LightSource "infinite" "rgb L" [1 1 1]
+MakeNamedMedium "g" "string type" "rgbgrid" "rgb sigma_s" [ 1 1 1 ]
+MediumInterface "g" ""
+Material "interface"
+Shape "sphere" "float radius" 1
+)",
+                                            "rgbgrid.pbrt");
+  RenderOptions o;
+  o.spp = 1;
+  o.spectral = true;
+  try {
+    render(*scene, o);
+    ADD_FAILURE() << "an rgbgrid medium rendered with --spectral";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("rgbgrid"), std::string::npos) << e.what();
+  }
+  o.spectral = false;
+  EXPECT_NO_THROW(render(*scene, o));
+}
+
 // Bit-identical across thread counts with sampled wavelengths too.
 TEST(Spectral, SameImageWithOneOrTwoThreads) {
   auto scene = shipped("caustics.pbrt");

@@ -336,6 +336,7 @@ int run_render(const RenderArgs& a) {
     RunInfo run{a.scene, name(o.integrator), out, name(o.ray_backend), r.image.width, r.image.height, o.wave_size, load_s,
                 scene_info(*scene), scene_settings(*scene).sampler, o.sampler, name(scene_settings(*scene).light_sampler)};
     nlohmann::json j = stats_json(run, r.stats);
+    j["colour"] = o.spectral ? "spectral" : "rgb";
     if (!rank_stats.is_null()) j["mpi"] = rank_stats;
     write_text_atomically(a.stats, j.dump(2) + "\n");
   };
@@ -345,6 +346,7 @@ int run_render(const RenderArgs& a) {
   }
 
   ImageMetadata md = {{"lantern:integrator", name(o.integrator)},
+                      {"lantern:colour", o.spectral ? "spectral" : "rgb"},
                       {"lantern:spp", std::to_string(r.stats.min_spp)},
                       {"lantern:samples", std::to_string(r.stats.samples)},
                       {"lantern:seed", std::to_string(o.seed)},
