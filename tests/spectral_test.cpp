@@ -24,9 +24,8 @@ namespace {
 // 61966-2-1's to the table's precision, and inverts.
 TEST(Spectral, SrgbMatricesFromPrimaries) {
   const ColorSpace& cs = ColorSpace::srgb();
-  const double published[3][3] = {{0.4124564, 0.3575761, 0.1804375},
-                                   {0.2126729, 0.7151522, 0.0721750},
-                                   {0.0193339, 0.1191920, 0.9503041}};
+  const double published[3][3] = {
+      {0.4124564, 0.3575761, 0.1804375}, {0.2126729, 0.7151522, 0.0721750}, {0.0193339, 0.1191920, 0.9503041}};
   for (size_t i = 0; i < 3; ++i)
     for (size_t j = 0; j < 3; ++j) EXPECT_NEAR(cs.rgb_to_xyz[i][j], published[i][j], 2e-3) << i << j;
   for (size_t i = 0; i < 3; ++i)
@@ -52,12 +51,13 @@ TEST(Spectral, TableRoundTrip) {
   const SigmoidFitter fitter(cs);
   const RGBToSpectrumTable& table = RGBToSpectrumTable::srgb();
   EXPECT_EQ(table.resolution(), 64);
-  const RGB colours[] = {RGB(0.8f, 0.4f, 0.1f), RGB(0.1f, 0.2f, 0.7f), RGB(0.05f, 0.9f, 0.05f), RGB(0.5f),
-                         RGB(0.18f, 0.18f, 0.18f), RGB(1.f, 0.f, 0.f), RGB(0.3f, 0.6f, 0.9f)};
+  const RGB colours[] = {RGB(0.8f, 0.4f, 0.1f),    RGB(0.1f, 0.2f, 0.7f), RGB(0.05f, 0.9f, 0.05f), RGB(0.5f),
+                         RGB(0.18f, 0.18f, 0.18f), RGB(1.f, 0.f, 0.f),    RGB(0.3f, 0.6f, 0.9f)};
   for (const RGB& c : colours) {
     const SigmoidPolynomial p = table(c);
     const auto back = fitter.rgb_of({p.c0, p.c1, p.c2});
-    for (int k = 0; k < 3; ++k) EXPECT_NEAR(back[size_t(k)], c[k], 1e-3 + 2e-3 * c[k]) << c[0] << " " << c[1] << " " << c[2];
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(back[size_t(k)], c[k], 1e-3 + 2e-3 * c[k]) << c[0] << " " << c[1] << " " << c[2];
   }
   RandomStream rng(7, 0);
   double sum = 0.0;
@@ -101,7 +101,8 @@ TEST(Spectral, VisibleWavelengthSampling) {
   }
   for (int b = 0; b < kBands; ++b) {
     double mass = 0.0;
-    for (int i = 0; i < 470; ++i) mass += double(visible_wavelength_pdf(360.f + 47.f * float(b) + (float(i) + 0.5f) * 0.1f)) * 0.1;
+    for (int i = 0; i < 470; ++i)
+      mass += double(visible_wavelength_pdf(360.f + 47.f * float(b) + (float(i) + 0.5f) * 0.1f)) * 0.1;
     EXPECT_NEAR(double(count[b]) / kSamples, mass, 1e-3) << "band " << b;
   }
   // Four stratified wavelengths, one in each quarter of the density.
@@ -236,7 +237,7 @@ AreaLightSource "diffuse" "rgb L" [2 2 2]
 ReverseOrientation
 Shape "sphere" "float radius" 1
 )",
-                                           "furnace.pbrt");
+                                            "furnace.pbrt");
   RenderOptions o;
   o.spp = 64;
   o.maxdepth = 3;

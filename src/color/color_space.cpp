@@ -69,7 +69,8 @@ const ColorSpace& ColorSpace::srgb() {
 const ColorSpace* ColorSpace::named(std::string_view name) {
   static const ColorSpace rec2020 =
       make_color_space("rec2020", {0.708f, 0.292f}, {0.170f, 0.797f}, {0.131f, 0.046f}, cie_d65);
-  static const ColorSpace p3 = make_color_space("dci-p3", {0.680f, 0.320f}, {0.265f, 0.690f}, {0.150f, 0.060f}, cie_d65);
+  static const ColorSpace p3 =
+      make_color_space("dci-p3", {0.680f, 0.320f}, {0.265f, 0.690f}, {0.150f, 0.060f}, cie_d65);
   if (name == "srgb") return &srgb();
   if (name == "rec2020") return &rec2020;
   if (name == "dci-p3") return &p3;

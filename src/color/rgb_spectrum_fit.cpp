@@ -14,7 +14,9 @@ using Vec3d = std::array<double, 3>;
 
 // CIELAB's companding function and its derivative.
 constexpr double kDelta = 6.0 / 29.0;
-double lab_f(double t) { return t > kDelta * kDelta * kDelta ? std::cbrt(t) : t / (3.0 * kDelta * kDelta) + 4.0 / 29.0; }
+double lab_f(double t) {
+  return t > kDelta * kDelta * kDelta ? std::cbrt(t) : t / (3.0 * kDelta * kDelta) + 4.0 / 29.0;
+}
 double lab_df(double t) {
   return t > kDelta * kDelta * kDelta ? 1.0 / (3.0 * std::cbrt(t * t)) : 1.0 / (3.0 * kDelta * kDelta);
 }

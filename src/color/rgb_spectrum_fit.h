@@ -14,7 +14,7 @@ namespace lantern {
 
 struct SigmoidFit {
   std::array<double, 3> c{0.0, 0.0, 0.0};  // c0, c1, c2 over t in [0, 1]
-  double residual = 0.0;                    // CIELAB distance left
+  double residual = 0.0;                   // CIELAB distance left
 };
 
 class SigmoidFitter {
@@ -28,8 +28,8 @@ class SigmoidFitter {
  private:
   static constexpr int kSamples = 471;  // 360-830 nm at 1 nm
   const ColorSpace& cs_;
-  std::array<double, kSamples> t_;                     // wavelength mapped onto [0, 1]
-  std::array<std::array<double, 3>, kSamples> xyz_;    // quadrature weight * white * cmf / white's Y
+  std::array<double, kSamples> t_;                   // wavelength mapped onto [0, 1]
+  std::array<std::array<double, 3>, kSamples> xyz_;  // quadrature weight * white * cmf / white's Y
 
   std::array<double, 3> xyz_of(const std::array<double, 3>& c, std::array<double, 9>* jacobian) const;
 };

@@ -30,8 +30,8 @@ SigmoidPolynomial RGBToSpectrumTable::operator()(const RGB& in) const {
   const float x = rgb[(largest + 1) % 3] * scale, y = rgb[(largest + 2) % 3] * scale;
   // The cell: x and y on a uniform grid, z by search among the nodes.
   const int xi = std::min(int(x), res_ - 2), yi = std::min(int(y), res_ - 2);
-  const int zi = int(std::clamp(std::upper_bound(z_.begin(), z_.end(), z) - z_.begin() - 1, ptrdiff_t(0),
-                                ptrdiff_t(res_ - 2)));
+  const int zi =
+      int(std::clamp(std::upper_bound(z_.begin(), z_.end(), z) - z_.begin() - 1, ptrdiff_t(0), ptrdiff_t(res_ - 2)));
   const float dx = x - float(xi), dy = y - float(yi), dz = (z - z_[size_t(zi)]) / (z_[size_t(zi) + 1] - z_[size_t(zi)]);
   float c[3];
   for (int k = 0; k < 3; ++k) {

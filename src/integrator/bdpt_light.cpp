@@ -21,11 +21,11 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
   const uint32_t maxdepth = uint32_t(settings_.maxdepth);
   std::vector<EmissionSample>& in_volume = w.volume_starts;  // waiting to learn which medium they are in
   in_volume.clear();
-  // With merging, one set of wavelengths for the whole wave (wavelengths.h).
+  // With merging, one set of wavelengths for the whole wave, its first
+  // sample's (wavelengths.h).
+  const PathSampler first = PathSampler::make(sampler_, wave.pixels[0], wave.first_sample);
   const SampledWavelengths wave_lambda =
-      settings_.merging ? sample_wavelengths(settings_.spectral, PathSampler::make(sampler_, wave.pixels[0], wave.first_sample),
-                                             settings_.maxdepth)
-                        : SampledWavelengths::rgb();
+      sample_wavelengths(settings_.spectral && settings_.merging, first, settings_.maxdepth);
   for (uint32_t slot = 0; slot < wave.size(); ++slot) {
     uint32_t pixel = wave.pixels[slot / wave.samples];
     PathSampler s = PathSampler::make(sampler_, pixel, wave.first_sample + slot % wave.samples);

@@ -49,10 +49,10 @@ class BsdfStore {
   }
 
  private:
-  using Pools = std::tuple<std::vector<DiffuseBSDF>, std::vector<ConductorBSDF>, std::vector<DielectricBSDF>,
-                           std::vector<CoatedDiffuseBSDF>, std::vector<CoatedConductorBSDF>,
-                           std::vector<DiffuseTransmissionBSDF>, std::vector<ThinDielectricBSDF>,
-                           std::vector<HairBSDF>>;
+  using Pools =
+      std::tuple<std::vector<DiffuseBSDF>, std::vector<ConductorBSDF>, std::vector<DielectricBSDF>,
+                 std::vector<CoatedDiffuseBSDF>, std::vector<CoatedConductorBSDF>, std::vector<DiffuseTransmissionBSDF>,
+                 std::vector<ThinDielectricBSDF>, std::vector<HairBSDF>>;
   static constexpr size_t kTypes = std::tuple_size_v<Pools>;
 
   template <class BSDF, size_t... I>

@@ -49,33 +49,34 @@ TEST_P(Conformance, RegionsMatchPbrtV4) {
   const ReferenceData d = read_reference_data(GetParam());
   ASSERT_FALSE(d.regions.empty()) << d.path;
   for (const std::string& mode : d.modes)
-  for (const std::string& integrator : d.integrators) {
-    const bool spectral = mode == "spectral";
-    const Image a = render_with_lantern(d, integrator, spectral, 1), b = render_with_lantern(d, integrator, spectral, 2);
-    int failed = 0;
-    for (const Region& r : d.regions) {
-      const RegionStats l = region_stats(a, b, r.box);
-      const bool own = !(spectral && r.rgb_only);  // the region's own tolerance applies
-      for (int c = 0; c < 3; ++c) {
-        const double p = r.reference.mean[c];
-        const double se = std::hypot(l.stderr_[c], r.reference.stderr_[c]);
-        const ReferenceData defaults;
-        const bool file_own = !(spectral && d.rgb_only);
-        const double relative = own && r.relative >= 0.0 ? r.relative : file_own ? d.relative : defaults.relative;
-        const double absolute = own && r.absolute >= 0.0 ? r.absolute : file_own ? d.absolute : defaults.absolute;
-        const double allowed = d.z * se + relative * std::fabs(p) + absolute;
-        const double diff = l.mean[c] - p;
-        if (std::fabs(diff) > allowed) ++failed;
-        EXPECT_LE(std::fabs(diff), allowed)
-            << d.scene << " (" << integrator << ", " << mode << "), region " << r.name << ", channel " << "RGB"[c] << ": Lantern "
-            << l.mean[c] << " +- " << l.stderr_[c] << ", pbrt-v4 " << p << " +- " << r.reference.stderr_[c]
-            << " (ratio " << l.mean[c] / p << ")";
+    for (const std::string& integrator : d.integrators) {
+      const bool spectral = mode == "spectral";
+      const Image a = render_with_lantern(d, integrator, spectral, 1),
+                  b = render_with_lantern(d, integrator, spectral, 2);
+      int failed = 0;
+      for (const Region& r : d.regions) {
+        const RegionStats l = region_stats(a, b, r.box);
+        const bool own = !(spectral && r.rgb_only);  // the region's own tolerance applies
+        for (int c = 0; c < 3; ++c) {
+          const double p = r.reference.mean[c];
+          const double se = std::hypot(l.stderr_[c], r.reference.stderr_[c]);
+          const ReferenceData defaults;
+          const bool file_own = !(spectral && d.rgb_only);
+          const double relative = own && r.relative >= 0.0 ? r.relative : file_own ? d.relative : defaults.relative;
+          const double absolute = own && r.absolute >= 0.0 ? r.absolute : file_own ? d.absolute : defaults.absolute;
+          const double allowed = d.z * se + relative * std::fabs(p) + absolute;
+          const double diff = l.mean[c] - p;
+          if (std::fabs(diff) > allowed) ++failed;
+          EXPECT_LE(std::fabs(diff), allowed)
+              << d.scene << " (" << integrator << ", " << mode << "), region " << r.name << ", channel "
+              << "RGB"[c] << ": Lantern " << l.mean[c] << " +- " << l.stderr_[c] << ", pbrt-v4 " << p << " +- "
+              << r.reference.stderr_[c] << " (ratio " << l.mean[c] / p << ")";
+        }
       }
+      if (failed)
+        std::printf("%s (%s, %s): %d of %zu region channels differ\n", d.scene.c_str(), integrator.c_str(),
+                    mode.c_str(), failed, 3 * d.regions.size());
     }
-    if (failed)
-      std::printf("%s (%s, %s): %d of %zu region channels differ\n", d.scene.c_str(), integrator.c_str(), mode.c_str(),
-                  failed, 3 * d.regions.size());
-  }
 }
 
 std::string test_name(const ::testing::TestParamInfo<std::string>& info) {
