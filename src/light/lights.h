@@ -9,6 +9,7 @@
 #include "math/distribution.h"
 #include "math/equal_area.h"
 #include "math/frame.h"
+#include "color/spectrum_conversion.h"
 #include "light/intensity_profile.h"
 #include "light/portal.h"
 #include "light/volume_light.h"

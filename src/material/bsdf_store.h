@@ -61,7 +61,7 @@ class BsdfStore {
   }
   template <class Fn, size_t... I>
   void visit_each(BsdfRef r, Fn& fn, std::index_sequence<I...>) const {
-    ((r.type == I ? (fn(std::get<I>(pools_)[r.index]), true) : false) || ...);
+    (void)((r.type == I ? (fn(std::get<I>(pools_)[r.index]), true) : false) || ...);
   }
 
   Pools pools_;
