@@ -57,6 +57,9 @@ TEST_P(Conformance, RegionsMatchPbrtV4) {
   for (const std::string& mode : d.modes)
     for (const std::string& integrator : d.integrators) {
       const bool spectral = mode == "spectral";
+      // With sampled wavelengths in the file's first integrator only: the
+      // others' agreement with it is held in tests/spectral_test.cpp.
+      if (spectral && integrator != d.integrators.front()) continue;
       const Image a = render_with_lantern(d, integrator, spectral, 1),
                   b = render_with_lantern(d, integrator, spectral, 2);
       int failed = 0;
