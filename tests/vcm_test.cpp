@@ -17,17 +17,6 @@
 namespace lantern {
 namespace {
 
-// b's region means within 4.5 standard errors of the difference plus
-// `allowance` (relative) of a's.
-void expect_means_agree(const RegionStats& a, const RegionStats& b, double allowance, const char* what) {
-  for (size_t g = 0; g < a.mean.size(); ++g)
-    for (size_t c = 0; c < 3; ++c) {
-      const double se = std::hypot(a.std_error[g][c], b.std_error[g][c]);
-      EXPECT_LT(std::fabs(b.mean[g][c] - a.mean[g][c]), 4.5 * se + allowance * a.mean[g][c])
-          << what << ", region " << g << " channel " << c << ": " << b.mean[g][c] << " against bdpt's " << a.mean[g][c];
-    }
-}
-
 // Merging is biased by its radius (it blurs the light over a disk), which
 // shrinks as samples grow; at the default radius on the Cornell box the
 // blur is far below the noise: vcm's region means match bdpt's within

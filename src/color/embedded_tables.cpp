@@ -1,5 +1,6 @@
 // The tables the build fitted (lantern-rgb-table) and embedded
-// (rgb_tables.S): a 32-bit resolution, then the coefficients.
+// (rgb_tables.S): a 32-bit resolution, then the coefficients, read where
+// they lie (4-byte aligned: the assembler aligns the start to 16).
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
@@ -19,9 +20,8 @@ RGBToSpectrumTable embedded(const unsigned char* begin, const unsigned char* end
   if (bytes >= sizeof res) std::memcpy(&res, begin, sizeof res);
   if (res < 2 || bytes != sizeof res + RGBToSpectrumTable::index(res, 3, 0, 0, 0) * sizeof(float))
     throw std::logic_error("the embedded RGB-to-spectrum table is malformed");
-  std::vector<float> c(RGBToSpectrumTable::index(res, 3, 0, 0, 0));
-  std::memcpy(c.data(), begin + sizeof res, c.size() * sizeof(float));
-  return RGBToSpectrumTable(res, std::move(c));
+  const auto* c = reinterpret_cast<const float*>(begin + sizeof res);
+  return RGBToSpectrumTable(res, std::span<const float>(c, RGBToSpectrumTable::index(res, 3, 0, 0, 0)));
 }
 
 }  // namespace

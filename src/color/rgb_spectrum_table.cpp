@@ -16,7 +16,12 @@ std::vector<float> RGBToSpectrumTable::z_nodes(int res) {
 }
 
 RGBToSpectrumTable::RGBToSpectrumTable(int res, std::vector<float> coefficients)
-    : res_(res), z_(z_nodes(res)), coefficients_(std::move(coefficients)) {
+    : RGBToSpectrumTable(res, std::span<const float>(coefficients)) {
+  owned_ = std::move(coefficients);  // (moving a vector keeps its storage, which the span views)
+}
+
+RGBToSpectrumTable::RGBToSpectrumTable(int res, std::span<const float> coefficients)
+    : res_(res), z_(z_nodes(std::max(res, 2))), coefficients_(coefficients) {
   if (res < 2 || coefficients_.size() != index(res, 3, 0, 0, 0))
     throw std::invalid_argument("an RGB-to-spectrum table needs 3 * res^3 * 3 coefficients");
 }

@@ -19,8 +19,15 @@ namespace lantern {
 class RGBToSpectrumTable {
  public:
   // res nodes per axis; coefficients: 3 * res^3 * 3 floats, ordered by
-  // (largest channel, z, y, x, coefficient); z from z_nodes(res).
+  // (largest channel, z, y, x, coefficient); z from z_nodes(res). The
+  // table owns them, or (the second form) reads them where they lie.
   RGBToSpectrumTable(int res, std::vector<float> coefficients);
+  RGBToSpectrumTable(int res, std::span<const float> coefficients);
+  // Moved, not copied: a copy's view would point at the original's storage.
+  RGBToSpectrumTable(RGBToSpectrumTable&&) = default;
+  RGBToSpectrumTable& operator=(RGBToSpectrumTable&&) = default;
+  RGBToSpectrumTable(const RGBToSpectrumTable&) = delete;
+  RGBToSpectrumTable& operator=(const RGBToSpectrumTable&) = delete;
 
   // The spectrum of reflectance rgb (each channel in [0, 1]).
   SigmoidPolynomial operator()(const RGB& rgb) const;
@@ -43,7 +50,8 @@ class RGBToSpectrumTable {
  private:
   int res_;
   std::vector<float> z_;
-  std::vector<float> coefficients_;
+  std::vector<float> owned_;
+  std::span<const float> coefficients_;
 };
 
 }  // namespace lantern

@@ -27,10 +27,7 @@ inline float visible_wavelength_pdf(float nm) {
   const float c = std::cosh(0.0072f * (nm - 538.f));
   return 0.0039398042f / (c * c);
 }
-inline float sample_visible_wavelength(float u) {
-  return 538.f - 138.888889f * std::atanh(0.85691062f - 1.82750197f * u);
-}
-// Both at once: with x = 0.85691062 - 1.82750197 u, 0.0072 (l - 538) is
+// The inversion, with its density: with x = 0.85691062 - 1.82750197 u, 0.0072 (l - 538) is
 // -atanh(x) (0.0072 * 138.888889 = 1), and 1 / cosh^2(atanh x) = 1 - x^2,
 // so the density needs no hyperbolic function.
 inline float sample_visible_wavelength(float u, float* pdf) {

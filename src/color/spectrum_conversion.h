@@ -43,8 +43,4 @@ inline RGB film_rgb(const Spectrum& s, const SampledWavelengths& l) {
   return l.is_rgb() ? RGB(s[0], s[1], s[2]) : film_rgb_sampled(s, l);
 }
 
-// The colour space's white at wavelength nm, normalised to luminance 1:
-// what illuminant_spectrum multiplies by.
-float white_illuminant(float nm);
-
 }  // namespace lantern

@@ -32,18 +32,16 @@ void Film::prepare(WaveOutput& out) const {
   out.nonfinite = 0;
   out.sample_terms.reserve(out.samples.size());
   for (const FilmSample& s : out.samples) {
-    const RGB c = s.L;
-    if (addable(c)) out.sample_terms.push_back(fixed_term(s.pixel, c));
+    if (addable(s.L)) out.sample_terms.push_back(fixed_term(s.pixel, s.L));
     else ++out.nonfinite;
   }
   for (const Splat& s : out.splats) {
-    const RGB c = s.L;
-    if (!addable(c)) {
+    if (!addable(s.L)) {
       ++out.nonfinite;
       continue;
     }
     for_each_splat_pixel(filter_, width_, height_, s.p_raster, [&](size_t pixel, float w) {
-      out.splat_terms.push_back(fixed_term(uint32_t(pixel), w * c));
+      out.splat_terms.push_back(fixed_term(uint32_t(pixel), w * s.L));
     });
   }
 }
