@@ -35,6 +35,9 @@ struct SceneSettings {
   LightSamplerKind light_sampler = LightSamplerKind::Bvh;
   // An "sppm" Integrator's "radius": vcm's first merging radius (0: automatic).
   float merge_radius = 0.f;
+  // A material's index varies with wavelength: it disperses light with
+  // sampled wavelengths (RenderOptions::spectral) only.
+  bool dispersive = false;
 };
 
 struct LoadOptions {

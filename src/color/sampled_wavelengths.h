@@ -61,9 +61,11 @@ struct SampledWavelengths {
     return l;
   }
 
-  // Where the physics separates wavelengths (dispersion), only the first
-  // goes on: the others' densities become zero, and the first's is that of
-  // having drawn it among kSpectrumSamples.
+  // pbrt-v4's form of dispersion: only the first wavelength goes on, the
+  // others' densities become zero, and the first's is that of having drawn
+  // it among kSpectrumSamples. The integrators reduce the throughput
+  // instead and leave the wavelengths alone (integrator/dispersion.h); the
+  // film makes the same colour of both (tests/dispersion_test.cpp).
   void terminate_secondary() {
     if (is_rgb() || secondary_terminated()) return;
     for (int i = 1; i < kSpectrumSamples; ++i) pdf[size_t(i)] = 0.f;

@@ -6,6 +6,7 @@
 
 #include "film/pixel_filter.h"
 #include "integrator/bdpt_wave.h"
+#include "integrator/dispersion.h"
 #include "integrator/hit.h"
 #include "integrator/hit_material.h"
 #include "integrator/shade.h"
@@ -38,6 +39,7 @@ void Bdpt::start_eye_subpaths(const WaveDesc& wave, BdptWave& w) const {
     Vec2 p_raster = sample_raster_position(scene_.filter, pixel, width, s.get2d(dims::kFilm));
     CameraRay r = camera_.generate_ray(p_raster, s.get2d(dims::kLens));
     w.eye.beta[slot] = Spectrum(1.f);
+    w.eye.dispersed[slot] = 0;
     w.eye.mis[slot] = mis_camera_start(camera_.pdf_dir(r.d), w.mis);
     w.eye.prev_p[slot] = r.o;
     w.eye.prev_n[slot] = Vec3(0.f);
@@ -128,6 +130,7 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
     }
     Footprint fp;
     MaterialHandle material = hit_material(scene_, footprints_, w.rays, i, d, &sp, &fp);
+    scatter_at(scene_.materials, material, settings_.spectral, w.eye.beta[slot], w.eye.dispersed[slot]);
     w.hits.store(i, sp, d, material, w.lambda[slot], footprints_.enabled() ? &fp : nullptr);
   }
 }

@@ -3,6 +3,7 @@
 #include "integrator/bdpt.h"
 #include "integrator/bdpt_strategies.h"
 #include "integrator/bdpt_wave.h"
+#include "integrator/dispersion.h"
 #include "integrator/hit.h"
 #include "integrator/hit_material.h"
 #include "integrator/shade.h"
@@ -37,6 +38,7 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
         emissive ? s.get1d(dims::volume_point(dims::vertex(maxdepth + 2), maxdepth, 0, true)) : 0.5f;
     w.pixel[slot] = pixel;
     w.L[slot] = Spectrum(0.f);
+    w.light.dispersed[slot] = 0;
     w.sampler[slot] = s;
     w.origin.extra_depth[slot] = 0;
     auto es = sample_le(lights, scene_.shapes, scene_.textures, u_select, u_pos, u_dir, lambda, u_volume);
@@ -171,6 +173,7 @@ void Bdpt::light_surface_stage(BdptWave& w) const {
     if (w.depth == 1 && !reaches_through_portal(scene_.lights, w.origin.light[slot], sp.p, -d)) continue;
     Footprint fp;
     MaterialHandle material = hit_material(scene_, footprints_, w.rays, i, d, &sp, &fp);
+    scatter_at(scene_.materials, material, settings_.spectral, w.light.beta[slot], w.light.dispersed[slot]);
     w.hits.store(i, sp, d, material, w.lambda[slot], footprints_.enabled() ? &fp : nullptr);
     MisState& m = w.light.mis[slot];
     if (w.depth == 1) {
@@ -236,7 +239,8 @@ void Bdpt::light_shade_stage(BdptWave& w) const {
         w.vertices.push(slot, ld, w.light.beta[slot], w.light.mis[slot],
                         {.p = h.p[i], .ng = h.ng[i], .ns = h.ns[i], .wo = h.wo[i], .error_scale = h.error_scale[i],
                          .bsdf = settings_.connections ? w.vertices.bsdfs.push(bsdf) : BsdfRef{},
-                         .tangent = tangent_or_null(h.tangent, i), .medium = {}, .sigma_t = Spectrum(0.f)});
+                         .tangent = tangent_or_null(h.tangent, i), .medium = {}, .sigma_t = Spectrum(0.f),
+                         .dispersed = w.light.dispersed[slot] != 0});
       connect_camera(w, slot, ld, v, s.get2d(dim + dims::kLightLens));
     }
     if (ld >= maxdepth) {  // deeper vertices would only make paths longer than maxdepth

@@ -178,7 +178,8 @@ void Bdpt::light_medium_stage(BdptWave& w) const {
     const MediumVertex v = medium_vertex(w, i);
     if (keeps_light_vertex(ld))
       w.vertices.push(slot, ld, w.light.beta[slot], w.light.mis[slot],
-                      {.p = v.p, .wo = v.wo_world, .bsdf = {}, .medium = v.medium, .sigma_t = v.sigma});
+                      {.p = v.p, .wo = v.wo_world, .bsdf = {}, .medium = v.medium, .sigma_t = v.sigma,
+                       .dispersed = w.light.dispersed[slot] != 0});
     connect_camera(w, slot, ld, v, s.get2d(dim + dims::kLightLens));
     if (ld >= uint32_t(settings_.maxdepth)) {
       ++w.stats.light_ends[size_t(PathEnd::MaxDepth)];

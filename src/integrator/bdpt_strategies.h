@@ -18,6 +18,7 @@
 
 #include "integrator/bdpt.h"
 #include "integrator/bdpt_wave.h"
+#include "integrator/dispersion.h"
 #include "integrator/vertex.h"
 #include "light/emission.h"
 
@@ -91,7 +92,8 @@ void Bdpt::connect_light_vertices(BdptWave& w, uint32_t slot, const Vertex& v) c
     const VertexEval e = v.evaluate(wi);
     if (is_black(e.f)) continue;
     const LightVertexResponse r = light_vertex_response(lv, j, wi);
-    const Spectrum c = w.eye.beta[slot] * e.f * r.e.f * lv.beta[j] / dist2;
+    const Spectrum c = w.eye.beta[slot] * e.f * r.e.f * lv.beta[j] / dist2 *
+                       joined_dispersion(w.eye.dispersed[slot], lv.is_dispersed(j));
     if (is_black(c)) continue;
     Connection k;
     k.unweighted = c;
@@ -176,10 +178,11 @@ void Bdpt::merge_at_eye_vertex(BdptWave& w, uint32_t slot, const Vertex& v) cons
     if (is_black(e.f)) return;
     const float wt = settings_.photon_mapping ? 1.f  // the only strategy
                                               : mis_weight_merge(m, lv.mis[j], e.pdf_fwd, e.pdf_rev, kind, w.mis);
-    sum += e.f * lv.beta[j] * weight(wt);
+    const Spectrum light = lv.beta[j] * joined_dispersion(w.eye.dispersed[slot], lv.is_dispersed(j));
+    sum += e.f * light * weight(wt);
     ++w.stats.merges;
     if (settings_.record_strategies) {
-      const Spectrum u = estimate(e.f * lv.beta[j]);
+      const Spectrum u = estimate(e.f * light);
       const SampledWavelengths& l = w.lambda[slot];
       w.out->strategies.push_back({w.pixel[slot], Vec2(0.f), uint8_t(lv.depth[j] + 1), uint8_t(depth + 1),
                                    film_rgb(u * weight(wt), l), film_rgb(u, l), true});

@@ -27,6 +27,7 @@ struct SubpathPool {
   std::vector<Vec3> prev_p;  // origin of the ray that found the current vertex
   std::vector<Vec3> prev_n;  // its shading normal (the light sampler's context; zero at the camera)
   std::vector<float> eta_scale, rr_scale;
+  std::vector<uint8_t> dispersed;  // scattered at a dispersive surface (integrator/dispersion.h)
   // With media only: the medium the subpath's ray travels in, and the
   // extinction at its last vertex (zero on a surface), for reverse densities.
   std::vector<MediumHandle> medium;
@@ -42,6 +43,7 @@ struct SubpathPool {
     prev_n.resize(n);
     eta_scale.resize(n);
     rr_scale.resize(n);
+    dispersed.resize(n);
   }
 };
 
@@ -76,6 +78,7 @@ struct StoredLightVertex {
   const Vec3* tangent = nullptr;  // a curve's
   MediumHandle medium;            // a medium vertex's
   Spectrum sigma_t{0.f};          // the extinction there
+  bool dispersed = false;         // its subpath scattered at a dispersive surface (integrator/dispersion.h)
 };
 
 // Connectible (non-specular) light vertices, appended bounce by bounce and
@@ -91,6 +94,7 @@ struct LightVertexPool {
   std::vector<Vec3> tangent;         // empty unless the scene has curves
   std::vector<MediumHandle> medium;  // empty unless the scene has media; a medium vertex's, else vacuum
   std::vector<Spectrum> sigma_t;          // alongside medium: the extinction at a medium vertex
+  std::vector<uint8_t> dispersed;         // empty unless a vertex's subpath is dispersed
   std::vector<uint32_t> begin, order;
 
   size_t size() const { return slot.size(); }
@@ -111,6 +115,10 @@ struct LightVertexPool {
       tangent.resize(size() - 1);
       tangent.push_back(x.tangent ? *x.tangent : Vec3(0.f));
     }
+    if (x.dispersed || !dispersed.empty()) {
+      dispersed.resize(size() - 1);
+      dispersed.push_back(x.dispersed);
+    }
     if (!x.medium.vacuum()) {
       medium.resize(size() - 1);
       sigma_t.resize(size() - 1);
@@ -119,6 +127,7 @@ struct LightVertexPool {
     }
   }
   bool in_medium(uint32_t j) const { return j < medium.size() && !medium[j].vacuum(); }
+  bool is_dispersed(uint32_t j) const { return j < dispersed.size() && dispersed[j]; }
   void clear() {
     for (auto* v : {&slot, &depth, &order}) v->clear();
     for (auto* v : {&p, &ng, &ns, &wo}) v->clear();
@@ -130,6 +139,7 @@ struct LightVertexPool {
     tangent.clear();
     medium.clear();
     sigma_t.clear();
+    dispersed.clear();
   }
 };
 
@@ -277,7 +287,7 @@ struct BdptWave {
                vector_bytes(shadow.next_event);
     for (const SubpathPool* p : subpaths)
       b += vector_bytes(p->beta) + vector_bytes(p->mis) + vector_bytes(p->prev_p) + vector_bytes(p->prev_n) + vector_bytes(p->eta_scale) +
-           vector_bytes(p->rr_scale);
+           vector_bytes(p->rr_scale) + vector_bytes(p->dispersed);
     const LightOriginPool& o = origin;
     b += vector_bytes(o.light) + vector_bytes(o.n) + vector_bytes(o.emission_pdf_W) + vector_bytes(o.cos_light) +
          vector_bytes(o.direct_pdf_A) + vector_bytes(o.delta) + vector_bytes(o.infinite);
@@ -285,7 +295,7 @@ struct BdptWave {
     b += vector_bytes(v.slot) + vector_bytes(v.depth) + vector_bytes(v.p) + vector_bytes(v.ng) + vector_bytes(v.ns) +
          vector_bytes(v.wo) + vector_bytes(v.tangent) + vector_bytes(v.error_scale) + vector_bytes(v.beta) +
          vector_bytes(v.mis) + vector_bytes(v.bsdf) + v.bsdfs.memory_bytes() + vector_bytes(v.begin) + vector_bytes(v.order) +
-         vector_bytes(v.medium) + vector_bytes(v.sigma_t);
+         vector_bytes(v.medium) + vector_bytes(v.sigma_t) + vector_bytes(v.dispersed);
     for (const SubpathPool* p : subpaths) b += vector_bytes(p->medium) + vector_bytes(p->sigma_prev);
     b += vector_bytes(shadow.medium) + vector_bytes(shadow.T) + vector_bytes(shadow.T_mis) + vector_bytes(shadow.deferred) + vector_bytes(ray_medium) +
          vector_bytes(u_distance) + ends.memory_bytes() + vector_bytes(scattered) + crossing.memory_bytes() +

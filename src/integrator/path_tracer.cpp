@@ -1,6 +1,7 @@
 #include "integrator/path_tracer.h"
 
 #include "film/pixel_filter.h"
+#include "integrator/dispersion.h"
 #include "integrator/hit.h"
 #include "integrator/hit_material.h"
 #include "integrator/path_next_event.h"
@@ -49,6 +50,7 @@ void PathTracer::generate_camera_rays(const WaveDesc& wave, PathWave& w) const {
     w.sampler[slot] = s;
     w.lambda[slot] = sample_wavelengths(settings_.spectral, s, settings_.maxdepth);
     w.beta[slot] = Spectrum(1.f);
+    w.dispersed[slot] = 0;
     w.L[slot] = Spectrum(0.f);
     w.prev_pdf[slot] = 1.f;
     w.eta_scale[slot] = 1.f;
@@ -123,6 +125,7 @@ void PathTracer::surface_stage(PathWave& w) const {
     }
     Footprint fp;
     MaterialHandle material = hit_material(scene_, footprints_, w.rays, i, d, &sp, &fp);
+    scatter_at(scene_.materials, material, settings_.spectral, w.beta[slot], w.dispersed[slot]);
     w.hits.store(i, sp, d, material, w.lambda[slot], footprints_.enabled() ? &fp : nullptr);
   }
 }

@@ -28,6 +28,7 @@ struct PathWave {
   std::vector<Vec3> prev_p;  // origin of the ray that found the current vertex
   std::vector<Vec3> prev_n;  // its shading normal (the light sampler's context; zero at the camera)
   std::vector<uint8_t> prev_specular;
+  std::vector<uint8_t> dispersed;  // scattered at a dispersive surface (integrator/dispersion.h)
   // The segments all active paths have: 1 at the first hit, as bdpt counts
   // (bdpt_wave.h). The sample dimensions are laid out by bounce (depth - 1).
   uint32_t depth = 1;
@@ -102,6 +103,7 @@ struct PathWave {
     prev_p.resize(n);
     prev_n.resize(n);
     prev_specular.resize(n);
+    dispersed.resize(n);
     hits.resize(n);
     rays.reserve(n);
     shadow.reserve(n);

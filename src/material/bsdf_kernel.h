@@ -66,10 +66,16 @@ inline ConductorBSDF make_bsdf(const ConductorMaterial& m, const TextureContext&
     eta = coefficient(tex, m.eta, c, l), k = coefficient(tex, m.k, c, l);
   return ConductorBSDF{d, eta, k, Spectrum(1.f), false};
 }
+// A dielectric's index: with dispersion, at the sample's first wavelength
+// (the integrator keeps that wavelength alone: integrator/dispersion.h).
+inline float dielectric_eta(const FloatTextureRef& eta, int32_t dispersion, const TextureContext& c,
+                            const TexturePools& tex, const SampledWavelengths& l) {
+  const float e = dispersion >= 0 && !l.is_rgb() ? tex.spectra[size_t(dispersion)](l.nm[0]) : tex.evaluate_float(eta, c);
+  return e > 0.f ? e : 1.f;
+}
 inline DielectricBSDF make_bsdf(const DielectricMaterial& m, const TextureContext& c, const TexturePools& tex,
                                 const SampledWavelengths& l) {
-  float eta = tex.evaluate_float(m.eta, c);
-  return DielectricBSDF{m.roughness.distribution(tex, c), eta > 0.f ? eta : 1.f};
+  return DielectricBSDF{m.roughness.distribution(tex, c), dielectric_eta(m.eta, m.dispersion, c, tex, l)};
 }
 inline DiffuseTransmissionBSDF make_bsdf(const DiffuseTransmissionMaterial& m, const TextureContext& c,
                                          const TexturePools& tex, const SampledWavelengths& l) {
@@ -78,8 +84,7 @@ inline DiffuseTransmissionBSDF make_bsdf(const DiffuseTransmissionMaterial& m, c
 }
 inline ThinDielectricBSDF make_bsdf(const ThinDielectricMaterial& m, const TextureContext& c, const TexturePools& tex,
                                     const SampledWavelengths& l) {
-  float eta = tex.evaluate_float(m.eta, c);
-  return ThinDielectricBSDF{eta > 0.f ? eta : 1.f};
+  return ThinDielectricBSDF{dielectric_eta(m.eta, m.dispersion, c, tex, l)};
 }
 // The fibre's absorption from pbrt-v4's three ways of giving it, as colour
 // (pbrt-v4 turns the result into an unbounded spectrum): the reflectance

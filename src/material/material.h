@@ -68,6 +68,10 @@ struct ConductorMaterial {
 
 struct DielectricMaterial {
   FloatTextureRef eta = FloatTextureRef::constant(1.5f);
+  // An index that varies with wavelength (TexturePools::spectra), or -1:
+  // the spectral renderer reads it at a sample's first wavelength and
+  // keeps that one alone (integrator/dispersion.h).
+  int32_t dispersion = -1;
   RoughnessParams roughness;
   int32_t bump = -1;  // index into MaterialPools::bumps
 };
@@ -113,6 +117,7 @@ struct DiffuseTransmissionMaterial {
 
 struct ThinDielectricMaterial {
   FloatTextureRef eta = FloatTextureRef::constant(1.5f);
+  int32_t dispersion = -1;  // as DielectricMaterial's
   int32_t bump = -1;
 };
 
@@ -164,6 +169,16 @@ struct MaterialPools {
   const BumpParams* bump(MaterialHandle m) const {
     const int32_t* b = bump_index(m);
     return !b || *b < 0 ? nullptr : &bumps[size_t(*b)];
+  }
+
+  // Whether the material's index varies with wavelength, so a spectral
+  // sample that scatters there keeps only its first wavelength.
+  bool dispersive(MaterialHandle m) const {
+    switch (m.kind()) {
+      case MaterialKind::Dielectric: return dielectric[m.index()].dispersion >= 0;
+      case MaterialKind::ThinDielectric: return thin_dielectric[m.index()].dispersion >= 0;
+      default: return false;
+    }
   }
 
   bool has(MaterialKind k) const {

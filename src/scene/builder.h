@@ -95,8 +95,10 @@ class SceneBuilder final : public pbrt::ParserTarget {
   // pbrt's roughness, uroughness and vroughness (after prefix) and remaproughness.
   RoughnessParams roughness(const pbrt::ParamSet& ps, float def, const std::string& prefix = "");
   // "eta" (or pbrt-v3's "index"): a number, a named or RGB spectrum (its
-  // first channel), or a float texture.
-  FloatTextureRef eta_param(const pbrt::ParamSet& ps, float def);
+  // first channel), or a float texture. With `dispersion`, an index given
+  // as a spectrum that varies with wavelength is also added to the texture
+  // pools, and its index there written to *dispersion.
+  FloatTextureRef eta_param(const pbrt::ParamSet& ps, float def, int32_t* dispersion = nullptr);
   // "displacement" and "normalmap": an index into MaterialPools::bumps, or -1.
   int32_t bump_map(const pbrt::ParamSet& ps, const std::string& base_dir);
   MaterialHandle concrete_material(const std::string& type, const pbrt::ParamSet& ps);

@@ -2,6 +2,10 @@
 // common ones): every parameter pbrt-v4 lets be a texture may be one.
 #include "scene/builder.h"
 
+#include <algorithm>
+
+#include "color/densely_sampled_spectrum.h"
+#include "color/glass.h"
 #include "color/optical_constants.h"
 
 namespace lantern {
@@ -46,18 +50,29 @@ RGBTextureRef SceneBuilder::conductor_param(const ParamSet& ps, const std::strin
   return ref;
 }
 
-FloatTextureRef SceneBuilder::eta_param(const ParamSet& ps, float def) {
+FloatTextureRef SceneBuilder::eta_param(const ParamSet& ps, float def, int32_t* dispersion) {
   const pbrt::Param* p = ps.find("eta");
   if (!p) p = ps.find("index");
   if (!p) return FloatTextureRef::constant(def);
   if (p->type == "texture") return float_texture(ps, p->name, def);
-  // A sampled index (a file or pairs) at the sodium d-line (587.6 nm), as
-  // the named glasses are read: the RGB renderer has no dispersion.
+  // A sampled index (a named glass, a file or pairs): the RGB renderer
+  // reads it at the helium d line, where glass catalogues quote n_d; the
+  // spectral one reads it at the wavelengths (dispersion), where the
+  // material keeps it.
   const auto sampled = ps.get_sampled_spectrum(p->name);
-  float eta = sampled                ? float((*sampled)(587.6))
+  float eta = sampled                ? float((*sampled)(kHeliumDLine))
               : p->type == "float" ? ps.get_float(p->name, def)
                                    : (*ps.get_rgb(p->name, ColorUsage::Unbounded))[0];
   if (!(eta > 0.f)) ps.fail(*p, "index of refraction must be positive");
+  if (sampled && dispersion) {
+    const DenselySampledSpectrum dense(*sampled);
+    const auto [lo, hi] = std::minmax_element(dense.value.begin(), dense.value.end());
+    if (!(*lo > 0.f)) ps.fail(*p, "index of refraction must be positive at every wavelength from 360 to 830 nm");
+    if (*hi > *lo) {
+      *dispersion = add_spectrum(*sampled);
+      scene_.settings.dispersive = true;
+    }
+  }
   return FloatTextureRef::constant(eta);
 }
 
@@ -161,7 +176,7 @@ MaterialHandle SceneBuilder::concrete_material(const std::string& type, const Pa
   }
   if (type == "dielectric" || type == "glass") {
     DielectricMaterial d;
-    d.eta = eta_param(ps, 1.5f);
+    d.eta = eta_param(ps, 1.5f, &d.dispersion);
     d.roughness = roughness(ps, 0.f);
     for (const char* p : {"Kr", "Kt"}) ps.find(p);
     m.dielectric.push_back(d);
@@ -202,7 +217,9 @@ MaterialHandle SceneBuilder::concrete_material(const std::string& type, const Pa
   }
   if (type == "hair") return hair_material(ps);
   if (type == "thindielectric") {
-    m.thin_dielectric.push_back({eta_param(ps, 1.5f)});
+    ThinDielectricMaterial d;
+    d.eta = eta_param(ps, 1.5f, &d.dispersion);
+    m.thin_dielectric.push_back(d);
     return MaterialHandle::make(MaterialKind::ThinDielectric, uint32_t(m.thin_dielectric.size() - 1));
   }
   // pbrt-v3 renders a material type it does not know as matte, with a

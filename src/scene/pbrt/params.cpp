@@ -1,10 +1,11 @@
 #include "scene/pbrt/params.h"
 
 #include "color/cie1931.h"
+#include "color/glass.h"
+#include "color/sigmoid_spectrum.h"
 #include "color/optical_constants.h"
 
 #include <filesystem>
-#include <map>
 #include <stdexcept>
 
 namespace lantern::pbrt {
@@ -187,8 +188,7 @@ std::optional<PiecewiseLinearSpectrum> ParamSet::get_sampled_spectrum(const std:
   }
   if (p->strings.size() != 1) fail(*p, "expected one spectrum name or file");
   const std::string& s = p->strings[0];
-  if (auto metal = named_sampled_spectrum(s)) return metal;  // a named metal's measured constants
-  if (named_spectrum_rgb(s)) return std::nullopt;  // a named glass: a constant here
+  if (auto named = named_sampled_spectrum(s)) return named;  // a named metal's measured constants, or a glass
   // Anything else names a spectrum file, relative to the scene's folder.
   std::filesystem::path file(s);
   if (file.is_relative() && !base_dir.empty()) file = std::filesystem::path(base_dir) / file;
@@ -204,6 +204,14 @@ std::optional<PiecewiseLinearSpectrum> ParamSet::get_sampled_spectrum(const std:
 }
 
 std::optional<PiecewiseLinearSpectrum> named_sampled_spectrum(const std::string& s) {
+  if (const std::optional<SellmeierGlass> glass = named_glass(s)) {  // its formula at every nanometre
+    PiecewiseLinearSpectrum out;
+    for (int nm = int(kLambdaMin); nm <= int(kLambdaMax); ++nm) {
+      out.nm.push_back(double(nm));
+      out.value.push_back(glass->index(double(nm)));
+    }
+    return out;
+  }
   if (!s.starts_with("metal-")) return std::nullopt;
   const size_t dash = s.rfind('-');
   const std::string metal = s.substr(6, dash > 6 ? dash - 6 : 0), part = s.substr(dash + 1);
@@ -239,16 +247,10 @@ std::optional<RGB> named_spectrum_rgb(const std::string& name) {
     if (!conductor) return std::nullopt;
     return part == "eta" ? conductor->eta : conductor->k;
   }
-  // Glass indices at the sodium d-line (587.6 nm); dispersion is not
-  // modelled.
-  static const std::map<std::string, RGB> glasses = {
-      {"glass-BK7", RGB(1.5168f)},  {"glass-BAF10", RGB(1.6700f)}, {"glass-FK51A", RGB(1.4866f)},
-      {"glass-LASF9", RGB(1.8503f)}, {"glass-F5", RGB(1.6034f)},    {"glass-F10", RGB(1.6200f)},
-      {"glass-F11", RGB(1.6200f)},
-  };
-  auto it = glasses.find(name);
-  if (it == glasses.end()) return std::nullopt;
-  return it->second;
+  // A glass: its index at the helium d line, as catalogues quote it (the
+  // spectral renderer reads the whole curve: SceneBuilder::eta_param).
+  if (const std::optional<SellmeierGlass> glass = named_glass(name)) return RGB(float(glass->index(kHeliumDLine)));
+  return std::nullopt;
 }
 
 }  // namespace lantern::pbrt
