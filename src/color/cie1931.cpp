@@ -91,13 +91,15 @@ RGB reflectance_rgb(const std::function<double(double)>& reflectance) {
   return rgb / rgb_white;
 }
 
+double blackbody_radiance(double nm, double kelvin) {
+  const double c = 299792458.0, h = 6.62606957e-34, kb = 1.3806488e-23, l = nm * 1e-9;
+  return 2.0 * h * c * c / (std::pow(l, 5) * std::expm1(h * c / (l * kb * kelvin)));
+}
+
 namespace {
 
 // Planck's law: spectral radiance at wavelength l (m) and temperature T (K).
-double planck(double l, double T) {
-  const double c = 299792458.0, h = 6.62606957e-34, kb = 1.3806488e-23;
-  return 2.0 * h * c * c / (std::pow(l, 5) * std::expm1(h * c / (l * kb * T)));
-}
+double planck(double l, double T) { return blackbody_radiance(l * 1e9, T); }
 
 // XYZ of Planck's law times `scale`, summed at 1 nm over the table.
 void planck_xyz(double T, double scale, double xyz[3]) {

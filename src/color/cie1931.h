@@ -13,6 +13,10 @@ namespace lantern {
 // the table (CIE 015:2004, Table T.4), zero outside 380-780 nm.
 Vec3 cie1931_cmf(float nm);
 
+// Planck's law: a black body's spectral radiance at wavelength nm and
+// temperature kelvin (W / (sr m^2 m)).
+double blackbody_radiance(double nm, double kelvin);
+
 // CIE XYZ of a black body at `kelvin` (Planck's law, integrated over
 // 380-780 nm at 1 nm against the table), scaled to Y = 1.
 Vec3 blackbody_xyz(float kelvin);

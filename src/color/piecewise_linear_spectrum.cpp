@@ -69,4 +69,21 @@ RGB illuminant_rgb(const PiecewiseLinearSpectrum& s) {
   return max(xyz_to_linear_srgb(xyz / xyz.y), RGB(0.f));
 }
 
+PiecewiseLinearSpectrum blackbody_spectrum(float kelvin) {
+  PiecewiseLinearSpectrum s;
+  if (!(kelvin > 0.f)) return s;
+  const double peak = blackbody_radiance(2.8977721e6 / double(kelvin), double(kelvin));  // Wien's law
+  for (int nm = 360; nm <= 830; ++nm) {
+    s.nm.push_back(double(nm));
+    s.value.push_back(blackbody_radiance(double(nm), double(kelvin)) / peak);
+  }
+  return s;
+}
+
+double spectrum_luminance(const PiecewiseLinearSpectrum& s) {
+  double y = 0.0;
+  for (int nm = 360; nm <= 830; ++nm) y += s(double(nm)) * double(cie1931_cmf(float(nm)).y);
+  return y;
+}
+
 }  // namespace lantern

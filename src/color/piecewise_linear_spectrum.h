@@ -34,4 +34,14 @@ PiecewiseLinearSpectrum read_spectrum_file(const std::string& path);
 // without luminance.
 RGB illuminant_rgb(const PiecewiseLinearSpectrum& s);
 
+// Planck's law at `kelvin`, tabulated at every nanometre of the range the
+// spectral renderer samples (its scale is arbitrary: emitters are
+// normalised by luminance).
+PiecewiseLinearSpectrum blackbody_spectrum(float kelvin);
+
+// The luminance the film records of spectral radiance s: its integral
+// against the CIE 1931 y-bar at 1 nm over 360-830 nm, the sum by which the
+// RGB illuminants' white is normalised (color/spectrum_conversion.h).
+double spectrum_luminance(const PiecewiseLinearSpectrum& s);
+
 }  // namespace lantern

@@ -87,7 +87,7 @@ std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& s
       } else if (!sample_profile(L.profiles[size_t(pl.profile)], u_dir, &es.d, &es.pdf_dir)) {
         return std::nullopt;
       }
-      es.Le = illuminant_spectrum(point_intensity(L, tex, pl, es.d), l);
+      es.Le = light_spectrum(point_intensity(L, tex, pl, es.d), pl.spectrum, tex, l);
       es.error_scale = max_abs_component(pl.p);
       es.delta_pos = true;
       break;
@@ -97,7 +97,7 @@ std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& s
       es.p = s.p;
       es.d = s.frame.from_local(sample_uniform_cone(u_dir, s.cos_falloff_end));
       es.pdf_dir = uniform_cone_pdf(s.cos_falloff_end);
-      es.Le = illuminant_spectrum(s.I, l) * spot_falloff(s, es.d);
+      es.Le = light_spectrum(s.I, s.spectrum, tex, l) * spot_falloff(s, es.d);
       es.error_scale = max_abs_component(s.p);
       es.delta_pos = true;
       break;
@@ -105,7 +105,7 @@ std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& s
     case LightKind::Distant: {
       const DistantLight& dl = L.distant[r.index];
       es.d = -dl.w;
-      es.Le = illuminant_spectrum(dl.L, l);
+      es.Le = light_spectrum(dl.L, dl.spectrum, tex, l);
       es.delta_dir = true;
       start_on_disk(L, u_pos, &es);
       break;
@@ -181,9 +181,9 @@ Spectrum emitted(const LightPools& L, const TexturePools& tex, uint32_t light, c
     case LightKind::Area:
       return area_light_Le(L.area[r.index], tex, n, uv, w, l);
     case LightKind::Point:
-      return illuminant_spectrum(point_intensity(L, tex, L.point[r.index], w), l);
+      return light_spectrum(point_intensity(L, tex, L.point[r.index], w), L.point[r.index].spectrum, tex, l);
     case LightKind::Spot:
-      return illuminant_spectrum(L.spot[r.index].I, l) * spot_falloff(L.spot[r.index], w);
+      return light_spectrum(L.spot[r.index].I, L.spot[r.index].spectrum, tex, l) * spot_falloff(L.spot[r.index], w);
     default:
       return Spectrum(0.f);
   }

@@ -214,7 +214,7 @@ static bool sample_light_into(const LightPools& L, const ShapePools& shapes, con
       float dist2 = glm::dot(d, d);
       if (!(dist2 > 0.f)) return false;
       const Vec3 wi = d / std::sqrt(dist2);
-      ls = LightSample{illuminant_spectrum(point_intensity(L, tex, pl, -wi), l) / dist2, wi, 1.f, pl.p, Vec3(0.f), max_abs_component(pl.p), true, false};
+      ls = LightSample{light_spectrum(point_intensity(L, tex, pl, -wi), pl.spectrum, tex, l) / dist2, wi, 1.f, pl.p, Vec3(0.f), max_abs_component(pl.p), true, false};
       break;
     }
     case LightKind::Spot: {
@@ -225,12 +225,12 @@ static bool sample_light_into(const LightPools& L, const ShapePools& shapes, con
       Vec3 wi = d / std::sqrt(dist2);
       float cos_t = glm::dot(-wi, s.frame.n);
       float falloff = glm::smoothstep(s.cos_falloff_end, s.cos_falloff_start, cos_t);
-      ls = LightSample{illuminant_spectrum(s.I, l) * falloff / dist2, wi, 1.f, s.p, Vec3(0.f), max_abs_component(s.p), true, false};
+      ls = LightSample{light_spectrum(s.I, s.spectrum, tex, l) * falloff / dist2, wi, 1.f, s.p, Vec3(0.f), max_abs_component(s.p), true, false};
       break;
     }
     case LightKind::Distant: {
       const DistantLight& dl = L.distant[r.index];
-      ls = LightSample{illuminant_spectrum(dl.L, l), dl.w, 1.f, Vec3(0.f), Vec3(0.f), 0.f, true, true};
+      ls = LightSample{light_spectrum(dl.L, dl.spectrum, tex, l), dl.w, 1.f, Vec3(0.f), Vec3(0.f), 0.f, true, true};
       break;
     }
     case LightKind::Infinite: {
@@ -244,7 +244,7 @@ static bool sample_light_into(const LightPools& L, const ShapePools& shapes, con
       } else if (e.image < 0) {
         s.wi = sample_uniform_sphere(u);
         s.pdf = uniform_sphere_pdf();
-        s.L = illuminant_spectrum(e.scale, l);
+        s.L = light_spectrum(e.scale, e.spectrum, tex, l);
       } else {
         float pdf_uv;
         Vec2 uv = e.distribution.sample_continuous(u, &pdf_uv);
@@ -313,24 +313,32 @@ float area_light_pdf(const LightPools& L, const ShapePools& shapes, const LightS
   return pmf * dist2 * area_point_density(shapes, a, p_light, n_light) / cos_l;
 }
 
-// (Summed as colour and converted once: the same with one infinite light,
-// as scenes have; several are mixed before they become spectra.)
+// (Colours summed and converted once: the same with one infinite light, as
+// scenes have; several are mixed before they become spectra. Lights given
+// as spectra are added as such.)
 Spectrum infinite_lights_Le(const LightPools& L, const TexturePools& tex, const Vec3& p, const Vec3& w,
                             const SampledWavelengths& l) {
   RGB sum(0.f);
+  Spectrum spectral(0.f);
+  bool any_spectral = false;
   for (const InfiniteLight& e : L.infinite) {
     if (e.portal >= 0) {
       sum += portal_Le(L.portals[size_t(e.portal)], p, w);
       continue;
     }
     if (e.image < 0) {
-      sum += e.scale;
+      if (e.spectrum >= 0 && !l.is_rgb()) {
+        spectral += light_spectrum(e.scale, e.spectrum, tex, l);
+        any_spectral = true;
+      } else {
+        sum += e.scale;
+      }
       continue;
     }
     Vec3 wl = glm::normalize(e.light_from_world * w);
     sum += env_lookup(e, tex, e.equal_area ? equal_area_sphere_to_square(wl) : dir_to_latlong(wl));
   }
-  return illuminant_spectrum(sum, l);
+  return any_spectral ? illuminant_spectrum(sum, l) + spectral : illuminant_spectrum(sum, l);
 }
 
 float infinite_light_emission_dir_pdf(const LightPools& L, const TexturePools& tex, uint32_t index, const Vec3& w) {

@@ -31,12 +31,14 @@ struct AreaLight {  // one per emissive triangle or sphere
   bool two_sided;
   float area;
   int32_t image = -1;  // pbrt-v4's "filename": L scales this image, looked up by (u, v)
+  int32_t spectrum = -1;  // L given as a spectrum (light_spectrum below)
 };
 struct PointLight {
   Vec3 p;
   RGB I;
   int32_t profile = -1;  // goniometric and projection lights: index into LightPools::profiles
   MediumHandle medium;   // where its light starts
+  int32_t spectrum = -1;  // I given as a spectrum (light_spectrum below)
 };
 struct SpotLight {
   Vec3 p;
@@ -44,10 +46,12 @@ struct SpotLight {
   RGB I;
   float cos_falloff_start, cos_falloff_end;
   MediumHandle medium;
+  int32_t spectrum = -1;  // I given as a spectrum (light_spectrum below)
 };
 struct DistantLight {
   Vec3 w;  // unit direction towards the light
   RGB L;
+  int32_t spectrum = -1;  // L given as a spectrum (light_spectrum below)
 };
 struct InfiniteLight {
   RGB scale{1.f};
@@ -56,7 +60,23 @@ struct InfiniteLight {
   bool equal_area = true;   // pbrt-v4 octahedral equal-area map; else lat-long
   Distribution2D distribution;
   int32_t portal = -1;      // pbrt-v4's "portal": index into LightPools::portals, which then holds the map
+  int32_t spectrum = -1;    // a constant L given as a spectrum (light_spectrum below)
 };
+
+// A light's emission at the wavelengths l, from its colour c: c as an RGB
+// illuminant; or, for a light given as a spectrum (a black body, a file:
+// `spectrum` indexes tex.spectra) rendered with sampled wavelengths, that
+// spectrum itself, which the scene builder stored divided by its colour's
+// luminance, at the luminance of c (which carries the light's scale and
+// power).
+inline Spectrum light_spectrum(const RGB& c, int32_t spectrum, const TexturePools& tex, const SampledWavelengths& l) {
+  if (spectrum < 0 || l.is_rgb()) return illuminant_spectrum(c, l);
+  const DenselySampledSpectrum& s = tex.spectra[size_t(spectrum)];
+  const float y = luminance(c);
+  Spectrum v;
+  for (int i = 0; i < kSpectrumSamples; ++i) v[i] = s(l.nm[size_t(i)]) * y;
+  return v;
+}
 
 struct LightRef {
   LightKind kind;
@@ -156,7 +176,7 @@ inline RGB area_light_rgb(const AreaLight& l, const TexturePools& tex, const Vec
 // The same at the wavelengths lambda.
 inline Spectrum area_light_Le(const AreaLight& l, const TexturePools& tex, const Vec3& n, Vec2 uv, const Vec3& w,
                               const SampledWavelengths& lambda) {
-  return illuminant_spectrum(area_light_rgb(l, tex, n, uv, w), lambda);
+  return light_spectrum(area_light_rgb(l, tex, n, uv, w), l.spectrum, tex, lambda);
 }
 
 // Radiance from infinite lights along a ray from p leaving the scene in

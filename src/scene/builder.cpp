@@ -436,6 +436,7 @@ void SceneBuilder::add_area_lights(uint32_t geometry, uint32_t primitives, const
   // and by the image's mean luminance (sRGB's Y weights).
   const bool by_power = ps.has("power");
   const float power = ps.get_float("power", 0.f);
+  const int32_t spectrum = image < 0 ? light_spectrum(ps, "L") : -1;
   float image_luminance = 1.f;
   if (by_power && image >= 0) {
     double sum = 0.0;
@@ -452,7 +453,7 @@ void SceneBuilder::add_area_lights(uint32_t geometry, uint32_t primitives, const
     RGB Li = L;
     const float k = (two_sided ? 2.f : 1.f) * area * kPi * image_luminance;
     if (by_power && k > 0.f) Li *= power / k;
-    scene_.lights.area.push_back({geometry, i, Li, two_sided, area, image});
+    scene_.lights.area.push_back({geometry, i, Li, two_sided, area, image, spectrum});
   }
   ps.warn_unused();
 }

@@ -99,6 +99,9 @@ class SceneBuilder final : public pbrt::ParserTarget {
   // as a spectrum that varies with wavelength is also added to the texture
   // pools, and its index there written to *dispersion.
   FloatTextureRef eta_param(const pbrt::ParamSet& ps, float def, int32_t* dispersion = nullptr);
+  // A light's colour `name` given as a spectrum: its index in the texture
+  // pools' spectra, or -1 (builder_lights.cpp).
+  int32_t light_spectrum(const pbrt::ParamSet& ps, const std::string& name);
   // "displacement" and "normalmap": an index into MaterialPools::bumps, or -1.
   int32_t bump_map(const pbrt::ParamSet& ps, const std::string& base_dir);
   MaterialHandle concrete_material(const std::string& type, const pbrt::ParamSet& ps);

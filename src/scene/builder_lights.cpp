@@ -28,7 +28,7 @@ void SceneBuilder::add_light(const std::string& type, const ParamSet& ps, const 
   if (type == "point") {
     RGB I = ps.get_rgb("I", ColorUsage::Illuminant).value_or(RGB(1.f)) * scale;
     if (ps.has("power")) I *= ps.get_float("power", 1.f) / (4.f * kPi);
-    L.point.push_back({Vec3(ctm * Vec4(ps.get_point3("from", Vec3(0.f)), 1.f)), I, -1, {}});
+    L.point.push_back({Vec3(ctm * Vec4(ps.get_point3("from", Vec3(0.f)), 1.f)), I, -1, {}, light_spectrum(ps, "I")});
   } else if (type == "spot") {
     RGB I = ps.get_rgb("I", ColorUsage::Illuminant).value_or(RGB(1.f)) * scale;
     Vec3 from = ps.get_point3("from", Vec3(0.f)), to = ps.get_point3("to", Vec3(0, 0, 1));
@@ -37,14 +37,15 @@ void SceneBuilder::add_light(const std::string& type, const ParamSet& ps, const 
     if (ps.has("power")) I *= ps.get_float("power", 1.f) / (2.f * kPi * ((1.f - cos_start) + (cos_start - cos_end) / 2.f));
     Vec3 axis = Vec3(ctm * Vec4(to - from, 0.f));
     if (!(glm::length(axis) > 0.f)) ps.fail("\"from\" and \"to\" must differ");
-    L.spot.push_back({Vec3(ctm * Vec4(from, 1.f)), Frame::from_z(glm::normalize(axis)), I, cos_start, cos_end, {}});
+    L.spot.push_back({Vec3(ctm * Vec4(from, 1.f)), Frame::from_z(glm::normalize(axis)), I, cos_start, cos_end, {},
+                      light_spectrum(ps, "I")});
   } else if (type == "distant") {
     RGB Lr = ps.get_rgb("L", ColorUsage::Illuminant).value_or(RGB(1.f)) * scale;
     if (ps.has("illuminance")) Lr *= ps.get_float("illuminance", 1.f);
     Vec3 from = ps.get_point3("from", Vec3(0.f)), to = ps.get_point3("to", Vec3(0, 0, 1));
     Vec3 w = Vec3(ctm * Vec4(from - to, 0.f));
     if (!(glm::length(w) > 0.f)) ps.fail("\"from\" and \"to\" must differ");
-    L.distant.push_back({glm::normalize(w), Lr});
+    L.distant.push_back({glm::normalize(w), Lr, light_spectrum(ps, "L")});
   } else if (type == "infinite") {
     InfiniteLight e;
     e.world_from_light = glm::mat3(ctm);
@@ -69,6 +70,7 @@ void SceneBuilder::add_light(const std::string& type, const ParamSet& ps, const 
       e.image = int32_t(scene_.textures.images.size());
       scene_.textures.images.push_back(std::move(img));
     }
+    if (e.image < 0 && e.portal < 0) e.spectrum = light_spectrum(ps, "L");
     L.infinite.push_back(std::move(e));
   } else if (type == "goniometric" || type == "projection") {
     profiled_light(type, ps, ctm, base_dir);
@@ -76,6 +78,20 @@ void SceneBuilder::add_light(const std::string& type, const ParamSet& ps, const 
     ps.fail("light type \"" + printable(type) + "\" is not supported; expected point, spot, goniometric, projection, "
             "distant or infinite");
   }
+}
+
+// A light's colour given as a spectrum ("blackbody", a "spectrum" file or
+// pairs): kept for the spectral renderer, divided by its luminance and by
+// its colour's, so that light_spectrum (light/lights.h) scales it by the
+// luminance of the light's final colour, which carries "scale", "power"
+// and the rest. -1 for a colour given any other way.
+int32_t SceneBuilder::light_spectrum(const ParamSet& ps, const std::string& name) {
+  std::optional<ParamSet::EmissionSpectrum> e = ps.get_emission_spectrum(name);
+  if (!e) return -1;
+  const double y = spectrum_luminance(e->spectrum) * double(luminance(e->rgb));
+  if (!(y > 0.0) || !std::isfinite(y)) return -1;
+  for (double& v : e->spectrum.value) v /= y;
+  return add_spectrum(e->spectrum);
 }
 
 // pbrt-v4's portal: four corners in world space, in order, around the

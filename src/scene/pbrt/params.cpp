@@ -175,6 +175,23 @@ std::optional<RGB> ParamSet::get_rgb(const std::string& name, ColorUsage usage) 
   fail(*p, "has type \"" + p->type + "\", expected \"rgb\", \"spectrum\" or \"blackbody\"");
 }
 
+std::optional<ParamSet::EmissionSpectrum> ParamSet::get_emission_spectrum(const std::string& name) const {
+  const Param* p = find(name);
+  if (!p) return std::nullopt;
+  if (p->type == "blackbody") {
+    (void)get_rgb(name, ColorUsage::Illuminant);  // (its checks)
+    const float kelvin = float(p->numbers[0]);
+    return EmissionSpectrum{blackbody_spectrum(kelvin), blackbody_rgb(kelvin)};
+  }
+  if (p->type != "spectrum" || (!p->strings.empty() && named_spectrum_rgb(p->strings[0])) ||
+      (p->strings.empty() && p->numbers.size() == 1))
+    return std::nullopt;  // a named metal or glass, or one number: as colour
+  std::optional<PiecewiseLinearSpectrum> s = get_sampled_spectrum(name);
+  if (!s) return std::nullopt;
+  const RGB rgb = illuminant_rgb(*s);
+  return EmissionSpectrum{std::move(*s), rgb};
+}
+
 std::optional<PiecewiseLinearSpectrum> ParamSet::get_sampled_spectrum(const std::string& name) const {
   const Param* p = find(name);
   if (!p || p->type != "spectrum") return std::nullopt;

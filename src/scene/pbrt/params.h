@@ -55,6 +55,15 @@ class ParamSet {
   // A "spectrum" parameter given by samples, inline or in a file, or a named
   // metal's measured eta or k; nullopt for any other form or when absent.
   std::optional<PiecewiseLinearSpectrum> get_sampled_spectrum(const std::string& name) const;
+  // An emitter's colour given as a spectrum (a "blackbody" temperature, a
+  // "spectrum" file or pairs): the spectrum, and its colour at luminance 1
+  // (what get_rgb gives, without pbrt-v3's blackbody scale). nullopt for
+  // any other form.
+  struct EmissionSpectrum {
+    PiecewiseLinearSpectrum spectrum;
+    RGB rgb;
+  };
+  std::optional<EmissionSpectrum> get_emission_spectrum(const std::string& name) const;
   // Name of a texture parameter ("texture reflectance" "tex"), if given that way.
   std::optional<std::string> get_texture(const std::string& name) const;
 
