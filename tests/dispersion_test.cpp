@@ -362,7 +362,7 @@ Shape "trianglemesh" "point3 P" [-2 -1 %g  2 -1 %g  2 1 %g  -2 1 %g] "integer in
 }
 
 // Light from above through a ball of rough dispersive glass (SF11) that
-// holds a hazy medium, onto a floor: the path tracer, bdpt and the
+// holds a hazy medium, onto a floor under a dispersive coat (BAF10): the path tracer, bdpt and the
 // light tracer agree within 5 standard errors over 16 runs, and vcm with
 // bdpt within 1% more (its merges' blur), as in spectral_test.cpp. Rough
 // glass is where both subpaths of a connection can have scattered at the
@@ -381,7 +381,7 @@ AttributeBegin
   Rotate 90 1 0 0
   Shape "disk" "float radius" 0.6
 AttributeEnd
-Material "diffuse" "rgb reflectance" [0.7 0.7 0.7]
+Material "coateddiffuse" "rgb reflectance" [0.7 0.5 0.3] "spectrum eta" "glass-BAF10" "float roughness" 0.2
 Shape "trianglemesh" "point3 P" [-4 0 -4  4 0 -4  4 0 4  -4 0 4] "integer indices" [0 1 2 0 2 3]
 MakeNamedMedium "haze" "string type" "homogeneous" "rgb sigma_a" [0.1 0.3 0.6] "rgb sigma_s" [0.8 0.8 0.8]
 AttributeBegin

@@ -73,6 +73,10 @@ inline float dielectric_eta(const FloatTextureRef& eta, int32_t dispersion, cons
   const float e = dispersion >= 0 && !l.is_rgb() ? tex.spectra[size_t(dispersion)](l.nm[0]) : tex.evaluate_float(eta, c);
   return e > 0.f ? e : 1.f;
 }
+// A coat's index: as dielectric_eta, the coat's index a number.
+inline float coat_eta(float eta, int32_t dispersion, const TexturePools& tex, const SampledWavelengths& l) {
+  return dispersion >= 0 && !l.is_rgb() ? tex.spectra[size_t(dispersion)](l.nm[0]) : eta;
+}
 inline DielectricBSDF make_bsdf(const DielectricMaterial& m, const TextureContext& c, const TexturePools& tex,
                                 const SampledWavelengths& l) {
   return DielectricBSDF{m.roughness.distribution(tex, c), dielectric_eta(m.eta, m.dispersion, c, tex, l)};
@@ -134,7 +138,7 @@ LayeredBSDF<Top, Bottom> make_layered(const Top& top, const Bottom& bottom, cons
 }
 inline CoatedDiffuseBSDF make_bsdf(const CoatedDiffuseMaterial& m, const TextureContext& c, const TexturePools& tex,
                                    const SampledWavelengths& l) {
-  return make_layered(DielectricBSDF{m.roughness.distribution(tex, c), m.eta},
+  return make_layered(DielectricBSDF{m.roughness.distribution(tex, c), coat_eta(m.eta, m.dispersion, tex, l)},
                       DiffuseBSDF{reflectance(tex, m.reflectance, c, l)}, m.layer, c, tex, l);
 }
 inline CoatedConductorBSDF make_bsdf(const CoatedConductorMaterial& m, const TextureContext& c, const TexturePools& tex,
@@ -145,10 +149,9 @@ inline CoatedConductorBSDF make_bsdf(const CoatedConductorMaterial& m, const Tex
   else
     eta = coefficient(tex, m.conductor_eta, c, l), k = coefficient(tex, m.conductor_k, c, l);
   // The conductor sits in the coat: its index relative to the coat's.
-  ConductorBSDF base{m.conductor_roughness.distribution(tex, c), eta / m.interface_eta, k / m.interface_eta,
-                     Spectrum(1.f), false};
-  return make_layered(DielectricBSDF{m.interface_roughness.distribution(tex, c), m.interface_eta}, base, m.layer, c,
-                      tex, l);
+  const float coat = coat_eta(m.interface_eta, m.dispersion, tex, l);
+  ConductorBSDF base{m.conductor_roughness.distribution(tex, c), eta / coat, k / coat, Spectrum(1.f), false};
+  return make_layered(DielectricBSDF{m.interface_roughness.distribution(tex, c), coat}, base, m.layer, c, tex, l);
 }
 
 // The surface attributes textures read, one array per attribute, indexed by

@@ -89,6 +89,7 @@ struct CoatLayer {
 struct CoatedDiffuseMaterial {
   RGBTextureRef reflectance = RGBTextureRef::constant(RGB(0.5f));
   float eta = 1.5f;
+  int32_t dispersion = -1;  // the coat's index varies with wavelength: as DielectricMaterial's
   RoughnessParams roughness;
   CoatLayer layer;
   int32_t bump = -1;
@@ -98,6 +99,7 @@ struct CoatedDiffuseMaterial {
 // conductor ("conductor.*", or "reflectance") that sits in the coat.
 struct CoatedConductorMaterial {
   float interface_eta = 1.5f;
+  int32_t dispersion = -1;  // the coat's index varies with wavelength: as DielectricMaterial's
   RoughnessParams interface_roughness;
   RGBTextureRef conductor_eta, conductor_k;
   RGBTextureRef reflectance;
@@ -177,6 +179,8 @@ struct MaterialPools {
     switch (m.kind()) {
       case MaterialKind::Dielectric: return dielectric[m.index()].dispersion >= 0;
       case MaterialKind::ThinDielectric: return thin_dielectric[m.index()].dispersion >= 0;
+      case MaterialKind::CoatedDiffuse: return coated_diffuse[m.index()].dispersion >= 0;
+      case MaterialKind::CoatedConductor: return coated_conductor[m.index()].dispersion >= 0;
       default: return false;
     }
   }

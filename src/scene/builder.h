@@ -99,6 +99,10 @@ class SceneBuilder final : public pbrt::ParserTarget {
   // as a spectrum that varies with wavelength is also added to the texture
   // pools, and its index there written to *dispersion.
   FloatTextureRef eta_param(const pbrt::ParamSet& ps, float def, int32_t* dispersion = nullptr);
+  // An index of refraction given as a spectrum: its index in the texture
+  // pools' spectra if it varies with wavelength (the scene disperses),
+  // else -1.
+  int32_t dispersive_index(const pbrt::ParamSet& ps, const pbrt::Param& p, const PiecewiseLinearSpectrum& eta);
   // A light's colour `name` given as a spectrum: its index in the texture
   // pools' spectra, or -1 (builder_lights.cpp).
   int32_t light_spectrum(const pbrt::ParamSet& ps, const std::string& name);

@@ -64,16 +64,17 @@ FloatTextureRef SceneBuilder::eta_param(const ParamSet& ps, float def, int32_t* 
               : p->type == "float" ? ps.get_float(p->name, def)
                                    : (*ps.get_rgb(p->name, ColorUsage::Unbounded))[0];
   if (!(eta > 0.f)) ps.fail(*p, "index of refraction must be positive");
-  if (sampled && dispersion) {
-    const DenselySampledSpectrum dense(*sampled);
-    const auto [lo, hi] = std::minmax_element(dense.value.begin(), dense.value.end());
-    if (!(*lo > 0.f)) ps.fail(*p, "index of refraction must be positive at every wavelength from 360 to 830 nm");
-    if (*hi > *lo) {
-      *dispersion = add_spectrum(*sampled);
-      scene_.settings.dispersive = true;
-    }
-  }
+  if (sampled && dispersion) *dispersion = dispersive_index(ps, *p, *sampled);
   return FloatTextureRef::constant(eta);
+}
+
+int32_t SceneBuilder::dispersive_index(const ParamSet& ps, const pbrt::Param& p, const PiecewiseLinearSpectrum& eta) {
+  const DenselySampledSpectrum dense(eta);
+  const auto [lo, hi] = std::minmax_element(dense.value.begin(), dense.value.end());
+  if (!(*lo > 0.f)) ps.fail(p, "index of refraction must be positive at every wavelength from 360 to 830 nm");
+  if (!(*hi > *lo)) return -1;
+  scene_.settings.dispersive = true;
+  return add_spectrum(eta);
 }
 
 int32_t SceneBuilder::bump_map(const ParamSet& ps, const std::string& base_dir) {
@@ -196,7 +197,7 @@ MaterialHandle SceneBuilder::concrete_material(const std::string& type, const Pa
         return MaterialHandle::make(MaterialKind::Diffuse, uint32_t(m.diffuse.size() - 1));
       }
     }
-    FloatTextureRef eta = eta_param(ps, 1.5f);
+    FloatTextureRef eta = eta_param(ps, 1.5f, &c.dispersion);
     if (!eta.is_constant()) ps.fail(*ps.find("eta"), "coateddiffuse's eta is a spectrum in pbrt-v4, not a texture");
     c.eta = eta.value;
     c.roughness = roughness(ps, v3 ? 0.1f : 0.f);
@@ -242,6 +243,10 @@ MaterialHandle SceneBuilder::coated_conductor(const ParamSet& ps) {
     float eta = p->type == "float" ? ps.get_float(p->name, 1.5f) : (*ps.get_rgb(p->name, ColorUsage::Unbounded))[0];
     if (!(eta >= 0.f) || !std::isfinite(eta)) ps.fail(*p, "index of refraction must be a finite number >= 0");
     c.interface_eta = eta == 0.f ? 1.f : eta;  // pbrt-v4 reads 0 as 1
+    if (const auto sampled = ps.get_sampled_spectrum(p->name)) {
+      c.interface_eta = float((*sampled)(kHeliumDLine));
+      c.dispersion = dispersive_index(ps, *p, *sampled);
+    }
   }
   if (ps.has("reflectance")) {
     if (ps.has("conductor.eta") || ps.has("conductor.k"))
