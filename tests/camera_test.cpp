@@ -225,5 +225,17 @@ TEST(Camera, UnsupportedCamerasAreClearErrors) {
   expect_load_error("Camera \"fisheye\"\n", "f.pbrt", {"f.pbrt:1", "fisheye", "orthographic", "spherical"});
 }
 
+// The sensor's settings that cannot make an image are errors, as in pbrt-v4
+// (the values that can are held against pbrt-v4 by
+// tests/conformance/sensor-*.pbrt).
+TEST(Camera, SensorSettingsThatMakeNoImageAreClearErrors) {
+  expect_load_error("Camera \"perspective\" \"float shutteropen\" 1 \"float shutterclose\" 1\n", "s.pbrt",
+                    {"s.pbrt:1", "shutterclose", "never opens"});
+  expect_load_error("Film \"rgb\" \"float iso\" 0\n", "i.pbrt", {"i.pbrt:1", "iso", "> 0"});
+  expect_load_error("Film \"rgb\" \"float whitebalance\" -5\n", "w.pbrt", {"w.pbrt:1", "whitebalance", "kelvin"});
+  expect_load_error("Film \"rgb\" \"string sensor\" \"canon_eos_5d_mkiv\"\n", "c.pbrt",
+                    {"c.pbrt:1", "canon_eos_5d_mkiv", "cie1931"});
+}
+
 }  // namespace
 }  // namespace lantern

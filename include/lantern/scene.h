@@ -38,6 +38,10 @@ struct SceneSettings {
   // A material's index varies with wavelength: it disperses light with
   // sampled wavelengths (RenderOptions::spectral) only.
   bool dispersive = false;
+  // pbrt-v4's film sensor (its "cie1931" one): Film "iso" and
+  // "whitebalance" (kelvin, 0: none), and the Camera's shutter interval,
+  // whose product with iso / 100 scales the image.
+  float iso = 100.f, whitebalance = 0.f, exposure_time = 1.f;
 };
 
 struct LoadOptions {

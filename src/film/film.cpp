@@ -26,22 +26,29 @@ FixedTerm fixed_term(uint32_t pixel, const RGB& c) {
 // Every pixel whose filter support covers a splat's point gets the splat
 // times the filter density at its offset: the same weight with which that
 // pixel's own camera samples would have landed there.
+void Film::set_sensor(const std::array<float, 9>& m) {
+  sensor_ = m;
+  has_sensor_ = m != std::array<float, 9>{1, 0, 0, 0, 1, 0, 0, 0, 1};
+}
+
 void Film::prepare(WaveOutput& out) const {
   out.sample_terms.clear();
   out.splat_terms.clear();
   out.nonfinite = 0;
   out.sample_terms.reserve(out.samples.size());
   for (const FilmSample& s : out.samples) {
-    if (addable(s.L)) out.sample_terms.push_back(fixed_term(s.pixel, s.L));
+    const RGB L = sensed(s.L);
+    if (addable(L)) out.sample_terms.push_back(fixed_term(s.pixel, L));
     else ++out.nonfinite;
   }
   for (const Splat& s : out.splats) {
-    if (!addable(s.L)) {
+    const RGB L = sensed(s.L);
+    if (!addable(L)) {
       ++out.nonfinite;
       continue;
     }
     for_each_splat_pixel(filter_, width_, height_, s.p_raster, [&](size_t pixel, float w) {
-      out.splat_terms.push_back(fixed_term(uint32_t(pixel), w * s.L));
+      out.splat_terms.push_back(fixed_term(uint32_t(pixel), w * L));
     });
   }
 }

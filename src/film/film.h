@@ -8,6 +8,8 @@
 // equal the film of the whole render bit for bit.
 #pragma once
 
+#include <array>
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -98,8 +100,14 @@ class Film {
   int width() const { return width_; }
   int height() const { return height_; }
 
+  // The sensor every sample's colour passes through before it is added
+  // (color/sensor.h): a 3x3 matrix on linear RGB, row-major. The identity
+  // (the default) costs nothing.
+  void set_sensor(const std::array<float, 9>& m);
+
   // Converts a wave's samples and splats (filtered onto pixels) to
-  // fixed-point terms. Thread-safe: waves call it in parallel.
+  // fixed-point terms, through the sensor. Thread-safe: waves call it in
+  // parallel.
   void prepare(WaveOutput& out) const;
 
   // Adds a prepared wave's terms and sample counts. Not thread-safe.
@@ -139,8 +147,16 @@ class Film {
   void read_state(StateReader& in);
 
  private:
+  RGB sensed(const RGB& c) const {
+    if (!has_sensor_) return c;
+    const float* m = sensor_.data();
+    return RGB(m[0] * c[0] + m[1] * c[1] + m[2] * c[2], m[3] * c[0] + m[4] * c[1] + m[5] * c[2],
+               m[6] * c[0] + m[7] * c[1] + m[8] * c[2]);
+  }
   int width_, height_;
   PixelFilter filter_;
+  std::array<float, 9> sensor_{1, 0, 0, 0, 1, 0, 0, 0, 1};
+  bool has_sensor_ = false;
   std::vector<FixedSum> sum_, splat_;
   std::vector<uint32_t> count_;
   uint64_t nonfinite_ = 0;

@@ -20,6 +20,7 @@
 #include <thread>
 
 #include "accel/ray_dump.h"
+#include "color/sensor.h"
 #include "film/strategy_film.h"
 #include "integrator/bdpt.h"
 #include "integrator/bdpt_wave.h"
@@ -390,7 +391,12 @@ void finish_stats(const Scene& scene, const Film& film, const RayCounters& count
 struct RenderSession::State {
   State(const Scene& s, RenderOptions o, RenderHooks h)
       : scene(s), opt(std::move(o)), hooks(std::move(h)), width(opt.width > 0 ? opt.width : s.settings.width),
-        height(opt.height > 0 ? opt.height : s.settings.height), film(width, height, s.filter) {}
+        height(opt.height > 0 ? opt.height : s.settings.height), film(width, height, s.filter) {
+    const Matrix3d m = sensor_matrix({s.settings.iso, s.settings.exposure_time, s.settings.whitebalance});
+    std::array<float, 9> sensor;
+    for (size_t i = 0; i < 9; ++i) sensor[i] = float(m[i / 3][i % 3]);
+    film.set_sensor(sensor);
+  }
   const Scene& scene;
   const RenderOptions opt;
   const RenderHooks hooks;

@@ -59,6 +59,13 @@ void SceneBuilder::camera(const std::string& type, const ParamSet& ps, const glm
     if (!(c.lens_radius >= 0.f) || !std::isfinite(c.lens_radius) || !(c.focal_distance > 0.f))
       ps.fail("\"lensradius\" must be >= 0 and \"focaldistance\" > 0");
   }
+  // The shutter's interval scales the image (pbrt-v4's imaging ratio,
+  // color/sensor.h); what moves during it does not blur yet.
+  const float open = ps.get_float("shutteropen", 0.f), close = ps.get_float("shutterclose", 1.f);
+  scene_.settings.exposure_time = close - open;
+  if (!(close > open) || !std::isfinite(close - open))
+    ps.fail("\"shutterclose\" (" + std::to_string(close) + ") must come after \"shutteropen\" (" + std::to_string(open) +
+            "): a shutter that never opens makes a black image");
   std::vector<float> sw = ps.get_floats("screenwindow");
   if (!sw.empty()) {
     if (sw.size() != 4) ps.fail("\"screenwindow\" needs 4 values: xmin xmax ymin ymax");
@@ -81,6 +88,17 @@ void SceneBuilder::film(const std::string& type, const ParamSet& ps) {
   if (s.width <= 0 || s.height <= 0 || s.width > 65536 || s.height > 65536)
     ps.fail("resolution must be between 1 and 65536 pixels per side");
   s.output = ps.get_string("filename", "pbrt.exr");
+  // The sensor (color/sensor.h). pbrt-v4's other sensors are measured
+  // cameras' curves, which Lantern does not have.
+  s.iso = ps.get_float("iso", 100.f);
+  if (!(s.iso > 0.f) || !std::isfinite(s.iso)) ps.fail(*ps.find("iso"), "\"iso\" must be a finite number > 0");
+  s.whitebalance = ps.get_float("whitebalance", 0.f);
+  if (!(s.whitebalance >= 0.f) || !std::isfinite(s.whitebalance))
+    ps.fail(*ps.find("whitebalance"), "\"whitebalance\" must be a temperature in kelvin, or 0 for none");
+  const std::string sensor = ps.get_string("sensor", "cie1931");
+  if (sensor != "cie1931")
+    ps.fail(*ps.find("sensor"), "sensor \"" + printable(sensor) + "\" is not available; only \"cie1931\" (the CIE 1931 "
+                                "observer, pbrt-v4's default) is");
 }
 
 // pbrt-v4's samplers, parameters and defaults (docs/samplers.md).
