@@ -213,8 +213,18 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
   const std::vector<uint32_t> order = tile_order(film.width(), film.height());
   const bool timed = opt.time_limit_seconds > 0;  // the budget counts earlier runs too
   const uint32_t total_spp = timed ? 0xFFFFFFFFu : uint32_t(opt.spp);
-  const uint32_t pass_spp = timed ? 1u : std::min<uint32_t>(total_spp, 16u);
-  const uint32_t pixels_per_wave = std::max<uint32_t>(1, uint32_t(opt.wave_size) / pass_spp);
+  // A pass is one sample per pixel for a timed render and for merging
+  // (vcm, bpm, ppm): a pixel's samples then merge with the light vertices of
+  // as many different waves, whatever the budget, and the merging radius
+  // shrinks sample by sample. Otherwise up to 16, a pixel's samples
+  // adjacent in its wave (coherent rays, fewer passes).
+  const bool merging = merges_vertices(opt.integrator);
+  const uint32_t pass_spp = timed || merging ? 1u : std::min<uint32_t>(total_spp, 16u);
+  uint32_t pixels_per_wave = std::max<uint32_t>(1, uint32_t(opt.wave_size) / pass_spp);
+  if (merging) {  // waves of equal size: a pass's last wave would have fewer light vertices to merge with
+    const uint32_t n = uint32_t((order.size() + pixels_per_wave - 1) / pixels_per_wave);
+    pixels_per_wave = uint32_t((order.size() + n - 1) / n);
+  }
   const uint32_t capacity = pixels_per_wave * pass_spp;
   const uint32_t waves = uint32_t((order.size() + pixels_per_wave - 1) / pixels_per_wave);
   checkpoints.set_units(timed ? 0 : (total_spp + pass_spp - 1) / pass_spp, waves);
