@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "lantern/render.h"
@@ -135,9 +137,15 @@ TEST(Vcm, OneBounceBpmIsPpmBitForBit) {
 }
 
 // Per-strategy images (--strategies): with merges among them, the weighted
-// images of all strategies add up to the image, pixel by pixel.
+// images of all strategies add up to the image, pixel by pixel, also
+// through a film sensor that scales and white-balances (color/sensor.h).
 TEST(Vcm, StrategyImagesAddUpToTheImage) {
-  const auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
+  std::ifstream file(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
+  std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  const size_t film = text.find("Film \"rgb\"");
+  ASSERT_NE(film, std::string::npos);
+  text.insert(film + 10, " \"float iso\" 200 \"float whitebalance\" 3000");
+  const auto scene = load_scene_from_string(text, "cornell-box-sensor.pbrt");
   for (const char* integrator : {"bdpt", "vcm", "bpm"}) {
     RenderOptions o = merging_options(integrator, 24, 24, 4, 20.f);
     o.strategies = true;

@@ -104,6 +104,12 @@ class Film {
   // (color/sensor.h): a 3x3 matrix on linear RGB, row-major. The identity
   // (the default) costs nothing.
   void set_sensor(const std::array<float, 9>& m);
+  RGB sensed(const RGB& c) const {
+    if (!has_sensor_) return c;
+    const float* m = sensor_.data();
+    return RGB(m[0] * c[0] + m[1] * c[1] + m[2] * c[2], m[3] * c[0] + m[4] * c[1] + m[5] * c[2],
+               m[6] * c[0] + m[7] * c[1] + m[8] * c[2]);
+  }
 
   // Converts a wave's samples and splats (filtered onto pixels) to
   // fixed-point terms, through the sensor. Thread-safe: waves call it in
@@ -147,12 +153,6 @@ class Film {
   void read_state(StateReader& in);
 
  private:
-  RGB sensed(const RGB& c) const {
-    if (!has_sensor_) return c;
-    const float* m = sensor_.data();
-    return RGB(m[0] * c[0] + m[1] * c[1] + m[2] * c[2], m[3] * c[0] + m[4] * c[1] + m[5] * c[2],
-               m[6] * c[0] + m[7] * c[1] + m[8] * c[2]);
-  }
   int width_, height_;
   PixelFilter filter_;
   std::array<float, 9> sensor_{1, 0, 0, 0, 1, 0, 0, 0, 1};

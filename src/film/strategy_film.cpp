@@ -16,9 +16,9 @@ StrategyFilm::Sums& StrategyFilm::sums(int s, int t, bool merge) {
   return x;
 }
 
-void StrategyFilm::merge(const std::vector<StrategyRecord>& records) {
+void StrategyFilm::merge(const std::vector<StrategyRecord>& records, const Film& film) {
   for (const StrategyRecord& r : records) {
-    const RGB weighted = r.weighted, unweighted = r.unweighted;
+    const RGB weighted = film.sensed(r.weighted), unweighted = film.sensed(r.unweighted);
     if (!is_finite(weighted) || !is_finite(unweighted)) continue;
     Sums& x = sums(r.s, r.t, r.merge);
     auto add = [&](size_t pixel, float w) {

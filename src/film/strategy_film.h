@@ -16,8 +16,8 @@ namespace lantern {
 class StrategyFilm {
  public:
   StrategyFilm(int width, int height, const PixelFilter& filter) : width_(width), height_(height), filter_(filter) {}
-  // Serially, in wave order, like Film::merge.
-  void merge(const std::vector<StrategyRecord>& records);
+  // Serially, in wave order, like Film::merge, through the film's sensor.
+  void merge(const std::vector<StrategyRecord>& records, const Film& film);
   // Normalised as the main film is: camera-side strategies by each pixel's
   // sample count, light tracing by the light-subpath count.
   std::vector<StrategyImage> resolve(const Film& film) const;

@@ -348,7 +348,7 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
               std::lock_guard<std::mutex> lock(cx.film_mutex);
               film.merge(out);
             }
-            if (cx.strategies) cx.strategies->merge(out.strategies);
+            if (cx.strategies) cx.strategies->merge(out.strategies, film);
             if (opt.collect_stats) film_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
             if (track) {
               const auto t1 = Clock::now();
