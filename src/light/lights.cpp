@@ -313,32 +313,29 @@ float area_light_pdf(const LightPools& L, const ShapePools& shapes, const LightS
   return pmf * dist2 * area_point_density(shapes, a, p_light, n_light) / cos_l;
 }
 
-// (Colours summed and converted once: the same with one infinite light, as
-// scenes have; several are mixed before they become spectra. Lights given
-// as spectra are added as such.)
+// One infinite light's radiance along w leaving p (a portal's depends on
+// p), as colour.
+static RGB infinite_light_rgb(const LightPools& L, const InfiniteLight& e, const TexturePools& tex, const Vec3& p,
+                              const Vec3& w) {
+  if (e.portal >= 0) return portal_Le(L.portals[size_t(e.portal)], p, w);
+  if (e.image < 0) return e.scale;
+  Vec3 wl = glm::normalize(e.light_from_world * w);
+  return env_lookup(e, tex, e.equal_area ? equal_area_sphere_to_square(wl) : dir_to_latlong(wl));
+}
+
+// In RGB the lights' colours add; with sampled wavelengths each light's
+// colour (or spectrum) becomes a spectrum first, as pbrt-v4's infinite
+// lights are separate lights.
 Spectrum infinite_lights_Le(const LightPools& L, const TexturePools& tex, const Vec3& p, const Vec3& w,
                             const SampledWavelengths& l) {
-  RGB sum(0.f);
-  Spectrum spectral(0.f);
-  bool any_spectral = false;
-  for (const InfiniteLight& e : L.infinite) {
-    if (e.portal >= 0) {
-      sum += portal_Le(L.portals[size_t(e.portal)], p, w);
-      continue;
-    }
-    if (e.image < 0) {
-      if (e.spectrum >= 0 && !l.is_rgb()) {
-        spectral += light_spectrum(e.scale, e.spectrum, tex, l);
-        any_spectral = true;
-      } else {
-        sum += e.scale;
-      }
-      continue;
-    }
-    Vec3 wl = glm::normalize(e.light_from_world * w);
-    sum += env_lookup(e, tex, e.equal_area ? equal_area_sphere_to_square(wl) : dir_to_latlong(wl));
+  if (l.is_rgb()) {
+    RGB sum(0.f);
+    for (const InfiniteLight& e : L.infinite) sum += infinite_light_rgb(L, e, tex, p, w);
+    return illuminant_spectrum(sum, l);
   }
-  return any_spectral ? illuminant_spectrum(sum, l) + spectral : illuminant_spectrum(sum, l);
+  Spectrum sum(0.f);
+  for (const InfiniteLight& e : L.infinite) sum += light_spectrum(infinite_light_rgb(L, e, tex, p, w), e.spectrum, tex, l);
+  return sum;
 }
 
 float infinite_light_emission_dir_pdf(const LightPools& L, const TexturePools& tex, uint32_t index, const Vec3& w) {
