@@ -93,8 +93,9 @@ inline RegionStats render_stats(const Scene& scene, const std::string& integrato
 // (relative) of pbrt-v4's.
 inline void expect_matches_pbrt(const Scene& scene, int width, int height, int maxdepth, int spp, int runs,
                                 const std::vector<Region>& regions, const std::vector<std::array<double, 3>>& pbrt,
-                                double allowance = 0.02) {
+                                double allowance = 0.02, bool spectral = false) {
   RenderOptions o;
+  o.spectral = spectral;
   o.integrator = Integrator::Path;
   o.spp = spp;
   o.maxdepth = maxdepth;

@@ -77,6 +77,9 @@ struct VdbMedium {
   float Le_scale = 0.f;
   bool emits() const { return temperature.data && Le_scale > 0.f && heat.emits(); }
   RGB Le(const Vec3& p) const { return heat.at(temperature.density(p)) * Le_scale; }
+  Spectrum Le(const Vec3& p, const SampledWavelengths& l) const {
+    return l.is_rgb() ? illuminant_spectrum(Le(p), l) : heat.sampled(temperature.density(p), l) * Le_scale;
+  }
 };
 
 // pbrt-v4's "rgbgrid": RGB coefficients on a grid.
@@ -160,11 +163,11 @@ struct MediumPools {
   Spectrum Le(MediumHandle h, const Vec3& p, const SampledWavelengths& l) const {
     switch (h.kind()) {
       case MediumKind::Homogeneous: return illuminant_spectrum(homogeneous[h.index()].Le, l);
-      case MediumKind::Grid: return illuminant_spectrum(grid[h.index()].emission.at(p), l);
+      case MediumKind::Grid: return grid[h.index()].emission.at(p, l);
       case MediumKind::RgbGrid:
         return illuminant_spectrum(rgb_grid[h.index()].grid.Le_at(p), l) * rgb_grid[h.index()].Le_scale;
       case MediumKind::Vdb:
-        return vdb[h.index()].emits() ? illuminant_spectrum(vdb[h.index()].Le(p), l) : Spectrum(0.f);
+        return vdb[h.index()].emits() ? vdb[h.index()].Le(p, l) : Spectrum(0.f);
       default: return Spectrum(0.f);
     }
   }

@@ -34,6 +34,22 @@ bool TemperatureEmission::tabulate(float largest) {
   return true;
 }
 
+Spectrum TemperatureEmission::sampled(float value, const SampledWavelengths& l) const {
+  const double T = double(kelvin(value));
+  if (!(T > 100.0) || blackbody.empty()) return Spectrum(0.f);  // (as BlackbodyTable::at)
+  const double peak = blackbody_radiance(2.8977721e6 / T, T);  // Wien's displacement law
+  Spectrum s;
+  for (int i = 0; i < kSpectrumSamples; ++i) s[i] = float(blackbody_radiance(double(l.nm[size_t(i)]), T) / peak);
+  return s;
+}
+
+Spectrum GridEmission::at(const Vec3& p, const SampledWavelengths& l) const {
+  if (l.is_rgb() || temperature.values.empty()) return illuminant_spectrum(at(p), l);
+  const float s = scale.density(p);
+  if (!(s > 0.f)) return Spectrum(0.f);
+  return heat.sampled(temperature.density(p), l) * s;
+}
+
 RGB GridEmission::at(const Vec3& p) const {
   const float s = scale.density(p);
   if (!(s > 0.f)) return RGB(0.f);

@@ -9,6 +9,8 @@
 
 #include <vector>
 
+#include "color/sampled_wavelengths.h"
+#include "color/spectrum_conversion.h"
 #include "math/common.h"
 #include "medium/grid_density.h"
 
@@ -39,6 +41,9 @@ struct TemperatureEmission {
 
   float kelvin(float value) const { return (value - offset) * scale; }
   RGB at(float value) const { return blackbody.at(kelvin(value)); }
+  // The black body itself at the wavelengths l (the spectral renderer's):
+  // Planck's law over its peak, which is what `at` is the colour of.
+  Spectrum sampled(float value, const SampledWavelengths& l) const;
   bool emits() const { return !blackbody.empty(); }
   // Tabulates the colours for values of magnitude at most `largest`
   // (infinity: unbounded, up to 10^6 K); false when none is hot enough.
@@ -56,6 +61,9 @@ struct GridEmission {
   bool emits() const { return !temperature.values.empty() || max_component(Le) > 0.f; }
   // Le at a point of render space.
   RGB at(const Vec3& p) const;
+  // The same at the wavelengths l: a temperature's black body exactly, an
+  // "Le" as an RGB illuminant.
+  Spectrum at(const Vec3& p, const SampledWavelengths& l) const;
   // A weight for the box's region [u0, u1] (unit box coordinates) that
   // follows the largest Le there (max channel): zero only where no point
   // of the region emits.
