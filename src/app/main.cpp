@@ -226,8 +226,8 @@ int run_render(const RenderArgs& a) {
   o.mis = lantern::parse_mis(a.mis);
   o.spectral = a.spectral;
   if (ss.dispersive && !o.spectral)
-    std::fprintf(stderr, "warning: the scene has glass whose index varies with wavelength; it disperses light only with "
-                         "--spectral (in RGB its index is the one at 587.6 nm)\n");
+    std::fprintf(stderr, "warning: the scene has a material whose index of refraction varies with wavelength; it "
+                         "disperses light only with --spectral (in RGB its index is the one at 587.6 nm)\n");
   o.strategies = !a.strategies.empty();
   o.collect_stats = !a.stats.empty();
   o.dump_rays = a.dump_rays;
