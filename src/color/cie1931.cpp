@@ -96,16 +96,15 @@ double blackbody_radiance(double nm, double kelvin) {
   return 2.0 * h * c * c / (std::pow(l, 5) * std::expm1(h * c / (l * kb * kelvin)));
 }
 
-namespace {
+double blackbody_peak_radiance(double kelvin) { return blackbody_radiance(2.8977721e6 / kelvin, kelvin); }
 
-// Planck's law: spectral radiance at wavelength l (m) and temperature T (K).
-double planck(double l, double T) { return blackbody_radiance(l * 1e9, T); }
+namespace {
 
 // XYZ of Planck's law times `scale`, summed at 1 nm over the table.
 void planck_xyz(double T, double scale, double xyz[3]) {
   xyz[0] = xyz[1] = xyz[2] = 0.0;
   for (int nm = kFirstNm; nm <= kFirstNm + kStepNm * (kEntries - 1); ++nm) {
-    const double radiance = planck(nm * 1e-9, T) * scale;
+    const double radiance = blackbody_radiance(double(nm), T) * scale;
     const Vec3 cmf = cie1931_cmf(float(nm));
     for (int k = 0; k < 3; ++k) xyz[k] += radiance * double(cmf[k]);
   }
@@ -125,7 +124,7 @@ Vec3 blackbody_peak_xyz(float kelvin) {
   if (!(kelvin > 0.f)) return Vec3(0.f);
   const double T = double(kelvin);
   double xyz[3];
-  planck_xyz(T, 1.0 / planck(2.8977721e-3 / T, T), xyz);  // over the peak (Wien's displacement law)
+  planck_xyz(T, 1.0 / blackbody_peak_radiance(T), xyz);
   if (!std::isfinite(xyz[1])) return Vec3(0.f);
   return Vec3(float(xyz[0]), float(xyz[1]), float(xyz[2]));
 }

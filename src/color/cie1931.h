@@ -16,6 +16,9 @@ Vec3 cie1931_cmf(float nm);
 // Planck's law: a black body's spectral radiance at wavelength nm and
 // temperature kelvin (W / (sr m^2 m)).
 double blackbody_radiance(double nm, double kelvin);
+// Its largest value over wavelength, at Wien's displacement-law peak: what
+// pbrt-v4's BlackbodySpectrum divides by.
+double blackbody_peak_radiance(double kelvin);
 
 // CIE XYZ of a black body at `kelvin` (Planck's law, integrated over
 // 380-780 nm at 1 nm against the table), scaled to Y = 1.

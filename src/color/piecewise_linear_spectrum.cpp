@@ -72,7 +72,7 @@ RGB illuminant_rgb(const PiecewiseLinearSpectrum& s) {
 PiecewiseLinearSpectrum blackbody_spectrum(float kelvin) {
   PiecewiseLinearSpectrum s;
   if (!(kelvin > 0.f)) return s;
-  const double peak = blackbody_radiance(2.8977721e6 / double(kelvin), double(kelvin));  // Wien's law
+  const double peak = blackbody_peak_radiance(double(kelvin));
   for (int nm = 360; nm <= 830; ++nm) {
     s.nm.push_back(double(nm));
     s.value.push_back(blackbody_radiance(double(nm), double(kelvin)) / peak);

@@ -8,9 +8,8 @@
 // equal the film of the whole render bit for bit.
 #pragma once
 
-#include <array>
-
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdint>

@@ -37,7 +37,7 @@ bool TemperatureEmission::tabulate(float largest) {
 Spectrum TemperatureEmission::sampled(float value, const SampledWavelengths& l) const {
   const double T = double(kelvin(value));
   if (!(T > 100.0) || blackbody.empty()) return Spectrum(0.f);  // (as BlackbodyTable::at)
-  const double peak = blackbody_radiance(2.8977721e6 / T, T);  // Wien's displacement law
+  const double peak = blackbody_peak_radiance(T);
   Spectrum s;
   for (int i = 0; i < kSpectrumSamples; ++i) s[i] = float(blackbody_radiance(double(l.nm[size_t(i)]), T) / peak);
   return s;

@@ -2,8 +2,8 @@
 
 #include "color/cie1931.h"
 #include "color/glass.h"
-#include "color/sigmoid_spectrum.h"
 #include "color/optical_constants.h"
+#include "color/sigmoid_spectrum.h"
 
 #include <filesystem>
 #include <stdexcept>
