@@ -235,6 +235,7 @@ TEST(Camera, SensorSettingsThatMakeNoImageAreClearErrors) {
   expect_load_error("Film \"rgb\" \"float whitebalance\" -5\n", "w.pbrt", {"w.pbrt:1", "whitebalance", "kelvin"});
   expect_load_error("Film \"rgb\" \"string sensor\" \"canon_eos_5d_mkiv\"\n", "c.pbrt",
                     {"c.pbrt:1", "canon_eos_5d_mkiv", "cie1931"});
+  expect_load_error("ColorSpace \"adobe-rgb\"\n", "a.pbrt", {"a.pbrt:1", "adobe-rgb", "rec2020", "aces2065-1"});
 }
 
 }  // namespace

@@ -39,7 +39,28 @@ TEST(Spectral, SrgbMatricesFromPrimaries) {
   for (size_t c = 0; c < 3; ++c) EXPECT_NEAR(white[c], cs.white[c], 1e-12);
   EXPECT_NE(ColorSpace::named("rec2020"), nullptr);
   EXPECT_NE(ColorSpace::named("dci-p3"), nullptr);
+  EXPECT_NE(ColorSpace::named("aces2065-1"), nullptr);
   EXPECT_EQ(ColorSpace::named("adobe"), nullptr);
+}
+
+// Conversions between spaces: ACES's matrix against SMPTE ST 2065-1's
+// published one, a white reflectance staying white when adapted and the
+// same light keeping its XYZ when not, and the chromaticities read back.
+TEST(Spectral, ColourSpaceConversions) {
+  const ColorSpace& srgb = ColorSpace::srgb();
+  const ColorSpace& aces = *ColorSpace::named("aces2065-1");
+  const double published[3][3] = {
+      {0.9525523959, 0.0, 0.0000936786}, {0.3439664498, 0.7281660966, -0.0721325464}, {0.0, 0.0, 1.0088251844}};
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j) EXPECT_NEAR(aces.rgb_to_xyz[i][j], published[i][j], 2e-6) << i << j;
+  const auto white = multiply(rgb_conversion(aces, srgb, true), {1.0, 1.0, 1.0});
+  for (double w : white) EXPECT_NEAR(w, 1.0, 1e-9);
+  const auto light = multiply(srgb.rgb_to_xyz, multiply(rgb_conversion(aces, srgb, false), {0.2, 0.5, 0.9}));
+  const auto direct = multiply(aces.rgb_to_xyz, {0.2, 0.5, 0.9});
+  for (size_t c = 0; c < 3; ++c) EXPECT_NEAR(light[c], direct[c], 1e-9);
+  const std::array<float, 8> xy = chromaticities(*ColorSpace::named("rec2020"));
+  const float expected[8] = {0.708f, 0.292f, 0.170f, 0.797f, 0.131f, 0.046f, 0.3127f, 0.3290f};
+  for (size_t k = 0; k < 8; ++k) EXPECT_NEAR(xy[k], expected[k], k < 6 ? 1e-6f : 3e-4f) << k;
 }
 
 // A reflectance's spectrum from the embedded table, lit by the space's

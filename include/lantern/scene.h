@@ -42,6 +42,10 @@ struct SceneSettings {
   // "whitebalance" (kelvin, 0: none), and the Camera's shutter interval,
   // whose product with iso / 100 scales the image.
   float iso = 100.f, whitebalance = 0.f, exposure_time = 1.f;
+  // The image's colour space: the ColorSpace in effect at Film (pbrt-v4's
+  // names: srgb, rec2020, dci-p3, aces2065-1). The renderer's colours are
+  // linear sRGB; the sensor converts.
+  std::string color_space = "srgb";
 };
 
 struct LoadOptions {

@@ -15,6 +15,7 @@
 #include "app/merge_command.h"
 #include "app/outputs.h"
 #include "app/stats_report.h"
+#include "color/color_space.h"
 #include "trace/timeline.h"
 #include "film/image_metrics.h"
 #include "imageio/replace_file.h"
@@ -358,6 +359,13 @@ int run_render(const RenderArgs& a) {
                       {"lantern:resumed_samples", std::to_string(r.resumed_samples)},
                       {"lantern:interrupted", r.interrupted ? "true" : "false"},
                       {"lantern:scene", a.scene}};
+  if (const ColorSpace* cs = ColorSpace::named(scene_settings(*scene).color_space); cs && cs != &ColorSpace::srgb()) {
+    // The image is in another colour space (ColorSpace before Film): say so
+    // as OpenEXR does.
+    std::string c;
+    for (float v : chromaticities(*cs)) c += (c.empty() ? "" : " ") + std::to_string(v);
+    md.emplace_back("chromaticities", c);
+  }
   ImageWrite written;
   {
     TraceSpan span(timeline ? &timeline->main() : nullptr, "write image", TraceCategory::Output);

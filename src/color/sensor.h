@@ -11,13 +11,15 @@ struct SensorSettings {
   float iso = 100.f;           // Film "iso"
   float exposure_time = 1.f;   // Camera "shutterclose" - "shutteropen"
   float whitebalance = 0.f;    // Film "whitebalance" (kelvin; 0: none)
+  const ColorSpace* output = nullptr;  // the image's colour space (null: sRGB)
 };
 
-// The sensor as a matrix on linear sRGB: the imaging ratio, exposure time
-// x ISO / 100 (1 by default), times a von Kries adaptation in Bradford's
-// cone space from the white of `whitebalance` kelvin (CIE illuminant D at
-// that temperature; a black body below 4000 K, where D is not defined) to
-// sRGB's white. Without white balance, a multiple of the identity.
+// The sensor as a matrix from the renderer's linear sRGB to the image's
+// linear RGB: the imaging ratio, exposure time x ISO / 100 (1 by
+// default), times a von Kries adaptation in Bradford's cone space from the
+// white of `whitebalance` kelvin (CIE illuminant D at that temperature; a
+// black body below 4000 K, where D is not defined) to the image space's
+// white. Without white balance and in sRGB, a multiple of the identity.
 Matrix3d sensor_matrix(const SensorSettings& s);
 
 // The CIE xy chromaticity of CIE daylight illuminant D at nominal

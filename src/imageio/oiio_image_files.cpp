@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <sstream>
 #include <stdexcept>
 
 #include "imageio/oiio_module.h"
@@ -36,7 +37,18 @@ void write_image(const std::string& path, const Image& image, const ImageMetadat
   auto out = OIIO::ImageOutput::create(tmp);
   if (!out) throw std::runtime_error("cannot write \"" + path + "\": no image writer for extension \"" + ext + "\"");
   OIIO::ImageSpec spec(image.width, image.height, 3, linear ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-  for (const auto& [k, v] : metadata) spec.attribute(k, v);
+  for (const auto& [k, v] : metadata) {
+    if (k == "chromaticities") {
+      // Eight numbers, OpenEXR's standard attribute (written where the
+      // format has it).
+      float c[8] = {};
+      std::istringstream in(v);
+      for (float& x : c) in >> x;
+      if (linear && in) spec.attribute(k, OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), c);
+    } else {
+      spec.attribute(k, v);
+    }
+  }
   if (!linear) spec.attribute("oiio:ColorSpace", "sRGB");
   if (!out->open(tmp, spec)) throw std::runtime_error("cannot write \"" + path + "\": " + out->geterror());
   bool ok;

@@ -402,7 +402,8 @@ struct RenderSession::State {
   State(const Scene& s, RenderOptions o, RenderHooks h)
       : scene(s), opt(std::move(o)), hooks(std::move(h)), width(opt.width > 0 ? opt.width : s.settings.width),
         height(opt.height > 0 ? opt.height : s.settings.height), film(width, height, s.filter) {
-    const Matrix3d m = sensor_matrix({s.settings.iso, s.settings.exposure_time, s.settings.whitebalance});
+    const Matrix3d m = sensor_matrix(
+        {s.settings.iso, s.settings.exposure_time, s.settings.whitebalance, ColorSpace::named(s.settings.color_space)});
     std::array<float, 9> sensor;
     for (size_t i = 0; i < 9; ++i) sensor[i] = float(m[i / 3][i % 3]);
     film.set_sensor(sensor);

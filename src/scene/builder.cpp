@@ -95,6 +95,7 @@ void SceneBuilder::film(const std::string& type, const ParamSet& ps) {
   s.whitebalance = ps.get_float("whitebalance", 0.f);
   if (!(s.whitebalance >= 0.f) || !std::isfinite(s.whitebalance))
     ps.fail(*ps.find("whitebalance"), "\"whitebalance\" must be a temperature in kelvin, or 0 for none");
+  s.color_space = ps.color_space ? std::string(ps.color_space->name) : "srgb";
   const std::string sensor = ps.get_string("sensor", "cie1931");
   if (sensor != "cie1931")
     ps.fail(*ps.find("sensor"), "sensor \"" + printable(sensor) + "\" is not available; only \"cie1931\" (the CIE 1931 "

@@ -134,6 +134,16 @@ std::optional<std::string> ParamSet::get_texture(const std::string& name) const 
   return p->strings[0];
 }
 
+RGB ParamSet::to_srgb(const Param& p, const RGB& c, ColorUsage usage) const {
+  const Matrix3d m = rgb_conversion(*color_space, ColorSpace::srgb(), usage != ColorUsage::Illuminant);
+  RGB r;
+  for (size_t i = 0; i < 3; ++i) r[int(i)] = float(m[i][0] * c[0] + m[i][1] * c[1] + m[i][2] * c[2]);
+  if (min_component(r) < -1e-5f * max_component(r) && warn && *warn)
+    (*warn)(p.where.str() + ": warning: " + directive + ": \"" + printable(p.name) + "\" (" + std::string(color_space->name) +
+            ") lies outside sRGB's gamut, in which Lantern renders; its negative part was clamped");
+  return max(r, RGB(0.f));
+}
+
 std::optional<RGB> ParamSet::get_rgb(const std::string& name, ColorUsage usage) const {
   const Param* p = find(name);
   if (!p) return std::nullopt;
@@ -141,6 +151,7 @@ std::optional<RGB> ParamSet::get_rgb(const std::string& name, ColorUsage usage) 
     if (p->numbers.size() != 3) fail(*p, "expected three values (r g b), got " + std::to_string(p->numbers.size()));
     RGB c(float(p->numbers[0]), float(p->numbers[1]), float(p->numbers[2]));
     if (c[0] < 0.f || c[1] < 0.f || c[2] < 0.f) fail(*p, "RGB values must not be negative");
+    if (color_space && color_space != &ColorSpace::srgb()) c = to_srgb(*p, c, usage);
     if (usage == ColorUsage::Reflectance && max_component(c) > 1.f && warn && *warn)
       (*warn)(p->where.str() + ": warning: " + directive + ": reflectance \"" + printable(name) + "\" exceeds 1 and was clamped");
     if (usage == ColorUsage::Reflectance) c = min(c, RGB(1.f));

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "color/color_space.h"
 #include "color/piecewise_linear_spectrum.h"
 #include "lantern/error.h"
 #include "math/common.h"
@@ -34,6 +35,9 @@ class ParamSet {
   std::string directive;      // e.g. Shape "sphere", for messages
   WarningSink* warn = nullptr;
   std::string base_dir;       // relative file names (spectrum files) are resolved against it
+  // The ColorSpace in effect at the directive: its "rgb" values are in it
+  // (null: sRGB).
+  const ColorSpace* color_space = nullptr;
 
   const Param* find(const std::string& name) const;
   bool has(const std::string& name) const { return find(name) != nullptr; }
@@ -47,7 +51,11 @@ class ParamSet {
   std::vector<Vec3> get_point3s(const std::string& name) const;  // point3, vector3, normal
   std::vector<Vec2> get_point2s(const std::string& name) const;
   Vec3 get_point3(const std::string& name, Vec3 def) const;
-  // rgb / color / spectrum / blackbody; nullopt when absent. A sampled
+  // rgb / color / spectrum / blackbody, in linear sRGB (the renderer's
+  // colours); nullopt when absent. An "rgb" value of another colour space
+  // is converted: a reflectance or unbounded value with its white adapted
+  // to sRGB's (so (1, 1, 1) stays white), an illuminant as the same light;
+  // what falls outside sRGB's gamut is clamped, with a warning. A sampled
   // spectrum (pairs or a file) becomes the colour a spectral renderer shows
   // for it: a reflectance or unbounded value under D65, an illuminant
   // normalised to luminance 1 (as pbrt-v4 normalises light spectra).
@@ -72,6 +80,7 @@ class ParamSet {
   void warn_unused() const;
 
  private:
+  RGB to_srgb(const Param& p, const RGB& c, ColorUsage usage) const;
   const Param& expect(const Param& p, std::initializer_list<const char*> types, const char* expected) const;
 };
 

@@ -102,6 +102,7 @@ class Parser {
     ps.directive = directive;
     ps.base_dir = base_dir_;
     ps.warn = &warn_sink_;
+    ps.color_space = gs_.color_space;
     while (peek().kind == TokenKind::String) {
       Token decl = next();
       Param p;
@@ -236,8 +237,15 @@ class Parser {
       camera_from_world_ = ctm;
       named_cs_["camera"] = glm::inverse(ctm);
       ps.warn_unused();
+    } else if (d == "ColorSpace") {
+      // Graphics state, as in pbrt-v4: allowed anywhere, scoped by
+      // AttributeBegin/End.
+      const std::string name = expect_string("a colour space name");
+      gs_.color_space = ColorSpace::named(name);
+      if (!gs_.color_space)
+        fail(t, "ColorSpace \"" + printable(name) + "\" is unknown; expected srgb, rec2020, dci-p3 or aces2065-1");
     } else if (d == "Film" || d == "Sampler" || d == "Integrator" || d == "PixelFilter" || d == "Accelerator" ||
-               d == "ColorSpace" || d == "Option") {
+               d == "Option") {
       options_only();
       std::string type = expect_string("a type name");
       if (d == "Option") {
@@ -249,7 +257,6 @@ class Parser {
       else if (d == "Sampler") b_.sampler(type, ps);
       else if (d == "Integrator") b_.integrator(type, ps);
       else if (d == "PixelFilter") b_.pixel_filter(type, ps);
-      else if (d == "ColorSpace" && type != "srgb") b_.warn(loc(t), "colour space \"" + printable(type) + "\" is not supported; using sRGB");
       if (d != "Accelerator") ps.warn_unused();
     } else if (d == "Include" || d == "Import") {
       include(t, expect_string("a file name"));

@@ -32,6 +32,9 @@ struct GraphicsState {
   // pbrt's current MediumInterface, by name ("" is vacuum), and where it was given.
   std::string inside_medium, outside_medium;
   SourceLocation medium_where;
+  // pbrt-v4's ColorSpace: the space of the "rgb" values that follow (null:
+  // sRGB, the default).
+  const ColorSpace* color_space = nullptr;
 };
 
 namespace pbrt {
