@@ -9,6 +9,7 @@
 
 #include "color/piecewise_linear_spectrum.h"
 #include "color/sigmoid_spectrum.h"
+#include "color/spectrum_conversion.h"
 
 namespace lantern {
 
@@ -27,5 +28,18 @@ struct DenselySampledSpectrum {
     return (1.f - t) * value[size_t(i)] + t * value[size_t(i) + 1];
   }
 };
+
+// An emitter's radiance at the wavelengths l from its colour c: c as an RGB
+// illuminant; or, for an emitter given as a spectrum (a black body, a
+// file) rendered with sampled wavelengths, that spectrum itself, stored
+// divided by its colour's luminance, at the luminance of c (which carries
+// the emitter's scale and power).
+inline Spectrum emitted_spectrum(const RGB& c, const DenselySampledSpectrum* spectrum, const SampledWavelengths& l) {
+  if (!spectrum || l.is_rgb()) return illuminant_spectrum(c, l);
+  const float y = luminance(c);
+  Spectrum v;
+  for (int i = 0; i < kSpectrumSamples; ++i) v[i] = (*spectrum)(l.nm[size_t(i)]) * y;
+  return v;
+}
 
 }  // namespace lantern

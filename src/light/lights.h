@@ -63,19 +63,11 @@ struct InfiniteLight {
   int32_t spectrum = -1;    // a constant L given as a spectrum (light_spectrum below)
 };
 
-// A light's emission at the wavelengths l, from its colour c: c as an RGB
-// illuminant; or, for a light given as a spectrum (a black body, a file:
-// `spectrum` indexes tex.spectra) rendered with sampled wavelengths, that
-// spectrum itself, which the scene builder stored divided by its colour's
-// luminance, at the luminance of c (which carries the light's scale and
-// power).
+// A light's emission at the wavelengths l from its colour c; `spectrum`
+// indexes tex.spectra for a light given as a spectrum (emitted_spectrum,
+// color/densely_sampled_spectrum.h).
 inline Spectrum light_spectrum(const RGB& c, int32_t spectrum, const TexturePools& tex, const SampledWavelengths& l) {
-  if (spectrum < 0 || l.is_rgb()) return illuminant_spectrum(c, l);
-  const DenselySampledSpectrum& s = tex.spectra[size_t(spectrum)];
-  const float y = luminance(c);
-  Spectrum v;
-  for (int i = 0; i < kSpectrumSamples; ++i) v[i] = s(l.nm[size_t(i)]) * y;
-  return v;
+  return emitted_spectrum(c, spectrum < 0 ? nullptr : &tex.spectra[size_t(spectrum)], l);
 }
 
 struct LightRef {

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "color/densely_sampled_spectrum.h"
 #include "math/common.h"
 #include "math/rng.h"
 #include "medium/cloud.h"
@@ -54,6 +55,7 @@ struct HomogeneousMedium {
   RGB sigma_a{0.f}, sigma_s{0.f};
   float g = 0.f;
   RGB Le{0.f};  // emitted radiance per unit sigma_a ("Le" times "Lescale"); unused per density
+  int32_t Le_spectrum = -1;  // Le given as a spectrum: index into MediumPools::spectra
   Spectrum sigma_t(const SampledWavelengths& l) const {
     return unbounded_spectrum(sigma_a, l) + unbounded_spectrum(sigma_s, l);
   }
@@ -96,6 +98,8 @@ struct MediumPools {
   std::vector<CloudMedium> cloud;
   std::vector<VdbMedium> vdb;
   MediumHandle camera;  // the medium camera rays start in
+  // Emission given as spectra (emitted_spectrum, color/densely_sampled_spectrum.h).
+  std::vector<DenselySampledSpectrum> spectra;
 
   bool empty() const { return homogeneous.empty() && grid.empty() && rgb_grid.empty() && cloud.empty() && vdb.empty(); }
 
@@ -162,7 +166,10 @@ struct MediumPools {
   }
   Spectrum Le(MediumHandle h, const Vec3& p, const SampledWavelengths& l) const {
     switch (h.kind()) {
-      case MediumKind::Homogeneous: return illuminant_spectrum(homogeneous[h.index()].Le, l);
+      case MediumKind::Homogeneous: {
+        const HomogeneousMedium& m = homogeneous[h.index()];
+        return emitted_spectrum(m.Le, m.Le_spectrum < 0 ? nullptr : &spectra[size_t(m.Le_spectrum)], l);
+      }
       case MediumKind::Grid: return grid[h.index()].emission.at(p, l);
       case MediumKind::RgbGrid:
         return illuminant_spectrum(rgb_grid[h.index()].grid.Le_at(p), l) * rgb_grid[h.index()].Le_scale;

@@ -44,9 +44,10 @@ Spectrum TemperatureEmission::sampled(float value, const SampledWavelengths& l) 
 }
 
 Spectrum GridEmission::at(const Vec3& p, const SampledWavelengths& l) const {
-  if (l.is_rgb() || temperature.values.empty()) return illuminant_spectrum(at(p), l);
+  if (l.is_rgb()) return illuminant_spectrum(at(p), l);
   const float s = scale.density(p);
   if (!(s > 0.f)) return Spectrum(0.f);
+  if (temperature.values.empty()) return emitted_spectrum(Le, Le_spectrum ? &*Le_spectrum : nullptr, l) * s;
   return heat.sampled(temperature.density(p), l) * s;
 }
 

@@ -7,8 +7,10 @@
 // media never look these up.
 #pragma once
 
+#include <optional>
 #include <vector>
 
+#include "color/densely_sampled_spectrum.h"
 #include "color/sampled_wavelengths.h"
 #include "color/spectrum_conversion.h"
 #include "math/common.h"
@@ -54,6 +56,7 @@ struct TemperatureEmission {
 // density.
 struct GridEmission {
   RGB Le{0.f};             // the "Le" spectrum as RGB, normalised as pbrt-v4 does (luminance 1)
+  std::optional<DenselySampledSpectrum> Le_spectrum;  // "Le" given as a spectrum (emitted_spectrum)
   DensityGrid scale;       // "Lescale": one value per sample, or a single sample of 1
   DensityGrid temperature; // "temperature" samples; empty: Le is used
   TemperatureEmission heat;
@@ -62,7 +65,8 @@ struct GridEmission {
   // Le at a point of render space.
   RGB at(const Vec3& p) const;
   // The same at the wavelengths l: a temperature's black body exactly, an
-  // "Le" as an RGB illuminant.
+  // "Le" given as a spectrum that spectrum, one given as RGB an RGB
+  // illuminant.
   Spectrum at(const Vec3& p, const SampledWavelengths& l) const;
   // A weight for the box's region [u0, u1] (unit box coordinates) that
   // follows the largest Le there (max channel): zero only where no point

@@ -105,6 +105,7 @@ class SceneBuilder final : public pbrt::ParserTarget {
   int32_t dispersive_index(const pbrt::ParamSet& ps, const pbrt::Param& p, const PiecewiseLinearSpectrum& eta);
   // A light's colour `name` given as a spectrum: its index in the texture
   // pools' spectra, or -1 (builder_lights.cpp).
+  std::optional<PiecewiseLinearSpectrum> emission_spectrum(const pbrt::ParamSet& ps, const std::string& name);
   int32_t light_spectrum(const pbrt::ParamSet& ps, const std::string& name);
   // "displacement" and "normalmap": an index into MaterialPools::bumps, or -1.
   int32_t bump_map(const pbrt::ParamSet& ps, const std::string& base_dir);

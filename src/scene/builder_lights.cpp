@@ -80,18 +80,24 @@ void SceneBuilder::add_light(const std::string& type, const ParamSet& ps, const 
   }
 }
 
-// A light's colour given as a spectrum ("blackbody", a "spectrum" file or
-// pairs): kept for the spectral renderer, divided by its luminance and by
-// its colour's, so that light_spectrum (light/lights.h) scales it by the
-// luminance of the light's final colour, which carries "scale", "power"
-// and the rest. -1 for a colour given any other way.
-int32_t SceneBuilder::light_spectrum(const ParamSet& ps, const std::string& name) {
+// An emitter's colour given as a spectrum ("blackbody", a "spectrum" file
+// or pairs), divided by its luminance and by its colour's, so that
+// emitted_spectrum (color/densely_sampled_spectrum.h) scales it by the
+// luminance of the emitter's final colour, which carries "scale", "power"
+// and the rest; nullopt for a colour given any other way.
+std::optional<PiecewiseLinearSpectrum> SceneBuilder::emission_spectrum(const ParamSet& ps, const std::string& name) {
   std::optional<ParamSet::EmissionSpectrum> e = ps.get_emission_spectrum(name);
-  if (!e) return -1;
+  if (!e) return std::nullopt;
   const double y = spectrum_luminance(e->spectrum) * double(luminance(e->rgb));
-  if (!(y > 0.0) || !std::isfinite(y)) return -1;
+  if (!(y > 0.0) || !std::isfinite(y)) return std::nullopt;
   for (double& v : e->spectrum.value) v /= y;
-  return add_spectrum(e->spectrum);
+  return std::move(e->spectrum);
+}
+
+// A light's: kept with the textures' spectra (light_spectrum, light/lights.h); -1 for none.
+int32_t SceneBuilder::light_spectrum(const ParamSet& ps, const std::string& name) {
+  std::optional<PiecewiseLinearSpectrum> s = emission_spectrum(ps, name);
+  return s ? add_spectrum(*s) : -1;
 }
 
 // pbrt-v4's portal: four corners in world space, in order, around the

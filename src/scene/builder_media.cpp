@@ -57,6 +57,11 @@ void SceneBuilder::medium(const std::string& name, const ParamSet& ps, const Mat
   if (type == "homogeneous") {
     HomogeneousMedium m = medium_coefficients(ps, true);
     m.Le = medium_Le(ps);
+    if (max_component(m.Le) > 0.f)
+      if (std::optional<PiecewiseLinearSpectrum> s = emission_spectrum(ps, "Le")) {
+        m.Le_spectrum = int32_t(media.spectra.size());
+        media.spectra.emplace_back(*s);
+      }
     media.homogeneous.push_back(m);
     add(MediumKind::Homogeneous, media.homogeneous.size());
     return;
@@ -114,7 +119,11 @@ GridEmission SceneBuilder::grid_emission(const ParamSet& ps, const DensityGrid& 
     e.scale.nx = e.scale.ny = e.scale.nz = 1;  // one sample: it falls off towards the faces, as in pbrt-v4
     e.scale.values = {1.f};
   }
-  if (Le) e.Le = checked_coefficient(ps, "Le", ps.get_rgb("Le", ColorUsage::Illuminant).value_or(RGB(0.f)), 1.f);
+  if (Le) {
+    e.Le = checked_coefficient(ps, "Le", ps.get_rgb("Le", ColorUsage::Illuminant).value_or(RGB(0.f)), 1.f);
+    if (max_component(e.Le) > 0.f)
+      if (std::optional<PiecewiseLinearSpectrum> s = emission_spectrum(ps, "Le")) e.Le_spectrum.emplace(*s);
+  }
   const float offset = ps.get_float("temperatureoffset", ps.get_float("temperaturecutoff", 0.f));
   const float tscale = ps.get_float("temperaturescale", 1.f);
   if (!std::isfinite(offset) || !std::isfinite(tscale))
