@@ -37,6 +37,10 @@ struct RenderOptions {
   MisHeuristic mis = MisHeuristic::Power;  // bdpt's
   int spp = 16;
   double time_limit_seconds = 0.0;  // > 0: render passes until the time is up (spp is then ignored)
+  // > 0: adaptive sampling (integrator/adaptive_sampling.h): pixels take
+  // passes until their estimated relative MSE is below this; spp (or the
+  // time) is then the limit. Not with vcm, bpm, ppm, shares or MPI.
+  double target_error = 0.0;
   int maxdepth = 5;
   int threads = 0;  // 0: all cores
   uint64_t seed = 0;
@@ -118,6 +122,10 @@ struct RenderStats {
   uint64_t camera_rays = 0, extension_rays = 0, light_rays = 0, shadow_rays = 0;
   uint64_t nonfinite_samples = 0;  // produced NaN/Inf; counted and discarded, never on the film
   uint32_t min_spp = 0;            // samples in the least-sampled pixel
+  uint32_t max_spp = 0;            // in the most-sampled one
+  // With adaptive sampling: the image's relative MSE as the film's
+  // half-buffers estimate it (its camera samples'); -1 otherwise.
+  double estimated_relmse = -1.0;
 
   // Subpath vertices on surfaces, and why subpaths ended (escaped, absorbed,
   // roulette, maxdepth), summed over all samples.

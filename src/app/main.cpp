@@ -56,7 +56,7 @@ struct RenderArgs {
   std::string texture_dir, sampler, light_sampler, trace, part;
   uint64_t trace_waves = 1000;
   int spp = 0, maxdepth = -1, threads = 0, wave_size = 0;  // 0: 4096, or 16384 for vcm, bpm, ppm (docs/vcm.md)
-  double time = 0.0, checkpoint = 0.0, texture_cache_mb = 1024.0;
+  double time = 0.0, checkpoint = 0.0, texture_cache_mb = 1024.0, target_error = 0.0;
   uint64_t seed = 0;
   bool resume = false;
   bool spectral = false;
@@ -234,6 +234,8 @@ int run_render(const RenderArgs& a) {
   o.dump_rays = a.dump_rays;
   o.spp = a.spp > 0 ? a.spp : ss.spp;
   o.time_limit_seconds = a.time;
+  o.target_error = a.target_error;
+  if (a.target_error > 0 && a.spp == 0) o.spp = 1 << 16;  // adaptive: the limit is --spp, when given
   o.maxdepth = a.maxdepth >= 0 ? a.maxdepth : ss.maxdepth;
   o.threads = a.threads;
   o.seed = a.seed;
@@ -466,6 +468,10 @@ int main(int argc, char** argv) {
   render->add_option("-o,--output", a.output, "Output image (.exr linear float, .png sRGB); default: the scene's Film filename");
   auto* spp = render->add_option("--spp", a.spp, "Samples per pixel (default: the scene's Sampler pixelsamples)")->check(lantern::cli::positive_integer());
   render->add_option("--time", a.time, "Render for this many seconds instead of a sample count")->check(lantern::cli::positive_seconds())->excludes(spp);
+  render->add_option("--target-error", a.target_error,
+                     "Adaptive sampling: give pixels samples until the estimated relative MSE of each block of them "
+                     "is below this (e.g. 0.001); --spp (default 65536) or --time limits it (docs/adaptive-sampling.md)")
+      ->check(CLI::PositiveNumber);
   render->add_option("--integrator", a.integrator,
                      "Integrator: path, bdpt, lt (light tracing), vcm (vertex connection and merging), bpm "
                      "(bidirectional photon mapping) or ppm (progressive photon mapping); default: the scene's "

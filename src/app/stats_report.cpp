@@ -46,6 +46,8 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
   j["threads"] = s.threads;
   j["samples"] = s.samples;
   j["min_spp"] = s.min_spp;
+  j["max_spp"] = s.max_spp;
+  if (s.estimated_relmse >= 0) j["estimated_relmse"] = s.estimated_relmse;
   j["light_paths"] = s.light_paths;
   j["seconds"] = {{"load", run.load_seconds}, {"bvh_build", run.scene_info.bvh_build_seconds}, {"render", s.seconds}};
   j["samples_per_second"] = per_second(double(s.samples), s.seconds);

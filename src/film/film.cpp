@@ -17,9 +17,12 @@ namespace {
 
 bool addable(const RGB& c) { return FixedSum::addable(c[0]) && FixedSum::addable(c[1]) && FixedSum::addable(c[2]); }
 
-FixedTerm fixed_term(uint32_t pixel, const RGB& c) {
-  return FixedTerm{pixel, {FixedSum::to_fixed(c[0]), FixedSum::to_fixed(c[1]), FixedSum::to_fixed(c[2])}};
+FixedTerm fixed_term(uint32_t pixel, const RGB& c, bool odd = false) {
+  return FixedTerm{pixel, odd, {FixedSum::to_fixed(c[0]), FixedSum::to_fixed(c[1]), FixedSum::to_fixed(c[2])}};
 }
+
+// Flags of the film's state (write_state): which optional sums follow.
+constexpr uint8_t kHasSplats = 1, kHasHalves = 2;
 
 }  // namespace
 
@@ -38,7 +41,7 @@ void Film::prepare(WaveOutput& out) const {
   out.sample_terms.reserve(out.samples.size());
   for (const FilmSample& s : out.samples) {
     const RGB L = sensed(s.L);
-    if (addable(L)) out.sample_terms.push_back(fixed_term(s.pixel, L));
+    if (addable(L)) out.sample_terms.push_back(fixed_term(s.pixel, L, s.odd));
     else ++out.nonfinite;
   }
   for (const Splat& s : out.splats) {
@@ -48,7 +51,7 @@ void Film::prepare(WaveOutput& out) const {
       continue;
     }
     for_each_splat_pixel(filter_, width_, height_, s.p_raster, [&](size_t pixel, float w) {
-      out.splat_terms.push_back(fixed_term(uint32_t(pixel), w * L));
+      out.splat_terms.push_back(fixed_term(uint32_t(pixel), w * L, s.odd));
     });
   }
 }
@@ -57,11 +60,20 @@ void Film::merge(const WaveOutput& out) {
   for (const FilmSample& s : out.samples) ++count_[s.pixel];
   for (const FixedTerm& t : out.sample_terms)
     for (size_t c = 0; c < 3; ++c) sum_[3 * size_t(t.pixel) + c].add_raw(t.rgb[c]);
+  if (!odd_.empty())
+    for (const FixedTerm& t : out.sample_terms)
+      if (t.odd)
+        for (size_t c = 0; c < 3; ++c) odd_[3 * size_t(t.pixel) + c].add_raw(t.rgb[c]);
   if (!out.splat_terms.empty() && splat_.empty()) splat_.assign(sum_.size(), FixedSum());
   for (const FixedTerm& t : out.splat_terms)
     for (size_t c = 0; c < 3; ++c) splat_[3 * size_t(t.pixel) + c].add_raw(t.rgb[c]);
+  if (!odd_.empty())
+    for (const FixedTerm& t : out.splat_terms)
+      if (t.odd)
+        for (size_t c = 0; c < 3; ++c) odd_splat_[3 * size_t(t.pixel) + c].add_raw(t.rgb[c]);
   nonfinite_ += out.nonfinite;
   light_paths_ += out.light_paths;
+  odd_light_paths_ += out.odd_light_paths;
 }
 
 void Film::add(const Film& other) {
@@ -73,9 +85,38 @@ void Film::add(const Film& other) {
     if (splat_.empty()) splat_.assign(sum_.size(), FixedSum());
     for (size_t k = 0; k < splat_.size(); ++k) splat_[k].add(other.splat_[k]);
   }
+  if (!other.odd_.empty()) {
+    track_halves();
+    for (size_t k = 0; k < odd_.size(); ++k) odd_[k].add(other.odd_[k]), odd_splat_[k].add(other.odd_splat_[k]);
+    odd_light_paths_ += other.odd_light_paths_;
+  }
   for (size_t i = 0; i < count_.size(); ++i) count_[i] += other.count_[i];
   nonfinite_ += other.nonfinite_;
   light_paths_ += other.light_paths_;
+}
+
+void Film::track_halves() {
+  if (!odd_.empty()) return;
+  odd_.assign(sum_.size(), FixedSum());
+  odd_splat_.assign(sum_.size(), FixedSum());
+  masks_.assign(2 * count_.size(), 1);
+}
+
+Film::Halves Film::halves(size_t pixel, int c) const {
+  const size_t k = 3 * pixel + size_t(c);
+  const uint32_t n = count_[pixel];
+  const double n_odd = double(n / 2), n_even = double(n) - n_odd;
+  const double sum = sum_[k].value(), odd = odd_[k].value();
+  Halves h{n ? sum / double(n) : 0.0, 0.0, 0.0};
+  if (n >= 2) h.even = (sum - odd) / n_even, h.odd = odd / n_odd;
+  if (!splat_.empty() && light_paths_ > 0) {
+    const double pixels = double(width_) * double(height_), splat = splat_[k].value(), odd_splat = odd_splat_[k].value();
+    const uint64_t even_paths = light_paths_ - odd_light_paths_;
+    h.value += splat * pixels / double(light_paths_);
+    if (n >= 2 && even_paths > 0 && odd_light_paths_ > 0)
+      h.even += (splat - odd_splat) * pixels / double(even_paths), h.odd += odd_splat * pixels / double(odd_light_paths_);
+  }
+  return h;
 }
 
 Image Film::resolve() const {
@@ -99,12 +140,21 @@ void Film::write_state(StateWriter& out) const {
   out.write(size, sizeof size);
   out.write(&nonfinite_, sizeof nonfinite_);
   out.write(&light_paths_, sizeof light_paths_);
-  const uint8_t has_splats = splat_.empty() ? 0 : 1;
-  out.write(&has_splats, 1);
+  const uint8_t flags = (splat_.empty() ? 0 : kHasSplats) | (odd_.empty() ? 0 : kHasHalves);
+  out.write(&flags, 1);
   static_assert(sizeof(FixedSum) == sizeof(FixedSum::Raw));
   out.write(sum_.data(), sum_.size() * sizeof(FixedSum));
   out.write(count_.data(), count_.size() * sizeof(uint32_t));
-  if (has_splats) out.write(splat_.data(), splat_.size() * sizeof(FixedSum));
+  if (flags & kHasSplats) out.write(splat_.data(), splat_.size() * sizeof(FixedSum));
+  if (flags & kHasHalves) {
+    out.write(odd_.data(), odd_.size() * sizeof(FixedSum));
+    out.write(odd_splat_.data(), odd_splat_.size() * sizeof(FixedSum));
+    out.write(&odd_light_paths_, sizeof odd_light_paths_);
+    out.write(masks_.data(), masks_.size());
+    const uint32_t n = uint32_t(thresholds_.size());
+    out.write(&n, sizeof n);
+    out.write(thresholds_.data(), n * sizeof(double));
+  }
 }
 
 void Film::read_state(StateReader& in) {
@@ -121,14 +171,34 @@ void Film::read_state(StateReader& in) {
                              ", this film is " + std::to_string(width_) + "x" + std::to_string(height_));
   in.read(&nonfinite_, sizeof nonfinite_);
   in.read(&light_paths_, sizeof light_paths_);
-  uint8_t has_splats = 0;
-  in.read(&has_splats, 1);
+  uint8_t flags = 0;
+  in.read(&flags, 1);
   in.read(sum_.data(), sum_.size() * sizeof(FixedSum));
   in.read(count_.data(), count_.size() * sizeof(uint32_t));
   splat_.clear();
-  if (has_splats) {
+  if (flags & kHasSplats) {
     splat_.assign(sum_.size(), FixedSum());
     in.read(splat_.data(), splat_.size() * sizeof(FixedSum));
+  }
+  const bool halves = !odd_.empty();  // (a film that tracks them keeps doing so)
+  odd_.clear();
+  odd_splat_.clear();
+  masks_.clear();
+  thresholds_.clear();
+  odd_light_paths_ = 0;
+  if (flags & kHasHalves) {
+    track_halves();
+    in.read(odd_.data(), odd_.size() * sizeof(FixedSum));
+    in.read(odd_splat_.data(), odd_splat_.size() * sizeof(FixedSum));
+    in.read(&odd_light_paths_, sizeof odd_light_paths_);
+    in.read(masks_.data(), masks_.size());
+    uint32_t n = 0;
+    in.read(&n, sizeof n);
+    if (n > (1u << 30)) throw std::runtime_error("film state: malformed adaptive sampling thresholds");
+    thresholds_.resize(n);
+    in.read(thresholds_.data(), n * sizeof(double));
+  } else if (halves) {
+    track_halves();
   }
 }
 
@@ -140,6 +210,10 @@ Film::Buffers Film::buffers(bool splats) {
 
 uint64_t Film::total_samples() const {
   return std::accumulate(count_.begin(), count_.end(), uint64_t(0));
+}
+
+uint32_t Film::max_samples_per_pixel() const {
+  return count_.empty() ? 0 : *std::max_element(count_.begin(), count_.end());
 }
 
 uint32_t Film::min_samples_per_pixel() const {

@@ -28,10 +28,12 @@ namespace lantern {
 struct FilmSample {
   uint32_t pixel;
   RGB L;
+  bool odd = false;  // its sample index is odd (the half-buffers of adaptive sampling)
 };
 struct Splat {
   Vec2 p_raster;
   RGB L;  // contribution, already divided by nothing: the film normalises by the light-path count
+  bool odd = false;  // from the light path of an odd sample index
 };
 
 // One contribution of one bidirectional strategy (s light vertices, t eye
@@ -48,6 +50,7 @@ struct StrategyRecord {
 // A sample or a splat's share of one pixel, converted to fixed point.
 struct FixedTerm {
   uint32_t pixel;
+  bool odd;  // a camera sample of odd sample index
   FixedSum::Raw rgb[3];
 };
 
@@ -55,7 +58,7 @@ struct WaveOutput {
   std::vector<FilmSample> samples;
   std::vector<Splat> splats;
   std::vector<StrategyRecord> strategies;
-  uint64_t light_paths = 0;
+  uint64_t light_paths = 0, odd_light_paths = 0;
   // Filled by Film::prepare from samples and splats, in the parallel stage,
   // so that the serial merge only adds integers.
   std::vector<FixedTerm> sample_terms, splat_terms;
@@ -64,7 +67,7 @@ struct WaveOutput {
     samples.clear();
     splats.clear();
     strategies.clear();
-    light_paths = 0;
+    light_paths = odd_light_paths = 0;
     sample_terms.clear();
     splat_terms.clear();
     nonfinite = 0;
@@ -128,7 +131,32 @@ class Film {
   uint64_t total_samples() const;
   uint64_t light_paths() const { return light_paths_; }
   uint32_t min_samples_per_pixel() const;
+  uint32_t max_samples_per_pixel() const;
   uint32_t sample_count(size_t pixel) const { return count_[pixel]; }
+
+  // Adaptive sampling's half-buffers (integrator/adaptive_sampling.h): the
+  // camera samples of odd sample index summed apart too, so that the means
+  // of the even and of the odd ones can be compared. Off until asked for.
+  void track_halves();
+  bool tracks_halves() const { return !odd_.empty(); }
+  // A pixel's value in channel c (what resolve gives), and the same from
+  // the even and from the odd samples only (camera samples and the splats
+  // of light paths of even or odd sample index, each normalised by its own
+  // count); the halves' values are 0 until both halves have samples.
+  struct Halves {
+    double value, even, odd;
+  };
+  Halves halves(size_t pixel, int c) const;
+  // What adaptive sampling measured at the end of each pass (its lambda
+  // and image estimate, two values a pass), kept with the sums it was
+  // measured from, so that a resumed render decides as the interrupted
+  // one did.
+  std::vector<double>& pass_measurements() { return thresholds_; }
+  const std::vector<double>& pass_measurements() const { return thresholds_; }
+  // Which pixels take pass p (p >= 2), decided at the end of pass p - 2:
+  // one byte a pixel, two passes' worth (p mod 2), kept for a resume.
+  uint8_t* pass_mask(uint32_t pass) { return masks_.data() + size_t(pass % 2) * count_.size(); }
+  const uint8_t* pass_mask(uint32_t pass) const { return masks_.data() + size_t(pass % 2) * count_.size(); }
 
   // The raw buffers, for adding films across processes (distributed/):
   // integers all, so any reduction order gives the same bits. With
@@ -156,7 +184,10 @@ class Film {
   PixelFilter filter_;
   std::array<float, 9> sensor_{1, 0, 0, 0, 1, 0, 0, 0, 1};
   bool has_sensor_ = false;
-  std::vector<FixedSum> sum_, splat_;
+  std::vector<FixedSum> sum_, splat_, odd_, odd_splat_;
+  std::vector<double> thresholds_;
+  std::vector<uint8_t> masks_;
+  uint64_t odd_light_paths_ = 0;
   std::vector<uint32_t> count_;
   uint64_t nonfinite_ = 0;
   uint64_t light_paths_ = 0;

@@ -221,6 +221,8 @@ void Bdpt::add_emission(BdptWave& w, uint32_t slot, const Spectrum& unweighted, 
 
 void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
   w.out = &out;
+  w.first_sample = wave.first_sample;
+  w.samples_per_pixel = wave.samples;
   w.shadow.record = settings_.record_strategies;
   WaveStats& st = w.stats;
   auto timed = [&](Stage stage, auto&& fn) {
@@ -275,8 +277,10 @@ void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
     }
   }
   for (uint32_t slot = 0; slot < wave.size(); ++slot)
-    out.samples.push_back({w.pixel[slot], film_rgb(w.L[slot], w.lambda[slot])});
+    out.samples.push_back({w.pixel[slot], film_rgb(w.L[slot], w.lambda[slot]), ((wave.first_sample + slot % wave.samples) & 1) != 0});
   out.light_paths += wave.size();
+  for (uint32_t k = 0; k < wave.samples; ++k)  // the odd half's (adaptive sampling's estimate)
+    if ((wave.first_sample + k) & 1) out.odd_light_paths += wave.pixel_count;
 }
 
 }  // namespace lantern

@@ -266,10 +266,11 @@ void Bdpt::splat_stage(BdptWave& w) const {
     if (c.rays.occluded(r)) continue;
     const SampledWavelengths& l = w.lambda[c.slot[r]];
     const RGB contrib = film_rgb(c.contrib[r], l);
-    w.out->splats.push_back({c.p_raster[r], contrib});
+    const bool odd = w.odd_sample(c.slot[r]);
+    w.out->splats.push_back({c.p_raster[r], contrib, odd});
     Vec2 images[2];
     for (int k = camera_.seam_images(c.p_raster[r], scene_.filter.radius, images); k-- > 0;)
-      w.out->splats.push_back({images[k], contrib});
+      w.out->splats.push_back({images[k], contrib, odd});
     if (c.record)
       w.out->strategies.push_back({0, c.p_raster[r], c.tags[r].s, 1, contrib, film_rgb(c.tags[r].unweighted, l)});
   }

@@ -276,6 +276,8 @@ struct BdptWave {
   float vm_radius = 0.f, vm_normalization = 0.f, vm_normalization_medium = 0.f;
   VertexGrid grid;
   RayStream stream;
+  uint32_t first_sample = 0, samples_per_pixel = 1;  // of the wave: a slot's sample index
+  bool odd_sample(uint32_t slot) const { return ((first_sample + slot % samples_per_pixel) & 1) != 0; }
   WaveOutput* out = nullptr;  // of the wave being traced
   WaveStats stats;
 

@@ -226,7 +226,7 @@ void PathTracer::trace(const WaveDesc& wave, PathWave& w, WaveOutput& out) const
     w.stream.intersect(w.rays, RayKind::Extension);
   }
   for (uint32_t slot = 0; slot < wave.size(); ++slot)
-    out.samples.push_back({w.pixel[slot], film_rgb(w.L[slot], w.lambda[slot])});
+    out.samples.push_back({w.pixel[slot], film_rgb(w.L[slot], w.lambda[slot]), ((wave.first_sample + slot % wave.samples) & 1) != 0});
 }
 
 }  // namespace lantern

@@ -22,6 +22,7 @@
 #include "accel/ray_dump.h"
 #include "color/sensor.h"
 #include "film/strategy_film.h"
+#include "integrator/adaptive_sampling.h"
 #include "integrator/bdpt.h"
 #include "integrator/bdpt_wave.h"
 #include "integrator/path_tracer.h"
@@ -256,8 +257,40 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
   // wave that had it has retired. (Not the wave's own number mod tokens:
   // with units skipped, for a share, a resume or tickets, two waves in
   // flight could have the same.)
-  const size_t tokens = 2 * size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
+  //
+  // Adaptive sampling decides which of a wave's pixels take a pass from
+  // their sums after the pass before: with no more waves in flight than a
+  // pass has, the wave of the same pixels one pass earlier (issued `waves`
+  // items before) has retired by the time a wave is issued.
+  const bool adaptive = opt.target_error > 0;
+  if (adaptive) film.track_halves();
+  size_t tokens = 2 * size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
+  if (adaptive) tokens = std::min<size_t>(tokens, waves);
   std::vector<WaveOutput> outputs(tokens);
+  std::vector<std::vector<uint32_t>> active(adaptive ? tokens : 0);  // each slot's pixels that take the pass
+  // At the end of each pass the film's estimate is measured over the whole
+  // image and the blocks that take the pass after next are chosen
+  // (adaptive_sampling.h); pass p is not begun when the estimate at the end
+  // of pass p - 2 was below the target. Both are known by the time pass p's
+  // waves are issued, whatever the scheduling. The film keeps the
+  // measurements (two values a pass) and the choices.
+  std::vector<double>& measured = film.pass_measurements();
+  auto reached = [&](uint32_t pass) {
+    if (!adaptive || pass < 2) return false;
+    std::lock_guard<std::mutex> lock(cx.film_mutex);
+    return measured.at(2 * size_t(pass - 2) + 1) < opt.target_error;
+  };
+  // Called with the first wave of pass p >= 1, before it is merged: the
+  // film then holds exactly the passes before p (unless a resumed render
+  // measured pass p - 1 before).
+  auto measure_pass_before = [&](uint32_t pass) {
+    std::lock_guard<std::mutex> lock(cx.film_mutex);
+    if (pass == 0 || measured.size() >= 2 * size_t(pass)) return;
+    const PassSummary m = summarize_pass(film, order, pixels_per_wave, opt.target_error);
+    measured.push_back(m.lambda);
+    measured.push_back(m.estimate);
+    decide_pass(film, order, pixels_per_wave, m.lambda, pass + 1);
+  };
 
   std::atomic<bool> stop{false};
   bool issued = false;  // a wave was started in this run
@@ -291,7 +324,7 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
                                          // ticket is taken that will not be rendered.
                                          const bool ticketed = bool(hooks.next_ticket);
                                          for (;;) {
-                                           if (first >= total_spp) break;
+                                           if (first >= total_spp || reached(first / pass_spp)) break;
                                            if (!ticketed && !tickets.next(first, next, waves, wanted)) {
                                              if (advance_pass()) continue;
                                              break;  // the last pass is done
@@ -327,8 +360,17 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
                                                                item.first, std::min(pass_spp, total_spp - item.first)};
                                                  WaveOutput& out = outputs[item.slot];
                                                  out.clear();
-                                                 trace_wave(tracer, wave, *states.local(), out, hooks.timeline,
-                                                            int64_t(unit_of(item.first, wi)));
+                                                 if (adaptive) {
+                                                   std::vector<uint32_t>& a = active[item.slot];
+                                                   a.clear();
+                                                   append_active_pixels(film, item.first / pass_spp, wave.pixels,
+                                                                        wave.pixel_count, a);
+                                                   wave.pixels = a.data();
+                                                   wave.pixel_count = uint32_t(a.size());
+                                                 }
+                                                 if (wave.pixel_count > 0)
+                                                   trace_wave(tracer, wave, *states.local(), out, hooks.timeline,
+                                                              int64_t(unit_of(item.first, wi)));
                                                  film.prepare(out);
                                                  return item;
                                                }) &
@@ -337,6 +379,7 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
             // a new pass means the one before is complete.
             if (merged_pass_first != item.first) {
               if (merged_pass_first != kNoPass) pass_done(merged_pass_first);
+              if (adaptive) measure_pass_before(item.first / pass_spp);
               merged_pass_first = item.first;
             }
             const uint64_t unit = unit_of(item.first, item.wave);
@@ -383,6 +426,8 @@ void finish_stats(const Scene& scene, const Film& film, const RayCounters& count
   st.shadow_rays = counters.shadow;
   st.nonfinite_samples = film.nonfinite_samples();
   st.min_spp = film.min_samples_per_pixel();
+  st.max_spp = film.max_samples_per_pixel();
+  if (film.tracks_halves()) st.estimated_relmse = estimated_image_relmse(film);
   if (scene.textures.cache) {
     TextureCacheStats tc = scene.textures.cache->stats();
     st.texture_cache = true;
@@ -477,6 +522,17 @@ RenderResult RenderSession::render_all() {
   State& s = *state_;
   const Scene& scene = s.scene;
   const RenderOptions& opt = s.opt;
+  if (opt.target_error > 0) {
+    // Its decisions read the whole of each pixel's samples, which one
+    // process holds only when it renders them all; a merging pass shares
+    // light vertices between pixels that do and do not take it.
+    if (merges_vertices(opt.integrator))
+      throw std::invalid_argument("a target error (adaptive sampling) works with path, bdpt and lt, not with " +
+                                  std::string(name(opt.integrator)));
+    if (opt.share_count > 1 || s.hooks.next_ticket)
+      throw std::invalid_argument("a target error (adaptive sampling) needs the whole render in one process: not with "
+                                  "--part or MPI");
+  }
   // Low-discrepancy samplers lay a pixel's samples out for the count they
   // plan for; under a time budget the count is open.
   const uint32_t planned_spp = opt.time_limit_seconds > 0 ? 0u : uint32_t(opt.spp);

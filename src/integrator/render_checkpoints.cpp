@@ -30,6 +30,7 @@ std::string sequence_fingerprint(const RenderOptions& o, int width, int height) 
                       (o.sampler.jitter ? " jitter" : ""));
   line("resolution", std::to_string(width) + "x" + std::to_string(height));
   line("budget", o.time_limit_seconds > 0 ? std::string("time") : "spp " + std::to_string(o.spp));
+  if (o.target_error > 0) line("target-error", std::to_string(o.target_error));  // adaptive passes
   line("wave-size", std::to_string(o.wave_size));
   line("rays", name(o.ray_backend));
   return f;

@@ -1,0 +1,76 @@
+// Adaptive sampling (--target-error): each pixel's error estimated from
+// its own samples, and samples spent only where the estimate is above the
+// target.
+//
+// The estimate compares two halves of a pixel's samples, those of even
+// and of odd sample index: the film sums the odd camera samples, the odd
+// light paths' splats and their count apart (Film::track_halves), so that
+// it can give a pixel's value from each half alone. With A and B those
+// and I the pixel, A - B has four times the variance of I, so
+//   Var(I) ~ (A - B)^2 / 4,
+// an unbiased estimate from one pixel, however its samples are
+// distributed (Rousselle et al. 2012 and Cycles use the same two
+// half-buffers). The relative MSE divides it by I^2 + 0.01, as the image
+// metrics do (film/image_metrics.h) with the reference's value, which is
+// not known here. Where rare bright samples (caustics found by light
+// tracing) raise a pixel, that hides part of their own error: the estimate
+// is low there (docs/adaptive-sampling.md). Correlated samples (the
+// low-discrepancy samplers) make the estimate high: each half converges
+// more slowly than the whole does.
+//
+// Which pixels take samples: to reach an image relMSE of E with the
+// fewest samples, a block b of per-sample relative variance v_b should
+// take n_b proportional to sqrt(v_b) (minimise sum n_b subject to
+// mean v_b / n_b = E), where its error e_b = v_b / n_b over n_b is the
+// same for all blocks: lambda = (E / mean sqrt(v_b))^2. So a block takes a
+// pass while e_b > lambda n_b.
+//
+// One pixel's estimate is noisy (a few degrees of freedom), so pixels are
+// decided in blocks: kAdaptiveBlock consecutive pixels of the tile order
+// (a row of a 16x16 tile), inside one wave. The decisions are taken for
+// the whole image at the end of a pass, where the film holds exactly the
+// passes so far (splats of every wave included), for the pass after next
+// (the next one's waves may already be running): they do not depend on the
+// thread count or the scheduling, and the film keeps them for a resume.
+// Every block takes the first two passes and any pass while it has fewer
+// than kAdaptiveMinSamples. The render stops before pass p when the image
+// estimate at the end of pass p - 2 is below E.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "film/film.h"
+
+namespace lantern {
+
+inline constexpr uint32_t kAdaptiveMinSamples = 16;
+inline constexpr uint32_t kAdaptiveBlock = 16;
+
+// The estimated relative MSE of the pixels[0, n) (a block, all with the
+// same sample count; 0 below two), averaged over pixels and channels.
+double estimated_relmse(const Film& film, const uint32_t* pixels, size_t n);
+
+// Over the whole image, in blocks along its rows: what --stats reports.
+double estimated_image_relmse(const Film& film);
+
+// At the end of a pass: the image's estimated relMSE, and lambda for a
+// target E. `order` is the tile order, cut into waves of pixels_per_wave.
+struct PassSummary {
+  double estimate = 0.0, lambda = 0.0;
+};
+PassSummary summarize_pass(const Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave,
+                           double target);
+
+// At the end of pass p - 2: which blocks take pass p under `lambda`
+// (Film::pass_mask).
+void decide_pass(Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave, double lambda,
+                 uint32_t pass);
+
+// Appends to `active` the pixels of pixels[0, n) (a wave's) that take
+// pass `pass` (all of them in the first two).
+void append_active_pixels(const Film& film, uint32_t pass, const uint32_t* pixels, size_t n,
+                          std::vector<uint32_t>& active);
+
+}  // namespace lantern
