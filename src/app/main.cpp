@@ -395,6 +395,10 @@ int run_render(const RenderArgs& a) {
                  double(s.samples - r.resumed_samples) / s.seconds * 1e-6, rays / s.seconds * 1e-6, double(s.camera_rays) * 1e-6,
                  double(s.extension_rays) * 1e-6, double(s.light_rays) * 1e-6, double(s.shadow_rays) * 1e-6,
                  (unsigned long long)s.nonfinite_samples);
+    if (s.estimated_relmse >= 0)
+      std::fprintf(stderr, "adaptive sampling: %u to %u spp, %.1f on average; estimated relative MSE %.3g (target %.3g)\n",
+                   s.min_spp, s.max_spp, double(s.samples) / (double(r.image.width) * double(r.image.height)),
+                   s.estimated_relmse, o.target_error);
     if (s.timed) print_stage_summary(s);
   }
   if (r.stats.texture_failed_lookups > 0)
