@@ -21,15 +21,35 @@ foreach(f cli.exr cli.png)
   endif()
 endforeach()
 expect_run(NAME help EXIT 0 MATCH "--spp" ARGS render --help)
+# A figure can be reproduced from its files: the image header and the stats
+# name the program, the machine, the command and every setting.
+expect_run(NAME provenance-header EXIT 0 MATCH "lantern:commit [0-9a-f]+.*lantern:maxdepth.*lantern:sampler zsobol"
+           ARGS info ${OUT}/cli.exr)
+expect_run(NAME provenance-stats EXIT 0 ARGS render ${SRC}/scenes/cornell-box.pbrt --spp 1 --resolution 8 8 --quiet
+           --stats ${OUT}/provenance.json -o ${OUT}/provenance.exr)
+file(READ ${OUT}/provenance.json stats)
+foreach(key "\"commit\"" "\"cpu\"" "\"command\"" "\"maxdepth\"" "\"budget\": \"spp 1\"" "\"seed\"")
+  string(FIND "${stats}" "${key}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "provenance-stats: ${key} missing from the stats:\n${stats}")
+  endif()
+endforeach()
+# Usage errors exit with 2 (docs/cli.md) and name the near miss.
+expect_run(NAME version EXIT 0 MATCH "^lantern [0-9]+\\.[0-9]+\\.[0-9]+ \\(commit [0-9a-f]+" ARGS --version)
+expect_run(NAME flag-near-miss EXIT 2 MATCH "did you mean \"--spp\"" ARGS render ${SRC}/scenes/cornell-box.pbrt --sp 16)
+expect_run(NAME command-near-miss EXIT 2 MATCH "did you mean \"render\"" ARGS rendr ${SRC}/scenes/cornell-box.pbrt)
+expect_run(NAME negative-seed EXIT 2 MATCH "--seed: must be an integer of 0 or more" ARGS render ${SRC}/scenes/cornell-box.pbrt --seed -1)
+expect_run(NAME target-error-vcm EXIT 1 MATCH "target error .*not with vcm"
+           ARGS render ${SRC}/scenes/cornell-box.pbrt --integrator vcm --target-error 0.01 --resolution 8 8 -o ${OUT}/x.exr)
 expect_run(NAME missing-scene EXIT 2 MATCH "cannot open scene file" ARGS render ${OUT}/no-such-scene.pbrt -o ${OUT}/x.png)
 file(WRITE ${OUT}/broken.pbrt "WorldBegin\nShape \"sphere\" \"float radius\" [ 1\n")
 expect_run(NAME syntax-error EXIT 2 MATCH "broken.pbrt:2:.*error: .*missing" ARGS render ${OUT}/broken.pbrt -o ${OUT}/x.png)
 # Bad values say what was expected, in words (no numeric range spelt out).
-expect_run(NAME bad-flag EXIT 105 MATCH "--spp: must be a positive integer, not \"-3\"" ARGS render ${SRC}/scenes/cornell-box.pbrt --spp -3)
-expect_run(NAME bad-time EXIT 105 MATCH "--time: must be a positive number of seconds" ARGS render ${SRC}/scenes/cornell-box.pbrt --time -1)
-expect_run(NAME bad-threads EXIT 105 MATCH "--threads: must be a positive integer, not \"abc\"" ARGS render ${SRC}/scenes/cornell-box.pbrt --threads abc)
-expect_run(NAME bad-resolution EXIT 105 MATCH "--resolution: must be an integer from 1 to 65536" ARGS render ${SRC}/scenes/cornell-box.pbrt --resolution 0 5)
-expect_run(NAME bad-maxdepth EXIT 105 MATCH "--maxdepth: must be an integer of 0 or more" ARGS render ${SRC}/scenes/cornell-box.pbrt --maxdepth -2)
+expect_run(NAME bad-flag EXIT 2 MATCH "--spp: must be a positive integer, not \"-3\"" ARGS render ${SRC}/scenes/cornell-box.pbrt --spp -3)
+expect_run(NAME bad-time EXIT 2 MATCH "--time: must be a positive number of seconds" ARGS render ${SRC}/scenes/cornell-box.pbrt --time -1)
+expect_run(NAME bad-threads EXIT 2 MATCH "--threads: must be a positive integer, not \"abc\"" ARGS render ${SRC}/scenes/cornell-box.pbrt --threads abc)
+expect_run(NAME bad-resolution EXIT 2 MATCH "--resolution: must be an integer from 1 to 65536" ARGS render ${SRC}/scenes/cornell-box.pbrt --resolution 0 5)
+expect_run(NAME bad-maxdepth EXIT 2 MATCH "--maxdepth: must be an integer of 0 or more" ARGS render ${SRC}/scenes/cornell-box.pbrt --maxdepth -2)
 
 # Output files are checked before anything renders: these would run for
 # hours (and time out here) if the check came at the end.
@@ -104,7 +124,7 @@ foreach(ext exr png)
 endforeach()
 expect_run(NAME compare-png-with-exr EXIT 0 MATCH "ratio (0\\.99[5-9]|1\\.00[0-4])[0-9]* (0\\.99[5-9]|1\\.00[0-4])[0-9]* (0\\.99[5-9]|1\\.00[0-4])"
            ARGS compare ${OUT}/formats.png ${OUT}/formats.exr)
-expect_run(NAME bad-mis EXIT 105 ARGS render ${SRC}/scenes/cornell-box.pbrt --mis nonsense)
+expect_run(NAME bad-mis EXIT 2 ARGS render ${SRC}/scenes/cornell-box.pbrt --mis nonsense)
 
 # SIGINT during a long render: exit 130 and an image with the samples so far,
 # for the path tracer and for bdpt (whose splats go through the same merge).
@@ -186,7 +206,7 @@ expect_run(NAME merge-other-scene EXIT 2 MATCH "other2.film: error: is a part of
            ARGS merge ${OUT}/part1.film ${OUT}/other2.film ${OUT}/part3.film -o ${OUT}/patchwork.exr)
 expect_run(NAME merge-twice EXIT 2 MATCH "part1.film: error: is part 1/3 again"
            ARGS merge ${OUT}/part1.film ${OUT}/part1.film -o ${OUT}/merged.exr)
-expect_run(NAME part-bad EXIT 105 MATCH "--part: must be K/N with 1 <= K <= N"
+expect_run(NAME part-bad EXIT 2 MATCH "--part: must be K/N with 1 <= K <= N"
            ARGS ${pt_args} --part 3/2 -o ${OUT}/x.film)
 
 message(STATUS "cli end-to-end: all checks passed")

@@ -121,6 +121,24 @@ TEST(Parser, UnusedAndUnsupportedThingsWarnWithTheirPlace) {
   EXPECT_NE(warnings[2].find("fluff"), std::string::npos) << warnings[2];
 }
 
+// A parameter a letter or two from one the directive wanted is a typo:
+// an error naming the word meant (pbrt-v4 stops on it too), where an
+// unknown word far from any stays a warning.
+TEST(Parser, NearMissesOfWantedParametersAreErrors) {
+  expect_load_error("Camera \"perspective\" \"float fovv\" 45\n", "c.pbrt", {"c.pbrt:1", "fovv", "did you mean \"fov\""});
+  expect_load_error("WorldBegin\nLightSource \"spot\" \"float coneangel\" 30\n", "l.pbrt",
+                    {"l.pbrt:2", "coneangel", "\"coneangle\""});
+  expect_load_error("WorldBegin\nMaterial \"conductor\" \"float roughnes\" 0.1\n", "m.pbrt", {"roughnes", "\"roughness\""});
+  expect_load_error("Film \"rgb\" \"integer xresolutoin\" 64\n", "f.pbrt", {"xresolutoin", "\"xresolution\""});
+  std::vector<std::string> warnings;
+  load("Film \"rgb\" \"float diagonal\" 35 \"integer xresolution\" 8 \"integer yresolution\" 8\n"
+       "Camera \"perspective\" \"float fov\" 45 \"float frameaspectratio\" 1\nWorldBegin\n",
+       &warnings);
+  size_t ignored = 0;
+  for (const std::string& w : warnings) ignored += w.find("is not supported and was ignored") != std::string::npos;
+  EXPECT_EQ(ignored, 2u);
+}
+
 TEST(Parser, MalformedInputGivesClearErrors) {
   expect_error("WorldBegin\nFrobnicate 3\n", {"t.pbrt:2:1", "unknown directive \"Frobnicate\""});
   expect_error("WorldBegin\nShape \"sphere\" \"float radius\" [ 1 ] @\n", {"t.pbrt:2:", "unexpected characters"});

@@ -12,8 +12,10 @@
 #include <optional>
 
 #include "app/cli_checks.h"
+#include "app/command_line.h"
 #include "app/merge_command.h"
 #include "app/outputs.h"
+#include "app/provenance.h"
 #include "app/stats_report.h"
 #include "color/color_space.h"
 #include "trace/timeline.h"
@@ -29,6 +31,8 @@
 namespace {
 
 std::atomic<bool> g_cancel{false};
+
+lantern::Provenance g_provenance;  // of this run: the machine, the date, the command
 
 // This process's place among MPI ranks (rank 0 of 1 without mpirun).
 int g_rank = 0, g_ranks = 1;
@@ -56,7 +60,7 @@ struct RenderArgs {
   std::string texture_dir, sampler, light_sampler, trace, part;
   uint64_t trace_waves = 1000;
   int spp = 0, maxdepth = -1, threads = 0, wave_size = 0;  // 0: 4096, or 16384 for vcm, bpm, ppm (docs/vcm.md)
-  double time = 0.0, checkpoint = 0.0, texture_cache_mb = 1024.0, target_error = 0.0;
+  double time = 0.0, checkpoint = 0.0, texture_cache_mb = 1024.0, target_error = 0.0, progress_interval = 10.0;
   uint64_t seed = 0;
   bool resume = false;
   bool spectral = false;
@@ -273,18 +277,19 @@ int run_render(const RenderArgs& a) {
     o.checkpoint_seconds = a.checkpoint;
     o.resume = a.resume;
   }
-  // On a terminal, a line rewritten in place. Under mpirun the output goes
-  // through pipes to the job's log: there rank 0 writes a whole line every
-  // ten seconds instead.
-  const bool tty = isatty(STDERR_FILENO), logged = g_ranks > 1;
-  if (!a.quiet && writes && (tty || logged)) {
-    hooks.progress = [tty, last = -1e9](const RenderProgress& p) mutable {
-      if (!tty && p.elapsed_seconds - last < 10.0 && p.fraction < 1.0) return;
+  // On a terminal, a line rewritten in place. Otherwise (a batch job's log,
+  // mpirun's pipes) a whole line every --progress-interval seconds.
+  const bool tty = isatty(STDERR_FILENO);
+  if (!a.quiet && writes && (tty || a.progress_interval > 0)) {
+    const double pixels = double(o.width > 0 ? o.width : ss.width) * double(o.height > 0 ? o.height : ss.height);
+    hooks.progress = [tty, interval = a.progress_interval, pixels, last = -1e9](const RenderProgress& p) mutable {
+      if (!tty && p.elapsed_seconds - last < interval && p.fraction < 1.0) return;
       last = p.elapsed_seconds;
       double eta = p.fraction > 0 ? p.elapsed_seconds * (1.0 - p.fraction) / p.fraction : 0.0;
       double rate = p.elapsed_seconds > 0 ? double(p.samples_done) / p.elapsed_seconds : 0.0;
-      std::fprintf(stderr, "%s[%5.1f%%] %s elapsed, ETA %s, %.2f Msamples/s%s", tty ? "\r" : "", 100.0 * p.fraction,
-                   hms(p.elapsed_seconds).c_str(), hms(eta).c_str(), rate * 1e-6, tty ? "   " : "\n");
+      std::fprintf(stderr, "%s[%5.1f%%] %s elapsed, ETA %s, %.1f spp, %.2f Msamples/s%s", tty ? "\r" : "",
+                   100.0 * p.fraction, hms(p.elapsed_seconds).c_str(), hms(eta).c_str(),
+                   double(p.samples_done) / std::max(pixels, 1.0), rate * 1e-6, tty ? "   " : "\n");
       std::fflush(stderr);
     };
   }
@@ -343,6 +348,8 @@ int run_render(const RenderArgs& a) {
                 scene_info(*scene), scene_settings(*scene).sampler, o.sampler, name(scene_settings(*scene).light_sampler)};
     nlohmann::json j = stats_json(run, r.stats);
     j["colour"] = o.spectral ? "spectral" : "rgb";
+    j["settings"] = render_settings_json(o);
+    j["provenance"] = provenance_json(g_provenance);
     if (!rank_stats.is_null()) j["mpi"] = rank_stats;
     write_text_atomically(a.stats, j.dump(2) + "\n");
   };
@@ -361,6 +368,8 @@ int run_render(const RenderArgs& a) {
                       {"lantern:resumed_samples", std::to_string(r.resumed_samples)},
                       {"lantern:interrupted", r.interrupted ? "true" : "false"},
                       {"lantern:scene", a.scene}};
+  add_render_settings(md, o);
+  add_provenance(md, g_provenance);
   if (const ColorSpace* cs = ColorSpace::named(scene_settings(*scene).color_space); cs && cs != &ColorSpace::srgb()) {
     // The image is in another colour space (ColorSpace before Film): say so
     // as OpenEXR does.
@@ -464,6 +473,7 @@ int main(int argc, char** argv) {
 #else
   auto fail = [](int code) { return code; };
 #endif
+  g_provenance = lantern::provenance(argc, argv);
   CLI::App app{"Lantern: physically based rendering with bidirectional path tracing"};
   app.require_subcommand(1);
   RenderArgs a;
@@ -472,6 +482,10 @@ int main(int argc, char** argv) {
   render->add_option("-o,--output", a.output, "Output image (.exr linear float, .png sRGB); default: the scene's Film filename");
   auto* spp = render->add_option("--spp", a.spp, "Samples per pixel (default: the scene's Sampler pixelsamples)")->check(lantern::cli::positive_integer());
   render->add_option("--time", a.time, "Render for this many seconds instead of a sample count")->check(lantern::cli::positive_seconds())->excludes(spp);
+  render->add_option("--progress-interval", a.progress_interval,
+                     "When stderr is not a terminal (a batch job's log): a progress line every this many seconds "
+                     "(0: none)")
+      ->check(lantern::cli::number_in(0.0, 1e9, true, "a number of seconds, 0 or more"));
   render->add_option("--target-error", a.target_error,
                      "Adaptive sampling: give pixels samples until the estimated relative MSE of each block of them "
                      "is below this (e.g. 0.001); --spp (default 65536) or --time limits it (docs/adaptive-sampling.md)")
@@ -500,7 +514,8 @@ int main(int argc, char** argv) {
                      "bdpt, vcm, bpm, ppm: write DIR/s<s>_t<t>_{weighted,unweighted}.exr, one pair per strategy (merge_s<s>_t<t> for merges)");
   render->add_option("--maxdepth", a.maxdepth, "Maximum path depth, as pbrt defines it (default: the scene's)")->check(lantern::cli::integer_in(0, 2147483647, "an integer of 0 or more"));
   render->add_option("--threads", a.threads, "Worker threads (default: all cores)")->check(lantern::cli::positive_integer());
-  render->add_option("--seed", a.seed, "Random seed");
+  render->add_option("--seed", a.seed, "Random seed (0 or more)")
+      ->check(lantern::cli::integer_in(0, 9223372036854775807LL, "an integer of 0 or more"));
   render->add_option("--sampler", a.sampler,
                      "Sample pattern: zsobol, paddedsobol, sobol, halton, stratified or independent "
                      "(default: the scene's Sampler)")
@@ -552,11 +567,12 @@ int main(int argc, char** argv) {
   std::string info_image;
   CLI::App* info = app.add_subcommand("info", "Print an image's size and the settings it was rendered with");
   info->add_option("image", info_image, "Image written by lantern render")->required()->check(CLI::ExistingFile);
-  CLI11_PARSE(app, argc, argv);
+  app.set_version_flag("--version", lantern::version_line());
+  if (const int code = lantern::cli::parse_command_line(app, argc, argv); code >= 0) return code == 0 ? 0 : fail(code);
   try {
     if (compare->parsed()) return run_compare(ca);
     if (info->parsed()) return run_info(info_image);
-    if (merge->parsed()) return lantern::run_merge(ma);
+    if (merge->parsed()) return lantern::run_merge(ma, g_provenance);
     return run_render(a);
   } catch (const lantern::InputError& e) {
     std::cerr << e.what() << "\n";

@@ -3,20 +3,22 @@
 #include <cstdio>
 
 #include "app/outputs.h"
+#include "app/provenance.h"
 #include "film/merge_parts.h"
 
 namespace lantern {
 
-int run_merge(const MergeArgs& a) {
+int run_merge(const MergeArgs& a, const Provenance& provenance) {
   check_image_path(a.output);  // before reading parts that may be large
   MergedParts m = merge_parts(a.parts, a.preview);
   for (const std::string& gap : m.missing) std::fprintf(stderr, "warning: preview: %s\n", gap.c_str());
   const Image image = m.film.resolve();
-  const ImageMetadata md = {{"lantern:parts", std::to_string(a.parts.size()) + " of " + std::to_string(m.parts)},
+  ImageMetadata md = {{"lantern:parts", std::to_string(a.parts.size()) + " of " + std::to_string(m.parts)},
                             {"lantern:preview", m.complete ? "false" : "true"},
                             {"lantern:spp", std::to_string(m.film.min_samples_per_pixel())},
                             {"lantern:samples", std::to_string(m.film.total_samples())},
                             {"lantern:render", m.fingerprint}};
+  add_provenance(md, provenance);  // of the merge; the parts' settings are in lantern:render
   const ImageWrite written = write_image_or_rescue(a.output, image, md, "");
   if (!written.written) {
     std::fprintf(stderr, "error: %s\n", written.error.c_str());

@@ -15,6 +15,7 @@ struct MergeArgs {
 
 // Exit status: 0 written, 1 the image could not be written (a rescue copy
 // may have been), InputErrors propagate (exit 2 in main).
-int run_merge(const MergeArgs& args);
+struct Provenance;
+int run_merge(const MergeArgs& args, const Provenance& provenance);
 
 }  // namespace lantern

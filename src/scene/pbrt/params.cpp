@@ -4,6 +4,7 @@
 #include "color/glass.h"
 #include "color/optical_constants.h"
 #include "color/sigmoid_spectrum.h"
+#include "math/edit_distance.h"
 
 #include <filesystem>
 #include <stdexcept>
@@ -16,6 +17,7 @@ const Param* ParamSet::find(const std::string& name) const {
       p.used = true;
       return &p;
     }
+  if (!params.empty()) missed_.push_back(name);
   return nullptr;
 }
 
@@ -25,11 +27,19 @@ void ParamSet::fail(const Param& p, const std::string& what) const {
 void ParamSet::fail(const std::string& what) const { throw InputError(where, directive + ": " + what); }
 
 void ParamSet::warn_unused() const {
-  if (!warn || !*warn) return;
-  for (const Param& p : params)
-    if (!p.used)
+  for (const Param& p : params) {
+    if (p.used) continue;
+    // A near miss of a wanted name: one letter in names of four to seven,
+    // two from eight (shorter names are too close to each other to tell).
+    if (p.name.size() >= 4) {
+      const std::string meant = nearest_word(p.name, missed_, p.name.size() >= 8 ? 2 : 1);
+      if (!meant.empty())
+        fail(p, "unknown parameter \"" + printable(p.name) + "\"; did you mean \"" + printable(meant) + "\"?");
+    }
+    if (warn && *warn)
       (*warn)(p.where.str() + ": warning: " + directive + ": parameter \"" + printable(p.type + " " + p.name) +
               "\" is not supported and was ignored");
+  }
 }
 
 const Param& ParamSet::expect(const Param& p, std::initializer_list<const char*> types, const char* expected) const {

@@ -77,9 +77,14 @@ class ParamSet {
 
   [[noreturn]] void fail(const Param& p, const std::string& what) const;
   [[noreturn]] void fail(const std::string& what) const;
+  // Warns of each parameter no lookup asked for, "not supported and
+  // ignored"; but one a letter or two from a name that was asked for and
+  // absent ("float fovv" where "fov" was wanted) is a typo, and an error
+  // that names the word meant, as pbrt-v4 stops on it.
   void warn_unused() const;
 
  private:
+  mutable std::vector<std::string> missed_;  // names looked up and not given (for warn_unused)
   RGB to_srgb(const Param& p, const RGB& c, ColorUsage usage) const;
   const Param& expect(const Param& p, std::initializer_list<const char*> types, const char* expected) const;
 };
