@@ -2,6 +2,7 @@
 #pragma once
 
 #include "lantern/options.h"
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -46,6 +47,11 @@ struct SceneSettings {
   // names: srgb, rec2020, dci-p3, aces2065-1). The renderer's colours are
   // linear sRGB; the sensor converts.
   std::string color_space = "srgb";
+  // The part of the image rendered (pbrt-v4's Film "cropwindow", x0 x1 y0
+  // y1 in [0, 1], and "pixelbounds", in pixels; x1 < 0: not given). The
+  // render's resolution decides the pixels a crop window covers.
+  std::array<float, 4> crop_window{0.f, 1.f, 0.f, 1.f};
+  std::array<int, 4> pixel_bounds{0, -1, 0, -1};
 };
 
 struct LoadOptions {

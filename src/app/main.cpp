@@ -18,6 +18,7 @@
 #include "app/provenance.h"
 #include "app/stats_report.h"
 #include "color/color_space.h"
+#include "integrator/render_settings.h"
 #include "trace/timeline.h"
 #include "film/image_metrics.h"
 #include "imageio/replace_file.h"
@@ -370,6 +371,11 @@ int run_render(const RenderArgs& a) {
                       {"lantern:scene", a.scene}};
   add_render_settings(md, o);
   add_provenance(md, g_provenance);
+  if (const ImageRegion region = image_region(*scene, o); region.cropped())
+    // A crop (Film "cropwindow", "pixelbounds"): where it lies in the whole
+    // image, as OpenEXR's data and display windows say it.
+    md.emplace_back("pixelbounds", std::to_string(region.x0) + " " + std::to_string(region.y0) + " " +
+                                       std::to_string(region.full_width) + " " + std::to_string(region.full_height));
   if (const ColorSpace* cs = ColorSpace::named(scene_settings(*scene).color_space); cs && cs != &ColorSpace::srgb()) {
     // The image is in another colour space (ColorSpace before Film): say so
     // as OpenEXR does.

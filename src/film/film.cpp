@@ -22,7 +22,7 @@ FixedTerm fixed_term(uint32_t pixel, const RGB& c, bool odd = false) {
 }
 
 // Flags of the film's state (write_state): which optional sums follow.
-constexpr uint8_t kHasSplats = 1, kHasHalves = 2;
+constexpr uint8_t kHasSplats = 1, kHasHalves = 2, kHasRegion = 4;
 
 }  // namespace
 
@@ -50,7 +50,7 @@ void Film::prepare(WaveOutput& out) const {
       ++out.nonfinite;
       continue;
     }
-    for_each_splat_pixel(filter_, width_, height_, s.p_raster, [&](size_t pixel, float w) {
+    for_each_splat_pixel(filter_, width_, height_, s.p_raster - raster_offset(), [&](size_t pixel, float w) {
       out.splat_terms.push_back(fixed_term(uint32_t(pixel), w * L, s.odd));
     });
   }
@@ -95,6 +95,15 @@ void Film::add(const Film& other) {
   light_paths_ += other.light_paths_;
 }
 
+void Film::set_region(int x0, int y0, int full_width, int full_height) {
+  x0_ = x0, y0_ = y0, full_width_ = full_width, full_height_ = full_height;
+}
+
+double Film::splat_scale() const {
+  const double pixels = full_width_ > 0 ? double(full_width_) * double(full_height_) : double(width_) * double(height_);
+  return light_paths_ ? pixels / double(light_paths_) : 0.0;
+}
+
 void Film::track_halves() {
   if (!odd_.empty()) return;
   odd_.assign(sum_.size(), FixedSum());
@@ -124,7 +133,7 @@ Image Film::resolve() const {
   img.width = width_;
   img.height = height_;
   img.rgb.resize(sum_.size());
-  double splat_scale = light_paths_ ? double(width_) * double(height_) / double(light_paths_) : 0.0;
+  const double splat_scale = this->splat_scale();
   for (size_t i = 0; i < count_.size(); ++i) {
     double inv = count_[i] ? 1.0 / double(count_[i]) : 0.0;
     for (int c = 0; c < 3; ++c) {
@@ -140,12 +149,17 @@ void Film::write_state(StateWriter& out) const {
   out.write(size, sizeof size);
   out.write(&nonfinite_, sizeof nonfinite_);
   out.write(&light_paths_, sizeof light_paths_);
-  const uint8_t flags = (splat_.empty() ? 0 : kHasSplats) | (odd_.empty() ? 0 : kHasHalves);
+  const uint8_t flags =
+      (splat_.empty() ? 0 : kHasSplats) | (odd_.empty() ? 0 : kHasHalves) | (full_width_ > 0 ? kHasRegion : 0);
   out.write(&flags, 1);
   static_assert(sizeof(FixedSum) == sizeof(FixedSum::Raw));
   out.write(sum_.data(), sum_.size() * sizeof(FixedSum));
   out.write(count_.data(), count_.size() * sizeof(uint32_t));
   if (flags & kHasSplats) out.write(splat_.data(), splat_.size() * sizeof(FixedSum));
+  if (flags & kHasRegion) {
+    const int32_t region[4] = {x0_, y0_, full_width_, full_height_};
+    out.write(region, sizeof region);
+  }
   if (flags & kHasHalves) {
     out.write(odd_.data(), odd_.size() * sizeof(FixedSum));
     out.write(odd_splat_.data(), odd_splat_.size() * sizeof(FixedSum));
@@ -179,6 +193,16 @@ void Film::read_state(StateReader& in) {
   if (flags & kHasSplats) {
     splat_.assign(sum_.size(), FixedSum());
     in.read(splat_.data(), splat_.size() * sizeof(FixedSum));
+  }
+  if (flags & kHasRegion) {
+    int32_t region[4];
+    in.read(region, sizeof region);
+    if (region[0] < 0 || region[1] < 0 || region[2] < width_ || region[3] < height_ || region[0] > region[2] - width_ ||
+        region[1] > region[3] - height_)
+      throw std::runtime_error("film state: a crop that does not fit its image");
+    set_region(region[0], region[1], region[2], region[3]);
+  } else {
+    set_region(0, 0, 0, 0);
   }
   const bool halves = !odd_.empty();  // (a film that tracks them keeps doing so)
   odd_.clear();

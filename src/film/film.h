@@ -101,6 +101,16 @@ class Film {
 
   int width() const { return width_; }
   int height() const { return height_; }
+  // Where the film lies in the camera's image when it holds a part of it
+  // (a crop): splats arrive in the camera's raster coordinates.
+  void set_region(int x0, int y0, int full_width, int full_height);
+  Vec2 raster_offset() const { return Vec2(float(x0_), float(y0_)); }
+  // What resolve multiplies the splat sums by: the whole image's pixels
+  // over the light paths. A light path's expected splat on a pixel is the
+  // pixel's value over the whole image's pixels (the camera's importance
+  // spreads over all of them), however few pixels the film holds and
+  // however few light paths it traced.
+  double splat_scale() const;
 
   // The sensor every sample's colour passes through before it is added
   // (color/sensor.h): a 3x3 matrix on linear RGB, row-major. The identity
@@ -181,6 +191,7 @@ class Film {
 
  private:
   int width_, height_;
+  int x0_ = 0, y0_ = 0, full_width_ = 0, full_height_ = 0;  // 0: the film is the whole image
   PixelFilter filter_;
   std::array<float, 9> sensor_{1, 0, 0, 0, 1, 0, 0, 0, 1};
   bool has_sensor_ = false;

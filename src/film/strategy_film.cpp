@@ -28,7 +28,7 @@ void StrategyFilm::merge(const std::vector<StrategyRecord>& records, const Film&
       }
     };
     if (r.t == 1)
-      for_each_splat_pixel(filter_, width_, height_, r.p_raster, add);
+      for_each_splat_pixel(filter_, width_, height_, r.p_raster - film.raster_offset(), add);
     else
       add(r.pixel, 1.f);
   }
@@ -37,7 +37,7 @@ void StrategyFilm::merge(const std::vector<StrategyRecord>& records, const Film&
 std::vector<StrategyImage> StrategyFilm::resolve(const Film& film) const {
   std::vector<StrategyImage> out;
   const size_t n = size_t(width_) * size_t(height_);
-  const double splat_scale = film.light_paths() ? double(n) / double(film.light_paths()) : 0.0;
+  const double splat_scale = film.splat_scale();
   for (const Sums& x : strategies_) {
     StrategyImage img{x.s, x.t, {}, {}, x.merge};
     for (Image* im : {&img.weighted, &img.unweighted}) {

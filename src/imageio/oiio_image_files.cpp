@@ -45,6 +45,13 @@ void write_image(const std::string& path, const Image& image, const ImageMetadat
       std::istringstream in(v);
       for (float& x : c) in >> x;
       if (linear && in) spec.attribute(k, OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), c);
+    } else if (k == "pixelbounds") {
+      // The image is part of a larger one: its origin there and that one's
+      // size (OpenEXR's data window inside its display window).
+      std::istringstream in(v);
+      int x0 = 0, y0 = 0, w = 0, h = 0;
+      in >> x0 >> y0 >> w >> h;
+      if (linear && in) spec.x = x0, spec.y = y0, spec.full_x = 0, spec.full_y = 0, spec.full_width = w, spec.full_height = h;
     } else {
       spec.attribute(k, v);
     }

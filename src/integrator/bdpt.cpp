@@ -19,7 +19,8 @@ Bdpt::Bdpt(const Scene& scene, const LightSampler& light_sampler, const BdptSett
     : scene_(scene),
       light_sampler_(light_sampler),
       settings_(s),
-      camera_(scene.camera, s.width, s.height, scene.filter.radius),
+      camera_(scene.camera, s.full_width > 0 ? s.full_width : s.width, s.full_height > 0 ? s.full_height : s.height,
+              scene.filter.radius),
       mis_{s.mis_beta},
       sampler_(make_sampler_spec(s.sampler, s.width, s.height, s.planned_spp, s.seed)) {
   if (scene.textures.uses_footprint) footprints_ = FootprintModel(camera_, s.footprint_spp);
@@ -36,7 +37,7 @@ void Bdpt::start_eye_subpaths(const WaveDesc& wave, BdptWave& w) const {
   for (uint32_t slot = 0; slot < wave.size(); ++slot) {
     const PathSampler& s = w.sampler[slot];
     uint32_t pixel = w.pixel[slot];
-    Vec2 p_raster = sample_raster_position(scene_.filter, pixel, width, s.get2d(dims::kFilm));
+    Vec2 p_raster = sample_raster_position(scene_.filter, pixel, width, s.get2d(dims::kFilm)) + settings_.raster_offset;
     CameraRay r = camera_.generate_ray(p_raster, s.get2d(dims::kLens));
     w.eye.beta[slot] = Spectrum(1.f);
     w.eye.dispersed[slot] = 0;

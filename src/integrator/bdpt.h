@@ -34,7 +34,12 @@ namespace lantern {
 struct BdptSettings {
   int maxdepth = 5;
   uint64_t seed = 0;
-  int width = 0, height = 0;
+  int width = 0, height = 0;  // of the film: the pixels rendered
+  // The camera's whole image, of which the film is the part from
+  // raster_offset on (pbrt-v4's Film "cropwindow", "pixelbounds"); 0: the
+  // film's size.
+  int full_width = 0, full_height = 0;
+  Vec2 raster_offset{0.f};
   float mis_beta = 2.f;             // 2: power heuristic, 1: balance heuristic
   bool light_tracing_only = false;  // the `lt` integrator
   // Vertex connection and merging (the `vcm` integrator; docs/vcm.md):

@@ -28,7 +28,7 @@ PathTracer::PathTracer(const Scene& scene, const LightSampler& light_sampler, co
     : scene_(scene),
       light_sampler_(light_sampler),
       settings_(s),
-      camera_(scene.camera, s.width, s.height),
+      camera_(scene.camera, s.full_width > 0 ? s.full_width : s.width, s.full_height > 0 ? s.full_height : s.height),
       sampler_(make_sampler_spec(s.sampler, s.width, s.height, s.planned_spp, s.seed)) {
   if (scene.textures.uses_footprint) footprints_ = FootprintModel(camera_, s.footprint_spp);
 }
@@ -44,7 +44,7 @@ void PathTracer::generate_camera_rays(const WaveDesc& wave, PathWave& w) const {
     uint32_t pixel = wave.pixels[slot / wave.samples];
     uint32_t sample_index = wave.first_sample + slot % wave.samples;
     PathSampler s = PathSampler::make(sampler_, pixel, sample_index);
-    Vec2 p_raster = sample_raster_position(scene_.filter, pixel, width, s.get2d(dims::kFilm));
+    Vec2 p_raster = sample_raster_position(scene_.filter, pixel, width, s.get2d(dims::kFilm)) + settings_.raster_offset;
     CameraRay r = camera_.generate_ray(p_raster, s.get2d(dims::kLens));
     w.pixel[slot] = pixel;
     w.sampler[slot] = s;

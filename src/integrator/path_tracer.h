@@ -17,7 +17,12 @@ namespace lantern {
 struct PathTracerSettings {
   int maxdepth = 5;
   uint64_t seed = 0;
-  int width = 0, height = 0;
+  int width = 0, height = 0;  // of the film: the pixels rendered
+  // The camera's whole image, of which the film is the part from
+  // raster_offset on (pbrt-v4's Film "cropwindow", "pixelbounds"); 0: the
+  // film's size.
+  int full_width = 0, full_height = 0;
+  Vec2 raster_offset{0.f};
   // The samples per pixel the texture filter footprint is scaled for: the
   // scene's own, so that an image does not depend on --spp or --time.
   int footprint_spp = 16;

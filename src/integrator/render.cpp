@@ -445,8 +445,9 @@ void finish_stats(const Scene& scene, const Film& film, const RayCounters& count
 
 struct RenderSession::State {
   State(const Scene& s, RenderOptions o, RenderHooks h)
-      : scene(s), opt(std::move(o)), hooks(std::move(h)), width(opt.width > 0 ? opt.width : s.settings.width),
-        height(opt.height > 0 ? opt.height : s.settings.height), film(width, height, s.filter) {
+      : scene(s), opt(std::move(o)), hooks(std::move(h)), region(image_region(s, opt)), width(region.width),
+        height(region.height), film(width, height, s.filter) {
+    if (region.cropped()) film.set_region(region.x0, region.y0, region.full_width, region.full_height);
     const Matrix3d m = sensor_matrix(
         {s.settings.iso, s.settings.exposure_time, s.settings.whitebalance, ColorSpace::named(s.settings.color_space)});
     std::array<float, 9> sensor;
@@ -456,6 +457,7 @@ struct RenderSession::State {
   const Scene& scene;
   const RenderOptions opt;
   const RenderHooks hooks;
+  const ImageRegion region;  // the film's part of the camera's image
   const int width, height;
   Film film;
   mutable std::mutex film_mutex;
@@ -549,7 +551,7 @@ RenderResult RenderSession::render_all() {
   if (!opt.dump_rays.empty()) dump = std::make_unique<RayDump>(opt.dump_rays);
   CheckpointInfo info = [&] {
     std::lock_guard<std::mutex> lock(s.film_mutex);
-    return start_checkpointing(opt, s.hooks, sequence_fingerprint(opt, s.width, s.height), film);
+    return start_checkpointing(opt, s.hooks, sequence_fingerprint(opt, s.region), film);
   }();
   res.resumed_samples = film.total_samples();
   const double prior_seconds = info.elapsed_seconds;
@@ -567,14 +569,14 @@ RenderResult RenderSession::render_all() {
     ProgressReporter reporter(opt, s.hooks, s.start, s.done, s.total);
     bool stopped;
     if (opt.integrator != Integrator::Path) {
-      const BdptSettings bs = bdpt_settings(scene, opt, s.width, s.height, planned_spp);
+      const BdptSettings bs = bdpt_settings(scene, opt, s.region, planned_spp);
       res.stats.vcm_radius = bs.merging ? bs.vcm_radius : 0.f;
       stopped = run_passes(Bdpt(scene, light_sampler, bs), cx);
       if (bs.merging)  // the radius of the last pass traced (Bdpt::prepare_merging)
         res.stats.vcm_last_radius =
             bs.vcm_radius * std::pow(float(res.stats.vcm_last_first_sample + 1), 0.5f * (bs.vcm_alpha - 1.f));
     } else {
-      stopped = run_passes(PathTracer(scene, light_sampler, path_settings(scene, opt, s.width, s.height, planned_spp)), cx);
+      stopped = run_passes(PathTracer(scene, light_sampler, path_settings(scene, opt, s.region, planned_spp)), cx);
     }
     // A stop that came after the last unit left nothing undone.
     interrupted = stopped && cx.stop_requested();

@@ -11,7 +11,7 @@ std::string own_checkpoint_piece(const RenderOptions& o) {
   return o.checkpoint_rank < 0 ? o.checkpoint_path : o.checkpoint_path + ".rank" + std::to_string(o.checkpoint_rank);
 }
 
-std::string sequence_fingerprint(const RenderOptions& o, int width, int height) {
+std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& region) {
   std::string f;
   auto line = [&](const std::string& k, const std::string& v) { f += k + "=" + v + "\n"; };
   line("scene", o.checkpoint_key);
@@ -28,7 +28,10 @@ std::string sequence_fingerprint(const RenderOptions& o, int width, int height) 
   line("sampler", std::string(name(o.sampler.type)) + " " + o.sampler.randomization + " " + std::to_string(o.sampler.seed) + " " +
                       std::to_string(o.sampler.xsamples) + "x" + std::to_string(o.sampler.ysamples) +
                       (o.sampler.jitter ? " jitter" : ""));
-  line("resolution", std::to_string(width) + "x" + std::to_string(height));
+  line("resolution", std::to_string(region.width) + "x" + std::to_string(region.height));
+  if (region.cropped())
+    line("crop", "from " + std::to_string(region.x0) + "," + std::to_string(region.y0) + " of " +
+                     std::to_string(region.full_width) + "x" + std::to_string(region.full_height));
   line("budget", o.time_limit_seconds > 0 ? std::string("time") : "spp " + std::to_string(o.spp));
   if (o.target_error > 0) line("target-error", std::to_string(o.target_error));  // adaptive passes
   line("wave-size", std::to_string(o.wave_size));

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "film/checkpoint.h"
+#include "integrator/render_settings.h"
 #include "lantern/render.h"
 
 namespace lantern {
@@ -14,7 +15,7 @@ namespace lantern {
 // Everything that decides which samples a render takes and the order the
 // film sums them in: a checkpoint continues only a render that agrees on
 // all of it. Thread count is not here: it changes neither.
-std::string sequence_fingerprint(const RenderOptions& o, int width, int height);
+std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& region);
 
 // This process's piece of the checkpoint.
 std::string own_checkpoint_piece(const RenderOptions& o);

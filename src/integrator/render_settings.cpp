@@ -1,5 +1,6 @@
 #include "integrator/render_settings.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -40,13 +41,40 @@ void check_options(const Scene& scene, const RenderOptions& opt) {
   if (!opt.sampler.randomization.empty()) parse_randomization(opt.sampler.randomization);
 }
 
-BdptSettings bdpt_settings(const Scene& scene, const RenderOptions& opt, int width, int height, uint32_t planned_spp) {
+ImageRegion image_region(const Scene& scene, const RenderOptions& opt) {
+  ImageRegion r;
+  r.full_width = opt.width > 0 ? opt.width : scene.settings.width;
+  r.full_height = opt.height > 0 ? opt.height : scene.settings.height;
+  int x[2], y[2];
+  const std::array<int, 4>& pb = scene.settings.pixel_bounds;
+  const std::array<float, 4>& cw = scene.settings.crop_window;
+  if (pb[1] >= 0) {
+    x[0] = std::clamp(pb[0], 0, r.full_width), x[1] = std::clamp(pb[1], 0, r.full_width);
+    y[0] = std::clamp(pb[2], 0, r.full_height), y[1] = std::clamp(pb[3], 0, r.full_height);
+  } else {
+    for (int k = 0; k < 2; ++k) {
+      x[k] = int(std::ceil(double(r.full_width) * double(cw[size_t(k)])));
+      y[k] = int(std::ceil(double(r.full_height) * double(cw[size_t(2 + k)])));
+    }
+  }
+  if (x[1] <= x[0] || y[1] <= y[0])
+    throw std::invalid_argument("the film's cropwindow or pixelbounds covers no pixel of the " +
+                                std::to_string(r.full_width) + "x" + std::to_string(r.full_height) + " image");
+  r.x0 = x[0], r.y0 = y[0], r.width = x[1] - x[0], r.height = y[1] - y[0];
+  return r;
+}
+
+BdptSettings bdpt_settings(const Scene& scene, const RenderOptions& opt, const ImageRegion& region,
+                           uint32_t planned_spp) {
   BdptSettings bs;
   const bool merging = merges_vertices(opt.integrator);
   bs.maxdepth = opt.maxdepth;
   bs.seed = opt.seed;
-  bs.width = width;
-  bs.height = height;
+  bs.width = region.width;
+  bs.height = region.height;
+  bs.full_width = region.full_width;
+  bs.full_height = region.full_height;
+  bs.raster_offset = Vec2(float(region.x0), float(region.y0));
   bs.mis_beta = opt.mis == MisHeuristic::Balance ? 1.f : 2.f;
   bs.light_tracing_only = opt.integrator == Integrator::Lt;
   bs.merging = merging;
@@ -65,13 +93,16 @@ BdptSettings bdpt_settings(const Scene& scene, const RenderOptions& opt, int wid
   return bs;
 }
 
-PathTracerSettings path_settings(const Scene& scene, const RenderOptions& opt, int width, int height,
+PathTracerSettings path_settings(const Scene& scene, const RenderOptions& opt, const ImageRegion& region,
                                  uint32_t planned_spp) {
   PathTracerSettings ps;
   ps.maxdepth = opt.maxdepth;
   ps.seed = opt.seed;
-  ps.width = width;
-  ps.height = height;
+  ps.width = region.width;
+  ps.height = region.height;
+  ps.full_width = region.full_width;
+  ps.full_height = region.full_height;
+  ps.raster_offset = Vec2(float(region.x0), float(region.y0));
   ps.footprint_spp = scene.settings.spp;
   ps.sampler = opt.sampler;
   ps.planned_spp = planned_spp;

@@ -12,8 +12,23 @@ namespace lantern {
 
 // Throws std::invalid_argument, naming what is wrong.
 void check_options(const Scene& scene, const RenderOptions& opt);
-BdptSettings bdpt_settings(const Scene& scene, const RenderOptions& opt, int width, int height, uint32_t planned_spp);
-PathTracerSettings path_settings(const Scene& scene, const RenderOptions& opt, int width, int height,
+
+// The pixels a render covers: the camera's whole image (the options'
+// resolution, else the scene's), and the part of it the film holds, as
+// pbrt-v4 crops: "pixelbounds" clamped to the image, else the
+// "cropwindow" [x0 x1 y0 y1] as pixels ceil(W x0) to ceil(W x1) and
+// ceil(H y0) to ceil(H y1). Throws std::invalid_argument when that is no
+// pixel.
+struct ImageRegion {
+  int full_width = 0, full_height = 0;
+  int x0 = 0, y0 = 0, width = 0, height = 0;
+  bool cropped() const { return width != full_width || height != full_height; }
+};
+ImageRegion image_region(const Scene& scene, const RenderOptions& opt);
+
+BdptSettings bdpt_settings(const Scene& scene, const RenderOptions& opt, const ImageRegion& region,
+                           uint32_t planned_spp);
+PathTracerSettings path_settings(const Scene& scene, const RenderOptions& opt, const ImageRegion& region,
                                  uint32_t planned_spp);
 
 }  // namespace lantern

@@ -96,10 +96,37 @@ void SceneBuilder::film(const std::string& type, const ParamSet& ps) {
   if (!(s.whitebalance >= 0.f) || !std::isfinite(s.whitebalance))
     ps.fail(*ps.find("whitebalance"), "\"whitebalance\" must be a temperature in kelvin, or 0 for none");
   s.color_space = ps.color_space ? std::string(ps.color_space->name) : "srgb";
+  crop(ps);
   const std::string sensor = ps.get_string("sensor", "cie1931");
   if (sensor != "cie1931")
     ps.fail(*ps.find("sensor"), "sensor \"" + printable(sensor) + "\" is not available; only \"cie1931\" (the CIE 1931 "
                                 "observer, pbrt-v4's default) is");
+}
+
+// pbrt-v4's crop: "cropwindow" [x0 x1 y0 y1] in [0, 1] (each pair put in
+// order and clamped, as pbrt-v4 does) or "pixelbounds" [x0 x1 y0 y1] in
+// pixels; the pixels they cover are decided at render time, for the
+// render's resolution (integrator/render_settings.h).
+void SceneBuilder::crop(const ParamSet& ps) {
+  SceneSettings& s = scene_.settings;
+  const std::vector<float> cw = ps.get_floats("cropwindow");
+  const std::vector<int> pb = ps.get_ints("pixelbounds");
+  if (!cw.empty() && !pb.empty())
+    ps.fail(*ps.find("pixelbounds"), "give \"cropwindow\" or \"pixelbounds\", not both");
+  if (!cw.empty()) {
+    if (cw.size() != 4) ps.fail(*ps.find("cropwindow"), "expected four values: x0 x1 y0 y1, each in [0, 1]");
+    for (float v : cw)
+      if (!std::isfinite(v)) ps.fail(*ps.find("cropwindow"), "expected finite values in [0, 1]");
+    for (size_t k = 0; k < 4; k += 2) {
+      s.crop_window[k] = std::clamp(std::min(cw[k], cw[k + 1]), 0.f, 1.f);
+      s.crop_window[k + 1] = std::clamp(std::max(cw[k], cw[k + 1]), 0.f, 1.f);
+    }
+  }
+  if (!pb.empty()) {
+    if (pb.size() != 4 || pb[0] < 0 || pb[2] < 0 || pb[1] <= pb[0] || pb[3] <= pb[2])
+      ps.fail(*ps.find("pixelbounds"), "expected four integers x0 x1 y0 y1 with 0 <= x0 < x1 and 0 <= y0 < y1");
+    std::copy(pb.begin(), pb.end(), s.pixel_bounds.begin());
+  }
 }
 
 // pbrt-v4's samplers, parameters and defaults (docs/samplers.md).

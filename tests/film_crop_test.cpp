@@ -1,0 +1,68 @@
+// Film "cropwindow" and "pixelbounds": the film holds part of the camera's
+// image, and that part is the whole image's there, for camera samples and
+// for light-tracing splats (normalised over the whole image: pbrt-v4
+// itself normalises them over the crop, so its bdpt and lightpath are off
+// on crops, and they are held here to Lantern's own uncropped image).
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+#include "expect_error.h"
+#include "lantern/render.h"
+#include "lantern/scene.h"
+#include "stat_compare.h"
+
+namespace lantern {
+namespace {
+
+std::string scene_with(const std::string& film_extra) {
+  return "LookAt 0 1 3.5  0 1 0  0 1 0\nCamera \"perspective\" \"float fov\" 40\n"
+         "Film \"rgb\" \"integer xresolution\" 32 \"integer yresolution\" 24 " + film_extra + "\n"
+         "WorldBegin\nLightSource \"infinite\" \"rgb L\" [0.3 0.35 0.4]\n"
+         "AttributeBegin\n AreaLightSource \"diffuse\" \"rgb L\" [8 7 6]\n Translate 0 1.9 0\n"
+         " Shape \"disk\" \"float radius\" 0.3\nAttributeEnd\n"
+         "Material \"diffuse\" \"rgb reflectance\" [0.7 0.3 0.2]\nShape \"sphere\" \"float radius\" 0.5\n"
+         "Material \"diffuse\" \"rgb reflectance\" [0.5 0.5 0.5]\n"
+         "Shape \"trianglemesh\" \"point3 P\" [-3 -0.5 -3  3 -0.5 -3  3 -0.5 3  -3 -0.5 3] \"integer indices\" [0 1 2 0 2 3]\n";
+}
+
+RegionStats stats(const Scene& scene, const std::string& integrator, const std::vector<Region>& regions) {
+  RenderOptions o;
+  o.integrator = parse_integrator(integrator);
+  o.spp = integrator == "lt" ? 256 : 64;
+  o.maxdepth = 5;
+  return stats_of(render_runs(scene, o, 6, 11), regions);
+}
+
+// The crop x 0.25-0.75, y 0.5-1 of 32x24 is pixels 8-24 by 12-24: its
+// regions against the same pixels of the whole image.
+TEST(FilmCrop, TheCropIsTheWholeImagesPart) {
+  auto whole = load_scene_from_string(scene_with(""), "whole.pbrt", {});
+  auto crop = load_scene_from_string(scene_with("\"float cropwindow\" [0.25 0.75 0.5 1]"), "crop.pbrt", {});
+  const RenderResult r = render(*crop, RenderOptions{.spp = 1});
+  ASSERT_EQ(r.image.width, 16);
+  ASSERT_EQ(r.image.height, 12);
+  const std::vector<Region> in_crop = {{0, 0, 8, 6}, {8, 0, 8, 6}, {0, 6, 8, 6}, {8, 6, 8, 6}};
+  std::vector<Region> in_whole = in_crop;
+  for (Region& g : in_whole) g.x0 += 8, g.y0 += 12;
+  for (const char* integrator : {"path", "bdpt", "lt"}) {
+    const RegionStats a = stats(*crop, integrator, in_crop), b = stats(*whole, integrator, in_whole);
+    expect_means_agree(a, b, 0.01, integrator);
+  }
+}
+
+TEST(FilmCrop, PixelBoundsAndTheirErrors) {
+  auto bounded = load_scene_from_string(scene_with("\"integer pixelbounds\" [3 10 20 24]"), "b.pbrt", {});
+  const RenderResult r = render(*bounded, RenderOptions{.spp = 1});
+  EXPECT_EQ(r.image.width, 7);
+  EXPECT_EQ(r.image.height, 4);
+  expect_load_error(scene_with("\"float cropwindow\" [0 1 0 1] \"integer pixelbounds\" [0 4 0 4]"), "both.pbrt",
+                    {"both.pbrt:3", "not both"});
+  expect_load_error(scene_with("\"integer pixelbounds\" [4 2 0 4]"), "pb.pbrt", {"pb.pbrt:3", "x0 < x1"});
+  expect_load_error(scene_with("\"float cropwindow\" [0 1 0]"), "cw.pbrt", {"cw.pbrt:3", "four values"});
+  auto empty = load_scene_from_string(scene_with("\"float cropwindow\" [0.5 0.5 0 1]"), "e.pbrt", {});
+  EXPECT_THROW(render(*empty, RenderOptions{.spp = 1}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace lantern
