@@ -14,6 +14,7 @@
 #include "lantern/scene.h"
 #include "sanitizer.h"
 #include "stat_compare.h"
+#include "stop_and_resume.h"
 
 namespace lantern {
 namespace {
@@ -124,26 +125,8 @@ TEST(AdaptiveSampling, SameImageAcrossThreadsAndResumes) {
   const RenderResult straight = render(*scene, o);
 
   const std::string checkpoint = ::testing::TempDir() + "/lantern_adaptive_resume.ckpt";
-  std::remove(checkpoint.c_str());
-  o.checkpoint_path = checkpoint;
-  o.checkpoint_seconds = 1e-9;  // after every wave
-  std::atomic<bool> cancel{false};
-  int written = 0, stop_after = 0, runs = 0;
-  RenderHooks hooks;
-  hooks.cancel = &cancel;
-  hooks.checkpoint_written = [&] {
-    if (++written == stop_after) cancel = true;
-  };
-  RenderResult r;
-  do {
-    written = 0;
-    cancel = false;
-    o.threads = 1 + runs % 2;
-    stop_after = 7 + 11 * runs;
-    r = render(*scene, o, hooks);
-    o.resume = true;
-    ASSERT_LT(++runs, 60) << "never finished";
-  } while (r.interrupted);
+  int runs = 0;
+  const RenderResult r = render_stopped_and_resumed(*scene, o, checkpoint, 7, 11, &runs);
   EXPECT_GE(runs, 3);
   EXPECT_EQ(r.stats.samples, straight.stats.samples);
   EXPECT_EQ(0, std::memcmp(r.image.rgb.data(), straight.image.rgb.data(), r.image.rgb.size() * sizeof(float)));

@@ -11,6 +11,7 @@
 #include "lantern/render.h"
 #include "lantern/scene.h"
 #include "sanitizer.h"
+#include "stop_and_resume.h"
 
 namespace lantern {
 namespace {
@@ -48,31 +49,12 @@ void expect_resumes_bit_for_bit(const std::string& integrator, const std::string
   RenderResult straight = render(*scene, small_render(integrator, sampler));
 
   const std::string kCheckpoint = checkpoint_file();
-  std::remove(kCheckpoint.c_str());
-  std::atomic<bool> cancel{false};
-  int written = 0, runs = 0, stop_after = 1;
-  RenderOptions o = small_render(integrator, sampler);
-  o.checkpoint_path = kCheckpoint;
-  o.checkpoint_seconds = 1e-9;  // after every wave
-  RenderHooks hooks;
-  hooks.cancel = &cancel;
-  hooks.checkpoint_written = [&] {
-    if (++written == stop_after) cancel = true;
-  };
-  RenderResult r;
-  do {
-    written = 0;
-    cancel = false;
-    o.threads = 1 + runs % 2;
-    stop_after = 3 + 5 * runs;  // a different stop point each run
-    r = render(*scene, o, hooks);
-    o.resume = true;
-    ASSERT_LT(++runs, 50) << "never finished";
-    if (r.interrupted) {
-      EXPECT_TRUE(std::filesystem::exists(kCheckpoint));
-      EXPECT_LT(r.stats.samples, straight.stats.samples);
-    }
-  } while (r.interrupted);
+  int runs = 0;
+  const RenderResult r = render_stopped_and_resumed(*scene, small_render(integrator, sampler), kCheckpoint, 3, 5, &runs,
+                                                    [&](const RenderResult& stopped) {
+                                                      EXPECT_TRUE(std::filesystem::exists(kCheckpoint));
+                                                      EXPECT_LT(stopped.stats.samples, straight.stats.samples);
+                                                    });
   EXPECT_GE(runs, 3) << "the render should have been stopped at least twice";
   EXPECT_GT(r.resumed_samples, 0u);
   EXPECT_EQ(r.stats.samples, straight.stats.samples);

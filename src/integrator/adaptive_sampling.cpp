@@ -19,17 +19,10 @@ double estimated_relmse(const Film& film, const uint32_t* pixels, size_t n) {
 }
 
 double estimated_image_relmse(const Film& film) {
-  // Blocks of kAdaptiveBlock pixels along rows.
-  const int w = film.width(), h = film.height();
-  std::vector<uint32_t> block;
+  const size_t n = size_t(film.width()) * size_t(film.height());
   double e = 0.0;
-  for (int y = 0; y < h; ++y)
-    for (int x0 = 0; x0 < w; x0 += int(kAdaptiveBlock)) {
-      block.clear();
-      for (int x = x0; x < std::min(w, x0 + int(kAdaptiveBlock)); ++x) block.push_back(uint32_t(y * w + x));
-      e += estimated_relmse(film, block.data(), block.size()) * double(block.size());
-    }
-  return w * h > 0 ? e / (double(w) * double(h)) : 0.0;
+  for (uint32_t p = 0; p < n; ++p) e += estimated_relmse(film, &p, 1);
+  return n ? e / double(n) : 0.0;
 }
 
 namespace {
@@ -81,6 +74,34 @@ void append_active_pixels(const Film& film, uint32_t pass, const uint32_t* pixel
   const uint8_t* mask = film.pass_mask(pass);
   for (size_t i = 0; i < n; ++i)
     if (mask[pixels[i]]) active.push_back(pixels[i]);
+}
+
+AdaptivePasses::AdaptivePasses(Film& film, std::mutex& film_mutex, const std::vector<uint32_t>& order,
+                               uint32_t pixels_per_wave, double target)
+    : film_(film), mutex_(film_mutex), order_(order), pixels_per_wave_(pixels_per_wave), target_(target) {
+  if (on()) film_.track_halves();
+}
+
+bool AdaptivePasses::reached(uint32_t pass) const {
+  if (!on() || pass < 2) return false;
+  std::lock_guard<std::mutex> lock(mutex_);
+  return film_.pass_measurements().at(2 * size_t(pass - 2) + 1) < target_;
+}
+
+void AdaptivePasses::measure_before(uint32_t pass) {
+  if (!on() || pass == 0) return;
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<double>& measured = film_.pass_measurements();
+  if (measured.size() >= 2 * size_t(pass)) return;
+  const PassSummary m = summarize_pass(film_, order_, pixels_per_wave_, target_);
+  measured.push_back(m.lambda);
+  measured.push_back(m.estimate);
+  decide_pass(film_, order_, pixels_per_wave_, m.lambda, pass + 1);
+}
+
+void AdaptivePasses::choose(uint32_t pass, const uint32_t* pixels, size_t n, std::vector<uint32_t>& active) const {
+  active.clear();
+  append_active_pixels(film_, pass, pixels, n, active);
 }
 
 }  // namespace lantern

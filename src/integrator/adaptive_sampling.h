@@ -39,6 +39,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <mutex>
 #include <vector>
 
 #include "film/film.h"
@@ -52,7 +53,7 @@ inline constexpr uint32_t kAdaptiveBlock = 16;
 // same sample count; 0 below two), averaged over pixels and channels.
 double estimated_relmse(const Film& film, const uint32_t* pixels, size_t n);
 
-// Over the whole image, in blocks along its rows: what --stats reports.
+// Over the whole image: what --stats reports.
 double estimated_image_relmse(const Film& film);
 
 // At the end of a pass: the image's estimated relMSE, and lambda for a
@@ -72,5 +73,32 @@ void decide_pass(Film& film, const std::vector<uint32_t>& order, uint32_t pixels
 // pass `pass` (all of them in the first two).
 void append_active_pixels(const Film& film, uint32_t pass, const uint32_t* pixels, size_t n,
                           std::vector<uint32_t>& active);
+
+// The render loop's side of it (integrator/render.cpp's run_passes): off,
+// every pixel taking every pass, for a target of 0.
+class AdaptivePasses {
+ public:
+  // `order`: the tile order, cut into waves of pixels_per_wave; the film's
+  // measurements and choices are read and written under film_mutex.
+  AdaptivePasses(Film& film, std::mutex& film_mutex, const std::vector<uint32_t>& order, uint32_t pixels_per_wave,
+                 double target);
+  bool on() const { return target_ > 0; }
+  // Pass p is not to begin: the image estimate after pass p - 2 was below
+  // the target.
+  bool reached(uint32_t pass) const;
+  // With the first wave of pass p, before it is merged (the film then holds
+  // exactly the passes before p): measures pass p - 1 and chooses the
+  // blocks of pass p + 1, unless a resumed render did before.
+  void measure_before(uint32_t pass);
+  // The pixels of pixels[0, n) (a wave's) that take pass p.
+  void choose(uint32_t pass, const uint32_t* pixels, size_t n, std::vector<uint32_t>& active) const;
+
+ private:
+  Film& film_;
+  std::mutex& mutex_;
+  const std::vector<uint32_t>& order_;
+  uint32_t pixels_per_wave_;
+  double target_;
+};
 
 }  // namespace lantern

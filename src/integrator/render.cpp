@@ -258,39 +258,15 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
   // with units skipped, for a share, a resume or tickets, two waves in
   // flight could have the same.)
   //
-  // Adaptive sampling decides which of a wave's pixels take a pass from
-  // their sums after the pass before: with no more waves in flight than a
-  // pass has, the wave of the same pixels one pass earlier (issued `waves`
-  // items before) has retired by the time a wave is issued.
-  const bool adaptive = opt.target_error > 0;
-  if (adaptive) film.track_halves();
+  // Adaptive sampling chooses the pixels of pass p at the end of pass p - 2
+  // (adaptive_sampling.h): with no more waves in flight than a pass has,
+  // the first wave of pass p - 1, whose merge takes that measurement, has
+  // retired by the time pass p's first wave is issued.
+  AdaptivePasses adaptive(film, cx.film_mutex, order, pixels_per_wave, opt.target_error);
   size_t tokens = 2 * size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
-  if (adaptive) tokens = std::min<size_t>(tokens, waves);
+  if (adaptive.on()) tokens = std::min<size_t>(tokens, waves);
   std::vector<WaveOutput> outputs(tokens);
-  std::vector<std::vector<uint32_t>> active(adaptive ? tokens : 0);  // each slot's pixels that take the pass
-  // At the end of each pass the film's estimate is measured over the whole
-  // image and the blocks that take the pass after next are chosen
-  // (adaptive_sampling.h); pass p is not begun when the estimate at the end
-  // of pass p - 2 was below the target. Both are known by the time pass p's
-  // waves are issued, whatever the scheduling. The film keeps the
-  // measurements (two values a pass) and the choices.
-  std::vector<double>& measured = film.pass_measurements();
-  auto reached = [&](uint32_t pass) {
-    if (!adaptive || pass < 2) return false;
-    std::lock_guard<std::mutex> lock(cx.film_mutex);
-    return measured.at(2 * size_t(pass - 2) + 1) < opt.target_error;
-  };
-  // Called with the first wave of pass p >= 1, before it is merged: the
-  // film then holds exactly the passes before p (unless a resumed render
-  // measured pass p - 1 before).
-  auto measure_pass_before = [&](uint32_t pass) {
-    std::lock_guard<std::mutex> lock(cx.film_mutex);
-    if (pass == 0 || measured.size() >= 2 * size_t(pass)) return;
-    const PassSummary m = summarize_pass(film, order, pixels_per_wave, opt.target_error);
-    measured.push_back(m.lambda);
-    measured.push_back(m.estimate);
-    decide_pass(film, order, pixels_per_wave, m.lambda, pass + 1);
-  };
+  std::vector<std::vector<uint32_t>> active(adaptive.on() ? tokens : 0);  // each slot's pixels that take the pass
 
   std::atomic<bool> stop{false};
   bool issued = false;  // a wave was started in this run
@@ -324,7 +300,7 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
                                          // ticket is taken that will not be rendered.
                                          const bool ticketed = bool(hooks.next_ticket);
                                          for (;;) {
-                                           if (first >= total_spp || reached(first / pass_spp)) break;
+                                           if (first >= total_spp || adaptive.reached(first / pass_spp)) break;
                                            if (!ticketed && !tickets.next(first, next, waves, wanted)) {
                                              if (advance_pass()) continue;
                                              break;  // the last pass is done
@@ -360,11 +336,9 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
                                                                item.first, std::min(pass_spp, total_spp - item.first)};
                                                  WaveOutput& out = outputs[item.slot];
                                                  out.clear();
-                                                 if (adaptive) {
+                                                 if (adaptive.on()) {
                                                    std::vector<uint32_t>& a = active[item.slot];
-                                                   a.clear();
-                                                   append_active_pixels(film, item.first / pass_spp, wave.pixels,
-                                                                        wave.pixel_count, a);
+                                                   adaptive.choose(item.first / pass_spp, wave.pixels, wave.pixel_count, a);
                                                    wave.pixels = a.data();
                                                    wave.pixel_count = uint32_t(a.size());
                                                  }
@@ -379,7 +353,7 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
             // a new pass means the one before is complete.
             if (merged_pass_first != item.first) {
               if (merged_pass_first != kNoPass) pass_done(merged_pass_first);
-              if (adaptive) measure_pass_before(item.first / pass_spp);
+              adaptive.measure_before(item.first / pass_spp);
               merged_pass_first = item.first;
             }
             const uint64_t unit = unit_of(item.first, item.wave);

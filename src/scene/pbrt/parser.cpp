@@ -1,5 +1,6 @@
 #include "scene/pbrt/parser.h"
 
+#include <algorithm>
 #include <charconv>
 #include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
@@ -96,7 +97,23 @@ class Parser {
   }
 
   // --- parameter lists ---------------------------------------------------
-  ParamSet params(const Token& at, const std::string& directive) {
+  // The directive's parameters, then the defaults an Attribute gave for
+  // its kind (`attributes`: "shape", "light", ...) where it gives none of
+  // the same name. The defaults count as used: as in pbrt-v4, one that a
+  // directive does not read is no warning.
+  ParamSet params(const Token& at, const std::string& directive, const char* attributes = nullptr) {
+    ParamSet ps = own_params(at, directive);
+    if (!attributes) return ps;
+    auto it = gs_.attributes.find(attributes);
+    if (it == gs_.attributes.end()) return ps;
+    for (const Param& a : it->second)
+      if (std::none_of(ps.params.begin(), ps.params.end(), [&](const Param& p) { return p.name == a.name; })) {
+        ps.params.push_back(a);
+        ps.params.back().used = true;
+      }
+    return ps;
+  }
+  ParamSet own_params(const Token& at, const std::string& directive) {
     ParamSet ps;
     ps.where = loc(at);
     ps.directive = directive;
@@ -263,13 +280,13 @@ class Parser {
     } else if (d == "Material") {
       world_only();
       std::string type = expect_string("a material type");
-      ParamSet ps = params(t, "Material \"" + printable(type) + "\"");
+      ParamSet ps = params(t, "Material \"" + printable(type) + "\"", "material");
       gs_.material = b_.material(type, ps, named_materials_, base_dir_);
       ps.warn_unused();
     } else if (d == "MakeNamedMaterial") {
       world_only();
       std::string name = expect_string("a material name");
-      ParamSet ps = params(t, "MakeNamedMaterial \"" + printable(name) + "\"");
+      ParamSet ps = params(t, "MakeNamedMaterial \"" + printable(name) + "\"", "material");
       std::string type = ps.get_string("type", "");
       if (type.empty()) ps.fail("needs a \"string type\" parameter");
       if (named_materials_.count(name)) b_.warn(loc(t), "material \"" + printable(name) + "\" redefined");
@@ -286,19 +303,19 @@ class Parser {
       std::string name = expect_string("a texture name");
       std::string vtype = expect_string("a texture value type");
       std::string cls = expect_string("a texture class");
-      ParamSet ps = params(t, "Texture \"" + printable(name) + "\"");
+      ParamSet ps = params(t, "Texture \"" + printable(name) + "\"", "texture");
       b_.texture(name, vtype, cls, ps, render(ctm), base_dir_);
       ps.warn_unused();
     } else if (d == "LightSource") {
       world_only();
       std::string type = expect_string("a light type");
-      ParamSet ps = params(t, "LightSource \"" + printable(type) + "\"");
+      ParamSet ps = params(t, "LightSource \"" + printable(type) + "\"", "light");
       b_.light(type, ps, render(ctm), base_dir_, gs_.outside_medium, gs_.medium_where);
       ps.warn_unused();
     } else if (d == "AreaLightSource") {
       world_only();
       std::string type = expect_string("an area light type");
-      ParamSet ps = params(t, "AreaLightSource \"" + printable(type) + "\"");
+      ParamSet ps = params(t, "AreaLightSource \"" + printable(type) + "\"", "light");
       // pbrt-v3 calls the diffuse area light "area".
       if (type != "diffuse" && type != "area")
         ps.fail("area light type \"" + printable(type) + "\" is not supported; expected \"diffuse\" (pbrt-v3: \"area\")");
@@ -307,7 +324,7 @@ class Parser {
     } else if (d == "Shape") {
       world_only();
       std::string type = expect_string("a shape type");
-      ParamSet ps = params(t, "Shape \"" + printable(type) + "\"");
+      ParamSet ps = params(t, "Shape \"" + printable(type) + "\"", "shape");
       gs_.render_from_object = render_from_world_ * ctm;
       b_.shape(type, ps, gs_, base_dir_);
       ps.warn_unused();
@@ -318,13 +335,21 @@ class Parser {
       gs_.medium_where = loc(t);
     } else if (d == "MakeNamedMedium") {
       std::string name = expect_string("a medium name");
-      ParamSet ps = params(t, "MakeNamedMedium \"" + printable(name) + "\"");
+      ParamSet ps = params(t, "MakeNamedMedium \"" + printable(name) + "\"", "medium");
       b_.medium(name, ps, render(ctm), base_dir_);
       ps.warn_unused();
     } else if (d == "Attribute") {
-      expect_string("a name");
-      params(t, std::string(d));
-      b_.warn(loc(t), "Attribute is not supported; ignored");
+      // Defaults for the kind's later directives, in the graphics state: a
+      // later Attribute's value of the same name replaces an earlier one.
+      const std::string kind = expect_string("an attribute target: shape, light, material, medium or texture");
+      if (kind != "shape" && kind != "light" && kind != "material" && kind != "medium" && kind != "texture")
+        fail(t, "Attribute \"" + printable(kind) + "\" is unknown; expected shape, light, material, medium or texture");
+      std::vector<Param>& defaults = gs_.attributes[kind];
+      for (Param& p : own_params(t, "Attribute \"" + kind + "\"").params) {
+        auto same = std::find_if(defaults.begin(), defaults.end(), [&](const Param& q) { return q.name == p.name; });
+        if (same != defaults.end()) *same = std::move(p);
+        else defaults.push_back(std::move(p));
+      }
     } else if (d == "ObjectBegin") {
       // As in pbrt: an object's shapes keep the transform current at their
       // definition, and ObjectBegin/End also push and pop the attributes.

@@ -35,6 +35,9 @@ struct GraphicsState {
   // pbrt-v4's ColorSpace: the space of the "rgb" values that follow (null:
   // sRGB, the default).
   const ColorSpace* color_space = nullptr;
+  // pbrt-v4's Attribute: default parameters per kind ("shape", "light",
+  // "material", "medium", "texture") for the directives that follow.
+  std::map<std::string, std::vector<pbrt::Param>> attributes;
 };
 
 namespace pbrt {
