@@ -19,6 +19,10 @@ int run_merge(const MergeArgs& a, const Provenance& provenance) {
                             {"lantern:samples", std::to_string(m.film.total_samples())},
                             {"lantern:render", m.fingerprint}};
   add_provenance(md, provenance);  // of the merge; the parts' settings are in lantern:render
+  if (m.film.cropped())  // where the crop lies in the whole image (EXR data and display windows)
+    md.emplace_back("pixelbounds", std::to_string(int(m.film.raster_offset().x)) + " " +
+                                       std::to_string(int(m.film.raster_offset().y)) + " " +
+                                       std::to_string(m.film.full_width()) + " " + std::to_string(m.film.full_height()));
   const ImageWrite written = write_image_or_rescue(a.output, image, md, "");
   if (!written.written) {
     std::fprintf(stderr, "error: %s\n", written.error.c_str());

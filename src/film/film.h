@@ -105,6 +105,9 @@ class Film {
   // (a crop): splats arrive in the camera's raster coordinates.
   void set_region(int x0, int y0, int full_width, int full_height);
   Vec2 raster_offset() const { return Vec2(float(x0_), float(y0_)); }
+  bool cropped() const { return full_width_ > 0; }
+  int full_width() const { return cropped() ? full_width_ : width_; }
+  int full_height() const { return cropped() ? full_height_ : height_; }
   // What resolve multiplies the splat sums by: the whole image's pixels
   // over the light paths. A light path's expected splat on a pixel is the
   // pixel's value over the whole image's pixels (the camera's importance

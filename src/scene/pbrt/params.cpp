@@ -6,6 +6,7 @@
 #include "color/sigmoid_spectrum.h"
 #include "math/edit_distance.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <stdexcept>
 
@@ -17,7 +18,9 @@ const Param* ParamSet::find(const std::string& name) const {
       p.used = true;
       return &p;
     }
-  if (!params.empty()) missed_.push_back(name);
+  // Each name once: a set read for many shapes (an area light's) must not
+  // grow with them.
+  if (!params.empty() && std::find(missed_.begin(), missed_.end(), name) == missed_.end()) missed_.push_back(name);
   return nullptr;
 }
 
