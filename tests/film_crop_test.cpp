@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "expect_error.h"
+#include "film/film.h"
 #include "lantern/render.h"
 #include "lantern/scene.h"
 #include "stat_compare.h"
@@ -48,6 +49,31 @@ TEST(FilmCrop, TheCropIsTheWholeImagesPart) {
   for (const char* integrator : {"path", "bdpt", "lt"}) {
     const RegionStats a = stats(*crop, integrator, in_crop), b = stats(*whole, integrator, in_whole);
     expect_means_agree(a, b, 0.01, integrator);
+  }
+}
+
+// Adaptive sampling's view of a cropped pixel (Film::halves) is what the
+// image shows: splats normalised over the whole image there too.
+TEST(FilmCrop, HalvesOfACroppedPixelAreItsValue) {
+  PixelFilter box;
+  box.type = PixelFilter::Type::Box;
+  box.radius = Vec2(0.5f);
+  Film film(4, 4, box);
+  film.set_region(2, 2, 8, 8);
+  film.track_halves();
+  WaveOutput out;
+  for (uint32_t k = 0; k < 4; ++k) out.samples.push_back({5, RGB(0.25f * float(k + 1)), (k & 1) != 0});
+  out.splats.push_back({Vec2(3.5f, 3.5f), RGB(2.f), false});  // the film's pixel (1, 1) = 5
+  out.splats.push_back({Vec2(3.5f, 3.5f), RGB(1.f), true});
+  out.light_paths = 4;
+  out.odd_light_paths = 2;
+  film.prepare(out);
+  film.merge(out);
+  const Image img = film.resolve();
+  for (int c = 0; c < 3; ++c) {
+    const Film::Halves h = film.halves(5, c);
+    EXPECT_NEAR(h.value, double(img.rgb[3 * 5 + size_t(c)]), 1e-6);
+    EXPECT_NEAR(0.5 * (h.even + h.odd), h.value, 1e-6);  // equal halves: their mean is the pixel
   }
 }
 

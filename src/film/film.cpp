@@ -119,7 +119,9 @@ Film::Halves Film::halves(size_t pixel, int c) const {
   Halves h{n ? sum / double(n) : 0.0, 0.0, 0.0};
   if (n >= 2) h.even = (sum - odd) / n_even, h.odd = odd / n_odd;
   if (!splat_.empty() && light_paths_ > 0) {
-    const double pixels = double(width_) * double(height_), splat = splat_[k].value(), odd_splat = odd_splat_[k].value();
+    // (over the whole image's pixels, as resolve: splat_scale)
+    const double pixels = double(full_width()) * double(full_height());
+    const double splat = splat_[k].value(), odd_splat = odd_splat_[k].value();
     const uint64_t even_paths = light_paths_ - odd_light_paths_;
     h.value += splat * pixels / double(light_paths_);
     if (n >= 2 && even_paths > 0 && odd_light_paths_ > 0)
