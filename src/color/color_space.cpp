@@ -16,6 +16,11 @@ std::array<double, 3> illuminant_xyz(float (*illuminant)(float nm)) {
   return {xyz[0] / xyz[1], 1.0, xyz[2] / xyz[1]};
 }
 
+std::array<double, 3> chromaticity_xyz(Vec2 xy) {
+  const double x = double(xy.x), y = double(xy.y);
+  return {x / y, 1.0, (1.0 - x - y) / y};
+}
+
 std::array<double, 3> multiply(const Matrix3d& m, const std::array<double, 3>& v) {
   std::array<double, 3> r{};
   for (size_t i = 0; i < 3; ++i) r[i] = m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2];
@@ -58,10 +63,8 @@ ColorSpace with_white(std::string_view name, Vec2 r, Vec2 g, Vec2 b, float (*ill
   const Vec2 xy[3] = {r, g, b};
   Matrix3d p{};
   for (size_t k = 0; k < 3; ++k) {
-    const double x = double(xy[k].x), y = double(xy[k].y);
-    p[0][k] = x / y;
-    p[1][k] = 1.0;
-    p[2][k] = (1.0 - x - y) / y;
+    const std::array<double, 3> primary = chromaticity_xyz(xy[k]);
+    for (size_t i = 0; i < 3; ++i) p[i][k] = primary[i];
   }
   const std::array<double, 3> s = multiply(inverse(p), cs.white);
   for (size_t i = 0; i < 3; ++i)
@@ -80,8 +83,7 @@ ColorSpace make_color_space(std::string_view name, Vec2 r, Vec2 g, Vec2 b, float
 }
 
 ColorSpace make_color_space(std::string_view name, Vec2 r, Vec2 g, Vec2 b, Vec2 white) {
-  const double x = double(white.x), y = double(white.y);
-  return with_white(name, r, g, b, nullptr, {x / y, 1.0, (1.0 - x - y) / y});
+  return with_white(name, r, g, b, nullptr, chromaticity_xyz(white));
 }
 
 std::array<float, 8> chromaticities(const ColorSpace& cs) {

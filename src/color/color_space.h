@@ -33,6 +33,9 @@ struct ColorSpace {
 // order of OpenEXR's chromaticities attribute).
 std::array<float, 8> chromaticities(const ColorSpace& cs);
 
+// The XYZ, with Y = 1, of CIE xy chromaticity xy.
+std::array<double, 3> chromaticity_xyz(Vec2 xy);
+
 // XYZ of the tabulated illuminant, normalised to Y = 1 (integrated at 1 nm).
 std::array<double, 3> illuminant_xyz(float (*illuminant)(float nm));
 

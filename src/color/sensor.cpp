@@ -13,11 +13,6 @@ Vec2 daylight_chromaticity(float kelvin) {
   return Vec2(float(x), float(-3.0 * x * x + 2.870 * x - 0.275));
 }
 
-namespace {
-
-std::array<double, 3> xyz_of(Vec2 xy) { return {double(xy.x) / double(xy.y), 1.0, (1.0 - xy.x - xy.y) / double(xy.y)}; }
-
-}  // namespace
 
 Matrix3d sensor_matrix(const SensorSettings& s) {
   const double ratio = double(s.exposure_time) * double(s.iso) / 100.0;
@@ -32,7 +27,7 @@ Matrix3d sensor_matrix(const SensorSettings& s) {
     } else {
       source = daylight_chromaticity(s.whitebalance);
     }
-    m = product(out.xyz_to_rgb, product(white_adaptation(xyz_of(source), out.white), in.rgb_to_xyz));
+    m = product(out.xyz_to_rgb, product(white_adaptation(chromaticity_xyz(source), out.white), in.rgb_to_xyz));
   }
   for (auto& row : m)
     for (double& v : row) v *= ratio;
