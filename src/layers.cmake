@@ -5,7 +5,7 @@
 # tests/layering.cmake checks every include against it.
 set(LANTERN_LAYERS
     "math"
-    "color|sampler|camera|geometry|trace"
+    "color|sampler|camera|geometry|trace|guiding"
     "texture"
     "imageio|medium"
     "material"

@@ -41,6 +41,10 @@ struct RenderOptions {
   // passes until their estimated relative MSE is below this; spp (or the
   // time) is then the limit. Not with vcm, bpm, ppm, shares or MPI.
   double target_error = 0.0;
+  // Path guiding (docs/guiding.md): paths learn where light comes from
+  // and sample directions from it, mixed with the BSDF. path only; not with
+  // shares, MPI or checkpoints.
+  bool guiding = false;
   int maxdepth = 5;
   int threads = 0;  // 0: all cores
   uint64_t seed = 0;
@@ -126,6 +130,10 @@ struct RenderStats {
   // With adaptive sampling: the image's relative MSE as the film's
   // half-buffers estimate it (its camera samples'); -1 otherwise.
   double estimated_relmse = -1.0;
+  // With path guiding: the field's learning iterations completed, its
+  // spatial leaves, directional nodes (sampled and learning) and bytes.
+  uint32_t guiding_iterations = 0;
+  size_t guiding_leaves = 0, guiding_nodes = 0, guiding_bytes = 0;
 
   // Subpath vertices on surfaces, and why subpaths ended (escaped, absorbed,
   // roulette, maxdepth), summed over all samples.

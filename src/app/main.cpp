@@ -64,7 +64,7 @@ struct RenderArgs {
   double time = 0.0, checkpoint = 0.0, texture_cache_mb = 1024.0, target_error = 0.0, progress_interval = 10.0;
   uint64_t seed = 0;
   bool resume = false;
-  bool spectral = false;
+  bool spectral = false, guide = false;
   std::vector<int> resolution;
   bool quiet = false;
 };
@@ -240,6 +240,7 @@ int run_render(const RenderArgs& a) {
   o.spp = a.spp > 0 ? a.spp : ss.spp;
   o.time_limit_seconds = a.time;
   o.target_error = a.target_error;
+  o.guiding = a.guide;
   if (a.target_error > 0 && a.spp == 0) o.spp = 1 << 16;  // adaptive: the limit is --spp, when given
   o.maxdepth = a.maxdepth >= 0 ? a.maxdepth : ss.maxdepth;
   o.threads = a.threads;
@@ -509,6 +510,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.01, 1.0));
   render->add_option("--mis", a.mis, "bdpt's MIS heuristic: power or balance")
       ->check(CLI::IsMember({"power", "balance"}));
+  render->add_flag("--guide", a.guide,
+                   "Path guiding: paths learn where light comes from and sample it (path only; docs/guiding.md)");
   render->add_flag("--spectral", a.spectral,
                    "Render with sampled wavelengths, four per camera sample, as pbrt-v4 does, instead of in RGB "
                    "(docs/spectral.md)");

@@ -92,6 +92,7 @@ nlohmann::json render_settings_json(const RenderOptions& o) {
                       {"mis", name(o.mis)},               {"colour", o.spectral ? "spectral" : "rgb"},
                       {"wave_size", o.wave_size}};
   if (merges_vertices(o.integrator)) j["vcm"] = {{"radius", o.vcm_radius}, {"alpha", o.vcm_alpha}};
+  if (o.guiding) j["guiding"] = true;
   return j;
 }
 
@@ -101,6 +102,7 @@ void add_render_settings(ImageMetadata& md, const RenderOptions& o) {
   md.emplace_back("lantern:light_sampler", name(o.light_sampler));
   md.emplace_back("lantern:mis", name(o.mis));
   md.emplace_back("lantern:wave_size", std::to_string(o.wave_size));
+  if (o.guiding) md.emplace_back("lantern:guiding", "on");
 }
 
 }  // namespace lantern

@@ -48,6 +48,11 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
   j["min_spp"] = s.min_spp;
   j["max_spp"] = s.max_spp;
   if (s.estimated_relmse >= 0) j["estimated_relmse"] = s.estimated_relmse;
+  if (s.guiding_leaves > 0)
+    j["guiding"] = {{"iterations", s.guiding_iterations},
+                    {"spatial_leaves", s.guiding_leaves},
+                    {"directional_nodes", s.guiding_nodes},
+                    {"bytes", s.guiding_bytes}};
   j["light_paths"] = s.light_paths;
   j["seconds"] = {{"load", run.load_seconds}, {"bvh_build", run.scene_info.bvh_build_seconds}, {"render", s.seconds}};
   j["samples_per_second"] = per_second(double(s.samples), s.seconds);

@@ -19,6 +19,7 @@
 #include "math/common.h"
 #include "film/fixed_sum.h"
 #include "film/pixel_filter.h"
+#include "guiding/guide_record.h"
 
 namespace lantern {
 
@@ -59,6 +60,7 @@ struct WaveOutput {
   std::vector<Splat> splats;
   std::vector<StrategyRecord> strategies;
   uint64_t light_paths = 0, odd_light_paths = 0;
+  std::vector<GuideRecord> guide;  // for the guiding field being learnt (integrator/guiding_field.h)
   // Filled by Film::prepare from samples and splats, in the parallel stage,
   // so that the serial merge only adds integers.
   std::vector<FixedTerm> sample_terms, splat_terms;
@@ -67,6 +69,7 @@ struct WaveOutput {
     samples.clear();
     splats.clear();
     strategies.clear();
+    guide.clear();
     light_paths = odd_light_paths = 0;
     sample_terms.clear();
     splat_terms.clear();

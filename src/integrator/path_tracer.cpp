@@ -130,6 +130,13 @@ void PathTracer::surface_stage(PathWave& w) const {
   }
 }
 
+// The field's distribution in a leaf for a normal, if it has one.
+GuideAt PathTracer::guide_at(uint32_t leaf, uint32_t normal_bin) const {
+  if (!guiding_->tree().trained()) return {};
+  const DirectionalTree& d = guiding_->tree().leaf(leaf).sampled[normal_bin];
+  return d.total() > 0.0 ? GuideAt{&d} : GuideAt{};
+}
+
 // Next-event estimation and BSDF sampling in one loop per material kind,
 // the BSDF built once (two loops cost 3% of the path tracer's throughput:
 // docs/performance.md).
@@ -145,20 +152,31 @@ void PathTracer::shade_stage(PathWave& w) const {
     const Vec3& wo = v.wo;
     float u_light = s.get1d(dim + dims::kEyeLightSelect);
     Vec2 u_light2 = s.get2d(dim + dims::kEyeLightPosition);
+    // Guided where the BSDF is not all delta; the normal on the side the
+    // path came from picks the distribution.
+    const bool guided = guiding_ && !bsdf.is_specular();
+    uint32_t leaf = 0, normal_bin = 0;
+    GuideAt guide;
+    if (guided) {
+      leaf = guiding_->tree().leaf_of(v.p);
+      normal_bin = SDTree::normal_bin(glm::dot(v.ns, v.wo_world) < 0.f ? -v.ns : v.ns);
+      guide = guide_at(leaf, normal_bin);
+    }
     if (!bsdf.is_specular())
-      path_next_event(sc, light_sampler_, w, slot, v, u_light, u_light2, volume_number(w, slot), settings_.maxdepth);
-    // Continue the path by sampling the BSDF.
+      path_next_event(sc, light_sampler_, w, slot, v, u_light, u_light2, volume_number(w, slot), settings_.maxdepth,
+                      guide);
+    // Continue the path by sampling the BSDF, or the mixture with the guide.
     float uc = s.get1d(dim + dims::kEyeBsdfComponent);
     Vec2 u2 = s.get2d(dim + dims::kEyeBsdfDirection);
     float u_rr = s.get1d(dim + dims::kEyeRoulette);
-    auto bs = bsdf.sample_f(wo, uc, u2, TransportMode::Radiance);
-    if (!bs || bs->pdf == 0.f || is_black(bs->f)) {
+    auto bs = sample_scatter(bsdf, v.frame, wo, guide, uc, u2, TransportMode::Radiance);
+    if (!bs) {
       ++w.stats.eye_ends[size_t(PathEnd::Absorbed)];
       return;
     }
-    Vec3 wi = v.frame.from_local(bs->wi);
-    w.beta[slot] *= bs->f * (std::fabs(bs->wi.z) / bs->pdf);
-    w.prev_pdf[slot] = bs->pdf_is_proportional ? bsdf.pdf(wo, bs->wi, TransportMode::Radiance) : bs->pdf;
+    const Vec3 wi = bs->wi;
+    w.beta[slot] *= bs->weight;
+    w.prev_pdf[slot] = bs->pdf;
     w.prev_specular[slot] = bs->specular;
     if (bs->transmission) w.eta_scale[slot] *= sqr(bs->etap);
     if (!survives_roulette(w.beta[slot], w.eta_scale[slot], 1.f, w.depth >= 2, u_rr)) {
@@ -169,6 +187,7 @@ void PathTracer::shade_stage(PathWave& w) const {
       ++w.stats.eye_ends[size_t(PathEnd::Absorbed)];
       return;
     }
+    if (guided && guiding_->learning() && !bs->specular) w.guide.push(slot, leaf, v.p, normal_bin, wi, bs->pdf, w.beta[slot]);
     w.hits.alive[i] = 1;
     w.prev_p[slot] = w.hits.p[i];
     w.prev_n[slot] = w.hits.ns[i];
@@ -193,6 +212,8 @@ void PathTracer::trace(const WaveDesc& wave, PathWave& w, WaveOutput& out) const
     generate_camera_rays(wave, w);
   }
   w.depth = 1;
+  w.guide.clear();
+  const bool learning = guiding_ && guiding_->learning();
   const bool media = !scene_.media.empty();
   w.stream.intersect(w.rays, RayKind::Camera);
   for (;;) {
@@ -216,6 +237,7 @@ void PathTracer::trace(const WaveDesc& wave, PathWave& w, WaveOutput& out) const
       StageTimer t(st, Stage::Accumulate);
       if (media) media_shadow_stage(w);
       else shadow_stage(w);
+      if (learning) w.guide.end_bounce(w.L);
     }
     {
       StageTimer t(st, Stage::Shade);
@@ -224,6 +246,10 @@ void PathTracer::trace(const WaveDesc& wave, PathWave& w, WaveOutput& out) const
     if (w.rays.count == 0) break;
     ++w.depth;
     w.stream.intersect(w.rays, RayKind::Extension);
+  }
+  if (learning) {
+    StageTimer t(st, Stage::Accumulate);
+    w.guide.make_records(w.L, guiding_->tree(), hash_key(settings_.seed, wave.pixels[0], wave.first_sample), out.guide);
   }
   for (uint32_t slot = 0; slot < wave.size(); ++slot)
     out.samples.push_back({w.pixel[slot], film_rgb(w.L[slot], w.lambda[slot]), ((wave.first_sample + slot % wave.samples) & 1) != 0});

@@ -6,6 +6,8 @@
 
 #include "accel/ray_stream.h"
 #include "film/film.h"
+#include "integrator/guided_scatter.h"
+#include "integrator/guiding_field.h"
 #include "integrator/wave.h"
 #include "light/light_sampler.h"
 #include "sampler/sampler.h"
@@ -41,6 +43,10 @@ class PathTracer {
   // Traces all paths of the wave and records one sample per slot; the wave
   // state's stats and ray stream keep the measurements.
   void trace(const WaveDesc& wave, PathWave& state, WaveOutput& out) const;
+  // Path guiding (integrator/guiding_field.h): paths sample the field where
+  // it has learnt something and record into it while it learns. The
+  // renderer changes the field only between waves.
+  void set_guiding(const GuidingField* field) { guiding_ = field; }
 
  private:
   void generate_camera_rays(const WaveDesc& wave, PathWave& w) const;
@@ -52,6 +58,7 @@ class PathTracer {
   void medium_scatter_stage(PathWave& w) const;
   void media_shadow_stage(PathWave& w) const;
   float volume_number(const PathWave& w, uint32_t slot) const;
+  GuideAt guide_at(uint32_t leaf, uint32_t normal_bin) const;
   void add_volume_emission(PathWave& w, uint32_t i, const Spectrum& beta_before, float prev_pdf) const;
 
   const Scene& scene_;
@@ -60,6 +67,7 @@ class PathTracer {
   Camera camera_;
   FootprintModel footprints_;  // enabled when the scene's textures filter
   SamplerSpec sampler_;
+  const GuidingField* guiding_ = nullptr;
 };
 
 }  // namespace lantern

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "accel/ray_stream.h"
+#include "integrator/guide_vertices.h"
 #include "integrator/hit.h"
 #include "integrator/medium_events.h"
 #include "integrator/vertex.h"
@@ -63,6 +64,8 @@ struct PathWave {
   std::vector<Spectrum> shadow_sigma_end;
   CrossingScratch crossing;
 
+  GuideVertices guide;  // while the guiding field learns
+
   RayStream stream;
   WaveStats stats;
 
@@ -91,7 +94,7 @@ struct PathWave {
            vector_bytes(ray_lambda) + vector_bytes(shadow_lambda) +
            ends.memory_bytes() + vector_bytes(scattered) + vector_bytes(shadow_medium) + vector_bytes(shadow_T) + vector_bytes(shadow_T_mis) +
            vector_bytes(shadow_light_pdf) + vector_bytes(shadow_scatter_pdf) + vector_bytes(shadow_expect) +
-           vector_bytes(shadow_sigma_end) + crossing.memory_bytes();
+           vector_bytes(shadow_sigma_end) + crossing.memory_bytes() + guide.memory_bytes();
   }
 
   void resize(uint32_t n) {

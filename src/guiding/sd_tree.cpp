@@ -1,0 +1,100 @@
+#include "guiding/sd_tree.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace lantern {
+
+SDTree::SDTree(Vec3 lo, Vec3 hi, GuidingSettings settings) : settings_(settings) {
+  // A cube a little larger than the bounds, so that every split halves all
+  // three extents in turn and points on the bounds fall inside.
+  const Vec3 size = glm::max(hi - lo, Vec3(0.f));
+  extent_ = std::max(max_component(size), 1e-3f) * 1.01f;
+  lo_ = 0.5f * (lo + hi) - Vec3(0.5f * extent_);
+  nodes_.push_back(Node{});
+  leaves_.push_back(Leaf{});
+  leaves_[0].size = Vec3(extent_);
+}
+
+uint32_t SDTree::leaf_of(const Vec3& p) const {
+  Vec3 q = glm::clamp((p - lo_) / extent_, 0.f, 1.f);
+  if (!(q.x == q.x) || !(q.y == q.y) || !(q.z == q.z)) q = Vec3(0.5f);  // a NaN position: any leaf will do
+  uint32_t n = 0;
+  for (;;) {
+    const Node& node = nodes_[n];
+    if (node.child[0] == 0) return node.leaf;
+    float& c = q[node.axis];
+    const bool upper = c >= 0.5f;
+    c = upper ? 2.f * c - 1.f : 2.f * c;
+    n = node.child[upper ? 1 : 0];
+  }
+}
+
+void SDTree::split(uint32_t n, uint32_t axis, uint64_t limit) {
+  if (leaves_[nodes_[n].leaf].records <= limit) return;
+  const uint32_t first = nodes_[n].leaf;
+  leaves_[first].records /= 2;  // the records assumed halved between the halves
+  leaves_[first].size[int(axis)] *= 0.5f;
+  const uint32_t second = uint32_t(leaves_.size());
+  leaves_.push_back(leaves_[first]);
+  const uint32_t a = uint32_t(nodes_.size());
+  const uint8_t next_axis = uint8_t((axis + 1) % 3);
+  Node lower, upper;
+  lower.leaf = first;
+  upper.leaf = second;
+  lower.axis = upper.axis = next_axis;
+  nodes_.push_back(lower);
+  nodes_.push_back(upper);
+  nodes_[n].child[0] = a;
+  nodes_[n].child[1] = a + 1;
+  split(a, next_axis, limit);
+  split(a + 1, next_axis, limit);
+}
+
+void SDTree::update(uint32_t iteration) {
+  for (Leaf& l : leaves_)
+    for (DirectionalTree& d : l.learning) d.sum_up();
+  const uint64_t limit = uint64_t(settings_.spatial_threshold * std::sqrt(std::ldexp(1.0, int(std::min(iteration, 60u)))));
+  const size_t count = nodes_.size();  // the leaves before this update
+  for (uint32_t n = 0; n < count; ++n)
+    if (nodes_[n].child[0] == 0) split(n, nodes_[n].axis, limit);
+  trained_ = false;
+  for (Leaf& l : leaves_) {
+    for (uint32_t b = 0; b < kNormalBins; ++b) {
+      l.sampled[b] = std::move(l.learning[b]);
+      l.learning[b] = l.sampled[b].refined(settings_.directional_threshold);
+      trained_ = trained_ || l.sampled[b].total() > 0.0;
+    }
+    l.records = 0;
+  }
+}
+
+size_t SDTree::memory_bytes() const {
+  size_t b = nodes_.capacity() * sizeof(Node) + leaves_.capacity() * sizeof(Leaf);
+  for (const Leaf& l : leaves_)
+    for (uint32_t k = 0; k < kNormalBins; ++k) b += l.sampled[k].memory_bytes() + l.learning[k].memory_bytes();
+  return b;
+}
+
+bool SDTree::assign(std::vector<Node> nodes, std::vector<Leaf> leaves, bool trained) {
+  if (nodes.empty() || leaves.empty()) return false;
+  std::vector<uint8_t> used(leaves.size(), 0);
+  for (size_t n = 0; n < nodes.size(); ++n) {
+    const Node& node = nodes[n];
+    if (node.axis > 2) return false;
+    if (node.child[0] == 0) {
+      if (node.child[1] != 0 || node.leaf >= leaves.size() || used[node.leaf]) return false;
+      used[node.leaf] = 1;
+    } else if (node.child[0] <= n || node.child[0] >= nodes.size() || node.child[1] <= n ||
+               node.child[1] >= nodes.size()) {
+      return false;
+    }
+  }
+  if (std::count(used.begin(), used.end(), 1) != std::ptrdiff_t(leaves.size())) return false;
+  nodes_ = std::move(nodes);
+  leaves_ = std::move(leaves);
+  trained_ = trained;
+  return true;
+}
+
+}  // namespace lantern

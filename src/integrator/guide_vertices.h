@@ -1,0 +1,75 @@
+// The vertices a wave's paths leave for the guiding field while it learns
+// (integrator/guiding_field.h): per vertex whose direction was drawn from a
+// density (not a delta), its spatial leaf, position and normal's bin, the
+// direction, that density, the throughput after it and the radiance the
+// path had gathered by the end of its bounce. When the paths end, the radiance gathered after a vertex over
+// the throughput after it is an estimate of the radiance that arrived
+// along its direction (componentwise: both carry the same wavelengths).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "guiding/guide_record.h"
+#include "guiding/sd_tree.h"
+#include "math/equal_area.h"
+#include "math/rng.h"
+#include "math/spectrum.h"
+
+namespace lantern {
+
+struct GuideVertices {
+  std::vector<uint32_t> slot, leaf;
+  std::vector<Vec3> p, w;
+  std::vector<uint8_t> bin;  // of the normal (SDTree::normal_bin)
+  std::vector<float> pdf;
+  std::vector<Spectrum> beta, L;
+  size_t bounce_start = 0;  // the first vertex of the current bounce
+
+  void clear() {
+    slot.clear(), leaf.clear(), p.clear(), w.clear(), bin.clear(), pdf.clear(), beta.clear(), L.clear();
+    bounce_start = 0;
+  }
+  size_t size() const { return slot.size(); }
+  void push(uint32_t s, uint32_t spatial_leaf, const Vec3& position, uint32_t normal_bin, const Vec3& dir,
+            float density, const Spectrum& throughput) {
+    slot.push_back(s), leaf.push_back(spatial_leaf), p.push_back(position), bin.push_back(uint8_t(normal_bin)), w.push_back(dir);
+    pdf.push_back(density);
+    beta.push_back(throughput);
+    L.emplace_back(0.f);
+  }
+  // After a bounce's light samples were added: what each path had then.
+  void end_bounce(const std::vector<Spectrum>& path_L) {
+    for (size_t v = bounce_start; v < size(); ++v) L[v] = path_L[slot[v]];
+    bounce_start = size();
+  }
+  // Once the paths have ended: a record per vertex into `out`. Each goes to
+  // the leaf of a point drawn uniformly from a box of its own leaf's size
+  // around the vertex (Müller 2019, the stochastic spatial box filter):
+  // neighbouring leaves share what their edges see, and each leaf learns
+  // from more records. key names the wave (random numbers by record).
+  void make_records(const std::vector<Spectrum>& path_L, const SDTree& tree, uint64_t key,
+                    std::vector<GuideRecord>& out) const {
+    for (size_t v = 0; v < size(); ++v) {
+      const Spectrum after = path_L[slot[v]] - L[v];
+      float sum = 0.f;
+      int n = 0;
+      for (int c = 0; c < kSpectrumSamples; ++c)
+        if (beta[v][c] > 0.f) sum += after[c] / beta[v][c], ++n;
+      const float Li = n > 0 ? std::fmax(sum / float(n), 0.f) : 0.f;
+      const float energy = Li / pdf[v];
+      if (!std::isfinite(energy)) continue;
+      RandomStream r = RandomStream::make(key, v, 0x6775696465ULL);
+      const Vec3 jittered = p[v] + tree.leaf(leaf[v]).size * (Vec3(r.get1d(), r.get1d(), r.get1d()) - 0.5f);
+      const uint32_t into = tree.leaf_of(jittered);
+      const uint32_t cell = tree.leaf(into).learning[bin[v]].cell_of(equal_area_sphere_to_square(w[v]));
+      out.push_back({into, cell, energy, bin[v]});
+    }
+  }
+  size_t memory_bytes() const {
+    return (slot.capacity() + leaf.capacity()) * 4 + bin.capacity() + (p.capacity() + w.capacity()) * sizeof(Vec3) + pdf.capacity() * 4 +
+           (beta.capacity() + L.capacity()) * sizeof(Spectrum);
+  }
+};
+
+}  // namespace lantern

@@ -1,0 +1,56 @@
+// Path guiding in the renderer (docs/guiding.md): the field paths learn
+// and sample, and its schedule. Learning runs in iterations of doubling
+// length (Müller et al. 2017, sec. 4): iteration k covers passes
+// [2^k - 1, 2^(k+1) - 1), one sample per pixel each; at its end the
+// renderer lets its waves drain and calls end_iteration, and the field
+// learnt in it is sampled from the next pass on. Every sample, those of
+// the first iterations too, goes into the image: each is an unbiased
+// estimate (one-sample MIS with the BSDF: integrator/guided_scatter.h).
+//
+// Determinism: waves make their records in parallel and the renderer's
+// serial merge stage adds them in wave order (deposit), so the field and
+// the image depend on the seed alone, not on the thread count.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "guiding/sd_tree.h"
+
+namespace lantern {
+
+class GuidingField {
+ public:
+  // passes: the render's budget in passes; 0 for a time budget, where the
+  // renderer predicts it after each iteration (expect_passes).
+  GuidingField(Vec3 lo, Vec3 hi, uint64_t passes) : tree_(lo, hi), passes_(passes) {}
+
+  const SDTree& tree() const { return tree_; }
+  // Whether the waves of the current iteration record: the field they
+  // learn is sampled by a later pass. (Once not, never again: the last
+  // field learnt serves to the end, and recording costs nothing more.)
+  bool learning() const { return !done_ && (passes_ == 0 || iteration_end() < passes_); }
+  // Under a time budget: the passes the render is expected to reach.
+  void expect_passes(uint64_t passes) {
+    if (!done_ && passes > 0 && iteration_end() >= passes) done_ = true;
+  }
+  // The pass count at which the current iteration ends.
+  uint64_t iteration_end() const { return (uint64_t(2) << iteration_) - 1; }
+  uint32_t iteration() const { return iteration_; }
+
+  void deposit(const std::vector<GuideRecord>& records) {
+    for (const GuideRecord& r : records) tree_.add(r);
+  }
+  void end_iteration() {
+    tree_.update(iteration_);
+    if (iteration_ < 62) ++iteration_;
+  }
+
+ private:
+  SDTree tree_;
+  uint64_t passes_;
+  uint32_t iteration_ = 0;
+  bool done_ = false;
+};
+
+}  // namespace lantern

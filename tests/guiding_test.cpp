@@ -1,0 +1,286 @@
+// Path guiding: the directional tree's sampling against its density
+// (chi-square), its density's integral, the spatial tree's splits, and the
+// guided path tracer against the unguided one (region means over seeds)
+// and across thread counts (bit for bit).
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "bsdf_checks.h"
+#include "guiding/directional_tree.h"
+#include "guiding/sd_tree.h"
+#include "integrator/guided_scatter.h"
+#include "lantern/render.h"
+#include "lantern/scene.h"
+#include "material/coated_diffuse_bsdf.h"
+#include "material/diffuse_bsdf.h"
+#include "math/equal_area.h"
+#include "stat_compare.h"
+
+using namespace lantern;
+
+namespace {
+
+// A tree learnt from energy deposited by a few lobes, refined twice and
+// kept at most 6 levels deep, so that its density is constant on the
+// 64 x 64 grid of the square the checks bin by.
+DirectionalTree lobed_tree(double threshold) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  DirectionalTree t;
+  for (int round = 0; round < 3; ++round) {
+    for (int i = 0; i < 20000; ++i) {
+      Vec2 p(u(rng), u(rng));
+      if (i % 3 == 0) p = Vec2(0.2f, 0.7f) + 0.1f * p;  // a lobe
+      else if (i % 3 == 1) p = Vec2(0.6f, 0.1f) + 0.25f * p;
+      t.add(t.cell_of(p), 1.0 + p.x);
+    }
+    t.sum_up();
+    if (round < 2) t = t.refined(threshold);
+  }
+  return t;
+}
+
+constexpr int kGrid = 64;
+
+}  // namespace
+
+TEST(DirectionalTree, DensityIntegratesToOneAndMatchesItsSamples) {
+  const DirectionalTree t = lobed_tree(0.02);
+  ASSERT_LE(t.depth(), 6);
+  ASSERT_GT(t.node_count(), 10u);
+  std::vector<double> expected(kGrid * kGrid);
+  double integral = 0.0;
+  for (int y = 0; y < kGrid; ++y)
+    for (int x = 0; x < kGrid; ++x) {
+      const double p = t.pdf(Vec2((x + 0.5f) / kGrid, (y + 0.5f) / kGrid)) / double(kGrid * kGrid);
+      expected[size_t(y * kGrid + x)] = p;
+      integral += p;
+    }
+  EXPECT_NEAR(integral, 1.0, 1e-5);
+
+  const int n = 400000;
+  std::vector<double> observed(kGrid * kGrid, 0.0);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  int differing = 0;
+  for (int i = 0; i < n; ++i) {
+    float pdf = 0.f;
+    const Vec2 p = t.sample(Vec2(u(rng), u(rng)), &pdf);
+    ASSERT_TRUE(p.x >= 0.f && p.x <= 1.f && p.y >= 0.f && p.y <= 1.f);
+    // The sample's density is the density at the point (but for points
+    // that rounding moves across a cell's edge, with probability ~0).
+    if (std::fabs(pdf - t.pdf(p)) > 1e-3f * pdf) ++differing;
+    const int bx = std::min(kGrid - 1, int(p.x * kGrid)), by = std::min(kGrid - 1, int(p.y * kGrid));
+    observed[size_t(by * kGrid + bx)] += 1.0;
+  }
+  EXPECT_LE(differing, 2);
+  double chi2 = 0.0;
+  int dof = 0;
+  for (size_t b = 0; b < observed.size(); ++b) {
+    const double e = expected[b] * n;
+    if (e < 5.0) {
+      EXPECT_EQ(observed[b], 0.0) << "a sample where the density is zero";
+      continue;
+    }
+    chi2 += sqr(observed[b] - e) / e;
+    ++dof;
+  }
+  EXPECT_LT(chi2, bsdf_checks::chi2_critical(dof - 1));
+}
+
+TEST(DirectionalTree, RefinesWhereEnergyIsAndCollapsesElsewhere) {
+  DirectionalTree t;
+  for (int i = 0; i < 100; ++i) t.add(t.cell_of(Vec2(0.9f, 0.9f)), 1.0);
+  t.sum_up();
+  const DirectionalTree r = t.refined(0.01);
+  // All the energy in one quadrant of the root: split while a quadrant
+  // holds more than 1%, the energy spread evenly inside the old leaf:
+  // 100%, 25%, 6.25%, 1.56%, then 0.39% stays whole.
+  EXPECT_EQ(r.depth(), 5);
+  EXPECT_EQ(r.total(), 0.0) << "the refined tree starts without energy";
+  // Energy spread evenly over four quadrants at 25% each: 6.25%, 1.56%,
+  // then 0.39% stays whole.
+  DirectionalTree even;
+  for (float x : {0.25f, 0.75f})
+    for (float y : {0.25f, 0.75f}) even.add(even.cell_of(Vec2(x, y)), 1.0);
+  even.sum_up();
+  EXPECT_EQ(even.refined(0.01).depth(), 4);
+  // No energy: the structure stays.
+  EXPECT_EQ(DirectionalTree().refined(0.01).node_count(), 1u);
+}
+
+TEST(DirectionalTree, EqualAreaSquareRoundTrips) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  for (int i = 0; i < 1000; ++i) {
+    const Vec2 p(u(rng), u(rng));
+    const Vec2 q = equal_area_sphere_to_square(equal_area_square_to_sphere(p));
+    EXPECT_NEAR(p.x, q.x, 1e-4f);
+    EXPECT_NEAR(p.y, q.y, 1e-4f);
+  }
+}
+
+TEST(SDTree, SplitsLeavesWithManyRecordsAndCopiesTheirDistribution) {
+  SDTree tree(Vec3(0.f), Vec3(2.f, 1.f, 1.f), GuidingSettings{100.0, 0.01});
+  const Vec3 a(0.2f, 0.5f, 0.5f), b(1.8f, 0.5f, 0.5f);
+  EXPECT_EQ(tree.leaf_of(a), tree.leaf_of(b));
+  const uint32_t leaf = tree.leaf_of(a);
+  const uint32_t cell = tree.leaf(leaf).learning[2].cell_of(Vec2(0.3f, 0.3f));
+  for (int i = 0; i < 1000; ++i) tree.add({leaf, cell, 1.f, 2});
+  tree.update(0);  // 1000 records over a limit of 100: split until each half holds at most 100
+  EXPECT_TRUE(tree.trained());
+  EXPECT_GE(tree.leaves().size(), 8u);
+  EXPECT_NE(tree.leaf_of(a), tree.leaf_of(b));
+  for (const SDTree::Leaf& l : tree.leaves()) {
+    EXPECT_GT(l.sampled[2].total(), 0.0) << "every part starts from the parent's distribution";
+    EXPECT_EQ(l.sampled[3].total(), 0.0) << "normals of other bins learn nothing from it";
+    EXPECT_EQ(l.learning[2].total(), 0.0);
+    EXPECT_EQ(l.records, 0u);
+  }
+  // A leaf with few records stays whole.
+  SDTree quiet(Vec3(0.f), Vec3(1.f), GuidingSettings{100.0, 0.01});
+  quiet.add({0, 0, 1.f, 0});
+  quiet.update(0);
+  EXPECT_EQ(quiet.leaves().size(), 1u);
+}
+
+namespace {
+
+// The mixture's sample estimates: their mean is the directional albedo
+// (unbiased, whichever technique drew them), and their directions follow
+// the mixture density the estimate divides by, where the BSDF is not zero
+// (chi-square over the 64 x 64 grid of the world's equal-area square).
+template <class BSDF>
+void expect_mixture_sound(const BSDF& bsdf, double albedo, const std::string& what) {
+  const DirectionalTree tree = lobed_tree(0.02);
+  ASSERT_LE(tree.depth(), 6);
+  const GuideAt guide{&tree};
+  const Frame frame = Frame::from_z(glm::normalize(Vec3(0.3f, 0.2f, 1.f)));
+  const Vec3 wo = glm::normalize(Vec3(0.2f, -0.1f, 1.f));  // local
+  const int n = 300000;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  double sum = 0.0, sum2 = 0.0;
+  std::vector<double> observed(kGrid * kGrid, 0.0);
+  for (int i = 0; i < n; ++i) {
+    const auto s = sample_scatter(bsdf, frame, wo, guide, u(rng), Vec2(u(rng), u(rng)), TransportMode::Radiance);
+    if (!s) continue;
+    const double w = s->weight[0];
+    sum += w, sum2 += w * w;
+    const Vec2 p = equal_area_sphere_to_square(s->wi);
+    observed[size_t(std::min(kGrid - 1, int(p.y * kGrid)) * kGrid + std::min(kGrid - 1, int(p.x * kGrid)))] += 1.0;
+  }
+  const double mean = sum / n, se = std::sqrt((sum2 / n - mean * mean) / n);
+  EXPECT_NEAR(mean, albedo, 4.0 * se + 1e-3 * albedo) << what << ": the estimates' mean is the albedo";
+  // Expected counts: the mixture density integrated over each bin, the
+  // guide's constant there, the BSDF's by 8 x 8 points.
+  double chi2 = 0.0;
+  int dof = 0;
+  for (int by = 0; by < kGrid; ++by)
+    for (int bx = 0; bx < kGrid; ++bx) {
+      double e = 0.0;
+      for (int sy = 0; sy < 8; ++sy)
+        for (int sx = 0; sx < 8; ++sx) {
+          const Vec2 p((bx + (sx + 0.5f) / 8.f) / kGrid, (by + (sy + 0.5f) / 8.f) / kGrid);
+          const Vec3 wi = frame.to_local(equal_area_square_to_sphere(p));
+          // (the guide's directions where the BSDF is zero end the path: no sample)
+          const bool reflects = bsdf.f(wo, wi, TransportMode::Radiance)[0] > 0.f;
+          const float pb = reflects ? bsdf.pdf(wo, wi, TransportMode::Radiance) : 0.f;
+          const float pg = reflects ? tree.pdf(p) * kInv4Pi : 0.f;
+          // mixture density over the sphere, times the sphere's area per point
+          e += (GuideAt::kBsdfFraction * pb + (1.f - GuideAt::kBsdfFraction) * pg) * (4.0 * kPi / (kGrid * kGrid * 64.0));
+        }
+      e *= n;
+      const double o = observed[size_t(by * kGrid + bx)];
+      if (e < 5.0) continue;
+      chi2 += sqr(o - e) / e;
+      ++dof;
+    }
+  EXPECT_LT(chi2, bsdf_checks::chi2_critical(dof - 1)) << what;
+}
+
+}  // namespace
+
+TEST(GuidedScatter, DiffuseMixtureIsUnbiasedAndFollowsItsDensity) {
+  expect_mixture_sound(DiffuseBSDF{Spectrum(0.6f)}, 0.6, "diffuse");
+}
+
+namespace {
+
+// A closed room lit by a small light near the ceiling, with diffuse,
+// rough conductor and coated (layered, whose sampled density is not its
+// pdf) surfaces.
+std::shared_ptr<Scene> guided_room() {
+  return load_scene_from_string(R"(
+LookAt 0 1 -2.6  0 1 0  0 1 0
+Camera "perspective" "float fov" [ 70 ]
+Film "rgb" "integer xresolution" [ 32 ] "integer yresolution" [ 32 ]
+WorldBegin
+Material "diffuse" "rgb reflectance" [ 0.7 0.6 0.5 ]
+Shape "trianglemesh" "point3 P" [ -2 0 -3  2 0 -3  2 0 2  -2 0 2 ] "integer indices" [ 0 1 2 0 2 3 ]
+Shape "trianglemesh" "point3 P" [ -2 2 -3  -2 2 2  2 2 2  2 2 -3 ] "integer indices" [ 0 1 2 0 2 3 ]
+Shape "trianglemesh" "point3 P" [ -2 0 2  2 0 2  2 2 2  -2 2 2 ] "integer indices" [ 0 1 2 0 2 3 ]
+Shape "trianglemesh" "point3 P" [ -2 0 -3  -2 2 -3  2 2 -3  2 0 -3 ] "integer indices" [ 0 1 2 0 2 3 ]
+Material "conductor" "float roughness" [ 0.3 ]
+Shape "trianglemesh" "point3 P" [ -2 0 -3  -2 0 2  -2 2 2  -2 2 -3 ] "integer indices" [ 0 1 2 0 2 3 ]
+Material "coateddiffuse" "rgb reflectance" [ 0.2 0.5 0.8 ] "float roughness" [ 0.2 ]
+Shape "trianglemesh" "point3 P" [ 2 0 -3  2 2 -3  2 2 2  2 0 2 ] "integer indices" [ 0 1 2 0 2 3 ]
+AttributeBegin
+  AreaLightSource "diffuse" "rgb L" [ 40 40 40 ]
+  Translate 1.2 1.8 1.2
+  Shape "sphere" "float radius" [ 0.08 ]
+AttributeEnd
+)",
+                                "guided-room.pbrt");
+}
+
+RenderOptions guided_options(bool guiding) {
+  RenderOptions o;
+  o.integrator = Integrator::Path;
+  o.guiding = guiding;
+  o.spp = 64;
+  o.maxdepth = 5;
+  return o;
+}
+
+}  // namespace
+
+// Guided paths converge to the unguided image: region means over
+// independent runs agree within 4.5 standard errors.
+TEST(Guiding, PathTracerConvergesToTheUnguidedImage) {
+  const auto scene = guided_room();
+  std::vector<Region> regions;
+  for (int y = 0; y < 32; y += 8)
+    for (int x = 0; x < 32; x += 8) regions.push_back({x, y, 8, 8});
+  const RegionStats plain = stats_of(render_runs(*scene, guided_options(false), 6, 100), regions);
+  const RegionStats guided = stats_of(render_runs(*scene, guided_options(true), 6, 200), regions);
+  max_z(plain, guided);
+  expect_means_agree(plain, guided, 0.0, "guided path");
+}
+
+TEST(Guiding, SameImageOnOneAndTwoThreadsAndReportsItsField) {
+  const auto scene = guided_room();
+  RenderOptions o = guided_options(true);
+  o.spp = 16;
+  expect_thread_invariant(*scene, o, {"path"});
+  o.collect_stats = true;
+  const RenderResult r = render(*scene, o);
+  EXPECT_EQ(r.stats.guiding_iterations, 4u);  // ended after passes 1, 3, 7 and 15 (the last sampled by pass 16)
+  EXPECT_GE(r.stats.guiding_leaves, 1u);
+  EXPECT_GT(r.stats.guiding_bytes, 0u);
+}
+
+TEST(Guiding, RefusesWhatItCannotDo) {
+  const auto scene = guided_room();
+  RenderOptions o = guided_options(true);
+  o.integrator = Integrator::Bdpt;
+  EXPECT_THROW(render(*scene, o), std::invalid_argument);
+  o = guided_options(true);
+  o.checkpoint_path = "/tmp/never-written.ckpt";
+  EXPECT_THROW(render(*scene, o), std::invalid_argument);
+  o = guided_options(true);
+  o.share_count = 2;
+  o.film_path = "/tmp/never-written.film";
+  EXPECT_THROW(render(*scene, o), std::invalid_argument);
+}
