@@ -7,7 +7,7 @@
 set -eu
 secs=${1:-150}
 shift 2>/dev/null || true
-scenes=${*:-"cornell-box cornell-box-tiny-light lantern door-ajar caustics lamp-street volumetric-caustic pool pool-water"}
+scenes=${*:-"cornell-box cornell-box-tiny-light lantern door-ajar caustics lamp-street volumetric-caustic pool pool-water spotlit-room"}
 lantern=${LANTERN:-build/lantern}
 mkdir -p perf/references
 for s in $scenes; do

@@ -31,8 +31,10 @@ DirectionalTree lobed_tree(double threshold) {
   for (int round = 0; round < 3; ++round) {
     for (int i = 0; i < 20000; ++i) {
       Vec2 p(u(rng), u(rng));
-      if (i % 3 == 0) p = Vec2(0.2f, 0.7f) + 0.1f * p;  // a lobe
-      else if (i % 3 == 1) p = Vec2(0.6f, 0.1f) + 0.25f * p;
+      if (i % 3 == 0)
+        p = Vec2(0.2f, 0.7f) + 0.1f * p;  // a lobe
+      else if (i % 3 == 1)
+        p = Vec2(0.6f, 0.1f) + 0.25f * p;
       t.add(t.cell_of(p), 1.0 + p.x);
     }
     t.sum_up();
@@ -127,7 +129,7 @@ TEST(SDTree, SplitsLeavesWithManyRecordsAndCopiesTheirDistribution) {
   EXPECT_EQ(tree.leaf_of(a), tree.leaf_of(b));
   const uint32_t leaf = tree.leaf_of(a);
   const uint32_t cell = tree.leaf(leaf).learning[2].cell_of(Vec2(0.3f, 0.3f));
-  for (int i = 0; i < 1000; ++i) tree.add({leaf, cell, 1.f, 2});
+  for (int i = 0; i < 1000; ++i) tree.add({leaf, cell, 1.f, 0.f, 0.f, -1.f, 2});
   tree.update(0);  // 1000 records over a limit of 100: split until each half holds at most 100
   EXPECT_TRUE(tree.trained());
   EXPECT_GE(tree.leaves().size(), 8u);
@@ -140,7 +142,7 @@ TEST(SDTree, SplitsLeavesWithManyRecordsAndCopiesTheirDistribution) {
   }
   // A leaf with few records stays whole.
   SDTree quiet(Vec3(0.f), Vec3(1.f), GuidingSettings{100.0, 0.01});
-  quiet.add({0, 0, 1.f, 0});
+  quiet.add({0, 0, 1.f, 0.f, 0.f, -1.f, 0});
   quiet.update(0);
   EXPECT_EQ(quiet.leaves().size(), 1u);
 }
@@ -155,7 +157,7 @@ template <class BSDF>
 void expect_mixture_sound(const BSDF& bsdf, double albedo, const std::string& what) {
   const DirectionalTree tree = lobed_tree(0.02);
   ASSERT_LE(tree.depth(), 6);
-  const GuideAt guide{&tree};
+  const GuideAt guide{&tree, 0.4f};
   const Frame frame = Frame::from_z(glm::normalize(Vec3(0.3f, 0.2f, 1.f)));
   const Vec3 wo = glm::normalize(Vec3(0.2f, -0.1f, 1.f));  // local
   const int n = 300000;
@@ -189,7 +191,7 @@ void expect_mixture_sound(const BSDF& bsdf, double albedo, const std::string& wh
           const float pb = reflects ? bsdf.pdf(wo, wi, TransportMode::Radiance) : 0.f;
           const float pg = reflects ? tree.pdf(p) * kInv4Pi : 0.f;
           // mixture density over the sphere, times the sphere's area per point
-          e += (GuideAt::kBsdfFraction * pb + (1.f - GuideAt::kBsdfFraction) * pg) * (4.0 * kPi / (kGrid * kGrid * 64.0));
+          e += guide.mix(pb, pg) * (4.0 * kPi / (kGrid * kGrid * 64.0));
         }
       e *= n;
       const double o = observed[size_t(by * kGrid + bx)];
@@ -201,6 +203,29 @@ void expect_mixture_sound(const BSDF& bsdf, double albedo, const std::string& wh
 }
 
 }  // namespace
+
+// The BSDF's share follows the samples' second moments: a guide that
+// matches the integrand where the BSDF does not takes most samples; one
+// that puts its density where nothing is found gives them back.
+TEST(SDTree, ChoosesTheBsdfShareWithTheLeastSecondMoment) {
+  SDTree tree(Vec3(0.f), Vec3(1.f));
+  const float alpha = SDTree::kFirstAlpha;
+  // Bin 0: the integrand is a narrow lobe of density 20 that the guide has
+  // (density 20 there) and the BSDF not (density 0.3); bin 1: the guide
+  // spends its density elsewhere (0.1 on the lobe), the BSDF matches it.
+  for (int i = 0; i < 2000; ++i) {
+    // Directions on the lobe, drawn by the mixture with the first alpha:
+    // F = f|cos|L / p_mix with f|cos|L = 20 (the integrand's density, up to a scale).
+    const float p0 = alpha * 0.3f + (1.f - alpha) * 20.f;
+    tree.add({0, 0, 0.f, 20.f * 20.f / p0, 0.3f, 20.f, 0});
+    const float p1 = alpha * 20.f + (1.f - alpha) * 0.1f;
+    tree.add({0, 0, 0.f, 20.f * 20.f / p1, 20.f, 0.1f, 1});
+  }
+  tree.update(0);
+  EXPECT_EQ(tree.leaf(0).alpha[0], SDTree::kAlphas.front());
+  EXPECT_EQ(tree.leaf(0).alpha[1], SDTree::kAlphas.back());
+  EXPECT_EQ(tree.leaf(0).alpha[2], SDTree::kFirstAlpha) << "no records: the share stays";
+}
 
 TEST(GuidedScatter, DiffuseMixtureIsUnbiasedAndFollowsItsDensity) {
   expect_mixture_sound(DiffuseBSDF{Spectrum(0.6f)}, 0.6, "diffuse");

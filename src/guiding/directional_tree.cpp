@@ -28,14 +28,13 @@ bool choose_second(float a, float b, float& u) {
 
 }  // namespace
 
-DirectionalTree::DirectionalTree() : child_(1, {0, 0, 0, 0}), energy_(4, 0.0), probability_(1, {0.f, 0.f, 0.f, 0.f}) {}
+DirectionalTree::DirectionalTree() : node_(1), energy_(4, 0.0) {}
 
 void DirectionalTree::normalise() {
-  probability_.resize(child_.size());
-  for (size_t n = 0; n < child_.size(); ++n) {
+  for (size_t n = 0; n < node_.size(); ++n) {
     const double* e = &energy_[4 * n];
     const double sum = e[0] + e[1] + e[2] + e[3];
-    for (uint32_t q = 0; q < 4; ++q) probability_[n][q] = sum > 0.0 ? float(e[q] / sum) : 0.f;
+    for (uint32_t q = 0; q < 4; ++q) node_[n].probability[q] = sum > 0.0 ? float(e[q] / sum) : 0.f;
   }
 }
 
@@ -43,7 +42,7 @@ uint32_t DirectionalTree::cell_of(Vec2 p) const {
   uint32_t n = 0;
   for (;;) {
     const uint32_t q = quadrant(p);
-    const uint32_t c = child_[n][q];
+    const uint32_t c = node_[n].child[q];
     if (c == 0) return 4 * n + q;
     n = c;
   }
@@ -52,9 +51,9 @@ uint32_t DirectionalTree::cell_of(Vec2 p) const {
 void DirectionalTree::sum_up() {
   // Children follow their parents, so walking backwards meets every child
   // before its parent.
-  for (size_t n = child_.size(); n-- > 0;)
+  for (size_t n = node_.size(); n-- > 0;)
     for (uint32_t q = 0; q < 4; ++q)
-      if (const uint32_t c = child_[n][q]; c != 0)
+      if (const uint32_t c = node_[n].child[q]; c != 0)
         energy_[4 * n + q] = energy_[4 * c] + energy_[4 * c + 1] + energy_[4 * c + 2] + energy_[4 * c + 3];
   normalise();
 }
@@ -65,7 +64,8 @@ Vec2 DirectionalTree::sample(Vec2 u, float* pdf) const {
   float size = 1.f, density = 1.f;
   u = glm::clamp(u, 0.f, 0x1.fffffep-1f);
   for (;;) {
-    const std::array<float, 4>& pr = probability_[n];
+    const Node& node = node_[n];
+    const std::array<float, 4>& pr = node.probability;
     // The column first (x: quadrants 0 and 2 against 1 and 3), then the row.
     const uint32_t x = choose_second(pr[0] + pr[2], pr[1] + pr[3], u.x) ? 1u : 0u;
     const uint32_t y = choose_second(pr[x], pr[x + 2], u.y) ? 1u : 0u;
@@ -73,7 +73,7 @@ Vec2 DirectionalTree::sample(Vec2 u, float* pdf) const {
     density *= 4.f * pr[q];
     size *= 0.5f;
     origin += size * Vec2(float(x), float(y));
-    const uint32_t c = child_[n][q];
+    const uint32_t c = node.child[q];
     if (c == 0) {
       *pdf = density;
       // Inside the cell, also where rounding would put it on the next one.
@@ -88,9 +88,10 @@ float DirectionalTree::pdf(Vec2 p) const {
   uint32_t n = 0;
   float density = 1.f;
   for (;;) {
+    const Node& node = node_[n];
     const uint32_t q = quadrant(p);
-    density *= 4.f * probability_[n][q];
-    const uint32_t c = child_[n][q];
+    density *= 4.f * node.probability[q];
+    const uint32_t c = node.child[q];
     if (c == 0 || density == 0.f) return density;
     n = c;
   }
@@ -100,7 +101,7 @@ DirectionalTree DirectionalTree::refined(double threshold) const {
   DirectionalTree out;
   const double all = total();
   if (!(all > 0.0)) {
-    out.child_ = child_;
+    out.node_ = node_;
     out.energy_.assign(energy_.size(), 0.0);
     out.normalise();
     return out;
@@ -120,11 +121,11 @@ DirectionalTree DirectionalTree::refined(double threshold) const {
     stack.pop_back();
     for (uint32_t q = 0; q < 4; ++q) {
       if (e.depth >= kMaxDepth || !(e.energy[q] > threshold * all)) continue;
-      const uint32_t c = uint32_t(out.child_.size());
-      out.child_[e.node][q] = c;
-      out.child_.push_back({0, 0, 0, 0});
+      const uint32_t c = uint32_t(out.node_.size());
+      out.node_[e.node].child[q] = c;
+      out.node_.emplace_back();
       out.energy_.insert(out.energy_.end(), 4, 0.0);
-      const uint32_t old = e.inside ? 0u : child_[e.old][q];
+      const uint32_t old = e.inside ? 0u : node_[e.old].child[q];
       Entry next{c, old, e.inside || old == 0, e.depth + 1, {}};
       for (uint32_t k = 0; k < 4; ++k) next.energy[k] = next.inside ? e.energy[q] * 0.25 : energy_[4 * old + k];
       stack.push_back(next);
@@ -135,28 +136,15 @@ DirectionalTree DirectionalTree::refined(double threshold) const {
 }
 
 int DirectionalTree::depth() const {
-  std::vector<int> d(child_.size(), 1);
+  std::vector<int> d(node_.size(), 1);
   int deepest = 1;
-  for (size_t n = 0; n < child_.size(); ++n)
-    for (uint32_t c : child_[n])
+  for (size_t n = 0; n < node_.size(); ++n)
+    for (uint32_t c : node_[n].child)
       if (c != 0) {
         d[c] = d[n] + 1;
         deepest = std::max(deepest, d[c]);
       }
   return deepest;
-}
-
-bool DirectionalTree::assign(std::vector<std::array<uint32_t, 4>> children, std::vector<double> energies) {
-  if (children.empty() || energies.size() != 4 * children.size()) return false;
-  for (size_t n = 0; n < children.size(); ++n)
-    for (uint32_t c : children[n])
-      if (c != 0 && (c <= n || c >= children.size())) return false;  // children after parents, in range
-  for (double v : energies)
-    if (!(v >= 0.0) || !std::isfinite(v)) return false;
-  child_ = std::move(children);
-  energy_ = std::move(energies);
-  normalise();
-  return true;
 }
 
 }  // namespace lantern

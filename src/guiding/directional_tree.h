@@ -46,26 +46,20 @@ class DirectionalTree {
   // Without energy the structure stays.
   DirectionalTree refined(double threshold) const;
 
-  size_t node_count() const { return child_.size(); }
+  size_t node_count() const { return node_.size(); }
   int depth() const;
-  size_t memory_bytes() const {
-    return child_.capacity() * sizeof(child_[0]) + energy_.capacity() * sizeof(double) +
-           probability_.capacity() * sizeof(probability_[0]);
-  }
-
-  // The raw arrays, for checkpoints: per node its four children (0: a leaf
-  // quadrant) and four energies.
-  const std::vector<std::array<uint32_t, 4>>& children() const { return child_; }
-  const std::vector<double>& energies() const { return energy_; }
-  // Rebuilt from those arrays; false if they do not form a tree.
-  bool assign(std::vector<std::array<uint32_t, 4>> children, std::vector<double> energies);
+  size_t memory_bytes() const { return node_.capacity() * sizeof(Node) + energy_.capacity() * sizeof(double); }
 
  private:
-  std::vector<std::array<uint32_t, 4>> child_;  // node 0 is the root; children come after their parent
-  std::vector<double> energy_;                  // 4 per node
-  // Per node, each quadrant's share of its energy (sum_up): what sampling
-  // and densities read, in floats, without a division.
-  std::vector<std::array<float, 4>> probability_;
+  // What sampling and densities read, together in 32 bytes: the children
+  // (0: a leaf quadrant) and each quadrant's share of the node's energy
+  // (sum_up), in floats, without a division.
+  struct Node {
+    std::array<uint32_t, 4> child{0, 0, 0, 0};
+    std::array<float, 4> probability{0.f, 0.f, 0.f, 0.f};
+  };
+  std::vector<Node> node_;      // node 0 is the root; children come after their parent
+  std::vector<double> energy_;  // 4 per node
   void normalise();
 };
 

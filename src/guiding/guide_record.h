@@ -14,7 +14,11 @@ struct GuideRecord {
   uint32_t leaf;  // the spatial leaf (SDTree::leaf_of)
   uint32_t cell;  // the cell of its directional tree for the vertex's normal (DirectionalTree::cell_of)
   float energy;
-  uint8_t bin;    // that normal's bin (SDTree::normal_bin)
+  // For the choice of the BSDF's share α: the squared estimate times the
+  // mixture density it was drawn with, (f |cos| L)^2 / p_mix, and the two
+  // densities of its direction (guide_pdf -1: drawn without a guide).
+  float second, bsdf_pdf, guide_pdf;
+  uint8_t bin;  // that normal's bin (SDTree::normal_bin)
 };
 
 }  // namespace lantern

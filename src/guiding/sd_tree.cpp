@@ -51,10 +51,24 @@ void SDTree::split(uint32_t n, uint32_t axis, uint64_t limit) {
   split(a + 1, next_axis, limit);
 }
 
+void SDTree::choose_alphas(Leaf& l) {
+  for (uint32_t b = 0; b < kNormalBins; ++b) {
+    if (l.moment_records[b] >= kAlphaMinRecords) {
+      const auto& m = l.moment[b];
+      l.alpha[b] = kAlphas[size_t(std::min_element(m.begin(), m.end()) - m.begin())];
+    }
+    l.moment[b].fill(0.0);
+    l.moment_records[b] = 0;
+  }
+}
+
 void SDTree::update(uint32_t iteration) {
-  for (Leaf& l : leaves_)
+  for (Leaf& l : leaves_) {
     for (DirectionalTree& d : l.learning) d.sum_up();
-  const uint64_t limit = uint64_t(settings_.spatial_threshold * std::sqrt(std::ldexp(1.0, int(std::min(iteration, 60u)))));
+    choose_alphas(l);
+  }
+  const uint64_t limit =
+      uint64_t(settings_.spatial_threshold * std::sqrt(std::ldexp(1.0, int(std::min(iteration, 60u)))));
   const size_t count = nodes_.size();  // the leaves before this update
   for (uint32_t n = 0; n < count; ++n)
     if (nodes_[n].child[0] == 0) split(n, nodes_[n].axis, limit);
@@ -74,27 +88,6 @@ size_t SDTree::memory_bytes() const {
   for (const Leaf& l : leaves_)
     for (uint32_t k = 0; k < kNormalBins; ++k) b += l.sampled[k].memory_bytes() + l.learning[k].memory_bytes();
   return b;
-}
-
-bool SDTree::assign(std::vector<Node> nodes, std::vector<Leaf> leaves, bool trained) {
-  if (nodes.empty() || leaves.empty()) return false;
-  std::vector<uint8_t> used(leaves.size(), 0);
-  for (size_t n = 0; n < nodes.size(); ++n) {
-    const Node& node = nodes[n];
-    if (node.axis > 2) return false;
-    if (node.child[0] == 0) {
-      if (node.child[1] != 0 || node.leaf >= leaves.size() || used[node.leaf]) return false;
-      used[node.leaf] = 1;
-    } else if (node.child[0] <= n || node.child[0] >= nodes.size() || node.child[1] <= n ||
-               node.child[1] >= nodes.size()) {
-      return false;
-    }
-  }
-  if (std::count(used.begin(), used.end(), 1) != std::ptrdiff_t(leaves.size())) return false;
-  nodes_ = std::move(nodes);
-  leaves_ = std::move(leaves);
-  trained_ = trained;
-  return true;
 }
 
 }  // namespace lantern

@@ -20,10 +20,20 @@
 // dark side of a wall towards the light on the bright side, below its own
 // surface, where the BSDF is zero: on a scene of two rooms joined by a
 // door ajar (scenes/door-ajar.pbrt) 27% of guided paths ended so.
+//
+// Each leaf and normal also chooses the BSDF's share α of the mixture it
+// is sampled with (integrator/guided_scatter.h), where the paper fixes 0.5
+// and Müller 2019 learns it by gradient descent. Here: each record of the
+// iteration carries its estimate F = f |cos| L / p_mix and the two
+// densities of its direction, and for every candidate α' the second moment
+// the mixture with α' would give, E[(f |cos| L)^2 / p'], is estimated from
+// the same samples by reweighting, (f |cos| L)^2 / (p_mix p'); the
+// candidate with the least becomes α. Where the guide does not pay, α goes
+// up to 0.95 and the path tracer is nearly the unguided one; where it
+// does, down to 0.15.
 #pragma once
 
 #include <array>
-
 #include <cstdint>
 #include <vector>
 
@@ -34,8 +44,8 @@
 namespace lantern {
 
 struct GuidingSettings {
-  double spatial_threshold = 12000.0;    // c
-  double directional_threshold = 0.01;   // ρ
+  double spatial_threshold = 12000.0;   // c
+  double directional_threshold = 0.01;  // ρ
 };
 
 class SDTree {
@@ -48,10 +58,20 @@ class SDTree {
     return 2u * axis + (n[int(axis)] < 0.f ? 1u : 0u);
   }
 
+  static constexpr std::array<float, 6> kAlphas = {0.15f, 0.3f, 0.5f, 0.7f, 0.85f, 0.95f};
+  static constexpr float kFirstAlpha = 0.5f;         // until the records say otherwise (the paper's)
+  static constexpr uint32_t kAlphaMinRecords = 256;  // guided records a choice needs
+
   struct Leaf {
     std::array<DirectionalTree, kNormalBins> sampled, learning;
     uint64_t records = 0;  // this iteration's
     Vec3 size{0.f};        // the extents of its box
+    std::array<float, kNormalBins> alpha;
+    // This iteration's second moments per candidate, and the records they
+    // came from.
+    std::array<std::array<double, kAlphas.size()>, kNormalBins> moment{};
+    std::array<uint32_t, kNormalBins> moment_records{};
+    Leaf() { alpha.fill(kFirstAlpha); }
   };
   struct Node {
     uint32_t child[2] = {0, 0};  // 0: a leaf
@@ -67,6 +87,12 @@ class SDTree {
     Leaf& l = leaves_[r.leaf];
     l.learning[r.bin].add(r.cell, double(r.energy));
     ++l.records;
+    if (r.guide_pdf < 0.f) return;
+    ++l.moment_records[r.bin];
+    for (size_t c = 0; c < kAlphas.size(); ++c) {
+      const float p = kAlphas[c] * r.bsdf_pdf + (1.f - kAlphas[c]) * r.guide_pdf;
+      if (p > 0.f) l.moment[r.bin][c] += double(r.second) / double(p);
+    }
   }
   // Ends iteration k (0 first): what was learnt is sampled from now on.
   void update(uint32_t iteration);
@@ -80,11 +106,9 @@ class SDTree {
   float extent() const { return extent_; }
   size_t memory_bytes() const;
 
-  // Rebuilt from a checkpoint's copy; false if the parts do not fit.
-  bool assign(std::vector<Node> nodes, std::vector<Leaf> leaves, bool trained);
-
  private:
   void split(uint32_t node, uint32_t depth_axis, uint64_t limit);
+  static void choose_alphas(Leaf& l);
 
   Vec3 lo_;
   float extent_;  // of the cube the tree divides

@@ -12,7 +12,6 @@
 
 #include "guiding/guide_record.h"
 #include "guiding/sd_tree.h"
-#include "math/equal_area.h"
 #include "math/rng.h"
 #include "math/spectrum.h"
 
@@ -20,20 +19,24 @@ namespace lantern {
 
 struct GuideVertices {
   std::vector<uint32_t> slot, leaf;
-  std::vector<Vec3> p, w;
-  std::vector<uint8_t> bin;  // of the normal (SDTree::normal_bin)
-  std::vector<float> pdf;
+  std::vector<Vec3> p;
+  std::vector<Vec2> w;                                // the direction, on the equal-area square
+  std::vector<uint8_t> bin;                           // of the normal (SDTree::normal_bin)
+  std::vector<float> pdf, fcos, bsdf_pdf, guide_pdf;  // fcos: f |cos| of the direction (averaged over wavelengths)
   std::vector<Spectrum> beta, L;
   size_t bounce_start = 0;  // the first vertex of the current bounce
 
   void clear() {
-    slot.clear(), leaf.clear(), p.clear(), w.clear(), bin.clear(), pdf.clear(), beta.clear(), L.clear();
+    slot.clear(), leaf.clear(), p.clear(), w.clear(), bin.clear(), pdf.clear(), fcos.clear(), bsdf_pdf.clear(),
+        guide_pdf.clear(), beta.clear(), L.clear();
     bounce_start = 0;
   }
   size_t size() const { return slot.size(); }
-  void push(uint32_t s, uint32_t spatial_leaf, const Vec3& position, uint32_t normal_bin, const Vec3& dir,
-            float density, const Spectrum& throughput) {
-    slot.push_back(s), leaf.push_back(spatial_leaf), p.push_back(position), bin.push_back(uint8_t(normal_bin)), w.push_back(dir);
+  void push(uint32_t s, uint32_t spatial_leaf, const Vec3& position, uint32_t normal_bin, Vec2 dir, float density,
+            float f_cos, float density_bsdf, float density_guide, const Spectrum& throughput) {
+    fcos.push_back(f_cos), bsdf_pdf.push_back(density_bsdf), guide_pdf.push_back(density_guide);
+    slot.push_back(s), leaf.push_back(spatial_leaf), p.push_back(position), bin.push_back(uint8_t(normal_bin)),
+        w.push_back(dir);
     pdf.push_back(density);
     beta.push_back(throughput);
     L.emplace_back(0.f);
@@ -62,12 +65,16 @@ struct GuideVertices {
       RandomStream r = RandomStream::make(key, v, 0x6775696465ULL);
       const Vec3 jittered = p[v] + tree.leaf(leaf[v]).size * (Vec3(r.get1d(), r.get1d(), r.get1d()) - 0.5f);
       const uint32_t into = tree.leaf_of(jittered);
-      const uint32_t cell = tree.leaf(into).learning[bin[v]].cell_of(equal_area_sphere_to_square(w[v]));
-      out.push_back({into, cell, energy, bin[v]});
+      const uint32_t cell = tree.leaf(into).learning[bin[v]].cell_of(w[v]);
+      const float estimate = fcos[v] * Li, second = estimate * estimate / pdf[v];
+      // (a second moment too large for a float says nothing of α: left out)
+      out.push_back({into, cell, energy, second, bsdf_pdf[v], std::isfinite(second) ? guide_pdf[v] : -1.f, bin[v]});
     }
   }
   size_t memory_bytes() const {
-    return (slot.capacity() + leaf.capacity()) * 4 + bin.capacity() + (p.capacity() + w.capacity()) * sizeof(Vec3) + pdf.capacity() * 4 +
+    return (slot.capacity() + leaf.capacity()) * 4 + bin.capacity() + p.capacity() * sizeof(Vec3) +
+           w.capacity() * sizeof(Vec2) +
+           (pdf.capacity() + fcos.capacity() + bsdf_pdf.capacity() + guide_pdf.capacity()) * 4 +
            (beta.capacity() + L.capacity()) * sizeof(Spectrum);
   }
 };

@@ -1,10 +1,10 @@
 // Continuing a path by one-sample MIS between the BSDF and the guiding
-// field's distribution at the vertex (Müller et al. 2017, sec. 5, with a
-// fixed BSDF sampling fraction α; the paper's 0.5 left 10-35% more error
-// than 0.7 at equal samples on three shipped scenes: docs/guiding.md).
-// The estimate of a direction wi is
+// field's distribution at the vertex (Müller et al. 2017, sec. 5), the
+// BSDF chosen with probability α. The estimate of a direction wi is
 //   f(wi) |cos| / p_mix(wi),  p_mix = α p_bsdf + (1 - α) p_guide,
 // whichever technique drew it (Veach 1997, sec. 9.2.4, balance heuristic).
+// α is the field's, per leaf and normal (guiding/sd_tree.h: chosen by the
+// samples' second moment).
 //
 // Layered BSDFs return a stochastic f with a sample whose density they do
 // not know (BSDFSample::pdf_is_proportional); their pdf() is an estimate,
@@ -30,25 +30,25 @@ namespace lantern {
 // The guiding distribution at one vertex; tree null where there is none
 // (a BSDF that is all delta, a leaf without energy, before learning).
 struct GuideAt {
-  static constexpr float kBsdfFraction = 0.7f;  // α
   const DirectionalTree* tree = nullptr;
+  float alpha = 1.f;  // the BSDF's share
 
   explicit operator bool() const { return tree != nullptr; }
-  // Solid-angle density of world direction w.
-  float pdf(const Vec3& w) const { return sphere_pdf(tree->pdf(equal_area_sphere_to_square(w))); }
-  // The mixture's density given the BSDF's: what MIS against light
-  // sampling sees of the scattering technique.
-  float mix(float bsdf_pdf, const Vec3& w) const {
-    return tree ? kBsdfFraction * bsdf_pdf + (1.f - kBsdfFraction) * pdf(w) : bsdf_pdf;
-  }
+  // Solid-angle density of the direction at point p of the equal-area square.
+  float pdf(Vec2 p) const { return sphere_pdf(tree->pdf(p)); }
+  float mix(float bsdf_pdf, float guide_pdf) const { return alpha * bsdf_pdf + (1.f - alpha) * guide_pdf; }
 };
 
 struct ScatterSample {
-  Vec3 wi{0.f};       // world
-  Vec3 wi_local{0.f};  // shading frame
+  Vec3 wi{0.f};          // world
+  Vec3 wi_local{0.f};    // shading frame
+  Vec2 square{0.f};      // wi on the equal-area square, where there is a guide (guide_pdf >= 0)
   Spectrum weight{0.f};  // f |cos| / density: what the throughput is multiplied by
   float pdf = 0.f;       // the density MIS uses (the mixture's; the BSDF's own for a delta sample)
-  float etap = 1.f;      // relative index along wi (1 where a guided direction refracts: roulette only reads it)
+  // Its parts: the BSDF's density (pdf()'s; what MIS against light
+  // sampling uses) and the guide's (-1 without a guide).
+  float bsdf_pdf = 0.f, guide_pdf = -1.f;
+  float etap = 1.f;  // relative index along wi (1 where a guided direction refracts: roulette only reads it)
   bool specular = false, transmission = false;
 };
 
@@ -58,7 +58,7 @@ template <class BSDF>
 std::optional<ScatterSample> sample_scatter(const BSDF& bsdf, const Frame& frame, const Vec3& wo, const GuideAt& guide,
                                             float uc, Vec2 u2, TransportMode mode) {
   ScatterSample s;
-  constexpr float a = GuideAt::kBsdfFraction;
+  const float a = guide.alpha;
   if (!guide || uc < a) {
     if (guide) uc = std::min(uc / a, 0x1.fffffep-1f);
     auto bs = bsdf.sample_f(wo, uc, u2, mode);
@@ -69,26 +69,30 @@ std::optional<ScatterSample> sample_scatter(const BSDF& bsdf, const Frame& frame
     s.specular = bs->specular;
     s.transmission = bs->transmission;
     s.weight = bs->f * (std::fabs(bs->wi.z) / bs->pdf);
-    const float bsdf_pdf = bs->pdf_is_proportional ? bsdf.pdf(wo, bs->wi, mode) : bs->pdf;
+    s.bsdf_pdf = bs->pdf_is_proportional ? bsdf.pdf(wo, bs->wi, mode) : bs->pdf;
     if (!guide) {
-      s.pdf = bsdf_pdf;
+      s.pdf = s.bsdf_pdf;
     } else if (bs->specular) {
       s.pdf = bs->pdf;
       s.weight /= a;
     } else {
-      s.pdf = guide.mix(bsdf_pdf, s.wi);
+      s.square = equal_area_sphere_to_square(s.wi);
+      s.guide_pdf = guide.pdf(s.square);
+      s.pdf = guide.mix(s.bsdf_pdf, s.guide_pdf);
       if (!(s.pdf > 0.f)) return std::nullopt;
-      s.weight *= bsdf_pdf / s.pdf;
+      s.weight *= s.bsdf_pdf / s.pdf;
     }
     return s;
   }
   float square_pdf = 0.f;
-  const Vec2 p = guide.tree->sample(u2, &square_pdf);
-  s.wi = glm::normalize(equal_area_square_to_sphere(p));
+  s.square = guide.tree->sample(u2, &square_pdf);
+  s.wi = glm::normalize(equal_area_square_to_sphere(s.square));
   s.wi_local = frame.to_local(s.wi);
   const Spectrum f = bsdf.f(wo, s.wi_local, mode);
   if (is_black(f)) return std::nullopt;
-  s.pdf = a * bsdf.pdf(wo, s.wi_local, mode) + (1.f - a) * sphere_pdf(square_pdf);
+  s.bsdf_pdf = bsdf.pdf(wo, s.wi_local, mode);
+  s.guide_pdf = sphere_pdf(square_pdf);
+  s.pdf = guide.mix(s.bsdf_pdf, s.guide_pdf);
   if (!(s.pdf > 0.f)) return std::nullopt;
   s.weight = f * (std::fabs(s.wi_local.z) / s.pdf);
   s.transmission = s.wi_local.z * wo.z < 0.f;

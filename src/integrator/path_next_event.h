@@ -3,11 +3,12 @@
 // against the scattering strategy by the power heuristic (Veach 1997,
 // sec. 9.2). In a scene with media the weight waits for the shadow ray's
 // transmittance, which the scattering strategy's density contains
-// (PathTracer::media_shadow_stage). Where paths are guided, the scattering
-// technique is the mixture of BSDF and guide (integrator/guided_scatter.h).
+// (PathTracer::media_shadow_stage). Where paths are guided, the weight
+// still sees the BSDF's density alone, as the path's hits of emitters do
+// (PathTracer::shade_stage): any density both sides use gives weights that
+// sum to one, and the mixture's would cost a look-up per light sample.
 #pragma once
 
-#include "integrator/guided_scatter.h"
 #include "integrator/path_wave.h"
 #include "integrator/vertex.h"
 #include "integrator/volume_lights.h"
@@ -17,7 +18,7 @@ namespace lantern {
 
 template <class Vertex>
 void path_next_event(const Scene& sc, const LightSampler& light_sampler, PathWave& w, uint32_t slot, const Vertex& v,
-                     float u_light, Vec2 u_light2, float u_volume, int maxdepth, const GuideAt& guide = {}) {
+                     float u_light, Vec2 u_light2, float u_volume, int maxdepth) {
   ++w.stats.light_samples;
   const SampledWavelengths& lambda = w.lambda[slot];
   auto ls = sample_light(sc.lights, sc.shapes, sc.textures, light_sampler, v.p, v.light_sampler_normal(), u_light,
@@ -29,9 +30,8 @@ void path_next_event(const Scene& sc, const LightSampler& light_sampler, PathWav
     complete_volume_sample(sc.lights, sc.media, &ls->L, ls->p_light, ls->light, lambda, &expect, &sigma_end);
   }
   if (!ls || is_black(ls->L)) return;
-  VertexEval e = v.evaluate(ls->wi, false);
+  const VertexEval e = v.evaluate(ls->wi, false);
   if (is_black(e.f)) return;
-  e.pdf_fwd = guide.mix(e.pdf_fwd, ls->wi);  // the scattering technique's density, guided or not
   const Vec3 o = v.ray_origin(ls->wi);
   if (!sc.media.empty()) {
     push_media_shadow_ray(w, slot, o, *ls, v.medium_towards(sc, ls->wi), ls->delta ? 0.f : ls->pdf, e.pdf_fwd,

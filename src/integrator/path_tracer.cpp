@@ -133,8 +133,9 @@ void PathTracer::surface_stage(PathWave& w) const {
 // The field's distribution in a leaf for a normal, if it has one.
 GuideAt PathTracer::guide_at(uint32_t leaf, uint32_t normal_bin) const {
   if (!guiding_->tree().trained()) return {};
-  const DirectionalTree& d = guiding_->tree().leaf(leaf).sampled[normal_bin];
-  return d.total() > 0.0 ? GuideAt{&d} : GuideAt{};
+  const SDTree::Leaf& l = guiding_->tree().leaf(leaf);
+  const DirectionalTree& d = l.sampled[normal_bin];
+  return d.total() > 0.0 ? GuideAt{&d, l.alpha[normal_bin]} : GuideAt{};
 }
 
 // Next-event estimation and BSDF sampling in one loop per material kind,
@@ -163,8 +164,7 @@ void PathTracer::shade_stage(PathWave& w) const {
       guide = guide_at(leaf, normal_bin);
     }
     if (!bsdf.is_specular())
-      path_next_event(sc, light_sampler_, w, slot, v, u_light, u_light2, volume_number(w, slot), settings_.maxdepth,
-                      guide);
+      path_next_event(sc, light_sampler_, w, slot, v, u_light, u_light2, volume_number(w, slot), settings_.maxdepth);
     // Continue the path by sampling the BSDF, or the mixture with the guide.
     float uc = s.get1d(dim + dims::kEyeBsdfComponent);
     Vec2 u2 = s.get2d(dim + dims::kEyeBsdfDirection);
@@ -176,7 +176,7 @@ void PathTracer::shade_stage(PathWave& w) const {
     }
     const Vec3 wi = bs->wi;
     w.beta[slot] *= bs->weight;
-    w.prev_pdf[slot] = bs->pdf;
+    w.prev_pdf[slot] = bs->bsdf_pdf;  // MIS with light sampling: the BSDF's density (path_next_event.h)
     w.prev_specular[slot] = bs->specular;
     if (bs->transmission) w.eta_scale[slot] *= sqr(bs->etap);
     if (!survives_roulette(w.beta[slot], w.eta_scale[slot], 1.f, w.depth >= 2, u_rr)) {
@@ -187,7 +187,9 @@ void PathTracer::shade_stage(PathWave& w) const {
       ++w.stats.eye_ends[size_t(PathEnd::Absorbed)];
       return;
     }
-    if (guided && guiding_->learning() && !bs->specular) w.guide.push(slot, leaf, v.p, normal_bin, wi, bs->pdf, w.beta[slot]);
+    if (guided && guiding_->learning() && !bs->specular)
+      w.guide.push(slot, leaf, v.p, normal_bin, bs->guide_pdf >= 0.f ? bs->square : equal_area_sphere_to_square(wi),
+                   bs->pdf, average(bs->weight) * bs->pdf, bs->bsdf_pdf, bs->guide_pdf, w.beta[slot]);
     w.hits.alive[i] = 1;
     w.prev_p[slot] = w.hits.p[i];
     w.prev_n[slot] = w.hits.ns[i];
