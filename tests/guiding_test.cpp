@@ -308,4 +308,8 @@ TEST(Guiding, RefusesWhatItCannotDo) {
   o.share_count = 2;
   o.film_path = "/tmp/never-written.film";
   EXPECT_THROW(render(*scene, o), std::invalid_argument);
+  // MPI's ranks take units by tickets.
+  RenderHooks tickets;
+  tickets.next_ticket = [] { return UINT64_MAX; };
+  EXPECT_THROW(render(*scene, guided_options(true), tickets), std::invalid_argument);
 }

@@ -480,6 +480,9 @@ RenderResult RenderSession::render_all() {
       throw std::invalid_argument("a target error (adaptive sampling) needs the whole render in one process: not with "
                                   "--part or MPI");
   }
+  // MPI hands out units by tickets: each rank would learn another field.
+  if (opt.guiding && s.hooks.next_ticket)
+    throw std::invalid_argument("path guiding (--guide) needs the whole render in one process: not with MPI");
   // Low-discrepancy samplers lay a pixel's samples out for the count they
   // plan for; under a time budget the count is open.
   const uint32_t planned_spp = opt.time_limit_seconds > 0 ? 0u : uint32_t(opt.spp);
