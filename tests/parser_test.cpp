@@ -152,7 +152,7 @@ TEST(Parser, NearMissesOfWantedParametersAreErrors) {
   expect_load_error("WorldBegin\nMaterial \"conductor\" \"float roughnes\" 0.1\n", "m.pbrt", {"roughnes", "\"roughness\""});
   expect_load_error("Film \"rgb\" \"integer xresolutoin\" 64\n", "f.pbrt", {"xresolutoin", "\"xresolution\""});
   std::vector<std::string> warnings;
-  load("Film \"rgb\" \"float diagonal\" 35 \"integer xresolution\" 8 \"integer yresolution\" 8\n"
+  load("Film \"rgb\" \"bool savefp16\" true \"integer xresolution\" 8 \"integer yresolution\" 8\n"
        "Camera \"perspective\" \"float fov\" 45 \"float frameaspectratio\" 1\nWorldBegin\n",
        &warnings);
   size_t ignored = 0;

@@ -3,6 +3,7 @@
 
 #include "lantern/options.h"
 #include <array>
+#include <limits>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -43,6 +44,10 @@ struct SceneSettings {
   // "whitebalance" (kelvin, 0: none), and the Camera's shutter interval,
   // whose product with iso / 100 scales the image.
   float iso = 100.f, whitebalance = 0.f, exposure_time = 1.f;
+  // Film "maxcomponentvalue": a sample whose largest component in the
+  // sensor's RGB (for "cie1931", XYZ times the imaging ratio) is above it
+  // is scaled down to it, as pbrt-v4's RGB film does (infinite: never).
+  float max_component_value = std::numeric_limits<float>::infinity();
   // The image's colour space: the ColorSpace in effect at Film (pbrt-v4's
   // names: srgb, rec2020, dci-p3, aces2065-1). The renderer's colours are
   // linear sRGB; the sensor converts.

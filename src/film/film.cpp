@@ -40,12 +40,12 @@ void Film::prepare(WaveOutput& out) const {
   out.nonfinite = 0;
   out.sample_terms.reserve(out.samples.size());
   for (const FilmSample& s : out.samples) {
-    const RGB L = sensed(s.L);
+    const RGB L = sensed(clamped(s.L));
     if (addable(L)) out.sample_terms.push_back(fixed_term(s.pixel, L, s.odd));
     else ++out.nonfinite;
   }
   for (const Splat& s : out.splats) {
-    const RGB L = sensed(s.L);
+    const RGB L = sensed(clamped(s.L));
     if (!addable(L)) {
       ++out.nonfinite;
       continue;

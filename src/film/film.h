@@ -13,6 +13,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "lantern/image.h"
@@ -129,6 +130,21 @@ class Film {
                m[6] * c[0] + m[7] * c[1] + m[8] * c[2]);
   }
 
+  // pbrt-v4's Film "maxcomponentvalue": a sample or splat whose largest
+  // sensor component (rows of `to_sensor` times its linear RGB) exceeds
+  // `value` is scaled so that it is `value`. Infinite: never (the default).
+  void set_max_component(float value, const std::array<float, 9>& to_sensor) {
+    max_component_ = value;
+    to_sensor_ = to_sensor;
+  }
+  RGB clamped(const RGB& c) const {
+    if (!(max_component_ < std::numeric_limits<float>::infinity())) return c;
+    const float* m = to_sensor_.data();
+    const float largest = std::fmax(m[0] * c[0] + m[1] * c[1] + m[2] * c[2],
+                                    std::fmax(m[3] * c[0] + m[4] * c[1] + m[5] * c[2], m[6] * c[0] + m[7] * c[1] + m[8] * c[2]));
+    return largest > max_component_ ? c * (max_component_ / largest) : c;
+  }
+
   // Converts a wave's samples and splats (filtered onto pixels) to
   // fixed-point terms, through the sensor. Thread-safe: waves call it in
   // parallel.
@@ -201,6 +217,8 @@ class Film {
   PixelFilter filter_;
   std::array<float, 9> sensor_{1, 0, 0, 0, 1, 0, 0, 0, 1};
   bool has_sensor_ = false;
+  float max_component_ = std::numeric_limits<float>::infinity();
+  std::array<float, 9> to_sensor_{1, 0, 0, 0, 1, 0, 0, 0, 1};
   std::vector<FixedSum> sum_, splat_, odd_, odd_splat_;
   std::vector<double> thresholds_;
   std::vector<uint8_t> masks_;

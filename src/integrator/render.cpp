@@ -398,6 +398,12 @@ struct RenderSession::State {
     std::array<float, 9> sensor;
     for (size_t i = 0; i < 9; ++i) sensor[i] = float(m[i / 3][i % 3]);
     film.set_sensor(sensor);
+    // pbrt-v4's "cie1931" sensor RGB: XYZ times the imaging ratio (its
+    // white balance comes after, with the output conversion).
+    const double ratio = double(s.settings.exposure_time) * double(s.settings.iso) / 100.0;
+    std::array<float, 9> to_xyz;
+    for (size_t i = 0; i < 9; ++i) to_xyz[i] = float(ratio * ColorSpace::srgb().rgb_to_xyz[i / 3][i % 3]);
+    film.set_max_component(s.settings.max_component_value, to_xyz);
   }
   const Scene& scene;
   const RenderOptions opt;

@@ -96,6 +96,13 @@ void SceneBuilder::film(const std::string& type, const ParamSet& ps) {
   if (!(s.whitebalance >= 0.f) || !std::isfinite(s.whitebalance))
     ps.fail(*ps.find("whitebalance"), "\"whitebalance\" must be a temperature in kelvin, or 0 for none");
   s.color_space = ps.color_space ? std::string(ps.color_space->name) : "srgb";
+  s.max_component_value = ps.get_float("maxcomponentvalue", std::numeric_limits<float>::infinity());
+  if (!(s.max_component_value > 0.f))
+    ps.fail(*ps.find("maxcomponentvalue"), "\"maxcomponentvalue\" must be a number > 0 (the largest sensor RGB "
+                                           "component a sample keeps)");
+  // The sensor's diagonal in mm: pbrt-v4's realistic camera alone reads it
+  // (Lantern refuses that camera), so it changes nothing here.
+  if (!(ps.get_float("diagonal", 35.f) > 0.f)) ps.fail(*ps.find("diagonal"), "\"diagonal\" must be a length in mm > 0");
   crop(ps);
   const std::string sensor = ps.get_string("sensor", "cie1931");
   if (sensor != "cie1931")
