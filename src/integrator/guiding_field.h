@@ -27,15 +27,17 @@ class GuidingField {
 
   const SDTree& tree() const { return tree_; }
   // Whether the waves of the current iteration record: the field they
-  // learn is sampled by a later pass. (Once not, never again: the last
-  // field learnt serves to the end, and recording costs nothing more.)
-  bool learning() const { return !done_ && (passes_ == 0 || iteration_end() < passes_); }
+  // learn is sampled for at least as many passes as the iteration lasts.
+  // (Once not, never again: the last field learnt serves to the end, and
+  // recording costs nothing more.)
+  bool learning() const { return !done_ && (passes_ == 0 || pays(passes_)); }
   // Under a time budget: the passes the render is expected to reach.
   void expect_passes(uint64_t passes) {
-    if (!done_ && passes > 0 && iteration_end() >= passes) done_ = true;
+    if (!done_ && passes > 0 && !pays(passes)) done_ = true;
   }
   // The pass count at which the current iteration ends.
   uint64_t iteration_end() const { return (uint64_t(2) << iteration_) - 1; }
+  uint64_t iteration_length() const { return uint64_t(1) << iteration_; }
   uint32_t iteration() const { return iteration_; }
 
   void deposit(const std::vector<GuideRecord>& records) {
@@ -47,6 +49,8 @@ class GuidingField {
   }
 
  private:
+  bool pays(uint64_t passes) const { return iteration_end() + iteration_length() <= passes; }
+
   SDTree tree_;
   uint64_t passes_;
   uint32_t iteration_ = 0;
