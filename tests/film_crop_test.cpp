@@ -5,6 +5,7 @@
 // on crops, and they are held here to Lantern's own uncropped image).
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <stdexcept>
 
 #include "expect_error.h"
@@ -88,6 +89,32 @@ TEST(FilmCrop, PixelBoundsAndTheirErrors) {
   expect_load_error(scene_with("\"float cropwindow\" [0 1 0]"), "cw.pbrt", {"cw.pbrt:3", "four values"});
   auto empty = load_scene_from_string(scene_with("\"float cropwindow\" [0.5 0.5 0 1]"), "e.pbrt", {});
   EXPECT_THROW(render(*empty, RenderOptions{.spp = 1}), std::invalid_argument);
+}
+
+// A film larger than the machine's memory is refused before it is
+// allocated, saying what it needs and what to do; a crop of the same image
+// needs only its own pixels.
+TEST(FilmCrop, AFilmTooLargeForMemoryIsRefusedWithWhatItNeeds) {
+  {
+    std::ifstream meminfo("/proc/meminfo");
+    std::string key;
+    double kb = 0.0;
+    while (meminfo >> key >> kb && key != "MemAvailable:") meminfo.ignore(256, '\n');
+    if (kb > 300.0 * 1024 * 1024) GTEST_SKIP() << "this machine has room for a 256 GiB film";
+  }
+  auto scene = load_scene_from_string(scene_with(""), "big.pbrt", {});
+  RenderOptions o{.spp = 1};
+  o.width = o.height = 65536;  // 4.3 billion pixels: about 256 GiB
+  try {
+    render(*scene, o);
+    ADD_FAILURE() << "a 65536x65536 film was not refused";
+  } catch (const std::invalid_argument& e) {
+    const std::string msg = e.what();
+    for (const char* f : {"65536x65536 film needs about 256.0 GiB", "available", "cropwindow"})
+      EXPECT_NE(msg.find(f), std::string::npos) << msg;
+  }
+  auto cropped = load_scene_from_string(scene_with("\"integer pixelbounds\" [0 8 0 8]"), "crop.pbrt", {});
+  EXPECT_EQ(render(*cropped, o).image.width, 8);
 }
 
 }  // namespace

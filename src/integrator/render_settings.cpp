@@ -2,12 +2,55 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <stdexcept>
 #include <string>
 
 #include "scene/scene.h"
 
 namespace lantern {
+
+namespace {
+
+// The memory the system can give without swapping (Linux's MemAvailable),
+// in bytes; 0 when it cannot be read.
+double available_memory() {
+  std::ifstream in("/proc/meminfo");
+  std::string key;
+  double kb = 0.0;
+  while (in >> key >> kb) {
+    if (key == "MemAvailable:") return kb * 1024.0;
+    in.ignore(256, '\n');
+  }
+  return 0.0;
+}
+
+std::string gib(double bytes) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.1f GiB", bytes / (1024.0 * 1024.0 * 1024.0));
+  return b;
+}
+
+// A film too large for the machine is refused before it is allocated,
+// with what it needs: per pixel the colour sums (3 x 16 bytes), the sample
+// count, the resolved image (3 x 4 bytes), light tracing's splat sums (3 x
+// 16) and adaptive sampling's half-buffers (2 x 3 x 16, masks).
+void check_film_memory(const Scene& scene, const RenderOptions& opt) {
+  const ImageRegion r = image_region(scene, opt);
+  const double pixels = double(r.width) * double(r.height);
+  double per_pixel = 48.0 + 4.0 + 12.0;
+  if (opt.integrator != Integrator::Path) per_pixel += 48.0;
+  if (opt.target_error > 0) per_pixel += 96.0 + 2.0;
+  const double need = pixels * per_pixel, have = available_memory();
+  if (have > 0.0 && need > have)
+    throw std::invalid_argument("a " + std::to_string(r.width) + "x" + std::to_string(r.height) + " film needs about " +
+                                gib(need) + " (" + std::to_string(int(per_pixel)) + " bytes a pixel), more than the " +
+                                gib(have) + " this machine has available: render a smaller image, or a part of it (Film "
+                                "\"cropwindow\" or \"pixelbounds\")");
+}
+
+}  // namespace
 
 void check_options(const Scene& scene, const RenderOptions& opt) {
   if (uint8_t(opt.integrator) > uint8_t(Integrator::Ppm) || uint8_t(opt.mis) > uint8_t(MisHeuristic::Balance) ||
@@ -50,6 +93,7 @@ void check_options(const Scene& scene, const RenderOptions& opt) {
                                   "checkpoints");
   }
   if (!opt.sampler.randomization.empty()) parse_randomization(opt.sampler.randomization);
+  check_film_memory(scene, opt);
 }
 
 ImageRegion image_region(const Scene& scene, const RenderOptions& opt) {
