@@ -14,8 +14,17 @@ Vec2 daylight_chromaticity(float kelvin) {
 }
 
 
+double imaging_ratio(const SensorSettings& s) { return double(s.exposure_time) * double(s.iso) / 100.0; }
+
+Matrix3d sensor_rgb_matrix(const SensorSettings& s) {
+  Matrix3d m = ColorSpace::srgb().rgb_to_xyz;
+  for (auto& row : m)
+    for (double& v : row) v *= imaging_ratio(s);
+  return m;
+}
+
 Matrix3d sensor_matrix(const SensorSettings& s) {
-  const double ratio = double(s.exposure_time) * double(s.iso) / 100.0;
+  const double ratio = imaging_ratio(s);
   const ColorSpace& in = ColorSpace::srgb();
   const ColorSpace& out = s.output ? *s.output : in;
   Matrix3d m = rgb_conversion(in, out, false);

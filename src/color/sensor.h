@@ -22,6 +22,14 @@ struct SensorSettings {
 // white. Without white balance and in sRGB, a multiple of the identity.
 Matrix3d sensor_matrix(const SensorSettings& s);
 
+// exposure time x ISO / 100.
+double imaging_ratio(const SensorSettings& s);
+
+// The sensor's own RGB (before white balance and the output space) from
+// the renderer's linear sRGB: for "cie1931", CIE XYZ times the imaging
+// ratio. Film "maxcomponentvalue" clamps in it, as pbrt-v4 does.
+Matrix3d sensor_rgb_matrix(const SensorSettings& s);
+
 // The CIE xy chromaticity of CIE daylight illuminant D at nominal
 // temperature kelvin (CIE 015:2004, eq. 3.3 and 3.4; the nominal
 // temperature is the correlated colour temperature of the old value of

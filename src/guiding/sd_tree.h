@@ -100,10 +100,7 @@ class SDTree {
   // Whether any leaf has a distribution to sample.
   bool trained() const { return trained_; }
 
-  const std::vector<Node>& nodes() const { return nodes_; }
   const std::vector<Leaf>& leaves() const { return leaves_; }
-  Vec3 lo() const { return lo_; }
-  float extent() const { return extent_; }
   size_t memory_bytes() const;
 
  private:

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "accel/ray_batch.h"
 #include "guiding/guide_record.h"
 #include "guiding/sd_tree.h"
 #include "math/rng.h"
@@ -72,10 +73,9 @@ struct GuideVertices {
     }
   }
   size_t memory_bytes() const {
-    return (slot.capacity() + leaf.capacity()) * 4 + bin.capacity() + p.capacity() * sizeof(Vec3) +
-           w.capacity() * sizeof(Vec2) +
-           (pdf.capacity() + fcos.capacity() + bsdf_pdf.capacity() + guide_pdf.capacity()) * 4 +
-           (beta.capacity() + L.capacity()) * sizeof(Spectrum);
+    return vector_bytes(slot) + vector_bytes(leaf) + vector_bytes(p) + vector_bytes(w) + vector_bytes(bin) +
+           vector_bytes(pdf) + vector_bytes(fcos) + vector_bytes(bsdf_pdf) + vector_bytes(guide_pdf) +
+           vector_bytes(beta) + vector_bytes(L);
   }
 };
 

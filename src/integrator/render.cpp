@@ -345,7 +345,7 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
     if (merged_pass_first != kNoPass) pass_done(merged_pass_first);
     merged_pass_first = kNoPass;
     cx.guiding->end_iteration();
-    if (timed && checkpoints.elapsed() > 0)  // at this pace, does the next iteration end before the time does?
+    if (timed && checkpoints.elapsed() > 0)  // the passes this pace reaches: is the next iteration worth learning?
       cx.guiding->expect_passes(uint64_t(double(first / pass_spp) * opt.time_limit_seconds / checkpoints.elapsed()));
   }
   // The last pass merged is complete unless the render stopped inside it.
@@ -393,17 +393,15 @@ struct RenderSession::State {
       : scene(s), opt(std::move(o)), hooks(std::move(h)), region(image_region(s, opt)), width(region.width),
         height(region.height), film(width, height, s.filter) {
     if (region.cropped()) film.set_region(region.x0, region.y0, region.full_width, region.full_height);
-    const Matrix3d m = sensor_matrix(
-        {s.settings.iso, s.settings.exposure_time, s.settings.whitebalance, ColorSpace::named(s.settings.color_space)});
-    std::array<float, 9> sensor;
-    for (size_t i = 0; i < 9; ++i) sensor[i] = float(m[i / 3][i % 3]);
-    film.set_sensor(sensor);
-    // pbrt-v4's "cie1931" sensor RGB: XYZ times the imaging ratio (its
-    // white balance comes after, with the output conversion).
-    const double ratio = double(s.settings.exposure_time) * double(s.settings.iso) / 100.0;
-    std::array<float, 9> to_xyz;
-    for (size_t i = 0; i < 9; ++i) to_xyz[i] = float(ratio * ColorSpace::srgb().rgb_to_xyz[i / 3][i % 3]);
-    film.set_max_component(s.settings.max_component_value, to_xyz);
+    const SensorSettings sensor{s.settings.iso, s.settings.exposure_time, s.settings.whitebalance,
+                                ColorSpace::named(s.settings.color_space)};
+    auto row_major = [](const Matrix3d& m) {
+      std::array<float, 9> a;
+      for (size_t i = 0; i < 9; ++i) a[i] = float(m[i / 3][i % 3]);
+      return a;
+    };
+    film.set_sensor(row_major(sensor_matrix(sensor)));
+    film.set_max_component(s.settings.max_component_value, row_major(sensor_rgb_matrix(sensor)));
   }
   const Scene& scene;
   const RenderOptions opt;
