@@ -112,7 +112,7 @@ TEST(Bump, NormalMapTangentSpace) {
   } probes[] = {{0.1875f, -1.f}, {0.5625f, 1.f}};
   for (const Probe& p : probes) {
     RayBatch rays;
-    rays.push(Vec3(p.x, 1.f, -1.3125f), Vec3(0, -1, 0), 0.f, kInfinity);
+    rays.push(Vec3(p.x, 1.f, -1.3125f), Vec3(0, -1, 0), 0.f, kInfinity, 0.f);
     stream.intersect(rays, RayKind::Camera);
     ASSERT_TRUE(rays.hit(0));
     SurfacePoint sp = hit_point(s.shapes, rays, 0);

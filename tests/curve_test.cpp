@@ -98,7 +98,7 @@ Shape "curve" "point3 P" [ -1 0 0  -0.3 0.6 0.4  0.4 -0.5 -0.2  1 0.2 0.3 ] "flo
     if (std::fabs(nearest - 1.f) < 0.03f || ambiguous) continue;
     if (best > 1.f) best = nearest;
     RayBatch rays;
-    rays.push(o, d, 0.f, kInfinity);
+    rays.push(o, d, 0.f, kInfinity, 0.f);
     stream.intersect(rays, RayKind::Camera);
     ++judged;
     ASSERT_EQ(rays.hit(0), best < 1.f) << "ray " << i << ": reference distance " << best << " radii";

@@ -85,8 +85,8 @@ TEST(Instancing, HitsMatchTheFlattenedGeometry) {
     for (int i = 0; i < 20000; ++i) {
       Vec3 o(6.f * s.get1d() - 3.f, 3.f * s.get1d(), 6.f * s.get1d() - 3.f);
       Vec3 target(4.f * s.get1d() - 2.f, 1.2f * s.get1d() - 0.1f, 4.f * s.get1d() - 2.f);
-      a.push(o, target - o, 0.f, 1e30f);
-      b.push(o, target - o, 0.f, 1e30f);
+      a.push(o, target - o, 0.f, 1e30f, 0.f);
+      b.push(o, target - o, 0.f, 1e30f, 0.f);
     }
     RayStream ia(instanced->accel->handle(), parse_ray_backend(backend), nullptr);
     ia.set_instances(instanced->accel->instance_base(), &instanced->accel->instance_first());

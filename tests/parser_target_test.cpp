@@ -23,7 +23,7 @@ class Recorder final : public pbrt::ParserTarget {
 
   void warn(const SourceLocation&, const std::string& what) const override { warnings.push_back(what); }
   void warn_line(const std::string& line) const override { warnings.push_back(line); }
-  void camera(const std::string& type, const pbrt::ParamSet&, const glm::dmat4&) override {
+  void camera(const std::string& type, const pbrt::ParamSet&, const glm::dmat4&, const glm::dmat4&) override {
     calls.push_back("camera " + type);
   }
   void camera_medium(const std::string& name, const SourceLocation&) override { camera_medium_name = name; }
@@ -33,7 +33,7 @@ class Recorder final : public pbrt::ParserTarget {
   void sampler(const std::string& type, const pbrt::ParamSet&) override { calls.push_back("sampler " + type); }
   void integrator(const std::string& type, const pbrt::ParamSet&) override { calls.push_back("integrator " + type); }
   void pixel_filter(const std::string& type, const pbrt::ParamSet&) override { calls.push_back("filter " + type); }
-  void begin_world(const glm::dmat4&) override { calls.push_back("world"); }
+  void begin_world(const glm::dmat4&, double, double) override { calls.push_back("world"); }
   MaterialHandle material(const std::string& type, const pbrt::ParamSet&, const std::map<std::string, MaterialHandle>& named,
                           const std::string&) override {
     calls.push_back("material " + type + " (" + std::to_string(named.size()) + " named)");
@@ -57,7 +57,7 @@ class Recorder final : public pbrt::ParserTarget {
   }
   void begin_object(const std::string& name, const SourceLocation&) override { calls.push_back("object " + name); }
   void end_object(const SourceLocation&) override { calls.push_back("end object"); }
-  void object_instance(const std::string& name, const Mat4&, const SourceLocation&) override {
+  void object_instance(const std::string& name, const glm::dmat4&, const glm::dmat4&, const SourceLocation&) override {
     calls.push_back("instance " + name);
   }
 };
@@ -117,9 +117,9 @@ void build_in_code(pbrt::ParserTarget& t) {
   t.film("rgb", film);
   pbrt::ParamSet camera;
   camera.params = {param("float", "fov", {50})};
-  t.camera("perspective", camera, glm::dmat4(1.0));
+  t.camera("perspective", camera, glm::dmat4(1.0), glm::dmat4(1.0));
   t.camera_medium("", SourceLocation{});
-  t.begin_world(glm::dmat4(1.0));
+  t.begin_world(glm::dmat4(1.0), 0.0, 1.0);
   pbrt::ParamSet matte;
   matte.params = {param("rgb", "reflectance", {0.7, 0.5, 0.3})};
   GraphicsState gs;

@@ -152,7 +152,16 @@ EmbreeScene::EmbreeScene(const ShapePools& shapes, const TexturePools& textures)
     const Instance& inst = shapes.instances[k];
     RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(g, prototypes[inst.prototype]);
-    rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &inst.world_from_object[0][0]);
+    if (inst.motion == Instance::kStill) {
+      rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &inst.world_from_object[0][0]);
+    } else {
+      // Embree interpolates the matrices linearly between equally spaced
+      // steps, as MotionPath::at does for shading (math/motion.h).
+      const std::vector<Mat4>& steps = shapes.motions[inst.motion].steps;
+      rtcSetGeometryTimeStepCount(g, unsigned(steps.size()));
+      for (size_t t = 0; t < steps.size(); ++t)
+        rtcSetGeometryTransform(g, unsigned(t), RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &steps[t][0][0]);
+    }
     rtcCommitGeometry(g);
     rtcAttachGeometryByID(scene_, g, n + k);
     rtcReleaseGeometry(g);

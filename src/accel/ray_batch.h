@@ -34,15 +34,17 @@ struct RayBatch {
   size_t memory_bytes() const { return capacity() * (14 * sizeof(float) + 6 * sizeof(uint32_t)); }
 
   // Appends a ray, growing the arrays when full; d need not be unit length
-  // (t is then in units of |d|).
-  uint32_t push(const Vec3& o, const Vec3& d, float t_min, float t_max) {
+  // (t is then in units of |d|). time: where in the shutter interval the
+  // ray's path is, in [0, 1] (math/motion.h); moving geometry is traced
+  // where it is then, all else ignores it.
+  uint32_t push(const Vec3& o, const Vec3& d, float t_min, float t_max, float ray_time) {
     if (count == org_x.size()) reserve(std::max<size_t>(64, 2 * org_x.size()));
     uint32_t i = count++;
     org_x[i] = o.x, org_y[i] = o.y, org_z[i] = o.z;
     dir_x[i] = d.x, dir_y[i] = d.y, dir_z[i] = d.z;
     tnear[i] = t_min;
     tfar[i] = t_max;
-    time[i] = 0.f;
+    time[i] = ray_time;
     mask[i] = 0xFFFFFFFFu;
     id[i] = i;
     flags[i] = 0;

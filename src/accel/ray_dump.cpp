@@ -47,7 +47,7 @@ std::vector<DumpedBatch> read_ray_dump(const std::string& path) {
     d.rays.reserve(header[1]);
     for (uint32_t i = 0; i < header[1]; ++i) {
       const float* r = &rec[size_t(i) * 8];
-      d.rays.push(Vec3(r[0], r[1], r[2]), Vec3(r[3], r[4], r[5]), r[6], r[7]);
+      d.rays.push(Vec3(r[0], r[1], r[2]), Vec3(r[3], r[4], r[5]), r[6], r[7], 0.f);  // (dumps keep no time: replayed at the shutter's start)
     }
   }
   std::fclose(f);

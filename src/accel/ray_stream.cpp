@@ -39,7 +39,7 @@ static RTCRayHitNp soa_view(RayBatch& b) {
 static RTCRay aos_ray(const RayBatch& b, uint32_t i) {
   RTCRay r;
   r.org_x = b.org_x[i], r.org_y = b.org_y[i], r.org_z = b.org_z[i], r.tnear = b.tnear[i];
-  r.dir_x = b.dir_x[i], r.dir_y = b.dir_y[i], r.dir_z = b.dir_z[i], r.time = 0.f;
+  r.dir_x = b.dir_x[i], r.dir_y = b.dir_y[i], r.dir_z = b.dir_z[i], r.time = b.time[i];
   r.tfar = b.tfar[i], r.mask = 0xFFFFFFFFu, r.id = i, r.flags = 0;
   return r;
 }
@@ -58,7 +58,7 @@ static void load_packet(Packet& p, const RayBatch& b, uint32_t base, int* valid)
     valid[k] = i < b.count ? -1 : 0;
     if (i >= b.count) i = base;  // keep lanes well defined
     p.org_x[k] = b.org_x[i], p.org_y[k] = b.org_y[i], p.org_z[k] = b.org_z[i], p.tnear[k] = b.tnear[i];
-    p.dir_x[k] = b.dir_x[i], p.dir_y[k] = b.dir_y[i], p.dir_z[k] = b.dir_z[i], p.time[k] = 0.f;
+    p.dir_x[k] = b.dir_x[i], p.dir_y[k] = b.dir_y[i], p.dir_z[k] = b.dir_z[i], p.time[k] = b.time[i];
     p.tfar[k] = b.tfar[i], p.mask[k] = 0xFFFFFFFFu, p.id[k] = k, p.flags[k] = 0;
   }
 }

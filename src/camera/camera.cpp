@@ -8,6 +8,7 @@ Camera::Camera(const CameraDesc& d, int width, int height, Vec2 film_margin)
     : projection_(d.projection),
       equal_area_(d.equal_area),
       world_from_camera_(d.world_from_camera),
+      motion_(d.motion),
       width_(width),
       height_(height),
       margin_(film_margin) {
@@ -30,6 +31,15 @@ Camera::Camera(const CameraDesc& d, int width, int height, Vec2 film_margin)
   camera_from_world_ = glm::inverse(world_from_camera_);
   forward_ = glm::normalize(Vec3(world_from_camera_ * Vec4(0.f, 0.f, 1.f, 0.f)));
   film_area_ = (sx1_ - sx0_) * (sy1_ - sy0_) * tan_half_ * tan_half_;
+}
+
+Camera Camera::at(float u) const {
+  Camera c = *this;
+  if (!motion_) return c;
+  c.world_from_camera_ = motion_->at(u);
+  c.camera_from_world_ = glm::inverse(c.world_from_camera_);
+  c.forward_ = glm::normalize(Vec3(c.world_from_camera_ * Vec4(0.f, 0.f, 1.f, 0.f)));
+  return c;
 }
 
 Vec3 Camera::perspective_direction(Vec2 s) const { return glm::normalize(Vec3(s.x * tan_half_, s.y * tan_half_, 1.f)); }

@@ -6,9 +6,11 @@
 // rays are generated per wave, never through a virtual call.
 #pragma once
 
+#include <memory>
 #include <optional>
 
 #include "math/common.h"
+#include "math/motion.h"
 #include "math/sampling.h"
 
 namespace lantern {
@@ -24,6 +26,10 @@ struct CameraDesc {
   float focal_distance = 1e6f;
   bool has_screen_window = false;
   float screen_window[4] = {-1.f, 1.f, -1.f, 1.f};  // xmin xmax ymin ymax
+  // A moving camera: world_from_camera along the shutter (math/motion.h;
+  // world_from_camera above is its start). Null for a still camera.
+  std::shared_ptr<const MotionPath> motion;
+  ShutterTimes shutter;
 };
 
 struct CameraRay {
@@ -82,6 +88,10 @@ class Camera {
   // their camera samples do. Returns how many (at most 2) were written.
   int seam_images(Vec2 p, Vec2 reach, Vec2 out[2]) const;
 
+  // A moving camera where it is at time u of the shutter; a still one as it is.
+  bool moves() const { return motion_ != nullptr; }
+  Camera at(float u) const;
+
   int width() const { return width_; }
   int height() const { return height_; }
   Vec3 position() const { return Vec3(world_from_camera_[3]); }
@@ -100,6 +110,7 @@ class Camera {
   bool equal_area_ = true;
 
   Mat4 world_from_camera_{1.f}, camera_from_world_{1.f};
+  std::shared_ptr<const MotionPath> motion_;
   Vec3 forward_{0, 0, 1};
   float film_area_ = 4.f;  // of the image rectangle on the plane z = 1
   int width_ = 1, height_ = 1;
@@ -108,5 +119,13 @@ class Camera {
   float tan_half_ = 1.f;
   float lens_radius_ = 0.f, focal_distance_ = 1e6f;
 };
+
+// The camera that sees a sample at time u: `camera` itself when it stands
+// still (no copy), else its pose at u, made in `scratch`.
+inline const Camera& camera_at(const Camera& camera, float u, Camera& scratch) {
+  if (!camera.moves()) return camera;
+  scratch = camera.at(u);
+  return scratch;
+}
 
 }  // namespace lantern

@@ -4,6 +4,7 @@
 // of that table) and instances (a prototype and a transform).
 #pragma once
 
+#include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_precision.hpp>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "geometry/triangle_mesh.h"
 #include "material/material.h"
 #include "math/common.h"
+#include "math/motion.h"
 #include "medium/medium.h"
 
 namespace lantern {
@@ -47,13 +49,23 @@ struct Prototype {
 
 // One ObjectInstance: a prototype placed by a transform. Embree traces it
 // as an instance; hits come back in the prototype's space and are carried
-// into the world with these matrices.
+// into the world with these matrices. A moving instance (and a moving
+// shape, which becomes an instance of its own prototype) has a motion
+// path; its matrices here are those at the shutter's start, and
+// instance_at() gives them at a ray's time.
 struct Instance {
+  static constexpr uint32_t kStill = 0xFFFFFFFFu;
   uint32_t prototype;
   Mat4 world_from_object;
   glm::mat3 normal_to_world;  // inverse transpose of the upper 3x3
   float stretch;              // the largest length an object-space unit vector takes in the world
   float offset;               // the largest coordinate of the translation
+  uint32_t motion = kStill;   // index into ShapePools::motions
+
+  static Instance placed(uint32_t prototype, const Mat4& M, uint32_t motion = kStill) {
+    const float stretch = std::fmax(glm::length(Vec3(M[0])), std::fmax(glm::length(Vec3(M[1])), glm::length(Vec3(M[2]))));
+    return {prototype, M, glm::inverseTranspose(glm::mat3(M)), stretch, max_abs_component(Vec3(M[3])), motion};
+  }
 };
 
 struct ShapePools {
@@ -70,6 +82,13 @@ struct ShapePools {
   std::vector<uint8_t> in_prototype;  // per geometry: 1 if it belongs to a prototype (not traced directly)
   std::vector<Prototype> prototypes;
   std::vector<Instance> instances;
+  std::vector<MotionPath> motions;  // of the moving instances
 };
+
+// Instance `in` where it is at time u of the shutter (math/motion.h).
+inline Instance instance_at(const ShapePools& shapes, const Instance& in, float u) {
+  if (in.motion == Instance::kStill) return in;
+  return Instance::placed(in.prototype, shapes.motions[in.motion].at(u), in.motion);
+}
 
 }  // namespace lantern

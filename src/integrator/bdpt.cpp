@@ -38,15 +38,17 @@ void Bdpt::start_eye_subpaths(const WaveDesc& wave, BdptWave& w) const {
     const PathSampler& s = w.sampler[slot];
     uint32_t pixel = w.pixel[slot];
     Vec2 p_raster = sample_raster_position(scene_.filter, pixel, width, s.get2d(dims::kFilm)) + settings_.raster_offset;
-    CameraRay r = camera_.generate_ray(p_raster, s.get2d(dims::kLens));
+    Camera moved;
+    const Camera& camera = camera_at(camera_, w.time[slot], moved);
+    CameraRay r = camera.generate_ray(p_raster, s.get2d(dims::kLens));
     w.eye.beta[slot] = Spectrum(1.f);
     w.eye.dispersed[slot] = 0;
-    w.eye.mis[slot] = mis_camera_start(camera_.pdf_dir(r.d), w.mis);
+    w.eye.mis[slot] = mis_camera_start(camera.pdf_dir(r.d), w.mis);
     w.eye.prev_p[slot] = r.o;
     w.eye.prev_n[slot] = Vec3(0.f);
     w.eye.eta_scale[slot] = 1.f;
     w.active[slot] = slot;
-    w.rays.push(r.o, r.d, 0.f, kInfinity);
+    w.rays.push(r.o, r.d, 0.f, kInfinity, w.time[slot]);
   }
   if (!scene_.media.empty())
     for (uint32_t slot = 0; slot < wave.size(); ++slot) {

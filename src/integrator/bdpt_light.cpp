@@ -8,6 +8,7 @@
 #include "integrator/hit_material.h"
 #include "integrator/shade.h"
 #include "light/emission.h"
+#include "integrator/shutter.h"
 #include "integrator/wavelengths.h"
 #include "sampler/dimensions.h"
 
@@ -27,11 +28,15 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
   const PathSampler first = PathSampler::make(sampler_, wave.pixels[0], wave.first_sample);
   const SampledWavelengths wave_lambda =
       sample_wavelengths(settings_.spectral && settings_.merging, first, settings_.maxdepth);
+  // So is its time: a light vertex merged with an eye vertex of another
+  // sample must have been found in the same scene (docs/motion-blur.md).
+  const float wave_time = sample_time(scene_, first, settings_.maxdepth);
   for (uint32_t slot = 0; slot < wave.size(); ++slot) {
     uint32_t pixel = wave.pixels[slot / wave.samples];
     PathSampler s = PathSampler::make(sampler_, pixel, wave.first_sample + slot % wave.samples);
     const SampledWavelengths& lambda = w.lambda[slot] =
         settings_.merging ? wave_lambda : sample_wavelengths(settings_.spectral, s, settings_.maxdepth);
+    w.time[slot] = settings_.merging ? wave_time : sample_time(scene_, s, settings_.maxdepth);
     float u_select = s.get1d(dims::kLightSelect);
     Vec2 u_pos = s.get2d(dims::kLightPosition), u_dir = s.get2d(dims::kLightDirection);
     const float u_volume =
@@ -65,8 +70,12 @@ void Bdpt::start_volume_subpaths(BdptWave& w) const {
   }
   std::vector<Vec3>& points = w.volume_points;
   points.clear();
+  std::vector<float>& times = w.volume_times;
+  times.clear();
   for (const EmissionSample& es : w.volume_starts) points.push_back(es.p);
-  locate_media(scene_, w.stream, points, camera_.position(), scene_.media.camera, w.volume_media, w.crossing);
+  for (uint32_t slot : w.volume_slots) times.push_back(w.time[slot]);
+  // (a moving camera is taken to stay in its medium: where it starts)
+  locate_media(scene_, w.stream, points, times, camera_.position(), scene_.media.camera, w.volume_media, w.crossing);
   for (size_t k = 0; k < points.size(); ++k) {
     EmissionSample es = w.volume_starts[k];
     MediumHandle m;
@@ -118,13 +127,15 @@ void Bdpt::begin_light_subpath(BdptWave& w, uint32_t slot, const EmissionSample&
   // pixel's worth of energy that no camera ray can find, so the path tracer
   // and pbrt-v4 (whose bdpt skips s = 1, t = 1) leave it out, and so does
   // every integrator here.
+  Camera moved;
+  const Camera& camera = camera_at(camera_, w.time[slot], moved);
   if (!es.infinite && !es.delta_pos && settings_.connections) {
-    if (auto cs = camera_.sample_wi(es.p, u_lens)) {
+    if (auto cs = camera.sample_wi(es.p, u_lens)) {
       float cos_l = on_surface ? std::fabs(glm::dot(es.n, cs->wi)) : 1.f;
       Spectrum Le = es.volume ? es.Le : emitted(lights, scene_.textures, es.light, es.n, es.uv, cs->wi, w.lambda[slot]);
       if (!is_black(Le) && cos_l > 0.f) {
         Connection k;
-        k.mis = mis_sums_light_origin(camera_.pdf_area(-cs->wi, sqr(cs->dist), cos_l), es.pdf_pos, es.delta_pos, w.mis);
+        k.mis = mis_sums_light_origin(camera.pdf_area(-cs->wi, sqr(cs->dist), cos_l), es.pdf_pos, es.delta_pos, w.mis);
         k.mis.sigma_a = sigma_origin;  // a camera ray would end at a volume light's point by distance sampling
         k.unweighted = Le * (cos_l * cs->We / (cs->pdf * es.pdf_pos));
         k.p_raster = cs->p_raster;
@@ -139,7 +150,7 @@ void Bdpt::begin_light_subpath(BdptWave& w, uint32_t slot, const EmissionSample&
   if (settings_.maxdepth <= int(w.origin.extra_depth[slot])) return;
   Vec3 origin = on_surface ? offset_ray_origin(es.p, es.n, es.error_scale, es.d) : es.p;
   w.active[w.rays.count] = slot;
-  w.rays.push(origin, es.d, 0.f, kInfinity);
+  w.rays.push(origin, es.d, 0.f, kInfinity, w.time[slot]);
 }
 
 // Finishes the MIS quantities of each hit and bins the hits by material.

@@ -27,8 +27,8 @@ namespace lantern {
 // In a scene without media a connection's segment adds nothing to the
 // densities (its transmittance is 1): its weight is known now.
 inline void Bdpt::push_connection(BdptWave& w, uint32_t slot, const Connection& k) const {
-  if (w.shadow.media) w.shadow.push(slot, k, k.unweighted, w.lambda[slot]);
-  else w.shadow.push(slot, k, k.unweighted * (weighted() ? mis_weight_vacuum(k.mis) : 1.f), w.lambda[slot]);
+  if (w.shadow.media) w.shadow.push(slot, k, k.unweighted, w.lambda[slot], w.time[slot]);
+  else w.shadow.push(slot, k, k.unweighted * (weighted() ? mis_weight_vacuum(k.mis) : 1.f), w.lambda[slot], w.time[slot]);
 }
 
 // s = 1: next-event estimation from eye vertex v (Veach 1997, sec. 10.2;
@@ -117,12 +117,14 @@ void Bdpt::connect_light_vertices(BdptWave& w, uint32_t slot, const Vertex& v) c
 template <class Vertex>
 void Bdpt::connect_camera(BdptWave& w, uint32_t slot, uint32_t ld, const Vertex& v, Vec2 u_lens) const {
   if (ld > uint32_t(settings_.maxdepth) || !settings_.connections) return;
-  auto cs = camera_.sample_wi(v.p, u_lens);
+  Camera moved;
+  const Camera& camera = camera_at(camera_, w.time[slot], moved);
+  auto cs = camera.sample_wi(v.p, u_lens);
   if (!cs) return;
   const VertexEval e = v.evaluate(cs->wi);
   if (is_black(e.f)) return;
   Connection k;
-  k.mis = mis_sums_light_trace(w.light.mis[slot], camera_.pdf_area(-cs->wi, sqr(cs->dist), v.cos(cs->wi)), e.pdf_rev,
+  k.mis = mis_sums_light_trace(w.light.mis[slot], camera.pdf_area(-cs->wi, sqr(cs->dist), v.cos(cs->wi)), e.pdf_rev,
                                w.mis, v.merging(medium_merging()));
   k.mis.sigma_a = v.sigma_t();  // a camera ray would end here by distance sampling
   k.unweighted = w.light.beta[slot] * e.f * (cs->We / cs->pdf);

@@ -181,10 +181,10 @@ struct ConnectionPool {
   std::vector<SampledWavelengths> lambda;  // its sample's wavelengths
   bool media = false;
   bool record = false;
-  // Queues connection k of `slot` (whose wavelengths are l) carrying
+  // Queues connection k of `slot` (whose wavelengths are l, whose time is `time`) carrying
   // contrib (weighted, or with media unweighted until traced).
-  void push(uint32_t s, const Connection& k, const Spectrum& c, const SampledWavelengths& l) {
-    const uint32_t i = rays.push(k.o, k.d, 0.f, k.t_max);
+  void push(uint32_t s, const Connection& k, const Spectrum& c, const SampledWavelengths& l, float time) {
+    const uint32_t i = rays.push(k.o, k.d, 0.f, k.t_max, time);
     if (slot.size() <= i) {
       const size_t n = rays.capacity();
       slot.resize(n);
@@ -229,6 +229,7 @@ struct BdptWave {
     pixel.resize(capacity);
     sampler.resize(capacity);
     lambda.resize(capacity);
+    time.resize(capacity);
     L.resize(capacity);
     eye.resize(capacity);
     light.resize(capacity);
@@ -244,6 +245,7 @@ struct BdptWave {
   std::vector<uint32_t> pixel;
   std::vector<PathSampler> sampler;
   std::vector<SampledWavelengths> lambda;  // shared by the slot's eye and light subpaths
+  std::vector<float> time;                 // so is its time in the shutter (integrator/shutter.h)
   std::vector<Spectrum> L;
   SubpathPool eye, light;
   LightOriginPool origin;
@@ -269,6 +271,7 @@ struct BdptWave {
   std::vector<uint32_t> volume_slots;
   std::vector<Vec3> volume_points;
   std::vector<MediumHandle> volume_media;
+  std::vector<float> volume_times;
   // The MIS exponent and, for vcm, this wave's merging factors; the
   // merging radius, 1 / (pi r^2 n) and 1 / (4/3 pi r^3 n), and the grid
   // over the light vertices.
@@ -283,7 +286,7 @@ struct BdptWave {
 
   size_t memory_bytes() const {
     const SubpathPool* subpaths[] = {&eye, &light};
-    size_t b = vector_bytes(pixel) + vector_bytes(sampler) + vector_bytes(lambda) + vector_bytes(L) + vector_bytes(active) +
+    size_t b = vector_bytes(pixel) + vector_bytes(sampler) + vector_bytes(lambda) + vector_bytes(time) + vector_bytes(L) + vector_bytes(active) +
                rays.memory_bytes() + hits.memory_bytes() + shadow.rays.memory_bytes() + vector_bytes(shadow.slot) +
                vector_bytes(shadow.contrib) + vector_bytes(shadow.p_raster) + vector_bytes(shadow.tags) +
                vector_bytes(shadow.next_event);
@@ -302,7 +305,7 @@ struct BdptWave {
     b += vector_bytes(shadow.medium) + vector_bytes(shadow.T) + vector_bytes(shadow.T_mis) + vector_bytes(shadow.deferred) + vector_bytes(ray_medium) +
          vector_bytes(u_distance) + ends.memory_bytes() + vector_bytes(scattered) + crossing.memory_bytes() +
          vector_bytes(shadow.expect) + vector_bytes(shadow.lambda) + vector_bytes(ray_lambda) + vector_bytes(o.extra_depth) + vector_bytes(volume_starts) + vector_bytes(volume_slots) +
-         vector_bytes(volume_points) + vector_bytes(volume_media) + grid.memory_bytes();
+         vector_bytes(volume_points) + vector_bytes(volume_media) + vector_bytes(volume_times) + grid.memory_bytes();
     return b;
   }
 };

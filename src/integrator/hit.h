@@ -64,7 +64,7 @@ inline SurfacePoint hit_point(const ShapePools& shapes, const RayBatch& rays, ui
   const uint32_t inst = rays.inst_id[i];
   if (inst == kInvalidGeometry) return local_hit_point(shapes, rays, i, nullptr);
   // Embree reports an instance hit's u, v and Ng in the prototype's space.
-  const Instance& in = shapes.instances[inst];
+  const Instance in = instance_at(shapes, shapes.instances[inst], rays.time[i]);
   return to_world(in, local_hit_point(shapes, rays, i, &in));
 }
 
@@ -154,7 +154,7 @@ struct HitPool {
     for (uint32_t i = 0; i < count; ++i) {
       if (!alive[i]) continue;
       active[n++] = active[i];
-      rays.push(next_o[i], next_d[i], 0.f, kInfinity);
+      rays.push(next_o[i], next_d[i], 0.f, kInfinity, rays.time[i]);  // (n <= i: time[i] is still this bounce's)
     }
   }
 };

@@ -37,7 +37,7 @@ uint32_t cross_boundary(const Scene& sc, const RayBatch& rays, uint32_t i, Mediu
   const Vec3 d = rays.direction(i);
   *medium = sc.shapes.geometries[rays.geom_id[i]].media.after(sp.ng, d, *medium);
   // (the offset steps back along a unit direction; shadow rays' are not)
-  return next.push(offset_ray_origin(sp.p, sp.ng, sp.error_scale, glm::normalize(d)), d, 0.f, t_max);
+  return next.push(offset_ray_origin(sp.p, sp.ng, sp.error_scale, glm::normalize(d)), d, 0.f, t_max, rays.time[i]);
 }
 
 // The random numbers of one tracked stretch: a hash of what names it (the
@@ -177,7 +177,7 @@ void trace_transmittance(const Scene& sc, RayStream& stream, RayBatch& rays, con
   s.rays.count = 0;
   s.next.clear();
   for (uint32_t r = 0; r < n; ++r) {
-    s.rays.push(rays.origin(r), rays.direction(r), rays.tnear[r], rays.tfar[r]);
+    s.rays.push(rays.origin(r), rays.direction(r), rays.tnear[r], rays.tfar[r], rays.time[r]);
     s.next.push_back(r);
   }
   RayBatch& cont = s.continued;
@@ -232,14 +232,14 @@ void trace_transmittance(const Scene& sc, RayStream& stream, RayBatch& rays, con
   }
 }
 
-void locate_media(const Scene& sc, RayStream& stream, const std::vector<Vec3>& p, const Vec3& known,
+void locate_media(const Scene& sc, RayStream& stream, const std::vector<Vec3>& p, const std::vector<float>& time, const Vec3& known,
                   MediumHandle known_medium, std::vector<MediumHandle>& out, CrossingScratch& s) {
   const uint32_t n = uint32_t(p.size());
   out.assign(n, known_medium);
   s.rays.count = 0;
   s.next.clear();
   for (uint32_t i = 0; i < n; ++i) {
-    s.rays.push(p[i], known - p[i], 0.f, 1.f);
+    s.rays.push(p[i], known - p[i], 0.f, 1.f, time[i]);
     s.next.push_back(i);
   }
   RayBatch& cont = s.continued;
@@ -262,7 +262,7 @@ void locate_media(const Scene& sc, RayStream& stream, const std::vector<Vec3>& p
         continue;
       }
       const Vec3 o = offset_ray_origin(sp.p, sp.ng, sp.error_scale, glm::normalize(d));
-      cont.push(o, known - o, 0.f, 1.f);  // on, through a surface that separates nothing
+      cont.push(o, known - o, 0.f, 1.f, s.rays.time[j]);  // on, through a surface that separates nothing
       s.owner.push_back(i);
     }
     std::swap(s.rays, cont);

@@ -104,7 +104,10 @@ void trace_transmittance(const Scene& scene, RayStream& stream, RayBatch& rays, 
 // `known`, a point in medium `known_medium`: the side facing p[i] of the
 // first boundary (of any material) between media that the ray meets, else
 // known_medium. Surfaces that separate nothing are passed through.
-void locate_media(const Scene& scene, RayStream& stream, const std::vector<Vec3>& p, const Vec3& known,
+// time[i]: p[i]'s time in the shutter (moving boundaries are where they
+// are then).
+void locate_media(const Scene& scene, RayStream& stream, const std::vector<Vec3>& p, const std::vector<float>& time,
+                  const Vec3& known,
                   MediumHandle known_medium, std::vector<MediumHandle>& out, CrossingScratch& scratch);
 
 // The medium a ray leaving a surface hit of geometry `geom` along w

@@ -39,8 +39,8 @@ void path_next_event(const Scene& sc, const LightSampler& light_sampler, PathWav
     return;
   }
   const float weight = ls->delta ? 1.f : power_heuristic(ls->pdf, e.pdf_fwd);
-  const uint32_t r = ls->infinite ? w.shadow.push(o, ls->wi, 0.f, kInfinity)
-                                  : w.shadow.push(o, light_sample_target(*ls) - o, 0.f, 1.f);
+  const uint32_t r = ls->infinite ? w.shadow.push(o, ls->wi, 0.f, kInfinity, w.time[slot])
+                                  : w.shadow.push(o, light_sample_target(*ls) - o, 0.f, 1.f, w.time[slot]);
   w.shadow_slot[r] = slot;
   w.shadow_contrib[r] = w.beta[slot] * e.f * ls->L * (weight / ls->pdf);
 }

@@ -1,4 +1,5 @@
 #include "integrator/path_tracer.h"
+#include "integrator/shutter.h"
 
 #include "film/pixel_filter.h"
 #include "integrator/dispersion.h"
@@ -45,10 +46,13 @@ void PathTracer::generate_camera_rays(const WaveDesc& wave, PathWave& w) const {
     uint32_t sample_index = wave.first_sample + slot % wave.samples;
     PathSampler s = PathSampler::make(sampler_, pixel, sample_index);
     Vec2 p_raster = sample_raster_position(scene_.filter, pixel, width, s.get2d(dims::kFilm)) + settings_.raster_offset;
-    CameraRay r = camera_.generate_ray(p_raster, s.get2d(dims::kLens));
+    const float time = sample_time(scene_, s, settings_.maxdepth);
+    Camera moved;
+    CameraRay r = camera_at(camera_, time, moved).generate_ray(p_raster, s.get2d(dims::kLens));
     w.pixel[slot] = pixel;
     w.sampler[slot] = s;
     w.lambda[slot] = sample_wavelengths(settings_.spectral, s, settings_.maxdepth);
+    w.time[slot] = time;
     w.beta[slot] = Spectrum(1.f);
     w.dispersed[slot] = 0;
     w.L[slot] = Spectrum(0.f);
@@ -58,7 +62,7 @@ void PathTracer::generate_camera_rays(const WaveDesc& wave, PathWave& w) const {
     w.prev_p[slot] = r.o;
     w.prev_n[slot] = Vec3(0.f);
     w.active[slot] = slot;
-    w.rays.push(r.o, r.d, 0.f, kInfinity);
+    w.rays.push(r.o, r.d, 0.f, kInfinity, time);
   }
   if (!scene_.media.empty()) std::fill(w.medium.begin(), w.medium.begin() + wave.size(), scene_.media.camera);
 }

@@ -25,6 +25,7 @@ struct PathWave {
   std::vector<PathSampler> sampler;
   std::vector<Spectrum> beta, L;
   std::vector<SampledWavelengths> lambda;
+  std::vector<float> time;  // in the shutter (integrator/shutter.h)
   std::vector<float> prev_pdf, eta_scale;
   std::vector<Vec3> prev_p;  // origin of the ray that found the current vertex
   std::vector<Vec3> prev_n;  // its shading normal (the light sampler's context; zero at the camera)
@@ -87,7 +88,7 @@ struct PathWave {
   }
 
   size_t memory_bytes() const {
-    return vector_bytes(pixel) + vector_bytes(sampler) + vector_bytes(beta) + vector_bytes(L) + vector_bytes(lambda) + vector_bytes(prev_pdf) +
+    return vector_bytes(pixel) + vector_bytes(sampler) + vector_bytes(beta) + vector_bytes(L) + vector_bytes(lambda) + vector_bytes(time) + vector_bytes(prev_pdf) +
            vector_bytes(eta_scale) + vector_bytes(prev_p) + vector_bytes(prev_n) + vector_bytes(prev_specular) + vector_bytes(active) +
            rays.memory_bytes() + hits.memory_bytes() + shadow.memory_bytes() + vector_bytes(shadow_slot) +
            vector_bytes(shadow_contrib) + vector_bytes(medium) + vector_bytes(ray_medium) + vector_bytes(u_distance) +
@@ -102,7 +103,7 @@ struct PathWave {
     sampler.resize(n);
     for (auto* v : {&beta, &L, &shadow_contrib}) v->resize(n);
     lambda.resize(n);
-    for (auto* v : {&prev_pdf, &eta_scale}) v->resize(n);
+    for (auto* v : {&time, &prev_pdf, &eta_scale}) v->resize(n);
     prev_p.resize(n);
     prev_n.resize(n);
     prev_specular.resize(n);
@@ -122,9 +123,9 @@ inline void push_media_shadow_ray(PathWave& w, uint32_t slot, const Vec3& o, con
                                   MediumHandle expect = {}, const Spectrum& sigma_end = Spectrum(0.f)) {
   uint32_t r;
   if (ls.infinite) {
-    r = w.shadow.push(o, ls.wi, 0.f, kInfinity);
+    r = w.shadow.push(o, ls.wi, 0.f, kInfinity, w.time[slot]);
   } else {
-    r = w.shadow.push(o, light_sample_target(ls) - o, 0.f, 1.f);
+    r = w.shadow.push(o, light_sample_target(ls) - o, 0.f, 1.f, w.time[slot]);
   }
   w.shadow_slot[r] = slot;
   w.shadow_contrib[r] = unweighted;

@@ -57,4 +57,9 @@ inline constexpr uint32_t volume_point(uint32_t base, uint32_t maxdepth, uint32_
 // dimensions it always did.
 inline constexpr uint32_t wavelengths(uint32_t base, uint32_t maxdepth) { return base + 4 * (maxdepth + 3); }
 
+// The camera sample's time in the shutter (one number), read only when
+// something in the scene moves, so still scenes read exactly the
+// dimensions they did.
+inline constexpr uint32_t shutter(uint32_t base, uint32_t maxdepth) { return wavelengths(base, maxdepth) + 1; }
+
 }  // namespace lantern::dims

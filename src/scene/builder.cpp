@@ -28,7 +28,8 @@ std::string resolve_path(const std::string& base_dir, const std::string& file) {
   return p.is_absolute() || base_dir.empty() ? file : (std::filesystem::path(base_dir) / p).string();
 }
 
-void SceneBuilder::camera(const std::string& type, const ParamSet& ps, const glm::dmat4& camera_from_world) {
+void SceneBuilder::camera(const std::string& type, const ParamSet& ps, const glm::dmat4& camera_from_world,
+                          const glm::dmat4& camera_from_world_end) {
   CameraDesc& c = scene_.camera;
   if (type == "perspective") {
     c.projection = Projection::Perspective;
@@ -48,6 +49,7 @@ void SceneBuilder::camera(const std::string& type, const ParamSet& ps, const glm
     ps.fail("camera type \"" + printable(type) + "\" is not supported; expected perspective, orthographic or spherical");
   }
   world_from_camera_ = glm::inverse(camera_from_world);
+  world_from_camera_end_ = glm::inverse(camera_from_world_end);
   c.world_from_camera = Mat4(world_from_camera_);
   if (c.projection == Projection::Perspective) {
     c.fov_degrees = ps.get_float("fov", 90.f);
@@ -60,9 +62,11 @@ void SceneBuilder::camera(const std::string& type, const ParamSet& ps, const glm
       ps.fail("\"lensradius\" must be >= 0 and \"focaldistance\" > 0");
   }
   // The shutter's interval scales the image (pbrt-v4's imaging ratio,
-  // color/sensor.h); what moves during it does not blur yet.
+  // color/sensor.h) and is the time over which what moves blurs.
   const float open = ps.get_float("shutteropen", 0.f), close = ps.get_float("shutterclose", 1.f);
   scene_.settings.exposure_time = close - open;
+  c.shutter.open = open;
+  c.shutter.close = close;
   if (!(close > open) || !std::isfinite(close - open))
     ps.fail("\"shutterclose\" (" + std::to_string(close) + ") must come after \"shutteropen\" (" + std::to_string(open) +
             "): a shutter that never opens makes a black image");
@@ -74,9 +78,15 @@ void SceneBuilder::camera(const std::string& type, const ParamSet& ps, const glm
   }
 }
 
-void SceneBuilder::begin_world(const glm::dmat4& render_from_world) {
+void SceneBuilder::begin_world(const glm::dmat4& render_from_world, double transform_start, double transform_end) {
   render_from_world_ = render_from_world;
-  scene_.camera.world_from_camera = Mat4(render_from_world * world_from_camera_);
+  CameraDesc& c = scene_.camera;
+  c.world_from_camera = Mat4(render_from_world * world_from_camera_);
+  c.shutter.start = float(transform_start);
+  c.shutter.end = float(transform_end);
+  if (world_from_camera_ != world_from_camera_end_)
+    c.motion = std::make_shared<MotionPath>(
+        motion_path(render_from_world * world_from_camera_, render_from_world * world_from_camera_end_));
 }
 
 void SceneBuilder::film(const std::string& type, const ParamSet& ps) {
@@ -412,6 +422,10 @@ void SceneBuilder::count_triangles() {
 }
 
 void SceneBuilder::shape(const std::string& type, const ParamSet& ps, const GraphicsState& gs, const std::string& base_dir) {
+  if (gs.moving()) {
+    moving_shape(type, ps, gs, base_dir);
+    return;
+  }
   const size_t before = scene_.shapes.geometries.size();
   add_shape(type, ps, gs, base_dir);
   assign_media(before, gs);
@@ -534,25 +548,6 @@ void SceneBuilder::end_object(const SourceLocation& where) {
   if (!object_) throw InputError(where, "ObjectEnd without ObjectBegin");
   objects_[object_->name] = object_->prototype;
   object_.reset();
-}
-
-void SceneBuilder::object_instance(const std::string& name, const Mat4& world_from_object, const SourceLocation& where) {
-  if (object_)
-    throw InputError(where, "ObjectInstance inside ObjectBegin \"" + printable(object_->name) +
-                                "\": nested instancing is not supported (nor is it in pbrt-v4)");
-  auto it = objects_.find(name);
-  if (it == objects_.end())
-    throw InputError(where, "ObjectInstance \"" + printable(name) + "\": no object of that name was defined with ObjectBegin");
-  const Mat4& M = world_from_object;
-  for (int c = 0; c < 4; ++c)
-    if (!is_finite(Vec3(M[c])) || !std::isfinite(M[c][3]))
-      throw InputError(where, "ObjectInstance \"" + printable(name) + "\": the transform is not finite");
-  if (std::fabs(glm::determinant(glm::mat3(M))) < 1e-30f)
-    throw InputError(where, "ObjectInstance \"" + printable(name) + "\": the transform is singular");
-  if (scene_.shapes.prototypes[it->second].count == 0) return;  // an empty object: nothing to trace
-  float stretch = std::fmax(glm::length(Vec3(M[0])), std::fmax(glm::length(Vec3(M[1])), glm::length(Vec3(M[2]))));
-  scene_.shapes.instances.push_back(
-      {it->second, M, glm::inverseTranspose(glm::mat3(M)), stretch, max_abs_component(Vec3(M[3]))});
 }
 
 void SceneBuilder::check_objects_closed() const {

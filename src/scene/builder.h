@@ -40,8 +40,9 @@ class SceneBuilder final : public pbrt::ParserTarget {
   }
 
   // The directives (pbrt/parser_target.h).
-  void camera(const std::string& type, const pbrt::ParamSet& ps, const glm::dmat4& camera_from_world) override;
-  void begin_world(const glm::dmat4& render_from_world) override;
+  void camera(const std::string& type, const pbrt::ParamSet& ps, const glm::dmat4& camera_from_world,
+              const glm::dmat4& camera_from_world_end) override;
+  void begin_world(const glm::dmat4& render_from_world, double transform_start, double transform_end) override;
   void film(const std::string& type, const pbrt::ParamSet& ps) override;
   void sampler(const std::string& type, const pbrt::ParamSet& ps) override;
   void integrator(const std::string& type, const pbrt::ParamSet& ps) override;
@@ -61,7 +62,8 @@ class SceneBuilder final : public pbrt::ParserTarget {
   void camera_medium(const std::string& name, const SourceLocation& where) override;
   void begin_object(const std::string& name, const SourceLocation& where) override;
   void end_object(const SourceLocation& where) override;
-  void object_instance(const std::string& name, const Mat4& world_from_object, const SourceLocation& where) override;
+  void object_instance(const std::string& name, const glm::dmat4& world_from_object,
+                       const glm::dmat4& world_from_object_end, const SourceLocation& where) override;
 
   // Builds the acceleration structure and light tables.
   void finish();
@@ -71,6 +73,13 @@ class SceneBuilder final : public pbrt::ParserTarget {
   // sizes: the medium named `name` (builder_media.cpp).
   void assign_light_media(size_t points, size_t spots, size_t at_infinity, const std::string& name,
                           const SourceLocation& where);
+  // Motion blur (builder_motion.cpp): a moving shape becomes a prototype
+  // of its own placed by a moving instance; an instance is checked and
+  // placed, moving when its two transforms differ.
+  void moving_shape(const std::string& type, const pbrt::ParamSet& ps, const GraphicsState& gs,
+                    const std::string& base_dir);
+  void place_instance(uint32_t prototype, const glm::dmat4& m0, const glm::dmat4& m1, const std::string& what,
+                      const SourceLocation& where);
   void add_light(const std::string& type, const pbrt::ParamSet& ps, const Mat4& ctm, const std::string& base_dir);
   // A material or texture parameter that may name a texture (builder_textures.cpp).
   RGBTextureRef conductor_param(const pbrt::ParamSet& ps, const std::string& name, const std::string& def);
@@ -182,7 +191,7 @@ class SceneBuilder final : public pbrt::ParserTarget {
   static constexpr int64_t kMaxResidentTexels = 256 * 256, kResidentTexelBudget = int64_t(4) << 20;  // 64 MB of float RGBA
   int64_t resident_texels_ = 0;
   std::optional<MaterialHandle> default_material_;
-  glm::dmat4 world_from_camera_{1.0};
+  glm::dmat4 world_from_camera_{1.0}, world_from_camera_end_{1.0};  // at the start and end of the motion
   glm::dmat4 render_from_world_{1.0};
 };
 

@@ -30,6 +30,9 @@ struct Scene {
   size_t triangle_count = 0;            // unique: stored once each
   size_t prototype_triangle_count = 0;  // of those, the ones inside ObjectBegin/ObjectEnd
   size_t instanced_triangle_count = 0;  // each ObjectInstance counts its prototype's triangles
+
+  // Whether anything moves while the shutter is open (motion blur).
+  bool moving() const { return camera.motion != nullptr || !shapes.motions.empty(); }
 };
 
 }  // namespace lantern

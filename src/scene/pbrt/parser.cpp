@@ -1,11 +1,14 @@
 #include "scene/pbrt/parser.h"
 
 #include <algorithm>
+#include <array>
+#include <tuple>
 #include <charconv>
 #include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
 #include <map>
 
+#include "math/motion.h"
 #include "scene/pbrt/tokenizer.h"
 
 namespace lantern::pbrt {
@@ -188,35 +191,54 @@ class Parser {
     auto options_only = [&] {
       if (in_world_) fail(t, std::string(d) + " is only allowed before WorldBegin");
     };
+    // pbrt's two current transformations, at the start and the end of the
+    // motion; ActiveTransform chooses which the directives change.
     glm::dmat4& ctm = gs_.world_from_object;
+    auto apply = [&](auto&& f) {
+      if (gs_.active_transforms & 1) gs_.world_from_object = f(gs_.world_from_object);
+      if (gs_.active_transforms & 2) gs_.world_from_object_end = f(gs_.world_from_object_end);
+    };
     if (d == "Translate") {
       auto v = numbers(3, "Translate");
-      ctm = glm::translate(ctm, glm::dvec3(v[0], v[1], v[2]));
+      apply([&](const glm::dmat4& m) { return glm::translate(m, glm::dvec3(v[0], v[1], v[2])); });
     } else if (d == "Scale") {
       auto v = numbers(3, "Scale");
-      ctm = glm::scale(ctm, glm::dvec3(v[0], v[1], v[2]));
+      apply([&](const glm::dmat4& m) { return glm::scale(m, glm::dvec3(v[0], v[1], v[2])); });
     } else if (d == "Rotate") {
       auto v = numbers(4, "Rotate");
       glm::dvec3 axis{v[1], v[2], v[3]};
       if (glm::length(axis) == 0.0) fail(t, "Rotate: the axis must not be zero");
-      ctm = glm::rotate(ctm, glm::radians(v[0]), glm::normalize(axis));
+      apply([&](const glm::dmat4& m) { return glm::rotate(m, glm::radians(v[0]), glm::normalize(axis)); });
     } else if (d == "LookAt") {
       auto v = numbers(9, "LookAt");
-      ctm = ctm * look_at(t, glm::dvec3(v[0], v[1], v[2]), glm::dvec3(v[3], v[4], v[5]), glm::dvec3(v[6], v[7], v[8]));
+      const glm::dmat4 l = look_at(t, glm::dvec3(v[0], v[1], v[2]), glm::dvec3(v[3], v[4], v[5]), glm::dvec3(v[6], v[7], v[8]));
+      apply([&](const glm::dmat4& m) { return m * l; });
     } else if (d == "Transform" || d == "ConcatTransform") {
       auto v = numbers(16, std::string(d).c_str());
-      glm::dmat4 m;
-      for (int i = 0; i < 16; ++i) m[i / 4][i % 4] = v[size_t(i)];
-      ctm = d == "Transform" ? m : ctm * m;
+      glm::dmat4 n;
+      for (int i = 0; i < 16; ++i) n[i / 4][i % 4] = v[size_t(i)];
+      apply([&](const glm::dmat4& m) { return d == "Transform" ? n : m * n; });
     } else if (d == "Identity") {
-      ctm = glm::dmat4(1.0);
+      apply([](const glm::dmat4&) { return glm::dmat4(1.0); });
     } else if (d == "CoordinateSystem") {
-      named_cs_[expect_string("a coordinate system name")] = ctm;
+      named_cs_[expect_string("a coordinate system name")] = {gs_.world_from_object, gs_.world_from_object_end};
     } else if (d == "CoordSysTransform") {
       std::string n = expect_string("a coordinate system name");
       auto it = named_cs_.find(n);
       if (it == named_cs_.end()) b_.warn(loc(t), "unknown coordinate system \"" + printable(n) + "\" ignored");
-      else ctm = it->second;
+      else std::tie(gs_.world_from_object, gs_.world_from_object_end) = it->second;
+    } else if (d == "ActiveTransform") {
+      const Token which = next();
+      if (which.kind != TokenKind::Identifier || (which.text != "StartTime" && which.text != "EndTime" && which.text != "All"))
+        fail(which, "ActiveTransform expects StartTime, EndTime or All" + describe(which));
+      gs_.active_transforms = which.text == "StartTime" ? 1 : which.text == "EndTime" ? 2 : 3;
+    } else if (d == "TransformTimes") {
+      options_only();
+      auto v = numbers(2, "TransformTimes");
+      if (!(v[1] >= v[0])) fail(t, "TransformTimes: the end time must not come before the start time");
+      if (camera_from_world_[0] != camera_from_world_[1] && (v[0] != transform_times_[0] || v[1] != transform_times_[1]))
+        fail(t, "TransformTimes after a moving Camera: give the times before the Camera");
+      transform_times_ = {v[0], v[1]};
     } else if (d == "ReverseOrientation") {
       gs_.reverse_orientation = !gs_.reverse_orientation;
     } else if (d == "AttributeBegin" || d == "TransformBegin") {
@@ -230,6 +252,8 @@ class Parser {
         fail(t, std::string(d) + " would close an ObjectBegin; close it with ObjectEnd");
       if (transform_only_.back()) {
         gs_.world_from_object = stack_.back().world_from_object;
+        gs_.world_from_object_end = stack_.back().world_from_object_end;
+        gs_.active_transforms = stack_.back().active_transforms;
       } else {
         gs_ = stack_.back();
       }
@@ -239,20 +263,21 @@ class Parser {
     } else if (d == "WorldBegin") {
       options_only();
       in_world_ = true;
-      ctm = glm::dmat4(1.0);
-      named_cs_["world"] = ctm;
+      ctm = gs_.world_from_object_end = glm::dmat4(1.0);
+      gs_.active_transforms = 3;
+      named_cs_["world"] = {ctm, ctm};
       render_from_world_ = render_from_world();
-      b_.begin_world(render_from_world_);
+      b_.begin_world(render_from_world_, transform_times_[0], transform_times_[1]);
     } else if (d == "WorldEnd") {
       world_only();
     } else if (d == "Camera") {
       options_only();
       std::string type = expect_string("a camera type");
       ParamSet ps = params(t, "Camera \"" + printable(type) + "\"");
-      b_.camera(type, ps, ctm);
+      b_.camera(type, ps, ctm, gs_.world_from_object_end);
       b_.camera_medium(gs_.outside_medium, gs_.medium_where);
-      camera_from_world_ = ctm;
-      named_cs_["camera"] = glm::inverse(ctm);
+      camera_from_world_ = {ctm, gs_.world_from_object_end};
+      named_cs_["camera"] = {glm::inverse(ctm), glm::inverse(gs_.world_from_object_end)};
       ps.warn_unused();
     } else if (d == "ColorSpace") {
       // Graphics state, as in pbrt-v4: allowed anywhere, scoped by
@@ -304,12 +329,14 @@ class Parser {
       std::string vtype = expect_string("a texture value type");
       std::string cls = expect_string("a texture class");
       ParamSet ps = params(t, "Texture \"" + printable(name) + "\"", "texture");
+      still("texture", t);
       b_.texture(name, vtype, cls, ps, render(ctm), base_dir_);
       ps.warn_unused();
     } else if (d == "LightSource") {
       world_only();
       std::string type = expect_string("a light type");
       ParamSet ps = params(t, "LightSource \"" + printable(type) + "\"", "light");
+      still("light", t);
       b_.light(type, ps, render(ctm), base_dir_, gs_.outside_medium, gs_.medium_where);
       ps.warn_unused();
     } else if (d == "AreaLightSource") {
@@ -326,6 +353,7 @@ class Parser {
       std::string type = expect_string("a shape type");
       ParamSet ps = params(t, "Shape \"" + printable(type) + "\"", "shape");
       gs_.render_from_object = render_from_world_ * ctm;
+      gs_.render_from_object_end = render_from_world_ * gs_.world_from_object_end;
       b_.shape(type, ps, gs_, base_dir_);
       ps.warn_unused();
     } else if (d == "MediumInterface") {
@@ -336,6 +364,7 @@ class Parser {
     } else if (d == "MakeNamedMedium") {
       std::string name = expect_string("a medium name");
       ParamSet ps = params(t, "MakeNamedMedium \"" + printable(name) + "\"", "medium");
+      still("medium", t);
       b_.medium(name, ps, render(ctm), base_dir_);
       ps.warn_unused();
     } else if (d == "Attribute") {
@@ -377,11 +406,9 @@ class Parser {
       std::string name = expect_string("an object name");
       // Objects are stored in render space as defined; an instance places
       // its render-space copy: render_from_world M world_from_render.
-      b_.object_instance(name, Mat4(render_from_world_ * ctm * glm::inverse(render_from_world_)), loc(t));
-    } else if (d == "ActiveTransform" || d == "TransformTimes") {
-      if (d == "ActiveTransform") next();
-      else numbers(2, "TransformTimes");
-      b_.warn(loc(t), std::string(d) + " is not supported (no motion blur); ignored");
+      const glm::dmat4 world_from_render = glm::inverse(render_from_world_);
+      b_.object_instance(name, render_from_world_ * ctm * world_from_render,
+                         render_from_world_ * gs_.world_from_object_end * world_from_render, loc(t));
     } else {
       fail(t, "unknown directive \"" + printable(d) + "\"");
     }
@@ -412,11 +439,21 @@ class Parser {
   // world's axes, the camera at the origin), "camera", or "world". Composed
   // in double precision, so coordinates stay small near the camera
   // however far from the world's origin the scene lies.
+  // A moving camera's space is taken halfway through its motion, as
+  // pbrt-v4 takes it.
   glm::dmat4 render_from_world() const {
     if (rendering_space_ == "world") return glm::dmat4(1.0);
-    if (rendering_space_ == "camera") return camera_from_world_;
-    const glm::dvec3 eye(glm::inverse(camera_from_world_)[3]);
-    return glm::translate(glm::dmat4(1.0), -eye);
+    glm::dmat4 world_from_camera = glm::inverse(camera_from_world_[0]);
+    if (camera_from_world_[0] != camera_from_world_[1])
+      world_from_camera = interpolate_transform(world_from_camera, glm::inverse(camera_from_world_[1]), 0.5);
+    if (rendering_space_ == "camera") return glm::inverse(world_from_camera);
+    return glm::translate(glm::dmat4(1.0), -glm::dvec3(world_from_camera[3]));
+  }
+  // pbrt-v4 gives lights, textures and media the transform at the start
+  // of the motion, with a warning when it moves.
+  void still(const char* what, const Token& t) const {
+    if (gs_.world_from_object != gs_.world_from_object_end)
+      b_.warn(loc(t), std::string("a moving ") + what + " is not supported (nor in pbrt-v4); it stays where the motion starts");
   }
   Mat4 render(const glm::dmat4& world_from_object) const { return Mat4(render_from_world_ * world_from_object); }
 
@@ -460,8 +497,10 @@ class Parser {
   std::vector<GraphicsState> stack_;
   std::vector<SourceLocation> stack_where_;
   std::vector<bool> transform_only_;
-  std::map<std::string, glm::dmat4> named_cs_;
-  glm::dmat4 camera_from_world_{1.0}, render_from_world_{1.0};
+  std::map<std::string, std::pair<glm::dmat4, glm::dmat4>> named_cs_;  // at the start and end of the motion
+  std::array<glm::dmat4, 2> camera_from_world_{glm::dmat4(1.0), glm::dmat4(1.0)};
+  glm::dmat4 render_from_world_{1.0};
+  std::array<double, 2> transform_times_{0.0, 1.0};
   std::string rendering_space_ = "cameraworld";
   std::map<std::string, MaterialHandle> named_materials_;
   bool in_world_ = false;

@@ -22,9 +22,14 @@ struct GraphicsState {
   // pbrt's current transformation matrix, world from object, composed in
   // double precision so that a scene far from the origin keeps its detail.
   glm::dmat4 world_from_object{1.0};
+  // The same at the end of the motion (pbrt's ActiveTransform EndTime): a
+  // shape or instance whose two differ moves while the shutter is open.
+  glm::dmat4 world_from_object_end{1.0};
+  uint8_t active_transforms = 3;  // ActiveTransform: 1 StartTime, 2 EndTime, 3 All
   // Where shapes are stored: the render space (docs/scene-format.md, "Far
   // from the origin"), from the object; set by the parser before each use.
-  glm::dmat4 render_from_object{1.0};
+  glm::dmat4 render_from_object{1.0}, render_from_object_end{1.0};
+  bool moving() const { return render_from_object != render_from_object_end; }
   bool reverse_orientation = false;
   std::optional<MaterialHandle> material;  // none yet: pbrt's default diffuse
   std::optional<pbrt::ParamSet> area_light;
@@ -50,15 +55,20 @@ class ParserTarget {
   virtual void warn_line(const std::string& line) const = 0;  // a whole "file:line:col: warning: ..." line
 
   // Rendering options, before WorldBegin.
-  virtual void camera(const std::string& type, const ParamSet& ps, const glm::dmat4& camera_from_world) = 0;
+  // camera_from_world at the start and the end of the motion (equal for a
+  // camera that stands still).
+  virtual void camera(const std::string& type, const ParamSet& ps, const glm::dmat4& camera_from_world,
+                      const glm::dmat4& camera_from_world_end) = 0;
   // The medium camera rays start in (the graphics state's outside medium).
   virtual void camera_medium(const std::string& name, const SourceLocation& where) = 0;
   virtual void film(const std::string& type, const ParamSet& ps) = 0;
   virtual void sampler(const std::string& type, const ParamSet& ps) = 0;
   virtual void integrator(const std::string& type, const ParamSet& ps) = 0;
   virtual void pixel_filter(const std::string& type, const ParamSet& ps) = 0;
-  // At WorldBegin: everything from here on is given in render space.
-  virtual void begin_world(const glm::dmat4& render_from_world) = 0;
+  // At WorldBegin: everything from here on is given in render space;
+  // transforms move from time transform_start to transform_end
+  // (TransformTimes).
+  virtual void begin_world(const glm::dmat4& render_from_world, double transform_start, double transform_end) = 0;
 
   // The world. named: the materials MakeNamedMaterial defined so far (for "mix").
   virtual MaterialHandle material(const std::string& type, const ParamSet& ps,
@@ -77,8 +87,9 @@ class ParserTarget {
   // prototype; object_instance places it with a transform.
   virtual void begin_object(const std::string& name, const SourceLocation& where) = 0;
   virtual void end_object(const SourceLocation& where) = 0;
-  virtual void object_instance(const std::string& name, const Mat4& world_from_object,
-                               const SourceLocation& where) = 0;
+  // world_from_object at the start and the end of the motion.
+  virtual void object_instance(const std::string& name, const glm::dmat4& world_from_object,
+                               const glm::dmat4& world_from_object_end, const SourceLocation& where) = 0;
 };
 
 }  // namespace pbrt
