@@ -122,10 +122,9 @@ class Camera {
 
 // The camera that sees a sample at time u: `camera` itself when it stands
 // still (no copy), else its pose at u, made in `scratch`.
-inline const Camera& camera_at(const Camera& camera, float u, Camera& scratch) {
+inline const Camera& camera_at(const Camera& camera, float u, std::optional<Camera>& scratch) {
   if (!camera.moves()) return camera;
-  scratch = camera.at(u);
-  return scratch;
+  return scratch.emplace(camera.at(u));
 }
 
 }  // namespace lantern

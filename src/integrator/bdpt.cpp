@@ -38,7 +38,7 @@ void Bdpt::start_eye_subpaths(const WaveDesc& wave, BdptWave& w) const {
     const PathSampler& s = w.sampler[slot];
     uint32_t pixel = w.pixel[slot];
     Vec2 p_raster = sample_raster_position(scene_.filter, pixel, width, s.get2d(dims::kFilm)) + settings_.raster_offset;
-    Camera moved;
+    std::optional<Camera> moved;
     const Camera& camera = camera_at(camera_, w.time[slot], moved);
     CameraRay r = camera.generate_ray(p_raster, s.get2d(dims::kLens));
     w.eye.beta[slot] = Spectrum(1.f);

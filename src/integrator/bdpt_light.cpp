@@ -127,7 +127,7 @@ void Bdpt::begin_light_subpath(BdptWave& w, uint32_t slot, const EmissionSample&
   // pixel's worth of energy that no camera ray can find, so the path tracer
   // and pbrt-v4 (whose bdpt skips s = 1, t = 1) leave it out, and so does
   // every integrator here.
-  Camera moved;
+  std::optional<Camera> moved;
   const Camera& camera = camera_at(camera_, w.time[slot], moved);
   if (!es.infinite && !es.delta_pos && settings_.connections) {
     if (auto cs = camera.sample_wi(es.p, u_lens)) {

@@ -117,7 +117,7 @@ void Bdpt::connect_light_vertices(BdptWave& w, uint32_t slot, const Vertex& v) c
 template <class Vertex>
 void Bdpt::connect_camera(BdptWave& w, uint32_t slot, uint32_t ld, const Vertex& v, Vec2 u_lens) const {
   if (ld > uint32_t(settings_.maxdepth) || !settings_.connections) return;
-  Camera moved;
+  std::optional<Camera> moved;
   const Camera& camera = camera_at(camera_, w.time[slot], moved);
   auto cs = camera.sample_wi(v.p, u_lens);
   if (!cs) return;

@@ -47,7 +47,7 @@ void PathTracer::generate_camera_rays(const WaveDesc& wave, PathWave& w) const {
     PathSampler s = PathSampler::make(sampler_, pixel, sample_index);
     Vec2 p_raster = sample_raster_position(scene_.filter, pixel, width, s.get2d(dims::kFilm)) + settings_.raster_offset;
     const float time = sample_time(scene_, s, settings_.maxdepth);
-    Camera moved;
+    std::optional<Camera> moved;
     CameraRay r = camera_at(camera_, time, moved).generate_ray(p_raster, s.get2d(dims::kLens));
     w.pixel[slot] = pixel;
     w.sampler[slot] = s;
