@@ -6,6 +6,7 @@
 
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_precision.hpp>
+#include <optional>
 #include <vector>
 
 #include "geometry/bilinear_patch.h"
@@ -85,10 +86,12 @@ struct ShapePools {
   std::vector<MotionPath> motions;  // of the moving instances
 };
 
-// Instance `in` where it is at time u of the shutter (math/motion.h).
-inline Instance instance_at(const ShapePools& shapes, const Instance& in, float u) {
+// Instance `in` where it is at time u of the shutter (math/motion.h): `in`
+// itself when it stands still (no copy), else placed at u in `scratch`.
+inline const Instance& instance_at(const ShapePools& shapes, const Instance& in, float u,
+                                   std::optional<Instance>& scratch) {
   if (in.motion == Instance::kStill) return in;
-  return Instance::placed(in.prototype, shapes.motions[in.motion].at(u), in.motion);
+  return scratch.emplace(Instance::placed(in.prototype, shapes.motions[in.motion].at(u), in.motion));
 }
 
 }  // namespace lantern

@@ -64,7 +64,8 @@ inline SurfacePoint hit_point(const ShapePools& shapes, const RayBatch& rays, ui
   const uint32_t inst = rays.inst_id[i];
   if (inst == kInvalidGeometry) return local_hit_point(shapes, rays, i, nullptr);
   // Embree reports an instance hit's u, v and Ng in the prototype's space.
-  const Instance in = instance_at(shapes, shapes.instances[inst], rays.time[i]);
+  std::optional<Instance> moved;
+  const Instance& in = instance_at(shapes, shapes.instances[inst], rays.time[i], moved);
   return to_world(in, local_hit_point(shapes, rays, i, &in));
 }
 
