@@ -14,6 +14,8 @@ packages=(
   gnuplot-nox  # perf/run-all.sh plots error against time
   clang libclang-rt-14-dev  # scripts/check-sanitized.sh: sanitizers and libFuzzer
   libopenmpi-dev openmpi-bin  # rendering across machines (mpirun); a build without it renders on one
+  pybind11-dev python3-dev  # the Python module (docs/python.md)
+  python3-numpy python3-pytest python3-matplotlib  # its arrays, its tests, the example study's plots
 )
 
 missing=()

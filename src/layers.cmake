@@ -15,7 +15,8 @@ set(LANTERN_LAYERS
     "scene"
     "integrator"
     "distributed"
-    "app")
+    "app"
+    "python")
 
 # LANTERN_LEVEL_<folder>: the layer of each folder.
 set(_level 0)

@@ -207,6 +207,10 @@ class RenderSession {
   RenderResult run();   // once per session
   void start();         // run() on the session's thread
   RenderResult wait();  // after start(): its result (rethrows what it threw)
+  // After start(): whether the render has ended, waiting at most `seconds`
+  // for it (a caller that must stay responsive, such as Python's signal
+  // checks, waits in slices; wait() then returns at once).
+  bool wait_for(double seconds);
   void cancel();        // stop after the waves in flight (a signal handler may call it)
 
   // The image of every wave merged so far: the film resolved under its lock

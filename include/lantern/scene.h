@@ -67,6 +67,9 @@ struct LoadOptions {
   // user's cache folder) when the scene's own are not (docs/textures.md).
   double texture_cache_mb = 1024.0;
   std::string texture_directory;
+  // load_scene_from_string: where the text's relative file names (Include,
+  // PLY meshes, images) resolve (empty: the working directory).
+  std::string base_directory;
 };
 
 // Throws InputError for anything wrong with the input.

@@ -16,13 +16,12 @@
 #include "app/merge_command.h"
 #include "app/outputs.h"
 #include "app/provenance.h"
+#include "app/render_request.h"
 #include "app/stats_report.h"
-#include "color/color_space.h"
 #include "integrator/render_settings.h"
 #include "trace/timeline.h"
 #include "film/image_metrics.h"
 #include "imageio/replace_file.h"
-#include "math/fnv1a.h"
 #include "lantern/render.h"
 #include "lantern/scene.h"
 #ifdef LANTERN_HAVE_MPI
@@ -56,16 +55,12 @@ std::string hms(double s) {
 }
 
 struct RenderArgs {
-  std::string scene, output, integrator, rays = "stream", mis = "power", strategies, stats, dump_rays, checkpoint_file;
-  float vcm_radius = 0.f, vcm_alpha = 0.75f;
-  std::string texture_dir, sampler, light_sampler, trace, part;
+  lantern::RenderRequest req;  // what the render options ask of the scene
+  std::string scene, output, strategies, stats, dump_rays, checkpoint_file;
+  std::string texture_dir, trace, part;
   uint64_t trace_waves = 1000;
-  int spp = 0, maxdepth = -1, threads = 0, wave_size = 0;  // 0: 4096, or 16384 for vcm, bpm, ppm (docs/vcm.md)
-  double time = 0.0, checkpoint = 0.0, texture_cache_mb = 1024.0, target_error = 0.0, progress_interval = 10.0;
-  uint64_t seed = 0;
+  double checkpoint = 0.0, texture_cache_mb = 1024.0, progress_interval = 10.0;
   bool resume = false;
-  bool spectral = false, guide = false;
-  std::vector<int> resolution;
   bool quiet = false;
 };
 
@@ -77,19 +72,6 @@ void write_strategy_images(const std::string& dir, const std::vector<lantern::St
     lantern::write_image(base + "_weighted.exr", im.weighted, md);
     lantern::write_image(base + "_unweighted.exr", im.unweighted, md);
   }
-}
-
-// What a checkpoint must agree with: the scene file's name and bytes (FNV-1a)
-// and what was loaded from it, so that an edited scene is not resumed.
-std::string scene_key(const std::string& path, const lantern::SceneInfo& info) {
-  std::ifstream in(path, std::ios::binary);
-  lantern::Fnv1a hash;
-  char buf[1 << 16];
-  while (in.read(buf, sizeof buf) || in.gcount() > 0) hash.add(buf, size_t(in.gcount()));
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)hash.h);
-  return std::filesystem::path(path).filename().string() + " " + hex + " triangles " + std::to_string(info.triangles) +
-         " spheres " + std::to_string(info.spheres) + " lights " + std::to_string(info.lights);
 }
 
 // Written to a temporary name and moved into place, like the images
@@ -225,39 +207,13 @@ int run_render(const RenderArgs& a) {
   if (progress_shown) std::fprintf(stderr, "\r\033[K[load %6.1f s] done\n", load_s);
   const SceneSettings& ss = scene_settings(*scene);
 
-  RenderOptions o;
-  o.integrator = a.integrator.empty() ? ss.integrator : lantern::parse_integrator(a.integrator);
-  o.vcm_radius = a.vcm_radius;
-  o.vcm_alpha = a.vcm_alpha;
-  o.mis = lantern::parse_mis(a.mis);
-  o.spectral = a.spectral;
+  RenderOptions o = resolve_render_options(*scene, a.req);
   if (ss.dispersive && !o.spectral)
     std::fprintf(stderr, "warning: the scene has a material whose index of refraction varies with wavelength; it "
                          "disperses light only with --spectral (in RGB its index is the one at 587.6 nm)\n");
   o.strategies = !a.strategies.empty();
   o.collect_stats = !a.stats.empty();
   o.dump_rays = a.dump_rays;
-  o.spp = a.spp > 0 ? a.spp : ss.spp;
-  o.time_limit_seconds = a.time;
-  o.target_error = a.target_error;
-  o.guiding = a.guide;
-  if (a.target_error > 0 && a.spp == 0) o.spp = 1 << 16;  // adaptive: the limit is --spp, when given
-  o.maxdepth = a.maxdepth >= 0 ? a.maxdepth : ss.maxdepth;
-  o.threads = a.threads;
-  o.seed = a.seed;
-  o.sampler = ss.sampler;
-  o.light_sampler = a.light_sampler.empty() ? ss.light_sampler : lantern::parse_light_sampler(a.light_sampler);
-  if (!a.sampler.empty() && lantern::parse_sampler(a.sampler) != ss.sampler.type) {
-    o.sampler = lantern::SamplerSettings{};  // the scene's parameters belong to its own type
-    o.sampler.type = lantern::parse_sampler(a.sampler);
-    o.sampler.seed = ss.sampler.seed;
-  }
-  if (a.resolution.size() == 2) {
-    o.width = a.resolution[0];
-    o.height = a.resolution[1];
-  }
-  o.ray_backend = lantern::parse_ray_backend(a.rays);
-  o.wave_size = a.wave_size > 0 ? a.wave_size : lantern::merges_vertices(o.integrator) ? 16384 : 4096;
   RenderHooks hooks;
   hooks.cancel = &g_cancel;
   std::string out = a.output.empty() ? ss.output : a.output;
@@ -360,30 +316,7 @@ int run_render(const RenderArgs& a) {
     return finish_part(a, o, r, timeline.get());
   }
 
-  ImageMetadata md = {{"lantern:integrator", name(o.integrator)},
-                      {"lantern:colour", o.spectral ? "spectral" : "rgb"},
-                      {"lantern:spp", std::to_string(r.stats.min_spp)},
-                      {"lantern:samples", std::to_string(r.stats.samples)},
-                      {"lantern:seed", std::to_string(o.seed)},
-                      {"lantern:maxdepth", std::to_string(o.maxdepth)},
-                      {"lantern:render_seconds", std::to_string(r.total_render_seconds)},
-                      {"lantern:resumed_samples", std::to_string(r.resumed_samples)},
-                      {"lantern:interrupted", r.interrupted ? "true" : "false"},
-                      {"lantern:scene", a.scene}};
-  add_render_settings(md, o);
-  add_provenance(md, g_provenance);
-  if (const ImageRegion region = image_region(*scene, o); region.cropped())
-    // A crop (Film "cropwindow", "pixelbounds"): where it lies in the whole
-    // image, as OpenEXR's data and display windows say it.
-    md.emplace_back("pixelbounds", std::to_string(region.x0) + " " + std::to_string(region.y0) + " " +
-                                       std::to_string(region.full_width) + " " + std::to_string(region.full_height));
-  if (const ColorSpace* cs = ColorSpace::named(scene_settings(*scene).color_space); cs && cs != &ColorSpace::srgb()) {
-    // The image is in another colour space (ColorSpace before Film): say so
-    // as OpenEXR does.
-    std::string c;
-    for (float v : chromaticities(*cs)) c += (c.empty() ? "" : " ") + std::to_string(v);
-    md.emplace_back("chromaticities", c);
-  }
+  const ImageMetadata md = render_metadata(*scene, a.scene, o, r, g_provenance);
   ImageWrite written;
   {
     TraceSpan span(timeline ? &timeline->main() : nullptr, "write image", TraceCategory::Output);
@@ -487,32 +420,32 @@ int main(int argc, char** argv) {
   CLI::App* render = app.add_subcommand("render", "Render a pbrt-v4 scene to an image");
   render->add_option("scene", a.scene, "Scene file (pbrt-v4 format)")->required();
   render->add_option("-o,--output", a.output, "Output image (.exr linear float, .png sRGB); default: the scene's Film filename");
-  auto* spp = render->add_option("--spp", a.spp, "Samples per pixel (default: the scene's Sampler pixelsamples)")->check(lantern::cli::positive_integer());
-  render->add_option("--time", a.time, "Render for this many seconds instead of a sample count")->check(lantern::cli::positive_seconds())->excludes(spp);
+  auto* spp = render->add_option("--spp", a.req.spp, "Samples per pixel (default: the scene's Sampler pixelsamples)")->check(lantern::cli::positive_integer());
+  render->add_option("--time", a.req.time, "Render for this many seconds instead of a sample count")->check(lantern::cli::positive_seconds())->excludes(spp);
   render->add_option("--progress-interval", a.progress_interval,
                      "When stderr is not a terminal (a batch job's log): a progress line every this many seconds "
                      "(0: none)")
       ->check(lantern::cli::number_in(0.0, 1e9, true, "a number of seconds, 0 or more"));
-  render->add_option("--target-error", a.target_error,
+  render->add_option("--target-error", a.req.target_error,
                      "Adaptive sampling: give pixels samples until the estimated relative MSE of each block of them "
                      "is below this (e.g. 0.001); --spp (default 65536) or --time limits it (docs/adaptive-sampling.md)")
       ->check(CLI::PositiveNumber);
-  render->add_option("--integrator", a.integrator,
+  render->add_option("--integrator", a.req.integrator,
                      "Integrator: path, bdpt, lt (light tracing), vcm (vertex connection and merging), bpm "
                      "(bidirectional photon mapping) or ppm (progressive photon mapping); default: the scene's "
                      "Integrator")
       ->check(CLI::IsMember({"path", "bdpt", "lt", "vcm", "bpm", "ppm"}));
-  render->add_option("--vcm-radius", a.vcm_radius,
+  render->add_option("--vcm-radius", a.req.vcm_radius,
                      "vcm, bpm, ppm: the merging radius of the first pass (default: an sppm Integrator's \"radius\", else 0.003 "
                      "of the scene's bounding radius)")
       ->check(CLI::PositiveNumber);
-  render->add_option("--vcm-alpha", a.vcm_alpha, "vcm, bpm, ppm: the radius of pass i is radius * i^((alpha - 1) / 2); default 0.75")
+  render->add_option("--vcm-alpha", a.req.vcm_alpha, "vcm, bpm, ppm: the radius of pass i is radius * i^((alpha - 1) / 2); default 0.75")
       ->check(CLI::Range(0.01, 1.0));
-  render->add_option("--mis", a.mis, "bdpt's MIS heuristic: power or balance")
+  render->add_option("--mis", a.req.mis, "bdpt's MIS heuristic: power or balance")
       ->check(CLI::IsMember({"power", "balance"}));
-  render->add_flag("--guide", a.guide,
+  render->add_flag("--guide", a.req.guide,
                    "Path guiding: paths learn where light comes from and sample it (path only; docs/guiding.md)");
-  render->add_flag("--spectral", a.spectral,
+  render->add_flag("--spectral", a.req.spectral,
                    "Render with sampled wavelengths, four per camera sample, as pbrt-v4 does, instead of in RGB "
                    "(docs/spectral.md)");
   render->add_option("--stats", a.stats,
@@ -521,22 +454,22 @@ int main(int argc, char** argv) {
                      "Write every ray batch given to Embree to FILE (32 bytes a ray; for perf/'s ray benchmark)");
   render->add_option("--strategies", a.strategies,
                      "bdpt, vcm, bpm, ppm: write DIR/s<s>_t<t>_{weighted,unweighted}.exr, one pair per strategy (merge_s<s>_t<t> for merges)");
-  render->add_option("--maxdepth", a.maxdepth, "Maximum path depth, as pbrt defines it (default: the scene's)")->check(lantern::cli::integer_in(0, 2147483647, "an integer of 0 or more"));
-  render->add_option("--threads", a.threads, "Worker threads (default: all cores)")->check(lantern::cli::positive_integer());
-  render->add_option("--seed", a.seed, "Random seed (0 or more)")
+  render->add_option("--maxdepth", a.req.maxdepth, "Maximum path depth, as pbrt defines it (default: the scene's)")->check(lantern::cli::integer_in(0, 2147483647, "an integer of 0 or more"));
+  render->add_option("--threads", a.req.threads, "Worker threads (default: all cores)")->check(lantern::cli::positive_integer());
+  render->add_option("--seed", a.req.seed, "Random seed (0 or more)")
       ->check(lantern::cli::integer_in(0, 9223372036854775807LL, "an integer of 0 or more"));
-  render->add_option("--sampler", a.sampler,
+  render->add_option("--sampler", a.req.sampler,
                      "Sample pattern: zsobol, paddedsobol, sobol, halton, stratified or independent "
                      "(default: the scene's Sampler)")
       ->check(CLI::IsMember({"zsobol", "paddedsobol", "sobol", "halton", "stratified", "independent"}));
-  render->add_option("--light-sampler", a.light_sampler,
+  render->add_option("--light-sampler", a.req.light_sampler,
                      "How next-event estimation chooses lights: bvh, power or uniform (default: the scene's "
                      "Integrator \"lightsampler\", else bvh)")
       ->check(CLI::IsMember({"bvh", "power", "uniform"}));
-  render->add_option("--resolution", a.resolution, "Image size W H (default: the scene's Film)")->expected(2)->check(lantern::cli::integer_in(1, 65536, "an integer from 1 to 65536"));
-  render->add_option("--rays", a.rays, "Ray query back end: stream (Embree Np streams), stream-1m, single, packet16")
+  render->add_option("--resolution", a.req.resolution, "Image size W H (default: the scene's Film)")->expected(2)->check(lantern::cli::integer_in(1, 65536, "an integer from 1 to 65536"));
+  render->add_option("--rays", a.req.rays, "Ray query back end: stream (Embree Np streams), stream-1m, single, packet16")
       ->check(CLI::IsMember({"stream", "stream-1m", "single", "packet16"}));
-  render->add_option("--wave-size", a.wave_size, "Paths per wave (default 4096; 16384 for vcm, bpm and ppm, whose eye vertices merge with the light vertices of their wave)")->check(lantern::cli::integer_in(1, 1 << 22, "an integer from 1 to 4194304"));
+  render->add_option("--wave-size", a.req.wave_size, "Paths per wave (default 4096; 16384 for vcm, bpm and ppm, whose eye vertices merge with the light vertices of their wave)")->check(lantern::cli::integer_in(1, 1 << 22, "an integer from 1 to 4194304"));
   render->add_option("--checkpoint", a.checkpoint,
                      "Write the render's state every SECONDS (and on Ctrl-C/SIGTERM) to OUTPUT.ckpt")
       ->check(lantern::cli::positive_seconds());

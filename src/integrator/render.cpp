@@ -417,6 +417,9 @@ struct RenderSession::State {
   std::thread thread;
   RenderResult result;
   std::exception_ptr error;
+  std::mutex end_mutex;  // finished, for wait_for
+  std::condition_variable end_cv;
+  bool finished = false;
 };
 
 RenderSession::RenderSession(const Scene& scene, RenderOptions options, RenderHooks hooks) {
@@ -454,7 +457,17 @@ void RenderSession::start() {
     } catch (...) {
       state_->error = std::current_exception();
     }
+    std::lock_guard<std::mutex> lock(state_->end_mutex);
+    state_->finished = true;
+    state_->end_cv.notify_all();
   });
+}
+
+bool RenderSession::wait_for(double seconds) {
+  if (!state_->thread.joinable()) throw std::logic_error("wait_for() needs a started render session");
+  std::unique_lock<std::mutex> lock(state_->end_mutex);
+  return state_->end_cv.wait_for(lock, std::chrono::duration<double>(std::max(seconds, 0.0)),
+                                 [&] { return state_->finished; });
 }
 
 RenderResult RenderSession::wait() {

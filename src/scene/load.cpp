@@ -20,7 +20,10 @@ std::shared_ptr<Scene> load_scene_from_string(const std::string& text, const std
   auto scene = std::make_shared<Scene>();
   SceneBuilder b(*scene, options.warn);
   b.set_texture_cache(TextureCacheSettings{options.texture_cache_mb, options.texture_directory});
-  pbrt::parse_string(text, name, std::filesystem::current_path().string(), b);
+  pbrt::parse_string(text, name,
+                     options.base_directory.empty() ? std::filesystem::current_path().string()
+                                                    : std::filesystem::absolute(options.base_directory).string(),
+                     b);
   b.finish();
   return scene;
 }

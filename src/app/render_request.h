@@ -1,0 +1,50 @@
+// What a user asks of a render on top of the scene file's own settings: the
+// command line's `lantern render` options and the Python module's keyword
+// arguments are both this, so that one word means one thing in each. The
+// scene decides whatever the request leaves unset.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "lantern/image.h"
+#include "lantern/render.h"
+#include "app/provenance.h"
+#include "lantern/scene.h"
+
+namespace lantern {
+
+struct RenderRequest {
+  std::string integrator;     // empty: the scene's Integrator
+  std::string sampler;        // empty: the scene's Sampler
+  std::string light_sampler;  // empty: the scene's "lightsampler", else bvh
+  std::string mis = "power", rays = "stream";
+  int spp = 0;         // 0: the scene's pixelsamples
+  int maxdepth = -1;   // -1: the scene's
+  int threads = 0;     // 0: all cores
+  int wave_size = 0;   // 0: 4096, or 16384 for vcm, bpm, ppm (docs/vcm.md)
+  double time = 0.0;   // > 0: render for this many seconds instead of a sample count
+  double target_error = 0.0;  // > 0: adaptive sampling (docs/adaptive-sampling.md)
+  uint64_t seed = 0;
+  float vcm_radius = 0.f, vcm_alpha = 0.75f;
+  bool spectral = false, guide = false;
+  std::vector<int> resolution;  // empty, or W H
+};
+
+// The options of a render of `scene` as `request` asks. Throws
+// std::invalid_argument for a word no option has (an unknown integrator, ...).
+RenderOptions resolve_render_options(const Scene& scene, const RenderRequest& request);
+
+// What a checkpoint or a part file must agree with: the scene file's name
+// and bytes (FNV-1a) and what was loaded from it, so that an edited scene is
+// neither resumed nor merged; for a scene given as text, the text's.
+std::string scene_key(const std::string& path, const SceneInfo& info);
+std::string scene_key_of_text(const std::string& name, const std::string& text, const SceneInfo& info);
+
+// The header of a rendered image: the settings, the figures, where it came
+// from (src/app/provenance.h), and a crop's place in the whole image.
+ImageMetadata render_metadata(const Scene& scene, const std::string& scene_path, const RenderOptions& o,
+                              const RenderResult& r, const Provenance& provenance);
+
+}  // namespace lantern
