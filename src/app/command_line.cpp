@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <iostream>
 
+#include "app/cli_checks.h"
 #include "math/edit_distance.h"
 
 namespace lantern::cli {
@@ -68,6 +69,49 @@ int parse_command_line(CLI::App& app, int argc, char** argv) {
     suggest(app, argc, argv);
     return 2;
   }
+}
+
+void add_render_request_options(CLI::App& c, RenderRequest& r) {
+  CLI::Option* spp = c.add_option("--spp", r.spp, "Samples per pixel (default: the scene's Sampler pixelsamples)")->check(positive_integer());
+  c.add_option("--time", r.time, "Render for this many seconds instead of a sample count")->check(positive_seconds())->excludes(spp);
+  c.add_option("--target-error", r.target_error,
+                     "Adaptive sampling: give pixels samples until the estimated relative MSE of each block of them "
+                     "is below this (e.g. 0.001); --spp (default 65536) or --time limits it (docs/adaptive-sampling.md)")
+      ->check(CLI::PositiveNumber);
+  c.add_option("--integrator", r.integrator,
+                     "Integrator: path, bdpt, lt (light tracing), vcm (vertex connection and merging), bpm "
+                     "(bidirectional photon mapping) or ppm (progressive photon mapping); default: the scene's "
+                     "Integrator")
+      ->check(CLI::IsMember({"path", "bdpt", "lt", "vcm", "bpm", "ppm"}));
+  c.add_option("--vcm-radius", r.vcm_radius,
+                     "vcm, bpm, ppm: the merging radius of the first pass (default: an sppm Integrator's \"radius\", else 0.003 "
+                     "of the scene's bounding radius)")
+      ->check(CLI::PositiveNumber);
+  c.add_option("--vcm-alpha", r.vcm_alpha, "vcm, bpm, ppm: the radius of pass i is radius * i^((alpha - 1) / 2); default 0.75")
+      ->check(CLI::Range(0.01, 1.0));
+  c.add_option("--mis", r.mis, "bdpt's MIS heuristic: power or balance")
+      ->check(CLI::IsMember({"power", "balance"}));
+  c.add_flag("--guide", r.guide,
+                   "Path guiding: paths learn where light comes from and sample it (path only; docs/guiding.md)");
+  c.add_flag("--spectral", r.spectral,
+                   "Render with sampled wavelengths, four per camera sample, as pbrt-v4 does, instead of in RGB "
+                   "(docs/spectral.md)");
+  c.add_option("--maxdepth", r.maxdepth, "Maximum path depth, as pbrt defines it (default: the scene's)")->check(integer_in(0, 2147483647, "an integer of 0 or more"));
+  c.add_option("--threads", r.threads, "Worker threads (default: all cores)")->check(positive_integer());
+  c.add_option("--seed", r.seed, "Random seed (0 or more)")
+      ->check(integer_in(0, 9223372036854775807LL, "an integer of 0 or more"));
+  c.add_option("--sampler", r.sampler,
+                     "Sample pattern: zsobol, paddedsobol, sobol, halton, stratified or independent "
+                     "(default: the scene's Sampler)")
+      ->check(CLI::IsMember({"zsobol", "paddedsobol", "sobol", "halton", "stratified", "independent"}));
+  c.add_option("--light-sampler", r.light_sampler,
+                     "How next-event estimation chooses lights: bvh, power or uniform (default: the scene's "
+                     "Integrator \"lightsampler\", else bvh)")
+      ->check(CLI::IsMember({"bvh", "power", "uniform"}));
+  c.add_option("--resolution", r.resolution, "Image size W H (default: the scene's Film)")->expected(2)->check(integer_in(1, 65536, "an integer from 1 to 65536"));
+  c.add_option("--rays", r.rays, "Ray query back end: stream (Embree Np streams), stream-1m, single, packet16")
+      ->check(CLI::IsMember({"stream", "stream-1m", "single", "packet16"}));
+  c.add_option("--wave-size", r.wave_size, "Paths per wave (default 4096; 16384 for vcm, bpm and ppm, whose eye vertices merge with the light vertices of their wave)")->check(integer_in(1, 1 << 22, "an integer from 1 to 4194304"));
 }
 
 }  // namespace lantern::cli

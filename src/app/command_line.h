@@ -5,6 +5,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/render_request.h"
+
 namespace lantern::cli {
 
 // Parses argv into app; -1 when parsing succeeded (go on), otherwise the
@@ -14,5 +16,9 @@ int parse_command_line(CLI::App& app, int argc, char** argv);
 // The closest of `candidates` to `word` within an edit distance of
 // max(2, size / 3), or "" when none is that close.
 std::string closest(const std::string& word, const std::vector<std::string>& candidates);
+
+// The options of a RenderRequest (--spp, --integrator, --maxdepth, ...),
+// for every subcommand that renders (render, view).
+void add_render_request_options(CLI::App& c, RenderRequest& r);
 
 }  // namespace lantern::cli

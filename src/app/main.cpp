@@ -17,6 +17,7 @@
 #include "app/outputs.h"
 #include "app/provenance.h"
 #include "app/render_request.h"
+#include "app/viewer.h"
 #include "app/stats_report.h"
 #include "integrator/render_settings.h"
 #include "trace/timeline.h"
@@ -420,56 +421,17 @@ int main(int argc, char** argv) {
   CLI::App* render = app.add_subcommand("render", "Render a pbrt-v4 scene to an image");
   render->add_option("scene", a.scene, "Scene file (pbrt-v4 format)")->required();
   render->add_option("-o,--output", a.output, "Output image (.exr linear float, .png sRGB); default: the scene's Film filename");
-  auto* spp = render->add_option("--spp", a.req.spp, "Samples per pixel (default: the scene's Sampler pixelsamples)")->check(lantern::cli::positive_integer());
-  render->add_option("--time", a.req.time, "Render for this many seconds instead of a sample count")->check(lantern::cli::positive_seconds())->excludes(spp);
+  lantern::cli::add_render_request_options(*render, a.req);
   render->add_option("--progress-interval", a.progress_interval,
                      "When stderr is not a terminal (a batch job's log): a progress line every this many seconds "
                      "(0: none)")
       ->check(lantern::cli::number_in(0.0, 1e9, true, "a number of seconds, 0 or more"));
-  render->add_option("--target-error", a.req.target_error,
-                     "Adaptive sampling: give pixels samples until the estimated relative MSE of each block of them "
-                     "is below this (e.g. 0.001); --spp (default 65536) or --time limits it (docs/adaptive-sampling.md)")
-      ->check(CLI::PositiveNumber);
-  render->add_option("--integrator", a.req.integrator,
-                     "Integrator: path, bdpt, lt (light tracing), vcm (vertex connection and merging), bpm "
-                     "(bidirectional photon mapping) or ppm (progressive photon mapping); default: the scene's "
-                     "Integrator")
-      ->check(CLI::IsMember({"path", "bdpt", "lt", "vcm", "bpm", "ppm"}));
-  render->add_option("--vcm-radius", a.req.vcm_radius,
-                     "vcm, bpm, ppm: the merging radius of the first pass (default: an sppm Integrator's \"radius\", else 0.003 "
-                     "of the scene's bounding radius)")
-      ->check(CLI::PositiveNumber);
-  render->add_option("--vcm-alpha", a.req.vcm_alpha, "vcm, bpm, ppm: the radius of pass i is radius * i^((alpha - 1) / 2); default 0.75")
-      ->check(CLI::Range(0.01, 1.0));
-  render->add_option("--mis", a.req.mis, "bdpt's MIS heuristic: power or balance")
-      ->check(CLI::IsMember({"power", "balance"}));
-  render->add_flag("--guide", a.req.guide,
-                   "Path guiding: paths learn where light comes from and sample it (path only; docs/guiding.md)");
-  render->add_flag("--spectral", a.req.spectral,
-                   "Render with sampled wavelengths, four per camera sample, as pbrt-v4 does, instead of in RGB "
-                   "(docs/spectral.md)");
   render->add_option("--stats", a.stats,
                      "Write measurements as JSON: time per stage, rays by kind, subpath lengths, memory");
   render->add_option("--dump-rays", a.dump_rays,
                      "Write every ray batch given to Embree to FILE (32 bytes a ray; for perf/'s ray benchmark)");
   render->add_option("--strategies", a.strategies,
                      "bdpt, vcm, bpm, ppm: write DIR/s<s>_t<t>_{weighted,unweighted}.exr, one pair per strategy (merge_s<s>_t<t> for merges)");
-  render->add_option("--maxdepth", a.req.maxdepth, "Maximum path depth, as pbrt defines it (default: the scene's)")->check(lantern::cli::integer_in(0, 2147483647, "an integer of 0 or more"));
-  render->add_option("--threads", a.req.threads, "Worker threads (default: all cores)")->check(lantern::cli::positive_integer());
-  render->add_option("--seed", a.req.seed, "Random seed (0 or more)")
-      ->check(lantern::cli::integer_in(0, 9223372036854775807LL, "an integer of 0 or more"));
-  render->add_option("--sampler", a.req.sampler,
-                     "Sample pattern: zsobol, paddedsobol, sobol, halton, stratified or independent "
-                     "(default: the scene's Sampler)")
-      ->check(CLI::IsMember({"zsobol", "paddedsobol", "sobol", "halton", "stratified", "independent"}));
-  render->add_option("--light-sampler", a.req.light_sampler,
-                     "How next-event estimation chooses lights: bvh, power or uniform (default: the scene's "
-                     "Integrator \"lightsampler\", else bvh)")
-      ->check(CLI::IsMember({"bvh", "power", "uniform"}));
-  render->add_option("--resolution", a.req.resolution, "Image size W H (default: the scene's Film)")->expected(2)->check(lantern::cli::integer_in(1, 65536, "an integer from 1 to 65536"));
-  render->add_option("--rays", a.req.rays, "Ray query back end: stream (Embree Np streams), stream-1m, single, packet16")
-      ->check(CLI::IsMember({"stream", "stream-1m", "single", "packet16"}));
-  render->add_option("--wave-size", a.req.wave_size, "Paths per wave (default 4096; 16384 for vcm, bpm and ppm, whose eye vertices merge with the light vertices of their wave)")->check(lantern::cli::integer_in(1, 1 << 22, "an integer from 1 to 4194304"));
   render->add_option("--checkpoint", a.checkpoint,
                      "Write the render's state every SECONDS (and on Ctrl-C/SIGTERM) to OUTPUT.ckpt")
       ->check(lantern::cli::positive_seconds());
@@ -506,6 +468,17 @@ int main(int argc, char** argv) {
   merge->add_flag("--preview", ma.preview,
                   "Merge an incomplete set (missing or unfinished parts): each pixel normalised by its own samples");
   merge->add_flag("-q,--quiet", ma.quiet, "No summary");
+  lantern::ViewArgs va;
+  CLI::App* view = app.add_subcommand("view", "Show a render refining in a window; keys move the camera, F1 saves, R reloads (docs/viewer.md)");
+  view->add_option("scene", va.scene, "Scene file (pbrt-v4 format)")->required();
+  lantern::cli::add_render_request_options(*view, va.req);
+  view->add_option("--screenshot", va.screenshot,
+                   "F1 writes PREFIX-N.exr and PREFIX-N.png (default: the scene's output name + \"-view\")");
+  view->add_option("--exposure", va.exposure, "Display exposure (a factor; + and - double and halve it)")
+      ->check(lantern::cli::number_in(0.0, HUGE_VAL, false, "a positive number"));
+  view->add_option("--texture-cache", va.texture_cache_mb, "Memory for image texture tiles, in MB (default: 1024)")
+      ->check(lantern::cli::number_in(1.0, 1048576.0, true, "a number of megabytes from 1 to 1048576"));
+  view->add_option("--texture-dir", va.texture_dir, "Where images are prepared as tiled, MIP-mapped textures");
   std::string info_image;
   CLI::App* info = app.add_subcommand("info", "Print an image's size and the settings it was rendered with");
   info->add_option("image", info_image, "Image written by lantern render")->required()->check(CLI::ExistingFile);
@@ -515,6 +488,15 @@ int main(int argc, char** argv) {
     if (compare->parsed()) return run_compare(ca);
     if (info->parsed()) return run_info(info_image);
     if (merge->parsed()) return lantern::run_merge(ma, g_provenance);
+    if (view->parsed()) {
+#ifdef LANTERN_HAVE_VIEWER
+      return lantern::run_view(va, g_provenance);
+#else
+      std::cerr << "error: this build has no viewer: GLFW was not found when it was configured (install "
+                   "libglfw3-dev, or run scripts/install-deps.sh, and configure again)\n";
+      return 1;
+#endif
+    }
     return run_render(a);
   } catch (const lantern::InputError& e) {
     std::cerr << e.what() << "\n";
