@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <tuple>
 
 #include "lantern/render.h"
 #include "lantern/scene.h"
@@ -125,8 +126,12 @@ TEST(Checkpoint, RefusesACheckpointOfAnotherRender) {
   other.integrator = Integrator::Bdpt;
   EXPECT_NE(resume_error(*scene, other).find("integrator=path"), std::string::npos);
   other = o;
-  other.spp = 41;
-  EXPECT_NE(resume_error(*scene, other).find("budget=spp 40"), std::string::npos);
+  other.spp = 41;  // 40 = 16 + 16 + 8: the last pass is short
+  EXPECT_NE(resume_error(*scene, other).find("budget spp 40"), std::string::npos);
+  EXPECT_NE(resume_error(*scene, other).find("last pass is short"), std::string::npos);
+  other = o;
+  other.spp = 32;
+  EXPECT_NE(resume_error(*scene, other).find("more than this render's 32"), std::string::npos);
   other = o;
   other.checkpoint_key = "another scene";
   EXPECT_NE(resume_error(*scene, other).find("another render"), std::string::npos);
@@ -158,6 +163,51 @@ TEST(Checkpoint, RefusesDamagedAndMissingFiles) {
   o.checkpoint_path = kCheckpoint;
   o.resume = true;
   EXPECT_FALSE(render(*scene, o).interrupted);  // the intact file still resumes
+}
+
+// A finished render kept (keep_checkpoint) and resumed with a larger spp
+// ends bit for bit where a straight render of that spp ends, when the
+// samples allow: halton's sequence does not depend on the planned count;
+// zsobol's does, through its power of two, so 48 extends to 64 (both 2^6)
+// and 32 does not (and is refused, saying why).
+RenderResult extended(const Scene& scene, RenderOptions o, uint32_t first_spp, const std::string& checkpoint) {
+  std::remove(checkpoint.c_str());
+  RenderOptions first = o;
+  first.spp = int(first_spp);
+  first.checkpoint_path = checkpoint;
+  first.keep_checkpoint = true;
+  EXPECT_FALSE(render(scene, first).interrupted);
+  EXPECT_TRUE(std::filesystem::exists(checkpoint)) << "a kept checkpoint";
+  o.checkpoint_path = checkpoint;
+  o.resume = true;
+  return render(scene, o);
+}
+
+TEST(CheckpointExtend, ALargerBudgetContinuesAFinishedRenderBitForBit) {
+  auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
+  const std::string kCheckpoint = checkpoint_file();
+  for (const auto& [integrator, sampler, first] :
+       {std::tuple{"path", "halton", 32u}, std::tuple{"bdpt", "zsobol", 48u}, std::tuple{"vcm", "independent", 5u}}) {
+    RenderOptions o = small_render(integrator, sampler);
+    o.spp = 64;
+    const RenderResult straight = render(*scene, o);
+    const RenderResult r = extended(*scene, o, first, kCheckpoint);
+    EXPECT_EQ(r.resumed_samples, uint64_t(first) * 48 * 36) << integrator;
+    EXPECT_EQ(r.stats.samples, straight.stats.samples) << integrator;
+    EXPECT_TRUE(same_bits(r.image, straight.image)) << integrator << " " << sampler << " from " << first << " spp";
+    EXPECT_FALSE(std::filesystem::exists(kCheckpoint)) << "the extension completed and kept nothing";
+  }
+  // zsobol from 32 (a block of 2^5 per pixel) to 64 (2^6): refused.
+  RenderOptions o = small_render("path", "zsobol");
+  o.spp = 32;
+  o.checkpoint_path = kCheckpoint;
+  o.keep_checkpoint = true;
+  render(*scene, o);
+  o.keep_checkpoint = false;
+  o.spp = 64;
+  const std::string why = resume_error(*scene, o);
+  EXPECT_NE(why.find("zsobol sampler lays out"), std::string::npos) << why;
+  EXPECT_NE(why.find("at most 32 spp"), std::string::npos) << why;
 }
 
 }  // namespace

@@ -69,6 +69,11 @@ struct RenderOptions {
   std::string checkpoint_path;
   double checkpoint_seconds = 0.0;
   bool resume = false;
+  // A render that completes writes its final state to the checkpoint and
+  // keeps it, so that a later run with resume and a larger spp extends it
+  // (to the image a straight render of that budget makes, where the
+  // samples allow: integrator/render_checkpoints.h, extension_refusal).
+  bool keep_checkpoint = false;
   std::string checkpoint_key;  // identifies the scene; a checkpoint made for another key is refused
   // Several processes (MPI ranks) checkpoint one render in pieces: rank r
   // writes checkpoint_path.rank<r> (-1: one process, checkpoint_path

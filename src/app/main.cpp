@@ -4,12 +4,14 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <cstdio>
 #include <iostream>
 #include <optional>
+#include <sstream>
 
 #include "app/cli_checks.h"
 #include "app/command_line.h"
@@ -21,6 +23,7 @@
 #include "app/stats_report.h"
 #include "integrator/render_settings.h"
 #include "trace/timeline.h"
+#include "film/checkpoint.h"
 #include "film/image_metrics.h"
 #include "imageio/replace_file.h"
 #include "lantern/render.h"
@@ -61,7 +64,7 @@ struct RenderArgs {
   std::string texture_dir, trace, part;
   uint64_t trace_waves = 1000;
   double checkpoint = 0.0, texture_cache_mb = 1024.0, progress_interval = 10.0;
-  bool resume = false;
+  bool resume = false, keep_checkpoint = false;
   bool quiet = false;
 };
 
@@ -231,10 +234,11 @@ int run_render(const RenderArgs& a) {
   // The scene's fingerprint goes into checkpoints and parts alike, so that
   // neither is resumed or merged with another scene's.
   o.checkpoint_key = scene_key(a.scene, scene_info(*scene));
-  if (a.checkpoint > 0 || a.resume || g_ranks > 1) {
+  if (a.checkpoint > 0 || a.resume || a.keep_checkpoint || g_ranks > 1) {
     o.checkpoint_path = a.checkpoint_file.empty() ? out + ".ckpt" : a.checkpoint_file;
     o.checkpoint_seconds = a.checkpoint;
     o.resume = a.resume;
+    o.keep_checkpoint = a.keep_checkpoint;
   }
   // On a terminal, a line rewritten in place. Otherwise (a batch job's log,
   // mpirun's pipes) a whole line every --progress-interval seconds.
@@ -368,26 +372,67 @@ int run_render(const RenderArgs& a) {
 struct CompareArgs {
   std::string a, ref, error_image;
   double error_scale = 1.0;
+  bool json = false;
 };
 
-// Prints the metrics as "name value" lines, easy to read and to parse.
+// Prints the metrics as "name value" lines, easy to read and to parse, or
+// as one JSON object (--json; an infinite PSNR, of identical images, is null).
 int run_compare(const CompareArgs& c) {
   lantern::Image a = lantern::read_image(c.a), ref = lantern::read_image(c.ref);
-  lantern::ImageComparison m = lantern::compare_images(a, ref);
-  std::printf("mse %.9g\nrelmse %.9g\nmae %.9g\n", m.mse, m.relmse, m.mae);
-  std::printf("mean %.9g %.9g %.9g\nmean_ref %.9g %.9g %.9g\nratio %.9g %.9g %.9g\nnonfinite_pixels %zu\n",
-              m.mean_a[0], m.mean_a[1], m.mean_a[2], m.mean_ref[0], m.mean_ref[1], m.mean_ref[2], m.ratio[0],
-              m.ratio[1], m.ratio[2], m.nonfinite);
+  const lantern::ImageComparison m = lantern::compare_images(a, ref);
+  if (c.json) {
+    auto triple = [](const std::array<double, 3>& v) { return nlohmann::json::array({v[0], v[1], v[2]}); };
+    nlohmann::json j = {{"image", c.a}, {"reference", c.ref}, {"width", a.width}, {"height", a.height},
+                        {"mse", m.mse}, {"relmse", m.relmse}, {"relmse_robust", m.relmse_robust},
+                        {"robust_excluded_pixels", m.robust_excluded}, {"mae", m.mae},
+                        {"psnr", std::isfinite(m.psnr) ? nlohmann::json(m.psnr) : nlohmann::json(nullptr)},
+                        {"pbrt_mse", triple(m.pbrt_mse)}, {"pbrt_mrse", triple(m.pbrt_mrse)},
+                        {"mean", triple(m.mean_a)}, {"mean_ref", triple(m.mean_ref)}, {"ratio", triple(m.ratio)},
+                        {"nonfinite_pixels", m.nonfinite}};
+    std::printf("%s\n", j.dump(2).c_str());
+  } else {
+    // (The first seven lines as they have always been; the others after.)
+    std::printf("mse %.9g\nrelmse %.9g\nmae %.9g\n", m.mse, m.relmse, m.mae);
+    std::printf("mean %.9g %.9g %.9g\nmean_ref %.9g %.9g %.9g\nratio %.9g %.9g %.9g\nnonfinite_pixels %zu\n",
+                m.mean_a[0], m.mean_a[1], m.mean_a[2], m.mean_ref[0], m.mean_ref[1], m.mean_ref[2], m.ratio[0],
+                m.ratio[1], m.ratio[2], m.nonfinite);
+    std::printf("psnr %.9g\nrelmse_robust %.9g\nrobust_excluded_pixels %zu\n", m.psnr, m.relmse_robust,
+                m.robust_excluded);
+    std::printf("pbrt_mse %.9g %.9g %.9g\npbrt_mrse %.9g %.9g %.9g\n", m.pbrt_mse[0], m.pbrt_mse[1], m.pbrt_mse[2],
+                m.pbrt_mrse[0], m.pbrt_mrse[1], m.pbrt_mrse[2]);
+  }
   if (!c.error_image.empty())
-    lantern::write_image(c.error_image, lantern::relative_error_image(a, ref, c.error_scale), {});
+    lantern::write_image(c.error_image, lantern::relative_error_image(a, ref, c.error_scale, true),
+                         {{"lantern:error_map", "relative squared error per pixel, blue 0 to red " +
+                                                    std::to_string(c.error_scale) +
+                                                    " and above; the bar below: the scale, 0 to " +
+                                                    std::to_string(c.error_scale)}});
   return 0;
 }
 
-// "name value" lines: the size and the render settings an image was made with.
+// "name value" lines: the size and the render settings an image was made
+// with; for a checkpoint or a part file, the settings of the render it
+// belongs to (its fingerprint), the units it holds and its samples.
 int run_info(const std::string& path) {
-  lantern::Image img = lantern::read_image(path);
-  std::printf("resolution %d %d\n", img.width, img.height);
-  for (const auto& [k, v] : lantern::read_image_metadata(path)) std::printf("%s %s\n", k.c_str(), v.c_str());
+  std::string fingerprint;
+  try {
+    fingerprint = lantern::read_checkpoint_fingerprint(path);
+  } catch (const lantern::InputError&) {  // not one: an image
+    lantern::Image img = lantern::read_image(path);
+    std::printf("resolution %d %d\n", img.width, img.height);
+    for (const auto& [k, v] : lantern::read_image_metadata(path)) std::printf("%s %s\n", k.c_str(), v.c_str());
+    return 0;
+  }
+  lantern::Film film(0, 0, lantern::PixelFilter{});
+  const lantern::CheckpointInfo ci = lantern::read_film_file(path, film);
+  std::istringstream lines(fingerprint);
+  for (std::string line; std::getline(lines, line);)
+    if (const size_t eq = line.find('='); eq != std::string::npos)
+      std::printf("%s %s\n", line.substr(0, eq).c_str(), line.substr(eq + 1).c_str());
+  std::printf("part %u/%u\nunits_done %llu\nunits_total %llu\nsamples %llu\nrender_seconds %.3f\n",
+              ci.share.index + 1, ci.share.count, (unsigned long long)ci.done.size(),
+              (unsigned long long)(uint64_t(ci.passes) * ci.waves), (unsigned long long)film.total_samples(),
+              ci.elapsed_seconds);
   return 0;
 }
 
@@ -436,6 +481,8 @@ int main(int argc, char** argv) {
                      "Write the render's state every SECONDS (and on Ctrl-C/SIGTERM) to OUTPUT.ckpt")
       ->check(lantern::cli::positive_seconds());
   render->add_option("--checkpoint-file", a.checkpoint_file, "Checkpoint file (default: the output's name + .ckpt)");
+  render->add_flag("--keep-checkpoint", a.keep_checkpoint,
+                   "Keep the checkpoint when the render completes, so that --resume with a larger --spp extends it");
   render->add_flag("--resume", a.resume,
                    "Continue from the checkpoint; the result equals an uninterrupted render with the same settings");
   render->add_option("--texture-cache", a.texture_cache_mb,
@@ -458,7 +505,9 @@ int main(int argc, char** argv) {
   CLI::App* compare = app.add_subcommand("compare", "Error metrics of an image against a reference");
   compare->add_option("image", ca.a, "Image to measure")->required()->check(CLI::ExistingFile);
   compare->add_option("reference", ca.ref, "Reference image")->required()->check(CLI::ExistingFile);
-  compare->add_option("--error-image", ca.error_image, "Write a false-colour map of the relative squared error");
+  compare->add_option("--error-image", ca.error_image,
+                      "Write a false-colour map of the relative squared error, with its scale as a bar below");
+  compare->add_flag("--json", ca.json, "Print the metrics as one JSON object");
   compare->add_option("--error-scale", ca.error_scale, "Relative squared error shown as full red")
       ->check(lantern::cli::number_in(0.0, HUGE_VAL, false, "a positive number"));
   lantern::MergeArgs ma;
@@ -480,8 +529,11 @@ int main(int argc, char** argv) {
       ->check(lantern::cli::number_in(1.0, 1048576.0, true, "a number of megabytes from 1 to 1048576"));
   view->add_option("--texture-dir", va.texture_dir, "Where images are prepared as tiled, MIP-mapped textures");
   std::string info_image;
-  CLI::App* info = app.add_subcommand("info", "Print an image's size and the settings it was rendered with");
-  info->add_option("image", info_image, "Image written by lantern render")->required()->check(CLI::ExistingFile);
+  CLI::App* info = app.add_subcommand("info", "Print an image's size and the settings it was rendered with, or those "
+                                              "of a checkpoint or part file and the work it holds");
+  info->add_option("image", info_image, "Image, checkpoint or part file written by lantern render")
+      ->required()
+      ->check(CLI::ExistingFile);
   app.set_version_flag("--version", lantern::version_line());
   if (const int code = lantern::cli::parse_command_line(app, argc, argv); code >= 0) return code == 0 ? 0 : fail(code);
   try {

@@ -102,21 +102,27 @@ void write_checkpoint(const std::string& path, const CheckpointInfo& info, const
 
 namespace {
 
-CheckpointInfo read_file(const std::string& path, const std::string* expected, Film& film) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError({path, 0, 0}, expected ? "cannot open checkpoint (nothing to resume)" : "cannot open film file");
-  HashingReader r(in, path);
+// The magic, the format version and the fingerprint.
+std::string read_header(HashingReader& r, const std::string& path) {
   char magic[sizeof kMagic];
   r.read(magic, sizeof magic);
   if (std::memcmp(magic, kMagic, sizeof kMagic) != 0) throw InputError({path, 0, 0}, "not a Lantern checkpoint or part file");
   if (uint32_t v = r.get<uint32_t>(); v != kVersion)
     throw InputError({path, 0, 0}, "file format version " + std::to_string(v) + " is not " + std::to_string(kVersion) +
                                        " (made by another Lantern version)");
-  CheckpointInfo info;
-  uint32_t n = r.get<uint32_t>();
+  const uint32_t n = r.get<uint32_t>();
   if (n > (1u << 20)) throw InputError({path, 0, 0}, "file is damaged (fingerprint length)");
-  info.fingerprint.resize(n);
-  r.read(info.fingerprint.data(), n);
+  std::string fingerprint(n, '\0');
+  r.read(fingerprint.data(), n);
+  return fingerprint;
+}
+
+CheckpointInfo read_file(const std::string& path, const std::string* expected, Film& film) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError({path, 0, 0}, expected ? "cannot open checkpoint (nothing to resume)" : "cannot open film file");
+  HashingReader r(in, path);
+  CheckpointInfo info;
+  info.fingerprint = read_header(r, path);
   if (expected && info.fingerprint != *expected) {
     const auto [saved, now] = fingerprint_difference(info.fingerprint, *expected);
     throw InputError({path, 0, 0}, "checkpoint belongs to another render: it was made with \"" + saved +
@@ -157,6 +163,13 @@ CheckpointInfo read_checkpoint(const std::string& path, const std::string& expec
 }
 
 CheckpointInfo read_film_file(const std::string& path, Film& film) { return read_file(path, nullptr, film); }
+
+std::string read_checkpoint_fingerprint(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError({path, 0, 0}, "cannot open checkpoint (nothing to resume)");
+  HashingReader r(in, path);
+  return read_header(r, path);
+}
 
 std::vector<std::string> checkpoint_pieces(const std::string& path) {
   namespace fs = std::filesystem;

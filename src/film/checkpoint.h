@@ -62,5 +62,9 @@ std::pair<std::string, std::string> fingerprint_difference(const std::string& a,
 // Reads any film file into `film` (0x0: it takes the file's size) without
 // comparing fingerprints; `lantern merge` compares them across its parts.
 CheckpointInfo read_film_file(const std::string& path, Film& film);
+// The fingerprint a checkpoint or film file was made with (its header
+// only). Throws InputError as read_checkpoint does for a missing, foreign
+// or damaged header.
+std::string read_checkpoint_fingerprint(const std::string& path);
 
 }  // namespace lantern

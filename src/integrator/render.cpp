@@ -552,7 +552,7 @@ RenderResult RenderSession::render_all() {
     interrupted = stopped && cx.stop_requested();
   }
   if (checkpoints.enabled()) {
-    if (interrupted) {
+    if (interrupted || opt.keep_checkpoint) {
       checkpoints.write(film);
     } else {
       std::error_code ec;

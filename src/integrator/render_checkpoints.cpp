@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "lantern/error.h"
+#include "sampler/sampler.h"
 
 namespace lantern {
 
@@ -40,14 +41,83 @@ std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& regi
   return f;
 }
 
+namespace {
+
+// A fingerprint's "budget=" line, and the fingerprint without it.
+std::string budget_line(const std::string& f) {
+  const size_t at = f.find("\nbudget=");
+  if (at == std::string::npos) return "";
+  const size_t end = f.find('\n', at + 1);
+  return f.substr(at + 8, end == std::string::npos ? std::string::npos : end - at - 8);
+}
+std::string without_budget(const std::string& f) {
+  const size_t at = f.find("\nbudget=");
+  if (at == std::string::npos) return f;
+  const size_t end = f.find('\n', at + 1);
+  return f.substr(0, at) + (end == std::string::npos ? "" : f.substr(end));
+}
+
+}  // namespace
+
+std::string extension_refusal(const std::string& saved, const std::string& now, const RenderOptions& o, int width,
+                              int height) {
+  if (without_budget(saved) != without_budget(now)) return "it belongs to another render";
+  const std::string was = budget_line(saved), is = budget_line(now);
+  if (was == "time" || is == "time")
+    return "a time budget and a sample budget do not continue each other (resume with the budget it was made with)";
+  if (o.target_error > 0) return "adaptive sampling plans its passes from the image so far: resume with the same --spp";
+  if (o.guiding) return "guided paths learn in iterations planned from the budget: resume with the same --spp";
+  const uint32_t old_spp = uint32_t(std::stoul(was.substr(was.find(' ') + 1))), new_spp = uint32_t(o.spp);
+  if (new_spp < old_spp)
+    return "it holds " + std::to_string(old_spp) + " samples per pixel, more than this render's " +
+           std::to_string(new_spp);
+  // Its units must be whole units of this render, of the same samples.
+  const bool merging = merges_vertices(o.integrator);
+  const uint32_t old_pass = merging ? 1u : std::min(old_spp, 16u), new_pass = merging ? 1u : std::min(new_spp, 16u);
+  if (old_pass != new_pass)
+    return "its passes are of " + std::to_string(old_pass) + " samples per pixel and this render's of " +
+           std::to_string(new_pass) + " (a render of fewer than 16 spp continues only to its own budget)";
+  if (old_spp % old_pass != 0)
+    return "its last pass is short (" + std::to_string(old_spp) + " is not a multiple of " + std::to_string(old_pass) +
+           ")";
+  const SamplerSpec a = make_sampler_spec(o.sampler, width, height, old_spp, o.seed),
+                    b = make_sampler_spec(o.sampler, width, height, new_spp, o.seed);
+  // (Only zsobol and paddedsobol read the block size: the other samplers'
+  // samples depend on the pixel and the sample's index alone.)
+  const bool blocks = o.sampler.type == SamplerKind::ZSobol || o.sampler.type == SamplerKind::PaddedSobol;
+  if (blocks && (a.log2_spp != b.log2_spp || a.index_bits != b.index_bits))
+    return std::string("the ") + name(o.sampler.type) + " sampler lays out each pixel's samples for the planned count "
+           "rounded up to a power of two (" + std::to_string(1u << a.log2_spp) + " then, " +
+           std::to_string(1u << b.log2_spp) + " now), so a " + std::to_string(old_spp) + "-spp render's samples are "
+           "not the first of a " + std::to_string(new_spp) + "-spp one: extend it to at most " +
+           std::to_string(1u << a.log2_spp) + " spp, or render with halton, sobol or independent";
+  return "";
+}
+
 CheckpointInfo start_checkpointing(const RenderOptions& opt, const RenderHooks& hooks, const std::string& fingerprint,
                                    Film& film) {
   CheckpointInfo info;
   info.fingerprint = fingerprint;
   info.share = UnitShare{opt.share_index, opt.share_count};
   if (opt.resume && opt.resume_reads) {
-    std::vector<std::string> pieces;
-    info = read_checkpoint_pieces(opt.checkpoint_path, fingerprint, film, pieces);
+    std::vector<std::string> pieces = checkpoint_pieces(opt.checkpoint_path);
+    // A larger sample budget continues a render made with a smaller one
+    // (finished with keep_checkpoint, or interrupted) when its samples are
+    // the first ones of this render's.
+    std::string expected = fingerprint;
+    if (!pieces.empty()) {
+      const std::string saved = read_checkpoint_fingerprint(pieces[0]);
+      if (saved != fingerprint && without_budget(saved) == without_budget(fingerprint)) {
+        const std::string why = extension_refusal(saved, fingerprint, opt, film.width(), film.height());
+        if (!why.empty())
+          throw InputError({pieces[0], 0, 0}, "the checkpoint (budget " + budget_line(saved) +
+                                                  ") cannot be continued to budget " + budget_line(fingerprint) +
+                                                  ": " + why);
+        expected = saved;
+      }
+    }
+    info = read_checkpoint_pieces(opt.checkpoint_path, expected, film, pieces);
+    info.fingerprint = fingerprint;  // what this render's own checkpoints say
     if (info.share.index != opt.share_index || info.share.count != opt.share_count)
       throw InputError({opt.checkpoint_path, 0, 0},
                        "checkpoint was made for part " + std::to_string(info.share.index + 1) + "/" +

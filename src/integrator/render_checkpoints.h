@@ -17,6 +17,14 @@ namespace lantern {
 // all of it. Thread count is not here: it changes neither.
 std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& region);
 
+// Why a checkpoint made with fingerprint `saved` cannot be continued by a
+// render with fingerprint `now` and options `o` ("" when it can): they must
+// differ in the sample budget only, the new one the larger, each unit of
+// the old render a whole unit of the new one (passes of one size, the last
+// one full), and the sampler's layout of a pixel's samples the same.
+std::string extension_refusal(const std::string& saved, const std::string& now, const RenderOptions& o, int width,
+                              int height);
+
 // This process's piece of the checkpoint.
 std::string own_checkpoint_piece(const RenderOptions& o);
 

@@ -36,8 +36,7 @@ py::object from_json_text(const std::string& text) { return py::module_::import(
 
 namespace {
 
-// The metrics `lantern compare` prints, and PSNR (of the reference's peak
-// channel value, in dB) as image tools report it.
+// The metrics `lantern compare` prints.
 py::dict compare(const py::handle& image, const py::handle& reference) {
   const Image a = from_array(image), r = from_array(reference);
   if (a.width != r.width || a.height != r.height)
@@ -48,17 +47,19 @@ py::dict compare(const py::handle& image, const py::handle& reference) {
     py::gil_scoped_release release;
     m = compare_images(a, r);
   }
-  float peak = 0.f;
-  for (float v : r.rgb)
-    if (std::isfinite(v)) peak = std::max(peak, v);
+  auto triple = [](const std::array<double, 3>& v) { return py::make_tuple(v[0], v[1], v[2]); };
   py::dict d;
   d["mse"] = m.mse;
   d["relmse"] = m.relmse;
+  d["relmse_robust"] = m.relmse_robust;
+  d["robust_excluded_pixels"] = m.robust_excluded;
   d["mae"] = m.mae;
-  d["psnr"] = m.mse > 0 && peak > 0 ? 10.0 * std::log10(double(peak) * peak / m.mse) : INFINITY;
-  d["mean"] = py::make_tuple(m.mean_a[0], m.mean_a[1], m.mean_a[2]);
-  d["mean_ref"] = py::make_tuple(m.mean_ref[0], m.mean_ref[1], m.mean_ref[2]);
-  d["ratio"] = py::make_tuple(m.ratio[0], m.ratio[1], m.ratio[2]);
+  d["psnr"] = m.psnr;
+  d["pbrt_mse"] = triple(m.pbrt_mse);
+  d["pbrt_mrse"] = triple(m.pbrt_mrse);
+  d["mean"] = triple(m.mean_a);
+  d["mean_ref"] = triple(m.mean_ref);
+  d["ratio"] = triple(m.ratio);
   d["nonfinite_pixels"] = m.nonfinite;
   return d;
 }
@@ -95,14 +96,16 @@ void bind_images(py::module_& m) {
         "The string attributes of an image's header whose names start with prefix, as (key, value) pairs.");
   m.def("compare", &compare, py::arg("image"), py::arg("reference"),
         "Error of an image against a reference, as `lantern compare` measures it: mse, relmse (Rousselle et al. "
-        "2011, eps 0.01), mae, psnr, per-channel means and their ratio, and the pixels that are not finite.");
+        "2011, eps 0.01), relmse_robust (without the worst 0.01% of pixels), mae, psnr, pbrt-v4's per-channel "
+        "pbrt_mse and pbrt_mrse, per-channel means and their ratio, and the pixels that are not finite.");
   m.def(
       "relative_error_image",
-      [](const py::handle& image, const py::handle& reference, double scale) {
-        return to_array(relative_error_image(from_array(image), from_array(reference), scale));
+      [](const py::handle& image, const py::handle& reference, double scale, bool legend) {
+        return to_array(relative_error_image(from_array(image), from_array(reference), scale, legend));
       },
-      py::arg("image"), py::arg("reference"), py::arg("scale") = 1.0,
-      "A false-colour map of the per-pixel relative squared error (blue 0, red at or above scale).");
+      py::arg("image"), py::arg("reference"), py::arg("scale") = 1.0, py::arg("legend") = false,
+      "A false-colour map of the per-pixel relative squared error (blue 0, red at or above scale); with legend, "
+      "a bar of the scale below it.");
 }
 
 }  // namespace lantern::python

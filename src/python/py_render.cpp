@@ -26,7 +26,7 @@ struct Outputs {
   std::string stats;       // stats=: the --stats JSON file ("" none)
   std::string checkpoint;  // checkpoint_file=
   double checkpoint_seconds = 0.0;
-  bool resume = false;
+  bool resume = false, keep_checkpoint = false;
   bool collect_stats = false;
 };
 
@@ -82,14 +82,17 @@ void read_options(const py::kwargs& kw, RenderRequest& r, Outputs& out) {
     else if (k == "checkpoint") out.checkpoint_seconds = positive(cast_option<double>("checkpoint", value), "seconds");
     else if (k == "checkpoint_file") out.checkpoint = cast_option<std::string>("checkpoint_file", value);
     else if (k == "resume") out.resume = cast_option<bool>("resume", value);
+    else if (k == "keep_checkpoint") out.keep_checkpoint = cast_option<bool>("keep_checkpoint", value);
     else
       throw py::type_error("unknown render option '" + k +
                            "'; the options are the command line's: integrator, spp, time, target_error, maxdepth, "
                            "seed, sampler, light_sampler, resolution, spectral, guide, threads, wave_size, rays, mis, "
-                           "vcm_radius, vcm_alpha, output, stats, collect_stats, checkpoint, checkpoint_file, resume");
+                           "vcm_radius, vcm_alpha, output, stats, collect_stats, checkpoint, checkpoint_file, resume, "
+                           "keep_checkpoint");
   }
-  if (r.time > 0 && r.spp > 0 && r.target_error == 0)
-    throw py::value_error("spp and time: give one budget (time renders passes until the time is up)");
+  if (r.time > 0 && r.spp > 0)
+    throw py::value_error("spp and time: give one budget (time renders passes until the time is up), as on the "
+                          "command line");
 }
 
 Provenance python_provenance() {
@@ -122,13 +125,14 @@ class PySession {
     options_ = resolve_render_options(*scene_->scene, request_);
     options_.collect_stats = out_.collect_stats || !out_.stats.empty();
     options_.checkpoint_key = scene_->key;
-    if (out_.checkpoint_seconds > 0 || out_.resume) {
+    if (out_.checkpoint_seconds > 0 || out_.resume || out_.keep_checkpoint) {
       options_.checkpoint_path = !out_.checkpoint.empty() ? out_.checkpoint
                                  : !out_.image.empty()    ? out_.image + ".ckpt"
                                                           : throw py::value_error("checkpoint or resume: give "
                                                                                   "checkpoint_file or output");
       options_.checkpoint_seconds = out_.checkpoint_seconds;
       options_.resume = out_.resume;
+      options_.keep_checkpoint = out_.keep_checkpoint;
     }
     // Every file the render will write, before it starts.
     if (!out_.image.empty()) check_image_path(out_.image);
@@ -153,6 +157,11 @@ class PySession {
     session_->start();
   }
   void cancel() { session_->cancel(); }
+  // Leaving a `with` block: the render stopped and its threads ended.
+  void close() {
+    session_->cancel();
+    if (started_ && !collected_) wait(std::nullopt, py::none());
+  }
   bool done() const { return collected_ || (started_ && session_->wait_for(0.0)); }
   Progress progress() const { return {session_->progress(), pixels_}; }
   py::object snapshot() const {
@@ -189,7 +198,12 @@ class PySession {
       if (raised) continue;  // cancelled: wait for the waves in flight
       try {
         if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-        if (!on_progress.is_none() && !on_progress(progress()).cast<bool>()) session_->cancel();
+        if (!on_progress.is_none()) {
+          // False (or anything false but None) cancels; None, what a
+          // callback that only reports returns, goes on.
+          const py::object go_on = on_progress(progress());
+          if (!go_on.is_none() && PyObject_IsTrue(go_on.ptr()) == 0) session_->cancel();
+        }
       } catch (py::error_already_set& e) {
         raised.emplace(std::move(e));
         session_->cancel();
@@ -291,7 +305,7 @@ void bind_render(py::module_& m) {
       .def("wait", &PySession::wait, py::arg("timeout") = py::none(), py::arg("progress") = py::none(),
            "The RenderResult once the render ends (None if timeout seconds pass first)")
       .def("__enter__", [](PySession& s) -> PySession& { return s; })
-      .def("__exit__", [](PySession& s, const py::args&) { s.cancel(); });
+      .def("__exit__", [](PySession& s, const py::args&) { s.close(); });
   m.def(
       "render",
       [](std::shared_ptr<PyScene> scene, const py::object& progress, const py::kwargs& kw) {
@@ -302,8 +316,8 @@ void bind_render(py::module_& m) {
       py::arg("scene"), py::kw_only(), py::arg("progress") = py::none(),
       "Render a scene; keyword arguments are the command line's options (integrator, spp, time, target_error, "
       "maxdepth, seed, sampler, light_sampler, resolution, spectral, guide, threads, wave_size, rays, mis, "
-      "vcm_radius, vcm_alpha, checkpoint, checkpoint_file, resume) and the files to write (output, stats). "
-      "progress(p) is called about ten times a second; a false return value cancels. Ctrl-C cancels, writes the "
+      "vcm_radius, vcm_alpha, checkpoint, checkpoint_file, resume, keep_checkpoint) and the files to write (output, stats). "
+      "progress(p) is called about ten times a second; returning False cancels (None goes on). Ctrl-C cancels, writes the "
       "image so far to output, and raises KeyboardInterrupt.");
   m.def("version", &version_line, "The build's version line, as `lantern --version` prints it");
 }

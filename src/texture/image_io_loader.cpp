@@ -1,5 +1,9 @@
 // Loads the image module on first use: from LANTERN_IMAGEIO_MODULE if set,
-// else next to the running executable, else where the build put it.
+// else near the program that holds this code (the lantern command, a test,
+// the Python module): next to it, one or two folders above it (the build
+// folder, for programs in its subfolders), or in ../lib/lantern as
+// `cmake --install` lays it out. No path of the build is compiled in, so an
+// installed copy works wherever it is put and whatever became of the build.
 #include <dlfcn.h>
 #include <unistd.h>
 
@@ -14,7 +18,14 @@
 namespace lantern {
 namespace {
 
-std::string executable_dir() {
+// The folder of the executable or shared object this code was linked into.
+std::string own_dir() {
+  Dl_info info{};
+  if (::dladdr(reinterpret_cast<void*>(&own_dir), &info) && info.dli_fname && *info.dli_fname) {
+    std::error_code ec;
+    auto path = std::filesystem::canonical(info.dli_fname, ec);
+    if (!ec) return path.parent_path().string();
+  }
   std::error_code ec;
   auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
   return ec ? std::string() : exe.parent_path().string();
@@ -23,8 +34,9 @@ std::string executable_dir() {
 const ImageIoModule* load_module() {
   std::vector<std::string> candidates;
   if (const char* env = std::getenv("LANTERN_IMAGEIO_MODULE"); env && *env) candidates.push_back(env);
-  if (std::string dir = executable_dir(); !dir.empty()) candidates.push_back(dir + "/liblantern_imageio.so");
-  candidates.push_back(LANTERN_IMAGEIO_MODULE_PATH);
+  if (const std::string dir = own_dir(); !dir.empty())
+    for (const char* place : {"/", "/../", "/../../", "/../lib/lantern/"})
+      candidates.push_back(dir + place + "liblantern_imageio.so");
   std::string tried;
   for (const std::string& path : candidates) {
     if (::access(path.c_str(), R_OK) != 0) {

@@ -89,6 +89,13 @@ def test_progress_reports_and_a_false_return_cancels(cornell_box):
     assert len(seen) >= 3 and seen == sorted(seen)
 
 
+def test_a_callback_that_returns_nothing_lets_the_render_finish(cornell_box):
+    calls = []
+    result = lantern.render(cornell_box, spp=16, resolution=(64, 64), progress=lambda p: calls.append(p.spp))
+    assert not result.interrupted and result.spp == 16
+    assert calls and calls[-1] == pytest.approx(16.0)
+
+
 def test_an_exception_in_progress_cancels_and_is_raised(cornell_box):
     def progress(p):
         raise RuntimeError("stop here")
@@ -121,7 +128,13 @@ def test_session_snapshots_grow_and_cancel_stops(cornell_box):
     result = session.wait()
     assert result.interrupted and session.done
     assert result.samples >= first
-    assert session.wait() is result or session.wait().samples == result.samples
+    assert session.wait().samples == result.samples
+
+
+def test_leaving_a_with_block_stops_the_render(cornell_box):
+    with lantern.RenderSession(cornell_box, time=60, resolution=(32, 32)) as session:
+        session.start()
+    assert session.done
 
 
 def test_bad_input_raises_clear_errors(tmp_path, cornell_box):
@@ -135,6 +148,8 @@ def test_bad_input_raises_clear_errors(tmp_path, cornell_box):
         lantern.render(cornell_box, integrator="pathh")
     with pytest.raises(ValueError, match="spp"):
         lantern.render(cornell_box, spp=0)
+    with pytest.raises(ValueError, match="one budget"):
+        lantern.render(cornell_box, spp=4, time=1)
     with pytest.raises(RuntimeError, match="no-such-folder"):
         lantern.render(cornell_box, spp=1, output=str(tmp_path / "no-such-folder" / "x.exr"))
 
@@ -144,3 +159,16 @@ def test_warnings_reach_python(tmp_path):
     with pytest.warns(lantern.SceneWarning, match="unknownthing"):
         scene = lantern.load_scene_from_string(text)
     assert any("unknownthing" in w for w in scene.warnings)
+
+
+def test_a_kept_checkpoint_extends_to_a_larger_budget_and_info_reads_it(cornell_box, lantern_binary, tmp_path):
+    ckpt = str(tmp_path / "r.ckpt")
+    options = dict(integrator="path", sampler="halton", resolution=(24, 16), seed=4)
+    first = lantern.render(cornell_box, spp=16, checkpoint_file=ckpt, keep_checkpoint=True, **options)
+    assert not first.interrupted
+    info = subprocess.run([lantern_binary, "info", ckpt], check=True, capture_output=True, text=True).stdout
+    assert f"samples {24 * 16 * 16}\n" in info and "integrator path\n" in info and "budget spp 16\n" in info
+    extended = lantern.render(cornell_box, spp=48, checkpoint_file=ckpt, resume=True, **options)
+    straight = lantern.render(cornell_box, spp=48, **options)
+    assert extended.resumed_samples == 24 * 16 * 16
+    assert np.array_equal(extended.image, straight.image)

@@ -77,3 +77,44 @@ def test_images_round_trip_and_compare(tmp_path):
         lantern.compare(np.zeros((4, 4)), np.zeros((4, 4)))
     with pytest.raises(ValueError, match="differ in size"):
         lantern.compare(np.zeros((4, 4, 3)), np.zeros((4, 5, 3)))
+
+
+def test_metrics_closed_forms_and_the_command_lines_json(tmp_path, lantern_binary):
+    import json
+    import subprocess
+
+    rng = np.random.default_rng(5)
+    ref = rng.random((100, 200, 3)).astype(np.float32)
+    image = ref * np.float32(1.05)
+    image[7, 9] = 1000.0  # two fireflies: 0.01% of 20000 pixels is 2
+    image[50, 150] = 500.0
+    m = lantern.compare(image, ref)
+    r64, i64 = ref.astype(np.float64), image.astype(np.float64)
+    rel = (i64 - r64) ** 2 / (r64 ** 2 + 1e-2)
+    assert m["relmse"] == pytest.approx(rel.mean(), rel=1e-9)
+    # Robust: the two worst pixels left out; what remains is the 5% error.
+    per_pixel = rel.mean(axis=2).ravel()
+    assert m["robust_excluded_pixels"] == 2
+    assert m["relmse_robust"] == pytest.approx(np.sort(per_pixel)[:-2].mean(), rel=1e-9)
+    assert m["relmse_robust"] < m["relmse"] / 100
+    # pbrt-v4's per-channel MSE and MRSE: (a - r)^2 and (a - r)^2 / (r + 0.01)^2.
+    assert m["pbrt_mrse"] == pytest.approx(tuple(((i64 - r64) ** 2 / (r64 + 0.01) ** 2).mean(axis=(0, 1))), rel=1e-9)
+    assert m["pbrt_mse"] == pytest.approx(tuple(((i64 - r64) ** 2).mean(axis=(0, 1))), rel=1e-9)
+    lantern.write_image(str(tmp_path / "a.exr"), image)
+    lantern.write_image(str(tmp_path / "r.exr"), ref)
+    out = subprocess.run([lantern_binary, "compare", "--json", str(tmp_path / "a.exr"), str(tmp_path / "r.exr"),
+                          "--error-image", str(tmp_path / "err.exr"), "--error-scale", "0.01"],
+                         check=True, capture_output=True, text=True).stdout
+    j = json.loads(out)
+    for key in ("mse", "relmse", "relmse_robust", "mae", "psnr"):
+        assert j[key] == pytest.approx(m[key], rel=1e-12), key
+    assert tuple(j["pbrt_mrse"]) == pytest.approx(m["pbrt_mrse"], rel=1e-12)
+    # The error map has its legend below: 10 rows from blue (0) to red (the scale).
+    err = lantern.read_image(str(tmp_path / "err.exr"))
+    assert err.shape == (110, 200, 3)
+    assert tuple(err[105, 0]) == (0.0, 0.0, 1.0) and tuple(err[105, -1]) == (1.0, 0.0, 0.0)
+    assert tuple(err[7, 9]) == (1.0, 0.0, 0.0)  # the firefly: red
+    identical = json.loads(subprocess.run([lantern_binary, "compare", "--json", str(tmp_path / "r.exr"),
+                                           str(tmp_path / "r.exr")], check=True, capture_output=True,
+                                          text=True).stdout)
+    assert identical["mse"] == 0 and identical["psnr"] is None
