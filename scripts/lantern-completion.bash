@@ -7,7 +7,7 @@ _lantern() {
   local render_opts="-o --output --spp --time --target-error --integrator --vcm-radius --vcm-alpha --mis --guide
     --spectral --maxdepth --threads --seed --sampler --light-sampler --resolution --rays --wave-size --progress-interval
     --stats --dump-rays --strategies --checkpoint --checkpoint-file --resume --keep-checkpoint --texture-cache --texture-dir --trace
-    --trace-waves --part -q --quiet --help"
+    --trace-waves --part --display-server -q --quiet --help"
   local view_opts="--spp --time --target-error --integrator --vcm-radius --vcm-alpha --mis --guide --spectral
     --maxdepth --threads --seed --sampler --light-sampler --resolution --rays --wave-size --screenshot --exposure
     --texture-cache --texture-dir --help"

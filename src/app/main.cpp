@@ -15,6 +15,7 @@
 
 #include "app/cli_checks.h"
 #include "app/command_line.h"
+#include "app/display_server.h"
 #include "app/merge_command.h"
 #include "app/outputs.h"
 #include "app/provenance.h"
@@ -61,7 +62,7 @@ std::string hms(double s) {
 struct RenderArgs {
   lantern::RenderRequest req;  // what the render options ask of the scene
   std::string scene, output, strategies, stats, dump_rays, checkpoint_file;
-  std::string texture_dir, trace, part;
+  std::string texture_dir, trace, part, display_server;
   uint64_t trace_waves = 1000;
   double checkpoint = 0.0, texture_cache_mb = 1024.0, progress_interval = 10.0;
   bool resume = false, keep_checkpoint = false;
@@ -154,6 +155,30 @@ nlohmann::json rank_report_json(const std::vector<lantern::MpiRender::RankReport
   return {{"ranks", reports.size()}, {"per_rank", ranks}};
 }
 #endif
+
+// The render, streamed to a display server as it refines when one is
+// named (app/display_server.h). A server that cannot be reached is a
+// warning: the render does not depend on it.
+lantern::RenderResult render_watched(const lantern::Scene& scene, const lantern::RenderOptions& o,
+                                     lantern::RenderHooks hooks, const std::string& display_server,
+                                     const std::string& image_name) {
+  if (display_server.empty()) return lantern::render(scene, o, hooks);
+  std::unique_ptr<lantern::DisplayServer> display;
+  hooks.pass_done = [&display, earlier = hooks.pass_done](uint32_t spp) {
+    if (earlier) earlier(spp);
+    if (display) display->pass_done();
+  };
+  lantern::RenderSession session(scene, o, hooks);
+  try {
+    display = std::make_unique<lantern::DisplayServer>(display_server, image_name, session.width(), session.height());
+    display->watch(session);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "warning: %s; rendering without it\n", e.what());
+  }
+  lantern::RenderResult r = session.run();
+  if (display) display->stop(r.image);
+  return r;
+}
 
 int run_render(const RenderArgs& a) {
   using namespace lantern;
@@ -285,7 +310,7 @@ int run_render(const RenderArgs& a) {
 #endif
     {
       TraceSpan span(timeline ? &timeline->main() : nullptr, "render", TraceCategory::Render);
-      r = render(*scene, o, hooks);
+      r = render_watched(*scene, o, hooks, writes ? a.display_server : std::string(), out);
     }
 #ifdef LANTERN_HAVE_MPI
     if (ranks) {
@@ -500,6 +525,9 @@ int main(int argc, char** argv) {
                      "Render part K of N of the render's work into a part file (-o; default: the output's name + "
                      ".partKofN); `lantern merge` adds the parts into the image")
       ->check(lantern::cli::part_of());
+  render->add_option("--display-server", a.display_server,
+                     "Stream the image as it refines to a viewer speaking tev's protocol at HOST:PORT (tev "
+                     "listens on 127.0.0.1:14158)");
   render->add_flag("-q,--quiet", a.quiet, "No progress line or summary");
   CompareArgs ca;
   CLI::App* compare = app.add_subcommand("compare", "Error metrics of an image against a reference");

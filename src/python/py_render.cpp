@@ -140,9 +140,7 @@ class PySession {
     if (!options_.checkpoint_path.empty()) check_writable(options_.checkpoint_path, "the checkpoint");
     provenance_ = python_provenance();
     session_ = std::make_unique<RenderSession>(*scene_->scene, options_);
-    const SceneSettings& ss = scene_settings(*scene_->scene);
-    pixels_ = double(options_.width > 0 ? options_.width : ss.width) *
-              double(options_.height > 0 ? options_.height : ss.height);
+    pixels_ = double(session_->width()) * double(session_->height());  // the film's (a crop's) pixels
   }
   ~PySession() {
     if (session_ && started_ && !collected_) {
@@ -170,7 +168,11 @@ class PySession {
       py::gil_scoped_release release;
       im = session_->snapshot();
     }
-    if (im.rgb.empty()) im = Image{session_->width(), session_->height(), std::vector<float>(size_t(session_->width()) * session_->height() * 3, 0.f)};
+    if (im.rgb.empty()) {  // not begun: black
+      im.width = session_->width();
+      im.height = session_->height();
+      im.rgb.assign(size_t(im.width) * size_t(im.height) * 3, 0.f);
+    }
     return to_array(std::move(im));
   }
   py::object settings() const { return from_json_text(render_settings_json(options_).dump()); }
