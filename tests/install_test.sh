@@ -24,9 +24,17 @@ LD_DEBUG=files "$p/bin/lantern" render "$src/scenes/cornell-box.pbrt" --spp 1 --
 loaded=$(grep -o 'file=[^ ]*liblantern_imageio.so' "$tmp/ld.log" | head -n 1 | sed 's/^file=//')
 case "$loaded" in "$p"/*) ;; *) fail "the installed lantern loaded the image module from '$loaded', not from $p" ;; esac
 
+# Run by its bare name from PATH, in a folder that holds a folder named
+# lantern (where argv[0] would point if taken for a path): still found.
+mkdir -p "$tmp/work/lantern"
+(cd "$tmp/work" && PATH="$p/bin:$PATH" lantern render "$src/scenes/cornell-box.pbrt" --spp 1 --resolution 8 8 -q \
+  -o "$tmp/work/y.png") || fail "lantern run from PATH could not write a PNG"
+
 # Every long option of `render --help` is in the man page.
 man_text=$(sed 's/\\//g' "$p/share/man/man1/lantern.1")
-for opt in $("$p/bin/lantern" render --help | grep -o -- '--[a-z][a-z0-9-]*' | sort -u); do
+options=$("$p/bin/lantern" render --help | grep -o -- '--[a-z][a-z0-9-]*' | sort -u)
+[ -n "$options" ] || fail "lantern render --help listed no options"
+for opt in $options; do
   printf '%s' "$man_text" | grep -q -- "$opt" || fail "the man page does not mention $opt"
 done
 bash -n "$p/share/bash-completion/completions/lantern" || fail "the completion script does not parse"

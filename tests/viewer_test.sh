@@ -29,7 +29,8 @@ wait_for() {
 }
 # A key pressed with the window focused (XTEST, as a keyboard would).
 press() {
-  window=$(xdotool search --sync --name '^lantern' | head -n 1)
+  window=$(timeout 30 xdotool search --sync --name '^lantern' | head -n 1)
+  [ -n "$window" ] || fail "no window named lantern"
   xdotool windowfocus --sync "$window"
   xdotool key "$1"
 }
@@ -43,8 +44,8 @@ wait_for "^view: done 32 spp" 1
 [ "$(grep -c '^view: pass ' "$log")" -ge 2 ] || fail "fewer than two passes shown"
 press F1
 wait_for "^view: screenshot .*shot-1.exr" 1
-"$lantern" render "$work/scene.pbrt" $settings -q -o "$work/reference.exr"
-"$lantern" compare "$work/shot-1.exr" "$work/reference.exr" >"$work/compare1"
+"$lantern" render "$work/scene.pbrt" $settings -q -o "$work/reference.exr" || fail "lantern render failed"
+"$lantern" compare "$work/shot-1.exr" "$work/reference.exr" >"$work/compare1" || fail "compare failed"
 grep -q '^mse 0$' "$work/compare1" || fail "the screenshot is not the render's image: $(cat "$work/compare1")"
 
 # The light doubled in the file; R reloads it, keeping the camera.
@@ -55,8 +56,9 @@ wait_for "^view: reloaded" 1
 wait_for "^view: done 32 spp" 2
 press F1
 wait_for "^view: screenshot .*shot-2.exr" 1
-"$lantern" compare "$work/shot-2.exr" "$work/reference.exr" >"$work/compare2"
-awk '/^ratio/ { for (i = 2; i <= 4; ++i) if ($i < 1.999 || $i > 2.001) exit 1 }' "$work/compare2" ||
+"$lantern" compare "$work/shot-2.exr" "$work/reference.exr" >"$work/compare2" || fail "compare failed"
+awk '/^ratio/ { seen = 1; for (i = 2; i <= 4; ++i) if ($i < 1.999 || $i > 2.001) exit 1 } END { exit !seen }' \
+  "$work/compare2" ||
   fail "the reloaded scene's image is not twice the first: $(cat "$work/compare2")"
 
 # W steps the camera forward: a new render of another view.
@@ -65,7 +67,7 @@ wait_for "^view: started" 3
 wait_for "^view: done 32 spp" 3
 press F1
 wait_for "^view: screenshot .*shot-3.exr" 1
-"$lantern" compare "$work/shot-3.exr" "$work/shot-2.exr" >"$work/compare3"
+"$lantern" compare "$work/shot-3.exr" "$work/shot-2.exr" >"$work/compare3" || fail "compare failed"
 if grep -q '^mse 0$' "$work/compare3"; then fail "W did not move the camera"; fi
 
 press Escape

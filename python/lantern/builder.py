@@ -3,7 +3,9 @@
 The builder writes the scene's pbrt text and `build()` gives it to the same
 parser and scene builder that read scene files, so a scene made here has
 exactly the meaning (defaults, errors, warnings) its text has in a file, and
-`save()` writes a file the command line renders to the same image. Numbers
+`save()` writes a file the command line renders to the same image (when it
+is saved where its relative file names resolve: base_dir, or the working
+directory). Numbers
 are written as the shortest decimals that read back exactly, in C++
 (lantern.format_numbers), so NumPy meshes of millions of vertices cost
 seconds, not minutes.

@@ -175,7 +175,13 @@ lantern::RenderResult render_watched(const lantern::Scene& scene, const lantern:
   } catch (const std::exception& e) {
     std::fprintf(stderr, "warning: %s; rendering without it\n", e.what());
   }
-  lantern::RenderResult r = session.run();
+  lantern::RenderResult r;
+  try {
+    r = session.run();
+  } catch (...) {
+    display.reset();  // its thread reads the session: stopped before the session goes
+    throw;
+  }
   if (display) display->stop(r.image);
   return r;
 }

@@ -114,7 +114,8 @@ void tonemap(const Image& im, float exposure, std::vector<uint8_t>& out) {
 
 class Viewer {
  public:
-  Viewer(const ViewArgs& a, const Provenance& p) : args_(a), provenance_(p), request_(a.req), exposure_(a.exposure) {
+  Viewer(const ViewArgs& a, const Provenance& p)
+      : args_(a), provenance_(p), request_(a.req), kept_request_(a.req), exposure_(a.exposure) {
     load();
   }
   ~Viewer() { stop(); }
@@ -137,11 +138,15 @@ class Viewer {
       std::lock_guard<std::mutex> lock(passes_mutex_);
       passes_.push_back(spp);
     };
+    {
+      std::lock_guard<std::mutex> lock(passes_mutex_);  // (before the new session can report one)
+      passes_.clear();
+    }
+    result_.reset();
+    failed_ = false;
     session_ = std::make_unique<RenderSession>(*scene_, options_, hooks);
     session_->start();
     started_ = Clock::now();
-    passes_.clear();  // (the old session's thread has ended)
-    result_.reset();
     say(std::string("started ") + name(options_.integrator) + " " +
         (options_.time_limit_seconds > 0 ? std::to_string(options_.time_limit_seconds) + " s"
                                          : std::to_string(options_.spp) + " spp"));
@@ -157,8 +162,15 @@ class Viewer {
       changed = !passes_.empty();
       passes_.clear();
     }
+    if (failed_) return false;
     if (!result_ && session_->wait_for(0.0)) {
-      result_ = session_->wait();
+      try {
+        result_ = session_->wait();
+      } catch (const std::exception& e) {
+        say(std::string("render failed: ") + e.what());  // the window stays; another key may start a render that works
+        failed_ = true;
+        return false;
+      }
       const RenderStats& s = result_->stats;
       char buf[160];
       std::snprintf(buf, sizeof buf, "done %u spp %.3f s %.3f Msamples/s", s.min_spp, s.seconds,
@@ -227,7 +239,20 @@ class Viewer {
       q.turn = glm::vec2(0.f);
       restart_now = true;
     }
-    if (restart_now) restart();
+    if (restart_now) restart_or_keep();
+  }
+
+  // A combination the renderer refuses (guiding with bdpt, ...) is said and
+  // undone: the previous settings render again.
+  void restart_or_keep() {
+    try {
+      restart();
+      kept_request_ = request_;
+    } catch (const std::exception& e) {
+      say(std::string("refused: ") + e.what());
+      request_ = kept_request_;
+      restart();
+    }
   }
 
  private:
@@ -287,7 +312,8 @@ class Viewer {
 
   ViewArgs args_;
   Provenance provenance_;
-  RenderRequest request_;
+  RenderRequest request_, kept_request_;  // asked for; the last that rendered
+  bool failed_ = false;                   // the render threw: said, nothing more to show
   float exposure_;
   std::shared_ptr<Scene> scene_;
   Mat4 base_camera_{1.f}, camera_delta_{1.f};  // the file's camera, and the user's moves in its space
@@ -300,13 +326,15 @@ class Viewer {
   int shots_ = 0;
 };
 
+// pixels: w x h, or anything else (an image of another size, after a reload
+// changed the resolution), which is not drawn.
 void draw(GLFWwindow* window, int w, int h, const std::vector<uint8_t>& pixels) {
   int fw = 0, fh = 0;
   glfwGetFramebufferSize(window, &fw, &fh);
   glViewport(0, 0, fw, fh);
   glClearColor(0.f, 0.f, 0.f, 1.f);
   glClear(GL_COLOR_BUFFER_BIT);
-  if (!pixels.empty()) {
+  if (pixels.size() == size_t(w) * size_t(h) * 3) {
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glRasterPos2f(-1.f, -1.f);
     glPixelZoom(float(fw) / float(w), float(fh) / float(h));

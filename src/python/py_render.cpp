@@ -6,6 +6,8 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 
@@ -157,10 +159,11 @@ class PySession {
   void cancel() { session_->cancel(); }
   // Leaving a `with` block: the render stopped and its threads ended.
   void close() {
+    if (!session_) return;
     session_->cancel();
     if (started_ && !collected_) wait(std::nullopt, py::none());
   }
-  bool done() const { return collected_ || (started_ && session_->wait_for(0.0)); }
+  bool done() const { return collected_ || (started_ && session_->wait_for(0.0)); }  // (collected_ once it failed)
   Progress progress() const { return {session_->progress(), pixels_}; }
   py::object snapshot() const {
     Image im;
@@ -183,12 +186,13 @@ class PySession {
   // progress(p) (a false value cancels; an exception cancels and is raised).
   py::object wait(std::optional<double> timeout, const py::object& on_progress) {
     if (!started_) throw std::logic_error("wait() needs a started render session (start())");
+    if (failure_) std::rethrow_exception(failure_);  // the render failed: every later call says so
     if (collected_) return py::cast(result_);
     const auto t0 = std::chrono::steady_clock::now();
     std::optional<py::error_already_set> raised;
     for (bool ended = false; !ended;) {
       double slice = 0.1;
-      if (timeout) {
+      if (timeout && !raised) {  // (once cancelled by Ctrl-C or the callback: to the end, then raise)
         const double left = *timeout - std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         if (left <= 0) return py::none();
         slice = std::min(slice, left);
@@ -220,9 +224,13 @@ class PySession {
  private:
   void collect() {
     RenderResult r;
-    {
+    try {
       py::gil_scoped_release release;
       r = session_->wait();
+    } catch (...) {
+      failure_ = std::current_exception();
+      collected_ = true;
+      throw;
     }
     collected_ = true;
     result_.interrupted = r.interrupted;
@@ -238,23 +246,33 @@ class PySession {
     j["colour"] = options_.spectral ? "spectral" : "rgb";
     j["settings"] = render_settings_json(options_);
     j["provenance"] = provenance_json(provenance_);
+    // The image first, then the stats; a file that cannot be written is
+    // raised after both were tried and the result is complete (wait()
+    // raises it; the image itself stays in the result, or its rescue copy).
+    std::string failure;
     if (!out_.image.empty()) {
       const ImageMetadata md = render_metadata(scene, scene_->path, options_, r, provenance_);
       const ImageWrite w = write_image_or_rescue(out_.image, r.image, md, options_.checkpoint_path);
       result_.output = w.written ? out_.image : w.rescue;
-      if (!w.written) {
-        result_.image = to_array(std::move(r.image));
-        throw std::runtime_error(w.error + (w.rescue.empty() ? "; no rescue copy could be written either"
-                                                             : "; the image is saved instead in " + w.rescue));
-      }
-    }
-    if (!out_.stats.empty()) {
-      const std::string tmp = temporary_output(out_.stats, "");
-      std::ofstream(tmp, std::ios::binary) << j.dump(2) << "\n";
-      place_output(tmp, out_.stats);
+      if (!w.written)
+        failure = w.error + (w.rescue.empty() ? "; no rescue copy could be written either"
+                                              : "; the image is saved instead in " + w.rescue);
     }
     result_.stats = from_json_text(j.dump());
     result_.image = to_array(std::move(r.image));
+    if (!out_.stats.empty()) {
+      const std::string tmp = temporary_output(out_.stats, "");
+      std::ofstream f(tmp, std::ios::binary);
+      f << j.dump(2) << "\n";
+      if (f.flush()) {
+        f.close();
+        place_output(tmp, out_.stats);
+      } else {
+        std::remove(tmp.c_str());
+        failure += (failure.empty() ? "" : "; ") + std::string("cannot write ") + out_.stats + " (disk full?)";
+      }
+    }
+    if (!failure.empty()) throw std::runtime_error(failure);
   }
 
   std::shared_ptr<PyScene> scene_;
@@ -265,6 +283,7 @@ class PySession {
   std::unique_ptr<RenderSession> session_;
   double pixels_ = 1.0;
   bool started_ = false, collected_ = false;
+  std::exception_ptr failure_;  // what the render threw
   PyResult result_;
 };
 

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -18,24 +19,30 @@
 namespace lantern {
 namespace {
 
-// The folder of the executable or shared object this code was linked into.
-std::string own_dir() {
+// Where to look: the folder of the shared object this code was linked into
+// (the Python module; dladdr names a loaded library by its path), and the
+// folder of the running executable (/proc/self/exe: for the main program
+// dladdr gives only argv[0], which may be a bare name found on PATH).
+std::vector<std::string> own_dirs() {
+  std::vector<std::string> dirs;
   Dl_info info{};
-  if (::dladdr(reinterpret_cast<void*>(&own_dir), &info) && info.dli_fname && *info.dli_fname) {
+  if (::dladdr(reinterpret_cast<void*>(&own_dirs), &info) && info.dli_fname &&
+      std::strchr(info.dli_fname, '/') != nullptr) {
     std::error_code ec;
-    auto path = std::filesystem::canonical(info.dli_fname, ec);
-    if (!ec) return path.parent_path().string();
+    const auto path = std::filesystem::canonical(info.dli_fname, ec);
+    if (!ec) dirs.push_back(path.parent_path().string());
   }
   std::error_code ec;
-  auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  return ec ? std::string() : exe.parent_path().string();
+  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) dirs.push_back(exe.parent_path().string());
+  return dirs;
 }
 
 const ImageIoModule* load_module() {
   std::vector<std::string> candidates;
   if (const char* env = std::getenv("LANTERN_IMAGEIO_MODULE"); env && *env) candidates.push_back(env);
-  if (const std::string dir = own_dir(); !dir.empty())
-    for (const char* place : {"/", "/../", "/../../", "/../lib/lantern/"})
+  for (const std::string& dir : own_dirs())
+    for (const char* place : {"/", "/../lib/lantern/", "/../", "/../../"})  // installed before build-tree guesses
       candidates.push_back(dir + place + "liblantern_imageio.so");
   std::string tried;
   for (const std::string& path : candidates) {

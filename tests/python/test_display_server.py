@@ -59,6 +59,7 @@ def test_the_display_server_receives_the_whole_image(lantern_binary, source_dir,
     server = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
     server.bind(("127.0.0.1", 0))
     server.listen(1)
+    server.settimeout(60)  # a lantern that never connects fails the test, not hangs it
     port = server.getsockname()[1]
     stream = bytearray()
 
@@ -68,7 +69,7 @@ def test_the_display_server_receives_the_whole_image(lantern_binary, source_dir,
             while chunk := conn.recv(1 << 16):
                 stream.extend(chunk)
 
-    thread = threading.Thread(target=serve)
+    thread = threading.Thread(target=serve, daemon=True)
     thread.start()
     out = tmp_path / "shown.exr"
     subprocess.run([lantern_binary, "render", str(source_dir / "scenes" / "cornell-box.pbrt"), "--spp", "32",
