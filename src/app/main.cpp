@@ -412,14 +412,8 @@ int run_compare(const CompareArgs& c) {
   lantern::Image a = lantern::read_image(c.a), ref = lantern::read_image(c.ref);
   const lantern::ImageComparison m = lantern::compare_images(a, ref);
   if (c.json) {
-    auto triple = [](const std::array<double, 3>& v) { return nlohmann::json::array({v[0], v[1], v[2]}); };
-    nlohmann::json j = {{"image", c.a}, {"reference", c.ref}, {"width", a.width}, {"height", a.height},
-                        {"mse", m.mse}, {"relmse", m.relmse}, {"relmse_robust", m.relmse_robust},
-                        {"robust_excluded_pixels", m.robust_excluded}, {"mae", m.mae},
-                        {"psnr", std::isfinite(m.psnr) ? nlohmann::json(m.psnr) : nlohmann::json(nullptr)},
-                        {"pbrt_mse", triple(m.pbrt_mse)}, {"pbrt_mrse", triple(m.pbrt_mrse)},
-                        {"mean", triple(m.mean_a)}, {"mean_ref", triple(m.mean_ref)}, {"ratio", triple(m.ratio)},
-                        {"nonfinite_pixels", m.nonfinite}};
+    nlohmann::json j = {{"image", c.a}, {"reference", c.ref}, {"width", a.width}, {"height", a.height}};
+    j.update(lantern::comparison_json(m));
     std::printf("%s\n", j.dump(2).c_str());
   } else {
     // (The first seven lines as they have always been; the others after.)

@@ -4,6 +4,7 @@
 
 #include <sys/resource.h>
 
+#include <cmath>
 #include <cstdio>
 
 namespace lantern {
@@ -133,6 +134,16 @@ void print_stage_summary(const RenderStats& s) {
   if (s.light_paths)
     std::fprintf(stderr, ", light %.2f vertices", double(s.light_vertices) / double(s.light_paths));
   std::fprintf(stderr, " on average\n");
+}
+
+nlohmann::json comparison_json(const ImageComparison& m) {
+  auto triple = [](const std::array<double, 3>& v) { return nlohmann::json::array({v[0], v[1], v[2]}); };
+  return {{"mse", m.mse}, {"relmse", m.relmse}, {"relmse_robust", m.relmse_robust},
+          {"robust_excluded_pixels", m.robust_excluded}, {"mae", m.mae},
+          {"psnr", std::isfinite(m.psnr) ? nlohmann::json(m.psnr) : nlohmann::json(nullptr)},
+          {"pbrt_mse", triple(m.pbrt_mse)}, {"pbrt_mrse", triple(m.pbrt_mrse)},
+          {"mean", triple(m.mean_a)}, {"mean_ref", triple(m.mean_ref)}, {"ratio", triple(m.ratio)},
+          {"nonfinite_pixels", m.nonfinite}};
 }
 
 }  // namespace lantern

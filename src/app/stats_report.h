@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "film/image_metrics.h"
 #include "lantern/render.h"
 #include "lantern/scene.h"
 
@@ -22,6 +23,9 @@ struct RunInfo {
 nlohmann::json stats_json(const RunInfo& run, const RenderStats& stats);
 // Stage shares and subpath summary; called only for timed renders.
 void print_stage_summary(const RenderStats& stats);
+// The metrics of `lantern compare` (and Python's lantern.compare), by name;
+// an infinite PSNR (identical images) is null.
+nlohmann::json comparison_json(const ImageComparison& m);
 // Peak resident set size of this process, in bytes.
 size_t peak_rss_bytes();
 

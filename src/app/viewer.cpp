@@ -146,7 +146,6 @@ class Viewer {
     failed_ = false;
     session_ = std::make_unique<RenderSession>(*scene_, options_, hooks);
     session_->start();
-    started_ = Clock::now();
     say(std::string("started ") + name(options_.integrator) + " " +
         (options_.time_limit_seconds > 0 ? std::to_string(options_.time_limit_seconds) + " s"
                                          : std::to_string(options_.spp) + " spp"));
@@ -322,7 +321,7 @@ class Viewer {
   std::optional<RenderResult> result_;
   std::mutex passes_mutex_;
   std::vector<uint32_t> passes_;  // ended since the window last looked (from the film's merging thread)
-  Clock::time_point started_, last_snapshot_;
+  Clock::time_point last_snapshot_;
   int shots_ = 0;
 };
 

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "app/stats_report.h"
 #include "film/image_metrics.h"
 #include "python/bindings.h"
 
@@ -37,7 +38,7 @@ py::object from_json_text(const std::string& text) { return py::module_::import(
 namespace {
 
 // The metrics `lantern compare` prints.
-py::dict compare(const py::handle& image, const py::handle& reference) {
+py::object compare(const py::handle& image, const py::handle& reference) {
   const Image a = from_array(image), r = from_array(reference);
   if (a.width != r.width || a.height != r.height)
     throw py::value_error("the images differ in size: " + std::to_string(a.width) + "x" + std::to_string(a.height) +
@@ -47,21 +48,7 @@ py::dict compare(const py::handle& image, const py::handle& reference) {
     py::gil_scoped_release release;
     m = compare_images(a, r);
   }
-  auto triple = [](const std::array<double, 3>& v) { return py::make_tuple(v[0], v[1], v[2]); };
-  py::dict d;
-  d["mse"] = m.mse;
-  d["relmse"] = m.relmse;
-  d["relmse_robust"] = m.relmse_robust;
-  d["robust_excluded_pixels"] = m.robust_excluded;
-  d["mae"] = m.mae;
-  d["psnr"] = m.psnr;
-  d["pbrt_mse"] = triple(m.pbrt_mse);
-  d["pbrt_mrse"] = triple(m.pbrt_mrse);
-  d["mean"] = triple(m.mean_a);
-  d["mean_ref"] = triple(m.mean_ref);
-  d["ratio"] = triple(m.ratio);
-  d["nonfinite_pixels"] = m.nonfinite;
-  return d;
+  return from_json_text(comparison_json(m).dump());  // the command line's names and values
 }
 
 void write(const std::string& path, const py::handle& array, const ImageMetadata& metadata) {

@@ -7,6 +7,8 @@
 #include <charconv>
 #include <chrono>
 #include <mutex>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "app/render_request.h"
@@ -41,48 +43,47 @@ void deliver(PyScene& s, const WarningBuffer& buffer, const py::object& on_warni
   }
 }
 
-LoadOptions load_options(double texture_cache_mb, const std::string& texture_dir, WarningBuffer& buffer) {
+// Loads with the GIL released (loading may take minutes), timing it, then
+// hands the warnings to Python. load(lo) returns the scene and the key its
+// checkpoints must carry.
+template <class Load>
+std::shared_ptr<PyScene> load_with(double texture_cache_mb, const std::string& texture_dir,
+                                   const py::object& on_warning, LoadOptions lo, Load load) {
+  WarningBuffer buffer;
   if (!(texture_cache_mb >= 1.0)) throw std::invalid_argument("texture_cache_mb: expected 1 or more megabytes");
-  LoadOptions lo;
   lo.texture_cache_mb = texture_cache_mb;
   lo.texture_directory = texture_dir;
   lo.warn = buffer.sink();
-  return lo;
+  auto s = std::make_shared<PyScene>();
+  {
+    py::gil_scoped_release release;
+    const auto t0 = std::chrono::steady_clock::now();
+    std::tie(s->scene, s->key) = load(lo);
+    s->load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  deliver(*s, buffer, on_warning);
+  return s;
 }
 
 std::shared_ptr<PyScene> load(const std::string& path, double texture_cache_mb, const std::string& texture_dir,
                               const py::object& on_warning) {
-  WarningBuffer buffer;
-  LoadOptions lo = load_options(texture_cache_mb, texture_dir, buffer);
-  auto s = std::make_shared<PyScene>();
+  auto s = load_with(texture_cache_mb, texture_dir, on_warning, {}, [&](const LoadOptions& lo) {
+    std::shared_ptr<Scene> scene = load_scene(path, lo);
+    return std::pair(scene, scene_key(path, scene_info(*scene)));
+  });
   s->path = path;
-  {
-    py::gil_scoped_release release;
-    const auto t0 = std::chrono::steady_clock::now();
-    s->scene = load_scene(path, lo);
-    s->load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    s->key = scene_key(path, scene_info(*s->scene));
-  }
-  deliver(*s, buffer, on_warning);
   return s;
 }
 
 std::shared_ptr<PyScene> load_text(const std::string& text, const std::string& name, const std::string& base_dir,
                                    double texture_cache_mb, const std::string& texture_dir,
                                    const py::object& on_warning) {
-  WarningBuffer buffer;
-  LoadOptions lo = load_options(texture_cache_mb, texture_dir, buffer);
-  auto s = std::make_shared<PyScene>();
+  LoadOptions lo;
   lo.base_directory = base_dir;  // as a scene file's folder
-  {
-    py::gil_scoped_release release;
-    const auto t0 = std::chrono::steady_clock::now();
-    s->scene = load_scene_from_string(text, name, lo);
-    s->load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    s->key = scene_key_of_text(name, text, scene_info(*s->scene));
-  }
-  deliver(*s, buffer, on_warning);
-  return s;
+  return load_with(texture_cache_mb, texture_dir, on_warning, lo, [&](const LoadOptions& o) {
+    std::shared_ptr<Scene> scene = load_scene_from_string(text, name, o);
+    return std::pair(scene, scene_key_of_text(name, text, scene_info(*scene)));
+  });
 }
 
 py::dict settings_dict(const PyScene& s) {
