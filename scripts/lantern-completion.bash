@@ -5,11 +5,11 @@ _lantern() {
   _init_completion || return
   local subcommands="render view compare merge info"
   local render_opts="-o --output --spp --time --target-error --integrator --vcm-radius --vcm-alpha --mis --guide
-    --spectral --maxdepth --threads --seed --sampler --light-sampler --resolution --rays --wave-size --progress-interval
-    --stats --dump-rays --strategies --checkpoint --checkpoint-file --resume --keep-checkpoint --texture-cache --texture-dir --trace
+    --spectral --maxdepth --threads --seed --sampler --light-sampler --resolution --cropwindow --pixelbounds --pixel --rays --wave-size
+    --progress-interval --write-partial-images --log-level --log-file --stats --dump-rays --strategies --checkpoint --checkpoint-file --resume --keep-checkpoint --texture-cache --texture-dir --trace
     --trace-waves --part --display-server -q --quiet --help"
   local view_opts="--spp --time --target-error --integrator --vcm-radius --vcm-alpha --mis --guide --spectral
-    --maxdepth --threads --seed --sampler --light-sampler --resolution --rays --wave-size --screenshot --exposure
+    --maxdepth --threads --seed --sampler --light-sampler --resolution --cropwindow --pixelbounds --pixel --rays --wave-size --screenshot --exposure
     --texture-cache --texture-dir --help"
   local sub=""
   local i
@@ -22,7 +22,8 @@ _lantern() {
     --light-sampler) COMPREPLY=($(compgen -W "bvh power uniform" -- "$cur")); return ;;
     --mis) COMPREPLY=($(compgen -W "power balance" -- "$cur")); return ;;
     --rays) COMPREPLY=($(compgen -W "stream stream-1m single packet16" -- "$cur")); return ;;
-    -o | --output | --stats | --trace | --dump-rays | --checkpoint-file | --error-image | --screenshot)
+    --log-level) COMPREPLY=($(compgen -W "error warning info verbose" -- "$cur")); return ;;
+    -o | --output | --stats | --trace | --dump-rays | --checkpoint-file | --error-image | --screenshot | --log-file)
       _filedir; return ;;
     --strategies | --texture-dir) _filedir -d; return ;;
   esac

@@ -1,6 +1,7 @@
 // Rendering a loaded scene.
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -51,6 +52,13 @@ struct RenderOptions {
   SamplerSettings sampler;  // the app passes the scene's (or --sampler's)
   LightSamplerKind light_sampler = LightSamplerKind::Bvh;  // next-event estimation's choice of light
   int width = 0, height = 0;  // 0: the scene's Film resolution
+  // The part of the image to render, over the Film's own "cropwindow" and
+  // "pixelbounds", as pbrt-v4's --cropwindow, --pixelbounds and --pixel
+  // are: crop_window [x0 x1 y0 y1] in [0, 1] when x1 >= 0 (it wins over
+  // any pixel bounds), else pixel_bounds [x0 x1 y0 y1] (clamped to the
+  // image) when x1 >= 0; unset, the Film's.
+  std::array<float, 4> crop_window{0.f, -1.f, 0.f, -1.f};
+  std::array<int, 4> pixel_bounds{0, -1, 0, -1};
   RayBackend ray_backend = RayBackend::StreamNp;
   int wave_size = 4096;  // paths per wave
   bool spectral = false;  // sample wavelengths as pbrt-v4 does (docs/spectral.md) instead of rendering in RGB

@@ -109,6 +109,34 @@ void add_render_request_options(CLI::App& c, RenderRequest& r) {
                      "Integrator \"lightsampler\", else bvh)")
       ->check(CLI::IsMember({"bvh", "power", "uniform"}));
   c.add_option("--resolution", r.resolution, "Image size W H (default: the scene's Film)")->expected(2)->check(integer_in(1, 65536, "an integer from 1 to 65536"));
+  CLI::Option* crop = c.add_option("--cropwindow", r.crop_window,
+                                   "Render only this part of the image: x0,x1,y0,y1 in [0, 1] (pbrt-v4's flag; over the "
+                                   "Film's cropwindow and pixelbounds)")
+                          ->expected(4)
+                          ->delimiter(',')
+                          ->check(number_in(0.0, 1.0, true, "a number from 0 to 1"));
+  CLI::Option* bounds = c.add_option("--pixelbounds", r.pixel_bounds,
+                                     "Render only these pixels: x0,x1,y0,y1 (x1 and y1 excluded; pbrt-v4's flag)")
+                            ->expected(4)
+                            ->delimiter(',')
+                            ->check(integer_in(0, 65536, "an integer from 0 to 65536"))
+                            ->excludes(crop);
+  c.add_option("--pixel", r.pixel, "Render only the pixel X,Y (0,0 the top left; pbrt-v4's flag)")
+      ->expected(2)
+      ->delimiter(',')
+      ->check(integer_in(0, 65535, "an integer from 0 to 65535"))
+      ->excludes(crop)
+      ->excludes(bounds);
+  // The region as a whole (its values in order), when the command line is
+  // parsed: a usage error.
+  c.parse_complete_callback([&r] {
+    try {
+      RenderOptions o;
+      set_render_region(r, o);
+    } catch (const std::invalid_argument& e) {
+      throw CLI::ValidationError(e.what());
+    }
+  });
   c.add_option("--rays", r.rays, "Ray query back end: stream (Embree Np streams), stream-1m, single, packet16")
       ->check(CLI::IsMember({"stream", "stream-1m", "single", "packet16"}));
   c.add_option("--wave-size", r.wave_size, "Paths per wave (default 4096; 16384 for vcm, bpm and ppm, whose eye vertices merge with the light vertices of their wave)")->check(integer_in(1, 1 << 22, "an integer from 1 to 4194304"));

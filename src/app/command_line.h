@@ -5,9 +5,18 @@
 
 #include <CLI/CLI.hpp>
 
+#include <stdexcept>
+
 #include "app/render_request.h"
 
 namespace lantern::cli {
+
+// A command line asking for what cannot be (a value out of range found
+// after parsing, such as a pixel outside the image): exit 2, as a usage
+// error.
+struct UsageError : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
+};
 
 // Parses argv into app; -1 when parsing succeeded (go on), otherwise the
 // exit code (0 after --help or --version, 2 after a usage error).

@@ -1,5 +1,7 @@
 #include "app/display_server.h"
 
+#include "app/log.h"
+
 #include <netdb.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -87,12 +89,7 @@ DisplayServer::DisplayServer(const std::string& address, const std::string& name
 }
 
 DisplayServer::~DisplayServer() {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    stopping_ = true;
-  }
-  wake_.notify_all();
-  if (thread_.joinable()) thread_.join();
+  watcher_.reset();  // its thread sends
   if (socket_ >= 0) ::close(socket_);
 }
 
@@ -102,7 +99,7 @@ void DisplayServer::send(const std::string& packet) {
     const ssize_t n = ::send(socket_, packet.data() + sent, packet.size() - sent, MSG_NOSIGNAL);
     if (n <= 0) {
       // The viewer went away: the render goes on without it.
-      std::fprintf(stderr, "warning: display server: %s; no more updates are sent\n",
+      logging::warning("warning: display server: %s; no more updates are sent",
                    n < 0 ? std::strerror(errno) : "connection closed");
       ::close(socket_);
       socket_ = -1;
@@ -131,37 +128,16 @@ void DisplayServer::send_image(const Image& image) {
 }
 
 void DisplayServer::watch(const RenderSession& session, double interval) {
-  thread_ = std::thread([this, &session, interval] {
-    std::unique_lock<std::mutex> lock(mutex_);
-    for (;;) {
-      const bool woken = wake_.wait_for(lock, std::chrono::duration<double>(interval),
-                                        [&] { return stopping_ || pass_ended_; });
-      // A pass that ended is shown even when the render ended right after.
-      if (stopping_ && !pass_ended_) break;
-      pass_ended_ = false;
-      (void)woken;
-      lock.unlock();
-      send_image(session.snapshot());
-      lock.lock();
-    }
-  });
+  watcher_ = std::make_unique<SessionWatcher>([this](const Image& image, uint32_t) { send_image(image); }, interval, 0.0);
+  watcher_->watch(session);
 }
 
-void DisplayServer::pass_done() {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    pass_ended_ = true;
-  }
-  wake_.notify_all();
+void DisplayServer::pass_done(uint32_t spp) {
+  if (watcher_) watcher_->pass_done(spp);
 }
 
 void DisplayServer::stop(const Image& final) {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    stopping_ = true;
-  }
-  wake_.notify_all();
-  if (thread_.joinable()) thread_.join();
+  if (watcher_) watcher_->stop();
   send_image(final);
 }
 

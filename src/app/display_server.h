@@ -12,12 +12,11 @@
 // a copy into planes.
 #pragma once
 
-#include <atomic>
-#include <condition_variable>
-#include <mutex>
+#include <cstdint>
+#include <memory>
 #include <string>
-#include <thread>
 
+#include "app/session_watcher.h"
 #include "lantern/render.h"
 
 namespace lantern {
@@ -32,10 +31,10 @@ class DisplayServer {
   DisplayServer& operator=(const DisplayServer&) = delete;
 
   // Sends the session's image every `interval` seconds and after each pass
-  // (call pass_done() from RenderHooks::pass_done), on a thread of its
-  // own, until stop().
+  // (call pass_done() from RenderHooks::pass_done), on a thread of its own
+  // (app/session_watcher.h), until stop().
   void watch(const RenderSession& session, double interval = 1.0);
-  void pass_done();
+  void pass_done(uint32_t spp);
   // Stops watching, then sends `final` (the finished render's image).
   void stop(const Image& final);
   bool connected() const { return socket_ >= 0; }
@@ -47,10 +46,7 @@ class DisplayServer {
   int socket_ = -1;
   std::string name_;
   int width_ = 0, height_ = 0;
-  std::thread thread_;
-  std::mutex mutex_;
-  std::condition_variable wake_;
-  bool stopping_ = false, pass_ended_ = false;
+  std::unique_ptr<SessionWatcher> watcher_;
 };
 
 }  // namespace lantern

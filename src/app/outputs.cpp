@@ -4,6 +4,7 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -49,22 +50,47 @@ void check_writable(const std::string& path, const std::string& what) {
 
 void check_image_path(const std::string& path) {
   check_writable(path, "the output image");
+  if (path == "-") return;
   if (!can_write_image_format(path))
     throw std::runtime_error("cannot write the output image \"" + path + "\": no image writer for the extension \"" +
                              fs::path(path).extension().string() + "\"; use .exr (linear floats) or .png");
+}
+
+void write_output_image(const std::string& path, const Image& image, const ImageMetadata& md) {
+  if (path != "-") return write_image(path, image, md);
+  // The writers take file names: a file of our own in the temporary
+  // folder, copied to standard output and removed.
+  std::string tmp = (fs::temp_directory_path() / "lantern-stdout-XXXXXX.exr").string();
+  const int fd = ::mkstemps(tmp.data(), 4);
+  if (fd < 0) throw std::runtime_error(std::string("cannot write the image to standard output: ") + std::strerror(errno));
+  ::close(fd);
+  struct Remove {
+    std::string path;
+    ~Remove() { std::remove(path.c_str()); }
+  } remove{tmp};
+  write_image(tmp, image, md);
+  std::FILE* in = std::fopen(tmp.c_str(), "rb");
+  if (!in) throw std::runtime_error("cannot read back " + tmp + ": " + std::strerror(errno));
+  char buf[1 << 16];
+  size_t n = 0;
+  bool ok = true;
+  while (ok && (n = std::fread(buf, 1, sizeof buf, in)) > 0) ok = std::fwrite(buf, 1, n, stdout) == n;
+  std::fclose(in);
+  if (!ok || std::fflush(stdout) != 0)
+    throw std::runtime_error(std::string("cannot write the image to standard output: ") + std::strerror(errno));
 }
 
 ImageWrite write_image_or_rescue(const std::string& path, const Image& image, const ImageMetadata& md,
                                  const std::string& checkpoint_path) {
   ImageWrite w;
   try {
-    write_image(path, image, md);
+    write_output_image(path, image, md);
     w.written = true;
     return w;
   } catch (const std::exception& e) {
     w.error = e.what();
   }
-  const std::string name = fs::path(path).stem().string() + ".rescue.exr";
+  const std::string name = (path == "-" ? std::string("stdout") : fs::path(path).stem().string()) + ".rescue.exr";
   std::vector<fs::path> places;
   if (!checkpoint_path.empty()) places.push_back(fs::path(checkpoint_path).parent_path());
   places.push_back(fs::current_path());

@@ -13,8 +13,13 @@ namespace lantern {
 // created at path: its folder is missing or not writable. `what` names the
 // file in the message ("the output image", "the checkpoint").
 void check_writable(const std::string& path, const std::string& what);
-// The same, and the extension must name an image format Lantern writes.
+// The same, and the extension must name an image format Lantern writes
+// ("-", standard output, takes OpenEXR).
 void check_image_path(const std::string& path);
+
+// write_image, and for "-" the image as OpenEXR (linear floats, the whole
+// header) on standard output. Throws std::runtime_error when it cannot.
+void write_output_image(const std::string& path, const Image& image, const ImageMetadata& md);
 
 struct ImageWrite {
   bool written = false;  // where asked

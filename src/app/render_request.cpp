@@ -1,5 +1,7 @@
 #include "app/render_request.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +12,30 @@
 #include "math/fnv1a.h"
 
 namespace lantern {
+
+// --cropwindow, --pixelbounds, --pixel: at most one of them, each a region
+// of at least one pixel (a crop window's values in [0, 1]).
+void set_render_region(const RenderRequest& a, RenderOptions& o) {
+  const int given = int(!a.crop_window.empty()) + int(!a.pixel_bounds.empty()) + int(!a.pixel.empty());
+  if (given > 1) throw std::invalid_argument("give one render region: --cropwindow, --pixelbounds or --pixel");
+  if (!a.crop_window.empty()) {
+    const std::vector<float>& c = a.crop_window;
+    if (c.size() != 4 || !std::all_of(c.begin(), c.end(), [](float v) { return v >= 0.f && v <= 1.f; }) ||
+        !(c[0] < c[1]) || !(c[2] < c[3]))
+      throw std::invalid_argument("cropwindow: expected x0 x1 y0 y1 in [0, 1] with x0 < x1 and y0 < y1 (pixels: "
+                                  "--pixelbounds)");
+    std::copy(c.begin(), c.end(), o.crop_window.begin());
+  } else if (!a.pixel_bounds.empty()) {
+    const std::vector<int>& b = a.pixel_bounds;
+    if (b.size() != 4 || b[0] < 0 || b[2] < 0 || b[0] >= b[1] || b[2] >= b[3])
+      throw std::invalid_argument("pixelbounds: expected x0 x1 y0 y1 in pixels with 0 <= x0 < x1 and 0 <= y0 < y1");
+    std::copy(b.begin(), b.end(), o.pixel_bounds.begin());
+  } else if (!a.pixel.empty()) {
+    if (a.pixel.size() != 2 || a.pixel[0] < 0 || a.pixel[1] < 0 || a.pixel[0] > 65535 || a.pixel[1] > 65535)
+      throw std::invalid_argument("pixel: expected X Y, a pixel of the image (0 0 is the top left)");
+    o.pixel_bounds = {a.pixel[0], a.pixel[0] + 1, a.pixel[1], a.pixel[1] + 1};
+  }
+}
 
 RenderOptions resolve_render_options(const Scene& scene, const RenderRequest& a) {
   const SceneSettings& ss = scene_settings(scene);
@@ -41,9 +67,34 @@ RenderOptions resolve_render_options(const Scene& scene, const RenderRequest& a)
     o.width = a.resolution[0];
     o.height = a.resolution[1];
   }
+  set_render_region(a, o);
   o.ray_backend = parse_ray_backend(a.rays);
   o.wave_size = a.wave_size > 0 ? a.wave_size : merges_vertices(o.integrator) ? 16384 : 4096;
   return o;
+}
+
+std::string reframing_note(const Scene& scene, const RenderOptions& o) {
+  const SceneSettings& ss = scene_settings(scene);
+  if (o.width <= 0 || o.height <= 0 || ss.width <= 0 || ss.height <= 0) return {};
+  const double was = double(ss.width) / double(ss.height), is = double(o.width) / double(o.height);
+  if (std::abs(is / was - 1.0) < 1e-3) return {};
+  // pbrt-v4's screen window: [-aspect, aspect] x [-1, 1] for a wide image,
+  // [-1, 1] x [-1/aspect, 1/aspect] for a tall one, so "fov" spans the
+  // shorter side; a "screenwindow" given in the file is kept as it is.
+  const char* how = "";
+  if (ss.screen_window)
+    how = "the camera's \"screenwindow\" is fixed, so the image is stretched";
+  else if ((is > 1.0) != (was > 1.0) && std::abs(is - 1.0) > 1e-3 && std::abs(was - 1.0) > 1e-3)
+    how = "the camera's view spans the shorter side, which is now the other one: the image shows more of the scene "
+          "along one side and less along the other";
+  else if (std::max(is, 1.0 / is) > std::max(was, 1.0 / was))
+    how = "the camera's view spans the shorter side, so the image shows more of the scene along its longer side";
+  else
+    how = "the camera's view spans the shorter side, so the image shows less of the scene along its longer side";
+  char buf[400];
+  std::snprintf(buf, sizeof buf, "--resolution %dx%d has aspect ratio %.3g where the scene's Film (%dx%d) has %.3g: %s",
+                o.width, o.height, is, ss.width, ss.height, was, how);
+  return buf;
 }
 
 namespace {

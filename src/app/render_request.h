@@ -30,15 +30,31 @@ struct RenderRequest {
   float vcm_radius = 0.f, vcm_alpha = 0.75f;
   bool spectral = false, guide = false;
   std::vector<int> resolution;  // empty, or W H
+  // The part of the image to render (pbrt-v4's flags of these names):
+  // empty, or x0 x1 y0 y1 in [0, 1] / in pixels, or a pixel's X Y.
+  std::vector<float> crop_window;
+  std::vector<int> pixel_bounds, pixel;
 };
 
 // The options of a render of `scene` as `request` asks. Throws
-// std::invalid_argument for a word no option has (an unknown integrator, ...).
+// std::invalid_argument for a word no option has (an unknown integrator, ...)
+// or a region that is not one.
 RenderOptions resolve_render_options(const Scene& scene, const RenderRequest& request);
 
 // What a checkpoint or a part file must agree with: the scene file's name
 // and bytes (FNV-1a) and what was loaded from it, so that an edited scene is
 // neither resumed nor merged; for a scene given as text, the text's.
+// The request's render region (--cropwindow, --pixelbounds, --pixel: at most
+// one) in o. Throws std::invalid_argument, saying what was expected, for
+// values out of order or range.
+void set_render_region(const RenderRequest& request, RenderOptions& o);
+
+// When the request's resolution has another aspect ratio than the scene's
+// Film: how the view changes (a field of view spans the image's shorter
+// side, as in pbrt-v4, so the longer side sees more or less than the scene
+// file's image); otherwise "".
+std::string reframing_note(const Scene& scene, const RenderOptions& options);
+
 std::string scene_key(const std::string& path, const SceneInfo& info);
 std::string scene_key_of_text(const std::string& name, const std::string& text, const SceneInfo& info);
 

@@ -1,5 +1,7 @@
 #include "app/stats_report.h"
 
+#include "app/log.h"
+
 #include "sampler/sampler.h"
 
 #include <sys/resource.h>
@@ -127,13 +129,22 @@ void print_stage_summary(const RenderStats& s) {
   double total = rays;
   for (const auto& st : s.stage_seconds) total += st.second;
   if (total <= 0.0) return;
-  std::fprintf(stderr, "thread time: ray queries %.0f%%", 100.0 * rays / total);
-  for (const auto& [name, sec] : s.stage_seconds) std::fprintf(stderr, ", %s %.0f%%", name.c_str(), 100.0 * sec / total);
-  std::fprintf(stderr, "; film merge %.2f s\n", s.film_seconds);
-  std::fprintf(stderr, "subpaths: eye %.2f vertices", s.samples ? double(s.eye_vertices) / double(s.samples) : 0.0);
-  if (s.light_paths)
-    std::fprintf(stderr, ", light %.2f vertices", double(s.light_vertices) / double(s.light_paths));
-  std::fprintf(stderr, " on average\n");
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "thread time: ray queries %.0f%%", 100.0 * rays / total);
+  std::string line = buf;
+  for (const auto& [name, sec] : s.stage_seconds) {
+    std::snprintf(buf, sizeof buf, ", %s %.0f%%", name.c_str(), 100.0 * sec / total);
+    line += buf;
+  }
+  std::snprintf(buf, sizeof buf, "; film merge %.2f s", s.film_seconds);
+  logging::line(logging::Level::Info, line + buf);
+  std::snprintf(buf, sizeof buf, "subpaths: eye %.2f vertices", s.samples ? double(s.eye_vertices) / double(s.samples) : 0.0);
+  line = buf;
+  if (s.light_paths) {
+    std::snprintf(buf, sizeof buf, ", light %.2f vertices", double(s.light_vertices) / double(s.light_paths));
+    line += buf;
+  }
+  logging::line(logging::Level::Info, line + " on average");
 }
 
 nlohmann::json comparison_json(const ImageComparison& m) {

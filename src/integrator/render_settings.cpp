@@ -101,9 +101,12 @@ ImageRegion image_region(const Scene& scene, const RenderOptions& opt) {
   r.full_width = opt.width > 0 ? opt.width : scene.settings.width;
   r.full_height = opt.height > 0 ? opt.height : scene.settings.height;
   int x[2], y[2];
-  const std::array<int, 4>& pb = scene.settings.pixel_bounds;
-  const std::array<float, 4>& cw = scene.settings.crop_window;
-  if (pb[1] >= 0) {
+  // The command line's region over the Film's; a crop window over pixel
+  // bounds (pbrt-v4's order).
+  const bool own_crop = opt.crop_window[1] >= 0.f, own_bounds = !own_crop && opt.pixel_bounds[1] >= 0;
+  const std::array<int, 4>& pb = own_bounds ? opt.pixel_bounds : scene.settings.pixel_bounds;
+  const std::array<float, 4>& cw = own_crop ? opt.crop_window : scene.settings.crop_window;
+  if (pb[1] >= 0 && !own_crop) {
     x[0] = std::clamp(pb[0], 0, r.full_width), x[1] = std::clamp(pb[1], 0, r.full_width);
     y[0] = std::clamp(pb[2], 0, r.full_height), y[1] = std::clamp(pb[3], 0, r.full_height);
   } else {
@@ -113,7 +116,9 @@ ImageRegion image_region(const Scene& scene, const RenderOptions& opt) {
     }
   }
   if (x[1] <= x[0] || y[1] <= y[0])
-    throw std::invalid_argument("the film's cropwindow or pixelbounds covers no pixel of the " +
+    throw std::invalid_argument(std::string(own_crop || own_bounds ? "the render region (--cropwindow, --pixelbounds, --pixel)"
+                                                                   : "the film's cropwindow or pixelbounds") +
+                                " covers no pixel of the " +
                                 std::to_string(r.full_width) + "x" + std::to_string(r.full_height) + " image");
   r.x0 = x[0], r.y0 = y[0], r.width = x[1] - x[0], r.height = y[1] - y[0];
   return r;

@@ -78,6 +78,9 @@ void read_options(const py::kwargs& kw, RenderRequest& r, Outputs& out) {
     } else if (k == "spectral") r.spectral = cast_option<bool>("spectral", value);
     else if (k == "guide") r.guide = cast_option<bool>("guide", value);
     else if (k == "resolution") r.resolution = cast_option<std::vector<int>>("resolution", value);
+    else if (k == "cropwindow") r.crop_window = cast_option<std::vector<float>>("cropwindow", value);
+    else if (k == "pixelbounds") r.pixel_bounds = cast_option<std::vector<int>>("pixelbounds", value);
+    else if (k == "pixel") r.pixel = cast_option<std::vector<int>>("pixel", value);
     else if (k == "output") out.image = cast_option<std::string>("output", value);
     else if (k == "stats") out.stats = cast_option<std::string>("stats", value);
     else if (k == "collect_stats") out.collect_stats = cast_option<bool>("collect_stats", value);
@@ -88,8 +91,8 @@ void read_options(const py::kwargs& kw, RenderRequest& r, Outputs& out) {
     else
       throw py::type_error("unknown render option '" + k +
                            "'; the options are the command line's: integrator, spp, time, target_error, maxdepth, "
-                           "seed, sampler, light_sampler, resolution, spectral, guide, threads, wave_size, rays, mis, "
-                           "vcm_radius, vcm_alpha, output, stats, collect_stats, checkpoint, checkpoint_file, resume, "
+                           "seed, sampler, light_sampler, resolution, cropwindow, pixelbounds, pixel, spectral, guide, "
+                           "threads, wave_size, rays, mis, vcm_radius, vcm_alpha, output, stats, collect_stats, checkpoint, checkpoint_file, resume, "
                            "keep_checkpoint");
   }
   if (r.time > 0 && r.spp > 0)
@@ -336,7 +339,8 @@ void bind_render(py::module_& m) {
       },
       py::arg("scene"), py::kw_only(), py::arg("progress") = py::none(),
       "Render a scene; keyword arguments are the command line's options (integrator, spp, time, target_error, "
-      "maxdepth, seed, sampler, light_sampler, resolution, spectral, guide, threads, wave_size, rays, mis, "
+      "maxdepth, seed, sampler, light_sampler, resolution, cropwindow, pixelbounds, pixel, spectral, guide, threads, "
+      "wave_size, rays, mis, "
       "vcm_radius, vcm_alpha, checkpoint, checkpoint_file, resume, keep_checkpoint) and the files to write (output, stats). "
       "progress(p) is called about ten times a second; returning False cancels (None goes on). Ctrl-C cancels, writes the "
       "image so far to output, and raises KeyboardInterrupt.");

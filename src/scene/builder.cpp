@@ -74,6 +74,7 @@ void SceneBuilder::camera(const std::string& type, const ParamSet& ps, const glm
   if (!sw.empty()) {
     if (sw.size() != 4) ps.fail("\"screenwindow\" needs 4 values: xmin xmax ymin ymax");
     c.has_screen_window = true;
+    scene_.settings.screen_window = true;
     std::copy(sw.begin(), sw.end(), c.screen_window);
   }
 }

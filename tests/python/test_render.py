@@ -31,6 +31,32 @@ def test_render_equals_the_command_line_bit_for_bit(cornell_box, lantern_binary,
     assert not np.array_equal(other.image, cli)
 
 
+def test_a_render_region_is_the_films_own_crop(cornell_box):
+    # cropwindow, pixelbounds and pixel render what the Film's "cropwindow"
+    # and "pixelbounds" render, bit for bit, as the command line's flags of
+    # those names do (a crop is the whole image's part in distribution:
+    # tests/film_crop_test.cpp).
+    text = open(cornell_box.path).read()
+    assert 'Film "rgb"' in text
+
+    def film_with(extra):
+        return lantern.load_scene_from_string(text.replace('Film "rgb"', 'Film "rgb" ' + extra),
+                                              base_dir=os.path.dirname(cornell_box.path))
+
+    options = dict(spp=4, resolution=(48, 40), seed=3)
+    bounds = lantern.render(cornell_box, pixelbounds=(10, 20, 30, 38), **options).image
+    assert bounds.shape == (8, 10, 3)
+    assert np.array_equal(bounds, lantern.render(film_with('"integer pixelbounds" [10 20 30 38]'), **options).image)
+    crop = lantern.render(cornell_box, cropwindow=(0.5, 1.0, 0.25, 0.5), **options).image
+    assert crop.shape == (10, 24, 3)
+    assert np.array_equal(crop, lantern.render(film_with('"float cropwindow" [0.5 1 0.25 0.5]'), **options).image)
+    pixel = lantern.render(cornell_box, pixel=(7, 9), **options).image
+    assert np.array_equal(pixel, lantern.render(film_with('"integer pixelbounds" [7 8 9 10]'), **options).image)
+    assert not np.array_equal(pixel, lantern.render(film_with('"integer pixelbounds" [8 9 9 10]'), **options).image)
+    with pytest.raises(ValueError, match="cropwindow"):
+        lantern.render(cornell_box, cropwindow=(0.5, 0.2, 0, 1), **options)
+
+
 def test_lit_sphere_has_its_albedo():
     # A convex diffuse sphere under a uniform sky of radiance 1 sees only the
     # sky: its outgoing radiance is its albedo, 0.5, everywhere (closed form);
