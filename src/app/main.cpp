@@ -180,6 +180,14 @@ int main(int argc, char** argv) {
   } catch (const lantern::cli::UsageError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return fail(2);
+  } catch (const std::bad_alloc&) {
+    // What the renderer did not estimate ahead (the film and its buffers
+    // are: integrator/render_settings.h) ran out: say how much was in use.
+    std::cerr << "error: out of memory, with " << double(lantern::peak_rss_bytes()) / (1 << 30)
+              << " GiB in use at the peak of " << double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE)) / (1 << 30)
+              << " GiB on this machine: render a smaller scene or image, a part of it (--cropwindow), or with fewer "
+                 "threads\n";
+    return fail(1);
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
     return fail(1);

@@ -42,11 +42,23 @@ void check_film_memory(const Scene& scene, const RenderOptions& opt) {
   double per_pixel = 48.0 + 4.0 + 12.0;
   if (opt.integrator != Integrator::Path) per_pixel += 48.0;
   if (opt.target_error > 0) per_pixel += 96.0 + 2.0;
+  if (opt.strategies) {
+    // --strategies: per (s, t) two images of double sums and two resolved
+    // (72 bytes a pixel), for every strategy a path of up to maxdepth
+    // bounces can take (k + 2 of length k), and a merge per length (vcm),
+    // all of them at the worst.
+    const double d = std::min(opt.maxdepth, 1000);
+    per_pixel += 72.0 * (d * (d + 5.0) / 2.0 + (merges_vertices(opt.integrator) ? d : 0.0));
+  }
   const double need = pixels * per_pixel, have = available_memory();
   if (have > 0.0 && need > have)
     throw std::invalid_argument("a " + std::to_string(r.width) + "x" + std::to_string(r.height) + " film needs about " +
                                 gib(need) + " (" + std::to_string(int(per_pixel)) + " bytes a pixel), more than the " +
-                                gib(have) + " this machine has available: render a smaller image, or a part of it (Film "
+                                gib(have) + " this machine has available: " +
+                                (opt.strategies ? "render per-strategy images (--strategies) of a smaller image or a "
+                                                  "lower maxdepth, or "
+                                                : "") +
+                                "render a smaller image, or a part of it (--cropwindow, --pixelbounds; Film "
                                 "\"cropwindow\" or \"pixelbounds\")");
 }
 
