@@ -42,6 +42,6 @@ export LANTERN_TEST_SPP_SCALE=0.25
 # thread-local storage (use_tls=0), and what those libraries keep per
 # thread is suppressed by library (scripts/lsan.supp). A failed test still
 # runs once more; a real failure fails both times.
-export LSAN_OPTIONS=use_tls=0:suppressions=$(pwd)/scripts/lsan.supp
+export LSAN_OPTIONS=use_tls=0:print_suppressions=0:suppressions=$(pwd)/scripts/lsan.supp
 ctest --test-dir "$build" --output-on-failure -j"$(nproc)" --repeat until-pass:2
 if [ "$fuzz" = ON ]; then tests/fuzz/run.sh "$build" "$seconds"; fi
