@@ -12,7 +12,7 @@ pid=
 trap '[ -n "$pid" ] && kill "$pid" 2>/dev/null; rm -rf "$tmp"' EXIT
 fail() { echo "batch cli test: $*" >&2; exit 1; }
 box=$src/scenes/cornell-box.pbrt
-small="--spp 4 --resolution 64 48"
+small="--spp 1 --resolution 40 30"
 # mse of two images, as lantern compare prints it.
 mse() { "$lantern" compare "$1" "$2" | sed -n 's/^mse //p'; }
 expect_code() {  # CODE DESCRIPTION COMMAND...
@@ -28,27 +28,27 @@ expect_code() {  # CODE DESCRIPTION COMMAND...
 # --- Render regions: the command line's region renders the pixels the
 # Film's "cropwindow" / "pixelbounds" render, bit for bit.
 sed 's|^Film "rgb"|Film "rgb" "float cropwindow" [0.25 0.75 0.5 1]|' "$box" >"$tmp/crop.pbrt"
-sed 's|^Film "rgb"|Film "rgb" "integer pixelbounds" [10 20 30 45]|' "$box" >"$tmp/bounds.pbrt"
-sed 's|^Film "rgb"|Film "rgb" "integer pixelbounds" [33 34 20 21]|' "$box" >"$tmp/pixel.pbrt"
+sed 's|^Film "rgb"|Film "rgb" "integer pixelbounds" [10 20 5 15]|' "$box" >"$tmp/bounds.pbrt"
+sed 's|^Film "rgb"|Film "rgb" "integer pixelbounds" [23 24 20 21]|' "$box" >"$tmp/pixel.pbrt"
 grep -q cropwindow "$tmp/crop.pbrt" || fail "the test scene has no Film line to crop"
 "$lantern" render "$tmp/crop.pbrt" $small -q -o "$tmp/film_crop.exr"
 "$lantern" render "$box" $small -q --cropwindow 0.25,0.75,0.5,1 -o "$tmp/cli_crop.exr"
 [ "$(mse "$tmp/cli_crop.exr" "$tmp/film_crop.exr")" = 0 ] || fail "--cropwindow differs from the Film's cropwindow"
 "$lantern" render "$tmp/bounds.pbrt" $small -q -o "$tmp/film_bounds.exr"
-"$lantern" render "$box" $small -q --pixelbounds 10 20 30 45 -o "$tmp/cli_bounds.exr"
+"$lantern" render "$box" $small -q --pixelbounds 10 20 5 15 -o "$tmp/cli_bounds.exr"
 [ "$(mse "$tmp/cli_bounds.exr" "$tmp/film_bounds.exr")" = 0 ] || fail "--pixelbounds differs from the Film's pixelbounds"
-"$lantern" info "$tmp/cli_bounds.exr" | grep -q '^resolution 10 15$' || fail "--pixelbounds 10 20 30 45 is not 10x15"
+"$lantern" info "$tmp/cli_bounds.exr" | grep -q '^resolution 10 10$' || fail "--pixelbounds 10 20 5 15 is not 10x10"
 "$lantern" render "$tmp/pixel.pbrt" $small -q -o "$tmp/film_pixel.exr"
-"$lantern" render "$box" $small --pixel 33,20 -o "$tmp/cli_pixel.exr" 2>"$tmp/err"
+"$lantern" render "$box" $small --pixel 23,20 -o "$tmp/cli_pixel.exr" 2>"$tmp/err"
 [ "$(mse "$tmp/cli_pixel.exr" "$tmp/film_pixel.exr")" = 0 ] || fail "--pixel differs from the Film's one-pixel bounds"
 grep -q '^pixel value: ' "$tmp/err" || fail "--pixel did not print the pixel's value"
 # A region over the Film's own: the command line's wins (pbrt-v4's rule).
-"$lantern" render "$tmp/crop.pbrt" $small -q --pixelbounds 10 20 30 45 -o "$tmp/over.exr"
+"$lantern" render "$tmp/crop.pbrt" $small -q --pixelbounds 10 20 5 15 -o "$tmp/over.exr"
 [ "$(mse "$tmp/over.exr" "$tmp/film_bounds.exr")" = 0 ] || fail "--pixelbounds did not replace the Film's cropwindow"
 expect_code 2 "--cropwindow out of order" "$lantern" render "$box" $small --cropwindow 0.5,0.2,0,1 -o "$tmp/x.exr"
 expect_code 2 "--cropwindow with --pixel" "$lantern" render "$box" $small --cropwindow 0,1,0,1 --pixel 1,1 -o "$tmp/x.exr"
-expect_code 2 "--pixel outside the image" "$lantern" render "$box" $small --pixel 64,3 -o "$tmp/x.exr"
-grep -q 'covers no pixel of the 64x48 image' "$tmp/err" || fail "--pixel outside the image: $(cat "$tmp/err")"
+expect_code 2 "--pixel outside the image" "$lantern" render "$box" $small --pixel 40,3 -o "$tmp/x.exr"
+grep -q 'covers no pixel of the 40x30 image' "$tmp/err" || fail "--pixel outside the image: $(cat "$tmp/err")"
 
 # --- The aspect ratio changed by --resolution is explained.
 "$lantern" render "$box" --spp 1 --resolution 64 32 -o "$tmp/wide.exr" 2>"$tmp/err"
@@ -67,8 +67,8 @@ grep -q noparameter "$tmp/warning.log" || fail "--log-level warning hid the warn
 ! grep -q 'spp (min)' "$tmp/warning.log" || fail "--log-level warning printed the summary"
 grep -q 'spp (min)' "$tmp/info.log" || fail "--log-level info has no summary"
 ! grep -q '^render: ' "$tmp/info.log" || fail "--log-level info printed the verbose settings"
-grep -q '^render: path, 4 spp' "$tmp/verbose.log" || fail "--log-level verbose has no settings line"
-grep -q '^pass: 4 spp' "$tmp/verbose.log" || fail "--log-level verbose has no pass line"
+grep -q '^render: path, 1 spp' "$tmp/verbose.log" || fail "--log-level verbose has no settings line"
+grep -q '^pass: 1 spp' "$tmp/verbose.log" || fail "--log-level verbose has no pass line"
 "$lantern" render "$tmp/warn.pbrt" $small -q -o "$tmp/l.exr" 2>"$tmp/quiet.log"
 grep -q noparameter "$tmp/quiet.log" && ! grep -q 'spp (min)' "$tmp/quiet.log" || fail "-q is not --log-level warning"
 echo "an earlier line" >"$tmp/job.log"
@@ -85,7 +85,7 @@ expect_code 2 "an unknown log level" "$lantern" render "$box" $small --log-level
 expect_code 2 "two outputs on standard output" "$lantern" render "$box" $small -o - --stats -
 # A reader that goes away: exit 1 and a rescue copy, never a silent loss.
 set +e
-(cd "$tmp" && "$lantern" render "$box" --spp 4 --resolution 256 256 -q -o - 2>"$tmp/err" | head -c 10 >/dev/null)
+(cd "$tmp" && "$lantern" render "$box" --spp 1 --resolution 256 256 -q -o - 2>"$tmp/err" | head -c 10 >/dev/null)
 set -e
 grep -q 'saved instead in .*stdout.rescue.exr' "$tmp/err" || fail "a closed pipe lost the image: $(cat "$tmp/err")"
 # The error map on standard output moves the metrics to stderr.
@@ -96,7 +96,7 @@ grep -q '^mse 0$' "$tmp/err" || fail "compare --error-image - did not print the 
 # --- Partial images: while a timed render runs, its output holds the image
 # so far (lantern:partial true, fewer samples); interrupted, the final image
 # replaces it.
-"$lantern" render "$box" --time 60 --resolution 64 48 -q --write-partial-images=0.2 -o "$tmp/partial.exr" 2>/dev/null &
+"$lantern" render "$box" --time 60 --resolution 40 30 -q --write-partial-images=0.2 -o "$tmp/partial.exr" 2>/dev/null &
 pid=$!
 tries=0
 until [ -s "$tmp/partial.exr" ] && "$lantern" info "$tmp/partial.exr" 2>/dev/null | grep -q '^lantern:partial true'; do

@@ -479,9 +479,13 @@ void SceneBuilder::add_shape(const std::string& type, const ParamSet& ps, const 
     add_quadric(type, ps, gs);
   } else if (type == "curve") {
     add_curve(ps, gs);
+  } else if (type == "heightfield") {  // pbrt-v3
+    add_heightfield(ps, gs);
+  } else if (type == "nurbs") {  // pbrt-v3
+    add_nurbs(ps, gs);
   } else {
     ps.fail("shape \"" + printable(type) + "\" is not supported; expected trianglemesh, plymesh, bilinearmesh, "
-            "loopsubdiv, sphere, cylinder, disk or curve");
+            "loopsubdiv, sphere, cylinder, disk, curve, or pbrt-v3's heightfield or nurbs");
   }
 }
 

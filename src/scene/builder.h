@@ -137,6 +137,8 @@ class SceneBuilder final : public pbrt::ParserTarget {
   void add_quadric(const std::string& type, const pbrt::ParamSet& ps, const GraphicsState& gs);  // builder_quadrics.cpp
   void add_curve(const pbrt::ParamSet& ps, const GraphicsState& gs);  // builder_curves.cpp
   void add_bilinear_mesh(const pbrt::ParamSet& ps, const GraphicsState& gs);  // builder_patches.cpp
+  void add_heightfield(const pbrt::ParamSet& ps, const GraphicsState& gs);     // builder_v3_shapes.cpp
+  void add_nurbs(const pbrt::ParamSet& ps, const GraphicsState& gs);           // builder_v3_shapes.cpp
   void add_patch_set(BilinearPatchSet s, const GraphicsState& gs);           // builder_patches.cpp
   void add_area_lights(uint32_t geometry, uint32_t primitives, const GraphicsState& gs);
   void add_ply_mesh(const std::string& path, const GraphicsState& gs, const pbrt::ParamSet& ps);
