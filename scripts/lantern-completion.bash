@@ -17,7 +17,7 @@ _lantern() {
     case "${words[i]}" in render | view | compare | merge | info) sub=${words[i]}; break ;; esac
   done
   case "$prev" in
-    --integrator) COMPREPLY=($(compgen -W "path bdpt lt vcm bpm ppm" -- "$cur")); return ;;
+    --integrator) COMPREPLY=($(compgen -W "path bdpt lt vcm bpm ppm directlighting" -- "$cur")); return ;;
     --sampler) COMPREPLY=($(compgen -W "zsobol paddedsobol sobol halton stratified independent" -- "$cur")); return ;;
     --light-sampler) COMPREPLY=($(compgen -W "bvh power uniform" -- "$cur")); return ;;
     --mis) COMPREPLY=($(compgen -W "power balance" -- "$cur")); return ;;

@@ -20,6 +20,11 @@ enum class Integrator : uint8_t {
   Vcm,   // vertex connection and merging (docs/vcm.md)
   Bpm,   // bidirectional photon mapping: merges without connections
   Ppm,   // progressive photon mapping
+  // pbrt-v3's "directlighting": light arriving straight from the lights at
+  // each vertex (next-event estimation and BSDF sampling, with MIS), the
+  // path continuing only through specular scattering; the path tracer
+  // with its paths cut after their first non-specular bounce.
+  Direct,
 };
 enum class MisHeuristic : uint8_t { Power, Balance };  // bdpt's: beta = 2 or 1
 // pbrt-v4's samplers (docs/samplers.md).
@@ -35,12 +40,13 @@ struct Word {
   E value;
   const char* word;
 };
-inline constexpr std::array<Word<Integrator>, 6> kIntegrators{{{Integrator::Path, "path"},
+inline constexpr std::array<Word<Integrator>, 7> kIntegrators{{{Integrator::Path, "path"},
                                                                {Integrator::Bdpt, "bdpt"},
                                                                {Integrator::Lt, "lt"},
                                                                {Integrator::Vcm, "vcm"},
                                                                {Integrator::Bpm, "bpm"},
-                                                               {Integrator::Ppm, "ppm"}}};
+                                                               {Integrator::Ppm, "ppm"},
+                                                               {Integrator::Direct, "directlighting"}}};
 inline constexpr std::array<Word<MisHeuristic>, 2> kMis{{{MisHeuristic::Power, "power"}, {MisHeuristic::Balance, "balance"}}};
 inline constexpr std::array<Word<SamplerKind>, 6> kSamplers{{{SamplerKind::ZSobol, "zsobol"},
                                                              {SamplerKind::PaddedSobol, "paddedsobol"},
@@ -88,6 +94,8 @@ inline const char* name(LightSamplerKind l) { return option_words::name(l, optio
 inline const char* name(RayBackend b) { return option_words::name(b, option_words::kRayBackends); }
 
 // The integrators that merge light and eye vertices (docs/vcm.md).
+// The integrators the path tracer runs (integrator/path_tracer.h).
+inline bool traces_paths(Integrator i) { return i == Integrator::Path || i == Integrator::Direct; }
 inline bool merges_vertices(Integrator i) { return i == Integrator::Vcm || i == Integrator::Bpm || i == Integrator::Ppm; }
 
 }  // namespace lantern

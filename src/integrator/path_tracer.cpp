@@ -72,12 +72,16 @@ void PathTracer::surface_stage(PathWave& w) const {
   w.hits.clear_bins();
   const ShapePools& shapes = scene_.shapes;
   const LightPools& lights = scene_.lights;
-  const bool last = int(w.depth) == settings_.maxdepth + 1;  // only emission counts this deep
+  const bool at_maxdepth = int(w.depth) == settings_.maxdepth + 1;  // only emission counts this deep
   const bool media = !scene_.media.empty();
   if (media) w.scattered.clear();
   for (uint32_t i = 0; i < w.rays.count; ++i) {
     uint32_t slot = w.active[i];
     w.hits.alive[i] = 0;
+    // pbrt-v3's directlighting: after a non-specular bounce too (the
+    // emission its BSDF sample finds, weighted against next-event
+    // estimation's, and nothing further).
+    const bool last = at_maxdepth || (settings_.direct_lighting && !w.prev_specular[slot]);
     Vec3 d = glm::normalize(w.rays.direction(i));
     bool unweighted = w.prev_specular[slot] != 0;
     // In a medium the BSDF strategy's density of what the ray reaches

@@ -31,6 +31,10 @@ struct PathTracerSettings {
   SamplerSettings sampler;
   uint32_t planned_spp = 0;  // 0 under a time budget
   bool spectral = false;     // sampled wavelengths instead of RGB
+  // pbrt-v3's directlighting: a path ends at the first surface or medium
+  // event after a non-specular bounce, where only emission counts
+  // (Integrator::Direct).
+  bool direct_lighting = false;
 };
 
 struct PathWave;  // the SoA pools, reused wave after wave by one thread

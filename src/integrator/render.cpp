@@ -536,7 +536,7 @@ RenderResult RenderSession::render_all() {
   {
     ProgressReporter reporter(opt, s.hooks, s.start, s.done, s.total);
     bool stopped;
-    if (opt.integrator != Integrator::Path) {
+    if (!traces_paths(opt.integrator)) {
       const BdptSettings bs = bdpt_settings(scene, opt, s.region, planned_spp);
       res.stats.vcm_radius = bs.merging ? bs.vcm_radius : 0.f;
       stopped = run_passes(Bdpt(scene, light_sampler, bs), cx);

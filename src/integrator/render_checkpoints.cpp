@@ -18,7 +18,7 @@ std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& regi
   line("scene", o.checkpoint_key);
   line("integrator", name(o.integrator));
   if (o.spectral) line("colour", "spectral");  // (RGB renders keep the fingerprint they always had)
-  if (o.integrator != Integrator::Path) line("mis", name(o.mis));
+  if (!traces_paths(o.integrator)) line("mis", name(o.mis));
   if (merges_vertices(o.integrator)) {
     line("vcm", std::to_string(o.vcm_radius) + " " + std::to_string(o.vcm_alpha));
     line("passes", "one sample per pixel, waves of equal size");  // (since merging renders were planned so)

@@ -40,7 +40,7 @@ void check_film_memory(const Scene& scene, const RenderOptions& opt) {
   const ImageRegion r = image_region(scene, opt);
   const double pixels = double(r.width) * double(r.height);
   double per_pixel = 48.0 + 4.0 + 12.0;
-  if (opt.integrator != Integrator::Path) per_pixel += 48.0;
+  if (!traces_paths(opt.integrator)) per_pixel += 48.0;
   if (opt.target_error > 0) per_pixel += 96.0 + 2.0;
   if (opt.strategies) {
     // --strategies: per (s, t) two images of double sums and two resolved
@@ -65,7 +65,7 @@ void check_film_memory(const Scene& scene, const RenderOptions& opt) {
 }  // namespace
 
 void check_options(const Scene& scene, const RenderOptions& opt) {
-  if (uint8_t(opt.integrator) > uint8_t(Integrator::Ppm) || uint8_t(opt.mis) > uint8_t(MisHeuristic::Balance) ||
+  if (uint8_t(opt.integrator) > uint8_t(Integrator::Direct) || uint8_t(opt.mis) > uint8_t(MisHeuristic::Balance) ||
       uint8_t(opt.light_sampler) > uint8_t(LightSamplerKind::Uniform) || uint8_t(opt.ray_backend) > uint8_t(RayBackend::Packet16) ||
       uint8_t(opt.sampler.type) > uint8_t(SamplerKind::ZSobol))
     throw std::invalid_argument("an integrator, MIS heuristic, sampler, light sampler or ray back end outside its enumeration");
@@ -179,6 +179,7 @@ PathTracerSettings path_settings(const Scene& scene, const RenderOptions& opt, c
   ps.sampler = opt.sampler;
   ps.planned_spp = planned_spp;
   ps.spectral = opt.spectral;
+  ps.direct_lighting = opt.integrator == Integrator::Direct;
   return ps;
 }
 

@@ -198,6 +198,13 @@ void SceneBuilder::integrator(const std::string& type, const ParamSet& ps) {
     scene_.settings.integrator = parse_integrator(type);
   } else if (type == "lightpath") {
     scene_.settings.integrator = Integrator::Lt;
+  } else if (type == "directlighting") {  // pbrt-v3
+    scene_.settings.integrator = Integrator::Direct;
+    // "all" lights at each vertex or "one" chosen: the same image, different
+    // noise; Lantern's light sampler chooses one.
+    const std::string strategy = ps.get_string("strategy", "all");
+    if (strategy != "all" && strategy != "one")
+      ps.fail(*ps.find("strategy"), "\"strategy\" must be \"all\" or \"one\", not \"" + printable(strategy) + "\"");
   } else if (type == "volpath") {  // pbrt's path tracer with media: Lantern's path tracer has them
     scene_.settings.integrator = Integrator::Path;
   } else if (type == "sppm") {
