@@ -116,14 +116,14 @@ TEST(FilmCrop, AFilmTooLargeForMemoryIsRefusedWithWhatItNeeds) {
   auto cropped = load_scene_from_string(scene_with("\"integer pixelbounds\" [0 8 0 8]"), "crop.pbrt", {});
   EXPECT_EQ(render(*cropped, o).image.width, 8);
   // Per-strategy images count too: at maxdepth 100, 5250 strategies of 72
-  // bytes a pixel make a 4096x4096 film about 1.4 TiB (where without them
-  // it is 1 GiB, and renders).
+  // bytes a pixel make a 4096x4096 film about 5.8 TiB (where without them
+  // it is 1.75 GiB, and renders).
   RenderOptions s{.integrator = Integrator::Bdpt, .spp = 1, .maxdepth = 100};
   s.width = s.height = 4096;
   s.strategies = true;
   try {
     render(*scene, s);
-    ADD_FAILURE() << "per-strategy images of 1.4 TiB were not refused";
+    ADD_FAILURE() << "per-strategy images of 5.8 TiB were not refused";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("--strategies"), std::string::npos) << e.what();
   }

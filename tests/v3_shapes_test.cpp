@@ -82,6 +82,21 @@ TEST(Nurbs, ARationalCylinderKeepsItsRadiusAndFacesOutwards) {
   for (const Vec3& p : mq.positions) EXPECT_TRUE(p.x >= -1e-6f && p.y >= -1e-6f) << p.x << " " << p.y;
 }
 
+// Knots repeated past the order at the end leave an empty last span: the
+// end of the range is evaluated on the last span that is not (it was 0/0).
+TEST(Nurbs, RepeatedEndKnotsKeepTheEndOfTheRange) {
+  NurbsSurface s = bilinear(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 1));
+  s.nu = 3;
+  s.uknots = {0, 0, 1, 1, 1};
+  s.points = {glm::vec4(0, 0, 0, 1), glm::vec4(1, 0, 0, 1), glm::vec4(9, 9, 9, 1),
+              glm::vec4(0, 1, 0, 1), glm::vec4(1, 1, 1, 1), glm::vec4(9, 9, 9, 1)};
+  s.u1 = s.uknots[size_t(s.nu)];
+  ASSERT_EQ(nurbs_problem(s), "");
+  const NurbsPoint e = evaluate_nurbs(s, 1.0, 0.5);
+  EXPECT_LT(glm::length(e.p - Vec3(1.f, 0.5f, 0.5f)), 1e-6f) << e.p.x << " " << e.p.y << " " << e.p.z;
+  for (const Vec3& p : tessellate_nurbs(s).positions) EXPECT_TRUE(std::isfinite(p.x + p.y + p.z));
+}
+
 TEST(Nurbs, DerivativesMatchFiniteDifferences) {
   // A non-uniform cubic by quadratic surface with uneven weights.
   NurbsSurface s;

@@ -93,9 +93,9 @@ inline const char* name(SamplerKind s) { return option_words::name(s, option_wor
 inline const char* name(LightSamplerKind l) { return option_words::name(l, option_words::kLightSamplers); }
 inline const char* name(RayBackend b) { return option_words::name(b, option_words::kRayBackends); }
 
-// The integrators that merge light and eye vertices (docs/vcm.md).
 // The integrators the path tracer runs (integrator/path_tracer.h).
 inline bool traces_paths(Integrator i) { return i == Integrator::Path || i == Integrator::Direct; }
+// The integrators that merge light and eye vertices (docs/vcm.md).
 inline bool merges_vertices(Integrator i) { return i == Integrator::Vcm || i == Integrator::Bpm || i == Integrator::Ppm; }
 
 }  // namespace lantern

@@ -57,7 +57,8 @@ struct SceneSettings {
   // render's resolution decides the pixels a crop window covers.
   std::array<float, 4> crop_window{0.f, 1.f, 0.f, 1.f};
   std::array<int, 4> pixel_bounds{0, -1, 0, -1};
-  // The Camera gave its "screenwindow": another resolution stretches the
+  // The Camera's view does not follow the image's shape (it gave a
+  // "screenwindow", or it is spherical): another resolution stretches the
   // image rather than reframing it.
   bool screen_window = false;
 };

@@ -11,6 +11,7 @@
 
 #include "app/cli_checks.h"
 #include "app/command_line.h"
+#include "app/log.h"
 #include "app/merge_command.h"
 #include "app/outputs.h"
 #include "app/provenance.h"
@@ -175,21 +176,22 @@ int main(int argc, char** argv) {
     }
     return lantern::run_render(a, provenance, g_ranks);
   } catch (const lantern::InputError& e) {
-    std::cerr << e.what() << "\n";
+    // Through the log: after a progress line, and into --log-file too.
+    lantern::logging::line(lantern::logging::Level::Error, e.what());
     return fail(2);
   } catch (const lantern::cli::UsageError& e) {
-    std::cerr << "error: " << e.what() << "\n";
+    lantern::logging::error("error: %s", e.what());
     return fail(2);
   } catch (const std::bad_alloc&) {
     // What the renderer did not estimate ahead (the film and its buffers
     // are: integrator/render_settings.h) ran out: say how much was in use.
-    std::cerr << "error: out of memory, with " << double(lantern::peak_rss_bytes()) / (1 << 30)
-              << " GiB in use at the peak of " << double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE)) / (1 << 30)
-              << " GiB on this machine: render a smaller scene or image, a part of it (--cropwindow), or with fewer "
-                 "threads\n";
+    lantern::logging::error("error: out of memory, with %.1f GiB in use at the peak of %.1f GiB on this machine: render "
+                            "a smaller scene or image, a part of it (--cropwindow), or with fewer threads",
+                            double(lantern::peak_rss_bytes()) / (1 << 30),
+                            double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE)) / (1 << 30));
     return fail(1);
   } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
+    lantern::logging::error("error: %s", e.what());
     return fail(1);
   }
 }

@@ -346,7 +346,9 @@ void add_render_command_options(CLI::App& render, RenderArgs& a) {
 }
 
 int run_render(const RenderArgs& a, const Provenance& provenance, const Ranks& ranks) {
-  logging::configure(a.quiet && a.log_level == "info" ? logging::Level::Warning : logging::parse_level(a.log_level), a.log_file);
+  // One log file for the job: rank 0's (the others keep stderr).
+  logging::configure(a.quiet && a.log_level == "info" ? logging::Level::Warning : logging::parse_level(a.log_level),
+                     ranks.rank == 0 ? a.log_file : std::string());
   // From the start: a signal during loading stops the render before its
   // first wave, and the (empty) image is still written, with exit 130.
   // Installed only later, such a signal killed the process with no image.
@@ -390,15 +392,15 @@ int run_render(const RenderArgs& a, const Provenance& provenance, const Ranks& r
   RenderHooks hooks;
   hooks.cancel = &g_cancel;
   hooks.timeline = timeline.get();
+  ImageRegion region;  // on every rank: each fails alike on a region outside the image
+  try {
+    region = image_region(scene, o);
+  } catch (const std::invalid_argument& e) {
+    // A region of the command line outside this scene's image: its error.
+    if (!a.req.crop_window.empty() || !a.req.pixel_bounds.empty() || !a.req.pixel.empty()) throw cli::UsageError(e.what());
+    throw;
+  }
   if (writes) {
-    ImageRegion region;
-    try {
-      region = image_region(scene, o);
-    } catch (const std::invalid_argument& e) {
-      // A region of the command line outside this scene's image: its error.
-      if (!a.req.crop_window.empty() || !a.req.pixel_bounds.empty() || !a.req.pixel.empty()) throw cli::UsageError(e.what());
-      throw;
-    }
     hooks.progress = progress_line(a.progress_interval, double(region.width) * double(region.height));
     check_standard_output(a, out);
     check_outputs(a, out, true);
@@ -409,6 +411,7 @@ int run_render(const RenderArgs& a, const Provenance& provenance, const Ranks& r
 
   Watchers watchers;
   if (writes) {
+    watchers.log_passes = true;
     watchers.display_server = a.display_server;
     watchers.display_name = out;
     if (!a.partial_images.empty()) {

@@ -40,8 +40,8 @@ struct Ranks {
   MpiSession* mpi = nullptr;
 };
 
-// Exit status as docs/cli.md tables it (0, 1, 130); InputErrors propagate
-// (exit 2 in main).
+// Exit status as docs/cli.md tables it (0, 1, 130); InputErrors and
+// cli::UsageErrors propagate (exit 2 in main).
 int run_render(const RenderArgs& args, const Provenance& provenance, const Ranks& ranks);
 
 }  // namespace lantern

@@ -83,7 +83,7 @@ std::string reframing_note(const Scene& scene, const RenderOptions& o) {
   // shorter side; a "screenwindow" given in the file is kept as it is.
   const char* how = "";
   if (ss.screen_window)
-    how = "the camera's \"screenwindow\" is fixed, so the image is stretched";
+    how = "the camera's view is fixed (a \"screenwindow\", or a spherical camera), so the image is stretched";
   else if ((is > 1.0) != (was > 1.0) && std::abs(is - 1.0) > 1e-3 && std::abs(was - 1.0) > 1e-3)
     how = "the camera's view spans the shorter side, which is now the other one: the image shows more of the scene "
           "along one side and less along the other";

@@ -41,9 +41,6 @@ struct RenderRequest {
 // or a region that is not one.
 RenderOptions resolve_render_options(const Scene& scene, const RenderRequest& request);
 
-// What a checkpoint or a part file must agree with: the scene file's name
-// and bytes (FNV-1a) and what was loaded from it, so that an edited scene is
-// neither resumed nor merged; for a scene given as text, the text's.
 // The request's render region (--cropwindow, --pixelbounds, --pixel: at most
 // one) in o. Throws std::invalid_argument, saying what was expected, for
 // values out of order or range.
@@ -55,6 +52,9 @@ void set_render_region(const RenderRequest& request, RenderOptions& o);
 // file's image); otherwise "".
 std::string reframing_note(const Scene& scene, const RenderOptions& options);
 
+// What a checkpoint or a part file must agree with: the scene file's name
+// and bytes (FNV-1a) and what was loaded from it, so that an edited scene is
+// neither resumed nor merged; for a scene given as text, the text's.
 std::string scene_key(const std::string& path, const SceneInfo& info);
 std::string scene_key_of_text(const std::string& name, const std::string& text, const SceneInfo& info);
 

@@ -39,19 +39,30 @@ std::unique_ptr<SessionWatcher> partial_images(const Watchers& w, const RenderSe
 }  // namespace
 
 RenderResult render_watched(const Scene& scene, const RenderOptions& o, RenderHooks hooks, const Watchers& w) {
-  if (w.display_server.empty() && w.partial_path.empty() && !logging::enabled(logging::Level::Verbose))
-    return render(scene, o, hooks);
+  const bool log_passes = w.log_passes && logging::enabled(logging::Level::Verbose);
+  if (w.display_server.empty() && w.partial_path.empty() && !log_passes) return render(scene, o, hooks);
   std::unique_ptr<DisplayServer> display;
   std::unique_ptr<SessionWatcher> partial;
   const auto begin = std::chrono::steady_clock::now();
-  hooks.pass_done = [&display, &partial, begin, earlier = hooks.pass_done](uint32_t spp) {
+  hooks.pass_done = [&display, &partial, begin, log_passes, earlier = hooks.pass_done](uint32_t spp) {
     if (earlier) earlier(spp);
     if (display) display->pass_done(spp);
     if (partial) partial->pass_done(spp);
-    logging::verbose("pass: %u spp at %.2f s",  spp,
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count());
+    if (log_passes)
+      logging::verbose("pass: %u spp at %.2f s", spp,
+                       std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count());
   };
   RenderSession session(scene, o, hooks);
+  // The watchers' threads read the session: they stop before it goes,
+  // however this function is left (this guard is destroyed first).
+  struct StopWatchers {
+    std::unique_ptr<DisplayServer>& display;
+    std::unique_ptr<SessionWatcher>& partial;
+    ~StopWatchers() {
+      partial.reset();
+      display.reset();
+    }
+  } guard{display, partial};
   if (!w.display_server.empty()) {
     try {
       display = std::make_unique<DisplayServer>(w.display_server, w.display_name, session.width(), session.height());
@@ -64,14 +75,7 @@ RenderResult render_watched(const Scene& scene, const RenderOptions& o, RenderHo
     partial = partial_images(w, session);
     partial->watch(session);
   }
-  RenderResult r;
-  try {
-    r = session.run();
-  } catch (...) {
-    display.reset();  // their threads read the session: stopped before the session goes
-    partial.reset();
-    throw;
-  }
+  const RenderResult r = session.run();
   if (partial) partial->stop();  // before the final image is written over its partial ones
   if (display) display->stop(r.image);
   return r;

@@ -22,6 +22,7 @@ struct Watchers {
   // The header of a partial image (its samples, spp and time so far in
   // the result's stats).
   std::function<ImageMetadata(const RenderResult& partial)> partial_metadata;
+  bool log_passes = false;  // at --log-level verbose, a line per pass (the process that reports)
 };
 
 RenderResult render_watched(const Scene& scene, const RenderOptions& options, RenderHooks hooks,

@@ -2,6 +2,8 @@
 
 #include <chrono>
 
+#include "app/log.h"
+
 namespace lantern {
 
 SessionWatcher::SessionWatcher(Look look, double interval, double spacing)
@@ -27,7 +29,14 @@ void SessionWatcher::watch(const RenderSession& session) {
       last = now;
       const uint32_t spp = spp_;
       lock.unlock();
-      look_(session.snapshot(), spp);
+      try {
+        look_(session.snapshot(), spp);
+      } catch (const std::exception& e) {
+        // (A film too large to copy once more, say.) The render goes on
+        // without this look; later ones may succeed.
+        if (!warned_) logging::warning("warning: the image could not be taken while rendering: %s", e.what());
+        warned_ = true;
+      }
       lock.lock();
     }
   });

@@ -31,7 +31,8 @@ class SessionWatcher {
   void watch(const RenderSession& session);
   // From RenderHooks::pass_done.
   void pass_done(uint32_t spp);
-  // Ends the thread; a pass that ended and was not looked at yet is.
+  // Ends the thread; a pass that ended and was not looked at yet is, unless
+  // it comes within `spacing` of the last look.
   void stop();
 
  private:
@@ -40,7 +41,7 @@ class SessionWatcher {
   std::thread thread_;
   std::mutex mutex_;
   std::condition_variable wake_;
-  bool stopping_ = false, pass_ended_ = false;
+  bool stopping_ = false, pass_ended_ = false, warned_ = false;
   uint32_t spp_ = 0;
 };
 

@@ -12,6 +12,9 @@ namespace {
 int find_span(const std::vector<float>& k, int n, int order, double t) {
   int s = order - 1;
   while (s < n - 1 && double(k[size_t(s + 1)]) <= t) ++s;
+  // At the end of the range, knots repeated more than `order` times leave
+  // empty spans: the last one that is not.
+  while (s > order - 1 && k[size_t(s)] == k[size_t(s + 1)]) --s;
   return s;
 }
 

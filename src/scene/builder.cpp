@@ -37,6 +37,7 @@ void SceneBuilder::camera(const std::string& type, const ParamSet& ps, const glm
     c.projection = Projection::Orthographic;
   } else if (type == "spherical") {
     c.projection = Projection::Spherical;
+    scene_.settings.screen_window = true;  // the whole sphere, whatever the image's shape
     std::string mapping = ps.get_string("mapping", "equalarea");
     if (mapping != "equalarea" && mapping != "equirectangular")
       ps.fail(*ps.find("mapping"), "spherical \"mapping\" \"" + printable(mapping) +
