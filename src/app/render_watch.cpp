@@ -75,7 +75,7 @@ RenderResult render_watched(const Scene& scene, const RenderOptions& o, RenderHo
     partial = partial_images(w, session);
     partial->watch(session);
   }
-  const RenderResult r = session.run();
+  RenderResult r = session.run();  // (not const: returned by move, not copied)
   if (partial) partial->stop();  // before the final image is written over its partial ones
   if (display) display->stop(r.image);
   return r;
