@@ -1,6 +1,5 @@
 #include "app/render_watch.h"
 
-#include <atomic>
 #include <chrono>
 #include <memory>
 
@@ -15,10 +14,10 @@ namespace {
 
 // Partial images: the image of the passes so far, written over the output
 // (atomically, as every image) with its samples in the header and
-// lantern:partial. A failed write is a warning, once; the render goes on.
+// lantern:partial. A failed write is the watcher's warning (once); the
+// render goes on.
 std::unique_ptr<SessionWatcher> partial_images(const Watchers& w, const RenderSession& session) {
-  auto warned = std::make_shared<std::atomic<bool>>(false);
-  auto look = [&w, &session, warned](const Image& image, uint32_t spp) {
+  auto look = [&w, &session](const Image& image, uint32_t spp) {
     if (image.rgb.empty()) return;
     RenderResult partial;
     const RenderProgress p = session.progress();
@@ -26,12 +25,8 @@ std::unique_ptr<SessionWatcher> partial_images(const Watchers& w, const RenderSe
     partial.stats.min_spp = spp;
     partial.stats.seconds = p.elapsed_seconds;
     partial.total_render_seconds = p.elapsed_seconds;
-    try {
-      write_output_image(w.partial_path, image, w.partial_metadata ? w.partial_metadata(partial) : ImageMetadata{});
-      logging::verbose("partial image: %s, %u spp", w.partial_path.c_str(), spp);
-    } catch (const std::exception& e) {
-      if (!warned->exchange(true)) logging::warning("warning: partial image not written: %s; the render goes on", e.what());
-    }
+    write_output_image(w.partial_path, image, w.partial_metadata ? w.partial_metadata(partial) : ImageMetadata{});
+    logging::verbose("partial image: %s, %u spp", w.partial_path.c_str(), spp);
   };
   return std::make_unique<SessionWatcher>(look, 0.0, w.partial_seconds);
 }

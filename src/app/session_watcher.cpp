@@ -32,9 +32,10 @@ void SessionWatcher::watch(const RenderSession& session) {
       try {
         look_(session.snapshot(), spp);
       } catch (const std::exception& e) {
-        // (A film too large to copy once more, say.) The render goes on
-        // without this look; later ones may succeed.
-        if (!warned_) logging::warning("warning: the image could not be taken while rendering: %s", e.what());
+        // (A film too large to copy once more, an image that cannot be
+        // written.) The render goes on without this look; later ones may
+        // succeed.
+        if (!warned_) logging::warning("warning: while rendering: %s; the render goes on", e.what());
         warned_ = true;
       }
       lock.lock();

@@ -134,12 +134,7 @@ TriangleMesh tessellate_nurbs(const NurbsSurface& s, int dice) {
       m.normals.push_back(len > 0.f && std::isfinite(len) ? n / len : Vec3(0.f, 0.f, 1.f));
       m.uvs.emplace_back(float(u), float(v));
     }
-  const auto at_grid = [dice](int i, int j) { return uint32_t(j * dice + i); };
-  for (int j = 0; j + 1 < dice; ++j)
-    for (int i = 0; i + 1 < dice; ++i) {
-      m.triangles.emplace_back(at_grid(i, j), at_grid(i + 1, j), at_grid(i + 1, j + 1));
-      m.triangles.emplace_back(at_grid(i, j), at_grid(i + 1, j + 1), at_grid(i, j + 1));
-    }
+  add_grid_triangles(m, dice, dice);
   return m;
 }
 

@@ -20,6 +20,18 @@ struct TriangleMesh {
   bool flip_normal = false;  // ReverseOrientation xor a handedness-swapping transform (meshes without N)
 };
 
+// Two triangles a cell of an nu x nv grid of vertices (u fastest), split
+// along the cell's (i, j)-(i+1, j+1) diagonal, as pbrt-v3 dices its
+// heightfields and NURBS.
+inline void add_grid_triangles(TriangleMesh& m, int nu, int nv) {
+  const auto at = [nu](int i, int j) { return uint32_t(j * nu + i); };
+  for (int j = 0; j + 1 < nv; ++j)
+    for (int i = 0; i + 1 < nu; ++i) {
+      m.triangles.emplace_back(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+      m.triangles.emplace_back(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+    }
+}
+
 struct Sphere {
   Vec3 center;
   float radius;

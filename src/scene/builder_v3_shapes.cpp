@@ -25,12 +25,7 @@ void SceneBuilder::add_heightfield(const ParamSet& ps, const GraphicsState& gs) 
       m.positions.emplace_back(x, y, z[size_t(j) * size_t(nu) + size_t(i)]);
       m.uvs.emplace_back(x, y);
     }
-  const auto at = [nu](int i, int j) { return uint32_t(j * nu + i); };
-  for (int j = 0; j + 1 < nv; ++j)
-    for (int i = 0; i + 1 < nu; ++i) {
-      m.triangles.emplace_back(at(i, j), at(i + 1, j), at(i + 1, j + 1));
-      m.triangles.emplace_back(at(i, j), at(i + 1, j + 1), at(i, j + 1));
-    }
+  add_grid_triangles(m, nu, nv);
   add_mesh(std::move(m), gs, ps, "");
 }
 
