@@ -25,6 +25,11 @@ enum class Integrator : uint8_t {
   // path continuing only through specular scattering; the path tracer
   // with its paths cut after their first non-specular bounce.
   Direct,
+  // pbrt-v4's "ambientocclusion": at the first surface a camera ray hits,
+  // one direction of the hemisphere about the geometric normal, white
+  // where nothing lies within SceneSettings::ao_max_distance (lights and
+  // media play no part).
+  AmbientOcclusion,
 };
 enum class MisHeuristic : uint8_t { Power, Balance };  // bdpt's: beta = 2 or 1
 // pbrt-v4's samplers (docs/samplers.md).
@@ -40,13 +45,14 @@ struct Word {
   E value;
   const char* word;
 };
-inline constexpr std::array<Word<Integrator>, 7> kIntegrators{{{Integrator::Path, "path"},
+inline constexpr std::array<Word<Integrator>, 8> kIntegrators{{{Integrator::Path, "path"},
                                                                {Integrator::Bdpt, "bdpt"},
                                                                {Integrator::Lt, "lt"},
                                                                {Integrator::Vcm, "vcm"},
                                                                {Integrator::Bpm, "bpm"},
                                                                {Integrator::Ppm, "ppm"},
-                                                               {Integrator::Direct, "directlighting"}}};
+                                                               {Integrator::Direct, "directlighting"},
+                                                               {Integrator::AmbientOcclusion, "ambientocclusion"}}};
 inline constexpr std::array<Word<MisHeuristic>, 2> kMis{{{MisHeuristic::Power, "power"}, {MisHeuristic::Balance, "balance"}}};
 inline constexpr std::array<Word<SamplerKind>, 6> kSamplers{{{SamplerKind::ZSobol, "zsobol"},
                                                              {SamplerKind::PaddedSobol, "paddedsobol"},
@@ -94,7 +100,9 @@ inline const char* name(LightSamplerKind l) { return option_words::name(l, optio
 inline const char* name(RayBackend b) { return option_words::name(b, option_words::kRayBackends); }
 
 // The integrators the path tracer runs (integrator/path_tracer.h).
-inline bool traces_paths(Integrator i) { return i == Integrator::Path || i == Integrator::Direct; }
+inline bool traces_paths(Integrator i) {
+  return i == Integrator::Path || i == Integrator::Direct || i == Integrator::AmbientOcclusion;
+}
 // The integrators that merge light and eye vertices (docs/vcm.md).
 inline bool merges_vertices(Integrator i) { return i == Integrator::Vcm || i == Integrator::Bpm || i == Integrator::Ppm; }
 

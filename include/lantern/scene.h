@@ -37,6 +37,11 @@ struct SceneSettings {
   LightSamplerKind light_sampler = LightSamplerKind::Bvh;
   // An "sppm" Integrator's "radius": vcm's first merging radius (0: automatic).
   float merge_radius = 0.f;
+  // An "ambientocclusion" Integrator's "maxdistance" (what lies farther
+  // does not occlude) and "cossample" (directions drawn by the cosine, or
+  // uniformly over the hemisphere): pbrt-v4's defaults.
+  float ao_max_distance = std::numeric_limits<float>::infinity();
+  bool ao_cos_sample = true;
   // A material's index varies with wavelength: it disperses light with
   // sampled wavelengths (RenderOptions::spectral) only.
   bool dispersive = false;

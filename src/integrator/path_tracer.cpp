@@ -9,6 +9,9 @@
 #include "integrator/path_wave.h"
 #include "integrator/shade.h"
 #include "integrator/wavelengths.h"
+#include "color/spectrum_conversion.h"
+#include "math/frame.h"
+#include "math/sampling.h"
 #include "sampler/dimensions.h"
 #include "geometry/surface.h"
 
@@ -64,16 +67,18 @@ void PathTracer::generate_camera_rays(const WaveDesc& wave, PathWave& w) const {
     w.active[slot] = slot;
     w.rays.push(r.o, r.d, 0.f, kInfinity, time);
   }
-  if (!scene_.media.empty()) std::fill(w.medium.begin(), w.medium.begin() + wave.size(), scene_.media.camera);
+  if (traces_media()) std::fill(w.medium.begin(), w.medium.begin() + wave.size(), scene_.media.camera);
 }
 
 // Hit reconstruction, emission with MIS, maxdepth, and binning by material.
 void PathTracer::surface_stage(PathWave& w) const {
   w.hits.clear_bins();
+  w.shadow.count = 0;
   const ShapePools& shapes = scene_.shapes;
   const LightPools& lights = scene_.lights;
   const bool at_maxdepth = int(w.depth) == settings_.maxdepth + 1;  // only emission counts this deep
-  const bool media = !scene_.media.empty();
+  const bool media = traces_media();
+  const bool occlusion = settings_.ambient_occlusion;
   if (media) w.scattered.clear();
   for (uint32_t i = 0; i < w.rays.count; ++i) {
     uint32_t slot = w.active[i];
@@ -105,7 +110,7 @@ void PathTracer::surface_stage(PathWave& w) const {
     }
     if (!w.rays.hit(i)) {
       ++w.stats.eye_ends[size_t(PathEnd::Escaped)];
-      if (!lights.infinite.empty()) {
+      if (!lights.infinite.empty() && !occlusion) {
         Spectrum Le = infinite_lights_Le(lights, scene_.textures, w.prev_p[slot], d, w.lambda[slot]);
         float weight = unweighted ? 1.f
                                   : power_heuristic(prev_pdf, infinite_lights_pdf(lights, scene_.textures,
@@ -116,6 +121,11 @@ void PathTracer::surface_stage(PathWave& w) const {
     }
     ++w.stats.eye_vertices;
     SurfacePoint sp = hit_point(shapes, w.rays, i);
+    if (occlusion) {
+      occlusion_ray(w, slot, sp, d);
+      ++w.stats.eye_ends[size_t(PathEnd::MaxDepth)];
+      continue;
+    }
     if (int64_t area = hit_area_light(shapes, w.rays, i); area >= 0) {
       uint32_t light = uint32_t(area);
       Spectrum Le = area_light_Le(lights.area[light], scene_.textures, sp.ng, sp.uv, -d, w.lambda[slot]);
@@ -150,7 +160,6 @@ GuideAt PathTracer::guide_at(uint32_t leaf, uint32_t normal_bin) const {
 // the BSDF built once (two loops cost 3% of the path tracer's throughput:
 // docs/performance.md).
 void PathTracer::shade_stage(PathWave& w) const {
-  w.shadow.count = 0;
   const Scene& sc = scene_;
   for_each_binned_bsdf(w.hits, sc, [&](uint32_t i, const auto& bsdf) {
     uint32_t slot = w.active[i];
@@ -207,6 +216,24 @@ void PathTracer::shade_stage(PathWave& w) const {
   });
 }
 
+// pbrt-v4's ambient occlusion: a direction about the geometric normal on
+// the camera's side (the shading normal plays no part), white in the
+// colour space's illuminant where the ray leaves the hemisphere unblocked
+// within the distance, weighted cos / (pi pdf) so a surface open to the
+// whole hemisphere is 1 whichever way it samples.
+void PathTracer::occlusion_ray(PathWave& w, uint32_t slot, const SurfacePoint& sp, const Vec3& d) const {
+  const Vec3 n = glm::dot(sp.ng, d) > 0.f ? -sp.ng : sp.ng;
+  const Vec2 u = w.sampler[slot].get2d(dims::vertex(0) + dims::kEyeBsdfDirection);
+  const Vec3 local = settings_.ao_cos_sample ? sample_cosine_hemisphere(u) : sample_uniform_hemisphere(u);
+  const float pdf = settings_.ao_cos_sample ? cosine_hemisphere_pdf(local.z) : uniform_hemisphere_pdf();
+  if (!(pdf > 0.f) || !(local.z > 0.f)) return;
+  const Vec3 wi = Frame::from_z(n).from_local(local);
+  const uint32_t r = w.shadow.push(offset_ray_origin(sp.p, n, sp.error_scale, wi), wi, 0.f, settings_.ao_max_distance,
+                                   w.time[slot]);
+  w.shadow_slot[r] = slot;
+  w.shadow_contrib[r] = illuminant_spectrum(RGB(1.f), w.lambda[slot]) * (local.z / (kPi * pdf));
+}
+
 void PathTracer::shadow_stage(PathWave& w) const {
   for (uint32_t r = 0; r < w.shadow.count; ++r)
     if (!w.shadow.occluded(r)) {
@@ -224,7 +251,7 @@ void PathTracer::trace(const WaveDesc& wave, PathWave& w, WaveOutput& out) const
   w.depth = 1;
   w.guide.clear();
   const bool learning = guiding_ && guiding_->learning();
-  const bool media = !scene_.media.empty();
+  const bool media = traces_media();
   w.stream.intersect(w.rays, RayKind::Camera);
   for (;;) {
     if (media) segment_stage(w, w.depth == 1 ? RayKind::Camera : RayKind::Extension);

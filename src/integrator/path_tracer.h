@@ -35,6 +35,11 @@ struct PathTracerSettings {
   // event after a non-specular bounce, where only emission counts
   // (Integrator::Direct).
   bool direct_lighting = false;
+  // pbrt-v4's ambientocclusion (Integrator::AmbientOcclusion): one
+  // occlusion ray at the first hit, nothing else.
+  bool ambient_occlusion = false;
+  float ao_max_distance = kInfinity;
+  bool ao_cos_sample = true;
 };
 
 struct PathWave;  // the SoA pools, reused wave after wave by one thread
@@ -57,6 +62,9 @@ class PathTracer {
   void surface_stage(PathWave& w) const;
   void shade_stage(PathWave& w) const;
   void shadow_stage(PathWave& w) const;
+  void occlusion_ray(PathWave& w, uint32_t slot, const SurfacePoint& sp, const Vec3& d) const;
+  // Media are traced except by ambient occlusion, which sees only surfaces.
+  bool traces_media() const { return !scene_.media.empty() && !settings_.ambient_occlusion; }
   // Participating media (path_media.cpp).
   void segment_stage(PathWave& w, RayKind kind) const;
   void medium_scatter_stage(PathWave& w) const;

@@ -491,7 +491,7 @@ RenderResult RenderSession::render_all() {
     // process holds only when it renders them all; a merging pass shares
     // light vertices between pixels that do and do not take it.
     if (merges_vertices(opt.integrator))
-      throw std::invalid_argument("a target error (adaptive sampling) works with path, directlighting, bdpt and lt, not with " +
+      throw std::invalid_argument("a target error (adaptive sampling) works with path, directlighting, ambientocclusion, bdpt and lt, not with " +
                                   std::string(name(opt.integrator)));
     if (opt.share_count > 1 || s.hooks.next_ticket)
       throw std::invalid_argument("a target error (adaptive sampling) needs the whole render in one process: not with "

@@ -65,7 +65,7 @@ void check_film_memory(const Scene& scene, const RenderOptions& opt) {
 }  // namespace
 
 void check_options(const Scene& scene, const RenderOptions& opt) {
-  if (uint8_t(opt.integrator) > uint8_t(Integrator::Direct) || uint8_t(opt.mis) > uint8_t(MisHeuristic::Balance) ||
+  if (uint8_t(opt.integrator) > uint8_t(Integrator::AmbientOcclusion) || uint8_t(opt.mis) > uint8_t(MisHeuristic::Balance) ||
       uint8_t(opt.light_sampler) > uint8_t(LightSamplerKind::Uniform) || uint8_t(opt.ray_backend) > uint8_t(RayBackend::Packet16) ||
       uint8_t(opt.sampler.type) > uint8_t(SamplerKind::ZSobol))
     throw std::invalid_argument("an integrator, MIS heuristic, sampler, light sampler or ray back end outside its enumeration");
@@ -180,6 +180,9 @@ PathTracerSettings path_settings(const Scene& scene, const RenderOptions& opt, c
   ps.planned_spp = planned_spp;
   ps.spectral = opt.spectral;
   ps.direct_lighting = opt.integrator == Integrator::Direct;
+  ps.ambient_occlusion = opt.integrator == Integrator::AmbientOcclusion;
+  ps.ao_max_distance = scene.settings.ao_max_distance;
+  ps.ao_cos_sample = scene.settings.ao_cos_sample;
   return ps;
 }
 

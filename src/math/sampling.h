@@ -28,6 +28,15 @@ inline Vec3 sample_cosine_hemisphere(Vec2 u) {
 }
 inline float cosine_hemisphere_pdf(float cos_theta) { return cos_theta * kInvPi; }
 
+// Uniform over the hemisphere around +z: z = u.x, as pbrt-v4 maps it.
+inline Vec3 sample_uniform_hemisphere(Vec2 u) {
+  float z = u.x;
+  float r = safe_sqrt(1.f - z * z);
+  float phi = 2.f * kPi * u.y;
+  return Vec3(r * std::cos(phi), r * std::sin(phi), z);
+}
+inline constexpr float uniform_hemisphere_pdf() { return kInv2Pi; }
+
 inline Vec3 sample_uniform_sphere(Vec2 u) {
   float z = 1.f - 2.f * u.x;
   float r = safe_sqrt(1.f - z * z);

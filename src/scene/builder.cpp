@@ -206,6 +206,14 @@ void SceneBuilder::integrator(const std::string& type, const ParamSet& ps) {
     const std::string strategy = ps.get_string("strategy", "all");
     if (strategy != "all" && strategy != "one")
       ps.fail(*ps.find("strategy"), "\"strategy\" must be \"all\" or \"one\", not \"" + printable(strategy) + "\"");
+  } else if (type == "ambientocclusion") {
+    scene_.settings.integrator = Integrator::AmbientOcclusion;
+    scene_.settings.ao_cos_sample = ps.get_bool("cossample", true);
+    if (const pbrt::Param* d = ps.find("maxdistance")) {
+      const float dist = ps.get_float("maxdistance", 0.f);
+      if (!(dist > 0.f)) ps.fail(*d, "\"maxdistance\" must be positive");
+      scene_.settings.ao_max_distance = dist;
+    }
   } else if (type == "volpath") {  // pbrt's path tracer with media: Lantern's path tracer has them
     scene_.settings.integrator = Integrator::Path;
   } else if (type == "sppm") {
