@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "lantern/image.h"
 #include "lantern/scene.h"
 #include "scene/scene.h"
 #include "texture/image.h"
@@ -156,6 +157,33 @@ TEST(ImageFormats, SceneImageTexturesFollowTheRule) {
         EXPECT_NEAR(got, want, want * 0.01f) << name << " " << c.param << " " << filter;
       }
   }
+}
+
+// Film "savefp16" (pbrt-v4's parameter): 16-bit floats in an OpenEXR
+// output, a value above half's largest kept at it rather than made
+// infinite; 32-bit floats without it, and 8-bit formats unchanged.
+TEST(ImageFormats, SaveFp16WritesHalfFloatExr) {
+  EXPECT_TRUE(load_scene_from_string("Film \"rgb\" \"bool savefp16\" true\nWorldBegin\n", "f.pbrt", {})->settings.save_fp16);
+  EXPECT_FALSE(load_scene_from_string("Film \"rgb\"\nWorldBegin\n", "f.pbrt", {})->settings.save_fp16);
+  Image img;
+  img.width = 2;
+  img.height = 1;
+  img.rgb = {1.f, 0.1f, 1e6f, 0.25f, 70000.f, -1e6f};
+  for (const bool half : {true, false}) {
+    const std::string path = (formats_dir() / (half ? "half.exr" : "float.exr")).string();
+    write_image(path, img, half ? ImageMetadata{{"half", "true"}} : ImageMetadata{});
+    auto in = OIIO::ImageInput::open(path);
+    ASSERT_TRUE(in) << path;
+    EXPECT_EQ(in->spec().format, half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT) << path;
+    std::vector<float> px(6);
+    ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, px.data()));
+    const std::vector<float> want = half ? std::vector<float>{1.f, 0.1f, 65504.f, 0.25f, 65504.f, -65504.f} : img.rgb;
+    for (size_t i = 0; i < px.size(); ++i) EXPECT_NEAR(px[i], want[i], std::fabs(want[i]) * 1e-3f) << path << " value " << i;
+  }
+  // An 8-bit output ignores it.
+  const std::string png = (formats_dir() / "half.png").string();
+  write_image(png, img, ImageMetadata{{"half", "true"}});
+  EXPECT_EQ(OIIO::ImageInput::open(png)->spec().format, OIIO::TypeDesc::UINT8);
 }
 
 }  // namespace

@@ -53,6 +53,10 @@ struct SceneSettings {
   // sensor's RGB (for "cie1931", XYZ times the imaging ratio) is above it
   // is scaled down to it, as pbrt-v4's RGB film does (infinite: never).
   float max_component_value = std::numeric_limits<float>::infinity();
+  // Film "savefp16": an OpenEXR output of 16-bit floats. pbrt-v4 writes
+  // them unless told otherwise; Lantern keeps 32 bits unless the Film asks,
+  // since 16 bits round to 1/2048 of a value and end at 65504.
+  bool save_fp16 = false;
   // The image's colour space: the ColorSpace in effect at Film (pbrt-v4's
   // names: srgb, rec2020, dci-p3, aces2065-1). The renderer's colours are
   // linear sRGB; the sensor converts.

@@ -139,6 +139,7 @@ ImageMetadata render_metadata(const Scene& scene, const std::string& scene_path,
     // image, as OpenEXR's data and display windows say it.
     md.emplace_back("pixelbounds", std::to_string(region.x0) + " " + std::to_string(region.y0) + " " +
                                        std::to_string(region.full_width) + " " + std::to_string(region.full_height));
+  if (scene_settings(scene).save_fp16) md.emplace_back("half", "true");  // Film "savefp16"
   if (const ColorSpace* cs = ColorSpace::named(scene_settings(scene).color_space); cs && cs != &ColorSpace::srgb()) {
     // The image is in another colour space (ColorSpace before Film): say so
     // as OpenEXR does.

@@ -37,6 +37,7 @@ void write_image(const std::string& path, const Image& image, const ImageMetadat
   auto out = OIIO::ImageOutput::create(tmp);
   if (!out) throw std::runtime_error("cannot write \"" + path + "\": no image writer for extension \"" + ext + "\"");
   OIIO::ImageSpec spec(image.width, image.height, 3, linear ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+  bool half = false;
   for (const auto& [k, v] : metadata) {
     if (k == "chromaticities") {
       // Eight numbers, OpenEXR's standard attribute (written where the
@@ -52,15 +53,27 @@ void write_image(const std::string& path, const Image& image, const ImageMetadat
       int x0 = 0, y0 = 0, w = 0, h = 0;
       in >> x0 >> y0 >> w >> h;
       if (linear && in) spec.x = x0, spec.y = y0, spec.full_x = 0, spec.full_y = 0, spec.full_width = w, spec.full_height = h;
+    } else if (k == "half") {
+      // Film "savefp16": 16-bit floats in an OpenEXR file.
+      half = v == "true" && ext == ".exr";
     } else {
       spec.attribute(k, v);
     }
   }
+  if (half) spec.set_format(OIIO::TypeDesc::HALF);
   if (!linear) spec.attribute("oiio:ColorSpace", "sRGB");
   if (!out->open(tmp, spec)) throw std::runtime_error("cannot write \"" + path + "\": " + out->geterror());
   bool ok;
   if (linear) {
-    ok = out->write_image(OIIO::TypeDesc::FLOAT, image.rgb.data());
+    if (half) {
+      // Above half's largest value a converted pixel would be infinite:
+      // kept at that value instead.
+      std::vector<float> clamped(image.rgb);
+      for (float& v : clamped) v = std::clamp(v, -65504.f, 65504.f);
+      ok = out->write_image(OIIO::TypeDesc::FLOAT, clamped.data());
+    } else {
+      ok = out->write_image(OIIO::TypeDesc::FLOAT, image.rgb.data());
+    }
   } else {
     std::vector<unsigned char> px(image.rgb.size());
     for (size_t i = 0; i < px.size(); ++i) px[i] = encode_srgb8(image.rgb[i]);

@@ -115,6 +115,7 @@ void SceneBuilder::film(const std::string& type, const ParamSet& ps) {
   // The sensor's diagonal in mm: pbrt-v4's realistic camera alone reads it
   // (Lantern refuses that camera), so it changes nothing here.
   if (!(ps.get_float("diagonal", 35.f) > 0.f)) ps.fail(*ps.find("diagonal"), "\"diagonal\" must be a length in mm > 0");
+  s.save_fp16 = ps.get_bool("savefp16", false);
   crop(ps);
   const std::string sensor = ps.get_string("sensor", "cie1931");
   if (sensor != "cie1931")
