@@ -11,8 +11,9 @@
 namespace lantern {
 namespace {
 
-std::shared_ptr<Scene> load(const std::string& text, std::vector<std::string>* warnings = nullptr) {
+std::shared_ptr<Scene> load(const std::string& text, std::vector<std::string>* warnings = nullptr, bool lenient = false) {
   LoadOptions o;
+  o.lenient = lenient;
   o.warn = [warnings](const std::string& w) {
     if (warnings) warnings->push_back(w);
   };
@@ -110,14 +111,35 @@ TEST(Parser, EveryDirectiveLandsInItsPool) {
   for (const auto& w : warnings) ADD_FAILURE() << "unexpected warning: " << w;
 }
 
+// A parameter pbrt reads for some directive of the kind and this one does
+// not use is a warning with its place; one that neither pbrt-v4 nor
+// pbrt-v3 reads is an error, as pbrt-v4 stops on it, or with --lenient a
+// warning.
 TEST(Parser, UnusedAndUnsupportedThingsWarnWithTheirPlace) {
   std::vector<std::string> warnings;
-  load("WorldBegin\nShape \"sphere\" \"float radius\" 1 \"float wobble\" 3\n"
-       "MakeNamedMedium \"fog\" \"string type\" \"homogeneous\" \"float fluff\" 1\nLightSource \"point\"\n", &warnings);
+  load("WorldBegin\nShape \"sphere\" \"float radius\" 1 \"float width\" 3\n"
+       "MakeNamedMedium \"fog\" \"string type\" \"homogeneous\" \"float wispiness\" 1\nLightSource \"point\"\n", &warnings);
   ASSERT_EQ(warnings.size(), 2u);
   EXPECT_NE(warnings[0].find("t.pbrt:2:"), std::string::npos) << warnings[0];
-  EXPECT_NE(warnings[0].find("wobble"), std::string::npos);
+  EXPECT_NE(warnings[0].find("width"), std::string::npos);
+  EXPECT_NE(warnings[1].find("wispiness"), std::string::npos) << warnings[1];
+  const std::string unknown = "WorldBegin\nShape \"sphere\" \"float radius\" 1 \"float wobble\" 3\n"
+                              "MakeNamedMedium \"fog\" \"string type\" \"homogeneous\" \"float fluff\" 1\n";
+  expect_error(unknown, {"t.pbrt:2:33", "Shape \"sphere\"", "unknown parameter \"float wobble\"", "--lenient"});
+  warnings.clear();
+  load(unknown, &warnings, true);
+  std::erase_if(warnings, [](const std::string& w) { return w.find("--lenient") == std::string::npos; });
+  ASSERT_EQ(warnings.size(), 2u);
+  EXPECT_NE(warnings[0].find("t.pbrt:2:33: warning:"), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[0].find("wobble"), std::string::npos) << warnings[0];
   EXPECT_NE(warnings[1].find("fluff"), std::string::npos) << warnings[1];
+  // Each kind has its own names: a light's "from" is no shape's.
+  expect_error("WorldBegin\nShape \"sphere\" \"point3 from\" [0 0 0]\n", {"t.pbrt:2:", "unknown parameter \"point3 from\""});
+  // pbrt-v3's names are known too: dropped with a warning, not refused.
+  warnings.clear();
+  load("WorldBegin\nLightSource \"point\" \"integer nsamples\" 4\n", &warnings);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("nsamples"), std::string::npos) << warnings[0];
 }
 
 // pbrt-v4's Attribute: defaults per kind for the directives that follow,
@@ -142,17 +164,19 @@ TEST(Parser, AttributesGiveDefaultsToLaterDirectives) {
   EXPECT_FLOAT_EQ(s->lights.point[1].I[0], 2.f);
 }
 
-// A parameter a letter or two from one the directive wanted is a typo:
-// an error naming the word meant (pbrt-v4 stops on it too), where an
-// unknown word far from any stays a warning.
+// A parameter a letter or two from one the directive wanted, or from one
+// pbrt knows for its kind, is a typo: the error names the word meant.
 TEST(Parser, NearMissesOfWantedParametersAreErrors) {
   expect_load_error("Camera \"perspective\" \"float fovv\" 45\n", "c.pbrt", {"c.pbrt:1", "fovv", "did you mean \"fov\""});
   expect_load_error("WorldBegin\nLightSource \"spot\" \"float coneangel\" 30\n", "l.pbrt",
                     {"l.pbrt:2", "coneangel", "\"coneangle\""});
   expect_load_error("WorldBegin\nMaterial \"conductor\" \"float roughnes\" 0.1\n", "m.pbrt", {"roughnes", "\"roughness\""});
   expect_load_error("Film \"rgb\" \"integer xresolutoin\" 64\n", "f.pbrt", {"xresolutoin", "\"xresolution\""});
+  expect_load_error("WorldBegin\nShape \"sphere\" \"float phimaxx\" 90\n", "s.pbrt", {"phimaxx", "\"phimax\""});
+  expect_load_error("WorldBegin\nTexture \"t\" \"float\" \"checkerboard\" \"float tex11\" 1\n", "t.pbrt",
+                    {"tex11", "\"tex1\""});
   std::vector<std::string> warnings;
-  load("Film \"rgb\" \"bool savefp16\" true \"integer xresolution\" 8 \"integer yresolution\" 8\n"
+  load("Film \"rgb\" \"integer nbuckets\" 16 \"integer xresolution\" 8 \"integer yresolution\" 8\n"
        "Camera \"perspective\" \"float fov\" 45 \"float frameaspectratio\" 1\nWorldBegin\n",
        &warnings);
   size_t ignored = 0;

@@ -83,6 +83,9 @@ struct LoadOptions {
   // load_scene_from_string: where the text's relative file names (Include,
   // PLY meshes, images) resolve (empty: the working directory).
   std::string base_directory;
+  // A parameter neither pbrt-v4 nor pbrt-v3 reads (a typo, most often) is
+  // an error, as in pbrt-v4; lenient makes it a warning (--lenient).
+  bool lenient = false;
 };
 
 // Throws InputError for anything wrong with the input.

@@ -153,6 +153,7 @@ int main(int argc, char** argv) {
   view->add_option("--texture-cache", va.texture_cache_mb, "Memory for image texture tiles, in MB (default: 1024)")
       ->check(lantern::cli::number_in(1.0, 1048576.0, true, "a number of megabytes from 1 to 1048576"));
   view->add_option("--texture-dir", va.texture_dir, "Where images are prepared as tiled, MIP-mapped textures");
+  view->add_flag("--lenient", va.lenient, "A scene parameter neither pbrt-v4 nor pbrt-v3 reads is a warning, not an error");
   std::string info_image;
   CLI::App* info = app.add_subcommand("info", "Print an image's size and the settings it was rendered with, or those "
                                               "of a checkpoint or part file and the work it holds");

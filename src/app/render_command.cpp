@@ -112,6 +112,7 @@ Loaded load(const RenderArgs& a, Timeline* timeline, bool reports) {
   LoadOptions lo;
   lo.texture_cache_mb = a.texture_cache_mb;
   lo.texture_directory = a.texture_dir;
+  lo.lenient = a.lenient;
   lo.warn = [](const std::string& w) { logging::line(logging::Level::Warning, w); };
   LoadTrace trace(timeline);
   const auto t0 = std::chrono::steady_clock::now();
@@ -327,6 +328,8 @@ void add_render_command_options(CLI::App& render, RenderArgs& a) {
   render.add_option("--texture-cache", a.texture_cache_mb,
                     "Memory for image texture tiles, in MB (default: 1024); the image does not depend on it")
       ->check(cli::number_in(1.0, 1048576.0, true, "a number of megabytes from 1 to 1048576"));
+  render.add_flag("--lenient", a.lenient,
+                  "A scene parameter neither pbrt-v4 nor pbrt-v3 reads (a typo) is a warning, not an error");
   render.add_option("--texture-dir", a.texture_dir,
                     "Where images are prepared as tiled, MIP-mapped textures (default: ~/.cache/lantern/textures)");
   render.add_option("--trace", a.trace,

@@ -27,6 +27,7 @@ struct RenderArgs {
   std::string partial_images;
   bool resume = false, keep_checkpoint = false;
   bool quiet = false;
+  bool lenient = false;  // unknown scene parameters are warnings
 };
 
 // The render subcommand's options (the request's, app/command_line.h, and

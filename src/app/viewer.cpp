@@ -259,6 +259,7 @@ class Viewer {
     LoadOptions lo;
     lo.texture_cache_mb = args_.texture_cache_mb;
     lo.texture_directory = args_.texture_dir;
+    lo.lenient = args_.lenient;
     lo.warn = [](const std::string& w) { std::fprintf(stderr, "%s\n", w.c_str()); };
     std::shared_ptr<Scene> s = load_scene(args_.scene, lo);
     stop();  // the old scene outlives its session

@@ -16,6 +16,7 @@ struct ViewArgs {
   std::string screenshot;  // file name prefix of F1's screenshots ("": the scene's output name + "-view")
   std::string texture_dir;
   double texture_cache_mb = 1024.0;
+  bool lenient = false;
   float exposure = 1.f;
 };
 

@@ -35,6 +35,8 @@ class SceneBuilder final : public pbrt::ParserTarget {
 
   void warn(const SourceLocation& where, const std::string& what) const override;
   void set_texture_cache(const TextureCacheSettings& s) { texture_cache_ = s; }
+  void set_lenient(bool lenient) { lenient_ = lenient; }
+  bool lenient() const override { return lenient_; }
   void warn_line(const std::string& line) const override {
     if (warn_) warn_(line);
   }
@@ -182,6 +184,7 @@ class SceneBuilder final : public pbrt::ParserTarget {
   std::vector<PendingMesh> pending_;
 
   Scene& scene_;
+  bool lenient_ = false;
   WarningSink warn_;
   std::function<void(const std::string&)> progress_;
   std::map<std::string, RGBTextureRef> rgb_textures_;

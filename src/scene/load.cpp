@@ -10,6 +10,7 @@ std::shared_ptr<Scene> load_scene(const std::string& path, const LoadOptions& op
   auto scene = std::make_shared<Scene>();
   SceneBuilder b(*scene, options.warn, options.progress);
   b.set_texture_cache(TextureCacheSettings{options.texture_cache_mb, options.texture_directory});
+  b.set_lenient(options.lenient);
   if (options.progress) options.progress("parsing " + path);
   pbrt::parse_file(path, b);
   b.finish();
@@ -20,6 +21,7 @@ std::shared_ptr<Scene> load_scene_from_string(const std::string& text, const std
   auto scene = std::make_shared<Scene>();
   SceneBuilder b(*scene, options.warn);
   b.set_texture_cache(TextureCacheSettings{options.texture_cache_mb, options.texture_directory});
+  b.set_lenient(options.lenient);
   pbrt::parse_string(text, name,
                      options.base_directory.empty() ? std::filesystem::current_path().string()
                                                     : std::filesystem::absolute(options.base_directory).string(),

@@ -181,9 +181,19 @@ def test_bad_input_raises_clear_errors(tmp_path, cornell_box):
 
 
 def test_warnings_reach_python(tmp_path):
-    text = 'Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ] "float unknownthing" [ 1 ]\nWorldBegin\n'
-    with pytest.warns(lantern.SceneWarning, match="unknownthing"):
+    # A Film parameter pbrt knows (the spectral film's) and Lantern's RGB film does not use.
+    text = 'Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ] "integer nbuckets" [ 16 ]\nWorldBegin\n'
+    with pytest.warns(lantern.SceneWarning, match="nbuckets"):
         scene = lantern.load_scene_from_string(text)
+    assert any("nbuckets" in w for w in scene.warnings)
+
+
+def test_unknown_parameters_are_errors_unless_lenient(tmp_path):
+    text = 'Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ] "float unknownthing" [ 1 ]\nWorldBegin\n'
+    with pytest.raises(lantern.SceneError, match=r"<string>:1:68: .*unknownthing"):
+        lantern.load_scene_from_string(text)
+    with pytest.warns(lantern.SceneWarning, match="unknownthing"):
+        scene = lantern.load_scene_from_string(text, lenient=True)
     assert any("unknownthing" in w for w in scene.warnings)
 
 

@@ -5,6 +5,7 @@
 #include "color/optical_constants.h"
 #include "color/sigmoid_spectrum.h"
 #include "math/edit_distance.h"
+#include "scene/pbrt/known_params.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -32,16 +33,22 @@ void ParamSet::fail(const std::string& what) const { throw InputError(where, dir
 void ParamSet::warn_unused() const {
   for (const Param& p : params) {
     if (p.used) continue;
-    // A near miss of a wanted name: one letter in names of four to seven,
-    // two from eight (shorter names are too close to each other to tell).
-    if (p.name.size() >= 4) {
-      const std::string meant = nearest_word(p.name, missed_, p.name.size() >= 8 ? 2 : 1);
-      if (!meant.empty())
-        fail(p, "unknown parameter \"" + printable(p.name) + "\"; did you mean \"" + printable(meant) + "\"?");
+    const std::string said = "parameter \"" + printable(p.type + " " + p.name) + "\"";
+    if (!kind || is_known_parameter(kind, p.name)) {
+      // pbrt reads it (for this directive or another of its kind): a
+      // construct Lantern does not model, the image otherwise the same.
+      if (warn && *warn) (*warn)(p.where.str() + ": warning: " + directive + ": " + said + " is not supported and was ignored");
+      continue;
     }
-    if (warn && *warn)
-      (*warn)(p.where.str() + ": warning: " + directive + ": parameter \"" + printable(p.type + " " + p.name) +
-              "\" is not supported and was ignored");
+    // A near miss: one letter off in names under eight letters, two from
+    // eight; a name the directive looked up and was not given first.
+    const size_t reach = p.name.size() >= 8 ? 2 : 1;
+    std::string meant = nearest_word(p.name, missed_, reach);
+    if (meant.empty()) meant = nearest_word(p.name, known_parameters(kind), reach);
+    const std::string what = "unknown " + said + ": neither pbrt-v4 nor pbrt-v3 reads it" +
+                             (meant.empty() ? std::string() : "; did you mean \"" + printable(meant) + "\"?");
+    if (!lenient) throw InputError(p.where, directive + ": " + what + " (--lenient ignores it with a warning)");
+    if (warn && *warn) (*warn)(p.where.str() + ": warning: " + directive + ": " + what + "; ignored (--lenient)");
   }
 }
 

@@ -34,6 +34,12 @@ class ParamSet {
   SourceLocation where;        // of the directive
   std::string directive;      // e.g. Shape "sphere", for messages
   WarningSink* warn = nullptr;
+  // The directive's kind ("shape", "material", "camera", ...:
+  // pbrt/known_params.h), whose parameter names pbrt-v4 and pbrt-v3 know;
+  // null: any name is known.
+  const char* kind = nullptr;
+  // --lenient: a parameter neither knows is a warning, not an error.
+  bool lenient = false;
   std::string base_dir;       // relative file names (spectrum files) are resolved against it
   // The ColorSpace in effect at the directive: its "rgb" values are in it
   // (null: sRGB).
@@ -77,10 +83,11 @@ class ParamSet {
 
   [[noreturn]] void fail(const Param& p, const std::string& what) const;
   [[noreturn]] void fail(const std::string& what) const;
-  // Warns of each parameter no lookup asked for, "not supported and
-  // ignored"; but one a letter or two from a name that was asked for and
-  // absent ("float fovv" where "fov" was wanted) is a typo, and an error
-  // that names the word meant, as pbrt-v4 stops on it.
+  // Each parameter no lookup asked for: one that pbrt-v4 or pbrt-v3 knows
+  // for the directive's kind is a warning ("not used"); any other is an
+  // error, as pbrt-v4 stops on a parameter it does not use, naming the word
+  // meant where one is a letter or two away ("float fovv": "fov"), or a
+  // warning when lenient.
   void warn_unused() const;
 
  private:

@@ -104,8 +104,10 @@ class Parser {
   // its kind (`attributes`: "shape", "light", ...) where it gives none of
   // the same name. The defaults count as used: as in pbrt-v4, one that a
   // directive does not read is no warning.
-  ParamSet params(const Token& at, const std::string& directive, const char* attributes = nullptr) {
+  // kind: the directive's (pbrt/known_params.h).
+  ParamSet params(const Token& at, const std::string& directive, const char* kind, const char* attributes = nullptr) {
     ParamSet ps = own_params(at, directive);
+    ps.kind = kind;
     if (!attributes) return ps;
     auto it = gs_.attributes.find(attributes);
     if (it == gs_.attributes.end()) return ps;
@@ -122,6 +124,7 @@ class Parser {
     ps.directive = directive;
     ps.base_dir = base_dir_;
     ps.warn = &warn_sink_;
+    ps.lenient = b_.lenient();
     ps.color_space = gs_.color_space;
     while (peek().kind == TokenKind::String) {
       Token decl = next();
@@ -273,7 +276,7 @@ class Parser {
     } else if (d == "Camera") {
       options_only();
       std::string type = expect_string("a camera type");
-      ParamSet ps = params(t, "Camera \"" + printable(type) + "\"");
+      ParamSet ps = params(t, "Camera \"" + printable(type) + "\"", "camera");
       b_.camera(type, ps, ctm, gs_.world_from_object_end);
       b_.camera_medium(gs_.outside_medium, gs_.medium_where);
       camera_from_world_ = {ctm, gs_.world_from_object_end};
@@ -294,7 +297,9 @@ class Parser {
         option(t, type);
         return;
       }
-      ParamSet ps = params(t, std::string(d) + " \"" + printable(type) + "\"");
+      const char* kind = d == "Film" ? "film" : d == "Sampler" ? "sampler" : d == "Integrator" ? "integrator"
+                       : d == "PixelFilter" ? "filter" : "accelerator";
+      ParamSet ps = params(t, std::string(d) + " \"" + printable(type) + "\"", kind);
       if (d == "Film") b_.film(type, ps);
       else if (d == "Sampler") b_.sampler(type, ps);
       else if (d == "Integrator") b_.integrator(type, ps);
@@ -305,13 +310,13 @@ class Parser {
     } else if (d == "Material") {
       world_only();
       std::string type = expect_string("a material type");
-      ParamSet ps = params(t, "Material \"" + printable(type) + "\"", "material");
+      ParamSet ps = params(t, "Material \"" + printable(type) + "\"", "material", "material");
       gs_.material = b_.material(type, ps, named_materials_, base_dir_);
       ps.warn_unused();
     } else if (d == "MakeNamedMaterial") {
       world_only();
       std::string name = expect_string("a material name");
-      ParamSet ps = params(t, "MakeNamedMaterial \"" + printable(name) + "\"", "material");
+      ParamSet ps = params(t, "MakeNamedMaterial \"" + printable(name) + "\"", "material", "material");
       std::string type = ps.get_string("type", "");
       if (type.empty()) ps.fail("needs a \"string type\" parameter");
       if (named_materials_.count(name)) b_.warn(loc(t), "material \"" + printable(name) + "\" redefined");
@@ -328,21 +333,21 @@ class Parser {
       std::string name = expect_string("a texture name");
       std::string vtype = expect_string("a texture value type");
       std::string cls = expect_string("a texture class");
-      ParamSet ps = params(t, "Texture \"" + printable(name) + "\"", "texture");
+      ParamSet ps = params(t, "Texture \"" + printable(name) + "\"", "texture", "texture");
       still("texture", t);
       b_.texture(name, vtype, cls, ps, render(ctm), base_dir_);
       ps.warn_unused();
     } else if (d == "LightSource") {
       world_only();
       std::string type = expect_string("a light type");
-      ParamSet ps = params(t, "LightSource \"" + printable(type) + "\"", "light");
+      ParamSet ps = params(t, "LightSource \"" + printable(type) + "\"", "light", "light");
       still("light", t);
       b_.light(type, ps, render(ctm), base_dir_, gs_.outside_medium, gs_.medium_where);
       ps.warn_unused();
     } else if (d == "AreaLightSource") {
       world_only();
       std::string type = expect_string("an area light type");
-      ParamSet ps = params(t, "AreaLightSource \"" + printable(type) + "\"", "light");
+      ParamSet ps = params(t, "AreaLightSource \"" + printable(type) + "\"", "arealight", "light");
       // pbrt-v3 calls the diffuse area light "area".
       if (type != "diffuse" && type != "area")
         ps.fail("area light type \"" + printable(type) + "\" is not supported; expected \"diffuse\" (pbrt-v3: \"area\")");
@@ -351,7 +356,7 @@ class Parser {
     } else if (d == "Shape") {
       world_only();
       std::string type = expect_string("a shape type");
-      ParamSet ps = params(t, "Shape \"" + printable(type) + "\"", "shape");
+      ParamSet ps = params(t, "Shape \"" + printable(type) + "\"", "shape", "shape");
       gs_.render_from_object = render_from_world_ * ctm;
       gs_.render_from_object_end = render_from_world_ * gs_.world_from_object_end;
       b_.shape(type, ps, gs_, base_dir_);
@@ -363,7 +368,7 @@ class Parser {
       gs_.medium_where = loc(t);
     } else if (d == "MakeNamedMedium") {
       std::string name = expect_string("a medium name");
-      ParamSet ps = params(t, "MakeNamedMedium \"" + printable(name) + "\"", "medium");
+      ParamSet ps = params(t, "MakeNamedMedium \"" + printable(name) + "\"", "medium", "medium");
       still("medium", t);
       b_.medium(name, ps, render(ctm), base_dir_);
       ps.warn_unused();

@@ -53,6 +53,9 @@ class ParserTarget {
 
   virtual void warn(const SourceLocation& where, const std::string& what) const = 0;
   virtual void warn_line(const std::string& line) const = 0;  // a whole "file:line:col: warning: ..." line
+  // A parameter neither pbrt-v4 nor pbrt-v3 knows is a warning, not an
+  // error (--lenient).
+  virtual bool lenient() const { return false; }
 
   // Rendering options, before WorldBegin.
   // camera_from_world at the start and the end of the motion (equal for a
