@@ -152,7 +152,6 @@ TEST(PbrtV3, UnknownMaterialWarnsWithItsLine) {
 }
 
 TEST(PbrtV3, UnsupportedMaterialsAreClearErrors) {
-  expect_load_error("WorldBegin\nMaterial \"kdsubsurface\"\n", "k.pbrt", {"k.pbrt:2", "subsurface scattering"});
   expect_load_error("WorldBegin\nMaterial \"fourier\" \"string bsdffile\" \"x.bsdf\"\n", "f.pbrt", {"f.pbrt:2", "fourier"});
   expect_load_error("WorldBegin\nMaterial \"uber\" \"color opacity\" [ 0.5 0.5 0.5 ]\n", "u.pbrt",
                     {"u.pbrt:2", "opacity", "alpha"});

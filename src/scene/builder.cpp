@@ -447,6 +447,7 @@ void SceneBuilder::shape(const std::string& type, const ParamSet& ps, const Grap
   const size_t before = scene_.shapes.geometries.size();
   add_shape(type, ps, gs, base_dir);
   assign_media(before, gs);
+  assign_subsurface_media(before, gs, ps);
   // pbrt's "alpha": a float or a float texture; 1 (the default) is opaque.
   // A shape of "interface" material has no surface: unless it bounds a
   // medium (integrator/medium_*.h cross it), it is cut out entirely.

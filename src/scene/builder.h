@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "material/subsurface_albedo.h"
 #include "scene/pbrt/params.h"
 #include "scene/pbrt/parser_target.h"
 #include "scene/scene.h"
@@ -129,6 +130,12 @@ class SceneBuilder final : public pbrt::ParserTarget {
   void coat_layer(const pbrt::ParamSet& ps, CoatLayer* c);
   MaterialHandle coated_conductor(const pbrt::ParamSet& ps);
   MaterialHandle hair_material(const pbrt::ParamSet& ps);
+  // pbrt's subsurface and kdsubsurface: a dielectric whose shapes hold a
+  // homogeneous medium (builder_subsurface.cpp).
+  MaterialHandle subsurface_material(const std::string& type, const pbrt::ParamSet& ps);
+  void assign_subsurface_media(size_t first_geometry, const GraphicsState& gs, const pbrt::ParamSet& ps);
+  void refuse_mixed_subsurface(const pbrt::ParamSet& ps, MaterialHandle h) const;
+  HomogeneousMedium subsurface_interior(const pbrt::ParamSet& ps, const std::string& type, float eta);
   MaterialHandle default_material();
   void add_shape(const std::string& type, const pbrt::ParamSet& ps, const GraphicsState& gs, const std::string& base_dir);
   // source: the PLY file the mesh came from, or empty; named in errors.
@@ -170,6 +177,8 @@ class SceneBuilder final : public pbrt::ParserTarget {
   SourceLocation object_where_;
   std::map<std::string, uint32_t> objects_;  // name -> prototype
   std::map<std::string, MediumHandle> named_media_;
+  std::map<uint32_t, MediumHandle> subsurface_media_;  // a subsurface material's (by handle bits) interior
+  std::map<std::pair<float, float>, SlabAlbedoTable> slab_tables_;  // by boundary eta and phase g
   std::string camera_medium_;
   SourceLocation camera_medium_where_;
 

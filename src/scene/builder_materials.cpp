@@ -120,6 +120,7 @@ MaterialHandle SceneBuilder::mix_material(const ParamSet& ps, const std::map<std
     auto it = named.find(p->strings[size_t(i)]);
     if (it == named.end()) ps.fail(*p, "no material named \"" + printable(p->strings[size_t(i)]) + "\" was defined");
     if (it->second.kind() == MaterialKind::Interface) ps.fail(*p, "an \"interface\" material cannot be mixed");
+    refuse_mixed_subsurface(ps, it->second);
     mix.materials[i] = it->second;
   }
   mix.amount = float_texture(ps, "amount", 0.5f);
@@ -206,6 +207,7 @@ MaterialHandle SceneBuilder::concrete_material(const std::string& type, const Pa
     return MaterialHandle::make(MaterialKind::CoatedDiffuse, uint32_t(m.coated_diffuse.size() - 1));
   }
   if (type == "coatedconductor") return coated_conductor(ps);
+  if (type == "subsurface" || type == "kdsubsurface") return subsurface_material(type, ps);
   if (auto v3 = v3_material(type, ps)) return *v3;
   if (type == "diffusetransmission") {
     DiffuseTransmissionMaterial d;

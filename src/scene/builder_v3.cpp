@@ -71,9 +71,6 @@ std::optional<MaterialHandle> SceneBuilder::v3_material(const std::string& type,
     m.diffuse_transmission.push_back(d);
     return MaterialHandle::make(MaterialKind::DiffuseTransmission, uint32_t(m.diffuse_transmission.size() - 1));
   }
-  if (type == "kdsubsurface" || type == "subsurface")
-    ps.fail("subsurface scattering is not supported; a \"coateddiffuse\" of the same reflectance is the nearest "
-            "look");
   if (type == "measured") ps.fail("measured BSDFs (tabulated BSDF files) are not supported");
   if (type == "fourier") ps.fail("pbrt-v3's fourier BSDFs are not supported (nor by pbrt-v4)");
   if (type == "disney") ps.fail("the disney BSDF is not supported (nor by pbrt-v4)");
@@ -93,6 +90,7 @@ MaterialHandle SceneBuilder::mix_material_v3(const ParamSet& ps, const std::map<
     auto it = named.find(n);
     if (it == named.end()) ps.fail(*p, "no material named \"" + printable(n) + "\" was defined");
     if (it->second.kind() == MaterialKind::Interface) ps.fail(*p, "an \"interface\" material cannot be mixed");
+    refuse_mixed_subsurface(ps, it->second);
     mix.materials[i] = it->second;
   }
   const pbrt::Param* a = ps.find("amount");
