@@ -219,10 +219,10 @@ TEST(Camera, IntegratorsAgreeWithAnOrthographicCamera) {
 }
 
 TEST(Camera, UnsupportedCamerasAreClearErrors) {
-  expect_load_error("Camera \"realistic\"\n", "r.pbrt", {"r.pbrt:1", "realistic", "lensradius"});
+  expect_load_error("Camera \"realistic\"\n", "r.pbrt", {"r.pbrt:1", "realistic", "lensfile"});
   expect_load_error("Camera \"spherical\" \"string mapping\" \"cubemap\"\n", "s.pbrt",
                     {"s.pbrt:1", "cubemap", "equirectangular"});
-  expect_load_error("Camera \"fisheye\"\n", "f.pbrt", {"f.pbrt:1", "fisheye", "orthographic", "spherical"});
+  expect_load_error("Camera \"fisheye\"\n", "f.pbrt", {"f.pbrt:1", "fisheye", "orthographic", "spherical", "realistic"});
 }
 
 // The sensor's settings that cannot make an image are errors, as in pbrt-v4

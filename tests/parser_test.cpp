@@ -140,6 +140,11 @@ TEST(Parser, UnusedAndUnsupportedThingsWarnWithTheirPlace) {
   load("WorldBegin\nLightSource \"point\" \"integer nsamples\" 4\n", &warnings);
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("nsamples"), std::string::npos) << warnings[0];
+  // pbrt-v3 lets a shape carry material parameters: known, not a typo.
+  warnings.clear();
+  load("WorldBegin\nLightSource \"point\"\nShape \"sphere\" \"rgb Kd\" [1 0 0]\n", &warnings);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("Kd"), std::string::npos) << warnings[0];
 }
 
 // pbrt-v4's Attribute: defaults per kind for the directives that follow,

@@ -31,6 +31,19 @@ Camera::Camera(const CameraDesc& d, int width, int height, Vec2 film_margin)
   camera_from_world_ = glm::inverse(world_from_camera_);
   forward_ = glm::normalize(Vec3(world_from_camera_ * Vec4(0.f, 0.f, 1.f, 0.f)));
   film_area_ = (sx1_ - sx0_) * (sy1_ - sy0_) * tan_half_ * tan_half_;
+  if (projection_ == Projection::Realistic) {
+    // The film's sides from its diagonal and the image's aspect ratio;
+    // focused with rays a thousandth of the diagonal off the axis, as
+    // pbrt-v4 does.
+    const float ratio = float(height) / float(width);
+    const float x = std::sqrt(sqr(d.film_diagonal) / (1.f + ratio * ratio));
+    film_extent_ = Vec2(x, ratio * x);
+    auto lens = std::make_shared<LensSystem>(*d.lens);
+    lens->focus(d.focus_distance, 0.001f * d.film_diagonal);
+    lens->compute_exit_pupil(0.5f * d.film_diagonal);
+    lens_ = std::move(lens);
+    lens_radius_ = 0.f;
+  }
 }
 
 Camera Camera::at(float u) const {
@@ -87,6 +100,7 @@ int Camera::seam_images(Vec2 p, Vec2 reach, Vec2 out[2]) const {
 }
 
 CameraRay Camera::generate_ray(Vec2 p, Vec2 u_lens) const {
+  if (projection_ == Projection::Realistic) return realistic_ray(p, u_lens);
   const Vec2 s(sx0_ + (p.x / float(width_)) * (sx1_ - sx0_), sy1_ - (p.y / float(height_)) * (sy1_ - sy0_));
   Vec3 origin(0.f), dir;
   switch (projection_) {
@@ -96,6 +110,7 @@ CameraRay Camera::generate_ray(Vec2 p, Vec2 u_lens) const {
       dir = Vec3(0.f, 0.f, 1.f);
       break;
     case Projection::Spherical: dir = spherical_direction(p); break;
+    case Projection::Realistic: break;
   }
   if (lens_radius_ > 0.f) {
     // Through the point of the plane of focus the pinhole ray meets.
@@ -107,6 +122,21 @@ CameraRay Camera::generate_ray(Vec2 p, Vec2 u_lens) const {
   CameraRay r;
   r.o = Vec3(world_from_camera_ * Vec4(origin, 1.f));
   r.d = glm::normalize(Vec3(world_from_camera_ * Vec4(dir, 0.f)));
+  return r;
+}
+
+// Through the lens system from the film point under p (the image turned
+// over, as a lens turns it: raster x runs against film x); a blocked ray
+// leaves from the camera along its axis with weight 0.
+CameraRay Camera::realistic_ray(Vec2 p, Vec2 u_lens) const {
+  const Vec2 s(p.x / float(width_), p.y / float(height_));
+  const Vec3 p_film(-(s.x - 0.5f) * film_extent_.x, (s.y - 0.5f) * film_extent_.y, 0.f);
+  CameraRay r;
+  const std::optional<LensSystem::Sample> ls = lens_->sample_ray(p_film, u_lens);
+  const Vec3 origin = ls ? ls->ray.o : Vec3(0.f), dir = ls ? ls->ray.d : Vec3(0.f, 0.f, 1.f);
+  r.o = Vec3(world_from_camera_ * Vec4(origin, 1.f));
+  r.d = glm::normalize(Vec3(world_from_camera_ * Vec4(dir, 0.f)));
+  r.weight = ls && std::isfinite(ls->weight) ? ls->weight : 0.f;
   return r;
 }
 
@@ -136,7 +166,11 @@ float Camera::orthographic_lens_We(const Vec3& o_cam, const Vec3& d_cam, Vec2* p
   return sqr(focal_distance_) / (film_area_ * lens_area() * cos2 * cos2);
 }
 
+// A realistic camera has no importance in closed form (nor in pbrt-v4):
+// the integrators that connect to the camera refuse it, and it reports
+// none here.
 float Camera::We(const Vec3& p_lens, const Vec3& d, Vec2* p_raster) const {
+  if (projection_ == Projection::Realistic) return 0.f;
   if (projection_ == Projection::Orthographic) {
     if (lens_radius_ <= 0.f) return 0.f;
     return orthographic_lens_We(Vec3(camera_from_world_ * Vec4(p_lens, 1.f)), Vec3(camera_from_world_ * Vec4(d, 0.f)),
@@ -181,6 +215,7 @@ float Camera::pdf_dir(const Vec3& d) const {
       float sin_theta = std::sqrt(dc.x * dc.x + dc.z * dc.z);
       return sin_theta > 0.f ? 1.f / (2.f * kPi * kPi * sin_theta) : 0.f;
     }
+    case Projection::Realistic: return 0.f;
   }
   return 0.f;
 }
@@ -208,6 +243,7 @@ std::optional<CameraSample> Camera::orthographic_lens_sample_wi(const Vec3& ref,
 }
 
 std::optional<CameraSample> Camera::sample_wi(const Vec3& ref, Vec2 u_lens) const {
+  if (projection_ == Projection::Realistic) return std::nullopt;
   if (projection_ == Projection::Orthographic) {
     if (lens_radius_ <= 0.f) return std::nullopt;
     return orthographic_lens_sample_wi(ref, u_lens);

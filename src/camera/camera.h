@@ -11,11 +11,13 @@
 
 #include "math/common.h"
 #include "math/motion.h"
+#include "camera/lens_system.h"
 #include "math/sampling.h"
 
 namespace lantern {
 
-enum class Projection : uint8_t { Perspective, Orthographic, Spherical };
+// Realistic: pbrt-v4's lens system (camera/lens_system.h).
+enum class Projection : uint8_t { Perspective, Orthographic, Spherical, Realistic };
 
 struct CameraDesc {
   Projection projection = Projection::Perspective;
@@ -30,10 +32,19 @@ struct CameraDesc {
   // world_from_camera above is its start). Null for a still camera.
   std::shared_ptr<const MotionPath> motion;
   ShutterTimes shutter;
+  // Realistic: the lens as its file gives it (focused when the camera is
+  // made, for the film's size), its "focusdistance", and the Film's
+  // "diagonal" in scene units (its millimetres times 0.001).
+  std::shared_ptr<const LensSystem> lens;
+  float focus_distance = 10.f;
+  float film_diagonal = 0.035f;
 };
 
 struct CameraRay {
   Vec3 o, d;  // d is unit length
+  // What the ray's radiance counts for on the film: 1 but for a realistic
+  // camera (cos^4 over the pupil's density), 0 for a ray its lens blocks.
+  float weight = 1.f;
 };
 
 // A point on the lens chosen to see a reference point (pbrt's Sample_Wi):
@@ -100,6 +111,7 @@ class Camera {
  private:
   float cos_theta(const Vec3& d) const { return glm::dot(d, forward_); }
   Vec3 perspective_direction(Vec2 screen) const;
+  CameraRay realistic_ray(Vec2 p_raster, Vec2 u_lens) const;
   Vec3 spherical_direction(Vec2 p_raster) const;  // camera space
   bool spherical_raster(const Vec3& d_camera, Vec2* p_raster) const;
   bool screen_to_raster(Vec2 s, Vec2* p_raster) const;
@@ -118,6 +130,8 @@ class Camera {
   float sx0_ = -1, sx1_ = 1, sy0_ = -1, sy1_ = 1;
   float tan_half_ = 1.f;
   float lens_radius_ = 0.f, focal_distance_ = 1e6f;
+  std::shared_ptr<const LensSystem> lens_;  // focused, its exit pupil known
+  Vec2 film_extent_{0.f};                  // realistic: the film's width and height
 };
 
 // The camera that sees a sample at time u: `camera` itself when it stands

@@ -41,7 +41,7 @@ void Bdpt::start_eye_subpaths(const WaveDesc& wave, BdptWave& w) const {
     std::optional<Camera> moved;
     const Camera& camera = camera_at(camera_, w.time[slot], moved);
     CameraRay r = camera.generate_ray(p_raster, s.get2d(dims::kLens));
-    w.eye.beta[slot] = Spectrum(1.f);
+    w.eye.beta[slot] = Spectrum(r.weight);
     w.eye.dispersed[slot] = 0;
     w.eye.mis[slot] = mis_camera_start(camera.pdf_dir(r.d), w.mis);
     w.eye.prev_p[slot] = r.o;

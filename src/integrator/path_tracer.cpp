@@ -56,7 +56,7 @@ void PathTracer::generate_camera_rays(const WaveDesc& wave, PathWave& w) const {
     w.sampler[slot] = s;
     w.lambda[slot] = sample_wavelengths(settings_.spectral, s, settings_.maxdepth);
     w.time[slot] = time;
-    w.beta[slot] = Spectrum(1.f);
+    w.beta[slot] = Spectrum(r.weight);
     w.dispersed[slot] = 0;
     w.L[slot] = Spectrum(0.f);
     w.prev_pdf[slot] = 1.f;

@@ -73,6 +73,10 @@ void check_options(const Scene& scene, const RenderOptions& opt) {
   if (merging && (!(opt.vcm_radius >= 0.f) || !std::isfinite(opt.vcm_radius) || !(opt.vcm_alpha > 0.f && opt.vcm_alpha <= 1.f)))
     throw std::invalid_argument(std::string(name(opt.integrator)) + " needs a radius >= 0 (0: automatic) and an alpha in (0, 1]");
   if (opt.spp <= 0 && opt.time_limit_seconds <= 0) throw std::invalid_argument("--spp must be positive");
+  if (scene.camera.projection == Projection::Realistic && !traces_paths(opt.integrator))
+    throw std::invalid_argument(std::string("the realistic camera works with path, directlighting and ambientocclusion, "
+                                            "not ") + name(opt.integrator) +
+                                ": a lens system has no importance function to connect light paths to (nor in pbrt-v4)");
   if (opt.maxdepth < 0) throw std::invalid_argument("--maxdepth must be >= 0");
   if (opt.spectral && !scene.media.rgb_grid.empty())
     throw std::invalid_argument("an \"rgbgrid\" medium is not rendered with sampled wavelengths yet (its optical depth is "

@@ -44,10 +44,9 @@ void SceneBuilder::camera(const std::string& type, const ParamSet& ps, const glm
                                        "\" is not known; expected \"equalarea\" or \"equirectangular\"");
     c.equal_area = mapping == "equalarea";
   } else if (type == "realistic") {
-    ps.fail("camera \"realistic\" (a lens system) is not supported; use \"perspective\" with \"lensradius\" and "
-            "\"focaldistance\" for depth of field");
+    realistic_camera(ps);
   } else {
-    ps.fail("camera type \"" + printable(type) + "\" is not supported; expected perspective, orthographic or spherical");
+    ps.fail("camera type \"" + printable(type) + "\" is not supported; expected perspective, orthographic, spherical or realistic");
   }
   world_from_camera_ = glm::inverse(camera_from_world);
   world_from_camera_end_ = glm::inverse(camera_from_world_end);
@@ -56,7 +55,7 @@ void SceneBuilder::camera(const std::string& type, const ParamSet& ps, const glm
     c.fov_degrees = ps.get_float("fov", 90.f);
     if (!(c.fov_degrees > 0.f && c.fov_degrees < 180.f)) ps.fail("\"fov\" must lie strictly between 0 and 180 degrees");
   }
-  if (c.projection != Projection::Spherical) {
+  if (c.projection != Projection::Spherical && c.projection != Projection::Realistic) {
     c.lens_radius = ps.get_float("lensradius", 0.f);
     c.focal_distance = ps.get_float("focaldistance", 1e6f);
     if (!(c.lens_radius >= 0.f) || !std::isfinite(c.lens_radius) || !(c.focal_distance > 0.f))
@@ -91,6 +90,32 @@ void SceneBuilder::begin_world(const glm::dmat4& render_from_world, double trans
         motion_path(render_from_world * world_from_camera_, render_from_world * world_from_camera_end_));
 }
 
+// pbrt-v4's realistic camera: "lensfile" (relative to the scene's
+// folder), "aperturediameter" (mm, 1 by default: the stop's own diameter
+// when that is smaller), "focusdistance" (10); the Film's "diagonal" sizes
+// the film. Focusing waits for the film (camera/camera.cpp).
+void SceneBuilder::realistic_camera(const ParamSet& ps) {
+  CameraDesc& c = scene_.camera;
+  c.projection = Projection::Realistic;
+  const std::string file = ps.get_string("lensfile", "");
+  if (file.empty()) ps.fail("the realistic camera needs a \"lensfile\" (its lens elements, four numbers each)");
+  const float aperture = ps.get_float("aperturediameter", 1.f);
+  if (!(aperture > 0.f) || !std::isfinite(aperture))
+    ps.fail(*ps.find("aperturediameter"), "\"aperturediameter\" must be a diameter in mm > 0");
+  c.focus_distance = ps.get_float("focusdistance", 10.f);
+  if (!(c.focus_distance > 0.f) || !std::isfinite(c.focus_distance))
+    ps.fail(*ps.find("focusdistance"), "\"focusdistance\" must be a distance > 0");
+  if (const pbrt::Param* a = ps.find("aperture"); a && !ps.get_string("aperture", "").empty())
+    ps.fail(*a, "aperture shapes are not supported yet: the realistic camera's stop is round");
+  const std::filesystem::path path = std::filesystem::path(file).is_absolute() ? std::filesystem::path(file)
+                                                                                : std::filesystem::path(ps.base_dir) / file;
+  try {
+    c.lens = std::make_shared<const LensSystem>(read_lens_file(path.string()), aperture);
+  } catch (const std::exception& e) {
+    ps.fail(*ps.find("lensfile"), e.what());
+  }
+}
+
 void SceneBuilder::film(const std::string& type, const ParamSet& ps) {
   if (type != "rgb" && type != "gbuffer" && type != "spectral" && type != "image")
     warn(ps.where, "film type \"" + printable(type) + "\" is not supported; rendering an RGB film");
@@ -112,9 +137,10 @@ void SceneBuilder::film(const std::string& type, const ParamSet& ps) {
   if (!(s.max_component_value > 0.f))
     ps.fail(*ps.find("maxcomponentvalue"), "\"maxcomponentvalue\" must be a number > 0 (the largest sensor RGB "
                                            "component a sample keeps)");
-  // The sensor's diagonal in mm: pbrt-v4's realistic camera alone reads it
-  // (Lantern refuses that camera), so it changes nothing here.
-  if (!(ps.get_float("diagonal", 35.f) > 0.f)) ps.fail(*ps.find("diagonal"), "\"diagonal\" must be a length in mm > 0");
+  // The sensor's diagonal in mm: the realistic camera's film size.
+  const float diagonal = ps.get_float("diagonal", 35.f);
+  if (!(diagonal > 0.f) || !std::isfinite(diagonal)) ps.fail(*ps.find("diagonal"), "\"diagonal\" must be a length in mm > 0");
+  scene_.camera.film_diagonal = 0.001f * diagonal;
   s.save_fp16 = ps.get_bool("savefp16", false);
   crop(ps);
   const std::string sensor = ps.get_string("sensor", "cie1931");

@@ -120,6 +120,7 @@ class SceneBuilder final : public pbrt::ParserTarget {
   std::optional<PiecewiseLinearSpectrum> emission_spectrum(const pbrt::ParamSet& ps, const std::string& name);
   int32_t light_spectrum(const pbrt::ParamSet& ps, const std::string& name);
   void crop(const pbrt::ParamSet& ps);
+  void realistic_camera(const pbrt::ParamSet& ps);
   // "displacement" and "normalmap": an index into MaterialPools::bumps, or -1.
   int32_t bump_map(const pbrt::ParamSet& ps, const std::string& base_dir);
   MaterialHandle concrete_material(const std::string& type, const pbrt::ParamSet& ps);

@@ -9,7 +9,8 @@ namespace {
 
 // The names each version's Create functions (and scene-wide readers:
 // shape "alpha", material "normalmap") look up, for every type of the
-// kind, as read from pbrt-v4's and pbrt-v3's sources.
+// kind, as read from pbrt-v4's and pbrt-v3's sources (pbrt-v3's disney
+// material, which Lantern refuses, included: its parameters are known).
 struct KindNames {
   std::string_view kind, v4, v3;
 };
@@ -25,7 +26,7 @@ constexpr std::array<KindNames, 12> kNames{{
      "cropwindow diagonal filename maxsampleluminance pixelbounds scale xresolution yresolution"},
     {"filter", "B C sigma tau xradius yradius", "B C alpha tau xwidth ywidth"},
     {"sampler", "jitter pixelsamples randomization seed xsamples ysamples",
-     "dimensions jitter pixelsamples xsamples ysamples"},
+     "dimensions jitter pixelsamples samplepixelcenter xsamples ysamples"},
     {"integrator",
      "bootstrapsamples chains cossample filename function imagefilename largestepprobability lightsampler maxdepth "
      "maxdistance mutationsperpixel photonsperiteration radius regularize samplebsdf samplelights seed sigma skipbad "
@@ -46,9 +47,10 @@ constexpr std::array<KindNames, 12> kNames{{
      "conductor.vroughness displacement eta eumelanin filename g interface.eta interface.roughness "
      "interface.uroughness interface.vroughness k materials maxdepth mfp name normalmap nsamples pheomelanin "
      "reflectance remaproughness roughness scale sigma_a sigma_s thickness transmittance type uroughness vroughness",
-     "Kd Kr Ks Kt alpha amount beta_m beta_n bsdffile bumpmap color eta eumelanin g index k mfp name namedmaterial1 "
-     "namedmaterial2 opacity pheomelanin reflect remaproughness roughness scale sigma sigma_a sigma_s transmit type "
-     "uroughness vroughness"},
+     "Kd Kr Ks Kt alpha amount anisotropic beta_m beta_n bsdffile bumpmap clearcoat clearcoatgloss color difftrans eta "
+     "eumelanin flatness g index k metallic mfp name namedmaterial1 namedmaterial2 opacity pheomelanin reflect "
+     "remaproughness roughness scale scatterdistance sheen sheentint sigma sigma_a sigma_s spectrans speculartint thin "
+     "transmit type uroughness vroughness"},
     {"texture",
      "amount dimension dir encoding filename filter inside invert mapping maxanisotropy octaves outside roughness "
      "scale tex tex1 tex2 udelta uscale v00 v01 v1 v10 v11 v2 value variation vdelta vscale wrap",
@@ -96,8 +98,12 @@ const Table* table(std::string_view kind) {
 
 bool is_known_parameter(std::string_view kind, std::string_view name) {
   const Table* t = table(kind);
-  return !t || std::binary_search(t->names.begin(), t->names.end(), name,
-                                  [](std::string_view a, std::string_view b) { return a < b; });
+  if (!t) return true;
+  const auto less = [](std::string_view a, std::string_view b) { return a < b; };
+  if (std::binary_search(t->names.begin(), t->names.end(), name, less)) return true;
+  // pbrt-v3 lets a Shape carry its material's parameters (a per-shape
+  // material over the current one).
+  return kind == "shape" && is_known_parameter("material", name);
 }
 
 const std::vector<std::string>& known_parameters(std::string_view kind) {
