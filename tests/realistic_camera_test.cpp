@@ -150,6 +150,11 @@ TEST(RealisticCamera, BadLensesAndIntegratorsAreRefused) {
   std::ofstream(dir / "odd.dat") << "0 1 0 10\n50 5 1.5\n";
   expect_load_error("Camera \"realistic\" \"string lensfile\" \"" + (dir / "odd.dat").string() + "\"\n", "c.pbrt",
                     {"four numbers"});
+  // Closer than the lens can focus (inside its focal length): at load,
+  // with the Camera's line.
+  expect_load_error("Film \"rgb\"\nCamera \"realistic\" \"string lensfile\" \"" + lens_file() +
+                        "\"\n  \"float focusdistance\" 0.02\nWorldBegin\n",
+                    "f.pbrt", {"f.pbrt:3", "cannot focus", "focusdistance"});
   auto scene = load_scene_from_string(realistic_scene("LightSource \"infinite\"\n"), "r.pbrt", {});
   RenderOptions o;
   o.spp = 1;

@@ -120,7 +120,8 @@ class SceneBuilder final : public pbrt::ParserTarget {
   std::optional<PiecewiseLinearSpectrum> emission_spectrum(const pbrt::ParamSet& ps, const std::string& name);
   int32_t light_spectrum(const pbrt::ParamSet& ps, const std::string& name);
   void crop(const pbrt::ParamSet& ps);
-  void realistic_camera(const pbrt::ParamSet& ps);
+  void realistic_camera(const pbrt::ParamSet& ps);  // builder_camera.cpp
+  void check_lens_focus() const;
   // "displacement" and "normalmap": an index into MaterialPools::bumps, or -1.
   int32_t bump_map(const pbrt::ParamSet& ps, const std::string& base_dir);
   MaterialHandle concrete_material(const std::string& type, const pbrt::ParamSet& ps);
@@ -180,6 +181,7 @@ class SceneBuilder final : public pbrt::ParserTarget {
   std::map<std::string, MediumHandle> named_media_;
   std::map<uint32_t, MediumHandle> subsurface_media_;  // a subsurface material's (by handle bits) interior
   std::map<std::pair<float, float>, SlabAlbedoTable> slab_tables_;  // by boundary eta and phase g
+  SourceLocation camera_where_;  // a realistic camera's focus distance
   std::string camera_medium_;
   SourceLocation camera_medium_where_;
 

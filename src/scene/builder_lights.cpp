@@ -170,6 +170,7 @@ void SceneBuilder::profiled_light(const std::string& type, const ParamSet& ps, c
 
 void SceneBuilder::finish() {
   check_objects_closed();
+  check_lens_focus();
   finish_media();
   load_pending_meshes();
   count_triangles();

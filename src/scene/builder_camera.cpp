@@ -1,0 +1,103 @@
+// The Camera directive: pbrt-v4's perspective, orthographic, spherical
+// and realistic cameras (camera/camera.h, camera/lens_system.h).
+#include <filesystem>
+
+#include "scene/builder.h"
+
+namespace lantern {
+
+using pbrt::ParamSet;
+
+void SceneBuilder::camera(const std::string& type, const ParamSet& ps, const glm::dmat4& camera_from_world,
+                          const glm::dmat4& camera_from_world_end) {
+  CameraDesc& c = scene_.camera;
+  if (type == "perspective") {
+    c.projection = Projection::Perspective;
+  } else if (type == "orthographic") {
+    c.projection = Projection::Orthographic;
+  } else if (type == "spherical") {
+    c.projection = Projection::Spherical;
+    scene_.settings.screen_window = true;  // the whole sphere, whatever the image's shape
+    std::string mapping = ps.get_string("mapping", "equalarea");
+    if (mapping != "equalarea" && mapping != "equirectangular")
+      ps.fail(*ps.find("mapping"), "spherical \"mapping\" \"" + printable(mapping) +
+                                       "\" is not known; expected \"equalarea\" or \"equirectangular\"");
+    c.equal_area = mapping == "equalarea";
+  } else if (type == "realistic") {
+    realistic_camera(ps);
+  } else {
+    ps.fail("camera type \"" + printable(type) + "\" is not supported; expected perspective, orthographic, spherical or realistic");
+  }
+  world_from_camera_ = glm::inverse(camera_from_world);
+  world_from_camera_end_ = glm::inverse(camera_from_world_end);
+  c.world_from_camera = Mat4(world_from_camera_);
+  if (c.projection == Projection::Perspective) {
+    c.fov_degrees = ps.get_float("fov", 90.f);
+    if (!(c.fov_degrees > 0.f && c.fov_degrees < 180.f)) ps.fail("\"fov\" must lie strictly between 0 and 180 degrees");
+  }
+  if (c.projection != Projection::Spherical && c.projection != Projection::Realistic) {
+    c.lens_radius = ps.get_float("lensradius", 0.f);
+    c.focal_distance = ps.get_float("focaldistance", 1e6f);
+    if (!(c.lens_radius >= 0.f) || !std::isfinite(c.lens_radius) || !(c.focal_distance > 0.f))
+      ps.fail("\"lensradius\" must be >= 0 and \"focaldistance\" > 0");
+  }
+  // The shutter's interval scales the image (pbrt-v4's imaging ratio,
+  // color/sensor.h) and is the time over which what moves blurs.
+  const float open = ps.get_float("shutteropen", 0.f), close = ps.get_float("shutterclose", 1.f);
+  scene_.settings.exposure_time = close - open;
+  c.shutter.open = open;
+  c.shutter.close = close;
+  if (!(close > open) || !std::isfinite(close - open))
+    ps.fail("\"shutterclose\" (" + std::to_string(close) + ") must come after \"shutteropen\" (" + std::to_string(open) +
+            "): a shutter that never opens makes a black image");
+  std::vector<float> sw = ps.get_floats("screenwindow");
+  if (!sw.empty()) {
+    if (sw.size() != 4) ps.fail("\"screenwindow\" needs 4 values: xmin xmax ymin ymax");
+    c.has_screen_window = true;
+    scene_.settings.screen_window = true;
+    std::copy(sw.begin(), sw.end(), c.screen_window);
+  }
+}
+
+// pbrt-v4's realistic camera: "lensfile" (relative to the scene's
+// folder), "aperturediameter" (mm, 1 by default: the stop's own diameter
+// when that is smaller), "focusdistance" (10); the Film's "diagonal" sizes
+// the film. Focusing waits for the film (camera/camera.cpp).
+void SceneBuilder::realistic_camera(const ParamSet& ps) {
+  CameraDesc& c = scene_.camera;
+  camera_where_ = ps.find("focusdistance") ? ps.find("focusdistance")->where : ps.where;
+  c.projection = Projection::Realistic;
+  const std::string file = ps.get_string("lensfile", "");
+  if (file.empty()) ps.fail("the realistic camera needs a \"lensfile\" (its lens elements, four numbers each)");
+  const float aperture = ps.get_float("aperturediameter", 1.f);
+  if (!(aperture > 0.f) || !std::isfinite(aperture))
+    ps.fail(*ps.find("aperturediameter"), "\"aperturediameter\" must be a diameter in mm > 0");
+  c.focus_distance = ps.get_float("focusdistance", 10.f);
+  if (!(c.focus_distance > 0.f) || !std::isfinite(c.focus_distance))
+    ps.fail(*ps.find("focusdistance"), "\"focusdistance\" must be a distance > 0");
+  if (const pbrt::Param* a = ps.find("aperture"); a && !ps.get_string("aperture", "").empty())
+    ps.fail(*a, "aperture shapes are not supported yet: the realistic camera's stop is round");
+  const std::filesystem::path path = std::filesystem::path(file).is_absolute() ? std::filesystem::path(file)
+                                                                                : std::filesystem::path(ps.base_dir) / file;
+  try {
+    c.lens = std::make_shared<const LensSystem>(read_lens_file(path.string()), aperture);
+  } catch (const std::exception& e) {
+    ps.fail(*ps.find("lensfile"), e.what());
+  }
+}
+
+// A realistic camera's lens must focus at its distance for the Film's
+// diagonal (known only once both are read): checked at load, so that the
+// error names the Camera's line rather than coming from the render.
+void SceneBuilder::check_lens_focus() const {
+  const CameraDesc& c = scene_.camera;
+  if (c.projection != Projection::Realistic) return;
+  try {
+    LensSystem lens = *c.lens;
+    lens.focus(c.focus_distance, 0.001f * c.film_diagonal);
+  } catch (const std::exception& e) {
+    throw InputError(camera_where_, std::string("Camera \"realistic\": ") + e.what());
+  }
+}
+
+}  // namespace lantern
