@@ -207,7 +207,7 @@ TEST(Parser, MalformedInputGivesClearErrors) {
   expect_error("WorldBegin\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 1e39] \"integer indices\" [0 1 2]\n",
                {"Shape \"trianglemesh\"", "vertex 2 at (0, 1, inf) is not finite"});
   expect_error("WorldBegin\nShape \"cone\"\n", {"shape \"cone\" is not supported"});
-  expect_error("WorldBegin\nMaterial \"measured\" \"string filename\" \"x.bsdf\"\n", {"t.pbrt:2", "measured BSDFs"});
+  expect_error("WorldBegin\nMaterial \"measured\" \"string filename\" \"x.bsdf\"\n", {"t.pbrt:2", "x.bsdf: cannot open the tabulated BSDF file"});
   expect_error("WorldBegin\nCamera \"perspective\"\n", {"only allowed before WorldBegin"});
   expect_error("Camera \"fisheye\"\n", {"camera type \"fisheye\" is not supported"});
   expect_error("WorldBegin\nScale -1 0 1\nShape \"sphere\"\n", {"t.pbrt:3", "transform is singular"});

@@ -15,6 +15,7 @@
 #include "material/diffuse_transmission_bsdf.h"
 #include "material/hair_bsdf.h"
 #include "material/material.h"
+#include "material/measured_bsdf.h"
 #include "material/thin_dielectric_bsdf.h"
 
 namespace lantern {
@@ -124,6 +125,10 @@ inline HairBSDF make_bsdf(const HairMaterial& m, const TextureContext& c, const 
   return HairBSDF(2.f * c.uv.y - 1.f, eta > 0.f ? eta : 1.55f, unbounded_spectrum(hair_sigma_a(m, c, tex, beta_n), l),
                   beta_m, beta_n, tex.evaluate_float(m.alpha, c), tangent);
 }
+inline MeasuredBSDF make_bsdf(const MeasuredMaterial& m, const TextureContext&, const TexturePools&,
+                              const SampledWavelengths& l) {
+  return MeasuredBSDF{m.brdf, l.nm};
+}
 // The layer parameters of a coated material at a point, as pbrt-v4 clamps them.
 template <class Top, class Bottom>
 LayeredBSDF<Top, Bottom> make_layered(const Top& top, const Bottom& bottom, const CoatLayer& layer,
@@ -204,6 +209,9 @@ void for_each_bsdf(MaterialKind kind, const MaterialPools& pools, const TextureP
     case MaterialKind::Hair:
       run(pools.hair);
       break;
+    case MaterialKind::Measured:
+      run(pools.measured);
+      break;
     case MaterialKind::Mix:        // resolved when the hit was stored
     case MaterialKind::Interface:  // cut out of the scene
       break;
@@ -230,6 +238,8 @@ decltype(auto) with_bsdf(MaterialHandle m, const MaterialPools& pools, const Tex
       return fn(make_bsdf(pools.thin_dielectric[m.index()], c, tex, l));
     case MaterialKind::Hair:
       return fn(make_bsdf(pools.hair[m.index()], c, tex, l));
+    case MaterialKind::Measured:
+      return fn(make_bsdf(pools.measured[m.index()], c, tex, l));
     case MaterialKind::CoatedDiffuse:
     case MaterialKind::Mix:  // never stored in a hit
     case MaterialKind::Interface:

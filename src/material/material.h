@@ -4,9 +4,11 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "math/common.h"
+#include "material/measured_bsdf.h"
 #include "material/microfacet.h"
 #include "texture/texture.h"
 
@@ -25,10 +27,11 @@ enum class MaterialKind : uint8_t {
   DiffuseTransmission,
   ThinDielectric,
   Hair,
+  Measured,
   Mix,
   Interface
 };
-inline constexpr int kMaterialKindCount = 8;  // the kinds with a BSDF
+inline constexpr int kMaterialKindCount = 9;  // the kinds with a BSDF
 
 struct MaterialHandle {
   uint32_t bits = 0;
@@ -137,6 +140,13 @@ struct HairMaterial {
   FloatTextureRef alpha = FloatTextureRef::constant(2.f);  // degrees
 };
 
+// pbrt-v4's measured: a tabulated BRDF file (material/measured_bsdf.h),
+// loaded once per file however many materials name it.
+struct MeasuredMaterial {
+  const MeasuredBRDF* brdf = nullptr;  // owned by MaterialPools::measured_brdfs
+  int32_t bump = -1;
+};
+
 // A material's bump or normal map (applied by material/bump.h).
 struct BumpParams {
   FloatTextureRef displacement = FloatTextureRef::constant(0.f);
@@ -159,6 +169,8 @@ struct MaterialPools {
   std::vector<DiffuseTransmissionMaterial> diffuse_transmission;
   std::vector<ThinDielectricMaterial> thin_dielectric;
   std::vector<HairMaterial> hair;
+  std::vector<MeasuredMaterial> measured;
+  std::vector<std::shared_ptr<const MeasuredBRDF>> measured_brdfs;
   std::vector<MixMaterial> mix;
   std::vector<BumpParams> bumps;  // only for materials with a displacement or normal map
 
@@ -195,6 +207,7 @@ struct MaterialPools {
       case MaterialKind::DiffuseTransmission: return !diffuse_transmission.empty();
       case MaterialKind::ThinDielectric: return !thin_dielectric.empty();
       case MaterialKind::Hair: return !hair.empty();
+      case MaterialKind::Measured: return !measured.empty();
       case MaterialKind::Mix: return !mix.empty();
       case MaterialKind::Interface: return false;
     }
@@ -212,6 +225,7 @@ struct MaterialPools {
       case MaterialKind::CoatedConductor: return &p.coated_conductor[m.index()].bump;
       case MaterialKind::DiffuseTransmission: return &p.diffuse_transmission[m.index()].bump;
       case MaterialKind::ThinDielectric: return &p.thin_dielectric[m.index()].bump;
+      case MaterialKind::Measured: return &p.measured[m.index()].bump;
       case MaterialKind::Hair:
       case MaterialKind::Mix:
       case MaterialKind::Interface: break;

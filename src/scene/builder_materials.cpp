@@ -219,6 +219,7 @@ MaterialHandle SceneBuilder::concrete_material(const std::string& type, const Pa
     return MaterialHandle::make(MaterialKind::DiffuseTransmission, uint32_t(m.diffuse_transmission.size() - 1));
   }
   if (type == "hair") return hair_material(ps);
+  if (type == "measured") return measured_material(ps);
   if (type == "thindielectric") {
     ThinDielectricMaterial d;
     d.eta = eta_param(ps, 1.5f, &d.dispersion);
@@ -231,9 +232,30 @@ MaterialHandle SceneBuilder::concrete_material(const std::string& type, const Pa
   warn(ps.where, ps.directive + ": material type \"" + printable(type) +
                      "\" is unknown and renders as \"diffuse\" (pbrt-v3's matte) from its \"Kd\" or \"reflectance\"; "
                      "known: diffuse, conductor, dielectric, thindielectric, diffusetransmission, coateddiffuse, "
-                     "coatedconductor, hair, mix, interface (and pbrt-v3's matte, metal, glass, plastic, mirror, uber, "
+                     "coatedconductor, hair, measured, subsurface, mix, interface (and pbrt-v3's matte, metal, glass, plastic, mirror, uber, "
                      "substrate, translucent)");
   return concrete_material("diffuse", ps);
+}
+
+// pbrt-v4's measured: "filename" names a tabulated BRDF (relative to the
+// scene's file), read once however many materials name it.
+MaterialHandle SceneBuilder::measured_material(const ParamSet& ps) {
+  MaterialPools& m = scene_.materials;
+  const std::string file = ps.get_string("filename", "");
+  if (file.empty()) ps.fail("the measured material needs a \"filename\" (a tabulated BSDF, .bsdf)");
+  const std::string path = resolve_path(ps.base_dir, file);
+  const MeasuredBRDF*& brdf = measured_files_[path];
+  if (!brdf) {
+    try {
+      m.measured_brdfs.push_back(MeasuredBRDF::load(path));
+    } catch (const std::exception& e) {
+      measured_files_.erase(path);
+      ps.fail(*ps.find("filename"), e.what());
+    }
+    brdf = m.measured_brdfs.back().get();
+  }
+  m.measured.push_back({brdf, -1});
+  return MaterialHandle::make(MaterialKind::Measured, uint32_t(m.measured.size() - 1));
 }
 
 // pbrt-v4's coatedconductor, with its parameter names and defaults.

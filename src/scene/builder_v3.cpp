@@ -71,7 +71,6 @@ std::optional<MaterialHandle> SceneBuilder::v3_material(const std::string& type,
     m.diffuse_transmission.push_back(d);
     return MaterialHandle::make(MaterialKind::DiffuseTransmission, uint32_t(m.diffuse_transmission.size() - 1));
   }
-  if (type == "measured") ps.fail("measured BSDFs (tabulated BSDF files) are not supported");
   if (type == "fourier") ps.fail("pbrt-v3's fourier BSDFs are not supported (nor by pbrt-v4)");
   if (type == "disney") ps.fail("the disney BSDF is not supported (nor by pbrt-v4)");
   return std::nullopt;

@@ -1,0 +1,122 @@
+// Writes valid tabulated BSDF files (the tensor format of
+// material/measured_bsdf.h) of a known analytic BRDF: a microfacet BRDF
+// over a GGX distribution, tabulated as the format defines its fields
+// (Dupuy & Jakob 2018): D over the unit square of normals, the projected
+// area sigma(wo) = cos(theta_o) (1 + Lambda(wo)), the visible normals'
+// density per outgoing direction, and over the warped square the values
+// f(wo, wi) 4 sigma(wo) cos(theta_i) / D(wm), with their luminance (mean)
+// for sampling. The public files are large; these are small and exact
+// up to the grid's interpolation.
+#pragma once
+
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "material/microfacet.h"
+#include "material/tensor_file.h"
+#include "math/piecewise_linear_2d.h"
+
+namespace lantern::tabulated {
+
+struct Grid {
+  int ndf = 64;      // D's and sigma's grids: ndf x ndf
+  int warp = 32;     // the visible normals' and the values' grids
+  int theta_i = 10;  // outgoing elevations, 0 to 85 degrees
+  int phi_i = 1;     // outgoing azimuths: 1 (isotropic) or more over [-pi, pi]
+  std::vector<float> wavelengths = {360.f, 420.f, 480.f, 540.f, 600.f, 660.f, 720.f, 830.f};
+};
+
+// f(wo, wi, nm): the BRDF's value at one wavelength, both directions above.
+using Brdf = std::function<float(const Vec3& wo, const Vec3& wi, float nm)>;
+
+inline Vec3 from_square(float u_theta, float u_phi) {
+  const float theta = u_theta * u_theta * 0.5f * kPi, phi = (2.f * u_phi - 1.f) * kPi;
+  return Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+}
+
+template <class T>
+std::vector<uint8_t> raw(const std::vector<T>& v) {
+  std::vector<uint8_t> b(v.size() * sizeof(T));
+  if (!b.empty()) std::memcpy(b.data(), v.data(), b.size());
+  return b;
+}
+
+inline std::vector<uint8_t> file_bytes(const TrowbridgeReitz& d, const Brdf& f, const Grid& g) {
+  std::vector<float> theta_i, phi_i;
+  for (int t = 0; t < g.theta_i; ++t) theta_i.push_back(glm::radians(85.f) * float(t) / float(g.theta_i - 1));
+  for (int p = 0; p < g.phi_i; ++p)
+    phi_i.push_back(g.phi_i == 1 ? 0.f : -kPi + 2.f * kPi * float(p) / float(g.phi_i - 1));
+  const bool isotropic = g.phi_i <= 2;
+  const int n = g.ndf, w = g.warp, nw = int(g.wavelengths.size());
+  auto u_of = [](int i, int count) { return float(i) / float(count - 1); };
+  std::vector<float> ndf(size_t(n * n)), sigma(size_t(n * n));
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const Vec3 v = from_square(u_of(x, n), u_of(y, n));
+      ndf[size_t(y * n + x)] = d.D(v);
+      sigma[size_t(y * n + x)] = std::fmax(v.z, 0.f) * (1.f + d.lambda(v));
+    }
+  const size_t slices = size_t(g.phi_i * g.theta_i), grid = size_t(w * w);
+  std::vector<float> vndf(slices * grid), spectra(slices * size_t(nw) * grid), lum(slices * grid);
+  for (int p = 0; p < g.phi_i; ++p)
+    for (int t = 0; t < g.theta_i; ++t) {
+      const size_t s = size_t(p * g.theta_i + t);
+      const float st = std::sin(theta_i[size_t(t)]);
+      const Vec3 wo(st * std::cos(phi_i[size_t(p)]), st * std::sin(phi_i[size_t(p)]), std::cos(theta_i[size_t(t)]));
+      const float phi_o = std::atan2(wo.y, wo.x);
+      // The visible normals' density over the square: D_wo(wm) times the
+      // square's Jacobian 2 pi^2 u sin(theta_m).
+      for (int y = 0; y < w; ++y)
+        for (int x = 0; x < w; ++x) {
+          Vec3 m = from_square(u_of(x, w), u_of(y, w));
+          if (isotropic)
+            m = Vec3(m.x * std::cos(phi_o) - m.y * std::sin(phi_o), m.x * std::sin(phi_o) + m.y * std::cos(phi_o), m.z);
+          const float jac = 2.f * kPi * kPi * u_of(x, w) * std::sqrt(m.x * m.x + m.y * m.y);
+          vndf[s * grid + size_t(y * w + x)] = std::fmax(d.D(wo, m), 0.f) * jac;
+        }
+      // The values over the square the visible normals' warp maps from.
+      const PiecewiseLinear2D warp(&vndf[s * grid], w, w, {}, true);
+      const float sig = std::fmax(wo.z, 0.f) * (1.f + d.lambda(wo));
+      for (int y = 0; y < w; ++y)
+        for (int x = 0; x < w; ++x) {
+          const Vec2 um = warp.sample(Vec2(u_of(x, w), u_of(y, w)), nullptr).p;
+          Vec3 m = from_square(um.x, um.y);
+          if (isotropic)
+            m = Vec3(m.x * std::cos(phi_o) - m.y * std::sin(phi_o), m.x * std::sin(phi_o) + m.y * std::cos(phi_o), m.z);
+          const Vec3 wi = -wo + 2.f * glm::dot(wo, m) * m;
+          float sum = 0.f;
+          for (int k = 0; k < nw; ++k) {
+            const float dm = d.D(m);
+            const float v = wi.z > 0.f && dm > 0.f ? f(wo, wi, g.wavelengths[size_t(k)]) * 4.f * sig * wi.z / dm : 0.f;
+            spectra[(s * size_t(nw) + size_t(k)) * grid + size_t(y * w + x)] = v;
+            sum += v;
+          }
+          lum[s * grid + size_t(y * w + x)] = sum / float(nw);
+        }
+    }
+  using T = TensorFile::Type;
+  const std::string about = "GGX test BRDF";
+  auto u64 = [](size_t v) { return uint64_t(v); };
+  return tensor_file_bytes({
+      {"description", T::UInt8, {about.size()}, std::vector<uint8_t>(about.begin(), about.end())},
+      {"jacobian", T::UInt8, {1}, {1}},
+      {"theta_i", T::Float32, {theta_i.size()}, raw(theta_i)},
+      {"phi_i", T::Float32, {phi_i.size()}, raw(phi_i)},
+      {"wavelengths", T::Float32, {g.wavelengths.size()}, raw(g.wavelengths)},
+      {"ndf", T::Float32, {u64(n), u64(n)}, raw(ndf)},
+      {"sigma", T::Float32, {u64(n), u64(n)}, raw(sigma)},
+      {"vndf", T::Float32, {phi_i.size(), theta_i.size(), u64(w), u64(w)}, raw(vndf)},
+      {"luminance", T::Float32, {phi_i.size(), theta_i.size(), u64(w), u64(w)}, raw(lum)},
+      {"spectra", T::Float32, {phi_i.size(), theta_i.size(), u64(nw), u64(w), u64(w)}, raw(spectra)},
+  });
+}
+
+inline void write_file(const std::string& path, const std::vector<uint8_t>& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+}
+
+}  // namespace lantern::tabulated
