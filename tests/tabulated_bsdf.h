@@ -17,6 +17,7 @@
 
 #include "material/microfacet.h"
 #include "material/tensor_file.h"
+#include "math/catmull_rom.h"
 #include "math/piecewise_linear_2d.h"
 
 namespace lantern::tabulated {
@@ -117,6 +118,70 @@ inline std::vector<uint8_t> file_bytes(const TrowbridgeReitz& d, const Brdf& f, 
 inline void write_file(const std::string& path, const std::vector<uint8_t>& bytes) {
   std::ofstream out(path, std::ios::binary);
   out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+}
+
+// pbrt-v3's Fourier BSDF files ("SCATFUN", version 1) of a BSDF given as
+// colour, f(wo, wi) in importance transport (the files' convention; the
+// reader divides transmitted radiance by the index squared): zenith
+// cosines at Chebyshev-Lobatto nodes over [-1, 1] (0 among them), and for
+// each pair the cosine series of f |mu_i| over the azimuth difference by
+// the midpoint rule, cut where the luminance's terms fall below 1e-5 of
+// its largest. Channels: luminance, red, blue.
+using ColourBsdf = std::function<RGB(const Vec3& wo, const Vec3& wi)>;
+
+inline std::vector<uint8_t> fourier_file_bytes(const ColourBsdf& f, float eta, int n_mu = 41, int m_max = 96) {
+  std::vector<float> mu(static_cast<size_t>(n_mu), 0.f);
+  for (int j = 0; j < n_mu; ++j)
+    mu[size_t(j)] = j == (n_mu - 1) / 2 ? 0.f : -std::cos(kPi * float(j) / float(n_mu - 1));
+  const size_t cells = size_t(n_mu) * size_t(n_mu);
+  std::vector<float> a, a0(cells, 0.f), cdf;
+  std::vector<int32_t> offset_and_length;
+  constexpr int kPhi = 1024;
+  for (int o = 0; o < n_mu; ++o)
+    for (int i = 0; i < n_mu; ++i) {
+      const float mo = mu[size_t(o)], mi = mu[size_t(i)];
+      const Vec3 wo(std::sqrt(std::fmax(0.f, 1.f - mo * mo)), 0.f, mo);
+      const float si = std::sqrt(std::fmax(0.f, 1.f - mi * mi));
+      std::vector<double> coef(size_t(3 * m_max), 0.0);  // luminance, red, blue
+      for (int j = 0; j < kPhi; ++j) {
+        const float phi = kPi * (float(j) + 0.5f) / float(kPhi);
+        const Vec3 wi = -Vec3(si * std::cos(phi), si * std::sin(phi), mi);
+        const RGB v = wo.z == 0.f || wi.z == 0.f ? RGB(0.f) : f(wo, wi) * std::fabs(mi);
+        const double ch[3] = {0.212671 * v[0] + 0.715160 * v[1] + 0.072169 * v[2], v[0], v[2]};
+        double prev = std::cos(phi), cur = 1.0;  // cos(k phi) by its recurrence
+        for (int k = 0; k < m_max; ++k) {
+          const double w = (k == 0 ? 1.0 : 2.0) * cur / double(kPhi);
+          for (int c = 0; c < 3; ++c) coef[size_t(c * m_max + k)] += w * ch[c];
+          const double next = 2.0 * std::cos(phi) * cur - prev;
+          prev = cur, cur = next;
+        }
+      }
+      double largest = 0.0;
+      for (int k = 0; k < m_max; ++k) largest = std::max(largest, std::fabs(coef[size_t(k)]));
+      int order = 0;
+      for (int k = 0; k < m_max; ++k)
+        if (largest > 0.0 && std::fabs(coef[size_t(k)]) > 1e-5 * largest) order = k + 1;
+      offset_and_length.push_back(int32_t(a.size()));
+      offset_and_length.push_back(order);
+      for (int c = 0; c < 3; ++c)
+        for (int k = 0; k < order; ++k) a.push_back(float(coef[size_t(c * m_max + k)]));
+      a0[size_t(o * n_mu + i)] = order > 0 ? float(coef[0]) : 0.f;
+    }
+  for (int o = 0; o < n_mu; ++o) {
+    std::vector<float> row;
+    integrate_catmull_rom(mu, &a0[size_t(o * n_mu)], &row);
+    cdf.insert(cdf.end(), row.begin(), row.end());
+  }
+  std::vector<uint8_t> out = {'S', 'C', 'A', 'T', 'F', 'U', 'N', 1};
+  auto put = [&](const auto& v) {
+    const auto b = raw(v);
+    out.insert(out.end(), b.begin(), b.end());
+  };
+  put(std::vector<int32_t>{1, n_mu, int32_t(a.size()), m_max, 3, 1, 0, 0, 0});
+  put(std::vector<float>{eta});
+  put(std::vector<int32_t>{0, 0, 0, 0});
+  put(mu), put(cdf), put(offset_and_length), put(a);
+  return out;
 }
 
 }  // namespace lantern::tabulated

@@ -15,6 +15,7 @@
 #include "material/diffuse_transmission_bsdf.h"
 #include "material/hair_bsdf.h"
 #include "material/material.h"
+#include "material/fourier_bsdf.h"
 #include "material/measured_bsdf.h"
 #include "material/thin_dielectric_bsdf.h"
 
@@ -129,6 +130,10 @@ inline MeasuredBSDF make_bsdf(const MeasuredMaterial& m, const TextureContext&, 
                               const SampledWavelengths& l) {
   return MeasuredBSDF{m.brdf, l.nm};
 }
+inline FourierBSDF make_bsdf(const FourierMaterial& m, const TextureContext&, const TexturePools&,
+                             const SampledWavelengths& l) {
+  return FourierBSDF{m.table, l};
+}
 // The layer parameters of a coated material at a point, as pbrt-v4 clamps them.
 template <class Top, class Bottom>
 LayeredBSDF<Top, Bottom> make_layered(const Top& top, const Bottom& bottom, const CoatLayer& layer,
@@ -212,6 +217,9 @@ void for_each_bsdf(MaterialKind kind, const MaterialPools& pools, const TextureP
     case MaterialKind::Measured:
       run(pools.measured);
       break;
+    case MaterialKind::Fourier:
+      run(pools.fourier);
+      break;
     case MaterialKind::Mix:        // resolved when the hit was stored
     case MaterialKind::Interface:  // cut out of the scene
       break;
@@ -240,6 +248,8 @@ decltype(auto) with_bsdf(MaterialHandle m, const MaterialPools& pools, const Tex
       return fn(make_bsdf(pools.hair[m.index()], c, tex, l));
     case MaterialKind::Measured:
       return fn(make_bsdf(pools.measured[m.index()], c, tex, l));
+    case MaterialKind::Fourier:
+      return fn(make_bsdf(pools.fourier[m.index()], c, tex, l));
     case MaterialKind::CoatedDiffuse:
     case MaterialKind::Mix:  // never stored in a hit
     case MaterialKind::Interface:

@@ -17,6 +17,7 @@
 #include "material/diffuse_bsdf.h"
 #include "material/diffuse_transmission_bsdf.h"
 #include "material/hair_bsdf.h"
+#include "material/fourier_bsdf.h"
 #include "material/measured_bsdf.h"
 #include "material/thin_dielectric_bsdf.h"
 
@@ -53,7 +54,8 @@ class BsdfStore {
   using Pools =
       std::tuple<std::vector<DiffuseBSDF>, std::vector<ConductorBSDF>, std::vector<DielectricBSDF>,
                  std::vector<CoatedDiffuseBSDF>, std::vector<CoatedConductorBSDF>, std::vector<DiffuseTransmissionBSDF>,
-                 std::vector<ThinDielectricBSDF>, std::vector<HairBSDF>, std::vector<MeasuredBSDF>>;
+                 std::vector<ThinDielectricBSDF>, std::vector<HairBSDF>, std::vector<MeasuredBSDF>,
+                 std::vector<FourierBSDF>>;
   static constexpr size_t kTypes = std::tuple_size_v<Pools>;
 
   template <class BSDF, size_t... I>

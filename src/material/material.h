@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "math/common.h"
+#include "material/fourier_bsdf.h"
 #include "material/measured_bsdf.h"
 #include "material/microfacet.h"
 #include "texture/texture.h"
@@ -28,10 +29,11 @@ enum class MaterialKind : uint8_t {
   ThinDielectric,
   Hair,
   Measured,
+  Fourier,
   Mix,
   Interface
 };
-inline constexpr int kMaterialKindCount = 9;  // the kinds with a BSDF
+inline constexpr int kMaterialKindCount = 10;  // the kinds with a BSDF
 
 struct MaterialHandle {
   uint32_t bits = 0;
@@ -147,6 +149,13 @@ struct MeasuredMaterial {
   int32_t bump = -1;
 };
 
+// pbrt-v3's fourier: a BSDF tabulated as Fourier series
+// (material/fourier_bsdf.h), loaded once per file.
+struct FourierMaterial {
+  const FourierTable* table = nullptr;  // owned by MaterialPools::fourier_tables
+  int32_t bump = -1;
+};
+
 // A material's bump or normal map (applied by material/bump.h).
 struct BumpParams {
   FloatTextureRef displacement = FloatTextureRef::constant(0.f);
@@ -171,6 +180,8 @@ struct MaterialPools {
   std::vector<HairMaterial> hair;
   std::vector<MeasuredMaterial> measured;
   std::vector<std::shared_ptr<const MeasuredBRDF>> measured_brdfs;
+  std::vector<FourierMaterial> fourier;
+  std::vector<std::shared_ptr<const FourierTable>> fourier_tables;
   std::vector<MixMaterial> mix;
   std::vector<BumpParams> bumps;  // only for materials with a displacement or normal map
 
@@ -208,6 +219,7 @@ struct MaterialPools {
       case MaterialKind::ThinDielectric: return !thin_dielectric.empty();
       case MaterialKind::Hair: return !hair.empty();
       case MaterialKind::Measured: return !measured.empty();
+      case MaterialKind::Fourier: return !fourier.empty();
       case MaterialKind::Mix: return !mix.empty();
       case MaterialKind::Interface: return false;
     }
@@ -226,6 +238,7 @@ struct MaterialPools {
       case MaterialKind::DiffuseTransmission: return &p.diffuse_transmission[m.index()].bump;
       case MaterialKind::ThinDielectric: return &p.thin_dielectric[m.index()].bump;
       case MaterialKind::Measured: return &p.measured[m.index()].bump;
+      case MaterialKind::Fourier: return &p.fourier[m.index()].bump;
       case MaterialKind::Hair:
       case MaterialKind::Mix:
       case MaterialKind::Interface: break;

@@ -54,7 +54,7 @@ struct Reader {
   }
 };
 
-const char kMagic[12] = {'t', 'e', 'n', 's', 'o', 'r', '_', 'f', 'i', 'l', 'e', '\0'};
+const char kTensorMagic[12] = {'t', 'e', 'n', 's', 'o', 'r', '_', 'f', 'i', 'l', 'e', '\0'};
 
 }  // namespace
 
@@ -69,7 +69,7 @@ TensorFile::TensorFile(const std::string& path) : path_(path) {
   if (!in) throw std::runtime_error(path + ": cannot open the tabulated BSDF file");
   const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) throw std::runtime_error(path + ": cannot read the tabulated BSDF file");
-  if (bytes.size() < 18 || std::memcmp(bytes.data(), kMagic, 12) != 0)
+  if (bytes.size() < 18 || std::memcmp(bytes.data(), kTensorMagic, 12) != 0)
     throw std::runtime_error(path + ": not a tensor file (expected it to begin with \"tensor_file\")");
   if (bytes[12] != 1 || bytes[13] != 0)
     throw std::runtime_error(path + ": tensor file version " + std::to_string(bytes[12]) + "." +
@@ -125,7 +125,7 @@ std::vector<float> TensorFile::floats(const std::string& name, size_t rank) cons
 }
 
 std::vector<uint8_t> tensor_file_bytes(const std::vector<TensorFieldOut>& fields) {
-  std::vector<uint8_t> out(kMagic, kMagic + 12);
+  std::vector<uint8_t> out(kTensorMagic, kTensorMagic + 12);
   auto put = [&](const void* p, size_t n) {
     const uint8_t* b = static_cast<const uint8_t*>(p);
     out.insert(out.end(), b, b + n);

@@ -4,23 +4,11 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "math/find_interval.h"
+
 namespace lantern {
 
 namespace {
-
-// The largest i in [0, n - 2] with at(i) <= x (at ascending), or 0.
-template <class At>
-int find_interval(int n, float x, At&& at) {
-  int lo = 0, hi = n - 2;
-  while (lo < hi) {
-    const int mid = (lo + hi + 1) / 2;
-    if (at(mid) <= x)
-      lo = mid;
-    else
-      hi = mid - 1;
-  }
-  return std::max(lo, 0);
-}
 
 // The t in [0, 1] where the integral from 0 to t of the linear density
 // running from a (at 0) to b (at 1) reaches `mass`; written without the

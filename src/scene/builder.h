@@ -133,6 +133,7 @@ class SceneBuilder final : public pbrt::ParserTarget {
   MaterialHandle coated_conductor(const pbrt::ParamSet& ps);
   MaterialHandle hair_material(const pbrt::ParamSet& ps);
   MaterialHandle measured_material(const pbrt::ParamSet& ps);
+  MaterialHandle fourier_material(const pbrt::ParamSet& ps);  // builder_v3.cpp
   // pbrt's subsurface and kdsubsurface: a dielectric whose shapes hold a
   // homogeneous medium (builder_subsurface.cpp).
   MaterialHandle subsurface_material(const std::string& type, const pbrt::ParamSet& ps);
@@ -203,6 +204,7 @@ class SceneBuilder final : public pbrt::ParserTarget {
   std::map<std::string, RGBTextureRef> rgb_textures_;
   std::map<std::string, FloatTextureRef> float_textures_;
   std::map<std::string, const MeasuredBRDF*> measured_files_;  // path -> its tables
+  std::map<std::string, const FourierTable*> fourier_files_;
   std::map<std::string, int32_t> images_;  // "encoding|path" -> TexturePools::images
   std::map<std::string, PreparedTexture> prepared_;  // "encoding|path" -> its prepared file
   TextureCacheSettings texture_cache_;

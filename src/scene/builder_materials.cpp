@@ -233,7 +233,7 @@ MaterialHandle SceneBuilder::concrete_material(const std::string& type, const Pa
                      "\" is unknown and renders as \"diffuse\" (pbrt-v3's matte) from its \"Kd\" or \"reflectance\"; "
                      "known: diffuse, conductor, dielectric, thindielectric, diffusetransmission, coateddiffuse, "
                      "coatedconductor, hair, measured, subsurface, mix, interface (and pbrt-v3's matte, metal, glass, plastic, mirror, uber, "
-                     "substrate, translucent)");
+                     "substrate, translucent, kdsubsurface, fourier)");
   return concrete_material("diffuse", ps);
 }
 

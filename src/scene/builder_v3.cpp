@@ -71,9 +71,30 @@ std::optional<MaterialHandle> SceneBuilder::v3_material(const std::string& type,
     m.diffuse_transmission.push_back(d);
     return MaterialHandle::make(MaterialKind::DiffuseTransmission, uint32_t(m.diffuse_transmission.size() - 1));
   }
-  if (type == "fourier") ps.fail("pbrt-v3's fourier BSDFs are not supported (nor by pbrt-v4)");
+  if (type == "fourier") return fourier_material(ps);
   if (type == "disney") ps.fail("the disney BSDF is not supported (nor by pbrt-v4)");
   return std::nullopt;
+}
+
+// pbrt-v3's fourier: "bsdffile" names a Fourier BSDF table (relative to
+// the scene's file), read once however many materials name it.
+MaterialHandle SceneBuilder::fourier_material(const ParamSet& ps) {
+  MaterialPools& m = scene_.materials;
+  const std::string file = ps.get_string("bsdffile", "");
+  if (file.empty()) ps.fail("the fourier material needs a \"bsdffile\" (a Fourier BSDF table, .bsdf)");
+  const std::string path = resolve_path(ps.base_dir, file);
+  const FourierTable*& table = fourier_files_[path];
+  if (!table) {
+    try {
+      m.fourier_tables.push_back(FourierTable::load(path));
+    } catch (const std::exception& e) {
+      fourier_files_.erase(path);
+      ps.fail(*ps.find("bsdffile"), e.what());
+    }
+    table = m.fourier_tables.back().get();
+  }
+  m.fourier.push_back({table, -1});
+  return MaterialHandle::make(MaterialKind::Fourier, uint32_t(m.fourier.size() - 1));
 }
 
 // pbrt-v3's mix: "namedmaterial1" with weight "amount" (a colour there; its
