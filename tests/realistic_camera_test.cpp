@@ -97,7 +97,8 @@ TEST(RealisticCamera, PupilBoxHoldsEveryPassingRay) {
 std::string realistic_scene(const std::string& world, const std::string& camera_params = "") {
   return "LookAt 0 0 0  0 0 1  0 1 0\nCamera \"realistic\" \"string lensfile\" \"" + lens_file() +
          "\" \"float aperturediameter\" 10 \"float focusdistance\" 5 " + camera_params +
-         "\nFilm \"rgb\" \"integer xresolution\" 16 \"integer yresolution\" 12\nSampler \"halton\"\nWorldBegin\n" + world;
+         "\nFilm \"rgb\" \"integer xresolution\" 16 \"integer yresolution\" 12\nSampler \"halton\"\nWorldBegin\n" +
+         world;
 }
 
 // A white sky: the centre pixels' irradiance is the rear-plane integral
@@ -124,13 +125,15 @@ TEST(RealisticCamera, WhiteSkyGivesTheIrradianceOfThePupil) {
 // lights the image's right half, as with the perspective camera: the lens
 // turns the image over and the film is read turned back.
 TEST(RealisticCamera, ImageIsUprightAsThePerspectiveCamerasIs) {
-  const std::string world = "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [1 1 1]\n"
-                            "Shape \"trianglemesh\" \"point3 P\" [0.2 -3 5  8 -3 5  8 5 5  0.2 5 5] "
-                            "\"integer indices\" [0 2 1 0 3 2]\nAttributeEnd\n";
+  const std::string world =
+      "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [1 1 1]\n"
+      "Shape \"trianglemesh\" \"point3 P\" [0.2 -3 5  8 -3 5  8 5 5  0.2 5 5] "
+      "\"integer indices\" [0 2 1 0 3 2]\nAttributeEnd\n";
   for (const bool realistic : {true, false}) {
     std::string text = realistic_scene(world);
-    if (!realistic) text.replace(text.find("Camera"), text.find('\n', text.find("Camera")) - text.find("Camera"),
-                                 "Camera \"perspective\" \"float fov\" 30");
+    if (!realistic)
+      text.replace(text.find("Camera"), text.find('\n', text.find("Camera")) - text.find("Camera"),
+                   "Camera \"perspective\" \"float fov\" 30");
     auto scene = load_scene_from_string(text, "r.pbrt", {});
     RenderOptions o;
     o.spp = 16;
@@ -165,6 +168,64 @@ TEST(RealisticCamera, BadLensesAndIntegratorsAreRefused) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("realistic camera works with path"), std::string::npos) << e.what();
   }
+}
+
+// pbrt-v4's aperture shapes: each lets as much light through as the round
+// stop (their means are pi / 4 of the stop's square), oriented as pbrt-v4
+// flips its images (the pentagon's vertex at -y on the stop), and an image
+// file's top row towards +y.
+TEST(RealisticCamera, ApertureShapesPassTheRoundStopsLight) {
+  auto mean_weight = [](const LensSystem& lens) {
+    RandomStream s = RandomStream::make(8, 0, 0);
+    double sum = 0.0;
+    const int n = 200000;
+    for (int i = 0; i < n; ++i)
+      if (auto r = lens.sample_ray(Vec3(0.f), s.get2d())) sum += r->weight;
+    return sum / n;
+  };
+  const double round = mean_weight(focused_lens(2.f));
+  for (const char* name : {"gaussian", "square", "pentagon", "star"}) {
+    const std::optional<ApertureMask> mask = builtin_aperture(name);
+    ASSERT_TRUE(mask) << name;
+    double sum = 0.0;
+    for (float v : mask->values) sum += v;
+    EXPECT_NEAR(sum / double(mask->values.size()), kPi / 4.0, 1e-4) << name;
+    LensSystem lens = focused_lens(2.f);
+    lens.set_aperture(*mask);
+    EXPECT_NEAR(mean_weight(lens), round, 0.03 * round) << name;
+  }
+  const ApertureMask pentagon = *builtin_aperture("pentagon");
+  EXPECT_GT(pentagon.at(Vec2(0.f, -0.75f)), 0.f);
+  EXPECT_EQ(pentagon.at(Vec2(0.f, 0.7f)), 0.f);
+  EXPECT_FALSE(builtin_aperture("hexagon"));
+
+  // An image: white in its top half only.
+  const auto dir = std::filesystem::path(lens_file()).parent_path();
+  Image img;
+  img.width = img.height = 8;
+  img.rgb.assign(8 * 8 * 3, 0.f);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 8; ++x) img.at(x, y)[0] = img.at(x, y)[1] = img.at(x, y)[2] = 1.f;
+  write_image((dir / "half.png").string(), img, {});
+  auto scene = load_scene_from_string("Camera \"realistic\" \"string lensfile\" \"" + lens_file() +
+                                          "\" \"float aperturediameter\" 10 \"string aperture\" \"" +
+                                          (dir / "half.png").string() + "\"\nWorldBegin\n",
+                                      "a.pbrt", {});
+  LensSystem lens = *scene->camera.lens;
+  lens.focus(2.f, 0.001f * 0.035f);
+  lens.compute_exit_pupil(0.5f * 0.035f);
+  RandomStream s = RandomStream::make(9, 0, 0);
+  int up = 0, down = 0;
+  for (int i = 0; i < 20000; ++i)
+    if (auto r = lens.sample_ray(Vec3(0.f), s.get2d()); r && r->weight > 0.f) {
+      if (r->ray.o.y > 0.001f) ++up;     // the stop's radius is 5 mm; its texels
+      if (r->ray.o.y < -0.001f) ++down;  // blend within 0.6 mm of y = 0
+    }
+  EXPECT_GT(up, 1000);
+  EXPECT_EQ(down, 0) << "the ray leaves from the stop (the front interface), so its y is the stop's";
+  expect_load_error("Camera \"realistic\" \"string lensfile\" \"" + lens_file() +
+                        "\" \"string aperture\" \"nothing.png\"\nWorldBegin\n",
+                    "a.pbrt", {"a.pbrt:1", "nothing.png", "gaussian, square, pentagon, star"});
 }
 
 }  // namespace

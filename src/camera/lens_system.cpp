@@ -1,20 +1,19 @@
 #include "camera/lens_system.h"
 
+#include <tbb/parallel_for.h>
+
 #include <cctype>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
-
-#include <tbb/parallel_for.h>
 
 namespace lantern {
 
 namespace {
 
 // Lens space is camera space with z negated (the film at z = 0 in both).
-LensRay flip_z(const LensRay& r) {
-  return {Vec3(r.o.x, r.o.y, -r.o.z), Vec3(r.d.x, r.d.y, -r.d.z)};
-}
+LensRay flip_z(const LensRay& r) { return {Vec3(r.o.x, r.o.y, -r.o.z), Vec3(r.d.x, r.d.y, -r.d.z)}; }
 
 // The sphere of radius |radius| centred on the axis at z_center: the
 // crossing on the element's side (the nearer root when the ray runs
@@ -79,8 +78,10 @@ std::vector<float> read_lens_file(const std::string& path) {
 
 LensSystem::LensSystem(const std::vector<float>& n, float aperture_diameter_mm) {
   if (n.empty() || n.size() % 4 != 0)
-    throw std::invalid_argument("a lens file holds four numbers per element (curvature radius, thickness, index of "
-                                "refraction, aperture diameter, in mm); this one has " + std::to_string(n.size()));
+    throw std::invalid_argument(
+        "a lens file holds four numbers per element (curvature radius, thickness, index of "
+        "refraction, aperture diameter, in mm); this one has " +
+        std::to_string(n.size()));
   bool stop = false;
   for (size_t i = 0; i < n.size(); i += 4) {
     LensInterface e;
@@ -108,7 +109,92 @@ float LensSystem::front_z() const {
   return z;
 }
 
-std::optional<LensRay> LensSystem::trace_from_film(LensRay camera_ray) const {
+ApertureMask::ApertureMask(int w, int h, std::vector<float> v) : width(w), height(h), values(std::move(v)) {
+  double sum = 0.0;
+  for (float& x : values) {
+    x = std::isfinite(x) ? std::fmax(x, 0.f) : 0.f;
+    sum += x;
+  }
+  if (width < 1 || height < 1 || size_t(width) * size_t(height) != values.size() || !(sum > 0.0))
+    throw std::invalid_argument("the aperture image is empty or black: it would let no light through");
+  const float scale = float(0.25 * double(kPi) * double(values.size()) / sum);
+  for (float& x : values) x *= scale;
+}
+
+float ApertureMask::at(Vec2 p) const {
+  const float x = 0.5f * (p.x + 1.f) * float(width) - 0.5f, y = 0.5f * (p.y + 1.f) * float(height) - 0.5f;
+  const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+  const float fx = x - float(x0), fy = y - float(y0);
+  auto texel = [&](int i, int j) {
+    return i < 0 || j < 0 || i >= width || j >= height ? 0.f : values[size_t(j) * size_t(width) + size_t(i)];
+  };
+  return (1.f - fy) * ((1.f - fx) * texel(x0, y0) + fx * texel(x0 + 1, y0)) +
+         fy * ((1.f - fx) * texel(x0, y0 + 1) + fx * texel(x0 + 1, y0 + 1));
+}
+
+namespace {
+
+// 1 inside the polygon (non-zero winding), 0 outside, at texel centres of
+// [-1, 1]^2, row 0 at y = -1; then mirrored in y, as pbrt-v4 flips its
+// built-in images before use.
+std::vector<float> rasterize(const std::vector<Vec2>& poly, int res) {
+  std::vector<float> v(size_t(res) * size_t(res), 0.f);
+  for (int y = 0; y < res; ++y)
+    for (int x = 0; x < res; ++x) {
+      const Vec2 p(-1.f + 2.f * (float(x) + 0.5f) / float(res), -1.f + 2.f * (float(y) + 0.5f) / float(res));
+      int winding = 0;
+      for (size_t i = 0; i < poly.size(); ++i) {
+        const Vec2 a = poly[i], b = poly[(i + 1) % poly.size()];
+        const float side = (p.x - a.x) * (b.y - a.y) - (p.y - a.y) * (b.x - a.x);
+        if (a.y <= p.y && b.y > p.y && side > 0.f)
+          ++winding;
+        else if (a.y > p.y && b.y <= p.y && side < 0.f)
+          --winding;
+      }
+      v[size_t(res - 1 - y) * size_t(res) + size_t(x)] = winding != 0 ? 1.f : 0.f;
+    }
+  return v;
+}
+
+}  // namespace
+
+std::optional<ApertureMask> builtin_aperture(const std::string& name) {
+  constexpr int kRes = 256;
+  std::vector<float> v(size_t(kRes) * size_t(kRes), 0.f);
+  if (name == "gaussian") {
+    // exp(-r^2) - exp(-1), cut at 0 (sigma^2 = 1), symmetric: no flip.
+    for (int y = 0; y < kRes; ++y)
+      for (int x = 0; x < kRes; ++x) {
+        const float u = -1.f + 2.f * (float(x) + 0.5f) / kRes, w = -1.f + 2.f * (float(y) + 0.5f) / kRes;
+        v[size_t(y * kRes + x)] = std::fmax(0.f, std::exp(-(u * u + w * w)) - std::exp(-1.f));
+      }
+  } else if (name == "square") {
+    for (int y = kRes / 4; y < 3 * kRes / 4; ++y)
+      for (int x = kRes / 4; x < 3 * kRes / 4; ++x) v[size_t(y * kRes + x)] = 1.f;
+  } else if (name == "pentagon") {
+    // A regular pentagon of circumradius 0.8, a vertex at +y.
+    std::vector<Vec2> poly;
+    for (int i = 0; i < 5; ++i) {
+      const float a = 0.5f * kPi - 2.f * kPi * float(i) / 5.f;
+      poly.push_back(0.8f * Vec2(std::cos(a), std::sin(a)));
+    }
+    v = rasterize(poly, kRes);
+  } else if (name == "star") {
+    // Five points on the unit circle, the inner vertices where the
+    // pentagram's edges cross (radius cos 72 / cos 36), listed clockwise.
+    std::vector<Vec2> poly;
+    for (int i = 9; i >= 0; --i) {
+      const float r = (i & 1) ? 1.f : std::cos(glm::radians(72.f)) / std::cos(glm::radians(36.f));
+      poly.push_back(r * Vec2(std::cos(kPi * float(i) / 5.f), std::sin(kPi * float(i) / 5.f)));
+    }
+    v = rasterize(poly, kRes);
+  } else {
+    return std::nullopt;
+  }
+  return ApertureMask(kRes, kRes, std::move(v));
+}
+
+std::optional<LensRay> LensSystem::trace_from_film(LensRay camera_ray, float* transmission) const {
   LensRay r = flip_z(camera_ray);
   float element_z = 0.f;
   for (size_t k = interfaces_.size(); k-- > 0;) {
@@ -125,7 +211,12 @@ std::optional<LensRay> LensSystem::trace_from_film(LensRay camera_ray) const {
       return std::nullopt;
     }
     const Vec3 p = r.o + t * r.d;
-    if (p.x * p.x + p.y * p.y > e.aperture_radius * e.aperture_radius) return std::nullopt;
+    if (stop && transmission && aperture_) {
+      *transmission = aperture_->at(Vec2(p.x, p.y) / e.aperture_radius);
+      if (!(*transmission > 0.f)) return std::nullopt;
+    } else if (p.x * p.x + p.y * p.y > e.aperture_radius * e.aperture_radius) {
+      return std::nullopt;
+    }
     r.o = p;
     if (!stop) {
       const float eta_in = e.eta, eta_out = k > 0 ? interfaces_[k - 1].eta : 1.f;
@@ -200,7 +291,8 @@ void LensSystem::focus(float focus_distance, float probe_height) {
   const float delta = 0.5f * (pz[1] - z + pz[0] - std::sqrt(c));
   interfaces_.back().thickness += delta;
   if (!(interfaces_.back().thickness > 0.f))
-    throw std::invalid_argument("focused at " + std::to_string(focus_distance) + ", the film would lie inside the lens");
+    throw std::invalid_argument("focused at " + std::to_string(focus_distance) +
+                                ", the film would lie inside the lens");
 }
 
 // Per segment [r0, r1] of film radius, the box of rear-plane points that
@@ -250,11 +342,12 @@ std::optional<LensSystem::Sample> LensSystem::sample_ray(const Vec3& p_film, Vec
   const float s = r > 0.f ? p_film.y / r : 0.f, c = r > 0.f ? p_film.x / r : 1.f;
   const Vec3 rear(c * q.x - s * q.y, s * q.x + c * q.y, rear_z());
   const LensRay film_ray{p_film, rear - p_film};
-  const std::optional<LensRay> out = trace_from_film(film_ray);
+  float transmission = 1.f;
+  const std::optional<LensRay> out = trace_from_film(film_ray, &transmission);
   if (!out) return std::nullopt;
   const float cos_theta = glm::normalize(film_ray.d).z;
   const float cos4 = sqr(cos_theta) * sqr(cos_theta);
-  return Sample{{out->o, glm::normalize(out->d)}, cos4 * area / sqr(rear_z())};
+  return Sample{{out->o, glm::normalize(out->d)}, transmission * cos4 * area / sqr(rear_z())};
 }
 
 }  // namespace lantern

@@ -33,6 +33,22 @@ struct LensRay {
   Vec3 o, d;
 };
 
+// pbrt-v4's aperture image: a transmission over the square around the
+// stop, [-r, r]^2, row 0 at -y; bilinear between texel centres, black
+// outside; scaled so that its mean is pi / 4, the round stop's share of
+// that square, so that any shape passes as much light as the round stop.
+struct ApertureMask {
+  int width = 0, height = 0;
+  std::vector<float> values;
+  // Throws std::invalid_argument for an empty or all-black mask.
+  ApertureMask(int w, int h, std::vector<float> v);
+  // At a point of the stop plane in units of its radius.
+  float at(Vec2 p) const;
+};
+// pbrt-v4's built-in shapes on a 256 x 256 grid: "gaussian", "square",
+// "pentagon", "star"; none for another name.
+std::optional<ApertureMask> builtin_aperture(const std::string& name);
+
 class LensSystem {
  public:
   LensSystem() = default;
@@ -62,9 +78,15 @@ class LensSystem {
   };
   std::optional<Sample> sample_ray(const Vec3& p_film, Vec2 u) const;
 
+  // pbrt-v4's "aperture": the stop transmits by the mask instead of its
+  // round opening (the exit pupil stays the round stop's, as in pbrt-v4).
+  void set_aperture(ApertureMask mask) { aperture_ = std::move(mask); }
+
   // Through the elements, film side first or scene side first; none when
-  // an element's aperture or total internal reflection stops the ray.
-  std::optional<LensRay> trace_from_film(LensRay r) const;
+  // an element's aperture or total internal reflection stops the ray. With
+  // `transmission`, an aperture mask replaces the round stop and its value
+  // where the ray crosses is written there.
+  std::optional<LensRay> trace_from_film(LensRay r, float* transmission = nullptr) const;
   std::optional<LensRay> trace_from_scene(LensRay r) const;
 
   float rear_z() const { return interfaces_.back().thickness; }
@@ -77,6 +99,7 @@ class LensSystem {
     Vec2 lo{0.f}, hi{0.f};
   };
   std::vector<LensInterface> interfaces_;
+  std::optional<ApertureMask> aperture_;
   std::vector<Box> pupil_;  // per radial segment of the film
   float film_radius_ = 0.f;
 };

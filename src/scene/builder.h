@@ -121,6 +121,7 @@ class SceneBuilder final : public pbrt::ParserTarget {
   int32_t light_spectrum(const pbrt::ParamSet& ps, const std::string& name);
   void crop(const pbrt::ParamSet& ps);
   void realistic_camera(const pbrt::ParamSet& ps);  // builder_camera.cpp
+  std::optional<ApertureMask> aperture_mask(const pbrt::ParamSet& ps);
   void check_lens_focus() const;
   // "displacement" and "normalmap": an index into MaterialPools::bumps, or -1.
   int32_t bump_map(const pbrt::ParamSet& ps, const std::string& base_dir);

@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "scene/builder.h"
+#include "texture/image.h"
 
 namespace lantern {
 
@@ -26,7 +27,8 @@ void SceneBuilder::camera(const std::string& type, const ParamSet& ps, const glm
   } else if (type == "realistic") {
     realistic_camera(ps);
   } else {
-    ps.fail("camera type \"" + printable(type) + "\" is not supported; expected perspective, orthographic, spherical or realistic");
+    ps.fail("camera type \"" + printable(type) +
+            "\" is not supported; expected perspective, orthographic, spherical or realistic");
   }
   world_from_camera_ = glm::inverse(camera_from_world);
   world_from_camera_end_ = glm::inverse(camera_from_world_end);
@@ -48,8 +50,8 @@ void SceneBuilder::camera(const std::string& type, const ParamSet& ps, const glm
   c.shutter.open = open;
   c.shutter.close = close;
   if (!(close > open) || !std::isfinite(close - open))
-    ps.fail("\"shutterclose\" (" + std::to_string(close) + ") must come after \"shutteropen\" (" + std::to_string(open) +
-            "): a shutter that never opens makes a black image");
+    ps.fail("\"shutterclose\" (" + std::to_string(close) + ") must come after \"shutteropen\" (" +
+            std::to_string(open) + "): a shutter that never opens makes a black image");
   std::vector<float> sw = ps.get_floats("screenwindow");
   if (!sw.empty()) {
     if (sw.size() != 4) ps.fail("\"screenwindow\" needs 4 values: xmin xmax ymin ymax");
@@ -75,14 +77,38 @@ void SceneBuilder::realistic_camera(const ParamSet& ps) {
   c.focus_distance = ps.get_float("focusdistance", 10.f);
   if (!(c.focus_distance > 0.f) || !std::isfinite(c.focus_distance))
     ps.fail(*ps.find("focusdistance"), "\"focusdistance\" must be a distance > 0");
-  if (const pbrt::Param* a = ps.find("aperture"); a && !ps.get_string("aperture", "").empty())
-    ps.fail(*a, "aperture shapes are not supported yet: the realistic camera's stop is round");
-  const std::filesystem::path path = std::filesystem::path(file).is_absolute() ? std::filesystem::path(file)
-                                                                                : std::filesystem::path(ps.base_dir) / file;
+  const std::filesystem::path path = std::filesystem::path(file).is_absolute()
+                                         ? std::filesystem::path(file)
+                                         : std::filesystem::path(ps.base_dir) / file;
+  LensSystem lens;
   try {
-    c.lens = std::make_shared<const LensSystem>(read_lens_file(path.string()), aperture);
+    lens = LensSystem(read_lens_file(path.string()), aperture);
   } catch (const std::exception& e) {
     ps.fail(*ps.find("lensfile"), e.what());
+  }
+  if (std::optional<ApertureMask> mask = aperture_mask(ps)) lens.set_aperture(std::move(*mask));
+  c.lens = std::make_shared<const LensSystem>(std::move(lens));
+}
+
+// pbrt-v4's "aperture": a built-in shape's name, or an image (relative to
+// the scene's folder; 8-bit files decoded as pbrt-v4 decodes them, colour
+// averaged) whose top row lies towards +y on the stop.
+std::optional<ApertureMask> SceneBuilder::aperture_mask(const ParamSet& ps) {
+  const pbrt::Param* p = ps.find("aperture");
+  const std::string name = ps.get_string("aperture", "");
+  if (!p || name.empty()) return std::nullopt;
+  if (std::optional<ApertureMask> m = builtin_aperture(name)) return m;
+  try {
+    const TextureImage img = load_texture_image(resolve_path(ps.base_dir, name), ColorEncoding{ColorEncoding::SRGB});
+    std::vector<float> v(size_t(img.width) * size_t(img.height));
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x) {
+        const RGB& t = img.texels[size_t(img.height - 1 - y) * size_t(img.width) + size_t(x)];
+        v[size_t(y) * size_t(img.width) + size_t(x)] = (t[0] + t[1] + t[2]) / 3.f;
+      }
+    return ApertureMask(img.width, img.height, std::move(v));
+  } catch (const std::exception& e) {
+    ps.fail(*p, std::string(e.what()) + " (\"aperture\" is an image file or one of gaussian, square, pentagon, star)");
   }
 }
 
