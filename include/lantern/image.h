@@ -10,6 +10,10 @@ namespace lantern {
 struct Image {
   int width = 0, height = 0;
   std::vector<float> rgb;  // linear, 3 floats per pixel, row 0 at the top
+  // More channels of each pixel (pbrt-v4's gbuffer: "Albedo.R", "P.X",
+  // ...), channel_names.size() floats a pixel; written to OpenEXR only.
+  std::vector<std::string> channel_names;
+  std::vector<float> channels;
 
   float* at(int x, int y) { return &rgb[3 * (size_t(y) * size_t(width) + size_t(x))]; }
   const float* at(int x, int y) const { return &rgb[3 * (size_t(y) * size_t(width) + size_t(x))]; }

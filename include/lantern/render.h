@@ -62,6 +62,13 @@ struct RenderOptions {
   RayBackend ray_backend = RayBackend::StreamNp;
   int wave_size = 4096;  // paths per wave
   bool spectral = false;  // sample wavelengths as pbrt-v4 does (docs/spectral.md) instead of rendering in RGB
+  // pbrt-v4's Film "gbuffer": the image also carries the first visible
+  // surface's channels (albedo, position, depth slopes, normals, uv: camera
+  // space, or the world's with gbuffer_world) from up to 64 camera samples
+  // a pixel, and each pixel's sample variance (Image::channel_names). Not
+  // with --part or MPI.
+  bool gbuffer = false;
+  bool gbuffer_world = false;
   bool collect_stats = false;  // time stages and ray queries (two clock reads per stage and batch)
   std::string dump_rays;       // when set: write every ray batch given to Embree to this file (perf/ replays it)
   bool strategies = false;  // bdpt: also produce one weighted and one unweighted image per (s, t)

@@ -57,6 +57,10 @@ struct SceneSettings {
   // them unless told otherwise; Lantern keeps 32 bits unless the Film asks,
   // since 16 bits round to 1/2048 of a value and end at 65504.
   bool save_fp16 = false;
+  // Film "gbuffer": the image carries pbrt-v4's gbuffer channels
+  // (RenderOptions::gbuffer), in camera space or, with "coordinatesystem"
+  // "world", the world's.
+  bool gbuffer = false, gbuffer_world = false;
   // The image's colour space: the ColorSpace in effect at Film (pbrt-v4's
   // names: srgb, rec2020, dci-p3, aces2065-1). The renderer's colours are
   // linear sRGB; the sensor converts.

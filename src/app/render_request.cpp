@@ -45,6 +45,8 @@ RenderOptions resolve_render_options(const Scene& scene, const RenderRequest& a)
   o.vcm_alpha = a.vcm_alpha;
   o.mis = parse_mis(a.mis);
   o.spectral = a.spectral;
+  o.gbuffer = ss.gbuffer;
+  o.gbuffer_world = ss.gbuffer_world;
   o.spp = a.spp > 0 ? a.spp : ss.spp;
   o.time_limit_seconds = a.time;
   o.target_error = a.target_error;

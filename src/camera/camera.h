@@ -22,7 +22,10 @@ enum class Projection : uint8_t { Perspective, Orthographic, Spherical, Realisti
 struct CameraDesc {
   Projection projection = Projection::Perspective;
   bool equal_area = true;  // spherical: pbrt-v4's "equalarea" mapping, else "equirectangular"
-  Mat4 world_from_camera{1.f};
+  Mat4 world_from_camera{1.f};  // "world" here: the space the scene is held in (pbrt-v4's render space)
+  // The scene file's world from that space (the gbuffer's "world"
+  // coordinates; the scene is held relative to the camera's position).
+  Mat4 file_world_from_render{1.f};
   float fov_degrees = 90.f;
   float lens_radius = 0.f;
   float focal_distance = 1e6f;

@@ -10,7 +10,10 @@
 namespace lantern {
 
 Film::Film(int width, int height, const PixelFilter& filter)
-    : width_(width), height_(height), filter_(filter), sum_(3 * size_t(width) * size_t(height)),
+    : width_(width),
+      height_(height),
+      filter_(filter),
+      sum_(3 * size_t(width) * size_t(height)),
       count_(size_t(width) * size_t(height), 0) {}
 
 namespace {
@@ -22,7 +25,7 @@ FixedTerm fixed_term(uint32_t pixel, const RGB& c, bool odd = false) {
 }
 
 // Flags of the film's state (write_state): which optional sums follow.
-constexpr uint8_t kHasSplats = 1, kHasHalves = 2, kHasRegion = 4;
+constexpr uint8_t kHasSplats = 1, kHasHalves = 2, kHasRegion = 4, kHasMoments = 8;
 
 }  // namespace
 
@@ -38,11 +41,17 @@ void Film::prepare(WaveOutput& out) const {
   out.sample_terms.clear();
   out.splat_terms.clear();
   out.nonfinite = 0;
+  out.square_terms.clear();
   out.sample_terms.reserve(out.samples.size());
   for (const FilmSample& s : out.samples) {
     const RGB L = sensed(clamped(s.L));
-    if (addable(L)) out.sample_terms.push_back(fixed_term(s.pixel, L, s.odd));
-    else ++out.nonfinite;
+    if (addable(L)) {
+      out.sample_terms.push_back(fixed_term(s.pixel, L, s.odd));
+      // A square beyond the sums' range is left out of the moments alone.
+      if (tracks_moments() && addable(L * L)) out.square_terms.push_back(fixed_term(s.pixel, L * L));
+    } else {
+      ++out.nonfinite;
+    }
   }
   for (const Splat& s : out.splats) {
     const RGB L = sensed(clamped(s.L));
@@ -71,9 +80,23 @@ void Film::merge(const WaveOutput& out) {
     for (const FixedTerm& t : out.splat_terms)
       if (t.odd)
         for (size_t c = 0; c < 3; ++c) odd_splat_[3 * size_t(t.pixel) + c].add_raw(t.rgb[c]);
+  if (!square_.empty())
+    for (const FixedTerm& t : out.square_terms)
+      for (size_t c = 0; c < 3; ++c) square_[3 * size_t(t.pixel) + c].add_raw(t.rgb[c]);
   nonfinite_ += out.nonfinite;
   light_paths_ += out.light_paths;
   odd_light_paths_ += out.odd_light_paths;
+}
+
+void Film::track_moments() {
+  if (square_.empty()) square_.assign(sum_.size(), FixedSum());
+}
+
+double Film::sample_variance(size_t pixel, int c) const {
+  const double n = double(count_[pixel]);
+  if (square_.empty() || n < 2.0) return 0.0;
+  const double sum = sum_[3 * pixel + size_t(c)].value(), sq = square_[3 * pixel + size_t(c)].value();
+  return std::fmax(0.0, (sq - sum * sum / n) / (n - 1.0));
 }
 
 void Film::add(const Film& other) {
@@ -89,6 +112,10 @@ void Film::add(const Film& other) {
     track_halves();
     for (size_t k = 0; k < odd_.size(); ++k) odd_[k].add(other.odd_[k]), odd_splat_[k].add(other.odd_splat_[k]);
     odd_light_paths_ += other.odd_light_paths_;
+  }
+  if (!other.square_.empty()) {
+    track_moments();
+    for (size_t k = 0; k < square_.size(); ++k) square_[k].add(other.square_[k]);
   }
   for (size_t i = 0; i < count_.size(); ++i) count_[i] += other.count_[i];
   nonfinite_ += other.nonfinite_;
@@ -125,7 +152,8 @@ Film::Halves Film::halves(size_t pixel, int c) const {
     const uint64_t even_paths = light_paths_ - odd_light_paths_;
     h.value += splat * pixels / double(light_paths_);
     if (n >= 2 && even_paths > 0 && odd_light_paths_ > 0)
-      h.even += (splat - odd_splat) * pixels / double(even_paths), h.odd += odd_splat * pixels / double(odd_light_paths_);
+      h.even += (splat - odd_splat) * pixels / double(even_paths),
+          h.odd += odd_splat * pixels / double(odd_light_paths_);
   }
   return h;
 }
@@ -151,8 +179,8 @@ void Film::write_state(StateWriter& out) const {
   out.write(size, sizeof size);
   out.write(&nonfinite_, sizeof nonfinite_);
   out.write(&light_paths_, sizeof light_paths_);
-  const uint8_t flags =
-      (splat_.empty() ? 0 : kHasSplats) | (odd_.empty() ? 0 : kHasHalves) | (full_width_ > 0 ? kHasRegion : 0);
+  const uint8_t flags = (splat_.empty() ? 0 : kHasSplats) | (odd_.empty() ? 0 : kHasHalves) |
+                        (full_width_ > 0 ? kHasRegion : 0) | (square_.empty() ? 0 : kHasMoments);
   out.write(&flags, 1);
   static_assert(sizeof(FixedSum) == sizeof(FixedSum::Raw));
   out.write(sum_.data(), sum_.size() * sizeof(FixedSum));
@@ -171,6 +199,7 @@ void Film::write_state(StateWriter& out) const {
     out.write(&n, sizeof n);
     out.write(thresholds_.data(), n * sizeof(double));
   }
+  if (flags & kHasMoments) out.write(square_.data(), square_.size() * sizeof(FixedSum));
 }
 
 void Film::read_state(StateReader& in) {
@@ -226,17 +255,19 @@ void Film::read_state(StateReader& in) {
   } else if (halves) {
     track_halves();
   }
+  const bool moments = !square_.empty();  // (as the halves)
+  square_.clear();
+  if ((flags & kHasMoments) || moments) track_moments();
+  if (flags & kHasMoments) in.read(square_.data(), square_.size() * sizeof(FixedSum));
 }
 
 Film::Buffers Film::buffers(bool splats) {
   if (splats && splat_.empty()) splat_.assign(sum_.size(), FixedSum());
-  return Buffers{sum_.data(), splat_.empty() ? nullptr : splat_.data(), sum_.size(), count_.data(), &nonfinite_,
+  return Buffers{sum_.data(),  splat_.empty() ? nullptr : splat_.data(), sum_.size(), count_.data(), &nonfinite_,
                  &light_paths_};
 }
 
-uint64_t Film::total_samples() const {
-  return std::accumulate(count_.begin(), count_.end(), uint64_t(0));
-}
+uint64_t Film::total_samples() const { return std::accumulate(count_.begin(), count_.end(), uint64_t(0)); }
 
 uint32_t Film::max_samples_per_pixel() const {
   return count_.empty() ? 0 : *std::max_element(count_.begin(), count_.end());

@@ -16,11 +16,11 @@
 #include <limits>
 #include <vector>
 
-#include "lantern/image.h"
-#include "math/common.h"
 #include "film/fixed_sum.h"
 #include "film/pixel_filter.h"
 #include "guiding/guide_record.h"
+#include "lantern/image.h"
+#include "math/common.h"
 
 namespace lantern {
 
@@ -34,7 +34,7 @@ struct FilmSample {
 };
 struct Splat {
   Vec2 p_raster;
-  RGB L;  // contribution, already divided by nothing: the film normalises by the light-path count
+  RGB L;             // contribution, already divided by nothing: the film normalises by the light-path count
   bool odd = false;  // from the light path of an odd sample index
 };
 
@@ -65,6 +65,7 @@ struct WaveOutput {
   // Filled by Film::prepare from samples and splats, in the parallel stage,
   // so that the serial merge only adds integers.
   std::vector<FixedTerm> sample_terms, splat_terms;
+  std::vector<FixedTerm> square_terms;  // the samples' squares, when the film tracks moments
   uint64_t nonfinite = 0;
   void clear() {
     samples.clear();
@@ -74,6 +75,7 @@ struct WaveOutput {
     light_paths = odd_light_paths = 0;
     sample_terms.clear();
     splat_terms.clear();
+    square_terms.clear();
     nonfinite = 0;
   }
 };
@@ -140,8 +142,9 @@ class Film {
   RGB clamped(const RGB& c) const {
     if (!(max_component_ < std::numeric_limits<float>::infinity())) return c;
     const float* m = to_sensor_.data();
-    const float largest = std::fmax(m[0] * c[0] + m[1] * c[1] + m[2] * c[2],
-                                    std::fmax(m[3] * c[0] + m[4] * c[1] + m[5] * c[2], m[6] * c[0] + m[7] * c[1] + m[8] * c[2]));
+    const float largest =
+        std::fmax(m[0] * c[0] + m[1] * c[1] + m[2] * c[2],
+                  std::fmax(m[3] * c[0] + m[4] * c[1] + m[5] * c[2], m[6] * c[0] + m[7] * c[1] + m[8] * c[2]));
     return largest > max_component_ ? c * (max_component_ / largest) : c;
   }
 
@@ -190,6 +193,15 @@ class Film {
   uint8_t* pass_mask(uint32_t pass) { return masks_.data() + size_t(pass % 2) * count_.size(); }
   const uint8_t* pass_mask(uint32_t pass) const { return masks_.data() + size_t(pass % 2) * count_.size(); }
 
+  // pbrt-v4's gbuffer variance: the camera samples' squares summed too, so
+  // that each pixel's sample variance can be given. Off until asked for;
+  // kept in the film's state, not in its Buffers (MPI).
+  void track_moments();
+  bool tracks_moments() const { return !square_.empty(); }
+  // The unbiased variance of pixel i's camera samples in channel c (0 for
+  // fewer than two); pbrt-v4's VarianceEstimator::Variance.
+  double sample_variance(size_t pixel, int c) const;
+
   // The raw buffers, for adding films across processes (distributed/):
   // integers all, so any reduction order gives the same bits. With
   // `splats`, the splat sums are created if the film has none.
@@ -219,7 +231,7 @@ class Film {
   bool has_sensor_ = false;
   float max_component_ = std::numeric_limits<float>::infinity();
   std::array<float, 9> to_sensor_{1, 0, 0, 0, 1, 0, 0, 0, 1};
-  std::vector<FixedSum> sum_, splat_, odd_, odd_splat_;
+  std::vector<FixedSum> sum_, splat_, odd_, odd_splat_, square_;
   std::vector<double> thresholds_;
   std::vector<uint8_t> masks_;
   uint64_t odd_light_paths_ = 0;

@@ -44,6 +44,20 @@ struct PathTracerSettings {
 
 struct PathWave;  // the SoA pools, reused wave after wave by one thread
 
+// What each pixel's camera samples see first, averaged as pbrt-v4's
+// GBufferFilm averages it: the albedo over every sample; the position,
+// depth slopes and uv over the samples that hit a surface; the normals
+// summed and normalised.
+struct VisibleSurfaces {
+  enum Channel { AlbedoR, AlbedoG, AlbedoB, PX, PY, PZ, DzDx, DzDy, NX, NY, NZ, NsX, NsY, NsZ, U, V, kChannels };
+  int width = 0, height = 0;
+  std::vector<float> values;  // kChannels per pixel, row 0 at the top
+};
+// Appends pbrt-v4's gbuffer channels to a resolved image of the film: the
+// visible surfaces', then Variance and RelativeVariance of the film's
+// camera samples (the film must track moments).
+void add_gbuffer_channels(const VisibleSurfaces& v, const Film& film, Image* image);
+
 class PathTracer {
  public:
   PathTracer(const Scene& scene, const LightSampler& light_sampler, const PathTracerSettings& settings);
@@ -52,6 +66,12 @@ class PathTracer {
   // Traces all paths of the wave and records one sample per slot; the wave
   // state's stats and ray stream keep the measurements.
   void trace(const WaveDesc& wave, PathWave& state, WaveOutput& out) const;
+  // pbrt-v4's gbuffer channels (integrator/visible_surfaces.cpp): for each
+  // pixel of the film, what the first surface `samples` camera samples see
+  // there shows, per VisibleSurfaces::Channel, in camera space (pbrt's, of
+  // the Camera directive's transformation) or in the world.
+  VisibleSurfaces visible_surfaces(uint32_t samples, bool world_space, RayBackend backend) const;
+
   // Path guiding (integrator/guiding_field.h): paths sample the field where
   // it has learnt something and record into it while it learns. The
   // renderer changes the field only between waves.

@@ -497,6 +497,9 @@ RenderResult RenderSession::render_all() {
       throw std::invalid_argument("a target error (adaptive sampling) needs the whole render in one process: not with "
                                   "--part or MPI");
   }
+  if (opt.gbuffer && (opt.share_count > 1 || s.hooks.next_ticket || s.hooks.reduce_film))
+    throw std::invalid_argument("Film \"gbuffer\" needs the whole render in one process: not with --part or MPI");
+  if (opt.gbuffer) s.film.track_moments();
   // MPI hands out units by tickets: each rank would learn another field.
   if (opt.guiding && s.hooks.next_ticket)
     throw std::invalid_argument("path guiding (--guide) needs the whole render in one process: not with MPI");
@@ -566,6 +569,15 @@ RenderResult RenderSession::render_all() {
   }
 
   res.image = snapshot();
+  if (opt.gbuffer) {
+    // The visible surfaces of as many samples as the pixels took (lt takes
+    // no camera samples: the budget's), up to 64: they converge long
+    // before the image does.
+    const uint32_t taken = film.min_samples_per_pixel() > 0 ? film.min_samples_per_pixel() : uint32_t(std::max(opt.spp, 1));
+    const PathTracer tracer(scene, light_sampler, path_settings(scene, opt, s.region, planned_spp));
+    add_gbuffer_channels(tracer.visible_surfaces(std::min(taken, 64u), opt.gbuffer_world, opt.ray_backend), film,
+                         &res.image);
+  }
   if (strategy_film) res.strategies = strategy_film->resolve(film);
   res.interrupted = interrupted;
   finish_stats(scene, film, counters, light_sampler, res.stats);

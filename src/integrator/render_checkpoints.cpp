@@ -36,6 +36,7 @@ std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& regi
   line("budget", o.time_limit_seconds > 0 ? std::string("time") : "spp " + std::to_string(o.spp));
   if (o.target_error > 0) line("target-error", std::to_string(o.target_error));  // adaptive passes
   if (o.guiding) line("guiding", "1");  // one sample per pass, guided directions
+  if (o.gbuffer) line("gbuffer", "1");  // the film sums the samples' squares too
   line("wave-size", std::to_string(o.wave_size));
   line("rays", name(o.ray_backend));
   return f;

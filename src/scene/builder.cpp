@@ -32,6 +32,7 @@ void SceneBuilder::begin_world(const glm::dmat4& render_from_world, double trans
   render_from_world_ = render_from_world;
   CameraDesc& c = scene_.camera;
   c.world_from_camera = Mat4(render_from_world * world_from_camera_);
+  c.file_world_from_render = Mat4(glm::inverse(render_from_world));
   c.shutter.start = float(transform_start);
   c.shutter.end = float(transform_end);
   if (world_from_camera_ != world_from_camera_end_)
@@ -65,6 +66,14 @@ void SceneBuilder::film(const std::string& type, const ParamSet& ps) {
   if (!(diagonal > 0.f) || !std::isfinite(diagonal)) ps.fail(*ps.find("diagonal"), "\"diagonal\" must be a length in mm > 0");
   scene_.camera.film_diagonal = 0.001f * diagonal;
   s.save_fp16 = ps.get_bool("savefp16", false);
+  s.gbuffer = type == "gbuffer";
+  if (s.gbuffer) {
+    const std::string space = ps.get_string("coordinatesystem", "camera");
+    if (space != "camera" && space != "world")
+      ps.fail(*ps.find("coordinatesystem"),
+              "\"coordinatesystem\" \"" + printable(space) + "\" is not known; expected \"camera\" or \"world\"");
+    s.gbuffer_world = space == "world";
+  }
   crop(ps);
   const std::string sensor = ps.get_string("sensor", "cie1931");
   if (sensor != "cie1931")
