@@ -273,24 +273,7 @@ TEST(MeasuredBSDF, RendersAsTheConductorItTabulates) {
       tabulated::file_bytes(
           d, [&](const Vec3& wo, const Vec3& wi, float) { return grey.f(wo, wi, TransportMode::Radiance)[0]; }, {}));
   auto scene_with = [&](const std::string& material) {
-    return load_scene_from_string(R"(
-LookAt 0 -3 1.4  0 0 0.5  0 0 1
-Camera "perspective" "float fov" 34
-Film "rgb" "integer xresolution" 24 "integer yresolution" 16
-Sampler "independent"
-WorldBegin
-AttributeBegin
-  AreaLightSource "diffuse" "rgb L" [10 10 10]
-  Translate 0.8 -0.6 2.4
-  ReverseOrientation
-  Shape "disk" "float radius" 0.5
-AttributeEnd
-LightSource "infinite" "rgb L" [0.2 0.2 0.2]
-Material "diffuse" "rgb reflectance" [0.6 0.3 0.2]
-Shape "trianglemesh" "point3 P" [-5 -5 0  5 -5 0  5 5 0  -5 5 0] "integer indices" [0 1 2 0 2 3]
-Translate 0 0 0.5
-)" + material + "\nShape \"sphere\" \"float radius\" 0.5\n",
-                                  "measured.pbrt", {});
+    return load_scene_from_string(tabulated::sphere_on_floor(material), "measured.pbrt", {});
   };
   auto measured = scene_with("Material \"measured\" \"string filename\" \"" + file.string() + "\"");
   auto conductor = scene_with(

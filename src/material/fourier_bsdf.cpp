@@ -1,5 +1,7 @@
 #include "material/fourier_bsdf.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -18,16 +20,29 @@ const char kScatfunMagic[8] = {'S', 'C', 'A', 'T', 'F', 'U', 'N', '\x01'};
 
 // The coefficients at (mu_i, mu_o), summed over the 4 x 4 spline nodes
 // around them: per channel, `m` of them (the largest order among the
-// nodes), in a per-thread scratch that keeps its size.
+// nodes). They live in the caller's frame: inline up to an order the
+// published tables stay below, on the heap beyond it. (A per-thread
+// scratch would outlive the pool's threads, which leak checkers report.)
 struct Coefficients {
+  static constexpr size_t kInline = 3 * 128;
+  std::array<float, kInline> inline_storage;
+  std::vector<float> heap;
   const float* channel[3] = {nullptr, nullptr, nullptr};
   int m = 0;
+  Coefficients() = default;
+  Coefficients(const Coefficients&) = delete;  // channel points into itself
+  Coefficients& operator=(const Coefficients&) = delete;
 };
 bool coefficients(const FourierTable& t, float mu_i, float mu_o, int channels, Coefficients* out) {
   SplineWeights wi, wo;
   if (!catmull_rom_weights(t.mu, mu_i, &wi) || !catmull_rom_weights(t.mu, mu_o, &wo)) return false;
-  thread_local std::vector<float> scratch;
-  scratch.assign(size_t(t.m_max) * size_t(channels), 0.f);
+  const size_t size = size_t(t.m_max) * size_t(channels);
+  float* scratch = out->inline_storage.data();
+  if (size > Coefficients::kInline) {
+    out->heap.resize(size);
+    scratch = out->heap.data();
+  }
+  std::fill(scratch, scratch + size, 0.f);
   const size_t n = t.mu.size();
   int m = 0;
   for (int b = 0; b < 4; ++b)
@@ -41,7 +56,7 @@ bool coefficients(const FourierTable& t, float mu_i, float mu_o, int channels, C
       for (int c = 0; c < channels; ++c)
         for (int k = 0; k < order; ++k) scratch[size_t(c * t.m_max + k)] += w * ak[c * order + k];
     }
-  for (int c = 0; c < channels; ++c) out->channel[c] = &scratch[size_t(c * t.m_max)];
+  for (int c = 0; c < channels; ++c) out->channel[c] = scratch + size_t(c * t.m_max);
   out->m = m;
   return true;
 }

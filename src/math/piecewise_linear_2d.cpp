@@ -123,36 +123,36 @@ PiecewiseLinear2D::Sample PiecewiseLinear2D::sample(Vec2 u, const float* param) 
           ((1.f - s) * c0 + s * c1) * density_scale_};
 }
 
-PiecewiseLinear2D::Sample PiecewiseLinear2D::invert(Vec2 p, const float* param) const {
-  const Blend b = blend(param);
+PiecewiseLinear2D::Cell PiecewiseLinear2D::cell_at(Vec2 p, const Blend& b) const {
   const size_t n = size_t(nx_) * size_t(ny_), nx = size_t(nx_);
   const float fx = std::clamp(p.x, 0.f, 1.f) * float(nx_ - 1), fy = std::clamp(p.y, 0.f, 1.f) * float(ny_ - 1);
-  const int col = std::min(int(fx), nx_ - 2), row = std::min(int(fy), ny_ - 2);
-  const float s = fx - float(col), t = fy - float(row);
-  const size_t i = size_t(row) * nx + size_t(col);
-  const float c0 = (1.f - t) * lookup(data_, n, b, i) + t * lookup(data_, n, b, i + nx);
-  const float c1 = (1.f - t) * lookup(data_, n, b, i + 1) + t * lookup(data_, n, b, i + nx + 1);
-  const float r0 = lookup(conditional_, n, b, size_t(row) * nx + nx - 1);
-  const float r1 = lookup(conditional_, n, b, size_t(row + 1) * nx + nx - 1);
-  const float below = (1.f - t) * lookup(conditional_, n, b, i) + t * lookup(conditional_, n, b, i + nx);
-  const float row_total = (1.f - t) * r0 + t * r1;
+  Cell c;
+  c.col = std::min(int(fx), nx_ - 2), c.row = std::min(int(fy), ny_ - 2);
+  c.s = fx - float(c.col), c.t = fy - float(c.row);
+  const size_t i = size_t(c.row) * nx + size_t(c.col);
+  c.c0 = (1.f - c.t) * lookup(data_, n, b, i) + c.t * lookup(data_, n, b, i + nx);
+  c.c1 = (1.f - c.t) * lookup(data_, n, b, i + 1) + c.t * lookup(data_, n, b, i + nx + 1);
+  return c;
+}
+
+PiecewiseLinear2D::Sample PiecewiseLinear2D::invert(Vec2 p, const float* param) const {
+  const Blend b = blend(param);
+  const Cell c = cell_at(p, b);
+  const size_t n = size_t(nx_) * size_t(ny_), nx = size_t(nx_), i = size_t(c.row) * nx + size_t(c.col);
+  const float r0 = lookup(conditional_, n, b, size_t(c.row) * nx + nx - 1);
+  const float r1 = lookup(conditional_, n, b, size_t(c.row + 1) * nx + nx - 1);
+  const float below = (1.f - c.t) * lookup(conditional_, n, b, i) + c.t * lookup(conditional_, n, b, i + nx);
+  const float row_total = (1.f - c.t) * r0 + c.t * r1;
   Sample r;
-  r.p.x = row_total > 0.f ? (below + integrate_linear(c0, c1, s)) / row_total : 0.f;
-  r.p.y = lookup(marginal_, size_t(ny_), b, size_t(row)) + integrate_linear(r0, r1, t);
-  r.pdf = ((1.f - s) * c0 + s * c1) * density_scale_;
+  r.p.x = row_total > 0.f ? (below + integrate_linear(c.c0, c.c1, c.s)) / row_total : 0.f;
+  r.p.y = lookup(marginal_, size_t(ny_), b, size_t(c.row)) + integrate_linear(r0, r1, c.t);
+  r.pdf = ((1.f - c.s) * c.c0 + c.s * c.c1) * density_scale_;
   return r;
 }
 
 float PiecewiseLinear2D::evaluate(Vec2 p, const float* param) const {
-  const Blend b = blend(param);
-  const size_t n = size_t(nx_) * size_t(ny_), nx = size_t(nx_);
-  const float fx = std::clamp(p.x, 0.f, 1.f) * float(nx_ - 1), fy = std::clamp(p.y, 0.f, 1.f) * float(ny_ - 1);
-  const int col = std::min(int(fx), nx_ - 2), row = std::min(int(fy), ny_ - 2);
-  const float s = fx - float(col), t = fy - float(row);
-  const size_t i = size_t(row) * nx + size_t(col);
-  const float c0 = (1.f - t) * lookup(data_, n, b, i) + t * lookup(data_, n, b, i + nx);
-  const float c1 = (1.f - t) * lookup(data_, n, b, i + 1) + t * lookup(data_, n, b, i + nx + 1);
-  return ((1.f - s) * c0 + s * c1) * density_scale_;
+  const Cell c = cell_at(p, blend(param));
+  return ((1.f - c.s) * c.c0 + c.s * c.c1) * density_scale_;
 }
 
 size_t PiecewiseLinear2D::memory_bytes() const {

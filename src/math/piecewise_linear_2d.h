@@ -51,6 +51,13 @@ class PiecewiseLinear2D {
     int count = 0;
   };
   Blend blend(const float* param) const;
+  // The cell holding p, p's place in it (s, t) and the density along the
+  // row through p at the cell's two columns.
+  struct Cell {
+    int col, row;
+    float s, t, c0, c1;
+  };
+  Cell cell_at(Vec2 p, const Blend& b) const;
   float lookup(const std::vector<float>& table, size_t per_slice, const Blend& b, size_t i) const;
 
   int nx_ = 0, ny_ = 0;

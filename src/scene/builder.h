@@ -3,6 +3,7 @@
 
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -24,6 +25,27 @@ std::optional<BilinearPatchSet> ply_patches(const PlyMesh& ply);
 void prepare_patches(BilinearPatchSet& s, const Mat4& render_from_object, bool reverse_orientation,
                      const pbrt::ParamSet& ps, const std::string& source);
 std::string resolve_path(const std::string& base_dir, const std::string& file);
+
+// A tabulated BSDF named by the file parameter `param` (relative to the
+// scene's file), read by `load` (which throws with the file's problem) the
+// first time any material names it; `owners` keeps what was read, `loaded`
+// finds it again by path. `needs` says what the material wants when the
+// parameter is missing.
+template <class Table, class Load>
+const Table* tabulated_bsdf_file(const pbrt::ParamSet& ps, const char* param, const char* needs,
+                                 std::map<std::string, const Table*>& loaded,
+                                 std::vector<std::shared_ptr<const Table>>& owners, Load&& load) {
+  const std::string file = ps.get_string(param, "");
+  if (file.empty()) ps.fail(needs);
+  const std::string path = resolve_path(ps.base_dir, file);
+  if (auto it = loaded.find(path); it != loaded.end()) return it->second;
+  try {
+    owners.push_back(load(path));
+  } catch (const std::exception& e) {
+    ps.fail(*ps.find(param), e.what());
+  }
+  return loaded[path] = owners.back().get();
+}
 
 // A light's "scale": a float (pbrt-v4) or a colour (pbrt-v3).
 RGB light_scale(const pbrt::ParamSet& ps);

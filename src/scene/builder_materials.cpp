@@ -241,19 +241,9 @@ MaterialHandle SceneBuilder::concrete_material(const std::string& type, const Pa
 // scene's file), read once however many materials name it.
 MaterialHandle SceneBuilder::measured_material(const ParamSet& ps) {
   MaterialPools& m = scene_.materials;
-  const std::string file = ps.get_string("filename", "");
-  if (file.empty()) ps.fail("the measured material needs a \"filename\" (a tabulated BSDF, .bsdf)");
-  const std::string path = resolve_path(ps.base_dir, file);
-  const MeasuredBRDF*& brdf = measured_files_[path];
-  if (!brdf) {
-    try {
-      m.measured_brdfs.push_back(MeasuredBRDF::load(path));
-    } catch (const std::exception& e) {
-      measured_files_.erase(path);
-      ps.fail(*ps.find("filename"), e.what());
-    }
-    brdf = m.measured_brdfs.back().get();
-  }
+  const MeasuredBRDF* brdf =
+      tabulated_bsdf_file(ps, "filename", "the measured material needs a \"filename\" (a tabulated BSDF, .bsdf)",
+                          measured_files_, m.measured_brdfs, MeasuredBRDF::load);
   m.measured.push_back({brdf, -1});
   return MaterialHandle::make(MaterialKind::Measured, uint32_t(m.measured.size() - 1));
 }

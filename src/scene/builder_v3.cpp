@@ -80,19 +80,9 @@ std::optional<MaterialHandle> SceneBuilder::v3_material(const std::string& type,
 // the scene's file), read once however many materials name it.
 MaterialHandle SceneBuilder::fourier_material(const ParamSet& ps) {
   MaterialPools& m = scene_.materials;
-  const std::string file = ps.get_string("bsdffile", "");
-  if (file.empty()) ps.fail("the fourier material needs a \"bsdffile\" (a Fourier BSDF table, .bsdf)");
-  const std::string path = resolve_path(ps.base_dir, file);
-  const FourierTable*& table = fourier_files_[path];
-  if (!table) {
-    try {
-      m.fourier_tables.push_back(FourierTable::load(path));
-    } catch (const std::exception& e) {
-      fourier_files_.erase(path);
-      ps.fail(*ps.find("bsdffile"), e.what());
-    }
-    table = m.fourier_tables.back().get();
-  }
+  const FourierTable* table =
+      tabulated_bsdf_file(ps, "bsdffile", "the fourier material needs a \"bsdffile\" (a Fourier BSDF table, .bsdf)",
+                          fourier_files_, m.fourier_tables, FourierTable::load);
   m.fourier.push_back({table, -1});
   return MaterialHandle::make(MaterialKind::Fourier, uint32_t(m.fourier.size() - 1));
 }
