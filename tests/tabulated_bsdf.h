@@ -136,7 +136,7 @@ inline std::vector<uint8_t> fourier_file_bytes(const ColourBsdf& f, float eta, i
   const size_t cells = size_t(n_mu) * size_t(n_mu);
   std::vector<float> a, a0(cells, 0.f), cdf;
   std::vector<int32_t> offset_and_length;
-  constexpr int kPhi = 1024;
+  constexpr int kPhi = 256;
   for (int o = 0; o < n_mu; ++o)
     for (int i = 0; i < n_mu; ++i) {
       const float mo = mu[size_t(o)], mi = mu[size_t(i)];
