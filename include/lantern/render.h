@@ -69,6 +69,12 @@ struct RenderOptions {
   // with --part or MPI.
   bool gbuffer = false;
   bool gbuffer_world = false;
+  // pbrt-v4's Film "spectral": with spectral_buckets > 0 the render is
+  // spectral, its wavelengths drawn uniformly over [spectral_lambda_min,
+  // spectral_lambda_max], and the image also carries that many buckets of
+  // radiance ("S0.<centre>nm", docs/spectral.md). Not with --part or MPI.
+  int spectral_buckets = 0;
+  float spectral_lambda_min = 360.f, spectral_lambda_max = 830.f;
   bool collect_stats = false;  // time stages and ray queries (two clock reads per stage and batch)
   std::string dump_rays;       // when set: write every ray batch given to Embree to this file (perf/ replays it)
   bool strategies = false;  // bdpt: also produce one weighted and one unweighted image per (s, t)

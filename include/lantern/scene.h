@@ -61,6 +61,10 @@ struct SceneSettings {
   // (RenderOptions::gbuffer), in camera space or, with "coordinatesystem"
   // "world", the world's.
   bool gbuffer = false, gbuffer_world = false;
+  // Film "spectral": "nbuckets" (0 for other films), "lambdamin",
+  // "lambdamax" (RenderOptions::spectral_buckets).
+  int spectral_buckets = 0;
+  float spectral_lambda_min = 360.f, spectral_lambda_max = 830.f;
   // The image's colour space: the ColorSpace in effect at Film (pbrt-v4's
   // names: srgb, rec2020, dci-p3, aces2065-1). The renderer's colours are
   // linear sRGB; the sensor converts.

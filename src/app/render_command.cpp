@@ -389,11 +389,12 @@ int run_render(const RenderArgs& a, const Provenance& provenance, const Ranks& r
     out = ss.output + ".part" + std::to_string(part_k) + "of" + std::to_string(part_n);
   }
   RenderOptions o = options_for(a, scene, out, ranks);
-  if (o.gbuffer && out != "-" && a.part.empty()) {
+  if ((o.gbuffer || o.spectral_buckets > 0) && out != "-" && a.part.empty()) {
     std::string ext = std::filesystem::path(out).extension().string();
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
     if (ext != ".exr")
-      throw cli::UsageError("Film \"gbuffer\" writes its channels to OpenEXR only, as pbrt-v4's does: \"" + out +
+      throw cli::UsageError(std::string("Film \"") + (o.gbuffer ? "gbuffer" : "spectral") +
+                            "\" writes its channels to OpenEXR only, as pbrt-v4's does: \"" + out +
                             "\" is not .exr (name the output with -o NAME.exr)");
   }
   if (ss.dispersive && !o.spectral && writes)

@@ -47,6 +47,10 @@ RenderOptions resolve_render_options(const Scene& scene, const RenderRequest& a)
   o.spectral = a.spectral;
   o.gbuffer = ss.gbuffer;
   o.gbuffer_world = ss.gbuffer_world;
+  // Film "spectral" renders spectrally, as all of pbrt-v4 does.
+  o.spectral_buckets = ss.spectral_buckets;
+  o.spectral_lambda_min = ss.spectral_lambda_min, o.spectral_lambda_max = ss.spectral_lambda_max;
+  if (o.spectral_buckets > 0) o.spectral = true;
   o.spp = a.spp > 0 ? a.spp : ss.spp;
   o.time_limit_seconds = a.time;
   o.target_error = a.target_error;
@@ -142,6 +146,10 @@ ImageMetadata render_metadata(const Scene& scene, const std::string& scene_path,
     md.emplace_back("pixelbounds", std::to_string(region.x0) + " " + std::to_string(region.y0) + " " +
                                        std::to_string(region.full_width) + " " + std::to_string(region.full_height));
   if (scene_settings(scene).save_fp16) md.emplace_back("half", "true");  // Film "savefp16"
+  if (o.spectral_buckets > 0) {  // the OpenEXR spectral layout's attributes, as pbrt-v4 writes them
+    md.emplace_back("spectralLayoutVersion", "1.0");
+    md.emplace_back("emissiveUnits", "W.m^-2.sr^-1");
+  }
   if (const ColorSpace* cs = ColorSpace::named(scene_settings(scene).color_space); cs && cs != &ColorSpace::srgb()) {
     // The image is in another colour space (ColorSpace before Film): say so
     // as OpenEXR does.

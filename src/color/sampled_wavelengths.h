@@ -61,6 +61,21 @@ struct SampledWavelengths {
     return l;
   }
 
+  // Uniform over [lo, hi] (pbrt-v4's Film "spectral" draws them so, which
+  // gives every bucket of its range the same share of samples), stratified
+  // as above.
+  static SampledWavelengths sample_uniform(float u, float lo, float hi) {
+    SampledWavelengths l;
+    const float width = hi - lo;
+    for (int i = 0; i < kSpectrumSamples; ++i) {
+      float up = u + float(i) / float(kSpectrumSamples);
+      if (up >= 1.f) up -= 1.f;
+      l.nm[size_t(i)] = std::fmin(lo + up * width, hi);
+      l.pdf[size_t(i)] = 1.f / width;
+    }
+    return l;
+  }
+
   // pbrt-v4's form of dispersion: only the first wavelength goes on, the
   // others' densities become zero, and the first's is that of having drawn
   // it among kSpectrumSamples. The integrators reduce the throughput

@@ -25,7 +25,7 @@ FixedTerm fixed_term(uint32_t pixel, const RGB& c, bool odd = false) {
 }
 
 // Flags of the film's state (write_state): which optional sums follow.
-constexpr uint8_t kHasSplats = 1, kHasHalves = 2, kHasRegion = 4, kHasMoments = 8;
+constexpr uint8_t kHasSplats = 1, kHasHalves = 2, kHasRegion = 4, kHasMoments = 8, kHasBuckets = 16;
 
 }  // namespace
 
@@ -63,6 +63,7 @@ void Film::prepare(WaveOutput& out) const {
       out.splat_terms.push_back(fixed_term(uint32_t(pixel), w * L, s.odd));
     });
   }
+  if (buckets_.count > 0) prepare_buckets(out);
 }
 
 void Film::merge(const WaveOutput& out) {
@@ -83,6 +84,7 @@ void Film::merge(const WaveOutput& out) {
   if (!square_.empty())
     for (const FixedTerm& t : out.square_terms)
       for (size_t c = 0; c < 3; ++c) square_[3 * size_t(t.pixel) + c].add_raw(t.rgb[c]);
+  if (buckets_.count > 0) merge_buckets(out);
   nonfinite_ += out.nonfinite;
   light_paths_ += out.light_paths;
   odd_light_paths_ += out.odd_light_paths;
@@ -117,6 +119,7 @@ void Film::add(const Film& other) {
     track_moments();
     for (size_t k = 0; k < square_.size(); ++k) square_[k].add(other.square_[k]);
   }
+  if (other.buckets_.count > 0) add_buckets(other);
   for (size_t i = 0; i < count_.size(); ++i) count_[i] += other.count_[i];
   nonfinite_ += other.nonfinite_;
   light_paths_ += other.light_paths_;
@@ -180,7 +183,8 @@ void Film::write_state(StateWriter& out) const {
   out.write(&nonfinite_, sizeof nonfinite_);
   out.write(&light_paths_, sizeof light_paths_);
   const uint8_t flags = (splat_.empty() ? 0 : kHasSplats) | (odd_.empty() ? 0 : kHasHalves) |
-                        (full_width_ > 0 ? kHasRegion : 0) | (square_.empty() ? 0 : kHasMoments);
+                        (full_width_ > 0 ? kHasRegion : 0) | (square_.empty() ? 0 : kHasMoments) |
+                        (buckets_.count > 0 ? kHasBuckets : 0);
   out.write(&flags, 1);
   static_assert(sizeof(FixedSum) == sizeof(FixedSum::Raw));
   out.write(sum_.data(), sum_.size() * sizeof(FixedSum));
@@ -200,6 +204,7 @@ void Film::write_state(StateWriter& out) const {
     out.write(thresholds_.data(), n * sizeof(double));
   }
   if (flags & kHasMoments) out.write(square_.data(), square_.size() * sizeof(FixedSum));
+  if (flags & kHasBuckets) write_buckets(out);
 }
 
 void Film::read_state(StateReader& in) {
@@ -259,6 +264,12 @@ void Film::read_state(StateReader& in) {
   square_.clear();
   if ((flags & kHasMoments) || moments) track_moments();
   if (flags & kHasMoments) in.read(square_.data(), square_.size() * sizeof(FixedSum));
+  if (flags & kHasBuckets) {
+    read_buckets(in);
+  } else if (buckets_.count > 0) {  // (as the halves)
+    bucket_sum_.assign(bucket_sum_.size(), FixedSum());
+    bucket_splat_.clear();
+  }
 }
 
 Film::Buffers Film::buffers(bool splats) {

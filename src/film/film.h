@@ -16,6 +16,7 @@
 #include <limits>
 #include <vector>
 
+#include "color/sampled_wavelengths.h"
 #include "film/fixed_sum.h"
 #include "film/pixel_filter.h"
 #include "guiding/guide_record.h"
@@ -49,6 +50,31 @@ struct StrategyRecord {
   bool merge = false;
 };
 
+// A sample's or splat's spectrum and wavelengths, kept beside it when the
+// film has spectral buckets (Film "spectral").
+struct SampleSpectrum {
+  Spectrum L;
+  SampledWavelengths lambda;
+};
+
+// pbrt-v4's Film "spectral": `count` buckets of equal width over
+// [lambda_min, lambda_max] nm; count 0: none.
+struct SpectralBuckets {
+  int count = 0;
+  float lambda_min = 360.f, lambda_max = 830.f;
+  int bucket(float nm) const {
+    const int b = int(float(count) * (nm - lambda_min) / (lambda_max - lambda_min));
+    return std::clamp(b, 0, count - 1);
+  }
+  float centre(int b) const { return lambda_min + (float(b) + 0.5f) / float(count) * (lambda_max - lambda_min); }
+};
+
+// A spectral term of one pixel's bucket (pixel * count + bucket).
+struct BucketTerm {
+  uint32_t index;
+  FixedSum::Raw value;
+};
+
 // A sample or a splat's share of one pixel, converted to fixed point.
 struct FixedTerm {
   uint32_t pixel;
@@ -66,8 +92,17 @@ struct WaveOutput {
   // so that the serial merge only adds integers.
   std::vector<FixedTerm> sample_terms, splat_terms;
   std::vector<FixedTerm> square_terms;  // the samples' squares, when the film tracks moments
+  // Set by the renderer when the film has spectral buckets: each sample's
+  // and splat's spectrum goes beside it, same index.
+  bool keep_spectra = false;
+  std::vector<SampleSpectrum> sample_spectra, splat_spectra;
+  std::vector<BucketTerm> bucket_terms, bucket_splat_terms;
   uint64_t nonfinite = 0;
   void clear() {
+    sample_spectra.clear();
+    splat_spectra.clear();
+    bucket_terms.clear();
+    bucket_splat_terms.clear();
     samples.clear();
     splats.clear();
     strategies.clear();
@@ -202,6 +237,16 @@ class Film {
   // fewer than two); pbrt-v4's VarianceEstimator::Variance.
   double sample_variance(size_t pixel, int c) const;
 
+  // pbrt-v4's Film "spectral" (film/spectral_buckets.cpp): each pixel's
+  // radiance averaged over each bucket of wavelengths, times the integral
+  // of y-bar, from the samples' and splats' spectra. Off until asked for;
+  // kept in the film's state, not in its Buffers (MPI).
+  void track_buckets(const SpectralBuckets& b);
+  const SpectralBuckets& buckets() const { return buckets_; }
+  // Appends the buckets to a resolved image as channels named as pbrt-v4
+  // names them ("S0.<centre>nm", the centre with a decimal comma).
+  void add_bucket_channels(Image* image) const;
+
   // The raw buffers, for adding films across processes (distributed/):
   // integers all, so any reduction order gives the same bits. With
   // `splats`, the splat sums are created if the film has none.
@@ -232,6 +277,13 @@ class Film {
   float max_component_ = std::numeric_limits<float>::infinity();
   std::array<float, 9> to_sensor_{1, 0, 0, 0, 1, 0, 0, 0, 1};
   std::vector<FixedSum> sum_, splat_, odd_, odd_splat_, square_;
+  SpectralBuckets buckets_;
+  std::vector<FixedSum> bucket_sum_, bucket_splat_;
+  void prepare_buckets(WaveOutput& out) const;
+  void merge_buckets(const WaveOutput& out);
+  void add_buckets(const Film& other);
+  void write_buckets(StateWriter& out) const;
+  void read_buckets(StateReader& in);
   std::vector<double> thresholds_;
   std::vector<uint8_t> masks_;
   uint64_t odd_light_paths_ = 0;

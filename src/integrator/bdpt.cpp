@@ -281,6 +281,8 @@ void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
   }
   for (uint32_t slot = 0; slot < wave.size(); ++slot)
     out.samples.push_back({w.pixel[slot], film_rgb(w.L[slot], w.lambda[slot]), ((wave.first_sample + slot % wave.samples) & 1) != 0});
+  if (out.keep_spectra)
+    for (uint32_t slot = 0; slot < wave.size(); ++slot) out.sample_spectra.push_back({w.L[slot], w.lambda[slot]});
   out.light_paths += wave.size();
   for (uint32_t k = 0; k < wave.samples; ++k)  // the odd half's (adaptive sampling's estimate)
     if ((wave.first_sample + k) & 1) out.odd_light_paths += wave.pixel_count;

@@ -24,6 +24,7 @@
 #include "integrator/bdpt_mis.h"
 #include "integrator/vertex.h"
 #include "integrator/wave.h"
+#include "integrator/wavelengths.h"
 #include "integrator/wave_stats.h"
 #include "light/light_sampler.h"
 #include "sampler/sampler.h"
@@ -64,6 +65,7 @@ struct BdptSettings {
   SamplerSettings sampler;
   uint32_t planned_spp = 0;  // 0 under a time budget
   bool spectral = false;  // sampled wavelengths instead of RGB
+  WavelengthRange wavelengths;  // Film "spectral"'s uniform range (wavelengths.h)
 };
 
 struct BdptWave;

@@ -27,7 +27,7 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
   // sample's (wavelengths.h).
   const PathSampler first = PathSampler::make(sampler_, wave.pixels[0], wave.first_sample);
   const SampledWavelengths wave_lambda =
-      sample_wavelengths(settings_.spectral && settings_.merging, first, settings_.maxdepth);
+      sample_wavelengths(settings_.spectral && settings_.merging, first, settings_.maxdepth, settings_.wavelengths);
   // So is its time: a light vertex merged with an eye vertex of another
   // sample must have been found in the same scene (docs/motion-blur.md).
   const float wave_time = sample_time(scene_, first, settings_.maxdepth);
@@ -35,7 +35,7 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
     uint32_t pixel = wave.pixels[slot / wave.samples];
     PathSampler s = PathSampler::make(sampler_, pixel, wave.first_sample + slot % wave.samples);
     const SampledWavelengths& lambda = w.lambda[slot] =
-        settings_.merging ? wave_lambda : sample_wavelengths(settings_.spectral, s, settings_.maxdepth);
+        settings_.merging ? wave_lambda : sample_wavelengths(settings_.spectral, s, settings_.maxdepth, settings_.wavelengths);
     w.time[slot] = settings_.merging ? wave_time : sample_time(scene_, s, settings_.maxdepth);
     float u_select = s.get1d(dims::kLightSelect);
     Vec2 u_pos = s.get2d(dims::kLightPosition), u_dir = s.get2d(dims::kLightDirection);
@@ -282,6 +282,7 @@ void Bdpt::splat_stage(BdptWave& w) const {
     Vec2 images[2];
     for (int k = camera_.seam_images(c.p_raster[r], scene_.filter.radius, images); k-- > 0;)
       w.out->splats.push_back({images[k], contrib, odd});
+    if (w.out->keep_spectra) w.out->splat_spectra.resize(w.out->splats.size(), SampleSpectrum{c.contrib[r], l});
     if (c.record)
       w.out->strategies.push_back({0, c.p_raster[r], c.tags[r].s, 1, contrib, film_rgb(c.tags[r].unweighted, l)});
   }

@@ -54,7 +54,7 @@ void PathTracer::generate_camera_rays(const WaveDesc& wave, PathWave& w) const {
     CameraRay r = camera_at(camera_, time, moved).generate_ray(p_raster, s.get2d(dims::kLens));
     w.pixel[slot] = pixel;
     w.sampler[slot] = s;
-    w.lambda[slot] = sample_wavelengths(settings_.spectral, s, settings_.maxdepth);
+    w.lambda[slot] = sample_wavelengths(settings_.spectral, s, settings_.maxdepth, settings_.wavelengths);
     w.time[slot] = time;
     w.beta[slot] = Spectrum(r.weight);
     w.dispersed[slot] = 0;
@@ -290,6 +290,8 @@ void PathTracer::trace(const WaveDesc& wave, PathWave& w, WaveOutput& out) const
   }
   for (uint32_t slot = 0; slot < wave.size(); ++slot)
     out.samples.push_back({w.pixel[slot], film_rgb(w.L[slot], w.lambda[slot]), ((wave.first_sample + slot % wave.samples) & 1) != 0});
+  if (out.keep_spectra)
+    for (uint32_t slot = 0; slot < wave.size(); ++slot) out.sample_spectra.push_back({w.L[slot], w.lambda[slot]});
 }
 
 }  // namespace lantern

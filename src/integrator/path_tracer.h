@@ -9,6 +9,7 @@
 #include "integrator/guided_scatter.h"
 #include "integrator/guiding_field.h"
 #include "integrator/wave.h"
+#include "integrator/wavelengths.h"
 #include "light/light_sampler.h"
 #include "sampler/sampler.h"
 #include "scene/scene.h"
@@ -31,6 +32,7 @@ struct PathTracerSettings {
   SamplerSettings sampler;
   uint32_t planned_spp = 0;  // 0 under a time budget
   bool spectral = false;     // sampled wavelengths instead of RGB
+  WavelengthRange wavelengths;  // Film "spectral"'s uniform range (wavelengths.h)
   // pbrt-v3's directlighting: a path ends at the first surface or medium
   // event after a non-specular bounce, where only emission counts
   // (Integrator::Direct).

@@ -221,6 +221,7 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
   size_t tokens = 2 * size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
   if (adaptive.on()) tokens = std::min<size_t>(tokens, waves);
   std::vector<WaveOutput> outputs(tokens);
+  for (WaveOutput& o : outputs) o.keep_spectra = film.buckets().count > 0;  // Film "spectral"
   std::vector<std::vector<uint32_t>> active(adaptive.on() ? tokens : 0);  // each slot's pixels that take the pass
 
   std::atomic<bool> stop{false};
@@ -500,6 +501,10 @@ RenderResult RenderSession::render_all() {
   if (opt.gbuffer && (opt.share_count > 1 || s.hooks.next_ticket || s.hooks.reduce_film))
     throw std::invalid_argument("Film \"gbuffer\" needs the whole render in one process: not with --part or MPI");
   if (opt.gbuffer) s.film.track_moments();
+  if (opt.spectral_buckets > 0 && (opt.share_count > 1 || s.hooks.next_ticket || s.hooks.reduce_film))
+    throw std::invalid_argument("Film \"spectral\" needs the whole render in one process: not with --part or MPI");
+  if (opt.spectral_buckets > 0 && s.film.buckets().count == 0)
+    s.film.track_buckets({opt.spectral_buckets, opt.spectral_lambda_min, opt.spectral_lambda_max});
   // MPI hands out units by tickets: each rank would learn another field.
   if (opt.guiding && s.hooks.next_ticket)
     throw std::invalid_argument("path guiding (--guide) needs the whole render in one process: not with MPI");
@@ -578,6 +583,7 @@ RenderResult RenderSession::render_all() {
     add_gbuffer_channels(tracer.visible_surfaces(std::min(taken, 64u), opt.gbuffer_world, opt.ray_backend), film,
                          &res.image);
   }
+  film.add_bucket_channels(&res.image);
   if (strategy_film) res.strategies = strategy_film->resolve(film);
   res.interrupted = interrupted;
   finish_stats(scene, film, counters, light_sampler, res.stats);

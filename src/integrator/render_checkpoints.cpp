@@ -37,6 +37,9 @@ std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& regi
   if (o.target_error > 0) line("target-error", std::to_string(o.target_error));  // adaptive passes
   if (o.guiding) line("guiding", "1");  // one sample per pass, guided directions
   if (o.gbuffer) line("gbuffer", "1");  // the film sums the samples' squares too
+  if (o.spectral_buckets > 0)  // uniform wavelengths, and the film keeps the buckets
+    line("spectral-buckets", std::to_string(o.spectral_buckets) + " over " + std::to_string(o.spectral_lambda_min) +
+                                 "-" + std::to_string(o.spectral_lambda_max) + " nm");
   line("wave-size", std::to_string(o.wave_size));
   line("rays", name(o.ray_backend));
   return f;

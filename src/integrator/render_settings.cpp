@@ -62,6 +62,12 @@ void check_film_memory(const Scene& scene, const RenderOptions& opt) {
                                 "\"cropwindow\" or \"pixelbounds\")");
 }
 
+// Film "spectral" draws its wavelengths uniformly over its range.
+WavelengthRange wavelength_range(const RenderOptions& opt) {
+  if (opt.spectral_buckets <= 0) return {};
+  return {opt.spectral_lambda_min, opt.spectral_lambda_max};
+}
+
 }  // namespace
 
 void check_options(const Scene& scene, const RenderOptions& opt) {
@@ -78,6 +84,12 @@ void check_options(const Scene& scene, const RenderOptions& opt) {
                                             "not ") + name(opt.integrator) +
                                 ": a lens system has no importance function to connect light paths to (nor in pbrt-v4)");
   if (opt.maxdepth < 0) throw std::invalid_argument("--maxdepth must be >= 0");
+  if (opt.spectral_buckets != 0 &&
+      (!opt.spectral || opt.spectral_buckets < 0 || opt.spectral_buckets > 4096 ||
+       !(opt.spectral_lambda_min >= 360.f && opt.spectral_lambda_max <= 830.f &&
+         opt.spectral_lambda_min < opt.spectral_lambda_max)))
+    throw std::invalid_argument("spectral buckets need a spectral render, 1 to 4096 buckets and a range within "
+                                "[360, 830] nm");
   if (opt.spectral && !scene.media.rgb_grid.empty())
     throw std::invalid_argument("an \"rgbgrid\" medium is not rendered with sampled wavelengths yet (its optical depth is "
                                 "integrated as colour): render it without --spectral");
@@ -166,6 +178,7 @@ BdptSettings bdpt_settings(const Scene& scene, const RenderOptions& opt, const I
   bs.sampler = opt.sampler;
   bs.planned_spp = planned_spp;
   bs.spectral = opt.spectral;
+  bs.wavelengths = wavelength_range(opt);
   return bs;
 }
 
@@ -183,6 +196,7 @@ PathTracerSettings path_settings(const Scene& scene, const RenderOptions& opt, c
   ps.sampler = opt.sampler;
   ps.planned_spp = planned_spp;
   ps.spectral = opt.spectral;
+  ps.wavelengths = wavelength_range(opt);
   ps.direct_lighting = opt.integrator == Integrator::Direct;
   ps.ambient_occlusion = opt.integrator == Integrator::AmbientOcclusion;
   ps.ao_max_distance = scene.settings.ao_max_distance;

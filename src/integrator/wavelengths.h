@@ -12,10 +12,20 @@
 
 namespace lantern {
 
-inline SampledWavelengths sample_wavelengths(bool spectral, const PathSampler& s, int maxdepth) {
+// Uniform over [lo, hi] when hi > lo (Film "spectral"), else from the
+// eye's sensitivity.
+struct WavelengthRange {
+  float lo = 0.f, hi = 0.f;
+  bool uniform() const { return hi > lo; }
+};
+
+inline SampledWavelengths sample_wavelengths(bool spectral, const PathSampler& s, int maxdepth,
+                                             WavelengthRange range = {}) {
   if (!spectral) return SampledWavelengths::rgb();
   const uint32_t d = uint32_t(maxdepth);
-  return SampledWavelengths::sample_visible(s.get1d(dims::wavelengths(dims::vertex(d + 2), d)));
+  const float u = s.get1d(dims::wavelengths(dims::vertex(d + 2), d));
+  return range.uniform() ? SampledWavelengths::sample_uniform(u, range.lo, range.hi)
+                         : SampledWavelengths::sample_visible(u);
 }
 
 }  // namespace lantern

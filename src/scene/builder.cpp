@@ -74,11 +74,28 @@ void SceneBuilder::film(const std::string& type, const ParamSet& ps) {
               "\"coordinatesystem\" \"" + printable(space) + "\" is not known; expected \"camera\" or \"world\"");
     s.gbuffer_world = space == "world";
   }
+  if (type == "spectral") spectral_film(ps);
   crop(ps);
   const std::string sensor = ps.get_string("sensor", "cie1931");
   if (sensor != "cie1931")
     ps.fail(*ps.find("sensor"), "sensor \"" + printable(sensor) + "\" is not available; only \"cie1931\" (the CIE 1931 "
                                 "observer, pbrt-v4's default) is");
+}
+
+// pbrt-v4's Film "spectral": its buckets over its wavelength range, which
+// lies within the visible range pbrt-v4 samples (it stops beyond it).
+void SceneBuilder::spectral_film(const ParamSet& ps) {
+  SceneSettings& s = scene_.settings;
+  s.spectral_buckets = ps.get_int("nbuckets", 16);
+  if (s.spectral_buckets < 1 || s.spectral_buckets > 4096)
+    ps.fail(*ps.find("nbuckets"), "\"nbuckets\" must be between 1 and 4096");
+  s.spectral_lambda_min = ps.get_float("lambdamin", 360.f);
+  s.spectral_lambda_max = ps.get_float("lambdamax", 830.f);
+  if (!(s.spectral_lambda_min >= 360.f && s.spectral_lambda_max <= 830.f &&
+        s.spectral_lambda_min < s.spectral_lambda_max)) {
+    const auto* p = ps.find("lambdamin") ? ps.find("lambdamin") : ps.find("lambdamax");
+    ps.fail(*p, "\"lambdamin\" and \"lambdamax\" must lie in [360, 830] nm, lambdamin below lambdamax");
+  }
 }
 
 // pbrt-v4's crop: "cropwindow" [x0 x1 y0 y1] in [0, 1] (each pair put in
