@@ -1,10 +1,12 @@
 // pbrt-v4's Film "spectral": buckets of radiance over wavelength beside the
 // RGB, against a closed form of one sample, against Planck's law and the
 // image's own luminance, across strategies (camera samples and light
-// tracing's splats), and through the film's saved state.
+// tracing's splats), through the film's saved state and a resumed render.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstring>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -14,6 +16,7 @@
 #include "lantern/image.h"
 #include "lantern/render.h"
 #include "lantern/scene.h"
+#include "stop_and_resume.h"
 
 namespace lantern {
 namespace {
@@ -193,6 +196,45 @@ Shape "trianglemesh" "point3 P" [-3 0 -3  3 0 -3  3 0 3  -3 0 3] "integer indice
     EXPECT_NEAR(lt[b], path[b], 0.04 * path[b]) << "lt, bucket " << b;
   }
   EXPECT_GT(path[3], 2.0 * path[0]);  // a 3000 K body: far more red than blue
+}
+
+// A bdpt render (camera samples and splats) stopped and resumed from its
+// checkpoints gives the straight render's buckets, bit for bit.
+TEST(SpectralFilm, AResumedRenderKeepsItsBuckets) {
+  auto scene = load_scene_from_string(R"(
+LookAt 0 4 0.01  0 0 0  0 1 0
+Camera "perspective" "float fov" 40
+Film "spectral" "integer xresolution" 16 "integer yresolution" 16 "integer nbuckets" 8 "string filename" "r.exr"
+Sampler "independent" "integer pixelsamples" 8
+WorldBegin
+AttributeBegin
+  Translate 0.5 1 0
+  AreaLightSource "diffuse" "blackbody L" [3000] "float scale" 8
+  Shape "sphere" "float radius" 0.2
+AttributeEnd
+Material "diffuse" "rgb reflectance" [0.5 0.5 0.5]
+Shape "trianglemesh" "point3 P" [-3 0 -3  3 0 -3  3 0 3  -3 0 3] "integer indices" [0 1 2 0 2 3]
+)",
+                                      "r.pbrt", {});
+  RenderOptions o;
+  o.sampler = scene_settings(*scene).sampler;
+  o.integrator = Integrator::Bdpt;
+  o.spp = 8;
+  o.wave_size = 256;
+  o.maxdepth = 3;
+  o.spectral = true;
+  o.spectral_buckets = 8;
+  o.threads = 2;
+  const Image straight = render(*scene, o).image;
+  const auto dir = std::filesystem::temp_directory_path() / ("lantern-spectral-film-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  int runs = 0;
+  const Image resumed = render_stopped_and_resumed(*scene, o, (dir / "r.ckpt").string(), 2, 3, &runs).image;
+  std::filesystem::remove_all(dir);
+  EXPECT_GT(runs, 1);
+  ASSERT_EQ(resumed.channel_names.size(), 8u);
+  EXPECT_EQ(resumed.rgb, straight.rgb);
+  EXPECT_EQ(resumed.channels, straight.channels);
 }
 
 TEST(SpectralFilm, BadParametersAreClearErrors) {
