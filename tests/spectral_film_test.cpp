@@ -152,25 +152,31 @@ Shape "trianglemesh" "point3 P" [-5 -5 0  5 -5 0  5 5 0  -5 5 0] "integer indice
   }
 }
 
-// Camera samples (path), both (bdpt) and splats alone (lt) fill the same
-// buckets: a grey floor lit by a warm sphere out of view.
-TEST(SpectralFilm, EveryStrategyFillsTheSameBuckets) {
-  auto scene = load_scene_from_string(R"(
+// A grey floor seen from above, lit by a 3000 K sphere at height 1 and x
+// offset `light_x` (out of view beyond about 1.4).
+std::string lit_floor(const std::string& film, int spp, float light_x, float radius) {
+  return R"(
 LookAt 0 4 0.01  0 0 0  0 1 0
 Camera "perspective" "float fov" 40
-Film "spectral" "integer xresolution" 32 "integer yresolution" 32 "integer nbuckets" 4
-  "float lambdamin" 400 "float lambdamax" 760 "string filename" "s.exr"
-Sampler "independent" "integer pixelsamples" 64
+Film "spectral" "string filename" "floor.exr" )" +
+         film + "\nSampler \"independent\" \"integer pixelsamples\" " + std::to_string(spp) + R"(
 WorldBegin
 AttributeBegin
-  Translate 1.9 1 0
+  Translate )" + std::to_string(light_x) + R"( 1 0
   AreaLightSource "diffuse" "blackbody L" [3000] "float scale" 8
-  Shape "sphere" "float radius" 0.3
+  Shape "sphere" "float radius" )" + std::to_string(radius) + R"(
 AttributeEnd
 Material "diffuse" "rgb reflectance" [0.5 0.5 0.5]
 Shape "trianglemesh" "point3 P" [-3 0 -3  3 0 -3  3 0 3  -3 0 3] "integer indices" [0 1 2 0 2 3]
-)",
-                                      "floor.pbrt", {});
+)";
+}
+
+// Camera samples (path), both (bdpt) and splats alone (lt) fill the same
+// buckets: a grey floor lit by a warm sphere out of view.
+TEST(SpectralFilm, EveryStrategyFillsTheSameBuckets) {
+  auto scene = load_scene_from_string(
+      lit_floor(R"("integer xresolution" 32 "integer yresolution" 32 "integer nbuckets" 4
+  "float lambdamin" 400 "float lambdamax" 760)", 64, 1.9f, 0.3f), "floor.pbrt", {});
   const SceneSettings& ss = scene_settings(*scene);
   ASSERT_EQ(ss.spectral_buckets, 4);
   auto means = [&](const char* integrator) {
@@ -201,21 +207,9 @@ Shape "trianglemesh" "point3 P" [-3 0 -3  3 0 -3  3 0 3  -3 0 3] "integer indice
 // A bdpt render (camera samples and splats) stopped and resumed from its
 // checkpoints gives the straight render's buckets, bit for bit.
 TEST(SpectralFilm, AResumedRenderKeepsItsBuckets) {
-  auto scene = load_scene_from_string(R"(
-LookAt 0 4 0.01  0 0 0  0 1 0
-Camera "perspective" "float fov" 40
-Film "spectral" "integer xresolution" 16 "integer yresolution" 16 "integer nbuckets" 8 "string filename" "r.exr"
-Sampler "independent" "integer pixelsamples" 8
-WorldBegin
-AttributeBegin
-  Translate 0.5 1 0
-  AreaLightSource "diffuse" "blackbody L" [3000] "float scale" 8
-  Shape "sphere" "float radius" 0.2
-AttributeEnd
-Material "diffuse" "rgb reflectance" [0.5 0.5 0.5]
-Shape "trianglemesh" "point3 P" [-3 0 -3  3 0 -3  3 0 3  -3 0 3] "integer indices" [0 1 2 0 2 3]
-)",
-                                      "r.pbrt", {});
+  auto scene = load_scene_from_string(
+      lit_floor(R"("integer xresolution" 16 "integer yresolution" 16 "integer nbuckets" 8)", 8, 0.5f, 0.2f), "r.pbrt",
+      {});
   RenderOptions o;
   o.sampler = scene_settings(*scene).sampler;
   o.integrator = Integrator::Bdpt;
