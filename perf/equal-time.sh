@@ -4,6 +4,7 @@
 # and `lantern compare` measures relMSE against perf/references/<scene>.exr
 # (made by perf/make-references.sh). Prints a Markdown table; the last
 # column is each integrator's relMSE over bdpt's; bpm runs on the pools.
+# INTEGRATORS="bdpt mlt" chooses others (bdpt first: the ratios are to it).
 # Usage: perf/equal-time.sh [seconds] [scenes...]   (from the repository root)
 set -eu
 secs=${1:-20}
@@ -17,8 +18,8 @@ echo "|---|---|---|---|---|---|---|"
 for s in $scenes; do
   ref="perf/references/$s.exr"
   res="240 180"; case "$s" in cornell-box*) res="256 256" ;; lamp-street) res="240 135" ;; esac
-  integrators="bdpt path vcm"
-  case "$s" in pool*) integrators="bdpt path vcm bpm" ;; esac
+  integrators=${INTEGRATORS:-"bdpt path vcm"}
+  case "$s" in pool*) integrators=${INTEGRATORS:-"bdpt path vcm bpm"} ;; esac
   bdpt_err=""
   for i in $integrators; do
     "$lantern" render "scenes/$s.pbrt" --integrator "$i" --time "$secs" --seed 7 --resolution $res \

@@ -30,6 +30,9 @@ enum class Integrator : uint8_t {
   // where nothing lies within SceneSettings::ao_max_distance (lights and
   // media play no part).
   AmbientOcclusion,
+  // pbrt-v4's "mlt": Metropolis light transport in primary sample space
+  // over bidirectional path tracing (integrator/metropolis.h).
+  Mlt,
 };
 enum class MisHeuristic : uint8_t { Power, Balance };  // bdpt's: beta = 2 or 1
 // pbrt-v4's samplers (docs/samplers.md).
@@ -45,14 +48,15 @@ struct Word {
   E value;
   const char* word;
 };
-inline constexpr std::array<Word<Integrator>, 8> kIntegrators{{{Integrator::Path, "path"},
+inline constexpr std::array<Word<Integrator>, 9> kIntegrators{{{Integrator::Path, "path"},
                                                                {Integrator::Bdpt, "bdpt"},
                                                                {Integrator::Lt, "lt"},
                                                                {Integrator::Vcm, "vcm"},
                                                                {Integrator::Bpm, "bpm"},
                                                                {Integrator::Ppm, "ppm"},
                                                                {Integrator::Direct, "directlighting"},
-                                                               {Integrator::AmbientOcclusion, "ambientocclusion"}}};
+                                                               {Integrator::AmbientOcclusion, "ambientocclusion"},
+                                                               {Integrator::Mlt, "mlt"}}};
 inline constexpr std::array<Word<MisHeuristic>, 2> kMis{{{MisHeuristic::Power, "power"}, {MisHeuristic::Balance, "balance"}}};
 inline constexpr std::array<Word<SamplerKind>, 6> kSamplers{{{SamplerKind::ZSobol, "zsobol"},
                                                              {SamplerKind::PaddedSobol, "paddedsobol"},

@@ -42,6 +42,14 @@ struct SceneSettings {
   // uniformly over the hemisphere): pbrt-v4's defaults.
   float ao_max_distance = std::numeric_limits<float>::infinity();
   bool ao_cos_sample = true;
+  // An "mlt" Integrator's parameters, pbrt-v4's names and defaults:
+  // "mutationsperpixel" (the render's samples per pixel unless --spp or
+  // --time says otherwise), "chains", "bootstrapsamples",
+  // "largestepprobability", "sigma".
+  int mlt_mutations_per_pixel = 100;
+  int mlt_chains = 1000;
+  int mlt_bootstrap_samples = 100000;
+  float mlt_large_step_probability = 0.3f, mlt_sigma = 0.01f;
   // A material's index varies with wavelength: it disperses light with
   // sampled wavelengths (RenderOptions::spectral) only.
   bool dispersive = false;

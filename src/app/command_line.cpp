@@ -80,9 +80,10 @@ void add_render_request_options(CLI::App& c, RenderRequest& r) {
       ->check(CLI::PositiveNumber);
   c.add_option("--integrator", r.integrator,
                      "Integrator: path, bdpt, lt (light tracing), vcm (vertex connection and merging), bpm "
-                     "(bidirectional photon mapping), ppm (progressive photon mapping), directlighting (pbrt-v3's) or ambientocclusion (pbrt-v4's); "
+                     "(bidirectional photon mapping), ppm (progressive photon mapping), directlighting (pbrt-v3's), ambientocclusion (pbrt-v4's) or mlt (Metropolis over bdpt; "
+                     "--spp: its mutations per pixel); "
                      "default: the scene's Integrator")
-      ->check(CLI::IsMember({"path", "bdpt", "lt", "vcm", "bpm", "ppm", "directlighting", "ambientocclusion"}));
+      ->check(CLI::IsMember({"path", "bdpt", "lt", "vcm", "bpm", "ppm", "directlighting", "ambientocclusion", "mlt"}));
   c.add_option("--vcm-radius", r.vcm_radius,
                      "vcm, bpm, ppm: the merging radius of the first pass (default: an sppm Integrator's \"radius\", else 0.003 "
                      "of the scene's bounding radius)")

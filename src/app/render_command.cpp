@@ -202,11 +202,20 @@ nlohmann::json rank_report_json(const std::vector<MpiRender::RankReport>& report
 void report(const std::string& out, const RenderOptions& o, const RenderResult& r, double load_s) {
   const RenderStats& s = r.stats;
   const double rays = double(s.camera_rays + s.extension_rays + s.light_rays + s.shadow_rays);
+  // mlt's samples are its chains' proposals, each a bidirectional sample.
+  const bool mlt = s.mlt_chains > 0;
+  const double pixels = double(r.image.width) * double(r.image.height);
+  const uint32_t spp = mlt ? uint32_t(double(s.mlt_proposals) / pixels) : s.min_spp;
+  const double samples = mlt ? double(s.mlt_proposals) : double(s.samples - r.resumed_samples);
+  if (mlt)
+    logging::info("mlt: %u chains, %.1f proposals a pixel, %.1f%% accepted; mean importance b = %.6g", s.mlt_chains,
+                  double(s.mlt_proposals) / pixels,
+                  s.mlt_proposals ? 100.0 * double(s.mlt_accepted) / double(s.mlt_proposals) : 0.0, s.mlt_b);
   logging::info("%s: %dx%d, %u spp (min), %.2f s render, %.2f s load; %.3f Msamples/s, %.2f Mrays/s "
             "(camera %.1fM, eye extension %.1fM, light extension %.1fM, shadow/connection %.1fM); "
             "non-finite samples discarded: %llu",
-            out.c_str(), r.image.width, r.image.height, s.min_spp, s.seconds, load_s,
-            double(s.samples - r.resumed_samples) / s.seconds * 1e-6, rays / s.seconds * 1e-6,
+            out.c_str(), r.image.width, r.image.height, spp, s.seconds, load_s, samples / s.seconds * 1e-6,
+            rays / s.seconds * 1e-6,
             double(s.camera_rays) * 1e-6, double(s.extension_rays) * 1e-6, double(s.light_rays) * 1e-6,
             double(s.shadow_rays) * 1e-6, (unsigned long long)s.nonfinite_samples);
   if (r.image.width == 1 && r.image.height == 1 && !r.image.rgb.empty())  // --pixel: its value

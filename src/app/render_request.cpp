@@ -51,7 +51,8 @@ RenderOptions resolve_render_options(const Scene& scene, const RenderRequest& a)
   o.spectral_buckets = ss.spectral_buckets;
   o.spectral_lambda_min = ss.spectral_lambda_min, o.spectral_lambda_max = ss.spectral_lambda_max;
   if (o.spectral_buckets > 0) o.spectral = true;
-  o.spp = a.spp > 0 ? a.spp : ss.spp;
+  // mlt's budget is its Integrator's mutations per pixel, as in pbrt-v4.
+  o.spp = a.spp > 0 ? a.spp : o.integrator == Integrator::Mlt ? ss.mlt_mutations_per_pixel : ss.spp;
   o.time_limit_seconds = a.time;
   o.target_error = a.target_error;
   o.guiding = a.guide;

@@ -101,6 +101,11 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
                 {"first_radius", s.vcm_radius},
                 {"last_radius", s.vcm_last_radius},
                 {"grid_build_seconds", s.vcm_grid_seconds}};
+  if (s.mlt_chains > 0)
+    j["mlt"] = {{"chains", s.mlt_chains},
+                {"proposals", s.mlt_proposals},
+                {"accepted", s.mlt_accepted},
+                {"b", s.mlt_b}};
   j["memory"] = {{"peak_rss_bytes", peak_rss_bytes()},
                  {"wave_pools_bytes", s.wave_pool_bytes},
                  {"bvh_bytes", run.scene_info.bvh_bytes},

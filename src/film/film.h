@@ -97,8 +97,12 @@ struct WaveOutput {
   bool keep_spectra = false;
   std::vector<SampleSpectrum> sample_spectra, splat_spectra;
   std::vector<BucketTerm> bucket_terms, bucket_splat_terms;
+  // Set by Metropolis (integrator/metropolis.h): each splat's slot beside it.
+  bool keep_slots = false;
+  std::vector<uint32_t> splat_slots;
   uint64_t nonfinite = 0;
   void clear() {
+    splat_slots.clear();
     sample_spectra.clear();
     splat_spectra.clear();
     bucket_terms.clear();

@@ -37,7 +37,9 @@ void Bdpt::start_eye_subpaths(const WaveDesc& wave, BdptWave& w) const {
   for (uint32_t slot = 0; slot < wave.size(); ++slot) {
     const PathSampler& s = w.sampler[slot];
     uint32_t pixel = w.pixel[slot];
-    Vec2 p_raster = sample_raster_position(scene_.filter, pixel, width, s.get2d(dims::kFilm)) + settings_.raster_offset;
+    const Vec2 p_raster = w.chains ? w.raster[slot] = metropolis_raster(s.get2d(dims::kFilm))
+                                   : sample_raster_position(scene_.filter, pixel, width, s.get2d(dims::kFilm)) +
+                                         settings_.raster_offset;
     std::optional<Camera> moved;
     const Camera& camera = camera_at(camera_, w.time[slot], moved);
     CameraRay r = camera.generate_ray(p_raster, s.get2d(dims::kLens));
@@ -190,6 +192,32 @@ void Bdpt::eye_shade_stage(BdptWave& w) const {
   });
 }
 
+// Metropolis: a camera sample drawn uniformly over the image and the
+// filter's margin around it lands wherever it lies, as a splat. Splats are
+// scaled by the image's pixels over the light paths (film.h), so its value
+// is L times the margin's share: then its expected splat on a pixel is the
+// filter-weighted mean of L there, as for a sample drawn around the pixel.
+Vec2 Bdpt::metropolis_raster(Vec2 u) const {
+  const Vec2 full = image_size(), margin = scene_.filter.radius;
+  return u * (full + 2.f * margin) - margin;
+}
+
+Vec2 Bdpt::image_size() const {
+  return Vec2(float(settings_.full_width > 0 ? settings_.full_width : settings_.width),
+              float(settings_.full_height > 0 ? settings_.full_height : settings_.height));
+}
+
+void Bdpt::metropolis_samples(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
+  const Vec2 full = image_size(), extended = full + 2.f * scene_.filter.radius;
+  const float scale = extended.x * extended.y / (full.x * full.y);
+  for (uint32_t slot = 0; slot < wave.size(); ++slot) {
+    if (is_black(w.L[slot])) continue;
+    out.splats.push_back({w.raster[slot], film_rgb(w.L[slot] * scale, w.lambda[slot]), false});
+    out.splat_slots.push_back(slot);
+  }
+  out.light_paths += wave.size();
+}
+
 // Adds the contributions of the unoccluded connections (after the stream's
 // occlusion query).
 void Bdpt::connection_stage(BdptWave& w) const {
@@ -224,6 +252,7 @@ void Bdpt::add_emission(BdptWave& w, uint32_t slot, const Spectrum& unweighted, 
 
 void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
   w.out = &out;
+  w.chains = wave.chains;
   w.first_sample = wave.first_sample;
   w.samples_per_pixel = wave.samples;
   w.shadow.record = settings_.record_strategies;
@@ -279,6 +308,7 @@ void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
       timed(Stage::Accumulate, [&] { connection_stage(w); });
     }
   }
+  if (w.chains) return metropolis_samples(wave, w, out);
   for (uint32_t slot = 0; slot < wave.size(); ++slot)
     out.samples.push_back({w.pixel[slot], film_rgb(w.L[slot], w.lambda[slot]), ((wave.first_sample + slot % wave.samples) & 1) != 0});
   if (out.keep_spectra)

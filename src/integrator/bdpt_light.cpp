@@ -33,7 +33,8 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
   const float wave_time = sample_time(scene_, first, settings_.maxdepth);
   for (uint32_t slot = 0; slot < wave.size(); ++slot) {
     uint32_t pixel = wave.pixels[slot / wave.samples];
-    PathSampler s = PathSampler::make(sampler_, pixel, wave.first_sample + slot % wave.samples);
+    PathSampler s = wave.chains ? PathSampler::metropolis(wave.chains + slot)
+                                : PathSampler::make(sampler_, pixel, wave.first_sample + slot % wave.samples);
     const SampledWavelengths& lambda = w.lambda[slot] =
         settings_.merging ? wave_lambda : sample_wavelengths(settings_.spectral, s, settings_.maxdepth, settings_.wavelengths);
     w.time[slot] = settings_.merging ? wave_time : sample_time(scene_, s, settings_.maxdepth);
@@ -283,6 +284,7 @@ void Bdpt::splat_stage(BdptWave& w) const {
     for (int k = camera_.seam_images(c.p_raster[r], scene_.filter.radius, images); k-- > 0;)
       w.out->splats.push_back({images[k], contrib, odd});
     if (w.out->keep_spectra) w.out->splat_spectra.resize(w.out->splats.size(), SampleSpectrum{c.contrib[r], l});
+    if (w.out->keep_slots) w.out->splat_slots.resize(w.out->splats.size(), c.slot[r]);
     if (c.record)
       w.out->strategies.push_back({0, c.p_raster[r], c.tags[r].s, 1, contrib, film_rgb(c.tags[r].unweighted, l)});
   }

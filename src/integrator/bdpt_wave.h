@@ -231,6 +231,7 @@ struct BdptWave {
     lambda.resize(capacity);
     time.resize(capacity);
     L.resize(capacity);
+    raster.resize(capacity);
     eye.resize(capacity);
     light.resize(capacity);
     origin.resize(capacity);
@@ -247,6 +248,7 @@ struct BdptWave {
   std::vector<SampledWavelengths> lambda;  // shared by the slot's eye and light subpaths
   std::vector<float> time;                 // so is its time in the shutter (integrator/shutter.h)
   std::vector<Spectrum> L;
+  std::vector<Vec2> raster;  // Metropolis: where its camera sample lies (anywhere on the image)
   SubpathPool eye, light;
   LightOriginPool origin;
   uint32_t depth = 0;  // bounce of the current phase
@@ -282,11 +284,12 @@ struct BdptWave {
   uint32_t first_sample = 0, samples_per_pixel = 1;  // of the wave: a slot's sample index
   bool odd_sample(uint32_t slot) const { return ((first_sample + slot % samples_per_pixel) & 1) != 0; }
   WaveOutput* out = nullptr;  // of the wave being traced
+  MetropolisSampler* chains = nullptr;  // of the wave being traced (WaveDesc::chains)
   WaveStats stats;
 
   size_t memory_bytes() const {
     const SubpathPool* subpaths[] = {&eye, &light};
-    size_t b = vector_bytes(pixel) + vector_bytes(sampler) + vector_bytes(lambda) + vector_bytes(time) + vector_bytes(L) + vector_bytes(active) +
+    size_t b = vector_bytes(pixel) + vector_bytes(sampler) + vector_bytes(lambda) + vector_bytes(time) + vector_bytes(L) + vector_bytes(raster) + vector_bytes(active) +
                rays.memory_bytes() + hits.memory_bytes() + shadow.rays.memory_bytes() + vector_bytes(shadow.slot) +
                vector_bytes(shadow.contrib) + vector_bytes(shadow.p_raster) + vector_bytes(shadow.tags) +
                vector_bytes(shadow.next_event);

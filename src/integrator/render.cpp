@@ -26,6 +26,8 @@
 #include "integrator/bdpt.h"
 #include "integrator/bdpt_wave.h"
 #include "integrator/path_tracer.h"
+#include "integrator/metropolis.h"
+#include "integrator/pass_context.h"
 #include "integrator/render_checkpoints.h"
 #include "integrator/render_progress.h"
 #include "integrator/render_settings.h"
@@ -38,39 +40,6 @@
 namespace lantern {
 
 namespace {
-
-// Sums what the threads' wave states measured.
-template <class States>
-void gather_stats(States& states, double film_seconds, RenderStats& st) {
-  WaveStats total;
-  std::array<double, 4> ray_seconds{};
-  for (auto& state : states) {
-    total += state->stats;
-    for (size_t k = 0; k < 4; ++k) ray_seconds[k] += state->stream.seconds()[k];
-    st.wave_pool_bytes += state->memory_bytes();
-    ++st.threads;
-  }
-  st.eye_vertices = total.eye_vertices;
-  st.light_vertices = total.light_vertices;
-  st.light_samples = total.light_samples;
-  st.light_samples_unoccluded = total.light_samples_unoccluded;
-  st.merges = total.merges;
-  st.vcm_grid_seconds = total.grid_seconds;
-  st.vcm_last_first_sample = total.last_pass;
-  for (int e = 0; e < kPathEndCount; ++e) {
-    st.eye_ends.emplace_back(path_end_name(PathEnd(e)), total.eye_ends[size_t(e)]);
-    st.light_ends.emplace_back(path_end_name(PathEnd(e)), total.light_ends[size_t(e)]);
-  }
-  st.timed = states.begin() != states.end() && (*states.begin())->stats.timing;
-  if (!st.timed) return;
-  for (int k = 0; k < kStageCount; ++k)  // the stages this integrator has
-    if (total.seconds[size_t(k)] > 0.0) st.stage_seconds.emplace_back(stage_name(Stage(k)), total.seconds[size_t(k)]);
-  st.camera_ray_seconds = ray_seconds[size_t(RayKind::Camera)];
-  st.extension_ray_seconds = ray_seconds[size_t(RayKind::Extension)];
-  st.light_ray_seconds = ray_seconds[size_t(RayKind::LightExtension)];
-  st.shadow_ray_seconds = ray_seconds[size_t(RayKind::Shadow)];
-  st.film_seconds = film_seconds;
-}
 
 constexpr const char* kMergeQueue = "waves waiting for the film merge";
 
@@ -138,27 +107,8 @@ class TicketCursor {
 // Runs one integrator over all passes. Waves flow through a pipeline whose
 // last stage adds their output to the film, one wave at a time (in wave
 // order, though the fixed-point sums would not mind another).
-// What run_passes works with, besides the integrator.
-struct PassContext {
-  const Scene& scene;
-  const RenderOptions& opt;
-  const RenderHooks& hooks;
-  RayCounters& counters;
-  Film& film;
-  std::mutex& film_mutex;  // held while a wave is merged (RenderSession::snapshot reads under it)
-  StrategyFilm* strategies;
-  std::atomic<uint64_t>& done;
-  RenderStats& stats;
-  RayDump* dump;
-  Checkpointer& checkpoints;
-  GuidingField* guiding;  // null: paths are not guided
-  const std::atomic<bool>& cancelled;  // RenderSession::cancel
-  bool stop_requested() const { return cancelled.load() || (hooks.cancel && hooks.cancel->load()); }
-};
-
 template <class Tracer>
 bool run_passes(const Tracer& tracer, PassContext& cx) {
-  const Scene& scene = cx.scene;
   const RenderOptions& opt = cx.opt;
   const RenderHooks& hooks = cx.hooks;
   Film& film = cx.film;
@@ -198,14 +148,8 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
   auto wanted = [&](uint32_t first, uint32_t wi) {
     return share.holds(first / pass_spp, wi) && !done_before.contains(unit_of(first, wi));
   };
-  tbb::enumerable_thread_specific<std::unique_ptr<State, void (*)(State*)>> states([&] {
-    auto state = tracer.make_wave_state(capacity, RayStream(scene.accel->handle(), backend, &cx.counters));
-    state->stats.timing = opt.collect_stats;
-    state->stream.set_timing(opt.collect_stats);
-    state->stream.set_dump(cx.dump);
-    state->stream.set_instances(scene.accel->instance_base(), &scene.accel->instance_first());
-    return state;
-  });
+  tbb::enumerable_thread_specific<std::unique_ptr<State, void (*)(State*)>> states(
+      [&] { return make_thread_state(tracer, capacity, cx); });
   double film_seconds = 0.0;
   // At most `tokens` waves are in flight and they retire in the order they
   // were issued, so the k-th wave issued can take slot k mod tokens: the
@@ -498,6 +442,8 @@ RenderResult RenderSession::render_all() {
       throw std::invalid_argument("a target error (adaptive sampling) needs the whole render in one process: not with "
                                   "--part or MPI");
   }
+  if (opt.integrator == Integrator::Mlt && (s.hooks.next_ticket || s.hooks.reduce_film))
+    throw std::invalid_argument("mlt needs the whole render in one process: not with MPI");
   if (opt.gbuffer && (opt.share_count > 1 || s.hooks.next_ticket || s.hooks.reduce_film))
     throw std::invalid_argument("Film \"gbuffer\" needs the whole render in one process: not with --part or MPI");
   if (opt.gbuffer) s.film.track_moments();
@@ -544,7 +490,10 @@ RenderResult RenderSession::render_all() {
   {
     ProgressReporter reporter(opt, s.hooks, s.start, s.done, s.total);
     bool stopped;
-    if (!traces_paths(opt.integrator)) {
+    if (opt.integrator == Integrator::Mlt) {
+      stopped = run_metropolis(Bdpt(scene, light_sampler, bdpt_settings(scene, opt, s.region, planned_spp)),
+                               metropolis_settings(scene, opt, s.region), cx);
+    } else if (!traces_paths(opt.integrator)) {
       const BdptSettings bs = bdpt_settings(scene, opt, s.region, planned_spp);
       res.stats.vcm_radius = bs.merging ? bs.vcm_radius : 0.f;
       stopped = run_passes(Bdpt(scene, light_sampler, bs), cx);

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "math/rng.h"
 #include "scene/scene.h"
 
 namespace lantern {
@@ -71,7 +72,7 @@ WavelengthRange wavelength_range(const RenderOptions& opt) {
 }  // namespace
 
 void check_options(const Scene& scene, const RenderOptions& opt) {
-  if (uint8_t(opt.integrator) > uint8_t(Integrator::AmbientOcclusion) || uint8_t(opt.mis) > uint8_t(MisHeuristic::Balance) ||
+  if (uint8_t(opt.integrator) > uint8_t(Integrator::Mlt) || uint8_t(opt.mis) > uint8_t(MisHeuristic::Balance) ||
       uint8_t(opt.light_sampler) > uint8_t(LightSamplerKind::Uniform) || uint8_t(opt.ray_backend) > uint8_t(RayBackend::Packet16) ||
       uint8_t(opt.sampler.type) > uint8_t(SamplerKind::ZSobol))
     throw std::invalid_argument("an integrator, MIS heuristic, sampler, light sampler or ray back end outside its enumeration");
@@ -119,6 +120,19 @@ void check_options(const Scene& scene, const RenderOptions& opt) {
     if (opt.share_count > 1 || !opt.checkpoint_path.empty())
       throw std::invalid_argument("path guiding (--guide) needs the whole render in one run: not with --part, MPI or "
                                   "checkpoints");
+  }
+  if (opt.integrator == Integrator::Mlt) {
+    // A chain's state (its numbers and current sample) lives outside the
+    // film: a checkpoint, a part or a rank could not carry it on.
+    if (opt.share_count > 1 || !opt.checkpoint_path.empty() || !opt.film_path.empty())
+      throw std::invalid_argument("mlt needs the whole render in one run: not with --part, MPI or checkpoints (its "
+                                  "chains' states are not kept with the film)");
+    if (opt.target_error > 0)
+      throw std::invalid_argument("mlt spends its samples where the image is bright, not by pixel: not with a target "
+                                  "error (adaptive sampling)");
+    if (opt.gbuffer || opt.spectral_buckets > 0)
+      throw std::invalid_argument("mlt writes RGB images only: not with Film \"gbuffer\" or \"spectral\" (their "
+                                  "channels come from camera samples by pixel)");
   }
   if (!opt.sampler.randomization.empty()) parse_randomization(opt.sampler.randomization);
   check_film_memory(scene, opt);
@@ -180,6 +194,18 @@ BdptSettings bdpt_settings(const Scene& scene, const RenderOptions& opt, const I
   bs.spectral = opt.spectral;
   bs.wavelengths = wavelength_range(opt);
   return bs;
+}
+
+MetropolisSettings metropolis_settings(const Scene& scene, const RenderOptions& opt, const ImageRegion& region) {
+  const SceneSettings& st = scene.settings;
+  MetropolisSettings m;
+  m.mutations = opt.time_limit_seconds > 0 ? 0 : uint64_t(opt.spp) * uint64_t(region.width) * uint64_t(region.height);
+  m.chains = uint32_t(st.mlt_chains);
+  m.bootstrap_samples = uint64_t(st.mlt_bootstrap_samples);
+  m.large_step_probability = st.mlt_large_step_probability;
+  m.sigma = st.mlt_sigma;
+  m.seed = hash_key(opt.seed, opt.sampler.seed, 0x6D6C74ULL);
+  return m;
 }
 
 PathTracerSettings path_settings(const Scene& scene, const RenderOptions& opt, const ImageRegion& region,

@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "integrator/bdpt.h"
+#include "integrator/metropolis.h"
 #include "integrator/path_tracer.h"
 #include "lantern/render.h"
 
@@ -26,6 +27,9 @@ struct ImageRegion {
 };
 ImageRegion image_region(const Scene& scene, const RenderOptions& opt);
 
+// mlt's chains: the budget in proposals (spp per pixel of the film, or
+// open under a time budget) and the Integrator's parameters.
+MetropolisSettings metropolis_settings(const Scene& scene, const RenderOptions& opt, const ImageRegion& region);
 BdptSettings bdpt_settings(const Scene& scene, const RenderOptions& opt, const ImageRegion& region,
                            uint32_t planned_spp);
 PathTracerSettings path_settings(const Scene& scene, const RenderOptions& opt, const ImageRegion& region,

@@ -10,11 +10,16 @@
 
 namespace lantern {
 
+class MetropolisSampler;
+
 struct WaveDesc {
   const uint32_t* pixels;  // pixel indices (y * width + x)
   uint32_t pixel_count;
   uint32_t first_sample;
   uint32_t samples;  // per pixel
+  // Metropolis (integrator/metropolis.h): slot k's numbers are chain k's
+  // proposal, its camera sample anywhere on the image; null otherwise.
+  MetropolisSampler* chains = nullptr;
   uint32_t size() const { return pixel_count * samples; }
 };
 

@@ -35,6 +35,15 @@ const char* randomization_name(Randomization r) {
   return "?";
 }
 
+PathSampler PathSampler::metropolis(MetropolisSampler* chain) {
+  static const SamplerSpec spec = [] {
+    SamplerSpec s;
+    s.metropolis = true;
+    return s;
+  }();
+  return PathSampler{&spec, uint64_t(reinterpret_cast<uintptr_t>(chain)), 0, 0};
+}
+
 SamplerSpec make_sampler_spec(const SamplerSettings& st, int width, int height, uint32_t planned_spp, uint64_t seed) {
   SamplerSpec s;
   s.kind = st.type;

@@ -12,6 +12,7 @@
 #include "math/common.h"
 #include "sampler/global_sobol.h"
 #include "sampler/halton.h"
+#include "sampler/metropolis_sampler.h"
 #include "sampler/padded_sobol.h"
 #include "sampler/sobol_matrices.h"
 #include "sampler/stratified.h"
@@ -32,6 +33,9 @@ struct SamplerSpec {
   bool jitter = true;
   HaltonLayout halton;
   SobolLayout sobol;
+  // Metropolis (integrator/metropolis.h): each path's numbers are its
+  // chain's proposal, PathSampler::key pointing at the chain's sampler.
+  bool metropolis = false;
 };
 
 // The samples per pixel a render plans (its --spp), or 0 under a time
@@ -51,6 +55,8 @@ struct PathSampler {
   uint32_t index = 0;  // sample index within the pixel's block
 
   static PathSampler make(const SamplerSpec& spec, uint32_t pixel, uint64_t sample_index);
+  // The numbers of a Markov chain's current proposal (sampler/metropolis_sampler.h).
+  static PathSampler metropolis(MetropolisSampler* chain);
   float get1d(uint32_t dimension) const;
   Vec2 get2d(uint32_t dimension) const;
 };
@@ -71,6 +77,10 @@ inline Vec2 sobol_2d(uint64_t i, Randomization r, uint64_t h) {
 
 inline float PathSampler::get1d(uint32_t d) const {
   const SamplerSpec& s = *spec;
+  // (the chain's numbers change only between iterations: its sampler is
+  // not part of this value, which stays a read-only handle)
+  if (s.metropolis) [[unlikely]]
+    return reinterpret_cast<MetropolisSampler*>(key)->get(d);
   switch (s.kind) {
     case SamplerKind::Independent:
       return bits_to_unit_float(mix64(key ^ (uint64_t(d) * 0x9E3779B97F4A7C15ULL)));

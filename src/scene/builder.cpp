@@ -167,6 +167,24 @@ void SceneBuilder::sampler(const std::string& type, const ParamSet& ps) {
   }
 }
 
+// pbrt-v4's mlt parameters, with its defaults and ranges.
+void SceneBuilder::mlt_parameters(const ParamSet& ps) {
+  SceneSettings& st = scene_.settings;
+  auto positive = [&](const char* name, int def, int* out) {
+    const int v = ps.get_int(name, def);
+    if (v <= 0) ps.fail(*ps.find(name), "\"" + std::string(name) + "\" must be positive");
+    *out = v;
+  };
+  positive("mutationsperpixel", 100, &st.mlt_mutations_per_pixel);
+  positive("chains", 1000, &st.mlt_chains);
+  positive("bootstrapsamples", 100000, &st.mlt_bootstrap_samples);
+  st.mlt_large_step_probability = ps.get_float("largestepprobability", 0.3f);
+  if (!(st.mlt_large_step_probability >= 0.f && st.mlt_large_step_probability <= 1.f))
+    ps.fail(*ps.find("largestepprobability"), "\"largestepprobability\" must lie in [0, 1]");
+  st.mlt_sigma = ps.get_float("sigma", 0.01f);
+  if (!(st.mlt_sigma > 0.f) || !std::isfinite(st.mlt_sigma)) ps.fail(*ps.find("sigma"), "\"sigma\" must be a positive number");
+}
+
 void SceneBuilder::integrator(const std::string& type, const ParamSet& ps) {
   int maxdepth = ps.get_int("maxdepth", 5);
   if (maxdepth < 0) ps.fail("\"maxdepth\" must be >= 0");
@@ -190,6 +208,9 @@ void SceneBuilder::integrator(const std::string& type, const ParamSet& ps) {
       if (!(dist > 0.f)) ps.fail(*d, "\"maxdistance\" must be positive");
       scene_.settings.ao_max_distance = dist;
     }
+  } else if (type == "mlt") {
+    scene_.settings.integrator = Integrator::Mlt;
+    mlt_parameters(ps);
   } else if (type == "volpath") {  // pbrt's path tracer with media: Lantern's path tracer has them
     scene_.settings.integrator = Integrator::Path;
   } else if (type == "sppm") {

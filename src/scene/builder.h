@@ -94,6 +94,7 @@ class SceneBuilder final : public pbrt::ParserTarget {
   void finish();
 
  private:
+  void mlt_parameters(const pbrt::ParamSet& ps);  // an "mlt" Integrator's
   // The media of the point and spot lights added since the given pool
   // sizes: the medium named `name` (builder_media.cpp).
   void assign_light_media(size_t points, size_t spots, size_t at_infinity, const std::string& name,
