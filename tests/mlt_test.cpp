@@ -182,6 +182,30 @@ TEST(Mlt, ConvergesToBdptsImage) {
   EXPECT_GT(worst, 1.0) << "the comparison cannot tell a 6% error";
 }
 
+// Without large steps (after the chains' start) the estimate is the
+// Metropolis samples' alone, with only large steps it is independent
+// samples' weighted by 1 / (I / b + 1): either way the image's mean is
+// bdpt's.
+TEST(Mlt, ConvergesWithNoneOrOnlyLargeSteps) {
+  RenderOptions o;
+  o.maxdepth = 5;
+  o.integrator = Integrator::Bdpt;
+  o.spp = 64;
+  const std::vector<Region> whole = {{0, 0, 24, 24}};
+  auto box = load_scene_from_string(kBox, "box.pbrt", {});
+  const RegionStats bdpt = stats_of(render_runs(*box, o, 4, 1), whole);
+  o.integrator = Integrator::Mlt;
+  o.spp = 32;
+  for (const char* p : {"0", "1"}) {
+    std::string text = kBox;
+    const std::string chains = "\"integer chains\" 96";
+    text.replace(text.find(chains), chains.size(), chains + " \"float largestepprobability\" " + p);
+    auto scene = load_scene_from_string(text, "box.pbrt", {});
+    expect_means_agree(bdpt, stats_of(render_runs(*scene, o, 4, 201), whole), 0.01,
+                       (std::string("large step probability ") + p).c_str());
+  }
+}
+
 TEST(Mlt, SameImageOnOneAndTwoThreads) {
   auto scene = load_scene_from_string(kBox, "box.pbrt", {});
   RenderOptions o;

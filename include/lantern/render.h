@@ -173,10 +173,12 @@ struct RenderStats {
   uint32_t vcm_last_first_sample = 0;  // vcm: the first sample index of that pass
   double vcm_grid_seconds = 0.0;  // vcm, with stats: thread-seconds building the merging grids
   // mlt: the mean importance of the bootstrap samples (b), the chains, and
-  // their proposals and how many were accepted.
+  // their proposals and how many were accepted. `samples` counts every
+  // bidirectional sample traced: the bootstrap's, the chains' first states
+  // and the proposals.
   double mlt_b = 0.0;
   uint32_t mlt_chains = 0;
-  uint64_t mlt_proposals = 0, mlt_accepted = 0;
+  uint64_t mlt_proposals = 0, mlt_accepted = 0, mlt_traced = 0;
   std::vector<std::pair<std::string, uint64_t>> eye_ends, light_ends;
   size_t wave_pool_bytes = 0;  // structure-of-arrays pools of all threads
   int threads = 0;

@@ -202,11 +202,12 @@ nlohmann::json rank_report_json(const std::vector<MpiRender::RankReport>& report
 void report(const std::string& out, const RenderOptions& o, const RenderResult& r, double load_s) {
   const RenderStats& s = r.stats;
   const double rays = double(s.camera_rays + s.extension_rays + s.light_rays + s.shadow_rays);
-  // mlt's samples are its chains' proposals, each a bidirectional sample.
+  // mlt's samples per pixel are its chains' proposals (RenderStats::samples
+  // counts its bootstrap's too).
   const bool mlt = s.mlt_chains > 0;
   const double pixels = double(r.image.width) * double(r.image.height);
   const uint32_t spp = mlt ? uint32_t(double(s.mlt_proposals) / pixels) : s.min_spp;
-  const double samples = mlt ? double(s.mlt_proposals) : double(s.samples - r.resumed_samples);
+  const double samples = double(s.samples - r.resumed_samples);
   if (mlt)
     logging::info("mlt: %u chains, %.1f proposals a pixel, %.1f%% accepted; mean importance b = %.6g", s.mlt_chains,
                   double(s.mlt_proposals) / pixels,

@@ -67,7 +67,7 @@ struct ChainGroup {
   std::vector<std::vector<Contribution>> current;
   std::vector<float> I;                   // of the current samples
   std::vector<uint64_t> left;             // proposals each chain has yet to make
-  uint64_t proposals = 0, accepted = 0;
+  uint64_t proposals = 0, accepted = 0, traced = 0;
 };
 
 class Chains {
@@ -177,12 +177,19 @@ void Chains::step(ChainGroup& g) {
     ++made;
     const float I_new = p.I[k], I_old = g.I[k];
     const float a = I_old > 0.f ? std::min(1.f, I_new / I_old) : 1.f;
-    if (a > 0.f)
+    // Kelemen et al.'s weights (section 5): large steps are independent
+    // samples of density 1, the chain's states have density I / b, and
+    // each sample is weighted by the balance heuristic over the two, so
+    // that dim parts of the image, which the chains seldom visit, get the
+    // large steps' samples at their full weight.
+    const double p_large = s_.large_step_probability;
+    const double w_new = (double(a) + (chain.large_step() ? 1.0 : 0.0)) / (double(I_new) / b_ + p_large);
+    const double w_old = double(1.f - a) / (double(I_old) / b_ + p_large);
+    if (I_new > 0.f && w_new > 0.0)
       for (uint32_t j = p.begin[k]; j < p.begin[k + 1]; ++j)
-        film_out.splats.push_back({p.all[j].p, p.all[j].v * float(double(a) * b_ / double(I_new)), false});
-    if (a < 1.f)
-      for (const Contribution& c : g.current[k])
-        film_out.splats.push_back({c.p, c.v * float(double(1.f - a) * b_ / double(I_old)), false});
+        film_out.splats.push_back({p.all[j].p, p.all[j].v * float(w_new), false});
+    if (w_old > 0.0)
+      for (const Contribution& c : g.current[k]) film_out.splats.push_back({c.p, c.v * float(w_old), false});
     if (chain.uniform() < a) {
       g.current[k].assign(p.all.begin() + p.begin[k], p.all.begin() + p.begin[k + 1]);
       g.I[k] = I_new;
@@ -193,6 +200,7 @@ void Chains::step(ChainGroup& g) {
     }
   }
   g.proposals += made;
+  g.traced += n;
   film_out.light_paths = made;
   cx_.film.prepare(film_out);
   {
@@ -244,11 +252,13 @@ bool Chains::run() {
     stopped = more && stop();
   }
   uint64_t proposals = 0, accepted = 0;
-  for (const ChainGroup& g : groups_) proposals += g.proposals, accepted += g.accepted;
+  uint64_t traced = 0;
+  for (const ChainGroup& g : groups_) proposals += g.proposals, accepted += g.accepted, traced += g.traced;
   cx_.stats.mlt_b = b_;
   cx_.stats.mlt_proposals = proposals;
   cx_.stats.mlt_accepted = accepted;
   cx_.stats.mlt_chains = chains;
+  cx_.stats.mlt_traced = s_.bootstrap_samples + chains + traced;
   std::vector<BdptWave*> states;
   for (Worker& w : workers_) states.push_back(w.wave.get());
   gather_stats(states, 0.0, cx_.stats);

@@ -536,6 +536,7 @@ RenderResult RenderSession::render_all() {
   if (strategy_film) res.strategies = strategy_film->resolve(film);
   res.interrupted = interrupted;
   finish_stats(scene, film, counters, light_sampler, res.stats);
+  if (opt.integrator == Integrator::Mlt) res.stats.samples = res.stats.mlt_traced;  // (the film counts no camera samples)
   if (guiding) {
     res.stats.guiding_iterations = guiding->iteration();
     res.stats.guiding_leaves = guiding->tree().leaves().size();

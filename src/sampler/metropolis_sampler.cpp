@@ -8,28 +8,30 @@
 namespace lantern {
 
 MetropolisSampler::MetropolisSampler(uint64_t seed, uint64_t stream, float sigma, float large_step_probability)
-    : seed_(seed), key_(hash_key(seed, stream, 0x4D4C54ULL)), sigma_(sigma), large_step_probability_(large_step_probability) {}
+    : seed_(seed), key_(hash_key(seed, stream, 0x4D4C54ULL)), sigma_(sigma), large_step_probability_(large_step_probability) {
+  x_.reserve(64);  // (a bidirectional sample of a few bounces reads about as many)
+}
 
 float MetropolisSampler::uniform() { return bits_to_unit_float(mix64(key_ ^ (++counter_ * 0x9E3779B97F4A7C15ULL))); }
 
-// Box and Muller's transform of two uniform numbers.
+// Box and Muller's transform: two independent normal deviates from two
+// uniform numbers, the second kept for the next call.
 float MetropolisSampler::normal() {
-  const float u1 = 1.f - uniform();  // in (0, 1]
-  const float u2 = uniform();
-  return std::sqrt(-2.f * std::log(u1)) * std::cos(2.f * kPi * u2);
-}
-
-void MetropolisSampler::restart(uint64_t stream) {
-  key_ = hash_key(seed_, stream, 0x4D4C54ULL);
-  counter_ = 0;
-  x_.clear();
-  iteration_ = -1;
-  last_large_step_ = 0;
+  if (has_spare_) {
+    has_spare_ = false;
+    return spare_normal_;
+  }
+  const float r = std::sqrt(-2.f * std::log(1.f - uniform()));  // (1 - u in (0, 1])
+  const float phi = 2.f * kPi * uniform();
+  spare_normal_ = r * std::sin(phi);
+  has_spare_ = true;
+  return r * std::cos(phi);
 }
 
 void MetropolisSampler::reseed(uint64_t stream) {
   key_ = hash_key(seed_, stream, 0x52455345ULL);
   counter_ = 0;
+  has_spare_ = false;
 }
 
 void MetropolisSampler::start_iteration() {
@@ -58,7 +60,7 @@ float MetropolisSampler::get(uint32_t d) {
       x.value = uniform();
       x.modified = last_large_step_;
     }
-    const int64_t missed = iteration_ - 1 - x.modified;
+    const int32_t missed = iteration_ - 1 - x.modified;
     if (missed > 0) {
       x.value = wrap(x.value + normal() * sigma_ * std::sqrt(float(missed)));
       x.modified = iteration_ - 1;

@@ -34,9 +34,6 @@ class MetropolisSampler {
   // Begins an iteration: a large step with the set probability, or a small
   // one. The first iteration of a sampler is always a large step.
   void start_iteration();
-  // Begins the first iteration again, on another stream: the numbers the
-  // sampler draws from then on (bootstrap samples reuse one sampler).
-  void restart(uint64_t stream);
   // After the chain's first iteration: further random numbers come from
   // `stream`, so chains that started from the same bootstrap sample part.
   void reseed(uint64_t stream);
@@ -55,15 +52,19 @@ class MetropolisSampler {
  private:
   struct Number {
     float value = 0.f, backup = 0.f;
-    int64_t modified = -1, backup_modified = -1;  // iteration of the last change
+    int32_t modified = -1, backup_modified = -1;  // (accepted) iteration of the last change
   };
   float normal();
 
   std::vector<Number> x_;
   uint64_t seed_ = 0, key_ = 0, counter_ = 0;
   float sigma_ = 0.01f, large_step_probability_ = 0.3f;
-  int64_t iteration_ = -1, last_large_step_ = 0;
+  // Iterations count accepted proposals (reject() takes one back): 2^31 of
+  // them is far beyond any chain's length.
+  int32_t iteration_ = -1, last_large_step_ = 0;
   bool large_step_ = true;
+  float spare_normal_ = 0.f;  // Box and Muller make two at a time
+  bool has_spare_ = false;
 };
 
 }  // namespace lantern
