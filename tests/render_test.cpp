@@ -178,7 +178,7 @@ TEST(Render, BadOptionsAreRejected) {
     parse_integrator("nonsense");
     ADD_FAILURE() << "an unknown integrator was accepted";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("expected path, bdpt, lt, vcm, bpm, ppm, directlighting or ambientocclusion"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("expected path, bdpt, lt, vcm, bpm, ppm, directlighting, ambientocclusion or mlt"), std::string::npos) << e.what();
   }
   EXPECT_THROW(parse_ray_backend("warp"), std::invalid_argument);
   EXPECT_THROW(parse_mis("heuristic"), std::invalid_argument);
