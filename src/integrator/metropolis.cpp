@@ -119,7 +119,7 @@ void Chains::bootstrap() {
   const uint64_t waves = (n + kWaveCapacity - 1) / kWaveCapacity;
   tbb::parallel_for(tbb::blocked_range<uint64_t>(0, waves, 1), [&](const tbb::blocked_range<uint64_t>& r) {
     std::vector<MetropolisSampler> samplers;
-    for (uint64_t wi = r.begin(); wi != r.end(); ++wi) {
+    for (uint64_t wi = r.begin(); wi != r.end() && !cx_.stop_requested(); ++wi) {
       const uint64_t first = wi * kWaveCapacity;
       const uint32_t count = uint32_t(std::min<uint64_t>(kWaveCapacity, n - first));
       samplers.clear();
@@ -212,6 +212,7 @@ void Chains::step(ChainGroup& g) {
 
 bool Chains::run() {
   bootstrap();
+  if (cx_.stop_requested()) return true;  // (a bootstrap cut short has no mean to start from)
   const uint64_t total = s_.mutations;
   const uint32_t chains = total > 0 ? uint32_t(std::min<uint64_t>(s_.chains, total)) : s_.chains;
   if (!(b_ > 0.0) || chains == 0) {  // nothing carries light: a black image of all its proposals
@@ -241,11 +242,16 @@ bool Chains::run() {
   // Rounds of a few proposals per chain, so that a time budget or a stop
   // ends every chain at about the same length.
   constexpr uint32_t kRound = 8;
+  // A time budget shorter than the set-up still gets one proposal of
+  // every chain, so that every run adds to the image.
   bool stopped = false;
-  for (bool more = true; more && !stopped;) {
+  for (bool more = true, first = true; more && !stopped; first = false) {
     tbb::parallel_for(size_t(0), groups_.size(), [&](size_t i) {
       ChainGroup& g = groups_[i];
-      for (uint32_t r = 0; r < kRound && *std::max_element(g.left.begin(), g.left.end()) > 0 && !stop(); ++r) step(g);
+      for (uint32_t r = 0; r < kRound && *std::max_element(g.left.begin(), g.left.end()) > 0; ++r) {
+        if (!(first && r == 0) && stop()) break;
+        step(g);
+      }
     });
     more = false;
     for (const ChainGroup& g : groups_) more = more || *std::max_element(g.left.begin(), g.left.end()) > 0;
