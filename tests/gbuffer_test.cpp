@@ -90,6 +90,18 @@ TEST(GBuffer, ChannelsOfASquareSeenHeadOn) {
   EXPECT_NEAR(m["P.Z"], 0.f, 1e-5f);
   EXPECT_NEAR(m["P.X"], -right["P.X"], 1e-4f);
   EXPECT_NEAR(m["N.Z"], 1.f, 1e-6f);
+
+  // Wound the other way, its normals point away from the camera; pbrt-v4
+  // turns them to face it (measured with pbrt-v4 on a floor wound
+  // downwards: N in camera space (0, 0.985, -0.172), up towards a camera
+  // above it), and so does Lantern.
+  std::string reversed = square_scene("");
+  const std::string order = "[0 1 2 0 2 3]";
+  reversed.replace(reversed.find(order), order.size(), "[0 2 1 0 3 2]");
+  auto flipped = load_scene_from_string(reversed, "gb.pbrt", {});
+  auto f = channels_at(render_gbuffer(*flipped).image, 16, 12);
+  EXPECT_NEAR(f["N.Z"], -1.f, 1e-6f);
+  EXPECT_NEAR(f["Ns.Z"], -1.f, 1e-6f);
   expect_load_error("Film \"gbuffer\" \"string coordinatesystem\" \"screen\"\n", "c.pbrt",
                     {"c.pbrt:1", "\"screen\"", "\"camera\" or \"world\""});
 }

@@ -34,7 +34,7 @@ Vec3 blackbody_peak_xyz(float kelvin);
 
 // CIE standard illuminant D65's relative spectral power (100 at 560 nm):
 // linear between the 5 nm entries of CIE 015:2004, Table T.1, zero outside
-// 380-780 nm.
+// 360-830 nm.
 float cie_d65(float nm);
 
 // Linear sRGB of a surface whose reflectance at each wavelength (nm) is

@@ -34,13 +34,14 @@ struct Proposals {
   std::vector<uint32_t> begin;  // slot k's are [begin[k], begin[k + 1])
   std::vector<Contribution> all;
   std::vector<float> I;
+  std::vector<uint32_t> next;  // (scratch)
 
   void gather(const WaveOutput& out, uint32_t slots) {
     begin.assign(size_t(slots) + 1, 0u);
     for (uint32_t s : out.splat_slots) ++begin[s + 1];
     for (uint32_t k = 0; k < slots; ++k) begin[k + 1] += begin[k];
     all.resize(out.splats.size());
-    std::vector<uint32_t> next(begin.begin(), begin.end() - 1);
+    next.assign(begin.begin(), begin.end() - 1);
     for (size_t j = 0; j < out.splats.size(); ++j) all[next[out.splat_slots[j]]++] = {out.splats[j].p_raster, out.splats[j].L};
     I.assign(slots, 0.f);
     for (uint32_t k = 0; k < slots; ++k) {

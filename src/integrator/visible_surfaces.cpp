@@ -88,7 +88,10 @@ VisibleSurfaces PathTracer::visible_surfaces(uint32_t samples, bool world_space,
         Vec3 dpdx, dpdy;
         dp.dp_dxy(sp.p, sp.ng, &dpdx, &dpdy);
         const Vec3 p = Vec3(out_from_render * Vec4(sp.p, 1.f));
-        const Vec3 n = normal_to_out * sp.ng, ns = normal_to_out * sp.ns;
+        // Turned to face the camera, as pbrt-v4 turns them (to the side of
+        // the direction back along the ray), whatever the mesh's winding.
+        auto facing = [&](const Vec3& v) { return glm::dot(v, d) > 0.f ? -v : v; };
+        const Vec3 n = normal_to_out * facing(sp.ng), ns = normal_to_out * facing(sp.ns);
         const float v[C] = {albedo[0],
                             albedo[1],
                             albedo[2],
