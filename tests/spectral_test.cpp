@@ -4,6 +4,8 @@
 // the code under test.
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include <algorithm>
 #include <cmath>
 
@@ -312,6 +314,40 @@ Shape "trianglemesh" "point3 P" [-3 0 -3  3 0 -3  3 0 3  -3 0 3] "integer indice
       EXPECT_NEAR(mean[1][c], mean[0][c], 0.015 * mean[0][c]) << light << ", channel " << c;
     }
   }
+}
+
+// pbrt-v4's named illuminants as light spectra: stdillum-A is Planck's law
+// at 2856 K (CIE's formula: 2848 K with the older radiation constant),
+// stdillum-D65 the sRGB white; each normalised like any light, the same
+// in RGB and with sampled wavelengths.
+TEST(Spectral, NamedIlluminantsAreLightSpectra) {
+  auto sky = [](const std::string& L, bool spectral) {
+    const auto scene = load_scene_from_string(R"(
+LookAt 0 0 0  0 0 1  0 1 0
+Camera "perspective" "float fov" 30
+Film "rgb" "integer xresolution" 4 "integer yresolution" 4
+WorldBegin
+LightSource "infinite" )" + L + "\n",
+                                              "illuminant.pbrt");
+    RenderOptions o;
+    o.spp = 256;
+    o.maxdepth = 1;
+    o.spectral = spectral;
+    const Image img = render(*scene, o).image;
+    std::array<double, 3> m{};
+    for (int c = 0; c < 3; ++c) m[size_t(c)] = img.at(1, 1)[c];
+    return m;
+  };
+  const auto a = sky(R"("spectrum L" "stdillum-A")", false), bb = sky(R"("blackbody L" 2856)", false);
+  const auto d65 = sky(R"("spectrum L" "stdillum-D65")", false);
+  for (size_t c = 0; c < 3; ++c) {
+    EXPECT_NEAR(a[c], bb[c], 0.005 * bb[c]) << c;
+    EXPECT_NEAR(d65[c], d65[1], 0.01 * d65[1]) << c;  // white
+  }
+  EXPECT_LT(a[2], 0.5 * a[0]);  // and A is not white
+  const auto a_spectral = sky(R"("spectrum L" "stdillum-A")", true);
+  for (size_t c = 0; c < 3; ++c) EXPECT_NEAR(a_spectral[c], a[c], 0.02 * a[c]) << c;
+  EXPECT_THROW(sky(R"("spectrum L" "stdillum-F4")", false), InputError);
 }
 
 // What the spectral renderer cannot do yet it refuses, saying why.

@@ -8,6 +8,7 @@
 #include "scene/pbrt/known_params.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <stdexcept>
 
@@ -243,13 +244,37 @@ std::optional<PiecewiseLinearSpectrum> ParamSet::get_sampled_spectrum(const std:
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec))
     fail(*p, "\"" + printable(s) + "\" is neither a named spectrum (metal-{Cu,Au,Ag,Al,CuZn,MgO,TiO2}-{eta,k}, "
-             "glass-{BK7,BAF10,FK51A,LASF9,F5,F10,F11}) nor a spectrum file (" + printable(file.string()) + " not found)");
+             "glass-{BK7,BAF10,FK51A,LASF9,F5,F10,F11}, stdillum-{D65,A}; pbrt-v4's other illuminants and camera "
+             "curves are not included: give them as a spectrum file) nor a spectrum file (" + printable(file.string()) + " not found)");
   try {
     return read_spectrum_file(file.string());
   } catch (const InputError& e) {
     fail(*p, e.what());
   }
 }
+
+namespace {
+
+// pbrt-v4's stdillum-D65 (CIE 015:2004, Table T.1, color/cie1931.h) and
+// stdillum-A, which CIE 015:2004 defines by its formula (Planck's law at
+// 2848 K with the second radiation constant 1.435e7 nm K, 100 at 560 nm).
+// As lights, their spectra are normalised like any other light's.
+PiecewiseLinearSpectrum standard_illuminant(const std::string& name) {
+  PiecewiseLinearSpectrum out;
+  for (int nm = int(kLambdaMin); nm <= int(kLambdaMax); ++nm) {
+    const double l = double(nm);
+    out.nm.push_back(l);
+    if (name == "stdillum-D65") {
+      out.value.push_back(double(cie_d65(float(nm))));
+    } else {
+      constexpr double c2 = 1.435e7, T = 2848.0;
+      out.value.push_back(100.0 * std::pow(560.0 / l, 5.0) * std::expm1(c2 / (T * 560.0)) / std::expm1(c2 / (T * l)));
+    }
+  }
+  return out;
+}
+
+}  // namespace
 
 std::optional<PiecewiseLinearSpectrum> named_sampled_spectrum(const std::string& s) {
   if (const std::optional<SellmeierGlass> glass = named_glass(s)) {  // its formula at every nanometre
@@ -260,6 +285,7 @@ std::optional<PiecewiseLinearSpectrum> named_sampled_spectrum(const std::string&
     }
     return out;
   }
+  if (s == "stdillum-D65" || s == "stdillum-A") return standard_illuminant(s);
   if (!s.starts_with("metal-")) return std::nullopt;
   const size_t dash = s.rfind('-');
   const std::string metal = s.substr(6, dash > 6 ? dash - 6 : 0), part = s.substr(dash + 1);
