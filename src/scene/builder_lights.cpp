@@ -185,7 +185,9 @@ void SceneBuilder::finish() {
   }
   volume_lights();
   finalize_lights(scene_.lights, scene_.shapes, scene_.textures, center, radius);
-  if (scene_.lights.empty()) warn({}, "the scene has no lights: the image will be black");
+  // (ambient occlusion needs none; its image is the sky's openness)
+  if (scene_.lights.empty() && scene_.settings.integrator != Integrator::AmbientOcclusion)
+    warn({}, "the scene has no lights: the image will be black");
 }
 
 }  // namespace lantern
