@@ -240,3 +240,34 @@ TEST(Camera, SensorSettingsThatMakeNoImageAreClearErrors) {
 
 }  // namespace
 }  // namespace lantern
+
+namespace lantern {
+namespace {
+
+// pbrt-v4's "frameaspectratio": the screen window of a frame of that shape
+// (shorter side from -1 to 1), the same image as that window given
+// directly, whatever the image's own shape; "screenwindow" wins over it.
+TEST(Camera, FrameAspectRatioIsTheScreenWindowOfItsFrame) {
+  auto scene = [](const std::string& camera) {
+    return load_scene_from_string("LookAt 0 1 -3  0 0.5 0  0 1 0\nCamera " + camera +
+                                      "\nFilm \"rgb\" \"integer xresolution\" 24 \"integer yresolution\" 16\n"
+                                      "WorldBegin\nLightSource \"infinite\" \"rgb L\" [0.5 0.6 0.7]\n"
+                                      "Material \"diffuse\"\nShape \"sphere\" \"float radius\" 0.7\n",
+                                  "frame.pbrt");
+  };
+  for (const char* type : {"\"perspective\" \"float fov\" 40", "\"orthographic\""}) {
+    const std::string t = type;
+    expect_identical_renders(*scene(t + " \"float frameaspectratio\" 2"),
+                             *scene(t + " \"float screenwindow\" [-2 2 -1 1]"), {"path"});
+    expect_identical_renders(*scene(t + " \"float frameaspectratio\" 0.5"),
+                             *scene(t + " \"float screenwindow\" [-1 1 -2 2]"), {"path"});
+    expect_identical_renders(*scene(t + " \"float frameaspectratio\" 1.5"), *scene(t), {"path"});  // the image's own
+    expect_identical_renders(*scene(t + " \"float frameaspectratio\" 3 \"float screenwindow\" [-1 1 -1 1]"),
+                             *scene(t + " \"float screenwindow\" [-1 1 -1 1]"), {"path"});
+  }
+  expect_load_error("Camera \"perspective\" \"float frameaspectratio\" 0\nWorldBegin\n", "f.pbrt",
+                    {"f.pbrt:1", "\"frameaspectratio\" must be a positive number"});
+}
+
+}  // namespace
+}  // namespace lantern

@@ -59,6 +59,21 @@ void SceneBuilder::camera(const std::string& type, const ParamSet& ps, const glm
     scene_.settings.screen_window = true;
     std::copy(sw.begin(), sw.end(), c.screen_window);
   }
+  // pbrt-v4's "frameaspectratio": the screen window of a frame of that
+  // shape (its shorter side from -1 to 1, where the fov applies) instead of
+  // the image's; a "screenwindow" wins. The spherical camera reads it and,
+  // as in pbrt-v4, nothing changes.
+  if (const pbrt::Param* f = ps.find("frameaspectratio")) {
+    const float frame = ps.get_float("frameaspectratio", 1.f);
+    if (!(frame > 0.f) || !std::isfinite(frame)) ps.fail(*f, "\"frameaspectratio\" must be a positive number");
+    if (sw.empty() && (c.projection == Projection::Perspective || c.projection == Projection::Orthographic)) {
+      const float window[4] = {frame > 1.f ? -frame : -1.f, frame > 1.f ? frame : 1.f, frame > 1.f ? -1.f : -1.f / frame,
+                               frame > 1.f ? 1.f : 1.f / frame};
+      std::copy(window, window + 4, c.screen_window);
+      c.has_screen_window = true;
+      scene_.settings.screen_window = true;
+    }
+  }
 }
 
 // pbrt-v4's realistic camera: "lensfile" (relative to the scene's
