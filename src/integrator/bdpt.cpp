@@ -198,17 +198,12 @@ void Bdpt::eye_shade_stage(BdptWave& w) const {
 // is L times the margin's share: then its expected splat on a pixel is the
 // filter-weighted mean of L there, as for a sample drawn around the pixel.
 Vec2 Bdpt::metropolis_raster(Vec2 u) const {
-  const Vec2 full = image_size(), margin = scene_.filter.radius;
+  const Vec2 full(float(camera_.width()), float(camera_.height())), margin = scene_.filter.radius;
   return u * (full + 2.f * margin) - margin;
 }
 
-Vec2 Bdpt::image_size() const {
-  return Vec2(float(settings_.full_width > 0 ? settings_.full_width : settings_.width),
-              float(settings_.full_height > 0 ? settings_.full_height : settings_.height));
-}
-
 void Bdpt::metropolis_samples(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
-  const Vec2 full = image_size(), extended = full + 2.f * scene_.filter.radius;
+  const Vec2 full(float(camera_.width()), float(camera_.height())), extended = full + 2.f * scene_.filter.radius;
   const float scale = extended.x * extended.y / (full.x * full.y);
   for (uint32_t slot = 0; slot < wave.size(); ++slot) {
     if (is_black(w.L[slot])) continue;

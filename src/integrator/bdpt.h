@@ -111,7 +111,6 @@ class Bdpt {
   void start_eye_subpaths(const WaveDesc& wave, BdptWave& w) const;
   // Metropolis (WaveDesc::chains): camera samples anywhere on the image, recorded as splats
   Vec2 metropolis_raster(Vec2 u) const;
-  Vec2 image_size() const;  // the camera's whole image, in pixels
   void metropolis_samples(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const;
   void eye_surface_stage(BdptWave& w) const;
   void eye_shade_stage(BdptWave& w) const;

@@ -100,7 +100,7 @@ class Chains {
     return w;
   }
   void bootstrap();
-  void start(ChainGroup& g);
+  void start(ChainGroup& g, const Distribution1D& choose);
   void step(ChainGroup& g);
 
   const Bdpt& bdpt_;
@@ -139,8 +139,7 @@ void Chains::bootstrap() {
 
 // Each chain's first state: a bootstrap sample chosen in proportion to its
 // importance, traced again from its own numbers.
-void Chains::start(ChainGroup& g) {
-  const Distribution1D choose(bootstrap_I_);
+void Chains::start(ChainGroup& g, const Distribution1D& choose) {
   const uint32_t n = uint32_t(g.chains.size());
   for (uint32_t k = 0; k < n; ++k) {
     const uint64_t chain = g.first + k;
@@ -239,7 +238,8 @@ bool Chains::run() {
       g.left.push_back(total > 0 ? (c + 1) * total / chains - c * total / chains : UINT64_MAX);
     }
   }
-  tbb::parallel_for(size_t(0), groups_.size(), [&](size_t i) { start(groups_[i]); });
+  const Distribution1D choose(bootstrap_I_);
+  tbb::parallel_for(size_t(0), groups_.size(), [&](size_t i) { start(groups_[i], choose); });
   // Rounds of a few proposals per chain, so that a time budget or a stop
   // ends every chain at about the same length.
   constexpr uint32_t kRound = 8;
