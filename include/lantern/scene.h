@@ -102,6 +102,8 @@ struct LoadOptions {
   // A parameter neither pbrt-v4 nor pbrt-v3 reads (a typo, most often) is
   // an error, as in pbrt-v4; lenient makes it a warning (--lenient).
   bool lenient = false;
+  // Embree instances or the compact layout (lantern/options.h).
+  InstanceLayout instance_layout = InstanceLayout::Auto;
 };
 
 // Throws InputError for anything wrong with the input.
@@ -113,12 +115,14 @@ const SceneSettings& scene_settings(const Scene& scene);
 // What a loaded scene holds and what building it cost.
 struct SceneInfo {
   size_t triangles = 0, spheres = 0, lights = 0;  // stored once each
+  size_t bilinear_patches = 0;     // quads that are not parallelograms, stored once each
+  size_t curve_segments = 0;       // cubic segments, stored once each
   size_t instances = 0;            // ObjectInstance placements
   size_t instanced_triangles = 0;  // triangles as traced: outside objects once, inside once per instance
   double bvh_build_seconds = 0.0;
   int64_t bvh_bytes = 0;        // Embree's own memory after the build
   int64_t bvh_peak_bytes = 0;   // including the builder's temporaries
-  size_t geometry_bytes = 0;    // the scene's vertex, index, normal and uv pools
+  size_t geometry_bytes = 0;    // the scene's vertex, index, normal and uv pools, patches, curves, placements
 };
 SceneInfo scene_info(const Scene& scene);
 

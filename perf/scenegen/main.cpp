@@ -1,8 +1,10 @@
 // lantern-scenegen: writes a scalable test scene in pbrt-v4 format, a forest
 // of instanced trees and rocks on unique terrain tiles, lit by a dim sky and
-// a few small lanterns (where bidirectional path tracing pays off).
+// a few small lanterns (where bidirectional path tracing pays off); or, with
+// --island, a scene of a production island's shape (island.cpp).
 //
 //   lantern-scenegen OUT_DIR --instanced-triangles N --unique-triangles M [--seed S]
+//   lantern-scenegen OUT_DIR --island SCALE [--prototypes P] [--seed S]
 //
 // Unique geometry: terrain tiles, displaced grids written as binary PLY,
 // together M triangles. Instanced geometry: three prototypes (a tree of
@@ -20,17 +22,14 @@
 #include <string>
 #include <vector>
 
+#include "island.h"
+#include "mesh_io.h"
+
 namespace {
 
-struct V3 {
-  float x, y, z;
-};
-
-struct Mesh {
-  std::vector<V3> p;
-  std::vector<uint32_t> idx;  // triangles
-  size_t triangles() const { return idx.size() / 3; }
-};
+using scenegen::Mesh;
+using scenegen::V3;
+using scenegen::write_ply;
 
 // Smooth pseudo-random height field: a few octaves of sines, cheap and
 // deterministic.
@@ -91,21 +90,6 @@ void add_cylinder(Mesh& m, V3 base_c, float r, float h, int segments) {
   }
 }
 
-void write_ply(const std::filesystem::path& path, const Mesh& m) {
-  std::ofstream f(path, std::ios::binary);
-  f << "ply\nformat binary_little_endian 1.0\nelement vertex " << m.p.size()
-    << "\nproperty float x\nproperty float y\nproperty float z\nelement face " << m.triangles()
-    << "\nproperty list uchar uint vertex_indices\nend_header\n";
-  f.write(reinterpret_cast<const char*>(m.p.data()), std::streamsize(m.p.size() * sizeof(V3)));
-  std::vector<char> faces(m.triangles() * 13);
-  for (size_t t = 0; t < m.triangles(); ++t) {
-    faces[13 * t] = 3;
-    std::memcpy(&faces[13 * t + 1], &m.idx[3 * t], 12);
-  }
-  f.write(faces.data(), std::streamsize(faces.size()));
-  if (!f) throw std::runtime_error("cannot write " + path.string());
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -120,8 +104,20 @@ int main(int argc, char** argv) {
   app.add_option("--seed", seed, "Placement seed");
   app.add_option("--tree-variants", variants, "Distinct tree objects (each its own prototype and BVH)")
       ->check(CLI::Range(1, 100000));
+  double island = 0;
+  int prototypes = 0;
+  app.add_option("--island", island, "A production island's shape at this scale (1: 90M quads, 5M curves, 28M instances)")
+      ->check(CLI::Range(1e-6, 4.0));
+  app.add_option("--prototypes", prototypes, "With --island: distinct instanced objects (default from the scale)");
   CLI11_PARSE(app, argc, argv);
   namespace fs = std::filesystem;
+  if (island > 0) {
+    const scenegen::IslandCounts c = scenegen::write_island(out, island, prototypes, seed);
+    std::printf("%s: %zu unique quads in %zu files, %zu curves, %zu instances of %zu objects tracing %zu triangles\n",
+                (fs::path(out) / "scene.pbrt").c_str(), c.quads, c.files, c.curves, c.instances, c.prototypes,
+                c.instanced_triangles);
+    return 0;
+  }
   fs::create_directories(fs::path(out) / "meshes");
 
   // Terrain: a square of side L in tiles of at most ~1M triangles each.
@@ -142,7 +138,7 @@ int main(int argc, char** argv) {
       Mesh m = terrain_tile(-L / 2 + tile * float(tx), -L / 2 + tile * float(ty), tile, r);
       std::string name = "terrain_" + std::to_string(ty) + "_" + std::to_string(tx) + ".ply";
       write_ply(fs::path(out) / "meshes" / name, m);
-      unique_written += m.triangles();
+      unique_written += m.faces();
       s << "Shape \"plymesh\" \"string filename\" \"meshes/" << name << "\"\n";
     }
   s << "AttributeEnd\n";
@@ -181,7 +177,7 @@ int main(int argc, char** argv) {
     s << "AttributeBegin Translate " << x << " " << terrain_height(x, z) << " " << z << " Rotate " << 360.f * U(rng)
       << " 0 1 0 Scale " << 0.7f + 0.6f * U(rng) << " " << 0.7f + 0.6f * U(rng) << " " << 0.7f + 0.6f * U(rng)
       << " ObjectInstance \"" << name << "\" AttributeEnd\n";
-    traced += k == 0 ? trees[size_t(v)].triangles() : k == 1 ? bush.triangles() : rock.triangles();
+    traced += k == 0 ? trees[size_t(v)].faces() : k == 1 ? bush.faces() : rock.faces();
     ++count[k];
   }
   // Lanterns: small warm sphere lights near the camera's path.

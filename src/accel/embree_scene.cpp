@@ -107,7 +107,8 @@ void EmbreeScene::attach(RTCScene scene, const ShapePools& shapes, uint32_t id, 
   rtcReleaseGeometry(geom);
 }
 
-EmbreeScene::EmbreeScene(const ShapePools& shapes, const TexturePools& textures) : textures_(&textures) {
+EmbreeScene::EmbreeScene(const ShapePools& shapes, const TexturePools& textures, InstanceLayout layout)
+    : textures_(&textures) {
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("cannot create the Embree device");
   rtcSetDeviceErrorFunction(device_, on_error, this);
@@ -122,21 +123,30 @@ EmbreeScene::EmbreeScene(const ShapePools& shapes, const TexturePools& textures)
   auto t0 = std::chrono::steady_clock::now();
   // Geometries traced directly keep their index as Embree geomID; those of
   // a prototype go into the prototype's own scene, numbered from 0. An
-  // instance is geomID base + k in the top scene, and RayStream rewrites
-  // its hits back to (geometry index, instance k) with instance_first().
+  // instance is instID base + k, and RayStream rewrites its hits back to
+  // (geometry index, instance k).
   const uint32_t n = uint32_t(shapes.geometries.size());
   for (uint32_t id = 0; id < n; ++id) {
     if (id < shapes.in_prototype.size() && shapes.in_prototype[id]) continue;
     attach(scene_, shapes, id, id);
     check("adding geometry to the Embree scene");
   }
-  // Every prototype an instance uses becomes a scene of its own; their
-  // BVHs are built side by side (each build is parallel inside Embree too,
-  // but a small object's build is not).
-  std::vector<RTCScene> prototypes(shapes.prototypes.size(), nullptr);
+  instance_base_ = n;
+  build_prototypes(shapes);
+  place_instances(shapes, layout);
+  rtcCommitScene(scene_);
+  build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  check("building the Embree BVH");
+}
+
+// Every prototype an instance uses becomes a scene of its own; their BVHs
+// are built side by side (each build is parallel inside Embree too, but a
+// small object's build is not).
+void EmbreeScene::build_prototypes(const ShapePools& shapes) {
+  prototypes_.assign(shapes.prototypes.size(), nullptr);
   std::vector<uint32_t> used;
-  for (const Instance& inst : shapes.instances) {
-    RTCScene& ps = prototypes[inst.prototype];
+  for (const Placement& inst : shapes.instances) {
+    RTCScene& ps = prototypes_[inst.prototype];
     if (ps) continue;
     ps = rtcNewScene(device_);
     rtcSetSceneFlags(ps, RTC_SCENE_FLAG_ROBUST);
@@ -145,15 +155,40 @@ EmbreeScene::EmbreeScene(const ShapePools& shapes, const TexturePools& textures)
     for (uint32_t j = 0; j < proto.count; ++j) attach(ps, shapes, proto.first + j, j);
     used.push_back(inst.prototype);
   }
-  tbb::parallel_for(size_t(0), used.size(), [&](size_t i) { rtcCommitScene(prototypes[used[i]]); });
+  tbb::parallel_for(size_t(0), used.size(), [&](size_t i) { rtcCommitScene(prototypes_[used[i]]); });
   check("building the objects' BVHs");
-  instance_base_ = n;
+}
+
+// Moving instances are always Embree's (it interpolates their matrices);
+// still ones are Embree's or, compact, primitives of one user geometry.
+void EmbreeScene::place_instances(const ShapePools& shapes, InstanceLayout layout) {
+  size_t still = 0;
+  for (const Placement& inst : shapes.instances) still += inst.motion == Placement::kStill;
+  const bool compact = layout == InstanceLayout::Compact || (layout == InstanceLayout::Auto && still >= kCompactInstancesFrom);
+  if (compact && still > 0) {
+    compact_ = std::make_unique<InstanceGeometryData>();
+    compact_->placements = &shapes.instances;
+    compact_->scenes = &prototypes_;
+    compact_->instance_base = instance_base_;
+    compact_->prototype_bounds.resize(prototypes_.size());
+    for (size_t p = 0; p < prototypes_.size(); ++p)
+      if (prototypes_[p]) rtcGetSceneBounds(prototypes_[p], &compact_->prototype_bounds[p]);
+    if (still < shapes.instances.size())  // otherwise primitive k is placement k
+      for (uint32_t k = 0; k < shapes.instances.size(); ++k)
+        if (shapes.instances[k].motion == Placement::kStill) compact_->placement_of.push_back(k);
+    RTCGeometry g = new_instance_geometry(device_, compact_.get(), uint32_t(still));
+    rtcCommitGeometry(g);
+    rtcAttachGeometryByID(scene_, g, instance_base_ + uint32_t(shapes.instances.size()));
+    rtcReleaseGeometry(g);
+    check("adding the instances to the Embree scene");
+  }
   for (uint32_t k = 0; k < shapes.instances.size(); ++k) {
-    const Instance& inst = shapes.instances[k];
+    const Placement& inst = shapes.instances[k];
+    if (compact && inst.motion == Placement::kStill) continue;
     RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
-    rtcSetGeometryInstancedScene(g, prototypes[inst.prototype]);
-    if (inst.motion == Instance::kStill) {
-      rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &inst.world_from_object[0][0]);
+    rtcSetGeometryInstancedScene(g, prototypes_[inst.prototype]);
+    if (inst.motion == Placement::kStill) {
+      rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, &inst.world_from_object[0][0]);
     } else {
       // Embree interpolates the matrices linearly between equally spaced
       // steps, as MotionPath::at does for shading (math/motion.h).
@@ -163,20 +198,16 @@ EmbreeScene::EmbreeScene(const ShapePools& shapes, const TexturePools& textures)
         rtcSetGeometryTransform(g, unsigned(t), RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &steps[t][0][0]);
     }
     rtcCommitGeometry(g);
-    rtcAttachGeometryByID(scene_, g, n + k);
+    rtcAttachGeometryByID(scene_, g, instance_base_ + k);
     rtcReleaseGeometry(g);
     check("adding an instance to the Embree scene");
-    instance_first_.push_back(shapes.prototypes[inst.prototype].first);
   }
-  for (RTCScene ps : prototypes)
-    if (ps) rtcReleaseScene(ps);  // the instances hold their own references
-  rtcCommitScene(scene_);
-  build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  check("building the Embree BVH");
 }
 
 EmbreeScene::~EmbreeScene() {
   if (scene_) rtcReleaseScene(scene_);
+  for (RTCScene ps : prototypes_)
+    if (ps) rtcReleaseScene(ps);
   if (device_) rtcReleaseDevice(device_);
 }
 

@@ -1,6 +1,8 @@
 // The Embree device and the scene built from the geometry pools: top-level
 // geometries keep their pool index as Embree geomID; each instanced
-// prototype is an Embree scene of its own, placed by instance geometries.
+// prototype is an Embree scene of its own, placed by Embree instance
+// geometries or, compact, by one user geometry for all still instances
+// (accel/instance_geometry.h).
 #pragma once
 
 #include <embree3/rtcore.h>
@@ -13,15 +15,23 @@
 
 #include "accel/alpha_filter.h"
 #include "accel/bilinear_geometry.h"
+#include "accel/instance_geometry.h"
 #include "accel/quadric_geometry.h"
 #include "entity/shapes.h"
+#include "lantern/options.h"
 
 namespace lantern {
 
+// InstanceLayout::Auto places instances compactly from this many still
+// ones on (docs/performance.md, "Production scale").
+inline constexpr size_t kCompactInstancesFrom = 100000;
+
 class EmbreeScene {
  public:
-  // The pools must outlive the scene: alpha filters read them while tracing.
-  EmbreeScene(const ShapePools& shapes, const TexturePools& textures);  // throws std::runtime_error
+  // The pools must outlive the scene: alpha filters and instances read them
+  // while tracing.
+  EmbreeScene(const ShapePools& shapes, const TexturePools& textures,
+              InstanceLayout layout = InstanceLayout::Auto);  // throws std::runtime_error
   ~EmbreeScene();
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
@@ -34,13 +44,15 @@ class EmbreeScene {
   int64_t peak_bytes() const { return peak_bytes_.load(); }
   // Bounds of everything in the scene.
   void bounds(Vec3* lo, Vec3* hi) const;
-  // Instance k is Embree geomID instance_base() + k; its prototype's
-  // geometries start at pool index instance_first()[k].
+  // A hit on instance k reports instID[0] = instance_base() + k and the
+  // geomID of the prototype's geometry within its own scene.
   uint32_t instance_base() const { return instance_base_; }
-  const std::vector<uint32_t>& instance_first() const { return instance_first_; }
+  bool compact_instances() const { return compact_ != nullptr; }
 
  private:
   void attach(RTCScene scene, const ShapePools& shapes, uint32_t id, uint32_t embree_id);
+  void build_prototypes(const ShapePools& shapes);
+  void place_instances(const ShapePools& shapes, InstanceLayout layout);
   static void on_error(void* user, RTCError code, const char* str);
   static bool on_memory(void* user, ssize_t bytes, bool post);
   void check(const char* what);
@@ -51,7 +63,8 @@ class EmbreeScene {
   RTCScene scene_ = nullptr;
   double build_seconds_ = 0.0;
   uint32_t instance_base_ = 0;
-  std::vector<uint32_t> instance_first_;
+  std::vector<RTCScene> prototypes_;  // per prototype: its scene, or null when nothing places it
+  std::unique_ptr<InstanceGeometryData> compact_;
   const TexturePools* textures_ = nullptr;
   std::vector<std::unique_ptr<AlphaFilterData>> alpha_data_;
   std::vector<std::unique_ptr<QuadricGeometryData>> quadric_data_;

@@ -81,15 +81,14 @@ void RayStream::intersect(RayBatch& b, RayKind kind) {
     run_intersect(b, kind);
     record(kind, b.count, t0, TraceClock::now());
   }
-  if (instance_first_) remap_instance_hits(b);
+  if (shapes_) remap_instance_hits(b);
 }
 
 void RayStream::remap_instance_hits(RayBatch& b) const {
-  const std::vector<uint32_t>& first = *instance_first_;
   for (uint32_t i = 0; i < b.count; ++i) {
     if (b.inst_id[i] == RTC_INVALID_GEOMETRY_ID) continue;
     uint32_t k = b.inst_id[i] - instance_base_;
-    b.geom_id[i] += first[k];
+    b.geom_id[i] += shapes_->prototypes[shapes_->instances[k].prototype].first;
     b.inst_id[i] = k;
   }
 }

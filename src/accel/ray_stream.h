@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "accel/ray_batch.h"
+#include "entity/shapes.h"
 #include "lantern/options.h"
 #include "trace/trace_buffer.h"
 
@@ -31,9 +32,9 @@ class RayStream {
   // instance k leaves geom_id = the pool index of the prototype geometry
   // hit and inst_id = k; other hits keep inst_id invalid.
   void intersect(RayBatch& batch, RayKind kind);
-  void set_instances(uint32_t base, const std::vector<uint32_t>* first) {
+  void set_instances(uint32_t base, const ShapePools* shapes) {
     instance_base_ = base;
-    instance_first_ = first && !first->empty() ? first : nullptr;
+    shapes_ = shapes && !shapes->instances.empty() ? shapes : nullptr;
   }
   // Any hit: afterwards batch.occluded(i) says whether ray i was blocked.
   void occluded(RayBatch& batch);
@@ -57,7 +58,7 @@ class RayStream {
 
   RTCScene scene_;
   uint32_t instance_base_ = 0;
-  const std::vector<uint32_t>* instance_first_ = nullptr;
+  const ShapePools* shapes_ = nullptr;  // with instances: hits are rewritten
   RayBackend backend_;
   RayCounters* counters_;
   std::vector<RTCRayHit> aos_;   // scratch for the 1M back end

@@ -105,6 +105,7 @@ class LoadTrace {
 struct Loaded {
   std::shared_ptr<Scene> scene;
   double seconds = 0.0;
+  std::vector<LoadPhase> phases;  // each stage's end (the last: "done")
 };
 
 // The scene, with the loader's stages as a progress line (info, on a
@@ -114,22 +115,34 @@ Loaded load(const RenderArgs& a, Timeline* timeline, bool reports) {
   lo.texture_cache_mb = a.texture_cache_mb;
   lo.texture_directory = a.texture_dir;
   lo.lenient = a.lenient;
+  lo.instance_layout = parse_instance_layout(a.instances);
   lo.warn = [](const std::string& w) { logging::line(logging::Level::Warning, w); };
   LoadTrace trace(timeline);
   const auto t0 = std::chrono::steady_clock::now();
   auto elapsed = [t0] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   const bool in_place = reports && logging::terminal() && logging::enabled(logging::Level::Info);
   const bool lines = reports && logging::enabled(logging::Level::Verbose);
-  if (in_place || lines || timeline)
-    lo.progress = [&](const std::string& stage) {
+  Loaded l;
+  auto phase_ends = [&] {
+    if (l.phases.empty()) return;
+    LoadPhase& p = l.phases.back();
+    p.end_seconds = elapsed();
+    p.rss_bytes = rss_bytes();
+    p.peak_rss_bytes = peak_rss_bytes();
+  };
+  lo.progress = [&](const std::string& stage) {
+    phase_ends();
+    l.phases.push_back({stage});
+    if (in_place || lines || timeline) {
       trace.stage(stage);
       char buf[64];
       std::snprintf(buf, sizeof buf, "[load %6.1f s] ", elapsed());
       if (lines) logging::verbose("%s%s", buf, stage.c_str());
       else if (in_place) logging::progress(buf + stage);
-    };
-  Loaded l;
+    }
+  };
   l.scene = load_scene(a.scene, lo);
+  phase_ends();
   trace.done();
   l.seconds = elapsed();
   if (in_place && !lines) {
@@ -339,6 +352,10 @@ void add_render_command_options(CLI::App& render, RenderArgs& a) {
   render.add_option("--texture-cache", a.texture_cache_mb,
                     "Memory for image texture tiles, in MB (default: 1024); the image does not depend on it")
       ->check(cli::number_in(1.0, 1048576.0, true, "a number of megabytes from 1 to 1048576"));
+  render.add_option("--instances", a.instances,
+                    "How ObjectInstances are placed: embree (Embree's instances, fastest), compact (a fraction of the "
+                    "memory) or auto (compact from 100,000 instances on; the default)")
+      ->check(CLI::IsMember({"auto", "embree", "compact"}));
   render.add_flag("--lenient", a.lenient,
                   "A scene parameter neither pbrt-v4 nor pbrt-v3 reads (a typo) is a warning, not an error");
   render.add_option("--texture-dir", a.texture_dir,
@@ -490,7 +507,8 @@ int run_render(const RenderArgs& a, const Provenance& provenance, const Ranks& r
   if (!writes) return r.interrupted ? 130 : 0;  // rank 0 has the image
   auto write_stats = [&] {
     RunInfo run{a.scene,        name(o.integrator), out, name(o.ray_backend), r.image.width, r.image.height,
-                o.wave_size,    loaded.seconds,     scene_info(scene), ss.sampler, o.sampler, name(ss.light_sampler)};
+                o.wave_size,    loaded.seconds,     scene_info(scene), ss.sampler, o.sampler, name(ss.light_sampler),
+                loaded.phases};
     nlohmann::json j = stats_json(run, r.stats);
     j["colour"] = o.spectral ? "spectral" : "rgb";
     j["settings"] = render_settings_json(o);

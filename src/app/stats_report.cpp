@@ -5,6 +5,7 @@
 #include "sampler/sampler.h"
 
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -15,6 +16,15 @@ size_t peak_rss_bytes() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
   return size_t(u.ru_maxrss) * 1024;  // Linux reports kilobytes
+}
+
+size_t rss_bytes() {
+  unsigned long long pages = 0, resident = 0;
+  std::FILE* f = std::fopen("/proc/self/statm", "r");
+  if (!f) return 0;
+  const int n = std::fscanf(f, "%llu %llu", &pages, &resident);
+  std::fclose(f);
+  return n == 2 ? size_t(resident) * size_t(sysconf(_SC_PAGESIZE)) : 0;
 }
 
 namespace {
@@ -58,6 +68,10 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
                     {"bytes", s.guiding_bytes}};
   j["light_paths"] = s.light_paths;
   j["seconds"] = {{"load", run.load_seconds}, {"bvh_build", run.scene_info.bvh_build_seconds}, {"render", s.seconds}};
+  j["load_phases"] = nlohmann::json::array();
+  for (const LoadPhase& p : run.load_phases)
+    j["load_phases"].push_back(
+        {{"stage", p.stage}, {"end_seconds", p.end_seconds}, {"rss_bytes", p.rss_bytes}, {"peak_rss_bytes", p.peak_rss_bytes}});
   j["samples_per_second"] = per_second(double(s.samples), s.seconds);
   const uint64_t total = s.camera_rays + s.extension_rays + s.light_rays + s.shadow_rays;
   j["rays"] = {{"camera", ray_entry(s.camera_rays, s.seconds, s.camera_ray_seconds, s.timed)},
@@ -124,6 +138,8 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
   j["scene_contents"] = {{"triangles", run.scene_info.triangles},
                          {"spheres", run.scene_info.spheres},
                          {"lights", run.scene_info.lights},
+                         {"bilinear_patches", run.scene_info.bilinear_patches},
+                         {"curve_segments", run.scene_info.curve_segments},
                          {"instances", run.scene_info.instances},
                          {"instanced_triangles", run.scene_info.instanced_triangles}};
   return j;

@@ -48,14 +48,29 @@ struct Prototype {
   uint32_t first = 0, count = 0;
 };
 
-// One ObjectInstance: a prototype placed by a transform. Embree traces it
-// as an instance; hits come back in the prototype's space and are carried
-// into the world with these matrices. A moving instance (and a moving
-// shape, which becomes an instance of its own prototype) has a motion
-// path; its matrices here are those at the shutter's start, and
-// instance_at() gives them at a ray's time.
-struct Instance {
+// One ObjectInstance as stored: a prototype and the affine map that places
+// it (world_from_object's upper three rows, columns as in Embree's
+// RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR). 56 bytes: a production scene holds
+// tens of millions (docs/performance.md, "Production scale"); whatever
+// else shading needs is derived per hit by Instance::of. A moving instance
+// (and a moving shape, which becomes an instance of its own prototype) has
+// a motion path, and its matrix here is the one at the shutter's start.
+struct Placement {
   static constexpr uint32_t kStill = 0xFFFFFFFFu;
+  uint32_t prototype;
+  uint32_t motion = kStill;  // index into ShapePools::motions
+  glm::mat4x3 world_from_object;
+
+  static Placement of(uint32_t prototype, const Mat4& M, uint32_t motion = kStill) {
+    return {prototype, motion, glm::mat4x3(M)};
+  }
+  Mat4 matrix() const { return Mat4(world_from_object); }
+};
+
+// An instance as shading sees it: hits come back in the prototype's space
+// and are carried into the world with these matrices.
+struct Instance {
+  static constexpr uint32_t kStill = Placement::kStill;
   uint32_t prototype;
   Mat4 world_from_object;
   glm::mat3 normal_to_world;  // inverse transpose of the upper 3x3
@@ -82,16 +97,15 @@ struct ShapePools {
   std::vector<AlphaMask> alpha_masks;  // only for geometries with an alpha below 1
   std::vector<uint8_t> in_prototype;  // per geometry: 1 if it belongs to a prototype (not traced directly)
   std::vector<Prototype> prototypes;
-  std::vector<Instance> instances;
+  std::vector<Placement> instances;
   std::vector<MotionPath> motions;  // of the moving instances
 };
 
-// Instance `in` where it is at time u of the shutter (math/motion.h): `in`
-// itself when it stands still (no copy), else placed at u in `scratch`.
-inline const Instance& instance_at(const ShapePools& shapes, const Instance& in, float u,
-                                   std::optional<Instance>& scratch) {
-  if (in.motion == Instance::kStill) return in;
-  return scratch.emplace(Instance::placed(in.prototype, shapes.motions[in.motion].at(u), in.motion));
+// Instance k where it is at time u of the shutter (math/motion.h).
+inline Instance instance_at(const ShapePools& shapes, uint32_t k, float u) {
+  const Placement& in = shapes.instances[k];
+  if (in.motion == Placement::kStill) return Instance::placed(in.prototype, in.matrix());
+  return Instance::placed(in.prototype, shapes.motions[in.motion].at(u), in.motion);
 }
 
 }  // namespace lantern

@@ -184,7 +184,13 @@ Vec2 bilinear_uv_of(const PatchCorners& c, const Vec3& p) {
 bool is_parallelogram(const Vec3& v00, const Vec3& v10, const Vec3& v01, const Vec3& v11) {
   const float size =
       std::fmax(std::fmax(glm::length(v10 - v00), glm::length(v01 - v00)), std::fmax(glm::length(v11 - v00), 1e-30f));
-  return glm::length((v00 + v11) - (v10 + v01)) <= 1e-6f * size;
+  // Corners far from the origin carry the rounding of their coordinates
+  // (2^-24 of their size each): a flat panel written at x = 1000 misses
+  // its fourth corner by some 1e-5 and is still a parallelogram, two
+  // triangles that differ from its patch by less than a float can show.
+  const float far = std::fmax(std::fmax(max_abs_component(v00), max_abs_component(v10)),
+                              std::fmax(max_abs_component(v01), max_abs_component(v11)));
+  return glm::length((v00 + v11) - (v10 + v01)) <= 1e-6f * std::fmax(size, far);
 }
 
 }  // namespace lantern

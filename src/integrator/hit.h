@@ -64,8 +64,7 @@ inline SurfacePoint hit_point(const ShapePools& shapes, const RayBatch& rays, ui
   const uint32_t inst = rays.inst_id[i];
   if (inst == kInvalidGeometry) return local_hit_point(shapes, rays, i, nullptr);
   // Embree reports an instance hit's u, v and Ng in the prototype's space.
-  std::optional<Instance> moved;
-  const Instance& in = instance_at(shapes, shapes.instances[inst], rays.time[i], moved);
+  const Instance in = instance_at(shapes, inst, rays.time[i]);
   return to_world(in, local_hit_point(shapes, rays, i, &in));
 }
 

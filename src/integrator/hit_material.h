@@ -23,9 +23,9 @@ inline ShadingGeometry world_shading_geometry(const Scene& scene, const RayBatch
   // Derivatives in the geometry's own space, carried to the world for an
   // instance (the surface point already is).
   const uint32_t inst = rays.inst_id[i];
-  std::optional<Instance> moved;
-  const Instance* in =
-      inst == kInvalidGeometry ? nullptr : &instance_at(shapes, shapes.instances[inst], rays.time[i], moved);
+  std::optional<Instance> placed;
+  if (inst != kInvalidGeometry) placed = instance_at(shapes, inst, rays.time[i]);
+  const Instance* in = placed ? &*placed : nullptr;
   SurfacePoint local = in ? local_hit_point(shapes, rays, i, in) : sp;
   ShadingGeometry g;
   switch (geo.kind) {

@@ -244,7 +244,7 @@ class PySession {
     const Scene& scene = *scene_->scene;
     RunInfo run{scene_->path, name(options_.integrator), out_.image, name(options_.ray_backend), r.image.width,
                 r.image.height, options_.wave_size, scene_->load_seconds, scene_info(scene),
-                scene_settings(scene).sampler, options_.sampler, name(scene_settings(scene).light_sampler)};
+                scene_settings(scene).sampler, options_.sampler, name(scene_settings(scene).light_sampler), {}};
     nlohmann::json j = stats_json(run, r.stats);
     j["colour"] = options_.spectral ? "spectral" : "rgb";
     j["settings"] = render_settings_json(options_);

@@ -432,7 +432,7 @@ void SceneBuilder::count_triangles() {
   std::vector<size_t> per_prototype(s.prototypes.size(), 0);
   for (size_t p = 0; p < s.prototypes.size(); ++p)
     for (uint32_t j = 0; j < s.prototypes[p].count; ++j) per_prototype[p] += tris(s.prototypes[p].first + j);
-  for (const Instance& inst : s.instances) scene_.instanced_triangle_count += per_prototype[inst.prototype];
+  for (const Placement& inst : s.instances) scene_.instanced_triangle_count += per_prototype[inst.prototype];
 }
 
 void SceneBuilder::shape(const std::string& type, const ParamSet& ps, const GraphicsState& gs, const std::string& base_dir) {

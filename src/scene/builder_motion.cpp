@@ -57,11 +57,11 @@ void SceneBuilder::place_instance(uint32_t prototype, const glm::dmat4& m0, cons
   ShapePools& s = scene_.shapes;
   // (as pbrt-v4: a motion too small to change a float is no motion)
   if (Mat4(m0) == Mat4(m1)) {
-    s.instances.push_back(Instance::placed(prototype, Mat4(m0)));
+    s.instances.push_back(Placement::of(prototype, Mat4(m0)));
     return;
   }
   s.motions.push_back(motion_path(m0, m1));
-  s.instances.push_back(Instance::placed(prototype, s.motions.back().steps.front(), uint32_t(s.motions.size() - 1)));
+  s.instances.push_back(Placement::of(prototype, s.motions.back().steps.front(), uint32_t(s.motions.size() - 1)));
 }
 
 }  // namespace lantern

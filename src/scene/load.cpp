@@ -11,6 +11,7 @@ std::shared_ptr<Scene> load_scene(const std::string& path, const LoadOptions& op
   SceneBuilder b(*scene, options.warn, options.progress);
   b.set_texture_cache(TextureCacheSettings{options.texture_cache_mb, options.texture_directory});
   b.set_lenient(options.lenient);
+  b.set_instance_layout(options.instance_layout);
   if (options.progress) options.progress("parsing " + path);
   pbrt::parse_file(path, b);
   b.finish();
@@ -22,6 +23,7 @@ std::shared_ptr<Scene> load_scene_from_string(const std::string& text, const std
   SceneBuilder b(*scene, options.warn);
   b.set_texture_cache(TextureCacheSettings{options.texture_cache_mb, options.texture_directory});
   b.set_lenient(options.lenient);
+  b.set_instance_layout(options.instance_layout);
   pbrt::parse_string(text, name,
                      options.base_directory.empty() ? std::filesystem::current_path().string()
                                                     : std::filesystem::absolute(options.base_directory).string(),
@@ -38,13 +40,23 @@ SceneInfo scene_info(const Scene& scene) {
   info.spheres = scene.shapes.spheres.size();
   info.lights = scene.lights.all.size();
   info.instances = scene.shapes.instances.size();
+  for (const BilinearPatchSet& p : scene.shapes.patches) {
+    info.bilinear_patches += p.patches.size();
+    info.geometry_bytes += p.positions.capacity() * sizeof(Vec3) + p.normals.capacity() * sizeof(Vec3) +
+                           p.uvs.capacity() * sizeof(Vec2) + p.patches.capacity() * sizeof(glm::uvec4);
+  }
+  for (const CurveSet& c : scene.shapes.curves) {
+    info.curve_segments += c.segments();
+    info.geometry_bytes += c.control.capacity() * sizeof(glm::vec4) + c.normals.capacity() * sizeof(Vec3) +
+                           c.u_range.capacity() * sizeof(Vec2);
+  }
   info.instanced_triangles = scene.triangle_count - scene.prototype_triangle_count + scene.instanced_triangle_count;
   if (scene.accel) {
     info.bvh_build_seconds = scene.accel->build_seconds();
     info.bvh_bytes = scene.accel->bytes();
     info.bvh_peak_bytes = scene.accel->peak_bytes();
   }
-  info.geometry_bytes += scene.shapes.instances.capacity() * sizeof(Instance) +
+  info.geometry_bytes += scene.shapes.instances.capacity() * sizeof(Placement) +
                          scene.shapes.geometries.capacity() * sizeof(Geometry);
   for (const TriangleMesh& m : scene.shapes.meshes)
     info.geometry_bytes += m.positions.capacity() * sizeof(Vec3) + m.triangles.capacity() * sizeof(glm::uvec3) +
