@@ -16,10 +16,10 @@ echo "| scale | patches + triangles | curve segments | instances | layout | inte
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for scale in ${scales[*]}; do
   rm -rf "$work" && "$gen" "$work" --island "$scale" >/dev/null
-  for layout in embree compact; do
+  for layout in fast compact; do
     for integrator in path bdpt; do
       start=$(date +%s.%N)
-      (cd "$work" && "$lantern" render scene.pbrt --integrator "$integrator" --spp 1 --quiet --instances "$layout" \
+      (cd "$work" && "$lantern" render scene.pbrt --integrator "$integrator" --spp 1 --quiet --memory-layout "$layout" \
         --stats s.json -o out.exr)
       wall=$(echo "$(date +%s.%N) - $start" | bc)
       python3 - "$work/s.json" "$scale" "$layout" "$integrator" "$wall" <<'PY'

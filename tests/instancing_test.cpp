@@ -1,7 +1,8 @@
 // Object instancing: a scene of instances and the same scene with every
 // instance written out as plain shapes must render the same image, with
-// the path tracer and with bdpt, whether Embree's instances or the compact
-// layout place them; and misuse gets a clear error.
+// the path tracer and with bdpt, whether Embree's instances (the fast
+// memory layout) or the compact user geometry place them; and misuse gets
+// a clear error.
 #include <gtest/gtest.h>
 
 #include <sstream>
@@ -82,17 +83,17 @@ std::string instancing_scene_text(bool instanced) {
 // The same rays into both scenes: every hit must be the same surface point,
 // with the same normals, uv and kind of material, whichever of Embree's
 // back ends traced it.
-std::shared_ptr<Scene> load_instanced(InstanceLayout layout) {
+std::shared_ptr<Scene> load_instanced(MemoryLayout layout) {
   LoadOptions lo;
-  lo.instance_layout = layout;
+  lo.memory_layout = layout;
   auto scene = load_scene_from_string(instancing_scene_text(true), "instanced.pbrt", lo);
-  EXPECT_EQ(scene->accel->compact_instances(), layout == InstanceLayout::Compact);
+  EXPECT_EQ(scene->accel->compact_instances(), layout == MemoryLayout::Compact);
   return scene;
 }
 
 TEST(Instancing, HitsMatchTheFlattenedGeometry) {
   auto flat = load_scene_from_string(instancing_scene_text(false), "flat.pbrt");
-  for (InstanceLayout layout : {InstanceLayout::Embree, InstanceLayout::Compact})
+  for (MemoryLayout layout : {MemoryLayout::Fast, MemoryLayout::Compact})
   for (const char* backend : {"stream", "single", "packet16"}) {
     SCOPED_TRACE(std::string(backend) + " " + name(layout));
     auto instanced = load_instanced(layout);
@@ -136,7 +137,7 @@ TEST(Instancing, HitsMatchTheFlattenedGeometry) {
 }
 
 TEST(Instancing, InstancedAndFlattenedScenesRenderTheSameImage) {
-  auto instanced = load_instanced(InstanceLayout::Embree), compact = load_instanced(InstanceLayout::Compact);
+  auto instanced = load_instanced(MemoryLayout::Fast), compact = load_instanced(MemoryLayout::Compact);
   auto flat = load_scene_from_string(instancing_scene_text(false), "flat.pbrt");
   SceneInfo a = scene_info(*instanced), b = scene_info(*flat);
   EXPECT_EQ(a.instances, 4u);

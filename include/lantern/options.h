@@ -41,10 +41,12 @@ enum class LightSamplerKind : uint8_t { Bvh, Power, Uniform };  // next-event es
 // Embree's interfaces, on the same batches: rtcIntersectNp (stream),
 // rtcIntersect1M, rtcIntersect1, 16-wide packets.
 enum class RayBackend : uint8_t { StreamNp, Stream1M, Single, Packet16 };
-// How ObjectInstances are placed for Embree: its instance geometries
-// (fastest to trace) or one compact user geometry (a fraction of the
-// memory); auto: compact from 100,000 still instances on (accel/instance_geometry.h).
-enum class InstanceLayout : uint8_t { Auto, Embree, Compact };
+// How the scene is laid out for Embree (accel/embree_scene.h): fast places
+// ObjectInstances by Embree's instance geometries and builds its fastest
+// BVH; compact places still instances by one user geometry (56 bytes of
+// transform each and a box) and builds Embree's compact BVH (a quarter to
+// a third less memory); auto chooses each by the scene's size.
+enum class MemoryLayout : uint8_t { Auto, Fast, Compact };
 
 namespace option_words {
 template <class E>
@@ -70,8 +72,8 @@ inline constexpr std::array<Word<SamplerKind>, 6> kSamplers{{{SamplerKind::ZSobo
                                                              {SamplerKind::Independent, "independent"}}};
 inline constexpr std::array<Word<LightSamplerKind>, 3> kLightSamplers{
     {{LightSamplerKind::Bvh, "bvh"}, {LightSamplerKind::Power, "power"}, {LightSamplerKind::Uniform, "uniform"}}};
-inline constexpr std::array<Word<InstanceLayout>, 3> kInstanceLayouts{
-    {{InstanceLayout::Auto, "auto"}, {InstanceLayout::Embree, "embree"}, {InstanceLayout::Compact, "compact"}}};
+inline constexpr std::array<Word<MemoryLayout>, 3> kMemoryLayouts{
+    {{MemoryLayout::Auto, "auto"}, {MemoryLayout::Fast, "fast"}, {MemoryLayout::Compact, "compact"}}};
 inline constexpr std::array<Word<RayBackend>, 4> kRayBackends{{{RayBackend::StreamNp, "stream"},
                                                                {RayBackend::Stream1M, "stream-1m"},
                                                                {RayBackend::Single, "single"},
@@ -103,10 +105,10 @@ inline LightSamplerKind parse_light_sampler(std::string_view w) {
 inline RayBackend parse_ray_backend(std::string_view w) {
   return w == "stream-np" ? RayBackend::StreamNp : option_words::parse(w, option_words::kRayBackends, "ray back end");
 }
-inline InstanceLayout parse_instance_layout(std::string_view w) {
-  return option_words::parse(w, option_words::kInstanceLayouts, "instance layout");
+inline MemoryLayout parse_memory_layout(std::string_view w) {
+  return option_words::parse(w, option_words::kMemoryLayouts, "memory layout");
 }
-inline const char* name(InstanceLayout l) { return option_words::name(l, option_words::kInstanceLayouts); }
+inline const char* name(MemoryLayout l) { return option_words::name(l, option_words::kMemoryLayouts); }
 inline const char* name(Integrator i) { return option_words::name(i, option_words::kIntegrators); }
 inline const char* name(MisHeuristic m) { return option_words::name(m, option_words::kMis); }
 inline const char* name(SamplerKind s) { return option_words::name(s, option_words::kSamplers); }

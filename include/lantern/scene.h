@@ -102,8 +102,8 @@ struct LoadOptions {
   // A parameter neither pbrt-v4 nor pbrt-v3 reads (a typo, most often) is
   // an error, as in pbrt-v4; lenient makes it a warning (--lenient).
   bool lenient = false;
-  // Embree instances or the compact layout (lantern/options.h).
-  InstanceLayout instance_layout = InstanceLayout::Auto;
+  // Fast or compact acceleration structures (lantern/options.h).
+  MemoryLayout memory_layout = MemoryLayout::Auto;
 };
 
 // Throws InputError for anything wrong with the input.
@@ -122,6 +122,7 @@ struct SceneInfo {
   double bvh_build_seconds = 0.0;
   int64_t bvh_bytes = 0;        // Embree's own memory after the build
   int64_t bvh_peak_bytes = 0;   // including the builder's temporaries
+  bool compact_instances = false, compact_bvh = false;  // the memory layout chosen
   size_t geometry_bytes = 0;    // the scene's vertex, index, normal and uv pools, patches, curves, placements
 };
 SceneInfo scene_info(const Scene& scene);

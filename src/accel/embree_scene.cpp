@@ -39,6 +39,15 @@ static RTCGeometry new_curve_geometry(RTCDevice device, const CurveSet& c) {
   return geom;
 }
 
+// What the top-level BVH holds: primitives stored once, and instances.
+static size_t primitive_count(const ShapePools& shapes) {
+  size_t n = shapes.instances.size() + shapes.spheres.size() + shapes.quadrics.size();
+  for (const TriangleMesh& m : shapes.meshes) n += m.triangles.size();
+  for (const BilinearPatchSet& p : shapes.patches) n += p.patches.size();
+  for (const CurveSet& c : shapes.curves) n += c.segments();
+  return n;
+}
+
 // Embree may report from its build threads, so the first message is kept
 // under a lock and turned into an exception on the constructing thread.
 void EmbreeScene::on_error(void* user, RTCError code, const char* str) {
@@ -107,7 +116,7 @@ void EmbreeScene::attach(RTCScene scene, const ShapePools& shapes, uint32_t id, 
   rtcReleaseGeometry(geom);
 }
 
-EmbreeScene::EmbreeScene(const ShapePools& shapes, const TexturePools& textures, InstanceLayout layout)
+EmbreeScene::EmbreeScene(const ShapePools& shapes, const TexturePools& textures, MemoryLayout layout)
     : textures_(&textures) {
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("cannot create the Embree device");
@@ -117,7 +126,14 @@ EmbreeScene::EmbreeScene(const ShapePools& shapes, const TexturePools& textures,
   // Watertight intersection: without it a ray can slip between two
   // triangles through their shared edge, and light leaks through closed
   // walls (tests/extremes_test.cpp, ScaleInvariance, caught it).
-  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+  //
+  // Embree's compact BVH (indexed triangles, no copies of the vertices)
+  // holds a quarter to a third less memory and, measured, traces large
+  // scenes as fast but small ones 8-16% slower (docs/performance.md,
+  // "Production scale").
+  compact_bvh_ = layout == MemoryLayout::Compact ||
+                 (layout == MemoryLayout::Auto && primitive_count(shapes) >= kCompactBvhFrom);
+  rtcSetSceneFlags(scene_, scene_flags());
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
 
   auto t0 = std::chrono::steady_clock::now();
@@ -149,7 +165,7 @@ void EmbreeScene::build_prototypes(const ShapePools& shapes) {
     RTCScene& ps = prototypes_[inst.prototype];
     if (ps) continue;
     ps = rtcNewScene(device_);
-    rtcSetSceneFlags(ps, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneFlags(ps, scene_flags());
     rtcSetSceneBuildQuality(ps, RTC_BUILD_QUALITY_HIGH);
     const Prototype& proto = shapes.prototypes[inst.prototype];
     for (uint32_t j = 0; j < proto.count; ++j) attach(ps, shapes, proto.first + j, j);
@@ -161,10 +177,10 @@ void EmbreeScene::build_prototypes(const ShapePools& shapes) {
 
 // Moving instances are always Embree's (it interpolates their matrices);
 // still ones are Embree's or, compact, primitives of one user geometry.
-void EmbreeScene::place_instances(const ShapePools& shapes, InstanceLayout layout) {
+void EmbreeScene::place_instances(const ShapePools& shapes, MemoryLayout layout) {
   size_t still = 0;
   for (const Placement& inst : shapes.instances) still += inst.motion == Placement::kStill;
-  const bool compact = layout == InstanceLayout::Compact || (layout == InstanceLayout::Auto && still >= kCompactInstancesFrom);
+  const bool compact = layout == MemoryLayout::Compact || (layout == MemoryLayout::Auto && still >= kCompactInstancesFrom);
   if (compact && still > 0) {
     compact_ = std::make_unique<InstanceGeometryData>();
     compact_->placements = &shapes.instances;

@@ -22,16 +22,18 @@
 
 namespace lantern {
 
-// InstanceLayout::Auto places instances compactly from this many still
-// ones on (docs/performance.md, "Production scale").
+// MemoryLayout::Auto places instances compactly from this many still ones
+// on, and builds Embree's compact BVH from this many primitives on
+// (docs/performance.md, "Production scale").
 inline constexpr size_t kCompactInstancesFrom = 100000;
+inline constexpr size_t kCompactBvhFrom = 1000000;
 
 class EmbreeScene {
  public:
   // The pools must outlive the scene: alpha filters and instances read them
   // while tracing.
   EmbreeScene(const ShapePools& shapes, const TexturePools& textures,
-              InstanceLayout layout = InstanceLayout::Auto);  // throws std::runtime_error
+              MemoryLayout layout = MemoryLayout::Auto);  // throws std::runtime_error
   ~EmbreeScene();
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
@@ -48,11 +50,12 @@ class EmbreeScene {
   // geomID of the prototype's geometry within its own scene.
   uint32_t instance_base() const { return instance_base_; }
   bool compact_instances() const { return compact_ != nullptr; }
+  bool compact_bvh() const { return compact_bvh_; }
 
  private:
   void attach(RTCScene scene, const ShapePools& shapes, uint32_t id, uint32_t embree_id);
   void build_prototypes(const ShapePools& shapes);
-  void place_instances(const ShapePools& shapes, InstanceLayout layout);
+  void place_instances(const ShapePools& shapes, MemoryLayout layout);
   static void on_error(void* user, RTCError code, const char* str);
   static bool on_memory(void* user, ssize_t bytes, bool post);
   void check(const char* what);
@@ -65,6 +68,10 @@ class EmbreeScene {
   uint32_t instance_base_ = 0;
   std::vector<RTCScene> prototypes_;  // per prototype: its scene, or null when nothing places it
   std::unique_ptr<InstanceGeometryData> compact_;
+  bool compact_bvh_ = false;
+  RTCSceneFlags scene_flags() const {
+    return compact_bvh_ ? RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_COMPACT : RTC_SCENE_FLAG_ROBUST;
+  }
   const TexturePools* textures_ = nullptr;
   std::vector<std::unique_ptr<AlphaFilterData>> alpha_data_;
   std::vector<std::unique_ptr<QuadricGeometryData>> quadric_data_;

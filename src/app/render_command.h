@@ -28,7 +28,7 @@ struct RenderArgs {
   bool resume = false, keep_checkpoint = false;
   bool quiet = false;
   bool lenient = false;  // unknown scene parameters are warnings
-  std::string instances = "auto";  // InstanceLayout
+  std::string memory_layout = "auto";
 };
 
 // The render subcommand's options (the request's, app/command_line.h, and

@@ -124,7 +124,9 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
                  {"wave_pools_bytes", s.wave_pool_bytes},
                  {"bvh_bytes", run.scene_info.bvh_bytes},
                  {"bvh_peak_bytes", run.scene_info.bvh_peak_bytes},
-                 {"geometry_bytes", run.scene_info.geometry_bytes}};
+                 {"geometry_bytes", run.scene_info.geometry_bytes},
+                 {"compact_instances", run.scene_info.compact_instances},
+                 {"compact_bvh", run.scene_info.compact_bvh}};
   if (s.texture_cache) {
     j["texture_cache"] = {{"lookups", s.texture_lookups},
                           {"bytes_read", s.texture_bytes_read},

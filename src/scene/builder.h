@@ -59,7 +59,7 @@ class SceneBuilder final : public pbrt::ParserTarget {
   void warn(const SourceLocation& where, const std::string& what) const override;
   void set_texture_cache(const TextureCacheSettings& s) { texture_cache_ = s; }
   void set_lenient(bool lenient) { lenient_ = lenient; }
-  void set_instance_layout(InstanceLayout l) { instance_layout_ = l; }
+  void set_memory_layout(MemoryLayout l) { memory_layout_ = l; }
   bool lenient() const override { return lenient_; }
   void warn_line(const std::string& line) const override {
     if (warn_) warn_(line);
@@ -225,7 +225,7 @@ class SceneBuilder final : public pbrt::ParserTarget {
 
   Scene& scene_;
   bool lenient_ = false;
-  InstanceLayout instance_layout_ = InstanceLayout::Auto;
+  MemoryLayout memory_layout_ = MemoryLayout::Auto;
   WarningSink warn_;
   std::function<void(const std::string&)> progress_;
   std::map<std::string, RGBTextureRef> rgb_textures_;

@@ -178,7 +178,7 @@ void SceneBuilder::finish() {
   // placements make that hundreds of megabytes for the whole render.
   scene_.shapes.instances.shrink_to_fit();
   if (progress_) progress_("building the BVH");
-  scene_.accel = std::make_unique<EmbreeScene>(scene_.shapes, scene_.textures, instance_layout_);
+  scene_.accel = std::make_unique<EmbreeScene>(scene_.shapes, scene_.textures, memory_layout_);
   scene_.accel->bounds(&scene_.bounds_lo, &scene_.bounds_hi);
   Vec3 center(0.f);
   float radius = 1.f;

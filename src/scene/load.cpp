@@ -11,7 +11,7 @@ std::shared_ptr<Scene> load_scene(const std::string& path, const LoadOptions& op
   SceneBuilder b(*scene, options.warn, options.progress);
   b.set_texture_cache(TextureCacheSettings{options.texture_cache_mb, options.texture_directory});
   b.set_lenient(options.lenient);
-  b.set_instance_layout(options.instance_layout);
+  b.set_memory_layout(options.memory_layout);
   if (options.progress) options.progress("parsing " + path);
   pbrt::parse_file(path, b);
   b.finish();
@@ -23,7 +23,7 @@ std::shared_ptr<Scene> load_scene_from_string(const std::string& text, const std
   SceneBuilder b(*scene, options.warn);
   b.set_texture_cache(TextureCacheSettings{options.texture_cache_mb, options.texture_directory});
   b.set_lenient(options.lenient);
-  b.set_instance_layout(options.instance_layout);
+  b.set_memory_layout(options.memory_layout);
   pbrt::parse_string(text, name,
                      options.base_directory.empty() ? std::filesystem::current_path().string()
                                                     : std::filesystem::absolute(options.base_directory).string(),
@@ -55,6 +55,8 @@ SceneInfo scene_info(const Scene& scene) {
     info.bvh_build_seconds = scene.accel->build_seconds();
     info.bvh_bytes = scene.accel->bytes();
     info.bvh_peak_bytes = scene.accel->peak_bytes();
+    info.compact_instances = scene.accel->compact_instances();
+    info.compact_bvh = scene.accel->compact_bvh();
   }
   info.geometry_bytes += scene.shapes.instances.capacity() * sizeof(Placement) +
                          scene.shapes.geometries.capacity() * sizeof(Geometry);
