@@ -1,4 +1,7 @@
 // LightSource directives and the final assembly of the scene.
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <filesystem>
 
 #include "scene/builder.h"
@@ -168,15 +171,27 @@ void SceneBuilder::profiled_light(const std::string& type, const ParamSet& ps, c
   scene_.lights.point.push_back({Vec3(ctm * Vec4(0.f, 0.f, 0.f, 1.f)), I, int32_t(scene_.lights.profiles.size() - 1), {}});
 }
 
+// Parsing frees millions of small blocks and every file's text, and PLY
+// reading its buffers; glibc keeps freed heap pages unless asked, and the
+// BVH build's peak then comes on top of them (150 bytes per placement,
+// measured; docs/performance.md, "Production scale").
+static void return_free_memory() {
+#ifdef __GLIBC__
+  malloc_trim(0);
+#endif
+}
+
 void SceneBuilder::finish() {
   check_objects_closed();
   check_lens_focus();
   finish_media();
+  return_free_memory();
   load_pending_meshes();
   count_triangles();
   // Growth by doubling leaves up to half a pool unused; millions of
   // placements make that hundreds of megabytes for the whole render.
   scene_.shapes.instances.shrink_to_fit();
+  return_free_memory();
   if (progress_) progress_("building the BVH");
   scene_.accel = std::make_unique<EmbreeScene>(scene_.shapes, scene_.textures, memory_layout_);
   scene_.accel->bounds(&scene_.bounds_lo, &scene_.bounds_hi);

@@ -2,7 +2,6 @@
 
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 namespace lantern::pbrt {
 
@@ -16,10 +15,17 @@ std::unique_ptr<Tokenizer> Tokenizer::from_file(const std::string& path, const S
     throw InputError(from, "scene file \"" + printable(path, 200) + "\" is not a regular file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(from, "cannot open scene file \"" + printable(path, 200) + "\"");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw InputError(from, "cannot read scene file \"" + printable(path, 200) + "\"");
-  return std::make_unique<Tokenizer>(ss.str(), path);
+  // Read straight into a string of the file's size: a stream buffer and
+  // its copy would hold three times a file of millions of placements.
+  std::string text;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!ec) {
+    text.resize(size);
+    in.read(text.data(), std::streamsize(size));
+    text.resize(size_t(in.gcount()));
+  }
+  if (in.bad() || ec) throw InputError(from, "cannot read scene file \"" + printable(path, 200) + "\"");
+  return std::make_unique<Tokenizer>(std::move(text), path);
 }
 
 void Tokenizer::fail(int line, int col, const std::string& what) const {
