@@ -106,7 +106,7 @@ TEST(Instancing, HitsMatchTheFlattenedGeometry) {
       b.push(o, target - o, 0.f, 1e30f, 0.f);
     }
     RayStream ia(instanced->accel->handle(), parse_ray_backend(backend), nullptr);
-    ia.set_instances(instanced->accel->instance_base(), &instanced->shapes);
+    ia.set_scene(instanced->accel->instance_base(), &instanced->shapes);
     ia.intersect(a, RayKind::Extension);
     RayStream(flat->accel->handle(), parse_ray_backend(backend), nullptr).intersect(b, RayKind::Extension);
     int compared = 0, instanced_hits = 0, disagree = 0;

@@ -74,6 +74,7 @@ void lantern_stream(benchmark::State& state, uint32_t kind, RayBackend backend) 
   uint64_t rays;
   std::vector<RayBatch> work = working_copies(kind, &rays);
   RayStream stream(g_scene->accel->handle(), backend, nullptr);
+  stream.set_scene(g_scene->accel->instance_base(), &g_scene->shapes);
   for (auto _ : state) {
     size_t k = 0;
     for (const DumpedBatch& b : g_batches) {

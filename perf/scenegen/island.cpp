@@ -203,7 +203,7 @@ IslandCounts write_island(const fs::path& out, double scale, int prototypes, uin
                "Film \"rgb\" \"integer xresolution\" [ 1920 ] \"integer yresolution\" [ 804 ] \"string filename\" \"island.exr\"\n"
                "Sampler \"zsobol\" \"integer pixelsamples\" [ 16 ]\nIntegrator \"path\" \"integer maxdepth\" [ 5 ]\n"
                "WorldBegin\nLightSource \"infinite\" \"rgb L\" [ 0.3 0.45 0.8 ]\n"
-               "LightSource \"distant\" \"point3 to\" [ -1 -1.2 -0.6 ] \"blackbody L\" [ 5500 ] \"float scale\" 3\n",
+               "LightSource \"distant\" \"point3 to\" [ 0.8 -1.1 0.9 ] \"blackbody L\" [ 5500 ] \"float scale\" 3\n",
                scale, prototypes, seed);
   IslandCounts c = write_quads(w, kFullQuads * scale);
   c.curves = write_curves(w, kFullCurves * scale);

@@ -15,6 +15,8 @@ float alpha_at(const ShapePools& shapes, const TexturePools& textures, uint32_t 
   // read u along the curve (pbrt's) and the middle of v.
   if (geo.kind == ShapeKind::Curve)
     return textures.evaluate_float(a, TextureContext{p, Vec3(0, 0, 1), Vec2(shapes.curves[geo.index].curve_u(prim, b.x), 0.5f)});
+  if (geo.kind == ShapeKind::Mesh && !shapes.meshes[geo.index].quads.empty())
+    prim = quad_hit_triangle(prim, b.x, b.y, &b.x, &b.y);  // Embree's quad: its triangle (geometry/triangle_mesh.h)
   SurfacePoint sp = geo.kind == ShapeKind::Mesh       ? triangle_point(shapes.meshes[geo.index], prim, b.x, b.y)
                     : geo.kind == ShapeKind::Quadric  ? quadric_point(shapes.quadrics[geo.index], b)
                     : geo.kind == ShapeKind::Bilinear ? bilinear_point(shapes.patches[geo.index], prim, b)

@@ -42,7 +42,7 @@ static RTCGeometry new_curve_geometry(RTCDevice device, const CurveSet& c) {
 // What the top-level BVH holds: primitives stored once, and instances.
 static size_t primitive_count(const ShapePools& shapes) {
   size_t n = shapes.instances.size() + shapes.spheres.size() + shapes.quadrics.size();
-  for (const TriangleMesh& m : shapes.meshes) n += m.triangles.size();
+  for (const TriangleMesh& m : shapes.meshes) n += m.triangles.size() + m.quads.size();
   for (const BilinearPatchSet& p : shapes.patches) n += p.patches.size();
   for (const CurveSet& c : shapes.curves) n += c.segments();
   return n;
@@ -76,7 +76,7 @@ bool EmbreeScene::on_memory(void* user, ssize_t bytes, bool) {
 // `embree_id`; the scene keeps the only reference.
 void EmbreeScene::attach(RTCScene scene, const ShapePools& shapes, uint32_t id, uint32_t embree_id) {
   const Geometry& g = shapes.geometries[id];
-  if (g.kind == ShapeKind::Mesh && shapes.meshes[g.index].triangles.empty()) return;  // an empty PLY: nothing to trace
+  if (g.kind == ShapeKind::Mesh && shapes.meshes[g.index].triangle_count() == 0) return;  // an empty PLY: nothing to trace
   AlphaFilterData* alpha = nullptr;
   if (g.alpha >= 0) {
     alpha_data_.push_back(std::make_unique<AlphaFilterData>(AlphaFilterData{&shapes, textures_, id}));
@@ -93,12 +93,17 @@ void EmbreeScene::attach(RTCScene scene, const ShapePools& shapes, uint32_t id, 
     geom = new_curve_geometry(device_, shapes.curves[g.index]);
   } else if (g.kind == ShapeKind::Mesh) {
     const TriangleMesh& m = shapes.meshes[g.index];
-    geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    const bool quads = !m.quads.empty();
+    geom = rtcNewGeometry(device_, quads ? RTC_GEOMETRY_TYPE_QUAD : RTC_GEOMETRY_TYPE_TRIANGLE);
     // Shared buffers: Embree reads the pool's own arrays, no second copy.
     rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.positions.data(), 0,
                                sizeof(Vec3), m.vertex_count);
-    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.triangles.data(), 0,
-                               sizeof(glm::uvec3), m.triangles.size());
+    if (quads)
+      rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, m.quads.data(), 0,
+                                 sizeof(glm::uvec4), m.quads.size());
+    else
+      rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.triangles.data(), 0,
+                                 sizeof(glm::uvec3), m.triangles.size());
   } else {
     const Sphere& s = shapes.spheres[g.index];
     geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);

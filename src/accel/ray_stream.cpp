@@ -81,7 +81,17 @@ void RayStream::intersect(RayBatch& b, RayKind kind) {
     run_intersect(b, kind);
     record(kind, b.count, t0, TraceClock::now());
   }
-  if (shapes_) remap_instance_hits(b);
+  if (has_instances_) remap_instance_hits(b);
+  if (has_quads_) remap_quad_hits(b);
+}
+
+void RayStream::remap_quad_hits(RayBatch& b) const {
+  for (uint32_t i = 0; i < b.count; ++i) {
+    if (b.geom_id[i] == RTC_INVALID_GEOMETRY_ID) continue;
+    const Geometry& g = shapes_->geometries[b.geom_id[i]];
+    if (g.kind != ShapeKind::Mesh || shapes_->meshes[g.index].quads.empty()) continue;
+    b.prim_id[i] = quad_hit_triangle(b.prim_id[i], b.u[i], b.v[i], &b.u[i], &b.v[i]);
+  }
 }
 
 void RayStream::remap_instance_hits(RayBatch& b) const {

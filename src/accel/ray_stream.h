@@ -32,9 +32,16 @@ class RayStream {
   // instance k leaves geom_id = the pool index of the prototype geometry
   // hit and inst_id = k; other hits keep inst_id invalid.
   void intersect(RayBatch& batch, RayKind kind);
-  void set_instances(uint32_t base, const ShapePools* shapes) {
-    instance_base_ = base;
-    shapes_ = shapes && !shapes->instances.empty() ? shapes : nullptr;
+  // With the scene's pools set, hits come back as shading reads them:
+  // instance hits as above, and hits on a mesh Embree traces as quads as
+  // the triangle and barycentrics of the same point.
+  void set_scene(uint32_t instance_base, const ShapePools* shapes) {
+    instance_base_ = instance_base;
+    shapes_ = shapes;
+    has_instances_ = shapes && !shapes->instances.empty();
+    has_quads_ = false;
+    if (shapes)
+      for (const TriangleMesh& m : shapes->meshes) has_quads_ = has_quads_ || !m.quads.empty();
   }
   // Any hit: afterwards batch.occluded(i) says whether ray i was blocked.
   void occluded(RayBatch& batch);
@@ -54,11 +61,13 @@ class RayStream {
   void run_occluded(RayBatch& batch);
 
   void remap_instance_hits(RayBatch& batch) const;
+  void remap_quad_hits(RayBatch& batch) const;
   void record(RayKind kind, uint32_t count, TraceClock::time_point t0, TraceClock::time_point t1);
 
   RTCScene scene_;
   uint32_t instance_base_ = 0;
-  const ShapePools* shapes_ = nullptr;  // with instances: hits are rewritten
+  const ShapePools* shapes_ = nullptr;  // with instances or quads: hits are rewritten
+  bool has_instances_ = false, has_quads_ = false;
   RayBackend backend_;
   RayCounters* counters_;
   std::vector<RTCRayHit> aos_;   // scratch for the 1M back end

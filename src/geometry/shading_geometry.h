@@ -28,7 +28,7 @@ struct ShadingGeometry {
 };
 
 inline ShadingGeometry triangle_shading_geometry(const TriangleMesh& m, uint32_t prim, const SurfacePoint& sp) {
-  const glm::uvec3 t = m.triangles[prim];
+  const glm::uvec3 t = m.triangle(prim);
   const Vec3 &p0 = m.positions[t.x], &p1 = m.positions[t.y], &p2 = m.positions[t.z];
   Vec2 uv0(0, 0), uv1(1, 0), uv2(1, 1);
   if (!m.uvs.empty()) uv0 = m.uvs[t.x], uv1 = m.uvs[t.y], uv2 = m.uvs[t.z];

@@ -19,7 +19,7 @@ struct SurfacePoint {
 };
 
 inline SurfacePoint triangle_point(const TriangleMesh& m, uint32_t prim, float b1, float b2) {
-  const glm::uvec3 t = m.triangles[prim];
+  const glm::uvec3 t = m.triangle(prim);
   const Vec3 &p0 = m.positions[t.x], &p1 = m.positions[t.y], &p2 = m.positions[t.z];
   float b0 = 1.f - b1 - b2;
   SurfacePoint sp;
@@ -46,7 +46,7 @@ inline SurfacePoint triangle_point(const TriangleMesh& m, uint32_t prim, float b
 }
 
 inline float triangle_area(const TriangleMesh& m, uint32_t prim) {
-  const glm::uvec3 t = m.triangles[prim];
+  const glm::uvec3 t = m.triangle(prim);
   return 0.5f * glm::length(glm::cross(m.positions[t.y] - m.positions[t.x], m.positions[t.z] - m.positions[t.x]));
 }
 

@@ -42,7 +42,7 @@ auto make_thread_state(const Tracer& tracer, uint32_t capacity, const PassContex
   state->stats.timing = cx.opt.collect_stats;
   state->stream.set_timing(cx.opt.collect_stats);
   state->stream.set_dump(cx.dump);
-  state->stream.set_instances(cx.scene.accel->instance_base(), &cx.scene.shapes);
+  state->stream.set_scene(cx.scene.accel->instance_base(), &cx.scene.shapes);
   return state;
 }
 

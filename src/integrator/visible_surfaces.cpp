@@ -56,6 +56,7 @@ VisibleSurfaces PathTracer::visible_surfaces(uint32_t samples, bool world_space,
 
   tbb::parallel_for(0, out.height, [&](int y) {
     RayStream stream(scene_.accel->handle(), backend, nullptr);
+    stream.set_scene(scene_.accel->instance_base(), &scene_.shapes);  // hits as shading reads them
     RayBatch rays;
     rays.reserve(size_t(out.width) * samples);
     for (int x = 0; x < out.width; ++x) {

@@ -14,7 +14,7 @@ namespace {
 
 LightBounds triangle_bounds(const TriangleMesh& m, uint32_t prim, const AreaLight& a) {
   LightBounds b;
-  const glm::uvec3 t = m.triangles[prim];
+  const glm::uvec3 t = m.triangle(prim);
   for (uint32_t v : {t.x, t.y, t.z}) {
     b.lo = glm::min(b.lo, m.positions[v]);
     b.hi = glm::max(b.hi, m.positions[v]);

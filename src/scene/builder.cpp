@@ -305,31 +305,46 @@ static void prepare_mesh(TriangleMesh& mesh, const Mat4& M, bool reverse_orienta
     ps.fail("\"N\" has " + std::to_string(mesh.normals.size()) + " normals for " + std::to_string(mesh.positions.size()) + " vertices");
   if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size())
     ps.fail("\"uv\" has " + std::to_string(mesh.uvs.size()) + " entries for " + std::to_string(mesh.positions.size()) + " vertices");
-  for (const glm::uvec3& t : mesh.triangles)
+  for (size_t i = 0; i < mesh.triangle_count(); ++i) {
+    const glm::uvec3 t = mesh.triangle(i);
     if (std::max({t.x, t.y, t.z}) >= mesh.positions.size())
       ps.fail("index " + std::to_string(std::max({t.x, t.y, t.z})) + " is out of range: there are " +
               std::to_string(mesh.positions.size()) + " vertices");
+  }
   mesh.flip_normal = reverse_orientation != swaps_handedness(M);
   mesh.vertex_count = uint32_t(mesh.positions.size());
-  if (!mesh.triangles.empty()) mesh.positions.push_back(Vec3(0.f));  // Embree's 16-byte read of the last vertex
+  if (mesh.triangle_count() > 0) mesh.positions.push_back(Vec3(0.f));  // Embree's 16-byte read of the last vertex
 }
 
+// A PLY mesh of parallelograms only (ply_patches found every quad one)
+// keeps them as quads; the reader split each quad (a b c d) into (a b c)
+// and (a c d), the order TriangleMesh::triangle gives them back in.
 TriangleMesh from_ply(PlyMesh ply) {
   TriangleMesh m;
   m.positions = std::move(ply.positions);
   m.normals = std::move(ply.normals);
   m.uvs = std::move(ply.uvs);
-  m.triangles = std::move(ply.triangles);
+  bool all_quads = !ply.triangles.empty() && ply.quad_first.size() * 2 == ply.triangles.size();
+  for (size_t q = 0; all_quads && q < ply.quad_first.size(); ++q) all_quads = ply.quad_first[q] == 2 * q;
+  if (!all_quads) {
+    m.triangles = std::move(ply.triangles);
+    return m;
+  }
+  m.quads.resize(ply.quad_first.size());
+  for (size_t q = 0; q < m.quads.size(); ++q) {
+    const glm::uvec3 a = ply.triangles[2 * q], b = ply.triangles[2 * q + 1];
+    m.quads[q] = glm::uvec4(a.x, a.y, a.z, b.z);
+  }
   return m;
 }
 
 void SceneBuilder::add_mesh(TriangleMesh mesh, const GraphicsState& gs, const ParamSet& ps, const std::string& source) {
   prepare_mesh(mesh, Mat4(gs.render_from_object), gs.reverse_orientation, ps, source);
-  if (mesh.triangles.empty()) {
+  if (mesh.triangle_count() == 0) {
     warn(ps.where, ps.directive + " has no triangles and was skipped");
     return;
   }
-  uint32_t prims = uint32_t(mesh.triangles.size());
+  uint32_t prims = uint32_t(mesh.triangle_count());
   ShapePools& s = scene_.shapes;
   s.meshes.push_back(std::move(mesh));
   s.geometries.push_back({ShapeKind::Mesh, uint32_t(s.meshes.size() - 1), gs.material ? *gs.material : default_material(), -1, -1, {}});
@@ -410,7 +425,7 @@ void SceneBuilder::load_pending_meshes() {
       s.patches.push_back(std::move(*patches[i]));
       s.geometries[p.geometry].kind = ShapeKind::Bilinear;
       s.geometries[p.geometry].index = uint32_t(s.patches.size() - 1);
-    } else if (s.meshes[p.mesh].triangles.empty()) {
+    } else if (s.meshes[p.mesh].triangle_count() == 0) {
       warn(p.ps.where, p.ps.directive + " has no triangles and was skipped");
     }
   }
@@ -422,7 +437,7 @@ void SceneBuilder::load_pending_meshes() {
 void SceneBuilder::count_triangles() {
   const ShapePools& s = scene_.shapes;
   auto tris = [&](uint32_t g) {
-    return s.geometries[g].kind == ShapeKind::Mesh ? s.meshes[s.geometries[g].index].triangles.size() : size_t(0);
+    return s.geometries[g].kind == ShapeKind::Mesh ? s.meshes[s.geometries[g].index].triangle_count() : size_t(0);
   };
   scene_.triangle_count = scene_.prototype_triangle_count = scene_.instanced_triangle_count = 0;
   for (uint32_t g = 0; g < s.geometries.size(); ++g) {

@@ -61,7 +61,7 @@ SceneInfo scene_info(const Scene& scene) {
   info.geometry_bytes += scene.shapes.instances.capacity() * sizeof(Placement) +
                          scene.shapes.geometries.capacity() * sizeof(Geometry);
   for (const TriangleMesh& m : scene.shapes.meshes)
-    info.geometry_bytes += m.positions.capacity() * sizeof(Vec3) + m.triangles.capacity() * sizeof(glm::uvec3) +
+    info.geometry_bytes += m.positions.capacity() * sizeof(Vec3) + m.triangles.capacity() * sizeof(glm::uvec3) + m.quads.capacity() * sizeof(glm::uvec4) +
                            m.normals.capacity() * sizeof(Vec3) + m.uvs.capacity() * sizeof(Vec2);
   return info;
 }
