@@ -105,7 +105,9 @@ class SceneBuilder final : public pbrt::ParserTarget {
   // placed, moving when its two transforms differ.
   void moving_shape(const std::string& type, const pbrt::ParamSet& ps, const GraphicsState& gs,
                     const std::string& base_dir);
-  void place_instance(uint32_t prototype, const glm::dmat4& m0, const glm::dmat4& m1, const std::string& what,
+  // `name`: the object's, or null for a moving shape (named only in an
+  // error message, built only then: millions of placements).
+  void place_instance(uint32_t prototype, const glm::dmat4& m0, const glm::dmat4& m1, const std::string* name,
                       const SourceLocation& where);
   void add_light(const std::string& type, const pbrt::ParamSet& ps, const Mat4& ctm, const std::string& base_dir);
   // A material or texture parameter that may name a texture (builder_textures.cpp).

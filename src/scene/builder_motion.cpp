@@ -30,7 +30,7 @@ void SceneBuilder::moving_shape(const std::string& type, const ParamSet& ps, con
   }
   object_.reset();
   if (scene_.shapes.prototypes[prototype].count == 0) return;  // nothing to trace (an empty PLY)
-  place_instance(prototype, gs.render_from_object, gs.render_from_object_end, "a moving shape", ps.where);
+  place_instance(prototype, gs.render_from_object, gs.render_from_object_end, nullptr, ps.where);
 }
 
 void SceneBuilder::object_instance(const std::string& name, const glm::dmat4& world_from_object,
@@ -42,17 +42,17 @@ void SceneBuilder::object_instance(const std::string& name, const glm::dmat4& wo
   if (it == objects_.end())
     throw InputError(where, "ObjectInstance \"" + printable(name) + "\": no object of that name was defined with ObjectBegin");
   if (scene_.shapes.prototypes[it->second].count == 0) return;  // an empty object: nothing to trace
-  place_instance(it->second, world_from_object, world_from_object_end, "ObjectInstance \"" + printable(name) + "\"",
-                 where);
+  place_instance(it->second, world_from_object, world_from_object_end, &name, where);
 }
 
 void SceneBuilder::place_instance(uint32_t prototype, const glm::dmat4& m0, const glm::dmat4& m1,
-                                  const std::string& what, const SourceLocation& where) {
+                                  const std::string* name, const SourceLocation& where) {
+  auto what = [&] { return name ? "ObjectInstance \"" + printable(*name) + "\"" : std::string("a moving shape"); };
   for (const glm::dmat4* m : {&m0, &m1}) {
     const Mat4 M(*m);
     for (int c = 0; c < 4; ++c)
-      if (!is_finite(Vec3(M[c])) || !std::isfinite(M[c][3])) throw InputError(where, what + ": the transform is not finite");
-    if (std::fabs(glm::determinant(glm::mat3(M))) < 1e-30f) throw InputError(where, what + ": the transform is singular");
+      if (!is_finite(Vec3(M[c])) || !std::isfinite(M[c][3])) throw InputError(where, what() + ": the transform is not finite");
+    if (std::fabs(glm::determinant(glm::mat3(M))) < 1e-30f) throw InputError(where, what() + ": the transform is singular");
   }
   ShapePools& s = scene_.shapes;
   // (as pbrt-v4: a motion too small to change a float is no motion)

@@ -1,31 +1,51 @@
 #include "scene/pbrt/tokenizer.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
 #include <filesystem>
-#include <fstream>
 
 namespace lantern::pbrt {
 
-Tokenizer::Tokenizer(std::string text, std::string filename)
-    : text_(std::move(text)), filename_(std::move(filename)) {}
+Tokenizer::Tokenizer(std::string text, std::string filename) : owned_(std::move(text)), filename_(std::move(filename)) {
+  text_ = owned_;
+}
+
+Tokenizer::Tokenizer(std::unique_ptr<char[]> text, size_t size, std::string filename)
+    : buffer_(std::move(text)), text_(buffer_.get(), size), filename_(std::move(filename)) {}
+
+Tokenizer::~Tokenizer() = default;
 
 std::unique_ptr<Tokenizer> Tokenizer::from_file(const std::string& path, const SourceLocation& from) {
   // Only regular files: a name such as /dev/zero or a FIFO would never end.
   std::error_code ec;
   if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
     throw InputError(from, "scene file \"" + printable(path, 200) + "\" is not a regular file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(from, "cannot open scene file \"" + printable(path, 200) + "\"");
-  // Read straight into a string of the file's size: a stream buffer and
-  // its copy would hold three times a file of millions of placements.
-  std::string text;
-  const auto size = std::filesystem::file_size(path, ec);
-  if (!ec) {
-    text.resize(size);
-    in.read(text.data(), std::streamsize(size));
-    text.resize(size_t(in.gcount()));
+  // One read into a buffer of the file's size, not zeroed first: a file of
+  // millions of placements is hundreds of megabytes (docs/performance.md,
+  // "Production scale"). (A mapping would save the copy too, but a file
+  // cut short while mapped kills the process.)
+  const int fd = open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw InputError(from, "cannot open scene file \"" + printable(path, 200) + "\"");
+  struct stat st {};
+  const size_t size = fstat(fd, &st) == 0 ? size_t(std::max<off_t>(st.st_size, 0)) : 0;
+  std::unique_ptr<char[]> buf(new char[size]);
+  size_t got = 0;
+  while (got < size) {  // a file that shrinks meanwhile is parsed as far as it goes
+    const ssize_t r = read(fd, buf.get() + got, size - got);
+    if (r < 0 && errno == EINTR) continue;
+    if (r < 0) {
+      close(fd);
+      throw InputError(from, "cannot read scene file \"" + printable(path, 200) + "\"");
+    }
+    if (r == 0) break;
+    got += size_t(r);
   }
-  if (in.bad() || ec) throw InputError(from, "cannot read scene file \"" + printable(path, 200) + "\"");
-  return std::make_unique<Tokenizer>(std::move(text), path);
+  close(fd);
+  return std::unique_ptr<Tokenizer>(new Tokenizer(std::move(buf), got, path));
 }
 
 void Tokenizer::fail(int line, int col, const std::string& what) const {

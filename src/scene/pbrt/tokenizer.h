@@ -23,14 +23,20 @@ class Tokenizer {
   // Owns the text of one file.
   Tokenizer(std::string text, std::string filename);
   static std::unique_ptr<Tokenizer> from_file(const std::string& path, const SourceLocation& included_from);
+  ~Tokenizer();
+  Tokenizer(const Tokenizer&) = delete;
+  Tokenizer& operator=(const Tokenizer&) = delete;
 
   Token next();
   const std::string& filename() const { return filename_; }
   SourceLocation location(const Token& t) const { return {filename_, t.line, t.column}; }
 
  private:
+  Tokenizer(std::unique_ptr<char[]> text, size_t size, std::string filename);
   [[noreturn]] void fail(int line, int col, const std::string& what) const;
-  std::string text_;
+  std::string owned_;               // the text given, or
+  std::unique_ptr<char[]> buffer_;  // the file's
+  std::string_view text_;
   std::string filename_;
   size_t pos_ = 0;
   int line_ = 1;
