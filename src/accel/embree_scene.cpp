@@ -199,7 +199,12 @@ void EmbreeScene::place_instances(const ShapePools& shapes, MemoryLayout layout)
         if (shapes.instances[k].motion == Placement::kStill) compact_->placement_of.push_back(k);
     RTCGeometry g = new_instance_geometry(device_, compact_.get(), uint32_t(still));
     rtcCommitGeometry(g);
-    rtcAttachGeometryByID(scene_, g, instance_base_ + uint32_t(shapes.instances.size()));
+    // Its own geomID is never reported (hits carry the prototype's geometry
+    // and instID base + k); it takes the first still instance's, which no
+    // Embree instance holds, so Embree's tables indexed by geomID do not
+    // grow by an entry per placement.
+    const uint32_t first_still = compact_->placement_of.empty() ? 0 : compact_->placement_of.front();
+    rtcAttachGeometryByID(scene_, g, instance_base_ + first_still);
     rtcReleaseGeometry(g);
     check("adding the instances to the Embree scene");
   }

@@ -52,7 +52,7 @@ struct Prototype {
 // it (world_from_object's upper three rows, columns as in Embree's
 // RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR). 56 bytes: a production scene holds
 // tens of millions (docs/performance.md, "Production scale"); whatever
-// else shading needs is derived per hit by Instance::of. A moving instance
+// else shading needs is derived per hit (Instance::placed). A moving instance
 // (and a moving shape, which becomes an instance of its own prototype) has
 // a motion path, and its matrix here is the one at the shutter's start.
 struct Placement {
