@@ -7,9 +7,8 @@
 # 2 threads; and the compact layout's peak memory stays within its stated
 # bounds: 400 bytes per instance and 200 per unique quad, measured as the
 # growth of peak RSS against the same scene without the instances or the
-# quads (docs/performance.md, "Production scale": about 300 and 120 here,
-# 230 and 127 at scale 0.1; the fast layout takes about 500 per instance,
-# so it fails the bound).
+# quads (docs/performance.md, "Production scale": about 225 and 105 here;
+# the fast layout takes about 510 per instance, so it fails the bound).
 #   sh tests/island_test.sh LANTERN SCENEGEN
 set -eu
 lantern=$1 gen=$2

@@ -133,9 +133,9 @@ EmbreeScene::EmbreeScene(const ShapePools& shapes, const TexturePools& textures,
   // walls (tests/extremes_test.cpp, ScaleInvariance, caught it).
   //
   // Embree's compact BVH (indexed triangles, no copies of the vertices)
-  // holds a quarter to a third less memory and, measured, traces large
-  // scenes as fast but small ones 8-16% slower (docs/performance.md,
-  // "Production scale").
+  // holds a quarter to a third less memory and, measured, traces a scene
+  // of 13M primitives as fast but those of 1M and fewer 8-16% slower
+  // (docs/performance.md, "Production scale").
   compact_bvh_ = layout == MemoryLayout::Compact ||
                  (layout == MemoryLayout::Auto && primitive_count(shapes) >= kCompactBvhFrom);
   rtcSetSceneFlags(scene_, scene_flags());

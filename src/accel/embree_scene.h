@@ -26,7 +26,7 @@ namespace lantern {
 // on, and builds Embree's compact BVH from this many primitives on
 // (docs/performance.md, "Production scale").
 inline constexpr size_t kCompactInstancesFrom = 100000;
-inline constexpr size_t kCompactBvhFrom = 1000000;
+inline constexpr size_t kCompactBvhFrom = 10000000;
 
 class EmbreeScene {
  public:

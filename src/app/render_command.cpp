@@ -355,7 +355,7 @@ void add_render_command_options(CLI::App& render, RenderArgs& a) {
   render.add_option("--memory-layout", a.memory_layout,
                     "fast (Embree's instances and BVH), compact (instances at 56 bytes and a box, Embree's compact "
                     "BVH: less memory, 8-16% slower on small scenes) or auto (compact instances from 100,000, "
-                    "compact BVH from 1M primitives; the default); the image is the same")
+                    "compact BVH from 10M primitives; the default); the image is the same")
       ->check(CLI::IsMember({"auto", "fast", "compact"}));
   render.add_flag("--lenient", a.lenient,
                   "A scene parameter neither pbrt-v4 nor pbrt-v3 reads (a typo) is a warning, not an error");

@@ -66,9 +66,10 @@ std::shared_ptr<PyScene> load_with(double texture_cache_mb, const std::string& t
 }
 
 std::shared_ptr<PyScene> load(const std::string& path, double texture_cache_mb, const std::string& texture_dir,
-                              const py::object& on_warning, bool lenient) {
+                              const py::object& on_warning, bool lenient, const std::string& memory_layout) {
   LoadOptions options;
   options.lenient = lenient;
+  options.memory_layout = parse_memory_layout(memory_layout);
   auto s = load_with(texture_cache_mb, texture_dir, on_warning, options, [&](const LoadOptions& lo) {
     std::shared_ptr<Scene> scene = load_scene(path, lo);
     return std::pair(scene, scene_key(path, scene_info(*scene)));
@@ -79,10 +80,11 @@ std::shared_ptr<PyScene> load(const std::string& path, double texture_cache_mb, 
 
 std::shared_ptr<PyScene> load_text(const std::string& text, const std::string& name, const std::string& base_dir,
                                    double texture_cache_mb, const std::string& texture_dir,
-                                   const py::object& on_warning, bool lenient) {
+                                   const py::object& on_warning, bool lenient, const std::string& memory_layout) {
   LoadOptions lo;
   lo.base_directory = base_dir;  // as a scene file's folder
   lo.lenient = lenient;
+  lo.memory_layout = parse_memory_layout(memory_layout);
   return load_with(texture_cache_mb, texture_dir, on_warning, lo, [&](const LoadOptions& o) {
     std::shared_ptr<Scene> scene = load_scene_from_string(text, name, o);
     return std::pair(scene, scene_key_of_text(name, text, scene_info(*scene)));
@@ -174,12 +176,14 @@ void bind_scene(py::module_& m) {
       });
   m.def("load_scene", &load, py::arg("path"), py::kw_only(), py::arg("texture_cache_mb") = 1024.0,
         py::arg("texture_dir") = "", py::arg("on_warning") = py::none(), py::arg("lenient") = false,
+        py::arg("memory_layout") = "auto",
         "Load a pbrt-v4 scene file (pbrt-v3 names too). Errors raise lantern.SceneError naming file, line and "
         "column (a parameter neither pbrt-v4 nor pbrt-v3 reads is one, unless lenient); warnings go to "
-        "on_warning(line), else to Python's warnings as lantern.SceneWarning.");
+        "on_warning(line), else to Python's warnings as lantern.SceneWarning. memory_layout: 'auto', 'fast' or "
+        "'compact', as the command line's --memory-layout.");
   m.def("load_scene_from_string", &load_text, py::arg("text"), py::kw_only(), py::arg("name") = "<string>",
         py::arg("base_dir") = "", py::arg("texture_cache_mb") = 1024.0, py::arg("texture_dir") = "",
-        py::arg("on_warning") = py::none(), py::arg("lenient") = false,
+        py::arg("on_warning") = py::none(), py::arg("lenient") = false, py::arg("memory_layout") = "auto",
         "Load a scene from pbrt-v4 text; relative file names resolve against base_dir (default: the working "
         "directory); messages name the text `name`.");
   m.def("format_numbers", &format_numbers, py::arg("values"),

@@ -197,6 +197,20 @@ def test_unknown_parameters_are_errors_unless_lenient(tmp_path):
     assert any("unknownthing" in w for w in scene.warnings)
 
 
+def test_memory_layouts_load_the_same_instances_and_bad_words_raise():
+    text = ('Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]\nWorldBegin\n'
+            'LightSource "infinite" "rgb L" [ 1 1 1 ]\nObjectBegin "s"\nShape "sphere" "float radius" 0.3\nObjectEnd\n'
+            'Translate 0 0 3\nObjectInstance "s"\nTranslate 0.4 0 0\nObjectInstance "s"\n')
+    fast = lantern.load_scene_from_string(text, memory_layout="fast")
+    compact = lantern.load_scene_from_string(text, memory_layout="compact")
+    a = lantern.render(fast, spp=4, resolution=(8, 8))
+    b = lantern.render(compact, spp=4, resolution=(8, 8))
+    assert abs(float(a.image.mean()) - float(b.image.mean())) < 1e-3 * float(a.image.mean())
+    assert float(a.image.min()) < 0.9  # the spheres are in view
+    with pytest.raises(ValueError, match="memory layout"):
+        lantern.load_scene_from_string(text, memory_layout="tiny")
+
+
 def test_a_kept_checkpoint_extends_to_a_larger_budget_and_info_reads_it(cornell_box, lantern_binary, tmp_path):
     ckpt = str(tmp_path / "r.ckpt")
     options = dict(integrator="path", sampler="halton", resolution=(24, 16), seed=4)
