@@ -9,6 +9,7 @@
 # growth of peak RSS against the same scene without the instances or the
 # quads (docs/performance.md, "Production scale": about 225 and 105 here;
 # the fast layout takes about 510 per instance, so it fails the bound).
+# A verbose load names the included files as parsing reaches them.
 #   sh tests/island_test.sh LANTERN SCENEGEN
 set -eu
 lantern=$1 gen=$2
@@ -33,6 +34,9 @@ render scene.pbrt compact1 compact 1
 relmse=$("$lantern" compare compact.exr fast.exr | sed -n 's/^relmse //p')
 python3 -c "import sys; sys.exit(0 if float('$relmse') < 1e-4 else 1)" ||
   fail "compact and fast layouts differ: relMSE $relmse"
+"$lantern" render scene.pbrt --log-level verbose --spp 1 --resolution 16 8 -o verbose.exr 2>verbose.log
+grep -q 'parsing: 1 included files, .* MB; curves/grass_00000.pbrt' verbose.log ||
+  fail "a verbose load does not report the included files it parses: $(head -5 verbose.log)"
 [ "$("$lantern" compare compact.exr compact1.exr | sed -n 's/^mse //p')" = 0 ] ||
   fail "compact layout: 1 and 2 threads differ"
 

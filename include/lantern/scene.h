@@ -91,6 +91,8 @@ struct SceneSettings {
 struct LoadOptions {
   WarningSink warn;  // receives "file:line:col: warning: ..." lines
   std::function<void(const std::string&)> progress;  // receives the stage being entered ("reading 25 PLY meshes", ...)
+  // receives each included scene file, with its size, as parsing reaches it
+  std::function<void(const std::string& path, size_t bytes)> file_progress;
   // Image textures are read through a tile cache of at most this size, from
   // tiled, MIP-mapped files prepared into texture_directory (empty: the
   // user's cache folder) when the scene's own are not (docs/textures.md).

@@ -141,6 +141,23 @@ Loaded load(const RenderArgs& a, Timeline* timeline, bool reports) {
       else if (in_place) logging::progress(buf + stage);
     }
   };
+  // Included files: how far parsing has got, on the progress line, and at
+  // most once a second as a verbose line (a production scene has hundreds).
+  size_t files = 0, bytes = 0;
+  double last_line = -1.0;
+  if (in_place || lines)
+    lo.file_progress = [&](const std::string& path, size_t size) {
+      ++files, bytes += size;
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "[load %6.1f s] parsing: %zu included files, %.1f MB; ", elapsed(), files,
+                    double(bytes) * 1e-6);
+      if (lines && elapsed() - last_line >= 1.0) {
+        last_line = elapsed();
+        logging::verbose("%s%s", buf, printable(path, 100).c_str());
+      } else if (in_place) {
+        logging::progress(buf + printable(path, 60));
+      }
+    };
   l.scene = load_scene(a.scene, lo);
   phase_ends();
   trace.done();

@@ -60,6 +60,10 @@ class SceneBuilder final : public pbrt::ParserTarget {
   void set_texture_cache(const TextureCacheSettings& s) { texture_cache_ = s; }
   void set_lenient(bool lenient) { lenient_ = lenient; }
   void set_memory_layout(MemoryLayout l) { memory_layout_ = l; }
+  void set_file_progress(std::function<void(const std::string&, size_t)> f) { file_progress_ = std::move(f); }
+  void including(const std::string& path, size_t bytes) override {
+    if (file_progress_) file_progress_(path, bytes);
+  }
   bool lenient() const override { return lenient_; }
   void warn_line(const std::string& line) const override {
     if (warn_) warn_(line);
@@ -230,6 +234,7 @@ class SceneBuilder final : public pbrt::ParserTarget {
   MemoryLayout memory_layout_ = MemoryLayout::Auto;
   WarningSink warn_;
   std::function<void(const std::string&)> progress_;
+  std::function<void(const std::string&, size_t)> file_progress_;
   std::map<std::string, RGBTextureRef> rgb_textures_;
   std::map<std::string, FloatTextureRef> float_textures_;
   std::map<std::string, const MeasuredBRDF*> measured_files_;  // path -> its tables

@@ -12,6 +12,7 @@ std::shared_ptr<Scene> load_scene(const std::string& path, const LoadOptions& op
   b.set_texture_cache(TextureCacheSettings{options.texture_cache_mb, options.texture_directory});
   b.set_lenient(options.lenient);
   b.set_memory_layout(options.memory_layout);
+  b.set_file_progress(options.file_progress);
   if (options.progress) options.progress("parsing " + path);
   pbrt::parse_file(path, b);
   b.finish();

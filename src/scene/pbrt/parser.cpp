@@ -490,6 +490,7 @@ class Parser {
     if (files_.size() >= kMaxIncludeDepth) fail(t, "Include nested deeper than " + std::to_string(kMaxIncludeDepth) + " files");
     if (peeked_) fail(t, "internal: Include with a pending token");
     files_.push_back(Tokenizer::from_file(p.string(), loc(t)));
+    b_.including(files_.back()->filename(), files_.back()->size());
   }
 
   ParserTarget& b_;

@@ -56,6 +56,9 @@ class ParserTarget {
   // A parameter neither pbrt-v4 nor pbrt-v3 knows is a warning, not an
   // error (--lenient).
   virtual bool lenient() const { return false; }
+  // An Include'd (or Import'ed) file of `bytes` is about to be parsed: what
+  // a load of many files reports while it parses them.
+  virtual void including(const std::string& path, size_t bytes) {}
 
   // Rendering options, before WorldBegin.
   // camera_from_world at the start and the end of the motion (equal for a

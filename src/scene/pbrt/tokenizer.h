@@ -29,6 +29,7 @@ class Tokenizer {
 
   Token next();
   const std::string& filename() const { return filename_; }
+  size_t size() const { return text_.size(); }
   SourceLocation location(const Token& t) const { return {filename_, t.line, t.column}; }
 
  private:
