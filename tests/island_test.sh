@@ -31,6 +31,8 @@ render scene.pbrt compact compact 2
 render scene.pbrt compact1 compact 1
 [ "$(field compact.json "j['memory']['compact_instances']")" = True ] || fail "compact layout without compact instances"
 [ "$(field fast.json "j['memory']['compact_instances']")" = False ] || fail "fast layout with compact instances"
+[ "$(field fast.json "j['seconds']['first_image'] >= j['seconds']['load'] > 0")" = True ] ||
+  fail "--stats has no time to the first image"
 relmse=$("$lantern" compare compact.exr fast.exr | sed -n 's/^relmse //p')
 python3 -c "import sys; sys.exit(0 if float('$relmse') < 1e-4 else 1)" ||
   fail "compact and fast layouts differ: relMSE $relmse"
