@@ -149,13 +149,8 @@ TEST(QuadMesh, QuadsRenderAsTheirTrianglesWithAlphaAndEmission) {
       auto tris = load_scene_from_string(scene_text(as_trianglemesh(g) + alpha, attributes), "tris.pbrt");
       for (const char* integrator : {"path", "bdpt"}) {
         SCOPED_TRACE(integrator);
-        RenderOptions o;
-        o.integrator = parse_integrator(integrator);
-        o.width = 24;
-        o.height = 16;
-        o.spp = 8;
-        const RegionStats sq = stats_of(render_runs(*quads, o, 6, 1), regions);
-        const RegionStats st = stats_of(render_runs(*tris, o, 6, 1), regions);
+        const RegionStats sq = render_stats(*quads, integrator, 24, 16, 8, 6, regions);
+        const RegionStats st = render_stats(*tris, integrator, 24, 16, 8, 6, regions);
         EXPECT_GT(st.mean[0][0], 0.01);
         EXPECT_LT(max_z(sq, st), 5.0);
       }

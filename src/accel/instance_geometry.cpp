@@ -2,6 +2,8 @@
 
 #include <glm/mat3x3.hpp>
 
+#include "accel/user_geometry.h"
+
 namespace lantern {
 
 namespace {
@@ -85,14 +87,10 @@ void instance_occluded_fn(const RTCOccludedFunctionNArguments* args) {
 
 }  // namespace
 
+// No alpha filter of its own: the prototypes' geometries run theirs.
 RTCGeometry new_instance_geometry(RTCDevice device, InstanceGeometryData* data, uint32_t count) {
-  RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-  rtcSetGeometryUserPrimitiveCount(g, count);
-  rtcSetGeometryUserData(g, data);
-  rtcSetGeometryBoundsFunction(g, instance_bounds_fn, nullptr);
-  rtcSetGeometryIntersectFunction(g, instance_intersect_fn);
-  rtcSetGeometryOccludedFunction(g, instance_occluded_fn);
-  return g;
+  return user_geometry::create(device, count, data, false, instance_bounds_fn, instance_intersect_fn,
+                               instance_occluded_fn);
 }
 
 }  // namespace lantern
