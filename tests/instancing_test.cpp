@@ -5,6 +5,8 @@
 // a clear error.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "accel/ray_stream.h"
@@ -159,6 +161,28 @@ TEST(Instancing, InstancedAndFlattenedScenesRenderTheSameImage) {
     EXPECT_LT(max_z(si, sf), 5.0);
     EXPECT_LT(max_z(sc, sf), 5.0);
   }
+}
+
+// An object whose only shape turns out empty (a PLY of no faces, read
+// after its placements) has no bounds: the compact layout must leave its
+// instances out, as Embree's instances of an empty scene are.
+TEST(Instancing, EmptyObjectsPlacedCompactlyTraceNothing) {
+  const auto ply = std::filesystem::temp_directory_path() / "lantern-empty-object.ply";
+  std::ofstream(ply) << "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\n"
+                        "element face 0\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string text = "LookAt 0 0 -5 0 0 0 0 1 0\nCamera \"perspective\"\n"
+                           "Film \"rgb\" \"integer xresolution\" [ 16 ] \"integer yresolution\" [ 16 ]\nWorldBegin\n"
+                           "LightSource \"infinite\" \"rgb L\" [ 1 1 1 ]\n"
+                           "ObjectBegin \"empty\"\nShape \"plymesh\" \"string filename\" \"" + ply.string() + "\"\nObjectEnd\n"
+                           "ObjectBegin \"ball\"\nShape \"sphere\"\nObjectEnd\n"
+                           "ObjectInstance \"empty\"\nTranslate 1 0 0\nObjectInstance \"empty\"\nObjectInstance \"ball\"\n";
+  LoadOptions fast, compact;
+  fast.memory_layout = MemoryLayout::Fast;
+  compact.memory_layout = MemoryLayout::Compact;
+  fast.warn = compact.warn = [](const std::string&) {};
+  auto a = load_scene_from_string(text, "fast.pbrt", fast), b = load_scene_from_string(text, "compact.pbrt", compact);
+  ASSERT_TRUE(b->accel->compact_instances());
+  expect_identical_renders(*a, *b, {"path"});
 }
 
 std::string instancing_load_error(const std::string& text) {

@@ -25,6 +25,12 @@ void instance_bounds_fn(const RTCBoundsFunctionArguments* args) {
   const auto* d = static_cast<const InstanceGeometryData*>(args->geometryUserPtr);
   const Placement& p = (*d->placements)[d->placement(args->primID)];
   const RTCBounds& b = d->prototype_bounds[p.prototype];
+  RTCBounds* o = args->bounds_o;
+  if (!(b.lower_x <= b.upper_x)) {  // nothing to trace (an empty PLY): an empty box, which Embree leaves out
+    o->lower_x = o->lower_y = o->lower_z = INFINITY;
+    o->upper_x = o->upper_y = o->upper_z = -INFINITY;
+    return;
+  }
   Vec3 lo(INFINITY), hi(-INFINITY);
   for (int c = 0; c < 8; ++c) {
     const Vec3 corner(c & 1 ? b.upper_x : b.lower_x, c & 2 ? b.upper_y : b.lower_y, c & 4 ? b.upper_z : b.lower_z);
@@ -34,7 +40,6 @@ void instance_bounds_fn(const RTCBoundsFunctionArguments* args) {
   // A corner's rounding must not cut the box: widen by a few ulps.
   const Vec3 pad = 4.f * 1.2e-7f * glm::max(glm::abs(lo), glm::abs(hi));
   lo -= pad, hi += pad;
-  RTCBounds* o = args->bounds_o;
   o->lower_x = lo.x, o->lower_y = lo.y, o->lower_z = lo.z;
   o->upper_x = hi.x, o->upper_y = hi.y, o->upper_z = hi.z;
 }
