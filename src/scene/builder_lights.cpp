@@ -173,7 +173,7 @@ void SceneBuilder::profiled_light(const std::string& type, const ParamSet& ps, c
 
 // Parsing frees millions of small blocks and every file's text, and PLY
 // reading its buffers; glibc keeps freed heap pages unless asked, and the
-// BVH build's peak then comes on top of them (150 bytes per placement,
+// BVH build's peak then comes on top of them (about 90 bytes per placement,
 // measured; docs/performance.md, "Production scale").
 static void return_free_memory() {
 #ifdef __GLIBC__
