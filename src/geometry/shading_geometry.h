@@ -30,8 +30,9 @@ struct ShadingGeometry {
 inline ShadingGeometry triangle_shading_geometry(const TriangleMesh& m, uint32_t prim, const SurfacePoint& sp) {
   const glm::uvec3 t = m.triangle(prim);
   const Vec3 &p0 = m.positions[t.x], &p1 = m.positions[t.y], &p2 = m.positions[t.z];
-  Vec2 uv0(0, 0), uv1(1, 0), uv2(1, 1);
+  Vec2 uv0(0, 0), uv1(1, 0), uv2(1, 1);  // as triangle_point's defaults
   if (!m.uvs.empty()) uv0 = m.uvs[t.x], uv1 = m.uvs[t.y], uv2 = m.uvs[t.z];
+  else if (!m.quads.empty() && (prim & 1)) uv1 = Vec2(1, 1), uv2 = Vec2(0, 1);
   Vec2 duv02 = uv0 - uv2, duv12 = uv1 - uv2;
   Vec3 dp02 = p0 - p2, dp12 = p1 - p2;
   float det = duv02.x * duv12.y - duv02.y * duv12.x;

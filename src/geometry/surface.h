@@ -38,8 +38,11 @@ inline SurfacePoint triangle_point(const TriangleMesh& m, uint32_t prim, float b
     sp.ns = n;
   }
   sp.ng = n;
-  // Without uvs, pbrt-v4 gives a triangle's vertices (0,0), (1,0), (1,1).
-  sp.uv = m.uvs.empty() ? Vec2(b1 + b2, b2) : b0 * m.uvs[t.x] + b1 * m.uvs[t.y] + b2 * m.uvs[t.z];
+  // Without uvs, pbrt-v4 gives a triangle's vertices (0,0), (1,0), (1,1),
+  // and a quad (a bilinear patch there) its own (u, v): (a c d), the
+  // quad's second triangle, is (0,0), (1,1), (0,1).
+  if (m.uvs.empty()) sp.uv = !m.quads.empty() && (prim & 1) ? Vec2(b1, b1 + b2) : Vec2(b1 + b2, b2);
+  else sp.uv = b0 * m.uvs[t.x] + b1 * m.uvs[t.y] + b2 * m.uvs[t.z];
   sp.error_scale = std::fmax(max_abs_component(sp.p),
                              std::fmax(max_abs_component(p0), std::fmax(max_abs_component(p1), max_abs_component(p2))));
   return sp;
