@@ -9,7 +9,12 @@
 # growth of peak RSS against the same scene without the instances or the
 # quads (docs/performance.md, "Production scale": about 225 and 105 here;
 # the fast layout takes about 510 per instance, so it fails the bound).
-# A verbose load names the included files as parsing reaches them.
+# A verbose load names the included files as parsing reaches them. The
+# generated scene Imports its placement and curve files (parsed on other
+# threads, docs/scene-format.md): the image is the one of the same scene
+# Including them, bit for bit. Where the kernel gives transparent huge
+# pages on request, the heap is in them (--stats), and not with
+# LANTERN_HUGE_PAGES=0.
 #   sh tests/island_test.sh LANTERN SCENEGEN
 set -eu
 lantern=$1 gen=$2
@@ -41,6 +46,21 @@ grep -q 'parsing: 1 included files, .* MB; curves/grass_00000.pbrt' verbose.log 
   fail "a verbose load does not report the included files it parses: $(head -5 verbose.log)"
 [ "$("$lantern" compare compact.exr compact1.exr | sed -n 's/^mse //p')" = 0 ] ||
   fail "compact layout: 1 and 2 threads differ"
+grep -q '^Import "instances/' scene.pbrt || fail "the generated scene does not Import its placements"
+sed 's/^Import /Include /' scene.pbrt >included.pbrt
+render included.pbrt included compact 2
+[ "$("$lantern" compare compact.exr included.exr | sed -n 's/^mse //p')" = 0 ] ||
+  fail "Import'ed and Include'd files give different images"
+
+policy=$(cat /sys/kernel/mm/transparent_hugepage/enabled 2>/dev/null || echo none)
+case "$policy" in *"[madvise]"* | *"[always]"*) want=True ;; *) want=False ;; esac
+[ "$(field compact.json "j['memory']['huge_pages']")" = $want ] || fail "huge pages: not $want under policy '$policy'"
+LANTERN_HUGE_PAGES=0 render scene.pbrt small compact 2
+case "$policy" in *"[madvise]"*)
+  [ "$(field small.json "j['memory']['huge_pages']")" = False ] || fail "huge pages with LANTERN_HUGE_PAGES=0"
+  [ "$(field compact.json "j['memory']['anon_huge_pages_bytes']")" -gt "$(field small.json "j['memory']['anon_huge_pages_bytes']")" ] ||
+    fail "no more memory in huge pages with them than without" ;;
+esac
 
 # Peak memory: the same scene without its instances, and without its quads.
 grep -v 'instances/' scene.pbrt >noinst.pbrt

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -28,14 +29,34 @@ inline std::string printable(std::string_view bytes, size_t max_chars = 40) {
   return out;
 }
 
+// A file's name, shared by the locations in it: a location is copied for
+// each of the millions of placements of a production scene, and a copy
+// here allocates nothing.
+class FileName {
+ public:
+  FileName() = default;
+  FileName(std::string s) : s_(s.empty() ? nullptr : std::make_shared<const std::string>(std::move(s))) {}
+  FileName(const char* s) : FileName(std::string(s)) {}
+  const std::string& str() const {
+    static const std::string kNone;
+    return s_ ? *s_ : kNone;
+  }
+  operator const std::string&() const { return str(); }
+  bool empty() const { return !s_; }
+  friend bool operator==(const FileName& a, const FileName& b) { return a.s_ == b.s_ || a.str() == b.str(); }
+
+ private:
+  std::shared_ptr<const std::string> s_;
+};
+
 struct SourceLocation {
-  std::string file;
+  FileName file;
   int line = 0;
   int column = 0;
 
   std::string str() const {
     if (file.empty()) return "<input>";
-    std::string s = printable(file, 1024);  // a path, unless the input is hostile
+    std::string s = printable(file.str(), 1024);  // a path, unless the input is hostile
     if (line > 0) s += ":" + std::to_string(line);
     if (column > 0) s += ":" + std::to_string(column);
     return s;

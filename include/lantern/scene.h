@@ -106,6 +106,9 @@ struct LoadOptions {
   bool lenient = false;
   // Fast or compact acceleration structures (lantern/options.h).
   MemoryLayout memory_layout = MemoryLayout::Auto;
+  // Threads for loading (Import'ed files, PLY meshes, the BVH); 0: as many
+  // as oneTBB may use. The scene is the same whatever the count.
+  int threads = 0;
 };
 
 // Throws InputError for anything wrong with the input.

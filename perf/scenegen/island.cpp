@@ -156,7 +156,7 @@ size_t write_curves(Writer& w, double curves) {
     }
     std::fprintf(f, "AttributeEnd\n");
     if (std::fclose(f) != 0) throw std::runtime_error("cannot write " + name);
-    std::fprintf(w.scene, "Include \"curves/%s\"\n", name.c_str());
+    std::fprintf(w.scene, "Import \"curves/%s\"\n", name.c_str());
   }
   return written;
 }
@@ -186,7 +186,7 @@ size_t write_instances(Writer& w, double instances, int prototypes, size_t* trac
       *traced += triangles[size_t(p)];
     }
     if (std::fclose(f) != 0) throw std::runtime_error("cannot write " + name);
-    std::fprintf(w.scene, "Include \"instances/%s\"\n", name.c_str());
+    std::fprintf(w.scene, "Import \"instances/%s\"\n", name.c_str());
   }
   return placed;
 }

@@ -11,6 +11,7 @@
 
 #include "app/cli_checks.h"
 #include "app/command_line.h"
+#include "app/huge_pages.h"
 #include "app/log.h"
 #include "app/merge_command.h"
 #include "app/outputs.h"
@@ -97,6 +98,8 @@ int run_info(const std::string& path) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // First, before any thread or MPI: the heap in huge pages (app/huge_pages.h).
+  lantern::restart_with_huge_pages(argv);
 #ifdef LANTERN_HAVE_MPI
   // Under mpirun: MPI for the whole run. A rank that fails ends them all
   // (MPI_Abort) rather than leaving the others waiting for it.

@@ -116,6 +116,7 @@ Loaded load(const RenderArgs& a, Timeline* timeline, bool reports) {
   lo.texture_directory = a.texture_dir;
   lo.lenient = a.lenient;
   lo.memory_layout = parse_memory_layout(a.memory_layout);
+  lo.threads = a.req.threads;
   lo.warn = [](const std::string& w) { logging::line(logging::Level::Warning, w); };
   LoadTrace trace(timeline);
   const auto t0 = std::chrono::steady_clock::now();

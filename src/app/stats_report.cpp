@@ -1,5 +1,6 @@
 #include "app/stats_report.h"
 
+#include "app/huge_pages.h"
 #include "app/log.h"
 
 #include "sampler/sampler.h"
@@ -126,7 +127,9 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
                  {"bvh_peak_bytes", run.scene_info.bvh_peak_bytes},
                  {"geometry_bytes", run.scene_info.geometry_bytes},
                  {"compact_instances", run.scene_info.compact_instances},
-                 {"compact_bvh", run.scene_info.compact_bvh}};
+                 {"compact_bvh", run.scene_info.compact_bvh},
+                 {"huge_pages", heap_in_huge_pages()},
+                 {"anon_huge_pages_bytes", anon_huge_page_bytes()}};
   if (s.texture_cache) {
     j["texture_cache"] = {{"lookups", s.texture_lookups},
                           {"bytes_read", s.texture_bytes_read},

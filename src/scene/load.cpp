@@ -1,12 +1,30 @@
 // The public entry points for loading a scene.
 #include <filesystem>
+#include <optional>
+
+#include <tbb/global_control.h>
 
 #include "scene/builder.h"
 #include "scene/pbrt/parser.h"
 
 namespace lantern {
 
+namespace {
+
+std::optional<tbb::global_control> thread_limit(const LoadOptions& options) {
+  std::optional<tbb::global_control> limit;
+  if (options.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(options.threads));
+  return limit;
+}
+
+unsigned parse_threads() {
+  return unsigned(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+}
+
+}  // namespace
+
 std::shared_ptr<Scene> load_scene(const std::string& path, const LoadOptions& options) {
+  const auto limit = thread_limit(options);
   auto scene = std::make_shared<Scene>();
   SceneBuilder b(*scene, options.warn, options.progress);
   b.set_texture_cache(TextureCacheSettings{options.texture_cache_mb, options.texture_directory});
@@ -14,12 +32,13 @@ std::shared_ptr<Scene> load_scene(const std::string& path, const LoadOptions& op
   b.set_memory_layout(options.memory_layout);
   b.set_file_progress(options.file_progress);
   if (options.progress) options.progress("parsing " + path);
-  pbrt::parse_file(path, b);
+  pbrt::parse_file(path, b, parse_threads());
   b.finish();
   return scene;
 }
 
 std::shared_ptr<Scene> load_scene_from_string(const std::string& text, const std::string& name, const LoadOptions& options) {
+  const auto limit = thread_limit(options);
   auto scene = std::make_shared<Scene>();
   SceneBuilder b(*scene, options.warn);
   b.set_texture_cache(TextureCacheSettings{options.texture_cache_mb, options.texture_directory});
@@ -28,7 +47,7 @@ std::shared_ptr<Scene> load_scene_from_string(const std::string& text, const std
   pbrt::parse_string(text, name,
                      options.base_directory.empty() ? std::filesystem::current_path().string()
                                                     : std::filesystem::absolute(options.base_directory).string(),
-                     b);
+                     b, parse_threads());
   b.finish();
   return scene;
 }

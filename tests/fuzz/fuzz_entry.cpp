@@ -25,7 +25,7 @@ void load_pbrt(const uint8_t* data, size_t size) {
   Scene scene;
   SceneBuilder builder(scene, nullptr);
   try {
-    pbrt::parse_string(text, "fuzz.pbrt", kNowhere, builder);
+    pbrt::parse_string(text, "fuzz.pbrt", kNowhere, builder, 1);
     builder.finish();
   } catch (const InputError&) {
   }

@@ -5,6 +5,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <cerrno>
 #include <filesystem>
 
@@ -52,8 +54,24 @@ void Tokenizer::fail(int line, int col, const std::string& what) const {
   throw InputError({filename_, line, col}, what);
 }
 
-static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }
-static bool is_delimiter(char c) { return is_space(c) || c == '"' || c == '[' || c == ']' || c == '#'; }
+namespace {
+
+// Character classes, looked up: the tokenizer's inner loops run over
+// gigabytes of text in a production scene.
+enum : uint8_t { kSpace = 1, kDelimiter = 2, kWord = 4 };
+constexpr std::array<uint8_t, 256> kClasses = [] {
+  std::array<uint8_t, 256> c{};
+  for (unsigned char s : {' ', '\t', '\r', '\n', '\f', '\v'}) c[s] = kSpace | kDelimiter;
+  for (unsigned char d : {'"', '[', ']', '#'}) c[d] = kDelimiter;
+  for (int i = 0; i < 256; ++i)
+    if ((i >= 'a' && i <= 'z') || (i >= 'A' && i <= 'Z') || (i >= '0' && i <= '9') || i == '_') c[size_t(i)] = kWord;
+  return c;
+}();
+bool is_space(char c) { return kClasses[uint8_t(c)] & kSpace; }
+bool is_delimiter(char c) { return kClasses[uint8_t(c)] & kDelimiter; }
+bool is_word(char c) { return kClasses[uint8_t(c)] & kWord; }
+
+}  // namespace
 
 Token Tokenizer::next() {
   const size_t n = text_.size();
@@ -72,6 +90,7 @@ Token Tokenizer::next() {
     break;
   }
   Token t;
+  t.source = this;
   t.line = line_;
   t.column = int(pos_ - line_start_) + 1;
   if (pos_ >= n) return t;
@@ -104,8 +123,7 @@ Token Tokenizer::next() {
   t.kind = numeric ? TokenKind::Number : TokenKind::Identifier;
   if (!numeric) {
     for (char ch : t.text) {
-      bool ok = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '_';
-      if (!ok) {
+      if (!is_word(ch)) {
         fail(t.line, t.column, "unexpected characters \"" + printable(t.text) + "\": expected a directive name, a number, a quoted string or '[' / ']'");
       }
     }

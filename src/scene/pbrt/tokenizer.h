@@ -11,8 +11,11 @@ namespace lantern::pbrt {
 
 enum class TokenKind { Identifier, String, Number, OpenBracket, CloseBracket, End };
 
+class Tokenizer;
+
 struct Token {
   TokenKind kind = TokenKind::End;
+  const Tokenizer* source = nullptr;  // the file it comes from
   std::string_view text;  // for strings: without the quotes, escapes unresolved
   int line = 0;
   int column = 0;
@@ -28,7 +31,7 @@ class Tokenizer {
   Tokenizer& operator=(const Tokenizer&) = delete;
 
   Token next();
-  const std::string& filename() const { return filename_; }
+  const std::string& filename() const { return filename_.str(); }
   size_t size() const { return text_.size(); }
   SourceLocation location(const Token& t) const { return {filename_, t.line, t.column}; }
 
@@ -38,7 +41,7 @@ class Tokenizer {
   std::string owned_;               // the text given, or
   std::unique_ptr<char[]> buffer_;  // the file's
   std::string_view text_;
-  std::string filename_;
+  FileName filename_;
   size_t pos_ = 0;
   int line_ = 1;
   size_t line_start_ = 0;
