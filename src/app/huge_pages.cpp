@@ -34,6 +34,9 @@ void restart_with_huge_pages(char** argv) {
 #endif
   const char* no = std::getenv("LANTERN_HUGE_PAGES");
   if (no && std::string(no) == "0") return;
+  // Under valgrind a restart would run on without it.
+  const char* preload = std::getenv("LD_PRELOAD");
+  if (preload && std::string(preload).find("vgpreload") != std::string::npos) return;
   const char* tunables = std::getenv("GLIBC_TUNABLES");
   const std::string given = tunables ? tunables : "";
   // Set (by the user, or by this process before it started again): as it is.

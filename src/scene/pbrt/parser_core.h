@@ -1,5 +1,5 @@
-// The pbrt parser itself (parser.cpp: tokens, parameter lists and
-// directives; imports.cpp: Include and Import). Internal to scene/pbrt:
+// The pbrt parser itself (parser.cpp: tokens and directives;
+// parser_params.cpp: parameter lists; imports.cpp: Include and Import). Internal to scene/pbrt:
 // the rest of the program calls parse_file and parse_string (parser.h).
 #pragma once
 
@@ -55,7 +55,7 @@ class Parser {
   template <size_t N>
   std::array<double, N> numbers(const char* what);
 
-  // --- parameter lists (parser.cpp) ---
+  // --- parameter lists (parser_params.cpp) ---
   ParamSet params(const Token& at, const std::string& directive, const char* kind, const char* attributes = nullptr);
   ParamSet own_params(const Token& at, const std::string& directive);
   void value(Param& p, const Token& v);

@@ -87,6 +87,7 @@ bool CallStream::pop(std::vector<RecordedCall>& calls) {
 void CallStream::cancel() {
   std::lock_guard<std::mutex> lock(mutex_);
   cancelled_ = true;
+  cancelled_flag_ = true;
   batches_.clear();
   held_bytes_ = 0;
   changed_.notify_all();
@@ -101,6 +102,8 @@ void Recorder::options() {
 }
 
 void Recorder::add(RecordedCall&& c, size_t bytes) const {
+  // (a cancelled file stops at its next call, not at its end)
+  if (out_.cancelled()) throw RecordingCancelled{};
   if (batch_.capacity() == 0) batch_.reserve(kBatchCalls);
   batch_.push_back(std::move(c));
   batch_bytes_ += sizeof(RecordedCall) + bytes;

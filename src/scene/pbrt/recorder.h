@@ -4,6 +4,7 @@
 // the file that imports it (docs/scene-format.md, "Import").
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <deque>
 #include <exception>
@@ -70,6 +71,7 @@ class CallStream {
   std::exception_ptr error() const { return error_; }
   // Either thread: stop the parse (its calls will not be replayed).
   void cancel();
+  bool cancelled() const { return cancelled_flag_.load(std::memory_order_relaxed); }
 
  private:
   std::mutex mutex_;
@@ -79,6 +81,7 @@ class CallStream {
   size_t held_bytes_ = 0;
   const size_t max_bytes_;
   bool finished_ = false, cancelled_ = false;
+  std::atomic<bool> cancelled_flag_{false};  // cancelled_, read without the lock
   std::exception_ptr error_;
 };
 
