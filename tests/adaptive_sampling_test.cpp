@@ -53,15 +53,16 @@ Image reference(const Scene& scene, const std::string& integrator, int spp = 102
 
 // With every block sampled alike (a target no block reaches), the estimate
 // is the measured relMSE within a factor 1.5, on three scenes: a diffuse
-// box (path and bdpt, whose light tracing's splats it includes) and glossy
-// and textured objects. (Caustics through glass in bdpt: 0.53, see
+// box (path and bdpt, whose light tracing's splats it includes), glossy
+// and textured objects, and fog lit by a spot (media). (Caustics through glass in bdpt: 0.53, see
 // docs/adaptive-sampling.md.)
 TEST(AdaptiveSampling, EstimateTracksTheMeasuredError) {
   if (LANTERN_ASAN) GTEST_SKIP() << "references at 512 spp";
   const struct {
     const char* scene;
     const char* integrator;
-  } cases[] = {{"cornell-box.pbrt", "path"}, {"appearance.pbrt", "path"}, {"cornell-box.pbrt", "bdpt"}};
+  } cases[] = {{"cornell-box.pbrt", "path"}, {"appearance.pbrt", "path"}, {"cornell-box.pbrt", "bdpt"},
+               {"smoke.pbrt", "path"}};
   for (const auto& c : cases) {
     auto scene = shipped(c.scene);
     // (At 512 spp the reference's own error adds an eighth to the measured one.)

@@ -1,6 +1,6 @@
 # mpirun end to end: 2 and 3 ranks of one thread each, and 2 ranks of two
 # threads, give the image a single process gives, bit for bit, for path,
-# bdpt and lt; a rank that fails
+# bdpt, lt and vcm; a rank that fails
 # ends the job with its message and a non-zero exit, in bounded time.
 set(ENV{OMPI_ALLOW_RUN_AS_ROOT} 1)
 set(ENV{OMPI_ALLOW_RUN_AS_ROOT_CONFIRM} 1)
@@ -13,7 +13,7 @@ set(ENV{OMPI_MCA_btl} "self,vader")  # one machine: shared memory only
 # (the bit-for-bit claim is the Release suite's to check in full).
 # The killed-rank render is smaller there too: about the Release render's
 # wall time, so the kill still lands mid-render.
-set(integrators path bdpt lt)
+set(integrators path bdpt lt vcm)
 set(layouts 2x1 3x1 2x2)  # ranks x threads per rank
 set(ck_size --spp 64 --resolution 96 72)
 if(DEFINED ENV{ASAN_OPTIONS})

@@ -72,7 +72,7 @@ TEST_P(Parts, MergeEqualsTheSingleRender) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Integrators, Parts, ::testing::Values("path", "bdpt", "lt"));
+INSTANTIATE_TEST_SUITE_P(Integrators, Parts, ::testing::Values("path", "bdpt", "lt", "vcm"));
 
 TEST(PartsMerge, RefusesWhatDoesNotBelong) {
   auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");

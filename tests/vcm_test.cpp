@@ -4,7 +4,9 @@
 // densities in bdpt_mis_test.cpp.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -204,6 +206,69 @@ TEST(Vcm, MergingRendersPassesOfOneSample) {
   hooks.pass_done = [&](uint32_t spp) { spps.push_back(spp); };
   render(*scene, merging_options("bdpt", 16, 12, 3, 0.1f), hooks);
   EXPECT_EQ(spps, (std::vector<uint32_t>{3})) << "bdpt keeps its passes of up to 16";
+}
+
+// Issue 30's budget bug, by its error: on the pool, vcm's image after
+// `--spp 16` and after a time budget stopped at 16 passes leave the same
+// relative error against a long render, within 20% (when a pass was 16
+// samples of each pixel, all merging with one wave's light vertices, the
+// sample budget was 6.7 times worse), and the pixels on the borders of the
+// 16x16 tiles a wave is made of are no noisier than those inside them
+// (that budget's images showed seams along the tiles).
+TEST(Vcm, SampleAndTimeBudgetsLeaveTheSameError) {
+  if (LANTERN_ASAN) GTEST_SKIP() << "the Release suite runs it";
+  const auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/pool.pbrt");
+  const int w = 96, h = 64;
+  const Image ref = render(*scene, merging_options("vcm", w, h, 512, 0.f)).image;
+  // Per pixel: relative squared error, Rousselle et al.'s, over channels;
+  // the light's own pixels (far brighter than the rest) left out.
+  double ref_mean = 0.0;
+  for (float v : ref.rgb) ref_mean += double(v) / double(ref.rgb.size());
+  struct Error { double all = 0, border = 0, inside = 0; size_t n_border = 0, n_inside = 0; };
+  auto error = [&](const Image& a) {
+    Error e;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const size_t p = size_t(y * w + x) * 3;
+        double r = 0.0, sq = 0.0;
+        for (int c = 0; c < 3; ++c) {
+          const double d = double(a.rgb[p + size_t(c)]) - ref.rgb[p + size_t(c)];
+          sq += d * d / (double(ref.rgb[p + size_t(c)]) * ref.rgb[p + size_t(c)] + 1e-2);
+          r += ref.rgb[p + size_t(c)] / 3.0;
+        }
+        if (r > 20.0 * ref_mean) continue;
+        const bool border = x % 16 == 0 || x % 16 == 15 || y % 16 == 0 || y % 16 == 15;
+        (border ? e.border : e.inside) += sq;
+        ++(border ? e.n_border : e.n_inside);
+      }
+    e.all = (e.border + e.inside) / double(e.n_border + e.n_inside);
+    e.border /= double(e.n_border);
+    e.inside /= double(e.n_inside);
+    return e;
+  };
+  const RenderResult by_spp = render(*scene, merging_options("vcm", w, h, 16, 0.f));
+  RenderOptions timed = merging_options("vcm", w, h, 16, 0.f);
+  timed.time_limit_seconds = 3600.0;
+  std::atomic<bool> stop{false};
+  RenderHooks hooks;
+  hooks.cancel = &stop;
+  hooks.pass_done = [&](uint32_t spp) {
+    if (spp >= 16) stop = true;
+  };
+  const RenderResult by_time = render(*scene, timed, hooks);
+  const double spp_time = double(by_time.stats.samples) / double(w * h);
+  ASSERT_GE(spp_time, 16.0);
+  const Error a = error(by_spp.image), b = error(by_time.image);
+  std::printf("pool, vcm: --spp 16 relMSE %.5f (tile borders %.5f, inside %.5f); timed, %.2f spp: %.5f (%.5f, %.5f)\n",
+              a.all, a.border, a.inside, spp_time, b.all, b.border, b.inside);
+  // (error times samples: a timed render may end a pass or so later)
+  const double ratio = a.all * 16.0 / (b.all * spp_time);
+  EXPECT_GT(ratio, 1.0 / 1.2) << a.all << " against " << b.all << " at " << spp_time << " spp";
+  EXPECT_LT(ratio, 1.2) << a.all << " against " << b.all << " at " << spp_time << " spp";
+  for (const Error& e : {a, b}) {
+    EXPECT_LT(e.border / e.inside, 1.25) << "tile borders " << e.border << ", inside " << e.inside;
+    EXPECT_GT(e.border / e.inside, 0.8) << "tile borders " << e.border << ", inside " << e.inside;
+  }
 }
 
 // pbrt-v4's stochastic progressive photon mapper converges to vcm's image:
