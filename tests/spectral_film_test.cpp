@@ -240,31 +240,35 @@ TEST(SpectralFilm, EveryStrategyFillsTheSameBuckets) {
   EXPECT_GT(path[3], 2.0 * path[0]);  // a 3000 K body: far more red than blue
 }
 
-// A bdpt render (camera samples and splats) stopped and resumed from its
-// checkpoints gives the straight render's buckets, bit for bit.
+// A render (bdpt: camera samples and splats; path; vcm: merges) stopped
+// and resumed from its checkpoints gives the straight render's buckets and
+// image, bit for bit, in spectral mode.
 TEST(SpectralFilm, AResumedRenderKeepsItsBuckets) {
   auto scene = load_scene_from_string(
       lit_floor(R"("integer xresolution" 16 "integer yresolution" 16 "integer nbuckets" 8)", 8, 0.5f, 0.2f), "r.pbrt",
       {});
-  RenderOptions o;
-  o.sampler = scene_settings(*scene).sampler;
-  o.integrator = Integrator::Bdpt;
-  o.spp = 8;
-  o.wave_size = 256;
-  o.maxdepth = 3;
-  o.spectral = true;
-  o.spectral_buckets = 8;
-  o.threads = 2;
-  const Image straight = render(*scene, o).image;
-  const auto dir = std::filesystem::temp_directory_path() / ("lantern-spectral-film-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  int runs = 0;
-  const Image resumed = render_stopped_and_resumed(*scene, o, (dir / "r.ckpt").string(), 2, 3, &runs).image;
-  std::filesystem::remove_all(dir);
-  EXPECT_GT(runs, 1);
-  ASSERT_EQ(resumed.channel_names.size(), 8u);
-  EXPECT_EQ(resumed.rgb, straight.rgb);
-  EXPECT_EQ(resumed.channels, straight.channels);
+  for (Integrator integrator : {Integrator::Bdpt, Integrator::Path, Integrator::Vcm}) {
+    RenderOptions o;
+    o.sampler = scene_settings(*scene).sampler;
+    o.integrator = integrator;
+    o.spp = 8;
+    o.wave_size = 256;
+    o.maxdepth = 3;
+    o.spectral = true;
+    o.spectral_buckets = 8;
+    o.threads = 2;
+    const Image straight = render(*scene, o).image;
+    const auto dir = std::filesystem::temp_directory_path() / ("lantern-spectral-film-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    int runs = 0;
+    const Image resumed = render_stopped_and_resumed(*scene, o, (dir / "r.ckpt").string(), 2, 3, &runs).image;
+    std::filesystem::remove_all(dir);
+    const std::string name = lantern::name(integrator);
+    EXPECT_GT(runs, 1) << name;
+    ASSERT_EQ(resumed.channel_names.size(), 8u) << name;
+    EXPECT_EQ(resumed.rgb, straight.rgb) << name;
+    EXPECT_EQ(resumed.channels, straight.channels) << name;
+  }
 }
 
 TEST(SpectralFilm, BadParametersAreClearErrors) {
