@@ -162,14 +162,12 @@ MaterialHandle SceneBuilder::concrete_material(const std::string& type, const Pa
       }
       if (ps.has("reflectance")) {
         c.reflectance = rgb_texture(ps, "reflectance", RGB(0.f));
+        // pbrt-v4: a conductor given by its reflectance at normal
+        // incidence, eta 1 and k from it per wavelength when shading
+        // (bsdf_kernel.h). (k computed here from the RGB, as it once was
+        // for a constant, is a k whose spectrum is not the reflectance's:
+        // spectral renders came out 7% bright in red and blue.)
         c.by_reflectance = true;
-        if (c.reflectance.is_constant()) {
-          // pbrt-v4: a conductor given by its reflectance at normal incidence.
-          RGB r = clamp(c.reflectance.value, RGB(0.f), RGB(0.9999f));
-          c.eta = RGBTextureRef::constant(RGB(1.f));
-          c.k = RGBTextureRef::constant(2.f * sqrt(r) / sqrt(RGB(1.f) - r));
-          c.by_reflectance = false;
-        }
       }
       c.roughness = roughness(ps, type == "metal" ? 0.01f : 0.f);
     }
