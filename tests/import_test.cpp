@@ -184,6 +184,7 @@ TEST(Import, TheFirstErrorInFileOrderIsReported) {
       {"Import \"unnamed.pbrt\"\n", {"unnamed.pbrt:2:1", "never defined"}},
       {"Import \"self.pbrt\"\n", {"self.pbrt:1:1", "Import cycle"}},
       {"Import \"missing.pbrt\"\n", {"main.pbrt:7:1", "cannot open scene file"}},
+      {"Import \"/dev/zero\"\n", {"main.pbrt:7:1", "not a regular file"}},
   };
   for (const Case& c : cases) {
     const std::string main = f.write("main.pbrt", head + c.body);
