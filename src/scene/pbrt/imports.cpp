@@ -167,16 +167,16 @@ void ImportQueue::cancel_all() {
 
 // --- the parser's side ---------------------------------------------------------
 
-Parser::Parser(const Parser& importer, ParserTarget& target, Recorder* recorder)
-    : b_(&target), base_dir_(importer.base_dir_), gs_(importer.gs_), stack_(importer.stack_),
+Parser::Parser(const Parser& importer, bool names_at_replay)
+    : b_(importer.b_), base_dir_(importer.base_dir_), gs_(importer.gs_), stack_(importer.stack_),
       stack_where_(importer.stack_where_), transform_only_(importer.transform_only_), named_cs_(importer.named_cs_),
       camera_from_world_(importer.camera_from_world_), render_from_world_(importer.render_from_world_),
       world_from_render_(importer.world_from_render_), transform_times_(importer.transform_times_),
       rendering_space_(importer.rendering_space_), in_world_(importer.in_world_),
       object_depth_(importer.object_depth_), ancestors_(importer.ancestors_), floor_(importer.stack_.size()),
-      recorder_(recorder) {
+      recorder_(importer.recorder_) {
   // A recorded file's material names are looked up at replay (parser.cpp).
-  if (!recorder) named_materials_ = importer.named_materials_;
+  if (!names_at_replay) named_materials_ = importer.named_materials_;
   for (const auto& f : importer.files_) ancestors_.push_back(canonical(f->filename()));
 }
 
@@ -213,7 +213,7 @@ void Parser::import(const Token& t, const std::string& file) {
   const SourceLocation from = loc(t);
   if (import_threads_ <= 1 || recorder_) {
     // In place, on this thread (and within a file being recorded).
-    Parser child(*this, *b_, recorder_);
+    Parser child(*this, recorder_ != nullptr);
     child.run(child.open(path, from));
     if (!recorder_) named_materials_ = std::move(child.named_materials_);
     return;
@@ -222,11 +222,10 @@ void Parser::import(const Token& t, const std::string& file) {
     imports_ = std::make_unique<ImportQueue>(*b_, base_dir_, named_materials_, import_threads_);
     b_ = &imports_->ordered();
   }
-  auto child = std::make_shared<Parser>(*this, *b_, nullptr);
+  auto child = std::make_shared<Parser>(*this, true);
   imports_->submit([child, path, from](Recorder& recorder) {
     child->b_ = &recorder;
     child->recorder_ = &recorder;
-    child->named_materials_.clear();
     child->run(child->open(path, from));
   });
 }

@@ -30,9 +30,10 @@ enum class Directive {
 class Parser {
  public:
   Parser(ParserTarget& b, std::string base_dir) : b_(&b), base_dir_(std::move(base_dir)) {}
-  // A parser for an Import'ed file: this one's state at the Import,
-  // driving `target` (a Recorder when the file is parsed on another thread).
-  Parser(const Parser& importer, ParserTarget& target, Recorder* recorder);
+  // A parser for an Import'ed file: the importer's state at the Import and
+  // its target; names_at_replay: the file is recorded (its material names
+  // are resolved at replay, so the importer's are not copied).
+  Parser(const Parser& importer, bool names_at_replay);
   Parser(const Parser&) = delete;
   Parser& operator=(const Parser&) = delete;
   ~Parser();

@@ -87,7 +87,6 @@ bool CallStream::pop(std::vector<RecordedCall>& calls) {
 void CallStream::cancel() {
   std::lock_guard<std::mutex> lock(mutex_);
   cancelled_ = true;
-  cancelled_flag_ = true;
   batches_.clear();
   held_bytes_ = 0;
   changed_.notify_all();

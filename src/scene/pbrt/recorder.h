@@ -71,7 +71,7 @@ class CallStream {
   std::exception_ptr error() const { return error_; }
   // Either thread: stop the parse (its calls will not be replayed).
   void cancel();
-  bool cancelled() const { return cancelled_flag_.load(std::memory_order_relaxed); }
+  bool cancelled() const { return cancelled_.load(std::memory_order_relaxed); }
 
  private:
   std::mutex mutex_;
@@ -80,8 +80,8 @@ class CallStream {
   std::vector<std::vector<RecordedCall>> spares_;
   size_t held_bytes_ = 0;
   const size_t max_bytes_;
-  bool finished_ = false, cancelled_ = false;
-  std::atomic<bool> cancelled_flag_{false};  // cancelled_, read without the lock
+  bool finished_ = false;
+  std::atomic<bool> cancelled_{false};  // set under the lock, also read without it
   std::exception_ptr error_;
 };
 
