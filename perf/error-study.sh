@@ -2,7 +2,8 @@
 # Error against time, per integrator and setting: relMSE and MSE of each
 # variant after each of several wall times, on the shipped scenes, against
 # perf/references/<scene>.exr (made by perf/make-references.sh). The
-# variants: path, path with guiding (--guide), bdpt, vcm. (Adaptive
+# variants: path, path with guiding (--guide), bdpt, bdpt with guiding, vcm,
+# vcm with guiding. (Adaptive
 # sampling is compared at the time its target takes, docs/adaptive-sampling.md:
 # within a fixed time a target no block reaches sends every pass to the
 # noisiest pixels.) Prints a Markdown table; the last column is each
@@ -13,7 +14,7 @@ set -eu
 times=${1:-"10 30 100"}
 shift 2>/dev/null || true
 scenes=${*:-"cornell-box cornell-box-tiny-light door-ajar lantern lamp-street caustics pool smoke"}
-variants=${VARIANTS:-"path path+guide bdpt vcm"}
+variants=${VARIANTS:-"path path+guide bdpt bdpt+guide vcm vcm+guide"}
 lantern=${LANTERN:-build/lantern}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -27,7 +28,7 @@ for s in $scenes; do
     path_err=""
     for v in $variants; do
       integrator=${v%%+*}
-      flags=""; [ "$v" = path+guide ] && flags="--guide"
+      flags=""; case "$v" in *+guide) flags="--guide" ;; esac
       # shellcheck disable=SC2086 # flags holds zero or one word
       "$lantern" render "scenes/$s.pbrt" --integrator "$integrator" $flags --time "$t" --seed 7 --resolution $res \
         -o "$tmp/$s-$v.exr" 2> "$tmp/log" || { echo "| $s | $v | $t | (failed: $(tail -n 1 "$tmp/log")) | | | |"; continue; }

@@ -93,7 +93,8 @@ void add_render_request_options(CLI::App& c, RenderRequest& r) {
   c.add_option("--mis", r.mis, "bdpt's MIS heuristic: power or balance")
       ->check(CLI::IsMember({"power", "balance"}));
   c.add_flag("--guide", r.guide,
-                   "Path guiding: paths learn where light comes from and sample it (path only; docs/guiding.md)");
+                   "Path guiding: paths learn where light comes from and sample it (path, and the eye subpaths of bdpt and vcm; "
+                   "docs/guiding.md)");
   c.add_flag("--spectral", r.spectral,
                    "Render with sampled wavelengths, four per camera sample, as pbrt-v4 does, instead of in RGB "
                    "(docs/spectral.md)");

@@ -183,12 +183,31 @@ void Bdpt::eye_shade_stage(BdptWave& w) const {
         return;
       }
     }
+    // Guided where the BSDF is not all delta; the normal on the side the
+    // subpath came from picks the distribution (as the path tracer's).
+    const bool guided = guiding_ && !bsdf.is_specular();
+    uint32_t leaf = 0, normal_bin = 0;
+    GuideAt guide;
+    if (guided) {
+      leaf = guiding_->tree().leaf_of(v.p);
+      normal_bin = SDTree::normal_bin(glm::dot(v.ns, v.wo_world) < 0.f ? -v.ns : v.ns);
+      guide = guiding_->at(leaf, normal_bin);
+    }
+    ScatterSample drawn;
     const PathEnd end = continue_subpath(
         bsdf, TransportMode::Radiance, w.hits, i, v.frame, v.wo, s.get1d(dim + dims::kEyeBsdfComponent),
         s.get2d(dim + dims::kEyeBsdfDirection), s.get1d(dim + dims::kEyeRoulette), depth,
-        {w.eye.beta[slot], w.eye.mis[slot], w.eye.prev_p[slot], w.eye.prev_n[slot], w.eye.eta_scale[slot], 1.f}, w.mis);
-    if (end != PathEnd::Count) ++w.stats.eye_ends[size_t(end)];
-    else if (media) w.eye.medium[slot] = v.medium_towards(scene_, w.hits.next_d[i]);
+        {w.eye.beta[slot], w.eye.mis[slot], w.eye.prev_p[slot], w.eye.prev_n[slot], w.eye.eta_scale[slot], 1.f}, w.mis,
+        guided ? &guide : nullptr, &drawn);
+    if (end != PathEnd::Count) {
+      ++w.stats.eye_ends[size_t(end)];
+      return;
+    }
+    if (media) w.eye.medium[slot] = v.medium_towards(scene_, w.hits.next_d[i]);
+    if (guided && guiding_->learning() && !drawn.specular)
+      w.guide.push(slot, leaf, v.p, normal_bin,
+                   drawn.guide_pdf >= 0.f ? drawn.square : equal_area_sphere_to_square(drawn.wi), drawn.pdf,
+                   average(drawn.weight) * drawn.pdf, drawn.bsdf_pdf, drawn.guide_pdf, w.eye.beta[slot]);
   });
 }
 
@@ -257,6 +276,7 @@ void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
     fn();
   };
   const bool media = !scene_.media.empty();
+  const bool learning = guiding_ && guiding_->learning();
   auto trace_shadows = [&] {
     if (media) trace_connections(w);
     else w.stream.occluded(w.shadow.rays);
@@ -288,6 +308,7 @@ void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
       }
       start_eye_subpaths(wave, w);
     });
+    w.guide.clear();
     for (w.depth = 1; w.rays.count > 0; ++w.depth) {
       const RayKind kind = w.depth == 1 ? RayKind::Camera : RayKind::Extension;
       w.stream.intersect(w.rays, kind);
@@ -300,7 +321,17 @@ void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
         w.hits.compact(w.rays, w.active);
       });
       trace_shadows();
-      timed(Stage::Accumulate, [&] { connection_stage(w); });
+      timed(Stage::Accumulate, [&] {
+        connection_stage(w);
+        // What a vertex's direction brought back is what the sample
+        // gathers after this bounce's connections, merges and emission.
+        if (learning) w.guide.end_bounce(w.L);
+      });
+    }
+    if (learning) {
+      StageTimer t(st, Stage::Accumulate);
+      w.guide.make_records(w.L, guiding_->tree(), hash_key(settings_.seed, wave.pixels[0], wave.first_sample),
+                           out.guide);
     }
   }
   if (w.chains) return metropolis_samples(wave, w, out);

@@ -22,6 +22,7 @@
 #include "texture/footprint.h"
 #include "film/film.h"
 #include "integrator/bdpt_mis.h"
+#include "integrator/guiding_field.h"
 #include "integrator/vertex.h"
 #include "integrator/wave.h"
 #include "integrator/wavelengths.h"
@@ -96,6 +97,10 @@ class Bdpt {
 
   WavePools<BdptWave> make_wave_state(uint32_t capacity, RayStream stream) const;
   void trace(const WaveDesc& wave, BdptWave& state, WaveOutput& out) const;
+  // Path guiding (docs/guiding.md): eye subpaths sample the field's
+  // mixture with the BSDF at surface vertices and, while it learns, leave
+  // records of what they gathered; light subpaths are not guided.
+  void set_guiding(const GuidingField* field) { guiding_ = field; }
 
  private:
   // light subpaths (bdpt_light.cpp)
@@ -181,6 +186,7 @@ class Bdpt {
   FootprintModel footprints_;  // enabled when the scene's textures filter
   MisPower mis_;
   SamplerSpec sampler_;
+  const GuidingField* guiding_ = nullptr;
 };
 
 }  // namespace lantern

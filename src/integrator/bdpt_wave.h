@@ -9,6 +9,7 @@
 #include "accel/ray_stream.h"
 #include "film/film.h"
 #include "integrator/bdpt_mis.h"
+#include "integrator/guide_vertices.h"
 #include "integrator/hit.h"
 #include "integrator/vertex_grid.h"
 #include "integrator/wave_stats.h"
@@ -249,6 +250,7 @@ struct BdptWave {
   std::vector<float> time;                 // so is its time in the shutter (integrator/shutter.h)
   std::vector<Spectrum> L;
   std::vector<Vec2> raster;  // Metropolis: where its camera sample lies (anywhere on the image)
+  GuideVertices guide;       // the eye vertices' records while the guiding field learns
   SubpathPool eye, light;
   LightOriginPool origin;
   uint32_t depth = 0;  // bounce of the current phase
@@ -289,7 +291,7 @@ struct BdptWave {
 
   size_t memory_bytes() const {
     const SubpathPool* subpaths[] = {&eye, &light};
-    size_t b = vector_bytes(pixel) + vector_bytes(sampler) + vector_bytes(lambda) + vector_bytes(time) + vector_bytes(L) + vector_bytes(raster) + vector_bytes(active) +
+    size_t b = vector_bytes(pixel) + vector_bytes(sampler) + vector_bytes(lambda) + vector_bytes(time) + vector_bytes(L) + vector_bytes(raster) + vector_bytes(active) + guide.memory_bytes() +
                rays.memory_bytes() + hits.memory_bytes() + shadow.rays.memory_bytes() + vector_bytes(shadow.slot) +
                vector_bytes(shadow.contrib) + vector_bytes(shadow.p_raster) + vector_bytes(shadow.tags) +
                vector_bytes(shadow.next_event);

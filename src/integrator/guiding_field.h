@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "guiding/sd_tree.h"
+#include "integrator/guided_scatter.h"
 
 namespace lantern {
 
@@ -26,6 +27,14 @@ class GuidingField {
   GuidingField(Vec3 lo, Vec3 hi, uint64_t passes) : tree_(lo, hi), passes_(passes) {}
 
   const SDTree& tree() const { return tree_; }
+  // The distribution paths sample in a leaf for a normal's bin, if it has
+  // one (none before the first iteration ends, or where no energy came).
+  GuideAt at(uint32_t leaf, uint32_t normal_bin) const {
+    if (!tree_.trained()) return {};
+    const SDTree::Leaf& l = tree_.leaf(leaf);
+    const DirectionalTree& d = l.sampled[normal_bin];
+    return d.total() > 0.0 ? GuideAt{&d, l.alpha[normal_bin]} : GuideAt{};
+  }
   // Whether the waves of the current iteration record: the field they
   // learn is sampled for at least as many passes as the iteration lasts.
   // (Once not, never again: the last field learnt serves to the end, and

@@ -148,14 +148,6 @@ void PathTracer::surface_stage(PathWave& w) const {
   }
 }
 
-// The field's distribution in a leaf for a normal, if it has one.
-GuideAt PathTracer::guide_at(uint32_t leaf, uint32_t normal_bin) const {
-  if (!guiding_->tree().trained()) return {};
-  const SDTree::Leaf& l = guiding_->tree().leaf(leaf);
-  const DirectionalTree& d = l.sampled[normal_bin];
-  return d.total() > 0.0 ? GuideAt{&d, l.alpha[normal_bin]} : GuideAt{};
-}
-
 // Next-event estimation and BSDF sampling in one loop per material kind,
 // the BSDF built once (two loops cost 3% of the path tracer's throughput:
 // docs/performance.md).
@@ -178,7 +170,7 @@ void PathTracer::shade_stage(PathWave& w) const {
     if (guided) {
       leaf = guiding_->tree().leaf_of(v.p);
       normal_bin = SDTree::normal_bin(glm::dot(v.ns, v.wo_world) < 0.f ? -v.ns : v.ns);
-      guide = guide_at(leaf, normal_bin);
+      guide = guiding_->at(leaf, normal_bin);
     }
     if (!bsdf.is_specular())
       path_next_event(sc, light_sampler_, w, slot, v, u_light, u_light2, volume_number(w, slot), settings_.maxdepth);

@@ -92,7 +92,6 @@ class PathTracer {
   void medium_scatter_stage(PathWave& w) const;
   void media_shadow_stage(PathWave& w) const;
   float volume_number(const PathWave& w, uint32_t slot) const;
-  GuideAt guide_at(uint32_t leaf, uint32_t normal_bin) const;
   void add_volume_emission(PathWave& w, uint32_t i, const Spectrum& beta_before, float prev_pdf) const;
 
   const Scene& scene_;

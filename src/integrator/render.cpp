@@ -496,7 +496,9 @@ RenderResult RenderSession::render_all() {
     } else if (!traces_paths(opt.integrator)) {
       const BdptSettings bs = bdpt_settings(scene, opt, s.region, planned_spp);
       res.stats.vcm_radius = bs.merging ? bs.vcm_radius : 0.f;
-      stopped = run_passes(Bdpt(scene, light_sampler, bs), cx);
+      Bdpt bdpt(scene, light_sampler, bs);
+      bdpt.set_guiding(cx.guiding);
+      stopped = run_passes(bdpt, cx);
       if (bs.merging)  // the radius of the last pass traced (Bdpt::prepare_merging)
         res.stats.vcm_last_radius =
             bs.vcm_radius * std::pow(float(res.stats.vcm_last_first_sample + 1), 0.5f * (bs.vcm_alpha - 1.f));

@@ -114,8 +114,8 @@ void check_options(const Scene& scene, const RenderOptions& opt) {
     // The field is learnt from every pixel's samples in order: a process
     // holding a share of them, or resuming without them, would learn
     // another field and render another image.
-    if (opt.integrator != Integrator::Path)
-      throw std::invalid_argument("path guiding (--guide) works with the path tracer only, not yet with " +
+    if (opt.integrator != Integrator::Path && opt.integrator != Integrator::Bdpt && opt.integrator != Integrator::Vcm)
+      throw std::invalid_argument("path guiding (--guide) works with path, bdpt and vcm, not with " +
                                   std::string(name(opt.integrator)));
     if (opt.share_count > 1 || !opt.checkpoint_path.empty())
       throw std::invalid_argument("path guiding (--guide) needs the whole render in one run: not with --part, MPI or "
