@@ -179,6 +179,7 @@ void MpiRender::reduce(Film& film) {
   reduce_chunks(b.sums, b.values, fixed, add, rank);
   if (b.splats) reduce_chunks(b.splats, b.values, fixed, add, rank);
   reduce_chunks(b.counts, b.values / 3, MPI_UINT32_T, MPI_SUM, rank);
+  if (b.negatives) reduce_chunks(b.negatives, b.values / 3, MPI_UINT32_T, MPI_SUM, rank);
   reduce_chunks(b.nonfinite, 1, MPI_UINT64_T, MPI_SUM, rank);
   reduce_chunks(b.light_paths, 1, MPI_UINT64_T, MPI_SUM, rank);
   MPI_Op_free(&add);

@@ -14,7 +14,8 @@ Film::Film(int width, int height, const PixelFilter& filter)
       height_(height),
       filter_(filter),
       sum_(3 * size_t(width) * size_t(height)),
-      count_(size_t(width) * size_t(height), 0) {}
+      count_(size_t(width) * size_t(height), 0),
+      negative_(filter.is_signed() ? size_t(width) * size_t(height) : 0, 0) {}
 
 namespace {
 
@@ -25,7 +26,7 @@ FixedTerm fixed_term(uint32_t pixel, const RGB& c, bool odd = false) {
 }
 
 // Flags of the film's state (write_state): which optional sums follow.
-constexpr uint8_t kHasSplats = 1, kHasHalves = 2, kHasRegion = 4, kHasMoments = 8, kHasBuckets = 16;
+constexpr uint8_t kHasSplats = 1, kHasHalves = 2, kHasRegion = 4, kHasMoments = 8, kHasBuckets = 16, kHasNegatives = 32;
 
 }  // namespace
 
@@ -46,7 +47,7 @@ void Film::prepare(WaveOutput& out) const {
   for (const FilmSample& s : out.samples) {
     const RGB L = sensed(clamped(s.L));
     if (addable(L)) {
-      out.sample_terms.push_back(fixed_term(s.pixel, L, s.odd));
+      out.sample_terms.push_back(fixed_term(s.pixel, s.negative ? -L : L, s.odd));
       // A square beyond the sums' range is left out of the moments alone.
       if (tracks_moments() && addable(L * L)) out.square_terms.push_back(fixed_term(s.pixel, L * L));
     } else {
@@ -68,6 +69,8 @@ void Film::prepare(WaveOutput& out) const {
 
 void Film::merge(const WaveOutput& out) {
   for (const FilmSample& s : out.samples) ++count_[s.pixel];
+  if (!negative_.empty())
+    for (const FilmSample& s : out.samples) negative_[s.pixel] += s.negative ? 1u : 0u;
   for (const FixedTerm& t : out.sample_terms)
     for (size_t c = 0; c < 3; ++c) sum_[3 * size_t(t.pixel) + c].add_raw(t.rgb[c]);
   if (!odd_.empty())
@@ -121,6 +124,10 @@ void Film::add(const Film& other) {
   }
   if (other.buckets_.count > 0) add_buckets(other);
   for (size_t i = 0; i < count_.size(); ++i) count_[i] += other.count_[i];
+  if (!other.negative_.empty()) {
+    if (negative_.empty()) negative_.assign(count_.size(), 0);
+    for (size_t i = 0; i < negative_.size(); ++i) negative_[i] += other.negative_[i];
+  }
   nonfinite_ += other.nonfinite_;
   light_paths_ += other.light_paths_;
 }
@@ -146,8 +153,11 @@ Film::Halves Film::halves(size_t pixel, int c) const {
   const uint32_t n = count_[pixel];
   const double n_odd = double(n / 2), n_even = double(n) - n_odd;
   const double sum = sum_[k].value(), odd = odd_[k].value();
-  Halves h{n ? sum / double(n) : 0.0, 0.0, 0.0};
-  if (n >= 2) h.even = (sum - odd) / n_even, h.odd = odd / n_odd;
+  // (with signed samples each half is scaled by the pixel's share of
+  // them: the halves' own signed counts are not kept)
+  const double norm = sample_normalisation(pixel), share = n ? norm * double(n) : 0.0;
+  Halves h{sum * norm, 0.0, 0.0};
+  if (n >= 2) h.even = (sum - odd) / n_even * share, h.odd = odd / n_odd * share;
   if (!splat_.empty() && light_paths_ > 0) {
     // (over the whole image's pixels, as resolve: splat_scale)
     const double pixels = double(full_width()) * double(full_height());
@@ -168,7 +178,7 @@ Image Film::resolve() const {
   img.rgb.resize(sum_.size());
   const double splat_scale = this->splat_scale();
   for (size_t i = 0; i < count_.size(); ++i) {
-    double inv = count_[i] ? 1.0 / double(count_[i]) : 0.0;
+    const double inv = sample_normalisation(i);
     for (int c = 0; c < 3; ++c) {
       size_t k = 3 * i + size_t(c);
       img.rgb[k] = float(sum_[k].value() * inv + (splat_.empty() ? 0.0 : splat_[k].value() * splat_scale));
@@ -184,7 +194,7 @@ void Film::write_state(StateWriter& out) const {
   out.write(&light_paths_, sizeof light_paths_);
   const uint8_t flags = (splat_.empty() ? 0 : kHasSplats) | (odd_.empty() ? 0 : kHasHalves) |
                         (full_width_ > 0 ? kHasRegion : 0) | (square_.empty() ? 0 : kHasMoments) |
-                        (buckets_.count > 0 ? kHasBuckets : 0);
+                        (buckets_.count > 0 ? kHasBuckets : 0) | (negative_.empty() ? 0 : kHasNegatives);
   out.write(&flags, 1);
   static_assert(sizeof(FixedSum) == sizeof(FixedSum::Raw));
   out.write(sum_.data(), sum_.size() * sizeof(FixedSum));
@@ -205,6 +215,7 @@ void Film::write_state(StateWriter& out) const {
   }
   if (flags & kHasMoments) out.write(square_.data(), square_.size() * sizeof(FixedSum));
   if (flags & kHasBuckets) write_buckets(out);
+  if (flags & kHasNegatives) out.write(negative_.data(), negative_.size() * sizeof(uint32_t));
 }
 
 void Film::read_state(StateReader& in) {
@@ -270,12 +281,16 @@ void Film::read_state(StateReader& in) {
     bucket_sum_.assign(bucket_sum_.size(), FixedSum());
     bucket_splat_.clear();
   }
+  const bool negatives = !negative_.empty();  // (as the halves)
+  negative_.clear();
+  if ((flags & kHasNegatives) || negatives) negative_.assign(count_.size(), 0);
+  if (flags & kHasNegatives) in.read(negative_.data(), negative_.size() * sizeof(uint32_t));
 }
 
 Film::Buffers Film::buffers(bool splats) {
   if (splats && splat_.empty()) splat_.assign(sum_.size(), FixedSum());
-  return Buffers{sum_.data(),  splat_.empty() ? nullptr : splat_.data(), sum_.size(), count_.data(), &nonfinite_,
-                 &light_paths_};
+  return Buffers{sum_.data(),   splat_.empty() ? nullptr : splat_.data(), sum_.size(), count_.data(),
+                 negative_.empty() ? nullptr : negative_.data(), &nonfinite_, &light_paths_};
 }
 
 uint64_t Film::total_samples() const { return std::accumulate(count_.begin(), count_.end(), uint64_t(0)); }

@@ -32,6 +32,9 @@ struct FilmSample {
   uint32_t pixel;
   RGB L;
   bool odd = false;  // its sample index is odd (the half-buffers of adaptive sampling)
+  // Drawn where a filter with negative lobes is negative (pixel_filter.h):
+  // it counts -1 in its pixel's signed count and its L is subtracted.
+  bool negative = false;
 };
 struct Splat {
   Vec2 p_raster;
@@ -207,6 +210,14 @@ class Film {
   uint32_t min_samples_per_pixel() const;
   uint32_t max_samples_per_pixel() const;
   uint32_t sample_count(size_t pixel) const { return count_[pixel]; }
+  // What a pixel's sample sums are divided by: 1 / its samples, or with a
+  // filter of negative lobes 1 / (its samples less twice its negative
+  // ones), pbrt-v4's sum of filter weights (film/signed_filter.h); 0 when
+  // that is 0.
+  double sample_normalisation(size_t pixel) const {
+    const int64_t n = negative_.empty() ? int64_t(count_[pixel]) : int64_t(count_[pixel]) - 2 * int64_t(negative_[pixel]);
+    return n != 0 ? 1.0 / double(n) : 0.0;
+  }
 
   // Adaptive sampling's half-buffers (integrator/adaptive_sampling.h): the
   // camera samples of odd sample index summed apart too, so that the means
@@ -258,7 +269,8 @@ class Film {
     FixedSum* sums;
     FixedSum* splats;  // null when the film has none
     size_t values;     // of sums and of splats: 3 per pixel
-    uint32_t* counts;  // one per pixel
+    uint32_t* counts;     // one per pixel
+    uint32_t* negatives;  // one per pixel; null unless the filter has negative lobes
     uint64_t* nonfinite;
     uint64_t* light_paths;
   };
@@ -292,6 +304,7 @@ class Film {
   std::vector<uint8_t> masks_;
   uint64_t odd_light_paths_ = 0;
   std::vector<uint32_t> count_;
+  std::vector<uint32_t> negative_;  // per pixel, with a filter of negative lobes: its negative samples
   uint64_t nonfinite_ = 0;
   uint64_t light_paths_ = 0;
 };

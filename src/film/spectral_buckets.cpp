@@ -77,7 +77,8 @@ void Film::prepare_buckets(WaveOutput& out) const {
   const size_t n = size_t(buckets_.count);
   for (size_t k = 0; k < out.samples.size(); ++k)
     for_each_bucket_value(buckets_, out.sample_spectra[k], max_component_, [&](int b, float v) {
-      out.bucket_terms.push_back({uint32_t(size_t(out.samples[k].pixel) * n + size_t(b)), FixedSum::to_fixed(v)});
+      out.bucket_terms.push_back(
+          {uint32_t(size_t(out.samples[k].pixel) * n + size_t(b)), FixedSum::to_fixed(out.samples[k].negative ? -v : v)});
     });
   for (size_t k = 0; k < out.splats.size(); ++k)
     for_each_bucket_value(buckets_, out.splat_spectra[k], max_component_, [&](int b, float v) {
@@ -123,7 +124,7 @@ void Film::add_bucket_channels(Image* image) const {
     std::copy_n(&image->channels[i * first], first, &channels[i * stride]);
   const double splat_scale = this->splat_scale();
   for (size_t i = 0; i < pixels; ++i) {
-    const double inv = count_[i] ? 1.0 / double(count_[i]) : 0.0;
+    const double inv = sample_normalisation(i);
     for (size_t b = 0; b < n; ++b) {
       const size_t k = i * n + b;
       channels[i * stride + first + b] =

@@ -336,7 +336,10 @@ void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
   }
   if (w.chains) return metropolis_samples(wave, w, out);
   for (uint32_t slot = 0; slot < wave.size(); ++slot)
-    out.samples.push_back({w.pixel[slot], film_rgb(w.L[slot], w.lambda[slot]), ((wave.first_sample + slot % wave.samples) & 1) != 0});
+    out.samples.push_back({w.pixel[slot], film_rgb(w.L[slot], w.lambda[slot]),
+                           ((wave.first_sample + slot % wave.samples) & 1) != 0,
+                           scene_.filter.is_signed() &&
+                               pixel_filter_negative(scene_.filter, w.sampler[slot].get2d(dims::kFilm))});
   if (out.keep_spectra)
     for (uint32_t slot = 0; slot < wave.size(); ++slot) out.sample_spectra.push_back({w.L[slot], w.lambda[slot]});
   out.light_paths += wave.size();

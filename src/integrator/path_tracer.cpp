@@ -281,7 +281,10 @@ void PathTracer::trace(const WaveDesc& wave, PathWave& w, WaveOutput& out) const
     w.guide.make_records(w.L, guiding_->tree(), hash_key(settings_.seed, wave.pixels[0], wave.first_sample), out.guide);
   }
   for (uint32_t slot = 0; slot < wave.size(); ++slot)
-    out.samples.push_back({w.pixel[slot], film_rgb(w.L[slot], w.lambda[slot]), ((wave.first_sample + slot % wave.samples) & 1) != 0});
+    out.samples.push_back({w.pixel[slot], film_rgb(w.L[slot], w.lambda[slot]),
+                           ((wave.first_sample + slot % wave.samples) & 1) != 0,
+                           scene_.filter.is_signed() &&
+                               pixel_filter_negative(scene_.filter, w.sampler[slot].get2d(dims::kFilm))});
   if (out.keep_spectra)
     for (uint32_t slot = 0; slot < wave.size(); ++slot) out.sample_spectra.push_back({w.L[slot], w.lambda[slot]});
 }

@@ -262,6 +262,12 @@ void SceneBuilder::pixel_filter(const std::string& type, const ParamSet& ps) {
     f.type = PixelFilter::Type::Gaussian;
     def_r = 1.5f;
     f.sigma = ps.get_float("sigma", 0.5f);
+  } else if (type == "mitchell") {
+    f.type = PixelFilter::Type::Mitchell;
+    def_r = 2.f;
+  } else if (type == "sinc") {
+    f.type = PixelFilter::Type::Sinc;
+    def_r = 4.f;
   } else {
     warn(ps.where, "pixel filter \"" + printable(type) + "\" is not supported; using a gaussian of radius 1.5");
     f.type = PixelFilter::Type::Gaussian;
@@ -271,8 +277,27 @@ void SceneBuilder::pixel_filter(const std::string& type, const ParamSet& ps) {
   }
   if (supported) {
     f.radius = Vec2(ps.get_float("xradius", def_r), ps.get_float("yradius", def_r));
-    if (!(f.radius.x > 0.f && f.radius.y > 0.f)) ps.fail("filter radii must be positive");
+    if (!(f.radius.x > 0.f && f.radius.y > 0.f) || !std::isfinite(f.radius.x) || !std::isfinite(f.radius.y))
+      ps.fail("filter radii must be positive");
   }
+  if (f.type == PixelFilter::Type::Mitchell) {
+    const double B = ps.get_float("B", 1.f / 3.f), C = ps.get_float("C", 1.f / 3.f);
+    if (!std::isfinite(B) || !std::isfinite(C)) ps.fail("\"B\" and \"C\" must be finite");
+    for (int axis = 0; axis < 2; ++axis) {
+      const double r = f.radius[axis];
+      f.lobed[axis] = SignedFilterTable(f.radius[axis], [&](double x) { return mitchell_1d(2.0 * x / r, B, C); });
+    }
+  } else if (f.type == PixelFilter::Type::Sinc) {
+    const double tau = ps.get_float("tau", 3.f);
+    if (!(tau > 0.0) || !std::isfinite(tau)) ps.fail("\"tau\" must be positive");
+    for (int axis = 0; axis < 2; ++axis) {
+      const double r = f.radius[axis];
+      f.lobed[axis] = SignedFilterTable(f.radius[axis], [&](double x) { return windowed_sinc(x, r, tau); });
+    }
+  }
+  if (f.is_signed())
+    for (int axis = 0; axis < 2; ++axis)
+      if (!f.lobed[axis].valid()) ps.fail("this filter's weights sum to zero or less over its radius");
   if (f.type == PixelFilter::Type::Gaussian) {
     if (!(f.sigma > 0.f) || !std::isfinite(f.sigma)) ps.fail("\"sigma\" must be positive");
     for (int axis = 0; axis < 2; ++axis) f.gaussian[axis] = GaussianFilterTable(f.radius[axis], f.sigma);
