@@ -183,29 +183,22 @@ void Bdpt::eye_shade_stage(BdptWave& w) const {
         return;
       }
     }
-    // Guided where the BSDF is not all delta; the normal on the side the
-    // subpath came from picks the distribution (as the path tracer's).
+    // Guided where the BSDF is not all delta (as the path tracer).
     const bool guided = guiding_ && !bsdf.is_specular();
-    uint32_t leaf = 0, normal_bin = 0;
-    GuideAt guide;
-    if (guided) {
-      leaf = guiding_->tree().leaf_of(v.p);
-      normal_bin = SDTree::normal_bin(glm::dot(v.ns, v.wo_world) < 0.f ? -v.ns : v.ns);
-      guide = guiding_->at(leaf, normal_bin);
-    }
+    const GuidingField::Site site = guided ? guiding_->site(v.p, v.ns, v.wo_world) : GuidingField::Site{};
     ScatterSample drawn;
     const PathEnd end = continue_subpath(
         bsdf, TransportMode::Radiance, w.hits, i, v.frame, v.wo, s.get1d(dim + dims::kEyeBsdfComponent),
         s.get2d(dim + dims::kEyeBsdfDirection), s.get1d(dim + dims::kEyeRoulette), depth,
         {w.eye.beta[slot], w.eye.mis[slot], w.eye.prev_p[slot], w.eye.prev_n[slot], w.eye.eta_scale[slot], 1.f}, w.mis,
-        guided ? &guide : nullptr, &drawn);
+        guided ? &site.guide : nullptr, &drawn);
     if (end != PathEnd::Count) {
       ++w.stats.eye_ends[size_t(end)];
       return;
     }
     if (media) w.eye.medium[slot] = v.medium_towards(scene_, w.hits.next_d[i]);
     if (guided && guiding_->learning() && !drawn.specular)
-      w.guide.push(slot, leaf, v.p, normal_bin,
+      w.guide.push(slot, site.leaf, v.p, site.normal_bin,
                    drawn.guide_pdf >= 0.f ? drawn.square : equal_area_sphere_to_square(drawn.wi), drawn.pdf,
                    average(drawn.weight) * drawn.pdf, drawn.bsdf_pdf, drawn.guide_pdf, w.eye.beta[slot]);
   });

@@ -27,6 +27,21 @@ class GuidingField {
   GuidingField(Vec3 lo, Vec3 hi, uint64_t passes) : tree_(lo, hi), passes_(passes) {}
 
   const SDTree& tree() const { return tree_; }
+  // Where a surface vertex at p with shading normal ns, reached from
+  // direction wo (towards where the path came from), finds the field: its
+  // leaf, the bin of the normal turned to the side the path came from, and
+  // the distribution there.
+  struct Site {
+    uint32_t leaf = 0, normal_bin = 0;
+    GuideAt guide;
+  };
+  Site site(const Vec3& p, const Vec3& ns, const Vec3& wo) const {
+    Site s;
+    s.leaf = tree_.leaf_of(p);
+    s.normal_bin = SDTree::normal_bin(glm::dot(ns, wo) < 0.f ? -ns : ns);
+    s.guide = at(s.leaf, s.normal_bin);
+    return s;
+  }
   // The distribution paths sample in a leaf for a normal's bin, if it has
   // one (none before the first iteration ends, or where no energy came).
   GuideAt at(uint32_t leaf, uint32_t normal_bin) const {

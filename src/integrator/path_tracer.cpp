@@ -162,16 +162,10 @@ void PathTracer::shade_stage(PathWave& w) const {
     const Vec3& wo = v.wo;
     float u_light = s.get1d(dim + dims::kEyeLightSelect);
     Vec2 u_light2 = s.get2d(dim + dims::kEyeLightPosition);
-    // Guided where the BSDF is not all delta; the normal on the side the
-    // path came from picks the distribution.
+    // Guided where the BSDF is not all delta.
     const bool guided = guiding_ && !bsdf.is_specular();
-    uint32_t leaf = 0, normal_bin = 0;
-    GuideAt guide;
-    if (guided) {
-      leaf = guiding_->tree().leaf_of(v.p);
-      normal_bin = SDTree::normal_bin(glm::dot(v.ns, v.wo_world) < 0.f ? -v.ns : v.ns);
-      guide = guiding_->at(leaf, normal_bin);
-    }
+    const GuidingField::Site site = guided ? guiding_->site(v.p, v.ns, v.wo_world) : GuidingField::Site{};
+    const GuideAt& guide = site.guide;
     if (!bsdf.is_specular())
       path_next_event(sc, light_sampler_, w, slot, v, u_light, u_light2, volume_number(w, slot), settings_.maxdepth);
     // Continue the path by sampling the BSDF, or the mixture with the guide.
@@ -197,7 +191,7 @@ void PathTracer::shade_stage(PathWave& w) const {
       return;
     }
     if (guided && guiding_->learning() && !bs->specular)
-      w.guide.push(slot, leaf, v.p, normal_bin, bs->guide_pdf >= 0.f ? bs->square : equal_area_sphere_to_square(wi),
+      w.guide.push(slot, site.leaf, v.p, site.normal_bin, bs->guide_pdf >= 0.f ? bs->square : equal_area_sphere_to_square(wi),
                    bs->pdf, average(bs->weight) * bs->pdf, bs->bsdf_pdf, bs->guide_pdf, w.beta[slot]);
     w.hits.alive[i] = 1;
     w.prev_p[slot] = w.hits.p[i];
