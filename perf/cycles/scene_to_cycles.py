@@ -1,0 +1,342 @@
+# Builds a shipped pbrt-v4 scene in Blender and renders it with Cycles on the
+# CPU, for equal-time comparisons (perf/vs-renderers.sh). Run by Blender:
+#   blender -b --factory-startup -P perf/cycles/scene_to_cycles.py -- \
+#       SCENE.pbrt OUT.exr --time SECONDS | --samples N [--seed S] [--resolution W H]
+#       [--guiding] [--no-adaptive]
+#
+# It reads the subset of pbrt-v4's format the shipped scenes with area and
+# environment lights use: LookAt, Scale, Translate, Rotate, Camera
+# "perspective" (fov), Film resolution, Integrator maxdepth, Attribute
+# blocks, ReverseOrientation, named and inline materials (diffuse,
+# conductor, coateddiffuse, dielectric), AreaLightSource "diffuse",
+# LightSource "infinite" (a constant colour), Shape "trianglemesh" and
+# "sphere". Anything else stops it with the file's line. Materials are
+# approximated by Cycles' closures (a conductor as a GGX glossy of a copper
+# or grey colour); each renderer's error is measured against its own
+# converged image, so what matters is that the light has the same paths to
+# find, not that the images match.
+#
+# Emission: a surface emission shader of strength 1 and colour L, and a
+# background of strength 1 and colour L, appear with value L, as pbrt's
+# radiance L does; pbrt's area lights emit on the side of their normal only.
+import math
+import re
+import sys
+import time
+
+import bpy
+import mathutils
+
+
+def fail(msg):
+    print("scene_to_cycles.py: " + msg, file=sys.stderr)
+    sys.exit(2)
+
+
+def tokens(path):
+    text = open(path).read()
+    line = 1
+    for m in re.finditer(r'"[^"]*"|\[|\]|#[^\n]*|[^\s\[\]"#]+|\n', text):
+        t = m.group(0)
+        if t == "\n":
+            line += 1
+        elif not t.startswith("#"):
+            yield t, line
+
+
+def parse(path):
+    """(directive, args, params, line): args are the bare values after the
+    directive, params a dict of "type name" -> list of values."""
+    toks = list(tokens(path))
+    out, i = [], 0
+    while i < len(toks):
+        name, line = toks[i]
+        if not re.match(r"[A-Z][A-Za-z]*$", name):
+            fail("%s:%d: expected a directive, found %s" % (path, line, name))
+        i += 1
+        args, params = [], {}
+        while i < len(toks) and not re.match(r"[A-Z][A-Za-z]*$", toks[i][0]):
+            t = toks[i][0]
+            if t.startswith('"') and " " in t.strip('"').strip() and len(t.strip('"').split()) == 2:
+                key = t.strip('"')
+                i += 1
+                vals = []
+                if toks[i][0] == "[":
+                    i += 1
+                    while toks[i][0] != "]":
+                        vals.append(toks[i][0])
+                        i += 1
+                    i += 1
+                else:
+                    vals.append(toks[i][0])
+                    i += 1
+                params[key.split()[1]] = (key.split()[0], [v.strip('"') for v in vals])
+            elif t in "[]":
+                i += 1
+            else:
+                args.append(t.strip('"'))
+                i += 1
+        out.append((name, args, params, line))
+    return out
+
+
+def nums(params, name, default=None):
+    if name not in params:
+        return default
+    return [float(v) for v in params[name][1]]
+
+
+def look_at(e, l, u):
+    eye, look, up = mathutils.Vector(e), mathutils.Vector(l), mathutils.Vector(u)
+    d = (look - eye).normalized()
+    right = up.normalized().cross(d).normalized()
+    new_up = d.cross(right)
+    world_from_camera = mathutils.Matrix(
+        ((right.x, new_up.x, d.x, eye.x), (right.y, new_up.y, d.y, eye.y), (right.z, new_up.z, d.z, eye.z), (0, 0, 0, 1)))
+    return world_from_camera.inverted()
+
+
+def material_node_tree(mat, kind, params):
+    nt = mat.node_tree
+    nt.nodes.clear()
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    if kind == "diffuse":
+        b = nt.nodes.new("ShaderNodeBsdfDiffuse")
+        b.inputs["Color"].default_value = nums(params, "reflectance", [0.5] * 3) + [1]
+    elif kind == "conductor":
+        b = nt.nodes.new("ShaderNodeBsdfGlossy")
+        b.distribution = "GGX"
+        eta = params.get("eta", ("", [""]))[1][0]
+        b.inputs["Color"].default_value = (0.95, 0.64, 0.54, 1) if "Cu" in eta else (0.9, 0.9, 0.9, 1)
+        r = nums(params, "roughness", [0.0])[0]
+        # pbrt-v4 remaps roughness r to alpha sqrt(r); Cycles' alpha is its roughness squared
+        b.inputs["Roughness"].default_value = math.sqrt(math.sqrt(r))
+    elif kind == "dielectric":
+        b = nt.nodes.new("ShaderNodeBsdfGlass")
+        b.inputs["IOR"].default_value = nums(params, "eta", [1.5])[0]
+        b.inputs["Roughness"].default_value = 0.0
+    elif kind == "coateddiffuse":
+        b = nt.nodes.new("ShaderNodeBsdfPrincipled")
+        b.inputs["Base Color"].default_value = nums(params, "reflectance", [0.5] * 3) + [1]
+        b.inputs["Roughness"].default_value = 1.0
+        b.inputs["Specular"].default_value = 0.5
+        b.inputs["Clearcoat"].default_value = 1.0
+        b.inputs["Clearcoat Roughness"].default_value = math.sqrt(math.sqrt(nums(params, "roughness", [0.0])[0]))
+    else:
+        fail("material type %s is not built" % kind)
+    return nt, b, out
+
+
+def make_material(state, name_hint):
+    kind, params = state["material"]
+    mat = bpy.data.materials.new(name_hint)
+    mat.use_nodes = True
+    nt, bsdf, out = material_node_tree(mat, kind, params)
+    shader = bsdf.outputs[0]
+    if state["area"] is not None:
+        L = state["area"]
+        em = nt.nodes.new("ShaderNodeEmission")
+        em.inputs["Color"].default_value = L + [1]
+        em.inputs["Strength"].default_value = 1.0
+        # one-sided, as pbrt's: no emission seen from the back
+        geo = nt.nodes.new("ShaderNodeNewGeometry")
+        black = nt.nodes.new("ShaderNodeEmission")
+        black.inputs["Strength"].default_value = 0.0
+        mix = nt.nodes.new("ShaderNodeMixShader")
+        nt.links.new(geo.outputs["Backfacing"], mix.inputs[0])
+        nt.links.new(em.outputs[0], mix.inputs[1])
+        nt.links.new(black.outputs[0], mix.inputs[2])
+        add = nt.nodes.new("ShaderNodeAddShader")
+        nt.links.new(shader, add.inputs[0])
+        nt.links.new(mix.outputs[0], add.inputs[1])
+        shader = add.outputs[0]
+    nt.links.new(shader, out.inputs["Surface"])
+    return mat
+
+
+def add_mesh(name, verts, faces, mat):
+    me = bpy.data.meshes.new(name)
+    me.from_pydata([tuple(v) for v in verts], [], faces)
+    me.update()
+    ob = bpy.data.objects.new(name, me)
+    ob.data.materials.append(mat)
+    bpy.context.scene.collection.objects.link(ob)
+    return ob
+
+
+def build(path, opts):
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    ctm = mathutils.Matrix.Identity(4)
+    camera_from_world, fov, res, maxdepth = None, 90.0, [640, 480], 5
+    state = {"material": ("diffuse", {}), "area": None, "reverse": False}
+    stack, named, background, meshes = [], {}, None, []
+    for name, args, params, line in parse(path):
+        where = "%s:%d" % (path, line)
+        if name == "LookAt":
+            ctm = ctm @ look_at([float(a) for a in args[0:3]], [float(a) for a in args[3:6]], [float(a) for a in args[6:9]])
+        elif name == "Scale":
+            ctm = ctm @ mathutils.Matrix.Diagonal([float(a) for a in args] + [1.0])
+        elif name == "Translate":
+            ctm = ctm @ mathutils.Matrix.Translation([float(a) for a in args])
+        elif name == "Rotate":
+            ctm = ctm @ mathutils.Matrix.Rotation(math.radians(float(args[0])), 4, [float(a) for a in args[1:4]])
+        elif name == "Camera":
+            if args[0] != "perspective":
+                fail("%s: camera %s is not built" % (where, args[0]))
+            camera_from_world, fov = ctm.copy(), nums(params, "fov", [90.0])[0]
+        elif name == "Film":
+            res = [int(nums(params, "xresolution", [1280])[0]), int(nums(params, "yresolution", [720])[0])]
+        elif name == "Integrator":
+            maxdepth = int(nums(params, "maxdepth", [5])[0])
+        elif name in ("Sampler", "PixelFilter", "ColorSpace", "Option"):
+            pass
+        elif name == "WorldBegin":
+            ctm = mathutils.Matrix.Identity(4)
+        elif name == "AttributeBegin":
+            stack.append((ctm.copy(), dict(state)))
+        elif name == "AttributeEnd":
+            ctm, state = stack.pop()
+        elif name == "ReverseOrientation":
+            state["reverse"] = not state["reverse"]
+        elif name == "MakeNamedMaterial":
+            named[args[0]] = (params["type"][1][0], params)
+        elif name == "NamedMaterial":
+            state["material"] = named[args[0]]
+        elif name == "Material":
+            state["material"] = (args[0], params)
+        elif name == "AreaLightSource":
+            L = nums(params, "L", [1.0, 1.0, 1.0])
+            s = nums(params, "scale", [1.0])[0]
+            state["area"] = [c * s for c in L]
+        elif name == "LightSource":
+            if args[0] != "infinite" or "filename" in params:
+                fail("%s: light %s is not built (area and constant infinite lights only)" % (where, args[0]))
+            background = nums(params, "L", [1.0, 1.0, 1.0])
+        elif name == "Shape":
+            if args[0] == "trianglemesh":
+                P = nums(params, "P")
+                idx = [int(v) for v in nums(params, "indices")]
+                verts = [ctm @ mathutils.Vector(P[3 * k:3 * k + 3]) for k in range(len(P) // 3)]
+                flip = state["reverse"] != (ctm.to_3x3().determinant() < 0)
+                faces = [(idx[3 * k], idx[3 * k + 2], idx[3 * k + 1]) if flip else tuple(idx[3 * k:3 * k + 3])
+                         for k in range(len(idx) // 3)]
+                meshes.append((verts, faces, make_material(state, "m%d" % len(meshes))))
+            elif args[0] == "sphere":
+                r = nums(params, "radius", [1.0])[0]
+                verts, faces = [], []
+                seg, rings = 64, 32
+                for j in range(rings + 1):
+                    th = math.pi * j / rings
+                    for k in range(seg):
+                        ph = 2 * math.pi * k / seg
+                        verts.append(ctm @ mathutils.Vector((r * math.sin(th) * math.cos(ph), r * math.sin(th) * math.sin(ph),
+                                                             r * math.cos(th))))
+                for j in range(rings):
+                    for k in range(seg):
+                        a, b = j * seg + k, j * seg + (k + 1) % seg
+                        c, d = a + seg, b + seg
+                        faces.append((a, c, d, b) if not state["reverse"] else (a, b, d, c))
+                meshes.append((verts, faces, make_material(state, "m%d" % len(meshes))))
+            else:
+                fail("%s: shape %s is not built" % (where, args[0]))
+        else:
+            fail("%s: directive %s is not built" % (where, name))
+    if camera_from_world is None:
+        fail("%s: no Camera" % path)
+    # Blender's camera looks down its -z with a right-handed frame; pbrt's
+    # down +z, left-handed. Where the camera's frame would be a reflection,
+    # the world is mirrored in x instead (the same image).
+    cam_world = camera_from_world.inverted() @ mathutils.Matrix.Diagonal((1, 1, -1, 1))
+    mirror = mathutils.Matrix.Diagonal((-1, 1, 1, 1)) if cam_world.to_3x3().determinant() < 0 else None
+    if mirror is not None:
+        cam_world = mirror @ cam_world
+    for n, (verts, faces, mat) in enumerate(meshes):
+        if mirror is not None:
+            verts = [mirror @ v for v in verts]
+            faces = [tuple(reversed(f)) for f in faces]  # the normals stay on their side
+        add_mesh("shape%d" % n, verts, faces, mat)
+    cam = bpy.data.cameras.new("camera")
+    w, h = opts.get("resolution") or res
+    cam.sensor_fit = "VERTICAL" if w >= h else "HORIZONTAL"
+    if w >= h:
+        cam.angle_y = math.radians(fov)
+    else:
+        cam.angle_x = math.radians(fov)
+    cam.clip_start, cam.clip_end = 1e-3, 1e6
+    ob = bpy.data.objects.new("camera", cam)
+    ob.matrix_world = cam_world
+    scene.collection.objects.link(ob)
+    scene.camera = ob
+    world = bpy.data.worlds.new("world")
+    world.use_nodes = True
+    bg = world.node_tree.nodes["Background"]
+    bg.inputs["Color"].default_value = (background or [0.0, 0.0, 0.0]) + [1]
+    bg.inputs["Strength"].default_value = 1.0
+    scene.world = world
+    return w, h, maxdepth
+
+
+def main():
+    argv = sys.argv[sys.argv.index("--") + 1:]
+    if len(argv) < 2:
+        fail("usage: -- SCENE.pbrt OUT.exr --time SECONDS | --samples N [--seed S] [--resolution W H] [--guiding] [--no-adaptive]")
+    path, out = argv[0], argv[1]
+    opts, i = {}, 2
+    while i < len(argv):
+        a = argv[i]
+        if a in ("--time", "--samples", "--seed"):
+            opts[a[2:]] = float(argv[i + 1])
+            i += 2
+        elif a == "--resolution":
+            opts["resolution"] = [int(argv[i + 1]), int(argv[i + 2])]
+            i += 3
+        elif a in ("--guiding", "--no-adaptive"):
+            opts[a[2:]] = True
+            i += 1
+        else:
+            fail("unknown option " + a)
+    w, h, maxdepth = build(path, opts)
+    scene = bpy.context.scene
+    scene.render.engine = "CYCLES"
+    c = scene.cycles
+    c.device = "CPU"
+    scene.render.threads_mode = "FIXED"
+    scene.render.threads = 2
+    scene.render.resolution_x, scene.render.resolution_y = w, h
+    scene.render.resolution_percentage = 100
+    c.pixel_filter_type = "BOX"
+    c.filter_width = 1.0
+    c.use_denoising = False
+    c.seed = int(opts.get("seed", 0))
+    c.max_bounces = c.diffuse_bounces = c.glossy_bounces = c.transmission_bounces = maxdepth
+    c.transparent_max_bounces = 0
+    c.sample_clamp_direct = c.sample_clamp_indirect = 0.0
+    c.blur_glossy = 0.0
+    c.caustics_reflective = c.caustics_refractive = True
+    c.use_adaptive_sampling = not opts.get("no-adaptive", False)
+    if "time" in opts:
+        # Under a time limit the render must use its time: at the default
+        # noise threshold (0.01) Cycles stops early on these scenes (the
+        # Cornell box before 30 s), so its adaptive sampling aims lower.
+        c.samples = 1 << 20
+        c.time_limit = opts["time"]
+        c.adaptive_threshold = 0.001
+    else:
+        c.samples = int(opts.get("samples", 64))
+        c.time_limit = 0
+    if opts.get("guiding"):
+        import _cycles
+        if not getattr(_cycles, "with_path_guiding", False):
+            fail("this Cycles was built without path guiding (Open PGL)")
+        c.use_guiding = True
+    scene.view_settings.view_transform = "Standard"
+    scene.render.image_settings.file_format = "OPEN_EXR"
+    scene.render.image_settings.color_depth = "32"
+    scene.render.filepath = out
+    t0 = time.time()
+    bpy.ops.render.render(write_still=True)
+    print("scene_to_cycles.py: %s: %dx%d, %.2f s render" % (out, w, h, time.time() - t0))
+
+
+main()
