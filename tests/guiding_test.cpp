@@ -318,8 +318,8 @@ TEST(Guiding, BdptAndVcmConvergeToTheirUnguidedImages) {
     RenderOptions plain_options = guided_options(false), guided = guided_options(true);
     plain_options.integrator = guided.integrator = integrator;
     plain_options.spp = guided.spp = 64;
-    const RegionStats plain = stats_of(render_runs(*scene, plain_options, 10, 100), regions);
-    const RegionStats with_guide = stats_of(render_runs(*scene, guided, 10, 200), regions);
+    const RegionStats plain = stats_of(render_runs(*scene, plain_options, 8, 100), regions);
+    const RegionStats with_guide = stats_of(render_runs(*scene, guided, 8, 200), regions);
     max_z(plain, with_guide);
     expect_means_agree(plain, with_guide, 0.0, integrator == Integrator::Bdpt ? "guided bdpt" : "guided vcm");
     // The guide was learnt and sampled: the same seed draws other paths.
