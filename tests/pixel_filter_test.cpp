@@ -140,10 +140,8 @@ TEST(PixelFilter, SignedFiltersFollowTheirWeights) {
 // through add and its saved state.
 TEST(PixelFilter, FilmKeepsSignedCounts) {
   PixelFilter f;
-  f.type = PixelFilter::Type::Mitchell;
   f.radius = Vec2(2.f);
-  for (int axis = 0; axis < 2; ++axis)
-    f.lobed[axis] = SignedFilterTable(2.f, [](double x) { return mitchell_1d(x, 1.0 / 3.0, 1.0 / 3.0); });
+  ASSERT_TRUE(make_mitchell_filter(f, 1.0 / 3.0, 1.0 / 3.0));
   Film film(2, 1, f);
   WaveOutput out;
   // Pixel 0: 3 positive samples of 1 and one negative of 2: (3 - 2) / (3 - 1).

@@ -37,6 +37,26 @@ inline Vec2 sample_pixel_filter(const PixelFilter& f, Vec2 u) {
   return Vec2(0.f);
 }
 
+// pbrt-v4's "mitchell" (Mitchell-Netravali's B and C) and "sinc" (a
+// Lanczos-windowed sinc of tau) filters for f.radius, per axis; false when
+// the filter cannot normalise (SignedFilterTable::valid).
+inline bool make_mitchell_filter(PixelFilter& f, double B, double C) {
+  f.type = PixelFilter::Type::Mitchell;
+  for (int axis = 0; axis < 2; ++axis) {
+    const double r = f.radius[axis];
+    f.lobed[axis] = SignedFilterTable(f.radius[axis], [&](double x) { return mitchell_1d(2.0 * x / r, B, C); });
+  }
+  return f.lobed[0].valid() && f.lobed[1].valid();
+}
+inline bool make_sinc_filter(PixelFilter& f, double tau) {
+  f.type = PixelFilter::Type::Sinc;
+  for (int axis = 0; axis < 2; ++axis) {
+    const double r = f.radius[axis];
+    f.lobed[axis] = SignedFilterTable(f.radius[axis], [&](double x) { return windowed_sinc(x, r, tau); });
+  }
+  return f.lobed[0].valid() && f.lobed[1].valid();
+}
+
 // The sign of the filter at the offset sample_pixel_filter draws for u:
 // whether the camera sample counts negatively (false for filters without
 // negative lobes). Integrators ask it when they hand the sample to the

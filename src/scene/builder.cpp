@@ -249,56 +249,41 @@ void SceneBuilder::integrator(const std::string& type, const ParamSet& ps) {
 }
 
 void SceneBuilder::pixel_filter(const std::string& type, const ParamSet& ps) {
+  using T = PixelFilter::Type;
+  struct Kind {
+    const char* name;
+    T type;
+    float radius;  // pbrt-v4's default
+  };
+  static constexpr Kind kKinds[] = {
+      {"box", T::Box, 0.5f}, {"triangle", T::Triangle, 2.f}, {"gaussian", T::Gaussian, 1.5f},
+      {"mitchell", T::Mitchell, 2.f}, {"sinc", T::Sinc, 4.f}};
   PixelFilter& f = scene_.filter;
-  float def_r = 1.5f;
-  bool supported = true;
-  if (type == "box") {
-    f.type = PixelFilter::Type::Box;
-    def_r = 0.5f;
-  } else if (type == "triangle") {
-    f.type = PixelFilter::Type::Triangle;
-    def_r = 2.f;
-  } else if (type == "gaussian") {
-    f.type = PixelFilter::Type::Gaussian;
-    def_r = 1.5f;
-    f.sigma = ps.get_float("sigma", 0.5f);
-  } else if (type == "mitchell") {
-    f.type = PixelFilter::Type::Mitchell;
-    def_r = 2.f;
-  } else if (type == "sinc") {
-    f.type = PixelFilter::Type::Sinc;
-    def_r = 4.f;
-  } else {
+  const Kind* kind = std::find_if(std::begin(kKinds), std::end(kKinds), [&](const Kind& k) { return type == k.name; });
+  if (kind == std::end(kKinds)) {
     warn(ps.where, "pixel filter \"" + printable(type) + "\" is not supported; using a gaussian of radius 1.5");
-    f.type = PixelFilter::Type::Gaussian;
     for (const char* p : {"B", "C", "tau", "xradius", "yradius"}) ps.find(p);
+    f.type = T::Gaussian;
     f.radius = Vec2(1.5f);
-    supported = false;
-  }
-  if (supported) {
-    f.radius = Vec2(ps.get_float("xradius", def_r), ps.get_float("yradius", def_r));
+  } else {
+    f.type = kind->type;
+    f.radius = Vec2(ps.get_float("xradius", kind->radius), ps.get_float("yradius", kind->radius));
     if (!(f.radius.x > 0.f && f.radius.y > 0.f) || !std::isfinite(f.radius.x) || !std::isfinite(f.radius.y))
       ps.fail("filter radii must be positive");
+    if (f.type == T::Gaussian) f.sigma = ps.get_float("sigma", 0.5f);
   }
-  if (f.type == PixelFilter::Type::Mitchell) {
+  bool normalises = true;
+  if (f.type == T::Mitchell) {
     const double B = ps.get_float("B", 1.f / 3.f), C = ps.get_float("C", 1.f / 3.f);
     if (!std::isfinite(B) || !std::isfinite(C)) ps.fail("\"B\" and \"C\" must be finite");
-    for (int axis = 0; axis < 2; ++axis) {
-      const double r = f.radius[axis];
-      f.lobed[axis] = SignedFilterTable(f.radius[axis], [&](double x) { return mitchell_1d(2.0 * x / r, B, C); });
-    }
-  } else if (f.type == PixelFilter::Type::Sinc) {
+    normalises = make_mitchell_filter(f, B, C);
+  } else if (f.type == T::Sinc) {
     const double tau = ps.get_float("tau", 3.f);
     if (!(tau > 0.0) || !std::isfinite(tau)) ps.fail("\"tau\" must be positive");
-    for (int axis = 0; axis < 2; ++axis) {
-      const double r = f.radius[axis];
-      f.lobed[axis] = SignedFilterTable(f.radius[axis], [&](double x) { return windowed_sinc(x, r, tau); });
-    }
+    normalises = make_sinc_filter(f, tau);
   }
-  if (f.is_signed())
-    for (int axis = 0; axis < 2; ++axis)
-      if (!f.lobed[axis].valid()) ps.fail("this filter's weights sum to zero or less over its radius");
-  if (f.type == PixelFilter::Type::Gaussian) {
+  if (!normalises) ps.fail("this filter's weights sum to zero or less over its radius");
+  if (f.type == T::Gaussian) {
     if (!(f.sigma > 0.f) || !std::isfinite(f.sigma)) ps.fail("\"sigma\" must be positive");
     for (int axis = 0; axis < 2; ++axis) f.gaussian[axis] = GaussianFilterTable(f.radius[axis], f.sigma);
   }
