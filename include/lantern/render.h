@@ -42,6 +42,11 @@ struct RenderOptions {
   // passes until their estimated relative MSE is below this; spp (or the
   // time) is then the limit. Not with vcm, bpm, ppm, shares or MPI.
   double target_error = 0.0;
+  // Adaptive sampling without a target (integrator/adaptive_sampling.h):
+  // spp is then the mean over the image's pixels (32 or more), or the time
+  // limit the budget, and samples go where the estimate says they pay the
+  // most. Ignored with a target error. The same integrators as a target.
+  bool adaptive = false;
   // Path guiding (docs/guiding.md): paths learn where light comes from
   // and sample directions from it, mixed with the BSDF. path only; not with
   // shares, MPI or checkpoints.

@@ -92,6 +92,9 @@ void add_render_request_options(CLI::App& c, RenderRequest& r) {
       ->check(CLI::Range(0.01, 1.0));
   c.add_option("--mis", r.mis, "bdpt's MIS heuristic: power or balance")
       ->check(CLI::IsMember({"power", "balance"}));
+  c.add_flag("--adaptive", r.adaptive,
+                   "Adaptive sampling without a target: --spp (32 or more) is then the mean over the image, or --time "
+                   "the budget, and samples go where the estimated error says they pay (docs/adaptive-sampling.md)");
   c.add_flag("--guide", r.guide,
                    "Path guiding: paths learn where light comes from and sample it (path, and the eye subpaths of bdpt and vcm; "
                    "docs/guiding.md)");

@@ -71,6 +71,7 @@ std::string budget(const RenderOptions& o) {
   std::string b = o.time_limit_seconds > 0 ? "time " + std::to_string(o.time_limit_seconds) + " s"
                                            : "spp " + std::to_string(o.spp);
   if (o.target_error > 0) b += ", target error " + std::to_string(o.target_error);
+  else if (o.adaptive) b += o.time_limit_seconds > 0 ? ", adaptive" : ", adaptive (the mean)";
   return b;
 }
 

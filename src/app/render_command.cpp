@@ -253,9 +253,9 @@ void report(const std::string& out, const RenderOptions& o, const RenderResult& 
   if (r.image.width == 1 && r.image.height == 1 && !r.image.rgb.empty())  // --pixel: its value
     logging::info("pixel value: %.9g %.9g %.9g", r.image.rgb[0], r.image.rgb[1], r.image.rgb[2]);
   if (s.estimated_relmse >= 0)
-    logging::info("adaptive sampling: %u to %u spp, %.1f on average; estimated relative MSE %.3g (target %.3g)", s.min_spp,
+    logging::info("adaptive sampling: %u to %u spp, %.1f on average; estimated relative MSE %.3g%s", s.min_spp,
               s.max_spp, double(s.samples) / (double(r.image.width) * double(r.image.height)), s.estimated_relmse,
-              o.target_error);
+              o.target_error > 0 ? (" (target " + std::to_string(o.target_error) + ")").c_str() : "");
   if (s.timed && logging::enabled(logging::Level::Info)) print_stage_summary(s);
   logging::verbose("memory: peak %.1f MB resident; wave pools %.1f MB", double(peak_rss_bytes()) * 1e-6,
                double(s.wave_pool_bytes) * 1e-6);

@@ -117,6 +117,14 @@ void Film::add(const Film& other) {
     track_halves();
     for (size_t k = 0; k < odd_.size(); ++k) odd_[k].add(other.odd_[k]), odd_splat_[k].add(other.odd_splat_[k]);
     odd_light_paths_ += other.odd_light_paths_;
+    // Adaptive sampling's measurements and choices, which a checkpoint
+    // read into an empty film must bring (they are the film's, not sums:
+    // adaptive sampling renders in one process, so no two films to add
+    // both have them).
+    if (thresholds_.empty() && !other.thresholds_.empty()) {
+      thresholds_ = other.thresholds_;
+      masks_ = other.masks_;
+    }
   }
   if (!other.square_.empty()) {
     track_moments();

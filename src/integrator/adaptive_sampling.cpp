@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <utility>
 
 #include "film/image_metrics.h"
 
@@ -54,6 +56,34 @@ PassSummary summarize_pass(const Film& film, const std::vector<uint32_t>& order,
   return s;
 }
 
+PassSummary summarize_budget_pass(const Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave,
+                                  uint32_t pass, uint32_t pass_spp) {
+  std::vector<std::pair<double, size_t>> roots;  // sqrt(v_b), pixels
+  double error = 0.0;
+  size_t pixels = 0;
+  for_each_block(order, pixels_per_wave, [&](const uint32_t* block, size_t n) {
+    const double e = estimated_relmse(film, block, n);
+    error += e * double(n);
+    pixels += n;
+    roots.emplace_back(std::sqrt(e * double(film.sample_count(block[0]))), n);
+  });
+  PassSummary s;
+  if (pixels == 0) return s;
+  s.estimate = error / double(pixels);
+  std::sort(roots.begin(), roots.end());
+  double R = roots.back().first;
+  size_t below = 0;
+  for (const auto& [root, n] : roots)
+    if (double(below += n) >= kAdaptiveRateQuantile * double(pixels)) {
+      R = root;
+      break;
+    }
+  // Nothing measured yet (an image without light): every block takes it.
+  const double spp = double(pass_spp) * double(pass + 1);
+  s.lambda = R > 0.0 ? (R / spp) * (R / spp) : 0.0;
+  return s;
+}
+
 void decide_pass(Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave, double lambda,
                  uint32_t pass) {
   uint8_t* mask = film.pass_mask(pass);
@@ -63,6 +93,41 @@ void decide_pass(Film& film, const std::vector<uint32_t>& order, uint32_t pixels
     const bool needed = count < kAdaptiveMinSamples || estimated_relmse(film, pixels, n) > lambda * double(count);
     for (size_t i = 0; i < n; ++i) mask[pixels[i]] = needed ? 1 : 0;
   });
+}
+
+void trim_pass(Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave, uint32_t pass,
+               uint64_t pixels) {
+  uint8_t* mask = film.pass_mask(pass);
+  struct Block {
+    double need;
+    const uint32_t* pixels;
+    size_t n;
+  };
+  std::vector<Block> taking;
+  uint64_t total = 0;
+  for_each_block(order, pixels_per_wave, [&](const uint32_t* block, size_t n) {
+    if (!mask[block[0]]) return;
+    const double count = std::max(1.0, double(film.sample_count(block[0])));
+    taking.push_back({estimated_relmse(film, block, n) / count, block, n});
+    total += n;
+  });
+  if (total <= pixels) return;
+  // Stable: equal needs keep the tile order, so the choice is the same
+  // wherever it is made.
+  std::stable_sort(taking.begin(), taking.end(), [](const Block& a, const Block& b) { return a.need > b.need; });
+  uint64_t kept = 0;
+  for (const Block& b : taking) {
+    const bool keep = kept + b.n <= pixels;
+    if (keep) kept += b.n;
+    for (size_t i = 0; i < b.n; ++i) mask[b.pixels[i]] = keep ? 1 : 0;
+  }
+}
+
+uint64_t pixels_taking(const Film& film, uint32_t pass) {
+  const size_t n = size_t(film.width()) * size_t(film.height());
+  if (pass < 2) return n;
+  const uint8_t* mask = film.pass_mask(pass);
+  return uint64_t(std::count(mask, mask + n, uint8_t(1)));
 }
 
 void append_active_pixels(const Film& film, uint32_t pass, const uint32_t* pixels, size_t n,
@@ -76,16 +141,27 @@ void append_active_pixels(const Film& film, uint32_t pass, const uint32_t* pixel
     if (mask[pixels[i]]) active.push_back(pixels[i]);
 }
 
+AdaptiveGoal adaptive_goal(const RenderOptions& opt, size_t pixels) {
+  AdaptiveGoal g;
+  if (opt.target_error > 0) g.target = opt.target_error;
+  else if (opt.adaptive)
+    g.budget = opt.time_limit_seconds > 0 ? std::numeric_limits<double>::infinity() : double(opt.spp) * double(pixels);
+  return g;
+}
+
 AdaptivePasses::AdaptivePasses(Film& film, std::mutex& film_mutex, const std::vector<uint32_t>& order,
-                               uint32_t pixels_per_wave, double target)
-    : film_(film), mutex_(film_mutex), order_(order), pixels_per_wave_(pixels_per_wave), target_(target) {
+                               uint32_t pixels_per_wave, uint32_t pass_spp, AdaptiveGoal goal)
+    : film_(film), mutex_(film_mutex), order_(order), pixels_per_wave_(pixels_per_wave), pass_spp_(pass_spp),
+      goal_(goal) {
   if (on()) film_.track_halves();
 }
 
 bool AdaptivePasses::reached(uint32_t pass) const {
   if (!on() || pass < 2) return false;
   std::lock_guard<std::mutex> lock(mutex_);
-  return film_.pass_measurements().at(2 * size_t(pass - 2) + 1) < target_;
+  const std::vector<double>& measured = film_.pass_measurements();
+  const double lambda = measured.at(2 * size_t(pass - 2)), estimate = measured.at(2 * size_t(pass - 2) + 1);
+  return std::isinf(lambda) || (goal_.target > 0 && estimate < goal_.target);
 }
 
 void AdaptivePasses::measure_before(uint32_t pass) {
@@ -93,10 +169,23 @@ void AdaptivePasses::measure_before(uint32_t pass) {
   std::lock_guard<std::mutex> lock(mutex_);
   std::vector<double>& measured = film_.pass_measurements();
   if (measured.size() >= 2 * size_t(pass)) return;
-  const PassSummary m = summarize_pass(film_, order_, pixels_per_wave_, target_);
+  PassSummary m = goal_.target > 0 ? summarize_pass(film_, order_, pixels_per_wave_, goal_.target)
+                                   : summarize_budget_pass(film_, order_, pixels_per_wave_, pass, pass_spp_);
+  decide_pass(film_, order_, pixels_per_wave_, m.lambda, pass + 1);
+  if (goal_.target <= 0 && std::isfinite(goal_.budget)) {
+    // The samples the image holds once pass `pass` is merged; what is left
+    // goes to pass + 1, and none after it.
+    const double planned = double(film_.total_samples()) + double(pass_spp_) * double(pixels_taking(film_, pass));
+    const double left = std::floor((goal_.budget - planned) / double(pass_spp_));
+    if (left < 1.0) {
+      m.lambda = std::numeric_limits<double>::infinity();
+      std::fill_n(film_.pass_mask(pass + 1), order_.size(), uint8_t(0));
+    } else {
+      trim_pass(film_, order_, pixels_per_wave_, pass + 1, uint64_t(left));
+    }
+  }
   measured.push_back(m.lambda);
   measured.push_back(m.estimate);
-  decide_pass(film_, order_, pixels_per_wave_, m.lambda, pass + 1);
 }
 
 void AdaptivePasses::choose(uint32_t pass, const uint32_t* pixels, size_t n, std::vector<uint32_t>& active) const {

@@ -35,6 +35,19 @@
 // Every block takes the first two passes and any pass while it has fewer
 // than kAdaptiveMinSamples. The render stops before pass p when the image
 // estimate at the end of pass p - 2 is below E.
+//
+// Without a target (--adaptive), the render has a budget instead: a mean
+// number of samples per pixel, or a time. The same allocation, n_b
+// proportional to sqrt(v_b), is then followed for a total that grows pass
+// by pass: deciding pass p + 1, a block takes it while
+//   n_b < s sqrt(v_b) / R,   s = (p + 1) * pass samples,
+// R the 95th percentile of sqrt(v_b) over the image's pixels. So the
+// blocks at R and above take every pass (one pass is the most a block can
+// take at a time), and a block of a quarter of R's root variance every
+// fourth; lambda = (R / s)^2 in the test above. A sample budget is
+// spent exactly, to a block: when the pass after next would pass it, that
+// pass keeps the blocks of largest e_b / n_b that fit, and the render
+// ends after it (lambda recorded as infinity).
 #pragma once
 
 #include <cstddef>
@@ -43,11 +56,26 @@
 #include <vector>
 
 #include "film/film.h"
+#include "lantern/render.h"
 
 namespace lantern {
 
 inline constexpr uint32_t kAdaptiveMinSamples = 16;
 inline constexpr uint32_t kAdaptiveBlock = 16;
+// A budget's per-pixel limit.
+inline constexpr uint32_t kAdaptiveMaxSpp = 1u << 16;
+// Which quantile of the blocks' root variances takes every pass.
+inline constexpr double kAdaptiveRateQuantile = 0.95;
+
+// What adaptive sampling aims at.
+struct AdaptiveGoal {
+  // > 0: stop once the image's estimated relMSE is below it.
+  double target = 0.0;
+  // > 0 without a target: the samples the image takes in all (a mean per
+  // pixel times the pixels), or infinity when a time ends the render.
+  double budget = 0.0;
+  bool on() const { return target > 0 || budget > 0; }
+};
 
 // The estimated relative MSE of the pixels[0, n) (a block, all with the
 // same sample count; 0 below two), averaged over pixels and channels.
@@ -63,28 +91,42 @@ struct PassSummary {
 };
 PassSummary summarize_pass(const Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave,
                            double target);
+// Without a target: lambda for deciding pass `pass` + 1 when a pass is
+// `pass_spp` samples (the rate rule above), in the summary's place.
+PassSummary summarize_budget_pass(const Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave,
+                                  uint32_t pass, uint32_t pass_spp);
 
 // At the end of pass p - 2: which blocks take pass p under `lambda`
 // (Film::pass_mask).
 void decide_pass(Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave, double lambda,
                  uint32_t pass);
+// Keeps at most `pixels` of those that take pass p (p >= 2): whole blocks,
+// those of largest e_b / n_b first (ties: tile order).
+void trim_pass(Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave, uint32_t pass,
+               uint64_t pixels);
+// The pixels that take pass p.
+uint64_t pixels_taking(const Film& film, uint32_t pass);
 
 // Appends to `active` the pixels of pixels[0, n) (a wave's) that take
 // pass `pass` (all of them in the first two).
 void append_active_pixels(const Film& film, uint32_t pass, const uint32_t* pixels, size_t n,
                           std::vector<uint32_t>& active);
 
+// What `opt` asks for, over an image of `pixels` pixels.
+AdaptiveGoal adaptive_goal(const RenderOptions& opt, size_t pixels);
+
 // The render loop's side of it (integrator/render.cpp's run_passes): off,
-// every pixel taking every pass, for a target of 0.
+// every pixel taking every pass, for a goal that is off.
 class AdaptivePasses {
  public:
-  // `order`: the tile order, cut into waves of pixels_per_wave; the film's
-  // measurements and choices are read and written under film_mutex.
+  // `order`: the tile order, cut into waves of pixels_per_wave, of passes
+  // of pass_spp samples; the film's measurements and choices are read and
+  // written under film_mutex.
   AdaptivePasses(Film& film, std::mutex& film_mutex, const std::vector<uint32_t>& order, uint32_t pixels_per_wave,
-                 double target);
-  bool on() const { return target_ > 0; }
+                 uint32_t pass_spp, AdaptiveGoal goal);
+  bool on() const { return goal_.on(); }
   // Pass p is not to begin: the image estimate after pass p - 2 was below
-  // the target.
+  // the target, or the budget is spent.
   bool reached(uint32_t pass) const;
   // With the first wave of pass p, before it is merged (the film then holds
   // exactly the passes before p): measures pass p - 1 and chooses the
@@ -97,8 +139,8 @@ class AdaptivePasses {
   Film& film_;
   std::mutex& mutex_;
   const std::vector<uint32_t>& order_;
-  uint32_t pixels_per_wave_;
-  double target_;
+  uint32_t pixels_per_wave_, pass_spp_;
+  AdaptiveGoal goal_;
 };
 
 }  // namespace lantern

@@ -116,16 +116,23 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
   const RayBackend backend = opt.ray_backend;
   const std::vector<uint32_t> order = tile_order(film.width(), film.height());
   const bool timed = opt.time_limit_seconds > 0;  // the budget counts earlier runs too
-  const uint32_t total_spp = timed ? 0xFFFFFFFFu : uint32_t(opt.spp);
+  // Adaptive sampling to a budget: spp is the image's mean, each pixel's limit far above it.
+  const AdaptiveGoal goal = adaptive_goal(opt, order.size());
+  const bool budgeted = goal.on() && goal.target <= 0;
+  const uint32_t total_spp = timed ? 0xFFFFFFFFu : budgeted ? kAdaptiveMaxSpp : uint32_t(opt.spp);
   // A pass is one sample per pixel for a timed render and for merging
   // (vcm, bpm, ppm): a pixel's samples then merge with the light vertices of
   // as many different waves, whatever the budget, and the merging radius
   // shrinks sample by sample. Otherwise up to 16, a pixel's samples
   // adjacent in its wave (coherent rays, fewer passes).
   // Guided paths too: the field learns in iterations of doubling length
-  // from one sample per pixel (integrator/guiding_field.h).
+  // from one sample per pixel (integrator/guiding_field.h). Not adaptive
+  // sampling under a time limit, whose pixels differ in samples anyway: a
+  // pass of one sample would be a wave or two, too few to keep the threads
+  // busy (a timed adaptive render drew 30% fewer samples so).
   const bool merging = merges_vertices(opt.integrator);
-  const uint32_t pass_spp = timed || merging || cx.guiding ? 1u : std::min<uint32_t>(total_spp, 16u);
+  const uint32_t pass_spp =
+      (timed && !goal.on()) || merging || cx.guiding ? 1u : std::min<uint32_t>(total_spp, 16u);
   uint32_t pixels_per_wave = std::max<uint32_t>(1, uint32_t(opt.wave_size) / pass_spp);
   if (merging) {  // waves of equal size: a pass's last wave would have fewer light vertices to merge with
     const uint32_t n = uint32_t((order.size() + pixels_per_wave - 1) / pixels_per_wave);
@@ -161,7 +168,7 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
   // (adaptive_sampling.h): with no more waves in flight than a pass has,
   // the first wave of pass p - 1, whose merge takes that measurement, has
   // retired by the time pass p's first wave is issued.
-  AdaptivePasses adaptive(film, cx.film_mutex, order, pixels_per_wave, opt.target_error);
+  AdaptivePasses adaptive(film, cx.film_mutex, order, pixels_per_wave, pass_spp, goal);
   size_t tokens = 2 * size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
   if (adaptive.on()) tokens = std::min<size_t>(tokens, waves);
   std::vector<WaveOutput> outputs(tokens);
@@ -431,15 +438,18 @@ RenderResult RenderSession::render_all() {
   State& s = *state_;
   const Scene& scene = s.scene;
   const RenderOptions& opt = s.opt;
-  if (opt.target_error > 0) {
+  if (opt.target_error > 0 || opt.adaptive) {
+    if (opt.target_error <= 0 && opt.time_limit_seconds <= 0 && opt.spp < int(2 * kAdaptiveMinSamples))
+      throw std::invalid_argument("adaptive sampling to a mean of " + std::to_string(opt.spp) +
+                                  " samples per pixel: it needs 32 or more, as its first two passes give every pixel 16 each");
     // Its decisions read the whole of each pixel's samples, which one
     // process holds only when it renders them all; a merging pass shares
     // light vertices between pixels that do and do not take it.
     if (merges_vertices(opt.integrator))
-      throw std::invalid_argument("a target error (adaptive sampling) works with path, directlighting, ambientocclusion, bdpt and lt, not with " +
+      throw std::invalid_argument("adaptive sampling (a target error or a budget) works with path, directlighting, ambientocclusion, bdpt and lt, not with " +
                                   std::string(name(opt.integrator)));
     if (opt.share_count > 1 || s.hooks.next_ticket)
-      throw std::invalid_argument("a target error (adaptive sampling) needs the whole render in one process: not with "
+      throw std::invalid_argument("adaptive sampling (a target error or a budget) needs the whole render in one process: not with "
                                   "--part or MPI");
   }
   if (opt.integrator == Integrator::Mlt && (s.hooks.next_ticket || s.hooks.reduce_film))

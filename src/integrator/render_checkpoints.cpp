@@ -35,6 +35,7 @@ std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& regi
                      std::to_string(region.full_width) + "x" + std::to_string(region.full_height));
   line("budget", o.time_limit_seconds > 0 ? std::string("time") : "spp " + std::to_string(o.spp));
   if (o.target_error > 0) line("target-error", std::to_string(o.target_error));  // adaptive passes
+  else if (o.adaptive) line("adaptive", "budget");
   if (o.guiding) line("guiding", "1");  // one sample per pass, guided directions
   if (o.gbuffer) line("gbuffer", "1");  // the film sums the samples' squares too
   if (o.spectral_buckets > 0)  // uniform wavelengths, and the film keeps the buckets
@@ -69,7 +70,7 @@ std::string extension_refusal(const std::string& saved, const std::string& now, 
   const std::string was = budget_line(saved), is = budget_line(now);
   if (was == "time" || is == "time")
     return "a time budget and a sample budget do not continue each other (resume with the budget it was made with)";
-  if (o.target_error > 0) return "adaptive sampling plans its passes from the image so far: resume with the same --spp";
+  if (o.target_error > 0 || o.adaptive) return "adaptive sampling plans its passes from the image so far: resume with the same --spp";
   if (o.guiding) return "guided paths learn in iterations planned from the budget: resume with the same --spp";
   const uint32_t old_spp = uint32_t(std::stoul(was.substr(was.find(' ') + 1))), new_spp = uint32_t(o.spp);
   if (new_spp < old_spp)

@@ -42,7 +42,7 @@ void check_film_memory(const Scene& scene, const RenderOptions& opt) {
   const double pixels = double(r.width) * double(r.height);
   double per_pixel = 48.0 + 4.0 + 12.0;
   if (!traces_paths(opt.integrator)) per_pixel += 48.0;
-  if (opt.target_error > 0) per_pixel += 96.0 + 2.0;
+  if (opt.target_error > 0 || opt.adaptive) per_pixel += 96.0 + 2.0;
   if (opt.strategies) {
     // --strategies: per (s, t) two images of double sums and two resolved
     // (72 bytes a pixel), for every strategy a path of up to maxdepth
@@ -127,7 +127,7 @@ void check_options(const Scene& scene, const RenderOptions& opt) {
     if (opt.share_count > 1 || !opt.checkpoint_path.empty() || !opt.film_path.empty())
       throw std::invalid_argument("mlt needs the whole render in one run: not with --part, MPI or checkpoints (its "
                                   "chains' states are not kept with the film)");
-    if (opt.target_error > 0)
+    if (opt.target_error > 0 || opt.adaptive)
       throw std::invalid_argument("mlt spends its samples where the image is bright, not by pixel: not with a target "
                                   "error (adaptive sampling)");
     if (opt.gbuffer || opt.spectral_buckets > 0)

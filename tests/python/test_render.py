@@ -87,6 +87,18 @@ def test_image_is_handed_over_without_a_copy(cornell_box):
     assert image[0, 0, 0] == 123.0
 
 
+def test_adaptive_budget_is_the_command_lines(cornell_box, lantern_binary, tmp_path):
+    # adaptive=True is --adaptive: the mean budget spent to a block, not
+    # evenly, and the same image as the command line's.
+    result = lantern.render(cornell_box, adaptive=True, spp=48, resolution=(32, 32), seed=3)
+    assert 48 * 32 * 32 - 16 * 16 < result.samples <= 48 * 32 * 32
+    assert result.stats["max_spp"] > result.stats["min_spp"]
+    exr = tmp_path / "adaptive.exr"
+    subprocess.run([lantern_binary, "render", cornell_box.path, "-q", "-o", str(exr), "--adaptive", "--spp", "48",
+                    "--resolution", "32", "32", "--seed", "3"], check=True)
+    assert np.array_equal(result.image, lantern.read_image(str(exr)))
+
+
 def test_stats_are_the_command_lines(cornell_box, lantern_binary, tmp_path):
     stats_file = tmp_path / "py.json"
     result = lantern.render(cornell_box, spp=2, resolution=(16, 16), stats=str(stats_file), output=str(tmp_path / "py.exr"))
