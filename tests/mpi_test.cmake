@@ -16,7 +16,7 @@ set(ENV{OMPI_MCA_btl} "self,vader")  # one machine: shared memory only
 # wall time, so the kill still lands mid-render.
 set(integrators path bdpt vcm)
 set(layouts 2x1 3x1 2x2)  # ranks x threads per rank
-set(ck_size --spp 64 --resolution 96 72)
+set(ck_size --spp 48 --resolution 80 60)
 if(DEFINED ENV{ASAN_OPTIONS})
   set(ENV{ASAN_OPTIONS} "$ENV{ASAN_OPTIONS}:detect_leaks=0")
   set(integrators path bdpt)

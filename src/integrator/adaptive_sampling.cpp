@@ -78,7 +78,6 @@ PassSummary summarize_budget_pass(const Film& film, const std::vector<uint32_t>&
       R = root;
       break;
     }
-  // Nothing measured yet (an image without light): every block takes it.
   const double spp = double(pass_spp) * double(pass + 1);
   s.lambda = R > 0.0 ? (R / spp) * (R / spp) : 0.0;
   return s;
@@ -172,6 +171,12 @@ void AdaptivePasses::measure_before(uint32_t pass) {
   PassSummary m = goal_.target > 0 ? summarize_pass(film_, order_, pixels_per_wave_, goal_.target)
                                    : summarize_budget_pass(film_, order_, pixels_per_wave_, pass, pass_spp_);
   decide_pass(film_, order_, pixels_per_wave_, m.lambda, pass + 1);
+  if (goal_.target <= 0 && pixels_taking(film_, pass + 1) == 0) {
+    // No block's estimate asks for more (an image without light, or one
+    // converged to the estimate's precision): a budget is spent evenly
+    // rather than on passes that render nothing.
+    std::fill_n(film_.pass_mask(pass + 1), order_.size(), uint8_t(1));
+  }
   if (goal_.target <= 0 && std::isfinite(goal_.budget)) {
     // The samples the image holds once pass `pass` is merged; what is left
     // goes to pass + 1, and none after it.

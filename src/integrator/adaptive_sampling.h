@@ -1,6 +1,6 @@
-// Adaptive sampling (--target-error): each pixel's error estimated from
-// its own samples, and samples spent only where the estimate is above the
-// target.
+// Adaptive sampling (--target-error, --adaptive): each pixel's error
+// estimated from its own samples, and samples spent only where the
+// estimate is above the target, or where they pay the most.
 //
 // The estimate compares two halves of a pixel's samples, those of even
 // and of odd sample index: the film sums the odd camera samples, the odd
