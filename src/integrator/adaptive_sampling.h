@@ -44,7 +44,8 @@
 // R the 95th percentile of sqrt(v_b) over the image's pixels. So the
 // blocks at R and above take every pass (one pass is the most a block can
 // take at a time), and a block of a quarter of R's root variance every
-// fourth; lambda = (R / s)^2 in the test above. A sample budget is
+// fourth; lambda = (R / s)^2 in the test above. A pass no block asks for
+// (no light) is taken by all. A sample budget is
 // spent exactly, to a block: when the pass after next would pass it, that
 // pass keeps the blocks of largest e_b / n_b that fit, and the render
 // ends after it (lambda recorded as infinity).
