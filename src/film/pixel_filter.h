@@ -37,24 +37,26 @@ inline Vec2 sample_pixel_filter(const PixelFilter& f, Vec2 u) {
   return Vec2(0.f);
 }
 
-// pbrt-v4's "mitchell" (Mitchell-Netravali's B and C) and "sinc" (a
-// Lanczos-windowed sinc of tau) filters for f.radius, per axis; false when
-// the filter cannot normalise (SignedFilterTable::valid).
-inline bool make_mitchell_filter(PixelFilter& f, double B, double C) {
-  f.type = PixelFilter::Type::Mitchell;
+// A filter of negative lobes, `type`, from its 1D profile filter_1d(x, r)
+// for each axis of radius r; false when it cannot normalise
+// (SignedFilterTable::valid).
+template <class Filter1D>
+inline bool make_lobed_filter(PixelFilter& f, PixelFilter::Type type, Filter1D&& filter_1d) {
+  f.type = type;
   for (int axis = 0; axis < 2; ++axis) {
     const double r = f.radius[axis];
-    f.lobed[axis] = SignedFilterTable(f.radius[axis], [&](double x) { return mitchell_1d(2.0 * x / r, B, C); });
+    f.lobed[axis] = SignedFilterTable(r, [&](double x) { return filter_1d(x, r); });
   }
   return f.lobed[0].valid() && f.lobed[1].valid();
 }
+// pbrt-v4's "mitchell" (Mitchell-Netravali's B and C) and "sinc" (a
+// Lanczos-windowed sinc of tau) filters for f.radius.
+inline bool make_mitchell_filter(PixelFilter& f, double B, double C) {
+  return make_lobed_filter(f, PixelFilter::Type::Mitchell,
+                           [&](double x, double r) { return mitchell_1d(2.0 * x / r, B, C); });
+}
 inline bool make_sinc_filter(PixelFilter& f, double tau) {
-  f.type = PixelFilter::Type::Sinc;
-  for (int axis = 0; axis < 2; ++axis) {
-    const double r = f.radius[axis];
-    f.lobed[axis] = SignedFilterTable(f.radius[axis], [&](double x) { return windowed_sinc(x, r, tau); });
-  }
-  return f.lobed[0].valid() && f.lobed[1].valid();
+  return make_lobed_filter(f, PixelFilter::Type::Sinc, [&](double x, double r) { return windowed_sinc(x, r, tau); });
 }
 
 // The sign of the filter at the offset sample_pixel_filter draws for u:
