@@ -70,6 +70,18 @@ Spectrum unbounded_spectrum_sampled(const RGB& c, const SampledWavelengths& l) {
   return s;
 }
 
+UnboundedSpectrum unbounded_spectrum_of(const RGB& c) {
+  UnboundedSpectrum u;
+  u.shape = unbounded_shape(max(c, RGB(0.f)), &u.scale);
+  return u;
+}
+
+Spectrum white_illuminant(const SampledWavelengths& l) {
+  Spectrum s;
+  for (int i = 0; i < kSpectrumSamples; ++i) s[i] = white_illuminant(l.nm[size_t(i)]);
+  return s;
+}
+
 Spectrum illuminant_spectrum_sampled(const RGB& c, const SampledWavelengths& l) {
   float scale;
   const SigmoidPolynomial p = unbounded_shape(max(c, RGB(0.f)), &scale);

@@ -19,6 +19,7 @@
 #pragma once
 
 #include "color/sampled_wavelengths.h"
+#include "color/sigmoid_spectrum.h"
 #include "math/spectrum.h"
 
 namespace lantern {
@@ -27,6 +28,25 @@ Spectrum albedo_spectrum_sampled(const RGB& c, const SampledWavelengths& l);
 Spectrum unbounded_spectrum_sampled(const RGB& c, const SampledWavelengths& l);
 Spectrum illuminant_spectrum_sampled(const RGB& c, const SampledWavelengths& l);
 RGB film_rgb_sampled(const Spectrum& s, const SampledWavelengths& l);
+
+// An unbounded colour's spectrum kept as its shape and scale, to be
+// evaluated at many samples' wavelengths without the table's lookup each
+// time (an RGB grid medium's samples: medium/grid_density.h).
+// unbounded_spectrum_sampled(c, l) == unbounded_spectrum_of(c).at(l), and
+// illuminant_spectrum_sampled(c, l) == unbounded_spectrum_of(c).at(l) *
+// white_illuminant(l).
+struct UnboundedSpectrum {
+  SigmoidPolynomial shape = SigmoidPolynomial::constant(0.f);
+  float scale = 0.f;
+  Spectrum at(const SampledWavelengths& l) const {
+    Spectrum s;
+    for (int i = 0; i < kSpectrumSamples; ++i) s[i] = scale * shape(l.nm[size_t(i)]);
+    return s;
+  }
+};
+UnboundedSpectrum unbounded_spectrum_of(const RGB& c);
+// The colour space's white at the wavelengths, normalised to luminance 1.
+Spectrum white_illuminant(const SampledWavelengths& l);
 
 inline Spectrum rgb_channels(const RGB& c) { return Spectrum(c[0], c[1], c[2], c[1]); }
 

@@ -91,9 +91,6 @@ void check_options(const Scene& scene, const RenderOptions& opt) {
          opt.spectral_lambda_min < opt.spectral_lambda_max)))
     throw std::invalid_argument("spectral buckets need a spectral render, 1 to 4096 buckets and a range within "
                                 "[360, 830] nm");
-  if (opt.spectral && !scene.media.rgb_grid.empty())
-    throw std::invalid_argument("an \"rgbgrid\" medium is not rendered with sampled wavelengths yet (its optical depth is "
-                                "integrated as colour): render it without --spectral");
   if (opt.integrator == Integrator::Lt && scene.camera.projection == Projection::Orthographic && !(scene.camera.lens_radius > 0.f))
     throw std::invalid_argument("light tracing (--integrator lt) cannot reach an orthographic camera without a lens: "
                                 "its rays are parallel, so no light path connects to it; use path or bdpt, or give the "

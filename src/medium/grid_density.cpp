@@ -1,5 +1,7 @@
 #include "medium/grid_density.h"
 
+#include <array>
+
 namespace lantern {
 
 bool GridLayout::locate(const Vec3& p, int cell[3], double f[3]) const {
@@ -142,33 +144,108 @@ RGB RgbGrid::Le_at(const Vec3& p) const {
   return trilinear(cell, f, [&](int x, int y, int z) { return inside(x, y, z) ? Le[offset(x, y, z)] : RGB(0.f); });
 }
 
-RGB RgbGrid::integrate(const Vec3& o, const Vec3& d, float t0, float t1, int c, float tau, float* t_hit) const {
+namespace {
+
+// The optical depth of N channels along o + t d over [t0, t1], each cell's
+// samples given by corner(x, y, z) (N values) plus a constant part; with
+// channel c and tau >= 0, stops where channel c's depth reaches tau.
+template <int N, class Corner>
+std::array<double, N> integrate_channels(const LatticeFrame& frame, const Vec3& o, const Vec3& d, float t0, float t1,
+                                         int c, float tau, float* t_hit, Corner&& corner, const float constant[N]) {
   *t_hit = kInfinity;
-  const RGB constant = constant_a + constant_s;
-  double sum[3] = {0.0, 0.0, 0.0};
-  lattice::walk(frame(), o, d, t0, t1, [&](const int cell[3], double t, double t_exit, const double f0[3], const double dg[3]) {
-    RGB v[2][2][2];
+  std::array<double, N> sum{};
+  lattice::walk(frame, o, d, t0, t1, [&](const int cell[3], double t, double t_exit, const double f0[3], const double dg[3]) {
+    using V = decltype(corner(0, 0, 0));
+    V v[2][2][2];
     for (int a = 0; a < 2; ++a)
       for (int b = 0; b < 2; ++b)
-        for (int e = 0; e < 2; ++e) v[a][b][e] = sample_t(cell[0] + a, cell[1] + b, cell[2] + e);
-    lattice::Cubic p[3];
-    for (int k = 0; k < 3; ++k) {
+        for (int e = 0; e < 2; ++e) v[a][b][e] = corner(cell[0] + a, cell[1] + b, cell[2] + e);
+    lattice::Cubic p[N];
+    for (int k = 0; k < N; ++k) {
       float vk[2][2][2];
       for (int a = 0; a < 8; ++a) vk[a >> 2][(a >> 1) & 1][a & 1] = v[a >> 2][(a >> 1) & 1][a & 1][k];
       p[k] = lattice::cell_cubic(f0, dg, vk);
       p[k].k = constant[k];
     }
     const double S = t_exit - t;
-    if (tau >= 0.f && sum[c] + std::max(0.0, p[c].integral(S)) >= tau) {
-      const double s = lattice::solve_integral(p[c], S, double(tau) - sum[c]);
-      for (int k = 0; k < 3; ++k) sum[k] += k == c ? double(tau) - sum[k] : std::max(0.0, p[k].integral(s));
+    if (tau >= 0.f && sum[size_t(c)] + std::max(0.0, p[c].integral(S)) >= tau) {
+      const double s = lattice::solve_integral(p[c], S, double(tau) - sum[size_t(c)]);
+      for (int k = 0; k < N; ++k) sum[size_t(k)] += k == c ? double(tau) - sum[size_t(k)] : std::max(0.0, p[k].integral(s));
       *t_hit = float(t + s);
       return true;
     }
-    for (int k = 0; k < 3; ++k) sum[k] += std::max(0.0, p[k].integral(S));
+    for (int k = 0; k < N; ++k) sum[size_t(k)] += std::max(0.0, p[k].integral(S));
     return false;
   });
+  return sum;
+}
+
+}  // namespace
+
+RGB RgbGrid::integrate(const Vec3& o, const Vec3& d, float t0, float t1, int c, float tau, float* t_hit) const {
+  const RGB k = constant_a + constant_s;
+  const float constant[3] = {k[0], k[1], k[2]};
+  const std::array<double, 3> sum = integrate_channels<3>(
+      frame(), o, d, t0, t1, c, tau, t_hit, [&](int x, int y, int z) { return sample_t(x, y, z); }, constant);
   return RGB(float(sum[0]), float(sum[1]), float(sum[2]));
+}
+
+const RgbGrid::Spectra& RgbGrid::spectra() const {
+  std::call_once(*spectra_once_, [&] {
+    auto sp = std::make_shared<Spectra>();
+    auto convert = [](const std::vector<RGB>& from, std::vector<UnboundedSpectrum>& to) {
+      to.reserve(from.size());
+      for (const RGB& c : from) to.push_back(unbounded_spectrum_of(c));
+    };
+    convert(sigma_a, sp->a);
+    convert(sigma_s, sp->s);
+    convert(Le, sp->Le);
+    spectra_ = std::move(sp);
+  });
+  return *spectra_;
+}
+
+// (a coefficient not given is pbrt-v4's constant spectrum: constant_a and
+// constant_s are grey)
+Spectrum RgbGrid::sample_t(int x, int y, int z, const Spectra& sp, const SampledWavelengths& l) const {
+  if (!inside(x, y, z)) return Spectrum(0.f);
+  const size_t i = offset(x, y, z);
+  return (sp.a.empty() ? Spectrum(0.f) : sp.a[i].at(l)) + (sp.s.empty() ? Spectrum(0.f) : sp.s[i].at(l));
+}
+
+void RgbGrid::at(const Vec3& p, const SampledWavelengths& l, Spectrum* a, Spectrum* s) const {
+  int cell[3];
+  double f[3];
+  *a = *s = Spectrum(0.f);
+  if (!locate(p, cell, f)) return;
+  const Spectra& sp = spectra();
+  auto pick = [&](const std::vector<UnboundedSpectrum>& grid) {
+    return [&](int x, int y, int z) { return inside(x, y, z) ? grid[offset(x, y, z)].at(l) : Spectrum(0.f); };
+  };
+  *a = Spectrum(constant_a[0]) + (sp.a.empty() ? Spectrum(0.f) : trilinear(cell, f, pick(sp.a)));
+  *s = Spectrum(constant_s[0]) + (sp.s.empty() ? Spectrum(0.f) : trilinear(cell, f, pick(sp.s)));
+}
+
+Spectrum RgbGrid::Le_at(const Vec3& p, const SampledWavelengths& l) const {
+  int cell[3];
+  double f[3];
+  if (Le.empty() || !locate(p, cell, f)) return Spectrum(0.f);
+  const Spectra& sp = spectra();
+  return trilinear(cell, f, [&](int x, int y, int z) { return inside(x, y, z) ? sp.Le[offset(x, y, z)].at(l) : Spectrum(0.f); }) *
+         white_illuminant(l);
+}
+
+Spectrum RgbGrid::integrate(const Vec3& o, const Vec3& d, float t0, float t1, int c, float tau,
+                            const SampledWavelengths& l, float* t_hit) const {
+  const Spectra& sp = spectra();
+  const float k = constant_a[0] + constant_s[0];
+  float constant[kSpectrumSamples];
+  std::fill(constant, constant + kSpectrumSamples, k);
+  const std::array<double, kSpectrumSamples> sum = integrate_channels<kSpectrumSamples>(
+      frame(), o, d, t0, t1, c, tau, t_hit, [&](int x, int y, int z) { return sample_t(x, y, z, sp, l); }, constant);
+  Spectrum depth;
+  for (int i = 0; i < kSpectrumSamples; ++i) depth[i] = float(sum[size_t(i)]);
+  return depth;
 }
 
 }  // namespace lantern

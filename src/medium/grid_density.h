@@ -17,8 +17,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
+#include <mutex>
 #include <vector>
 
+#include "color/spectrum_conversion.h"
 #include "math/common.h"
 
 namespace lantern {
@@ -201,6 +204,28 @@ struct RgbGrid : GridLayout {
   // channel c and tau >= 0, stops where channel c's depth reaches tau
   // (*t_hit; otherwise infinity).
   RGB integrate(const Vec3& o, const Vec3& d, float t0, float t1, int c, float tau, float* t_hit) const;
+
+  // With sampled wavelengths, as pbrt-v4's grid of RGB spectra: each
+  // sample's colour is an unbounded spectrum (Le's an illuminant), and the
+  // values at the wavelengths are interpolated, not the colours (the
+  // conversion is not linear). A coefficient not given is a constant
+  // spectrum. The spectra's shapes are found once, on the first look-up
+  // with wavelengths, so an RGB render pays nothing for them.
+  void at(const Vec3& p, const SampledWavelengths& l, Spectrum* a, Spectrum* s) const;
+  Spectrum Le_at(const Vec3& p, const SampledWavelengths& l) const;
+  // The optical depth at each wavelength, as integrate() (channel c of
+  // the wavelengths).
+  Spectrum integrate(const Vec3& o, const Vec3& d, float t0, float t1, int c, float tau, const SampledWavelengths& l,
+                     float* t_hit) const;
+
+ private:
+  struct Spectra {
+    std::vector<UnboundedSpectrum> a, s, Le;
+  };
+  const Spectra& spectra() const;
+  Spectrum sample_t(int x, int y, int z, const Spectra& sp, const SampledWavelengths& l) const;
+  mutable std::shared_ptr<std::once_flag> spectra_once_ = std::make_shared<std::once_flag>();
+  mutable std::shared_ptr<const Spectra> spectra_;
 };
 
 }  // namespace lantern

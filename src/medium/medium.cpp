@@ -5,9 +5,11 @@ namespace lantern {
 Spectrum MediumPools::optical_depth(MediumHandle h, const Vec3& o, const Vec3& d, float s0, float s1, int c, float tau,
                                     const SampledWavelengths& l, float* s_hit) const {
   *s_hit = kInfinity;
-  if (h.kind() == MediumKind::RgbGrid) {  // (RGB renderer only: render() refuses it with wavelengths)
+  if (h.kind() == MediumKind::RgbGrid) {
+    const RgbGrid& g = rgb_grid[h.index()].grid;
+    if (!l.is_rgb()) return g.integrate(o, d, s0, s1, c, tau, l, s_hit);
     const int rgb_channel = c < 3 ? c : 1;  // the fourth channel repeats green
-    return unbounded_spectrum(rgb_grid[h.index()].grid.integrate(o, d, s0, s1, rgb_channel, tau, s_hit), l);
+    return unbounded_spectrum(g.integrate(o, d, s0, s1, rgb_channel, tau, s_hit), l);
   }
   if (h.kind() == MediumKind::Cloud) {
     const CloudMedium& m = cloud[h.index()];

@@ -85,10 +85,15 @@ struct VdbMedium {
 };
 
 // pbrt-v4's "rgbgrid": RGB coefficients on a grid.
+// pbrt-v4's rgbgrid emits its Le samples times this (the integral of CIE
+// y-bar over wavelength, in nm), where its other media normalise an Le to
+// luminance 1 (scene/builder_media.cpp).
+inline constexpr float kPbrtRgbGridLeFactor = 106.856895f;
+
 struct RgbGridMedium {
   RgbGrid grid;
   float g = 0.f;
-  float Le_scale = 0.f;  // "Lescale", times the grid's Le samples
+  float Le_scale = 0.f;  // "Lescale" times kPbrtRgbGridLeFactor, times the grid's Le samples
 };
 
 struct MediumPools {
@@ -125,6 +130,7 @@ struct MediumPools {
         return;
       }
       case MediumKind::RgbGrid: {
+        if (!l.is_rgb()) return rgb_grid[h.index()].grid.at(p, l, sigma_a, sigma_s);
         RGB a, s;
         rgb_grid[h.index()].grid.at(p, &a, &s);
         *sigma_a = unbounded_spectrum(a, l), *sigma_s = unbounded_spectrum(s, l);
@@ -148,8 +154,7 @@ struct MediumPools {
   // where channel c's depth reaches tau: *s_hit is there (else infinity)
   // and the depth returned is the depth up to it.
   // A tracked medium (below) answers with its proxy's depth, and only
-  // with tau < 0: the transmittance bidirectional MIS uses for it. (An
-  // RGB grid's depth is integrated as colour: the RGB renderer's only.)
+  // with tau < 0: the transmittance bidirectional MIS uses for it.
   Spectrum optical_depth(MediumHandle h, const Vec3& o, const Vec3& d, float s0, float s1, int c, float tau,
                          const SampledWavelengths& l, float* s_hit) const;
 
@@ -171,8 +176,10 @@ struct MediumPools {
         return emitted_spectrum(m.Le, m.Le_spectrum < 0 ? nullptr : &spectra[size_t(m.Le_spectrum)], l);
       }
       case MediumKind::Grid: return grid[h.index()].emission.at(p, l);
-      case MediumKind::RgbGrid:
-        return illuminant_spectrum(rgb_grid[h.index()].grid.Le_at(p), l) * rgb_grid[h.index()].Le_scale;
+      case MediumKind::RgbGrid: {
+        const RgbGrid& g = rgb_grid[h.index()].grid;
+        return (l.is_rgb() ? illuminant_spectrum(g.Le_at(p), l) : g.Le_at(p, l)) * rgb_grid[h.index()].Le_scale;
+      }
       case MediumKind::Vdb:
         return vdb[h.index()].emits() ? vdb[h.index()].Le(p, l) : Spectrum(0.f);
       default: return Spectrum(0.f);

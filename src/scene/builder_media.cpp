@@ -226,6 +226,12 @@ RgbGridMedium SceneBuilder::rgb_grid(const ParamSet& ps, const Mat4& render_from
     m.Le_scale = ps.get_float("Lescale", 1.f);
     if (!(m.Le_scale >= 0.f) || !std::isfinite(m.Le_scale))
       ps.fail(*ps.find("Lescale"), "\"Lescale\" must be finite and not negative");
+    // pbrt-v4 makes an rgbgrid's Le samples its colour space's illuminant
+    // as stored, whose luminance integral is CIE Y's (106.856895), and,
+    // unlike every other emitter's Le, does not divide by it: the same
+    // "Le" glows that many times brighter in an rgbgrid than in a
+    // homogeneous or uniformgrid medium. Files written for it are lit so.
+    m.Le_scale *= kPbrtRgbGridLeFactor;
   }
   m.g = ps.get_float("g", 0.f);
   if (!(m.g > -1.f && m.g < 1.f)) ps.fail(*ps.find("g"), "\"g\" must lie strictly between -1 and 1");
