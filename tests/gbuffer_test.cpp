@@ -126,6 +126,43 @@ TEST(GBuffer, DepthSlopesFollowATiltedSquare) {
   EXPECT_LT(c["dzdy"], 0.1f * expected);  // half a pixel off the axis: nearly flat
 }
 
+// Under a filter with negative lobes each sample counts with the
+// filter's sign, as pbrt-v4's GBufferFilm weighs its samples: the albedo
+// is the signed sum over the signed count. An orthographic camera sees a
+// square whose vertical edges lie on pixel boundaries (x = 7 and 25 of
+// 32), so the pixels beside it (centres half a pixel outside) see the
+// square with the share of the filter's integral beyond half a pixel.
+// For pbrt-v4's sinc (radius 4, tau 3) that share is 0.0746 signed and
+// 0.1856 of the filter's magnitude (integrated numerically); the albedo
+// there is 0.7 times it.
+TEST(GBuffer, SignedFiltersWeighTheirSamplesBySign) {
+  const std::string text = R"(
+LookAt 0 0 5  0 0 0  0 1 0
+Camera "orthographic"
+Film "gbuffer" "integer xresolution" 32 "integer yresolution" 24 "string filename" "gb.exr"
+PixelFilter "sinc"
+Sampler "independent" "integer pixelsamples" 64
+WorldBegin
+Material "diffuse" "rgb reflectance" [0.7 0.4 0.2]
+Shape "trianglemesh" "point3 P" [-0.75 -3 0  0.75 -3 0  0.75 3 0  -0.75 3 0] "integer indices" [0 1 2 0 2 3]
+)";
+  auto scene = load_scene_from_string(text, "signed.pbrt", {});
+  RenderOptions o;
+  o.sampler = scene_settings(*scene).sampler;
+  o.spp = 64;
+  o.maxdepth = 1;
+  o.gbuffer = true;
+  const Image img = render(*scene, o).image;
+  double beside = 0.0;
+  for (int y = 0; y < 24; ++y) beside += channels_at(img, 6, y)["Albedo.R"] + channels_at(img, 25, y)["Albedo.R"];
+  beside /= 48.0;
+  EXPECT_NEAR(beside, 0.7 * 0.0746, 0.02) << "unsigned, it would be " << 0.7 * 0.1856;
+  // Inside, every sample that lands on the square sees the same point's
+  // depth, whatever their signs.
+  EXPECT_NEAR(channels_at(img, 16, 12)["P.Z"], 5.f, 1e-4f);
+  EXPECT_NEAR(channels_at(img, 16, 12)["Albedo.R"], 0.7f, 0.02f);
+}
+
 // The variance is the samples' own: over independent renders, a pixel's
 // value spreads by its samples' variance over their count.
 TEST(GBuffer, VarianceIsTheSamplesVariance) {

@@ -73,10 +73,17 @@ VisibleSurfaces PathTracer::visible_surfaces(uint32_t samples, bool world_space,
     }
     stream.intersect(rays, RayKind::Camera);
     for (int x = 0; x < out.width; ++x) {
-      double sum[C] = {};
-      uint32_t hits = 0;
+      // Each sample weighs its sign under a filter with negative lobes
+      // (pixel_filter.h), as pbrt-v4's GBufferFilm weighs each by the
+      // filter's weight: the albedo over all samples' weights, the rest
+      // over those of the samples that hit.
+      double sum[C] = {}, weight_all = 0.0, weight_hits = 0.0;
+      const uint32_t pixel = uint32_t(y) * uint32_t(out.width) + uint32_t(x);
       for (uint32_t j = 0; j < samples; ++j) {
         const uint32_t i = uint32_t(x) * samples + j;
+        const double w =
+            pixel_filter_negative(scene_.filter, PathSampler::make(sampler_, pixel, j).get2d(dims::kFilm)) ? -1.0 : 1.0;
+        weight_all += w;
         if (!rays.hit(i)) continue;
         const Vec3 d = glm::normalize(rays.direction(i));
         SurfacePoint sp = hit_point(scene_.shapes, rays, i);
@@ -109,18 +116,19 @@ VisibleSurfaces PathTracer::visible_surfaces(uint32_t samples, bool world_space,
                             ns.z,
                             sp.uv.x,
                             sp.uv.y};
-        for (int c = 0; c < C; ++c) sum[c] += double(v[c]);
-        ++hits;
+        for (int c = 0; c < C; ++c) sum[c] += w * double(v[c]);
+        weight_hits += w;
       }
       float* o = &out.values[(size_t(y) * size_t(out.width) + size_t(x)) * C];
-      for (int c = VisibleSurfaces::AlbedoR; c <= VisibleSurfaces::AlbedoB; ++c) o[c] = float(sum[c] / double(samples));
-      if (hits == 0) continue;
+      if (weight_all != 0.0)
+        for (int c = VisibleSurfaces::AlbedoR; c <= VisibleSurfaces::AlbedoB; ++c) o[c] = float(sum[c] / weight_all);
+      if (weight_hits == 0.0) continue;  // (no hit, or signs that cancel: nothing to average, as in pbrt-v4)
       for (int c : {int(VisibleSurfaces::PX), int(VisibleSurfaces::PY), int(VisibleSurfaces::PZ),
                     int(VisibleSurfaces::U), int(VisibleSurfaces::V)})
-        o[c] = float(sum[c] / double(hits));
+        o[c] = float(sum[c] / weight_hits);
       // pbrt-v4 writes the slopes' magnitudes.
-      o[VisibleSurfaces::DzDx] = float(std::fabs(sum[VisibleSurfaces::DzDx] / double(hits)));
-      o[VisibleSurfaces::DzDy] = float(std::fabs(sum[VisibleSurfaces::DzDy] / double(hits)));
+      o[VisibleSurfaces::DzDx] = float(std::fabs(sum[VisibleSurfaces::DzDx] / weight_hits));
+      o[VisibleSurfaces::DzDy] = float(std::fabs(sum[VisibleSurfaces::DzDy] / weight_hits));
       for (int first : {int(VisibleSurfaces::NX), int(VisibleSurfaces::NsX)}) {
         const glm::dvec3 n(sum[first], sum[first + 1], sum[first + 2]);
         const double len = glm::length(n);
