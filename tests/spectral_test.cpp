@@ -397,6 +397,21 @@ Shape "sphere" "float radius" 1
   }
 }
 
+// The table fitted where it is looked up (what colours of rec2020 and
+// dci-p3 are read with) gives the whole table's answers bit for bit: for
+// sRGB, the table the build embeds.
+TEST(Spectral, LazyTableIsTheWholeTable) {
+  LazyRGBToSpectrumTable lazy(ColorSpace::srgb());
+  RandomStream rng = RandomStream::make(3, 1, 2);
+  for (int i = 0; i < 6; ++i) {
+    const RGB c(rng.get1d(), rng.get1d(), rng.get1d());
+    const SigmoidPolynomial a = lazy(c), b = RGBToSpectrumTable::srgb()(c);
+    EXPECT_EQ(a.c0, b.c0) << i;
+    EXPECT_EQ(a.c1, b.c1) << i;
+    EXPECT_EQ(a.c2, b.c2) << i;
+  }
+}
+
 // Bit-identical across thread counts with sampled wavelengths too.
 TEST(Spectral, SameImageWithOneOrTwoThreads) {
   auto scene = shipped("caustics.pbrt");

@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "color/cie1931.h"
@@ -128,36 +129,70 @@ SigmoidFit SigmoidFitter::fit(const Vec3d& rgb, const Vec3d& start) const {
   return f;
 }
 
-// For each largest channel and each (x, y) node, the fit goes along z from
-// a dark node outwards in both directions, each node starting from its
-// neighbour's solution (the continuation of Jakob & Hanika, sec. 4).
+std::vector<Vec3d> fit_table_column(const SigmoidFitter& fitter, const std::vector<float>& z, int res, int largest,
+                                    int xi, int yi) {
+  std::vector<Vec3d> column(static_cast<size_t>(res));
+  const int start = res / 5;
+  const double x = double(xi) / double(res - 1), y = double(yi) / double(res - 1);
+  auto solve = [&](int zi, const Vec3d& from) {
+    Vec3d rgb;
+    rgb[size_t(largest)] = double(z[size_t(zi)]);
+    rgb[size_t((largest + 1) % 3)] = x * double(z[size_t(zi)]);
+    rgb[size_t((largest + 2) % 3)] = y * double(z[size_t(zi)]);
+    return column[size_t(zi)] = fitter.fit(rgb, from).c;
+  };
+  const Vec3d mid = solve(start, {0.0, 0.0, 0.0});
+  Vec3d c = mid;
+  for (int zi = start + 1; zi < res; ++zi) c = solve(zi, c);
+  c = mid;
+  for (int zi = start - 1; zi >= 0; --zi) c = solve(zi, c);
+  return column;
+}
+
 RGBToSpectrumTable fit_rgb_to_spectrum_table(const ColorSpace& cs, int res) {
   const SigmoidFitter fitter(cs);
   const std::vector<float> z = RGBToSpectrumTable::z_nodes(res);
   std::vector<float> out(RGBToSpectrumTable::index(res, 3, 0, 0, 0));
-  const int start = res / 5;
   tbb::parallel_for(0, 3 * res, [&](int task) {
     const int largest = task / res, yi = task % res;
     for (int xi = 0; xi < res; ++xi) {
-      const double x = double(xi) / double(res - 1), y = double(yi) / double(res - 1);
-      auto solve = [&](int zi, const Vec3d& from) {
-        Vec3d rgb;
-        rgb[size_t(largest)] = double(z[size_t(zi)]);
-        rgb[size_t((largest + 1) % 3)] = x * double(z[size_t(zi)]);
-        rgb[size_t((largest + 2) % 3)] = y * double(z[size_t(zi)]);
-        const SigmoidFit f = fitter.fit(rgb, from);
-        const size_t at = RGBToSpectrumTable::index(res, largest, zi, yi, xi);
-        for (size_t k = 0; k < 3; ++k) out[at + k] = float(f.c[k]);
-        return f.c;
-      };
-      const Vec3d mid = solve(start, {0.0, 0.0, 0.0});
-      Vec3d c = mid;
-      for (int zi = start + 1; zi < res; ++zi) c = solve(zi, c);
-      c = mid;
-      for (int zi = start - 1; zi >= 0; --zi) c = solve(zi, c);
+      const std::vector<Vec3d> column = fit_table_column(fitter, z, res, largest, xi, yi);
+      for (int zi = 0; zi < res; ++zi)
+        for (size_t k = 0; k < 3; ++k)
+          out[RGBToSpectrumTable::index(res, largest, zi, yi, xi) + k] = float(column[size_t(zi)][k]);
     }
   });
   return RGBToSpectrumTable(res, std::move(out));
+}
+
+LazyRGBToSpectrumTable::LazyRGBToSpectrumTable(const ColorSpace& cs, int res)
+    : fitter_(cs), res_(res), z_(RGBToSpectrumTable::z_nodes(res)) {}
+
+// The lookup of RGBToSpectrumTable::operator(), over nodes fitted on demand.
+SigmoidPolynomial LazyRGBToSpectrumTable::operator()(const RGB& in) {
+  const RGB rgb = clamp(in, 0.f, 1.f);
+  if (rgb[0] == rgb[1] && rgb[1] == rgb[2]) return SigmoidPolynomial::constant(rgb[0]);
+  const int largest = rgb[0] > rgb[1] ? (rgb[0] > rgb[2] ? 0 : 2) : (rgb[1] > rgb[2] ? 1 : 2);
+  const float z = rgb[largest];
+  const float scale = float(res_ - 1) / z;
+  const float x = rgb[(largest + 1) % 3] * scale, y = rgb[(largest + 2) % 3] * scale;
+  const int xi = std::min(int(x), res_ - 2), yi = std::min(int(y), res_ - 2);
+  const int zi =
+      int(std::clamp(std::upper_bound(z_.begin(), z_.end(), z) - z_.begin() - 1, ptrdiff_t(0), ptrdiff_t(res_ - 2)));
+  const float dx = x - float(xi), dy = y - float(yi), dz = (z - z_[size_t(zi)]) / (z_[size_t(zi) + 1] - z_[size_t(zi)]);
+  auto node = [&](int oz, int oy, int ox, int k) {
+    const int key = (largest * res_ + yi + oy) * res_ + xi + ox;
+    auto it = columns_.find(key);
+    if (it == columns_.end()) it = columns_.emplace(key, fit_table_column(fitter_, z_, res_, largest, xi + ox, yi + oy)).first;
+    return float(it->second[size_t(zi + oz)][size_t(k)]);  // (as the table stores it)
+  };
+  float c[3];
+  for (int k = 0; k < 3; ++k) {
+    auto lerp = [](float t, float a, float b) { return (1.f - t) * a + t * b; };
+    c[k] = lerp(dz, lerp(dy, lerp(dx, node(0, 0, 0, k), node(0, 0, 1, k)), lerp(dx, node(0, 1, 0, k), node(0, 1, 1, k))),
+                lerp(dy, lerp(dx, node(1, 0, 0, k), node(1, 0, 1, k)), lerp(dx, node(1, 1, 0, k), node(1, 1, 1, k))));
+  }
+  return {c[0], c[1], c[2]};
 }
 
 }  // namespace lantern

@@ -6,6 +6,8 @@
 #pragma once
 
 #include <array>
+#include <map>
+#include <vector>
 
 #include "color/color_space.h"
 #include "color/rgb_spectrum_table.h"
@@ -32,6 +34,31 @@ class SigmoidFitter {
   std::array<std::array<double, 3>, kSamples> xyz_;  // quadrature weight * white * cmf / white's Y
 
   std::array<double, 3> xyz_of(const std::array<double, 3>& c, std::array<double, 9>* jacobian) const;
+};
+
+// One column of a table: the coefficients at every z node for (largest
+// channel, x node, y node), fitted from a dark node outwards in both
+// directions, each node starting from its neighbour's solution (the
+// continuation of Jakob & Hanika, sec. 4).
+std::vector<std::array<double, 3>> fit_table_column(const SigmoidFitter& fitter, const std::vector<float>& z, int res,
+                                                    int largest, int xi, int yi);
+
+// The table of a colour space at 64 nodes per axis, as the build fits
+// sRGB's, but fitted only where looked up: a colour's cell's eight nodes,
+// the columns through them fitted when first needed (about 10 ms each)
+// and kept. Its answers are the whole table's, bit for bit. What the scene
+// builder reads colours of other spaces with (rec2020, dci-p3), whose
+// tables the build does not make. Not thread-safe.
+class LazyRGBToSpectrumTable {
+ public:
+  explicit LazyRGBToSpectrumTable(const ColorSpace& cs, int res = 64);
+  SigmoidPolynomial operator()(const RGB& rgb);
+
+ private:
+  SigmoidFitter fitter_;
+  int res_;
+  std::vector<float> z_;
+  std::map<int, std::vector<std::array<double, 3>>> columns_;  // by (largest * res + y) * res + x
 };
 
 // The whole table for colour space cs at res nodes per axis (parallel).

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "color/rgb_spectrum_fit.h"
 #include "material/subsurface_albedo.h"
 #include "scene/pbrt/params.h"
 #include "scene/pbrt/parser_target.h"
@@ -118,6 +119,9 @@ class SceneBuilder final : public pbrt::ParserTarget {
   RGBTextureRef conductor_param(const pbrt::ParamSet& ps, const std::string& name, const std::string& def);
   // A spectrum kept for the spectral renderer (TexturePools::spectra).
   int32_t add_spectrum(const PiecewiseLinearSpectrum& s);
+  // A colour of a space other than sRGB as the spectrum that space's own
+  // table would give it (builder_textures.cpp); -1 where there is none.
+  int32_t color_space_spectrum(const pbrt::ParamSet& ps, const pbrt::Param& p, pbrt::ColorUsage usage);
   RGBTextureRef rgb_texture(const pbrt::ParamSet& ps, const std::string& name, RGB def,
                             pbrt::ColorUsage usage = pbrt::ColorUsage::Reflectance);
   FloatTextureRef float_texture(const pbrt::ParamSet& ps, const std::string& name, float def);
@@ -236,6 +240,8 @@ class SceneBuilder final : public pbrt::ParserTarget {
   std::function<void(const std::string&)> progress_;
   std::function<void(const std::string&, size_t)> file_progress_;
   std::map<std::string, RGBTextureRef> rgb_textures_;
+  std::map<std::string, int32_t> color_space_spectra_;  // fitted colours, by space and value
+  std::map<std::string, std::unique_ptr<LazyRGBToSpectrumTable>> color_space_tables_;
   std::map<std::string, FloatTextureRef> float_textures_;
   std::map<std::string, const MeasuredBRDF*> measured_files_;  // path -> its tables
   std::map<std::string, const FourierTable*> fourier_files_;

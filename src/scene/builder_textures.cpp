@@ -5,6 +5,10 @@
 
 #include "scene/builder.h"
 
+#include <algorithm>
+
+#include "color/rgb_spectrum_fit.h"
+
 namespace lantern {
 
 using pbrt::ColorUsage;
@@ -22,9 +26,48 @@ RGBTextureRef SceneBuilder::rgb_texture(const ParamSet& ps, const std::string& n
   RGBTextureRef ref = RGBTextureRef::constant(ps.get_rgb(name, usage).value_or(def));
   // A spectrum given by samples is kept for the spectral renderer too
   // (emitters' spectra are the lights' to keep).
-  if (usage != ColorUsage::Illuminant)
+  if (usage != ColorUsage::Illuminant) {
     if (auto sampled = ps.get_sampled_spectrum(name)) ref.spectrum = add_spectrum(*sampled);
+    else if (const pbrt::Param* p = ps.find(name)) ref.spectrum = color_space_spectrum(ps, *p, usage);
+  }
   return ref;
+}
+
+// pbrt-v4 turns an RGB of any colour space into a spectrum by that space's
+// own table. The build fits sRGB's only, and the RGB renderer works in
+// sRGB, so a colour of another space is converted into sRGB as it is read
+// (clamped into its gamut, ParamSet::get_rgb); for the spectral renderer,
+// a reflectance or unbounded colour of a space whose white is a tabulated
+// illuminant (rec2020, dci-p3) is fitted here in its own space, exactly as
+// that space's table would hold it, and kept as a spectrum like one given
+// by samples: colours outside sRGB's gamut keep their saturation. (ACES's
+// white is not tabulated here: its colours go through sRGB's table.)
+int32_t SceneBuilder::color_space_spectrum(const ParamSet& ps, const pbrt::Param& p, ColorUsage usage) {
+  const ColorSpace* cs = ps.color_space;
+  if (!cs || cs == &ColorSpace::srgb() || !cs->illuminant || (p.type != "rgb" && p.type != "color") ||
+      p.numbers.size() != 3)
+    return -1;
+  std::array<double, 3> rgb{p.numbers[0], p.numbers[1], p.numbers[2]};
+  double scale = 1.0;  // a reflectance: clamped into [0, 1], as pbrt-v4 clamps it
+  if (usage == ColorUsage::Reflectance) {
+    for (double& c : rgb) c = std::clamp(c, 0.0, 1.0);
+  } else {  // unbounded: 2m times the reflectance rgb / 2m, m its largest channel
+    scale = 2.0 * std::max({rgb[0], rgb[1], rgb[2]});
+    if (!(scale > 0.0)) return -1;
+    for (double& c : rgb) c /= scale;
+  }
+  const std::string key = std::string(cs->name) + " " + std::to_string(rgb[0]) + " " + std::to_string(rgb[1]) + " " +
+                          std::to_string(rgb[2]) + " " + std::to_string(scale);
+  if (auto it = color_space_spectra_.find(key); it != color_space_spectra_.end()) return it->second;
+  auto& table = color_space_tables_[std::string(cs->name)];
+  if (!table) table = std::make_unique<LazyRGBToSpectrumTable>(*cs);
+  const SigmoidPolynomial shape = (*table)(RGB(float(rgb[0]), float(rgb[1]), float(rgb[2])));
+  PiecewiseLinearSpectrum s;
+  for (int nm = int(kLambdaMin); nm <= int(kLambdaMax); ++nm) {
+    s.nm.push_back(double(nm));
+    s.value.push_back(scale * double(shape(float(nm))));
+  }
+  return color_space_spectra_[key] = add_spectrum(s);
 }
 
 int32_t SceneBuilder::add_spectrum(const PiecewiseLinearSpectrum& s) {

@@ -161,7 +161,8 @@ RGB ParamSet::to_srgb(const Param& p, const RGB& c, ColorUsage usage) const {
   for (size_t i = 0; i < 3; ++i) r[int(i)] = float(m[i][0] * c[0] + m[i][1] * c[1] + m[i][2] * c[2]);
   if (min_component(r) < -1e-5f * max_component(r) && warn && *warn)
     (*warn)(p.where.str() + ": warning: " + directive + ": \"" + printable(p.name) + "\" (" + std::string(color_space->name) +
-            ") lies outside sRGB's gamut, in which Lantern renders; its negative part was clamped");
+            ") lies outside sRGB's gamut, in which the RGB renderer works: there its negative part is clamped "
+            "(with --spectral a material's colour of rec2020 or dci-p3 keeps it)");
   return max(r, RGB(0.f));
 }
 
