@@ -191,18 +191,17 @@ RGB RgbGrid::integrate(const Vec3& o, const Vec3& d, float t0, float t1, int c, 
 }
 
 const RgbGrid::Spectra& RgbGrid::spectra() const {
-  std::call_once(*spectra_once_, [&] {
-    auto sp = std::make_shared<Spectra>();
+  SpectraOnce& cache = *spectra_;
+  std::call_once(cache.once, [&] {
     auto convert = [](const std::vector<RGB>& from, std::vector<UnboundedSpectrum>& to) {
       to.reserve(from.size());
       for (const RGB& c : from) to.push_back(unbounded_spectrum_of(c));
     };
-    convert(sigma_a, sp->a);
-    convert(sigma_s, sp->s);
-    convert(Le, sp->Le);
-    spectra_ = std::move(sp);
+    convert(sigma_a, cache.spectra.a);
+    convert(sigma_s, cache.spectra.s);
+    convert(Le, cache.spectra.Le);
   });
-  return *spectra_;
+  return cache.spectra;
 }
 
 // (a coefficient not given is pbrt-v4's constant spectrum: constant_a and

@@ -224,8 +224,13 @@ struct RgbGrid : GridLayout {
   };
   const Spectra& spectra() const;
   Spectrum sample_t(int x, int y, int z, const Spectra& sp, const SampledWavelengths& l) const;
-  mutable std::shared_ptr<std::once_flag> spectra_once_ = std::make_shared<std::once_flag>();
-  mutable std::shared_ptr<const Spectra> spectra_;
+  // Found once, on first use; a copy of the grid (made while the scene is
+  // built, before any look-up) shares them.
+  struct SpectraOnce {
+    std::once_flag once;
+    Spectra spectra;
+  };
+  std::shared_ptr<SpectraOnce> spectra_ = std::make_shared<SpectraOnce>();
 };
 
 }  // namespace lantern
