@@ -46,14 +46,14 @@ SigmoidPolynomial unbounded_shape(const RGB& c, float* scale) {
   return table_lookup(c / *scale);
 }
 
+}  // namespace
+
 // The colour space's white at wavelength nm, normalised to luminance 1:
 // what illuminant_spectrum multiplies by.
 float white_illuminant(float nm) {
   static const float k = white_normalisation();
   return cie_d65(nm) * k;
 }
-
-}  // namespace
 
 Spectrum albedo_spectrum_sampled(const RGB& c, const SampledWavelengths& l) {
   const SigmoidPolynomial p = table_lookup(clamp(c, 0.f, 1.f));

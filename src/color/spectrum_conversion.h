@@ -45,7 +45,9 @@ struct UnboundedSpectrum {
   }
 };
 UnboundedSpectrum unbounded_spectrum_of(const RGB& c);
-// The colour space's white at the wavelengths, normalised to luminance 1.
+// The colour space's white (D65) at wavelength nm, or at the wavelengths,
+// normalised to luminance 1.
+float white_illuminant(float nm);
 Spectrum white_illuminant(const SampledWavelengths& l);
 
 inline Spectrum rgb_channels(const RGB& c) { return Spectrum(c[0], c[1], c[2], c[1]); }

@@ -122,6 +122,10 @@ class SceneBuilder final : public pbrt::ParserTarget {
   // A colour of a space other than sRGB as the spectrum that space's own
   // table would give it (builder_textures.cpp); -1 where there is none.
   int32_t color_space_spectrum(const pbrt::ParamSet& ps, const pbrt::Param& p, pbrt::ColorUsage usage);
+  // An emitter's colour of such a space likewise (builder_lights.cpp).
+  std::optional<PiecewiseLinearSpectrum> color_space_emission(const pbrt::ParamSet& ps, const std::string& name);
+  // The table of a space other than sRGB, fitted where looked up.
+  LazyRGBToSpectrumTable& color_space_table(const ColorSpace& cs);
   RGBTextureRef rgb_texture(const pbrt::ParamSet& ps, const std::string& name, RGB def,
                             pbrt::ColorUsage usage = pbrt::ColorUsage::Reflectance);
   FloatTextureRef float_texture(const pbrt::ParamSet& ps, const std::string& name, float def);

@@ -89,12 +89,40 @@ void SceneBuilder::add_light(const std::string& type, const ParamSet& ps, const 
 // luminance of the emitter's final colour, which carries "scale", "power"
 // and the rest; nullopt for a colour given any other way.
 std::optional<PiecewiseLinearSpectrum> SceneBuilder::emission_spectrum(const ParamSet& ps, const std::string& name) {
+  if (std::optional<PiecewiseLinearSpectrum> s = color_space_emission(ps, name)) return s;
   std::optional<ParamSet::EmissionSpectrum> e = ps.get_emission_spectrum(name);
   if (!e) return std::nullopt;
   const double y = spectrum_luminance(e->spectrum) * double(luminance(e->rgb));
   if (!(y > 0.0) || !std::isfinite(y)) return std::nullopt;
   for (double& v : e->spectrum.value) v /= y;
   return std::move(e->spectrum);
+}
+
+// An emitter's RGB of rec2020 or dci-p3 as pbrt-v4's illuminant of that
+// space: 2m times the space's table's spectrum of rgb / 2m (m its largest
+// channel), times the white (D65 for both), normalised as RGB emitters are
+// (color/spectrum_conversion.h). The RGB renderer's colour is the one
+// ParamSet::get_rgb gives, clamped into sRGB's gamut; emitted_spectrum
+// multiplies a light's spectrum by that colour's luminance (times scale,
+// power and the rest), so the spectrum is divided by it here. nullopt for
+// other colours, and for one whose sRGB colour is black.
+std::optional<PiecewiseLinearSpectrum> SceneBuilder::color_space_emission(const ParamSet& ps, const std::string& name) {
+  const pbrt::Param* p = ps.find(name);
+  const ColorSpace* cs = ps.color_space;
+  if (!p || !cs || cs == &ColorSpace::srgb() || !cs->illuminant || (p->type != "rgb" && p->type != "color") ||
+      p->numbers.size() != 3)
+    return std::nullopt;
+  const float y = luminance(ps.get_rgb(name, ColorUsage::Illuminant).value_or(RGB(0.f)));
+  const double m = std::max({p->numbers[0], p->numbers[1], p->numbers[2]});
+  if (!(y > 0.f) || !(m > 0.0)) return std::nullopt;
+  const SigmoidPolynomial shape = color_space_table(*cs)(
+      RGB(float(p->numbers[0] / (2.0 * m)), float(p->numbers[1] / (2.0 * m)), float(p->numbers[2] / (2.0 * m))));
+  PiecewiseLinearSpectrum s;
+  for (int nm = int(kLambdaMin); nm <= int(kLambdaMax); ++nm) {
+    s.nm.push_back(double(nm));
+    s.value.push_back(2.0 * m * double(shape(float(nm))) * double(white_illuminant(float(nm))) / double(y));
+  }
+  return s;
 }
 
 // A light's: kept with the textures' spectra (light_spectrum, light/lights.h); -1 for none.

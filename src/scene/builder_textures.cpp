@@ -42,6 +42,12 @@ RGBTextureRef SceneBuilder::rgb_texture(const ParamSet& ps, const std::string& n
 // that space's table would hold it, and kept as a spectrum like one given
 // by samples: colours outside sRGB's gamut keep their saturation. (ACES's
 // white is not tabulated here: its colours go through sRGB's table.)
+LazyRGBToSpectrumTable& SceneBuilder::color_space_table(const ColorSpace& cs) {
+  std::unique_ptr<LazyRGBToSpectrumTable>& table = color_space_tables_[std::string(cs.name)];
+  if (!table) table = std::make_unique<LazyRGBToSpectrumTable>(cs);
+  return *table;
+}
+
 int32_t SceneBuilder::color_space_spectrum(const ParamSet& ps, const pbrt::Param& p, ColorUsage usage) {
   const ColorSpace* cs = ps.color_space;
   if (!cs || cs == &ColorSpace::srgb() || !cs->illuminant || (p.type != "rgb" && p.type != "color") ||
@@ -59,9 +65,7 @@ int32_t SceneBuilder::color_space_spectrum(const ParamSet& ps, const pbrt::Param
   const std::string key = std::string(cs->name) + " " + std::to_string(rgb[0]) + " " + std::to_string(rgb[1]) + " " +
                           std::to_string(rgb[2]) + " " + std::to_string(scale);
   if (auto it = color_space_spectra_.find(key); it != color_space_spectra_.end()) return it->second;
-  auto& table = color_space_tables_[std::string(cs->name)];
-  if (!table) table = std::make_unique<LazyRGBToSpectrumTable>(*cs);
-  const SigmoidPolynomial shape = (*table)(RGB(float(rgb[0]), float(rgb[1]), float(rgb[2])));
+  const SigmoidPolynomial shape = color_space_table(*cs)(RGB(float(rgb[0]), float(rgb[1]), float(rgb[2])));
   PiecewiseLinearSpectrum s;
   for (int nm = int(kLambdaMin); nm <= int(kLambdaMax); ++nm) {
     s.nm.push_back(double(nm));
