@@ -170,29 +170,15 @@ LazyRGBToSpectrumTable::LazyRGBToSpectrumTable(const ColorSpace& cs, int res)
 
 // The lookup of RGBToSpectrumTable::operator(), over nodes fitted on demand.
 SigmoidPolynomial LazyRGBToSpectrumTable::operator()(const RGB& in) {
-  const RGB rgb = clamp(in, 0.f, 1.f);
-  if (rgb[0] == rgb[1] && rgb[1] == rgb[2]) return SigmoidPolynomial::constant(rgb[0]);
-  const int largest = rgb[0] > rgb[1] ? (rgb[0] > rgb[2] ? 0 : 2) : (rgb[1] > rgb[2] ? 1 : 2);
-  const float z = rgb[largest];
-  const float scale = float(res_ - 1) / z;
-  const float x = rgb[(largest + 1) % 3] * scale, y = rgb[(largest + 2) % 3] * scale;
-  const int xi = std::min(int(x), res_ - 2), yi = std::min(int(y), res_ - 2);
-  const int zi =
-      int(std::clamp(std::upper_bound(z_.begin(), z_.end(), z) - z_.begin() - 1, ptrdiff_t(0), ptrdiff_t(res_ - 2)));
-  const float dx = x - float(xi), dy = y - float(yi), dz = (z - z_[size_t(zi)]) / (z_[size_t(zi) + 1] - z_[size_t(zi)]);
-  auto node = [&](int oz, int oy, int ox, int k) {
-    const int key = (largest * res_ + yi + oy) * res_ + xi + ox;
+  RGBTableCell c;
+  if (!rgb_table_cell(in, res_, z_, &c)) return SigmoidPolynomial::constant(clamp(in, 0.f, 1.f)[0]);
+  return interpolate_rgb_table(c, [&](int oz, int oy, int ox, int k) {
+    const int key = (c.largest * res_ + c.y + oy) * res_ + c.x + ox;
     auto it = columns_.find(key);
-    if (it == columns_.end()) it = columns_.emplace(key, fit_table_column(fitter_, z_, res_, largest, xi + ox, yi + oy)).first;
-    return float(it->second[size_t(zi + oz)][size_t(k)]);  // (as the table stores it)
-  };
-  float c[3];
-  for (int k = 0; k < 3; ++k) {
-    auto lerp = [](float t, float a, float b) { return (1.f - t) * a + t * b; };
-    c[k] = lerp(dz, lerp(dy, lerp(dx, node(0, 0, 0, k), node(0, 0, 1, k)), lerp(dx, node(0, 1, 0, k), node(0, 1, 1, k))),
-                lerp(dy, lerp(dx, node(1, 0, 0, k), node(1, 0, 1, k)), lerp(dx, node(1, 1, 0, k), node(1, 1, 1, k))));
-  }
-  return {c[0], c[1], c[2]};
+    if (it == columns_.end())
+      it = columns_.emplace(key, fit_table_column(fitter_, z_, res_, c.largest, c.x + ox, c.y + oy)).first;
+    return float(it->second[size_t(c.z + oz)][size_t(k)]);  // (as the table stores it)
+  });
 }
 
 }  // namespace lantern

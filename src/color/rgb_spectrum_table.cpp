@@ -26,28 +26,29 @@ RGBToSpectrumTable::RGBToSpectrumTable(int res, std::span<const float> coefficie
     throw std::invalid_argument("an RGB-to-spectrum table needs 3 * res^3 * 3 coefficients");
 }
 
-SigmoidPolynomial RGBToSpectrumTable::operator()(const RGB& in) const {
+bool rgb_table_cell(const RGB& in, int res, std::span<const float> z_nodes, RGBTableCell* cell) {
   const RGB rgb = clamp(in, 0.f, 1.f);
-  if (rgb[0] == rgb[1] && rgb[1] == rgb[2]) return SigmoidPolynomial::constant(rgb[0]);
-  const int largest = rgb[0] > rgb[1] ? (rgb[0] > rgb[2] ? 0 : 2) : (rgb[1] > rgb[2] ? 1 : 2);
-  const float z = rgb[largest];
-  const float scale = float(res_ - 1) / z;
-  const float x = rgb[(largest + 1) % 3] * scale, y = rgb[(largest + 2) % 3] * scale;
+  if (rgb[0] == rgb[1] && rgb[1] == rgb[2]) return false;
+  RGBTableCell& c = *cell;
+  c.largest = rgb[0] > rgb[1] ? (rgb[0] > rgb[2] ? 0 : 2) : (rgb[1] > rgb[2] ? 1 : 2);
+  const float z = rgb[c.largest];
+  const float scale = float(res - 1) / z;
+  const float x = rgb[(c.largest + 1) % 3] * scale, y = rgb[(c.largest + 2) % 3] * scale;
   // The cell: x and y on a uniform grid, z by search among the nodes.
-  const int xi = std::min(int(x), res_ - 2), yi = std::min(int(y), res_ - 2);
-  const int zi =
-      int(std::clamp(std::upper_bound(z_.begin(), z_.end(), z) - z_.begin() - 1, ptrdiff_t(0), ptrdiff_t(res_ - 2)));
-  const float dx = x - float(xi), dy = y - float(yi), dz = (z - z_[size_t(zi)]) / (z_[size_t(zi) + 1] - z_[size_t(zi)]);
-  float c[3];
-  for (int k = 0; k < 3; ++k) {
-    auto at = [&](int oz, int oy, int ox) {
-      return coefficients_[index(res_, largest, zi + oz, yi + oy, xi + ox) + size_t(k)];
-    };
-    auto lerp = [](float t, float a, float b) { return (1.f - t) * a + t * b; };
-    c[k] = lerp(dz, lerp(dy, lerp(dx, at(0, 0, 0), at(0, 0, 1)), lerp(dx, at(0, 1, 0), at(0, 1, 1))),
-                lerp(dy, lerp(dx, at(1, 0, 0), at(1, 0, 1)), lerp(dx, at(1, 1, 0), at(1, 1, 1))));
-  }
-  return {c[0], c[1], c[2]};
+  c.x = std::min(int(x), res - 2), c.y = std::min(int(y), res - 2);
+  c.z = int(std::clamp(std::upper_bound(z_nodes.begin(), z_nodes.end(), z) - z_nodes.begin() - 1, ptrdiff_t(0),
+                       ptrdiff_t(res - 2)));
+  c.dx = x - float(c.x), c.dy = y - float(c.y);
+  c.dz = (z - z_nodes[size_t(c.z)]) / (z_nodes[size_t(c.z) + 1] - z_nodes[size_t(c.z)]);
+  return true;
+}
+
+SigmoidPolynomial RGBToSpectrumTable::operator()(const RGB& in) const {
+  RGBTableCell c;
+  if (!rgb_table_cell(in, res_, z_, &c)) return SigmoidPolynomial::constant(clamp(in, 0.f, 1.f)[0]);
+  return interpolate_rgb_table(c, [&](int oz, int oy, int ox, int k) {
+    return coefficients_[index(res_, c.largest, c.z + oz, c.y + oy, c.x + ox) + size_t(k)];
+  });
 }
 
 }  // namespace lantern

@@ -16,6 +16,27 @@
 
 namespace lantern {
 
+// Where a reflectance falls among a table's nodes: the part of the cube
+// (its largest channel), the first node of its cell and its position in
+// the cell. rgb_table_cell returns false for a grey, whose spectrum is the
+// constant (no node needed); z: the table's z nodes.
+struct RGBTableCell {
+  int largest = 0, x = 0, y = 0, z = 0;
+  float dx = 0.f, dy = 0.f, dz = 0.f;
+};
+bool rgb_table_cell(const RGB& rgb, int res, std::span<const float> z, RGBTableCell* cell);
+// The trilinear interpolation of the cell's eight nodes, node(oz, oy, ox, k)
+// giving coefficient k of node (z + oz, y + oy, x + ox).
+template <class Node>
+SigmoidPolynomial interpolate_rgb_table(const RGBTableCell& c, Node&& node) {
+  auto lerp = [](float t, float a, float b) { return (1.f - t) * a + t * b; };
+  float v[3];
+  for (int k = 0; k < 3; ++k)
+    v[k] = lerp(c.dz, lerp(c.dy, lerp(c.dx, node(0, 0, 0, k), node(0, 0, 1, k)), lerp(c.dx, node(0, 1, 0, k), node(0, 1, 1, k))),
+                lerp(c.dy, lerp(c.dx, node(1, 0, 0, k), node(1, 0, 1, k)), lerp(c.dx, node(1, 1, 0, k), node(1, 1, 1, k))));
+  return {v[0], v[1], v[2]};
+}
+
 class RGBToSpectrumTable {
  public:
   // res nodes per axis; coefficients: 3 * res^3 * 3 floats, ordered by
