@@ -6,6 +6,7 @@
 #include "scene/builder.h"
 
 #include <algorithm>
+#include <cstdio>
 
 #include "color/rgb_spectrum_fit.h"
 
@@ -33,6 +34,12 @@ RGBTextureRef SceneBuilder::rgb_texture(const ParamSet& ps, const std::string& n
   return ref;
 }
 
+LazyRGBToSpectrumTable& SceneBuilder::color_space_table(const ColorSpace& cs) {
+  std::unique_ptr<LazyRGBToSpectrumTable>& table = color_space_tables_[std::string(cs.name)];
+  if (!table) table = std::make_unique<LazyRGBToSpectrumTable>(cs);
+  return *table;
+}
+
 // pbrt-v4 turns an RGB of any colour space into a spectrum by that space's
 // own table. The build fits sRGB's only, and the RGB renderer works in
 // sRGB, so a colour of another space is converted into sRGB as it is read
@@ -42,12 +49,6 @@ RGBTextureRef SceneBuilder::rgb_texture(const ParamSet& ps, const std::string& n
 // that space's table would hold it, and kept as a spectrum like one given
 // by samples: colours outside sRGB's gamut keep their saturation. (ACES's
 // white is not tabulated here: its colours go through sRGB's table.)
-LazyRGBToSpectrumTable& SceneBuilder::color_space_table(const ColorSpace& cs) {
-  std::unique_ptr<LazyRGBToSpectrumTable>& table = color_space_tables_[std::string(cs.name)];
-  if (!table) table = std::make_unique<LazyRGBToSpectrumTable>(cs);
-  return *table;
-}
-
 int32_t SceneBuilder::color_space_spectrum(const ParamSet& ps, const pbrt::Param& p, ColorUsage usage) {
   const ColorSpace* cs = ps.color_space;
   if (!cs || cs == &ColorSpace::srgb() || !cs->illuminant || (p.type != "rgb" && p.type != "color") ||
@@ -62,8 +63,8 @@ int32_t SceneBuilder::color_space_spectrum(const ParamSet& ps, const pbrt::Param
     if (!(scale > 0.0)) return -1;
     for (double& c : rgb) c /= scale;
   }
-  const std::string key = std::string(cs->name) + " " + std::to_string(rgb[0]) + " " + std::to_string(rgb[1]) + " " +
-                          std::to_string(rgb[2]) + " " + std::to_string(scale);
+  char key[160];  // (exact: the values' bits in hexadecimal)
+  std::snprintf(key, sizeof key, "%.*s %a %a %a %a", int(cs->name.size()), cs->name.data(), rgb[0], rgb[1], rgb[2], scale);
   if (auto it = color_space_spectra_.find(key); it != color_space_spectra_.end()) return it->second;
   const SigmoidPolynomial shape = color_space_table(*cs)(RGB(float(rgb[0]), float(rgb[1]), float(rgb[2])));
   PiecewiseLinearSpectrum s;
