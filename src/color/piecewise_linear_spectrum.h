@@ -24,6 +24,17 @@ struct PiecewiseLinearSpectrum {
 // increasing, or a value that is not finite.
 PiecewiseLinearSpectrum spectrum_from_pairs(std::span<const double> pairs);
 
+// f(nm) at every nanometre of the visible range sampled (360-830 nm).
+template <class F>
+PiecewiseLinearSpectrum spectrum_every_nanometre(F&& f) {
+  PiecewiseLinearSpectrum s;
+  for (int nm = 360; nm <= 830; ++nm) {
+    s.nm.push_back(double(nm));
+    s.value.push_back(f(nm));
+  }
+  return s;
+}
+
 // Reads a spectrum file. Throws InputError naming the file (and line) for
 // an unreadable file, a word that is not a number, or bad pairs.
 PiecewiseLinearSpectrum read_spectrum_file(const std::string& path);

@@ -62,13 +62,7 @@ Spectrum albedo_spectrum_sampled(const RGB& c, const SampledWavelengths& l) {
   return s;
 }
 
-Spectrum unbounded_spectrum_sampled(const RGB& c, const SampledWavelengths& l) {
-  float scale;
-  const SigmoidPolynomial p = unbounded_shape(max(c, RGB(0.f)), &scale);
-  Spectrum s;
-  for (int i = 0; i < kSpectrumSamples; ++i) s[i] = scale * p(l.nm[size_t(i)]);
-  return s;
-}
+Spectrum unbounded_spectrum_sampled(const RGB& c, const SampledWavelengths& l) { return unbounded_spectrum_of(c).at(l); }
 
 UnboundedSpectrum unbounded_spectrum_of(const RGB& c) {
   UnboundedSpectrum u;
@@ -83,11 +77,7 @@ Spectrum white_illuminant(const SampledWavelengths& l) {
 }
 
 Spectrum illuminant_spectrum_sampled(const RGB& c, const SampledWavelengths& l) {
-  float scale;
-  const SigmoidPolynomial p = unbounded_shape(max(c, RGB(0.f)), &scale);
-  Spectrum s;
-  for (int i = 0; i < kSpectrumSamples; ++i) s[i] = scale * p(l.nm[size_t(i)]) * white_illuminant(l.nm[size_t(i)]);
-  return s;
+  return unbounded_spectrum_of(c).at(l) * white_illuminant(l);
 }
 
 RGB film_rgb_sampled(const Spectrum& s, const SampledWavelengths& l) {

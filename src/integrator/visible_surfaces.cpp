@@ -59,12 +59,20 @@ VisibleSurfaces PathTracer::visible_surfaces(uint32_t samples, bool world_space,
     stream.set_scene(scene_.accel->instance_base(), &scene_.shapes);  // hits as shading reads them
     RayBatch rays;
     rays.reserve(size_t(out.width) * samples);
+    // Each sample weighs its sign under a filter with negative lobes
+    // (pixel_filter.h), as pbrt-v4's GBufferFilm weighs each by the
+    // filter's weight: the albedo over all samples' weights, the rest over
+    // those of the samples that hit.
+    std::vector<double> weight;
+    weight.reserve(size_t(out.width) * samples);
     for (int x = 0; x < out.width; ++x) {
       const uint32_t pixel = uint32_t(y) * uint32_t(out.width) + uint32_t(x);
       for (uint32_t j = 0; j < samples; ++j) {
         const PathSampler s = PathSampler::make(sampler_, pixel, j);
-        const Vec2 p_raster = sample_raster_position(scene_.filter, pixel, uint32_t(out.width), s.get2d(dims::kFilm)) +
-                              settings_.raster_offset;
+        const Vec2 u_film = s.get2d(dims::kFilm);
+        weight.push_back(pixel_filter_negative(scene_.filter, u_film) ? -1.0 : 1.0);
+        const Vec2 p_raster =
+            sample_raster_position(scene_.filter, pixel, uint32_t(out.width), u_film) + settings_.raster_offset;
         const float time = sample_time(scene_, s, settings_.maxdepth);
         std::optional<Camera> moved;
         const CameraRay r = camera_at(camera_, time, moved).generate_ray(p_raster, s.get2d(dims::kLens));
@@ -73,16 +81,10 @@ VisibleSurfaces PathTracer::visible_surfaces(uint32_t samples, bool world_space,
     }
     stream.intersect(rays, RayKind::Camera);
     for (int x = 0; x < out.width; ++x) {
-      // Each sample weighs its sign under a filter with negative lobes
-      // (pixel_filter.h), as pbrt-v4's GBufferFilm weighs each by the
-      // filter's weight: the albedo over all samples' weights, the rest
-      // over those of the samples that hit.
       double sum[C] = {}, weight_all = 0.0, weight_hits = 0.0;
-      const uint32_t pixel = uint32_t(y) * uint32_t(out.width) + uint32_t(x);
       for (uint32_t j = 0; j < samples; ++j) {
         const uint32_t i = uint32_t(x) * samples + j;
-        const double w =
-            pixel_filter_negative(scene_.filter, PathSampler::make(sampler_, pixel, j).get2d(dims::kFilm)) ? -1.0 : 1.0;
+        const double w = weight[i];
         weight_all += w;
         if (!rays.hit(i)) continue;
         const Vec3 d = glm::normalize(rays.direction(i));

@@ -112,17 +112,14 @@ std::optional<PiecewiseLinearSpectrum> SceneBuilder::color_space_emission(const 
   if (!p || !cs || cs == &ColorSpace::srgb() || !cs->illuminant || (p->type != "rgb" && p->type != "color") ||
       p->numbers.size() != 3)
     return std::nullopt;
-  const float y = luminance(ps.get_rgb(name, ColorUsage::Illuminant).value_or(RGB(0.f)));
+  const RGB given(float(p->numbers[0]), float(p->numbers[1]), float(p->numbers[2]));
+  const float y = luminance(ps.to_srgb(*p, given, ColorUsage::Illuminant, false));  // (get_rgb's, warned once)
   const double m = std::max({p->numbers[0], p->numbers[1], p->numbers[2]});
   if (!(y > 0.f) || !(m > 0.0)) return std::nullopt;
   const SigmoidPolynomial shape = color_space_table(*cs)(
       RGB(float(p->numbers[0] / (2.0 * m)), float(p->numbers[1] / (2.0 * m)), float(p->numbers[2] / (2.0 * m))));
-  PiecewiseLinearSpectrum s;
-  for (int nm = int(kLambdaMin); nm <= int(kLambdaMax); ++nm) {
-    s.nm.push_back(double(nm));
-    s.value.push_back(2.0 * m * double(shape(float(nm))) * double(white_illuminant(float(nm))) / double(y));
-  }
-  return s;
+  return spectrum_every_nanometre(
+      [&](int nm) { return 2.0 * m * double(shape(float(nm))) * double(white_illuminant(float(nm))) / double(y); });
 }
 
 // A light's: kept with the textures' spectra (light_spectrum, light/lights.h); -1 for none.

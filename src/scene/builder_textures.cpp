@@ -67,12 +67,8 @@ int32_t SceneBuilder::color_space_spectrum(const ParamSet& ps, const pbrt::Param
   std::snprintf(key, sizeof key, "%.*s %a %a %a %a", int(cs->name.size()), cs->name.data(), rgb[0], rgb[1], rgb[2], scale);
   if (auto it = color_space_spectra_.find(key); it != color_space_spectra_.end()) return it->second;
   const SigmoidPolynomial shape = color_space_table(*cs)(RGB(float(rgb[0]), float(rgb[1]), float(rgb[2])));
-  PiecewiseLinearSpectrum s;
-  for (int nm = int(kLambdaMin); nm <= int(kLambdaMax); ++nm) {
-    s.nm.push_back(double(nm));
-    s.value.push_back(scale * double(shape(float(nm))));
-  }
-  return color_space_spectra_[key] = add_spectrum(s);
+  return color_space_spectra_[key] =
+             add_spectrum(spectrum_every_nanometre([&](int nm) { return scale * double(shape(float(nm))); }));
 }
 
 int32_t SceneBuilder::add_spectrum(const PiecewiseLinearSpectrum& s) {

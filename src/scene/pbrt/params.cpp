@@ -155,14 +155,14 @@ std::optional<std::string> ParamSet::get_texture(const std::string& name) const 
   return p->strings[0];
 }
 
-RGB ParamSet::to_srgb(const Param& p, const RGB& c, ColorUsage usage) const {
+RGB ParamSet::to_srgb(const Param& p, const RGB& c, ColorUsage usage, bool warn_gamut) const {
   const Matrix3d m = rgb_conversion(*color_space, ColorSpace::srgb(), usage != ColorUsage::Illuminant);
   RGB r;
   for (size_t i = 0; i < 3; ++i) r[int(i)] = float(m[i][0] * c[0] + m[i][1] * c[1] + m[i][2] * c[2]);
-  if (min_component(r) < -1e-5f * max_component(r) && warn && *warn)
+  if (warn_gamut && min_component(r) < -1e-5f * max_component(r) && warn && *warn)
     (*warn)(p.where.str() + ": warning: " + directive + ": \"" + printable(p.name) + "\" (" + std::string(color_space->name) +
             ") lies outside sRGB's gamut, in which the RGB renderer works: there its negative part is clamped "
-            "(with --spectral a material's colour of rec2020 or dci-p3 keeps it)");
+            "(with --spectral a material's or an emitter's colour of rec2020 or dci-p3 keeps it)");
   return max(r, RGB(0.f));
 }
 

@@ -66,6 +66,10 @@ class ParamSet {
   // for it: a reflectance or unbounded value under D65, an illuminant
   // normalised to luminance 1 (as pbrt-v4 normalises light spectra).
   std::optional<RGB> get_rgb(const std::string& name, ColorUsage usage) const;
+  // Colour c of p, in this set's colour space, in linear sRGB as get_rgb
+  // converts it; `warn_gamut` false: without the warning for colours
+  // outside sRGB's gamut (a second look at a colour get_rgb has read).
+  RGB to_srgb(const Param& p, const RGB& c, ColorUsage usage, bool warn_gamut = true) const;
   // A "spectrum" parameter given by samples, inline or in a file, or a named
   // metal's measured eta or k; nullopt for any other form or when absent.
   std::optional<PiecewiseLinearSpectrum> get_sampled_spectrum(const std::string& name) const;
@@ -92,7 +96,6 @@ class ParamSet {
 
  private:
   mutable std::vector<std::string> missed_;  // names looked up and not given (for warn_unused)
-  RGB to_srgb(const Param& p, const RGB& c, ColorUsage usage) const;
   const Param& expect(const Param& p, std::initializer_list<const char*> types, const char* expected) const;
 };
 
