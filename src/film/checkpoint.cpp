@@ -18,7 +18,9 @@ namespace lantern {
 namespace {
 
 constexpr char kMagic[8] = {'L', 'N', 'T', 'N', 'C', 'K', 'P', 'T'};
-constexpr uint32_t kVersion = 2;  // 2: fixed-point sums, unit sets
+// 2: fixed-point sums, unit sets; 3: and what the integrator learnt. A
+// render that learns nothing writes 2, which every version since reads.
+constexpr uint32_t kVersion = 2, kLearntVersion = 3;
 
 class HashingWriter final : public StateWriter {
  public:
@@ -27,8 +29,6 @@ class HashingWriter final : public StateWriter {
     hash.add(p, n);
     out_.write(static_cast<const char*>(p), std::streamsize(n));
   }
-  template <class T>
-  void put(const T& v) { write(&v, sizeof v); }
   Fnv1a hash;
 
  private:
@@ -42,12 +42,6 @@ class HashingReader final : public StateReader {
     if (!in_.read(static_cast<char*>(p), std::streamsize(n)))
       throw InputError({path_, 0, 0}, "file is truncated");
     hash.add(p, n);
-  }
-  template <class T>
-  T get() {
-    T v;
-    read(&v, sizeof v);
-    return v;
   }
   Fnv1a hash;
 
@@ -75,7 +69,7 @@ void write_checkpoint(const std::string& path, const CheckpointInfo& info, const
     if (!out) throw std::runtime_error("cannot write checkpoint \"" + tmp + "\"");
     HashingWriter w(out);
     w.write(kMagic, sizeof kMagic);
-    w.put(kVersion);
+    w.put(info.learnt.empty() ? kVersion : kLearntVersion);
     w.put(uint32_t(info.fingerprint.size()));
     w.write(info.fingerprint.data(), info.fingerprint.size());
     w.put(info.share.index);
@@ -90,6 +84,7 @@ void write_checkpoint(const std::string& path, const CheckpointInfo& info, const
       w.put(end);
     }
     film.write_state(w);
+    if (!info.learnt.empty()) w.put_vector(std::vector<char>(info.learnt.begin(), info.learnt.end()));
     uint64_t h = w.hash.h;
     out.write(reinterpret_cast<const char*>(&h), sizeof h);
     if (!out.flush()) {
@@ -103,13 +98,15 @@ void write_checkpoint(const std::string& path, const CheckpointInfo& info, const
 namespace {
 
 // The magic, the format version and the fingerprint.
-std::string read_header(HashingReader& r, const std::string& path) {
+std::string read_header(HashingReader& r, const std::string& path, uint32_t* version = nullptr) {
   char magic[sizeof kMagic];
   r.read(magic, sizeof magic);
   if (std::memcmp(magic, kMagic, sizeof kMagic) != 0) throw InputError({path, 0, 0}, "not a Lantern checkpoint or part file");
-  if (uint32_t v = r.get<uint32_t>(); v != kVersion)
+  const uint32_t v = r.get<uint32_t>();
+  if (v != kVersion && v != kLearntVersion)
     throw InputError({path, 0, 0}, "file format version " + std::to_string(v) + " is not " + std::to_string(kVersion) +
-                                       " (made by another Lantern version)");
+                                       " or " + std::to_string(kLearntVersion) + " (made by another Lantern version)");
+  if (version) *version = v;
   const uint32_t n = r.get<uint32_t>();
   if (n > (1u << 20)) throw InputError({path, 0, 0}, "file is damaged (fingerprint length)");
   std::string fingerprint(n, '\0');
@@ -122,7 +119,8 @@ CheckpointInfo read_file(const std::string& path, const std::string* expected, F
   if (!in) throw InputError({path, 0, 0}, expected ? "cannot open checkpoint (nothing to resume)" : "cannot open film file");
   HashingReader r(in, path);
   CheckpointInfo info;
-  info.fingerprint = read_header(r, path);
+  uint32_t version = 0;
+  info.fingerprint = read_header(r, path, &version);
   if (expected && info.fingerprint != *expected) {
     const auto [saved, now] = fingerprint_difference(info.fingerprint, *expected);
     throw InputError({path, 0, 0}, "checkpoint belongs to another render: it was made with \"" + saved +
@@ -149,6 +147,19 @@ CheckpointInfo read_file(const std::string& path, const std::string* expected, F
     throw InputError({path, 0, 0}, "file is damaged (unit list)");
   info.done = UnitSet::of(std::move(intervals));
   film.read_state(r);
+  if (version == kLearntVersion) {
+    // No longer than what is left of the file.
+    std::error_code ec;
+    const uint64_t size = std::filesystem::file_size(path, ec);
+    const std::streamoff at = in.tellg();
+    const uint64_t left = ec || at < 0 || uint64_t(at) > size ? 0 : size - uint64_t(at);
+    try {
+      const std::vector<char> learnt = r.get_vector<char>(left);
+      info.learnt.assign(learnt.begin(), learnt.end());
+    } catch (const std::runtime_error&) {
+      throw InputError({path, 0, 0}, "file is damaged (the learnt state's length)");
+    }
+  }
   uint64_t computed = r.hash.h, stored = 0;
   if (!in.read(reinterpret_cast<char*>(&stored), sizeof stored)) throw InputError({path, 0, 0}, "file is truncated");
   if (stored != computed) throw InputError({path, 0, 0}, "file is damaged (checksum mismatch)");

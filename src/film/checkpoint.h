@@ -10,6 +10,8 @@
 //   budget), u32 waves per pass, f64 elapsed_seconds
 //   u32 n, then n (u64 first, u64 end): the units done, sorted and disjoint
 //   the film state (Film::write_state)
+//   version 3 only: u64 length, bytes: what the integrator learnt (a
+//   guiding field, GuidingField::save), opaque here
 //   u64 FNV-1a hash of every byte before it
 // Written to a temporary name and renamed, so a crash mid-write leaves the
 // previous checkpoint intact.
@@ -32,6 +34,7 @@ struct CheckpointInfo {
   uint32_t waves = 0;       // per pass; unit = pass * waves + wave
   UnitSet done;             // the units merged into the film
   double elapsed_seconds = 0.0;  // render time spent so far, over all runs
+  std::string learnt;       // what the integrator learnt from the units done; most learn nothing
 };
 
 void write_checkpoint(const std::string& path, const CheckpointInfo& info, const Film& film);

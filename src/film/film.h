@@ -22,6 +22,7 @@
 #include "guiding/guide_record.h"
 #include "lantern/image.h"
 #include "math/common.h"
+#include "math/state_io.h"
 
 namespace lantern {
 
@@ -126,22 +127,6 @@ struct WaveOutput {
 // covers raster point p: the weights a splat at p is spread with.
 template <class Fn>
 void for_each_splat_pixel(const PixelFilter& f, int width, int height, Vec2 p, Fn&& fn);
-
-// Byte sinks and sources for Film::write_state / read_state (checkpoints).
-class StateWriter {
- public:
-  virtual void write(const void* bytes, size_t n) = 0;
-
- protected:
-  ~StateWriter() = default;
-};
-class StateReader {
- public:
-  virtual void read(void* bytes, size_t n) = 0;  // throws if the source ends early
-
- protected:
-  ~StateReader() = default;
-};
 
 class Film {
  public:

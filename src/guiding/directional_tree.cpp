@@ -147,4 +147,25 @@ int DirectionalTree::depth() const {
   return deepest;
 }
 
+void DirectionalTree::write_state(StateWriter& out) const {
+  out.put_vector(node_);
+  out.put_vector(energy_);
+}
+
+void DirectionalTree::read_state(StateReader& in) {
+  constexpr uint64_t kMostNodes = uint64_t(1) << 28;
+  std::vector<Node> node = in.get_vector<Node>(kMostNodes);
+  std::vector<double> energy = in.get_vector<double>(4 * kMostNodes);
+  if (node.empty() || energy.size() != 4 * node.size())
+    throw std::runtime_error("a directional tree of " + std::to_string(node.size()) + " nodes and " +
+                             std::to_string(energy.size()) + " sums");
+  // Children after their parent (so every walk from the root ends).
+  for (size_t n = 0; n < node.size(); ++n)
+    for (uint32_t c : node[n].child)
+      if (c != 0 && (c <= n || c >= node.size()))
+        throw std::runtime_error("a directional tree whose node " + std::to_string(n) + " has child " + std::to_string(c));
+  node_ = std::move(node);
+  energy_ = std::move(energy);
+}
+
 }  // namespace lantern

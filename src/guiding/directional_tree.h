@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "math/common.h"
+#include "math/state_io.h"
 
 namespace lantern {
 
@@ -45,6 +46,12 @@ class DirectionalTree {
   // split, down to kMaxDepth, a leaf's energy assumed spread evenly over it.
   // Without energy the structure stays.
   DirectionalTree refined(double threshold) const;
+
+  // The tree as it is, for a checkpoint (what read_state restores bit for
+  // bit). read_state throws std::runtime_error for a tree that cannot be
+  // (a child before its parent or past the end, sums that do not fit).
+  void write_state(StateWriter& out) const;
+  void read_state(StateReader& in);
 
   size_t node_count() const { return node_.size(); }
   int depth() const;

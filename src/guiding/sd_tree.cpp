@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace lantern {
 
@@ -88,6 +90,71 @@ size_t SDTree::memory_bytes() const {
   for (const Leaf& l : leaves_)
     for (uint32_t k = 0; k < kNormalBins; ++k) b += l.sampled[k].memory_bytes() + l.learning[k].memory_bytes();
   return b;
+}
+
+void SDTree::write_state(StateWriter& out) const {
+  out.put(lo_);
+  out.put(extent_);
+  out.put(uint8_t(trained_));
+  out.put(uint64_t(nodes_.size()));
+  for (const Node& n : nodes_) {
+    out.write(n.child, sizeof n.child);
+    out.put(n.leaf);
+    out.put(n.axis);
+  }
+  out.put(uint64_t(leaves_.size()));
+  for (const Leaf& l : leaves_) {
+    for (uint32_t b = 0; b < kNormalBins; ++b) {
+      l.sampled[b].write_state(out);
+      l.learning[b].write_state(out);
+    }
+    out.put(l.records);
+    out.put(l.size);
+    out.put(l.alpha);
+    out.put(l.moment);
+    out.put(l.moment_records);
+  }
+}
+
+void SDTree::read_state(StateReader& in) {
+  const Vec3 lo = in.get<Vec3>();
+  const float extent = in.get<float>();
+  if (lo != lo_ || extent != extent_) throw std::runtime_error("the guiding field was learnt in other bounds");
+  const bool trained = in.get<uint8_t>() != 0;
+  // Each node and leaf takes some bytes: counts beyond what is left are damage.
+  const uint64_t node_count = in.get<uint64_t>();
+  if (node_count == 0 || node_count > in.left() / 13) throw std::runtime_error("a guiding tree of " + std::to_string(node_count) + " nodes");
+  std::vector<Node> nodes(node_count);
+  for (Node& n : nodes) {
+    in.read(n.child, sizeof n.child);
+    n.leaf = in.get<uint32_t>();
+    n.axis = in.get<uint8_t>();
+  }
+  const uint64_t leaf_count = in.get<uint64_t>();
+  if (leaf_count == 0 || leaf_count > in.left() / 64) throw std::runtime_error("a guiding tree of " + std::to_string(leaf_count) + " leaves");
+  // Children after their parent (every walk from the root ends), leaves in the list.
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    const Node& n = nodes[i];
+    const bool leaf = n.child[0] == 0 && n.child[1] == 0;
+    const bool inner = n.child[0] > i && n.child[1] > i && n.child[0] < node_count && n.child[1] < node_count;
+    if ((!leaf && !inner) || n.axis > 2 || (leaf && n.leaf >= leaf_count))
+      throw std::runtime_error("a guiding tree whose node " + std::to_string(i) + " cannot be");
+  }
+  std::vector<Leaf> leaves(leaf_count);
+  for (Leaf& l : leaves) {
+    for (uint32_t b = 0; b < kNormalBins; ++b) {
+      l.sampled[b].read_state(in);
+      l.learning[b].read_state(in);
+    }
+    l.records = in.get<uint64_t>();
+    l.size = in.get<Vec3>();
+    l.alpha = in.get<decltype(l.alpha)>();
+    l.moment = in.get<decltype(l.moment)>();
+    l.moment_records = in.get<decltype(l.moment_records)>();
+  }
+  nodes_ = std::move(nodes);
+  leaves_ = std::move(leaves);
+  trained_ = trained;
 }
 
 }  // namespace lantern

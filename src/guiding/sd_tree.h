@@ -103,6 +103,12 @@ class SDTree {
   const std::vector<Leaf>& leaves() const { return leaves_; }
   size_t memory_bytes() const;
 
+  // The tree as it is, for a checkpoint. read_state restores it bit for
+  // bit into a tree made for the same bounds, and throws
+  // std::runtime_error for one made for others or one that cannot be.
+  void write_state(StateWriter& out) const;
+  void read_state(StateReader& in);
+
  private:
   void split(uint32_t node, uint32_t depth_axis, uint64_t limit);
   static void choose_alphas(Leaf& l);

@@ -13,6 +13,8 @@
 #pragma once
 
 #include <cstdint>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "guiding/sd_tree.h"
@@ -70,6 +72,27 @@ class GuidingField {
   void end_iteration() {
     tree_.update(iteration_);
     if (iteration_ < 62) ++iteration_;
+  }
+
+  // The field, its iteration and whether it still learns, as bytes for a
+  // checkpoint; restore takes them back into a field made for the same
+  // render, and throws std::runtime_error for bytes it cannot take.
+  std::string save() const {
+    StringWriter out;
+    out.put(iteration_);
+    out.put(uint8_t(done_));
+    tree_.write_state(out);
+    return std::move(out.bytes);
+  }
+  void restore(const std::string& bytes) {
+    StringReader in(bytes);
+    const uint32_t iteration = in.get<uint32_t>();
+    const bool done = in.get<uint8_t>() != 0;
+    if (iteration > 62) throw std::runtime_error("a guiding field in iteration " + std::to_string(iteration));
+    tree_.read_state(in);
+    if (in.left() != 0) throw std::runtime_error("the guiding field has trailing bytes");
+    iteration_ = iteration;
+    done_ = done;
   }
 
  private:

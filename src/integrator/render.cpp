@@ -492,8 +492,19 @@ RenderResult RenderSession::render_all() {
   if (scene.textures.cache) scene.textures.cache->reset_lookup_stats(opt.collect_stats);
   StrategyFilm* strategies = strategy_film ? &*strategy_film : nullptr;
   std::optional<GuidingField> guiding;
-  if (opt.guiding)
+  if (opt.guiding) {
     guiding.emplace(scene.bounds_lo, scene.bounds_hi, opt.time_limit_seconds > 0 ? 0 : uint64_t(opt.spp));
+    // A resumed render goes on with the field its units learnt.
+    if (!checkpoints.done().empty()) {
+      try {
+        if (checkpoints.learnt().empty()) throw std::runtime_error("it holds no guiding field");
+        guiding->restore(checkpoints.learnt());
+      } catch (const std::runtime_error& e) {
+        throw InputError({opt.checkpoint_path, 0, 0}, std::string("checkpoint cannot be resumed with --guide: ") + e.what());
+      }
+    }
+    checkpoints.learns([&guiding] { return guiding->save(); });
+  }
   PassContext cx{scene, opt, s.hooks, counters, film, s.film_mutex, strategies, s.done, res.stats, dump.get(),
                  checkpoints, guiding ? &*guiding : nullptr, s.cancelled};
   bool interrupted = false;

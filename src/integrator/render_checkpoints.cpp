@@ -149,6 +149,7 @@ CheckpointInfo start_checkpointing(const RenderOptions& opt, const RenderHooks& 
 
 void Checkpointer::write_to(const std::string& path, const Film& film) {
   info_.elapsed_seconds = elapsed();
+  if (learnt_) info_.learnt = learnt_();
   write_checkpoint(path, info_, film);
   last_ = Clock::now();
   if (hooks_.checkpoint_written && path == own_path()) hooks_.checkpoint_written();

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <chrono>
+#include <functional>
 #include <string>
 
 #include "film/checkpoint.h"
@@ -50,6 +51,11 @@ class Checkpointer {
     info_.passes = passes;
     info_.waves = waves;
   }
+  // What the integrator learnt, to be saved with the film (a guiding
+  // field): asked for at each write, from the merge stage, so that it
+  // belongs to the same units as the film. And what a resumed run read.
+  void learns(std::function<std::string()> state) { learnt_ = std::move(state); }
+  const std::string& learnt() const { return info_.learnt; }
   void maybe_write(const Film& film) {
     if (enabled() && opt_.checkpoint_seconds > 0 &&
         std::chrono::duration<double>(Clock::now() - last_).count() >= opt_.checkpoint_seconds)
@@ -62,6 +68,7 @@ class Checkpointer {
   const RenderOptions& opt_;
   const RenderHooks& hooks_;
   CheckpointInfo info_;
+  std::function<std::string()> learnt_;
   Clock::time_point start_, last_;
   double prior_seconds_;
 };

@@ -109,14 +109,13 @@ void check_options(const Scene& scene, const RenderOptions& opt) {
     throw std::invalid_argument("per-strategy images cannot be rendered in parts");
   if (opt.guiding) {
     // The field is learnt from every pixel's samples in order: a process
-    // holding a share of them, or resuming without them, would learn
-    // another field and render another image.
+    // holding a share of them would learn another field and render another
+    // image. (A checkpoint carries the field: a resumed run has it.)
     if (opt.integrator != Integrator::Path && opt.integrator != Integrator::Bdpt && opt.integrator != Integrator::Vcm)
       throw std::invalid_argument("path guiding (--guide) works with path, bdpt and vcm, not with " +
                                   std::string(name(opt.integrator)));
-    if (opt.share_count > 1 || !opt.checkpoint_path.empty())
-      throw std::invalid_argument("path guiding (--guide) needs the whole render in one run: not with --part, MPI or "
-                                  "checkpoints");
+    if (opt.share_count > 1)
+      throw std::invalid_argument("path guiding (--guide) needs the whole render in one process: not with --part or MPI");
   }
   if (opt.integrator == Integrator::Mlt) {
     // A chain's state (its numbers and current sample) lives outside the
