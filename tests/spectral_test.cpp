@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "color/cie1931.h"
+#include "color/cie_daylight.h"
 #include "color/color_space.h"
 #include "color/rgb_spectrum_fit.h"
 #include "color/rgb_spectrum_table.h"
@@ -53,8 +54,10 @@ TEST(Spectral, ColourSpaceConversions) {
   const ColorSpace& aces = *ColorSpace::named("aces2065-1");
   const double published[3][3] = {
       {0.9525523959, 0.0, 0.0000936786}, {0.3439664498, 0.7281660966, -0.0721325464}, {0.0, 0.0, 1.0088251844}};
+  // (Its white is D60's spectrum as the tabulated observer sees it, as
+  // pbrt-v4's is: 3e-4 off the published matrix at most.)
   for (size_t i = 0; i < 3; ++i)
-    for (size_t j = 0; j < 3; ++j) EXPECT_NEAR(aces.rgb_to_xyz[i][j], published[i][j], 2e-6) << i << j;
+    for (size_t j = 0; j < 3; ++j) EXPECT_NEAR(aces.rgb_to_xyz[i][j], published[i][j], 5e-4) << i << j;
   const auto white = multiply(rgb_conversion(aces, srgb, true), {1.0, 1.0, 1.0});
   for (double w : white) EXPECT_NEAR(w, 1.0, 1e-9);
   const auto light = multiply(srgb.rgb_to_xyz, multiply(rgb_conversion(aces, srgb, false), {0.2, 0.5, 0.9}));
@@ -431,6 +434,83 @@ TEST(Spectral, SameImageWithOneOrTwoThreads) {
     o.spectral = false;
     EXPECT_NE(render(*scene, o).image.rgb, two.rgb) << integrator << ": the option must change the image";
   }
+}
+
+// CIE daylight from its three vectors: with the weights the CIE gives D65
+// (M1 -0.295, M2 -0.689) it is CIE's D65 table, every 5 nm (an error in
+// any entry of the three vectors would show here), and ACES's white and
+// D50 have the chromaticities SMPTE ST 2065-1 and CIE 015:2004 give them,
+// as the tabulated observer sees the spectra.
+TEST(Spectral, DaylightMatchesCieTablesAndWhites) {
+  for (int nm = 360; nm <= 830; nm += 5) {
+    const double table = double(cie_d65(float(nm)));
+    EXPECT_NEAR(cie_daylight(double(nm), DaylightWeights{-0.295, -0.689}), table, 1e-4 * table) << nm;
+  }
+  EXPECT_DOUBLE_EQ(cie_daylight(560.0, daylight_weights(kAcesWhite)), 100.0);
+  auto xy = [](float (*illuminant)(float)) {
+    const std::array<double, 3> xyz = illuminant_xyz(illuminant);
+    const double sum = xyz[0] + xyz[1] + xyz[2];
+    return std::array<double, 2>{xyz[0] / sum, xyz[1] / sum};
+  };
+  const auto aces = xy(aces_d60), d50 = xy(cie_d50);
+  EXPECT_NEAR(aces[0], 0.32168, 3e-4);
+  EXPECT_NEAR(aces[1], 0.33767, 3e-4);
+  EXPECT_NEAR(d50[0], 0.34567, 3e-4);
+  EXPECT_NEAR(d50[1], 0.35850, 3e-4);
+  // The space's white is its spectrum's.
+  EXPECT_EQ(ColorSpace::named("aces2065-1")->illuminant, &aces_d60);
+}
+
+// Colours of aces2065-1 with --spectral: a reflectance becomes the
+// spectrum ACES's own table would hold (fitted under its D60 white), so a
+// green outside sRGB's gamut keeps its negative red, near the matrices'
+// adapted conversion; a white light of ACES is D60's spectrum, whose sRGB
+// colour is the matrices' conversion of D60's XYZ, unadapted, as is
+// "spectrum L" "illum-acesD60". The RGB
+// renderer clamps the green into sRGB's gamut.
+TEST(Spectral, AcesColoursKeepTheirGamutAndWhite) {
+  auto plane = [](const std::string& reflectance, bool spectral, const std::string& L = R"("rgb L" [ 1 1 1 ])") {
+    const auto scene = load_scene_from_string(R"(
+LookAt 0 0 5  0 0 0  0 1 0
+Camera "orthographic" "float screenwindow" [-1 1 -1 1]
+Film "rgb" "integer xresolution" 4 "integer yresolution" 4
+ColorSpace "aces2065-1"
+WorldBegin
+LightSource "infinite" )" + L + R"(
+Material "diffuse" "rgb reflectance" [ )" + reflectance + R"( ]
+Shape "trianglemesh" "point3 P" [-3 -3 0  3 -3 0  3 3 0  -3 3 0] "integer indices" [0 1 2 0 2 3]
+)",
+                                              "aces.pbrt");
+    RenderOptions o;
+    o.spp = 64;
+    o.maxdepth = 1;
+    o.spectral = spectral;
+    const Image img = render(*scene, o).image;
+    std::array<double, 3> m{};
+    for (int c = 0; c < 3; ++c) m[size_t(c)] = img.at(1, 1)[c];
+    return m;
+  };
+  const ColorSpace& aces = *ColorSpace::named("aces2065-1");
+  const ColorSpace& srgb = ColorSpace::srgb();
+  // A diffuse plane under a uniform sky of radiance L reflects L times its
+  // reflectance (maxdepth 1), seen straight on.
+  const auto adapted = multiply(rgb_conversion(aces, srgb, true), {0.1, 0.5, 0.1});
+  const auto white_light = multiply(rgb_conversion(aces, srgb, false), {1.0, 1.0, 1.0});
+  const auto spectral_green = plane("0.1 0.5 0.1", true), rgb_green = plane("0.1 0.5 0.1", false);
+  const auto spectral_grey = plane("0.5 0.5 0.5", true);
+  // pbrt-v4's named spectrum of that white, a light's spectrum (luminance 1).
+  const auto named_grey = plane("0.5 0.5 0.5", true, R"("spectrum L" "illum-acesD60")");
+  ASSERT_LT(adapted[0], -0.2);
+  for (size_t c = 0; c < 3; ++c) {
+    // Green: the fitted spectrum under D60's light, a few hundredths from
+    // the adapted matrices (the spectrum is not the matrices' adaptation).
+    EXPECT_NEAR(spectral_green[c] / white_light[c], adapted[c], 0.04) << c;
+    // Grey: half of D60 in sRGB.
+    EXPECT_NEAR(spectral_grey[c], 0.5 * white_light[c], 0.005 * white_light[c]) << c;
+    EXPECT_NEAR(named_grey[c], 0.5 * white_light[c], 0.005 * white_light[c]) << c;
+  }
+  EXPECT_LT(spectral_green[0], -0.2);
+  EXPECT_GE(rgb_green[0], 0.0);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "color/cie1931.h"
+#include "color/cie_daylight.h"
 
 namespace lantern {
 
@@ -14,6 +15,12 @@ std::array<double, 3> illuminant_xyz(float (*illuminant)(float nm)) {
     for (int c = 0; c < 3; ++c) xyz[size_t(c)] += e * double(cmf[c]);
   }
   return {xyz[0] / xyz[1], 1.0, xyz[2] / xyz[1]};
+}
+
+double illuminant_luminance(float (*illuminant)(float nm)) {
+  double y = 0.0;
+  for (int nm = 360; nm <= 830; ++nm) y += double(illuminant(float(nm))) * double(cie1931_cmf(float(nm))[1]);
+  return y;
 }
 
 std::array<double, 3> chromaticity_xyz(Vec2 xy) {
@@ -113,8 +120,9 @@ Matrix3d rgb_conversion(const ColorSpace& from, const ColorSpace& to, bool adapt
 
 // Primaries: IEC 61966-2-1 (sRGB), ITU-R BT.2020, SMPTE EG 432-1 (DCI-P3
 // with a D65 white, as pbrt-v4 defines "dci-p3"), SMPTE ST 2065-1 (ACES's
-// AP0 primaries and its white, chromaticity 0.32168, 0.33767: CIE daylight
-// near 6000 K).
+// AP0 primaries and its white: CIE daylight of chromaticity 0.32168,
+// 0.33767, near 6000 K, color/cie_daylight.h, as pbrt-v4 makes its white
+// the spectrum "illum-acesD60").
 const ColorSpace& ColorSpace::srgb() {
   static const ColorSpace cs = make_color_space("srgb", {0.64f, 0.33f}, {0.30f, 0.60f}, {0.15f, 0.06f}, cie_d65);
   return cs;
@@ -125,8 +133,8 @@ const ColorSpace* ColorSpace::named(std::string_view name) {
       make_color_space("rec2020", {0.708f, 0.292f}, {0.170f, 0.797f}, {0.131f, 0.046f}, cie_d65);
   static const ColorSpace p3 =
       make_color_space("dci-p3", {0.680f, 0.320f}, {0.265f, 0.690f}, {0.150f, 0.060f}, cie_d65);
-  static const ColorSpace aces = make_color_space("aces2065-1", {0.7347f, 0.2653f}, {0.0f, 1.0f},
-                                                  {0.0001f, -0.0770f}, Vec2(0.32168f, 0.33767f));
+  static const ColorSpace aces =
+      make_color_space("aces2065-1", {0.7347f, 0.2653f}, {0.0f, 1.0f}, {0.0001f, -0.0770f}, aces_d60);
   if (name == "srgb") return &srgb();
   if (name == "rec2020") return &rec2020;
   if (name == "dci-p3") return &p3;

@@ -18,8 +18,8 @@ using Matrix3d = std::array<std::array<double, 3>, 3>;  // row-major
 
 struct ColorSpace {
   std::string_view name;
-  // The white's relative spectral power; null where only its chromaticity
-  // is defined (ACES's white, whose spectrum no table here holds).
+  // The white's relative spectral power (D65, or ACES's daylight); null
+  // for a space made with its white's chromaticity alone.
   float (*illuminant)(float nm);
   std::array<double, 3> white;  // its XYZ, Y = 1
   Matrix3d rgb_to_xyz, xyz_to_rgb;
@@ -38,6 +38,9 @@ std::array<double, 3> chromaticity_xyz(Vec2 xy);
 
 // XYZ of the tabulated illuminant, normalised to Y = 1 (integrated at 1 nm).
 std::array<double, 3> illuminant_xyz(float (*illuminant)(float nm));
+// Its luminance: the integral of it times y-bar over 360-830 nm, at 1 nm
+// (what an emitter's spectrum is divided by to have luminance 1).
+double illuminant_luminance(float (*illuminant)(float nm));
 
 // The space with primaries r, g, b (CIE xy chromaticities) and white
 // illuminant `illuminant`.

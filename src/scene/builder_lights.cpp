@@ -98,9 +98,10 @@ std::optional<PiecewiseLinearSpectrum> SceneBuilder::emission_spectrum(const Par
   return std::move(e->spectrum);
 }
 
-// An emitter's RGB of rec2020 or dci-p3 as pbrt-v4's illuminant of that
-// space: 2m times the space's table's spectrum of rgb / 2m (m its largest
-// channel), times the white (D65 for both), normalised as RGB emitters are
+// An emitter's RGB of rec2020, dci-p3 or aces2065-1 as pbrt-v4's
+// illuminant of that space: 2m times the space's table's spectrum of
+// rgb / 2m (m its largest channel), times the space's white (D65, or
+// ACES's daylight) normalised to luminance 1, as RGB emitters' white is
 // (color/spectrum_conversion.h). The RGB renderer's colour is the one
 // ParamSet::get_rgb gives, clamped into sRGB's gamut; emitted_spectrum
 // multiplies a light's spectrum by that colour's luminance (times scale,
@@ -118,8 +119,9 @@ std::optional<PiecewiseLinearSpectrum> SceneBuilder::color_space_emission(const 
   if (!(y > 0.f) || !(m > 0.0)) return std::nullopt;
   const SigmoidPolynomial shape = color_space_table(*cs)(
       RGB(float(p->numbers[0] / (2.0 * m)), float(p->numbers[1] / (2.0 * m)), float(p->numbers[2] / (2.0 * m))));
+  const double white = 1.0 / illuminant_luminance(cs->illuminant);
   return spectrum_every_nanometre(
-      [&](int nm) { return 2.0 * m * double(shape(float(nm))) * double(white_illuminant(float(nm))) / double(y); });
+      [&](int nm) { return 2.0 * m * double(shape(float(nm))) * double(cs->illuminant(float(nm))) * white / double(y); });
 }
 
 // A light's: kept with the textures' spectra (light_spectrum, light/lights.h); -1 for none.

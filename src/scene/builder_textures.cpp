@@ -44,11 +44,11 @@ LazyRGBToSpectrumTable& SceneBuilder::color_space_table(const ColorSpace& cs) {
 // own table. The build fits sRGB's only, and the RGB renderer works in
 // sRGB, so a colour of another space is converted into sRGB as it is read
 // (clamped into its gamut, ParamSet::get_rgb); for the spectral renderer,
-// a reflectance or unbounded colour of a space whose white is a tabulated
-// illuminant (rec2020, dci-p3) is fitted here in its own space, exactly as
-// that space's table would hold it, and kept as a spectrum like one given
-// by samples: colours outside sRGB's gamut keep their saturation. (ACES's
-// white is not tabulated here: its colours go through sRGB's table.)
+// a reflectance or unbounded colour of another space (rec2020, dci-p3,
+// aces2065-1) is fitted here in its own space, under its own white,
+// exactly as that space's table would hold it, and kept as a spectrum like
+// one given by samples: colours outside sRGB's gamut keep their
+// saturation.
 int32_t SceneBuilder::color_space_spectrum(const ParamSet& ps, const pbrt::Param& p, ColorUsage usage) {
   const ColorSpace* cs = ps.color_space;
   if (!cs || cs == &ColorSpace::srgb() || !cs->illuminant || (p.type != "rgb" && p.type != "color") ||

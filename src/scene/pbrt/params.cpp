@@ -1,6 +1,7 @@
 #include "scene/pbrt/params.h"
 
 #include "color/cie1931.h"
+#include "color/cie_daylight.h"
 #include "color/glass.h"
 #include "color/optical_constants.h"
 #include "color/sigmoid_spectrum.h"
@@ -162,7 +163,7 @@ RGB ParamSet::to_srgb(const Param& p, const RGB& c, ColorUsage usage, bool warn_
   if (warn_gamut && min_component(r) < -1e-5f * max_component(r) && warn && *warn)
     (*warn)(p.where.str() + ": warning: " + directive + ": \"" + printable(p.name) + "\" (" + std::string(color_space->name) +
             ") lies outside sRGB's gamut, in which the RGB renderer works: there its negative part is clamped "
-            "(with --spectral a material's or an emitter's colour of rec2020 or dci-p3 keeps it)");
+            "(with --spectral a material's or an emitter's colour of its own space keeps it)");
   return max(r, RGB(0.f));
 }
 
@@ -256,7 +257,8 @@ std::optional<PiecewiseLinearSpectrum> ParamSet::get_sampled_spectrum(const std:
 
 namespace {
 
-// pbrt-v4's stdillum-D65 (CIE 015:2004, Table T.1, color/cie1931.h) and
+// pbrt-v4's stdillum-D65 (CIE 015:2004, Table T.1, color/cie1931.h),
+// stdillum-D50 and illum-acesD60 (CIE daylight, color/cie_daylight.h) and
 // stdillum-A, which CIE 015:2004 defines by its formula (Planck's law at
 // 2848 K with the second radiation constant 1.435e7 nm K, 100 at 560 nm).
 // As lights, their spectra are normalised like any other light's.
@@ -267,6 +269,10 @@ PiecewiseLinearSpectrum standard_illuminant(const std::string& name) {
     out.nm.push_back(l);
     if (name == "stdillum-D65") {
       out.value.push_back(double(cie_d65(float(nm))));
+    } else if (name == "stdillum-D50") {
+      out.value.push_back(double(cie_d50(float(nm))));
+    } else if (name == "illum-acesD60") {
+      out.value.push_back(double(aces_d60(float(nm))));
     } else {
       constexpr double c2 = 1.435e7, T = 2848.0;
       out.value.push_back(100.0 * std::pow(560.0 / l, 5.0) * std::expm1(c2 / (T * 560.0)) / std::expm1(c2 / (T * l)));
@@ -286,7 +292,8 @@ std::optional<PiecewiseLinearSpectrum> named_sampled_spectrum(const std::string&
     }
     return out;
   }
-  if (s == "stdillum-D65" || s == "stdillum-A") return standard_illuminant(s);
+  if (s == "stdillum-D65" || s == "stdillum-D50" || s == "stdillum-A" || s == "illum-acesD60")
+    return standard_illuminant(s);
   if (!s.starts_with("metal-")) return std::nullopt;
   const size_t dash = s.rfind('-');
   const std::string metal = s.substr(6, dash > 6 ? dash - 6 : 0), part = s.substr(dash + 1);
