@@ -513,5 +513,40 @@ Shape "trianglemesh" "point3 P" [-3 -3 0  3 -3 0  3 3 0  -3 3 0] "integer indice
   EXPECT_GE(rgb_green[0], 0.0);
 }
 
+// A medium's coefficient of rec2020 with --spectral is the unbounded
+// spectrum rec2020's own table holds for it, as pbrt-v4 makes it: the
+// white sky seen through an absorbing sphere (a chord of 2 at the middle,
+// no scattering) has the colour of exp(-2 sigma_a(lambda)) under D65. The
+// cyan sigma_a lies outside sRGB's gamut; read through sRGB (clamped into
+// it, by sRGB's table) the sky came out (0.609, 0.072, 0.054) where it is
+// (0.996, 0.110, 0.068) (checked).
+TEST(Spectral, MediaCoefficientsOfOtherSpacesKeepTheirSpectra) {
+  const auto scene = load_scene_from_string(R"(
+LookAt 0 0 -3  0 0 0  0 1 0
+Camera "orthographic" "float screenwindow" [-0.02 0.02 -0.02 0.02]
+Film "rgb" "integer xresolution" 4 "integer yresolution" 4
+WorldBegin
+LightSource "infinite" "rgb L" [ 1 1 1 ]
+ColorSpace "rec2020"
+MakeNamedMedium "m" "string type" "homogeneous" "rgb sigma_a" [ 0.1 0.6 0.7 ] "rgb sigma_s" [ 0 0 0 ] "float scale" 2
+MediumInterface "m" ""
+Material "interface"
+Shape "sphere" "float radius" 1
+)",
+                                            "rec2020-medium.pbrt");
+  RenderOptions o;
+  o.spp = 128;
+  o.spectral = true;
+  // (Four wavelengths a sample through a transmittance that varies 30-fold
+  // over the spectrum: the mean over independent renders, with its error.)
+  const RegionStats st = stats_of(render_runs(*scene, o, 8, 31), {{0, 0, 4, 4}});
+  LazyRGBToSpectrumTable rec2020(*ColorSpace::named("rec2020"));
+  const double m = 2.0 * 0.7;  // unbounded: 2m times the shape of rgb / 2m, m the largest channel
+  const SigmoidPolynomial shape = rec2020(RGB(float(0.1 / m), float(0.6 / m), float(0.7 / m)));
+  const RGB expected = reflectance_rgb([&](double nm) { return std::exp(-2.0 * 2.0 * m * double(shape(float(nm)))); });
+  for (size_t c = 0; c < 3; ++c)
+    EXPECT_NEAR(st.mean[0][c], expected[int(c)], 4.5 * st.std_error[0][c] + 0.002 * expected[int(c)]) << c;
+}
+
 }  // namespace
 }  // namespace lantern

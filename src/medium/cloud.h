@@ -14,6 +14,7 @@
 #pragma once
 
 #include "color/spectrum_conversion.h"
+#include "medium/coefficient_spectra.h"
 #include "medium/grid_density.h"
 
 namespace lantern {
@@ -24,6 +25,7 @@ constexpr int kCloudProxyResolution = 16;
 
 struct CloudMedium {
   RGB sigma_a{1.f}, sigma_s{1.f};  // per unit density
+  CoefficientSpectra spectra;      // of another colour space, with sampled wavelengths
   float g = 0.f;
   float density = 1.f, wispiness = 1.f, frequency = 5.f;
   Vec3 p0{0.f}, p1{1.f};
@@ -36,11 +38,11 @@ struct CloudMedium {
   // The coefficients at a point of render space.
   void coefficients(const Vec3& p_render, const SampledWavelengths& l, Spectrum* a, Spectrum* s) const {
     const float rho = density_at(p_render);
-    *a = unbounded_spectrum(sigma_a, l) * rho;
-    *s = unbounded_spectrum(sigma_s, l) * rho;
+    *a = spectra.at(spectra.sigma_a, sigma_a, l) * rho;
+    *s = spectra.at(spectra.sigma_s, sigma_s, l) * rho;
   }
   Spectrum sigma_t(const SampledWavelengths& l) const {
-    return unbounded_spectrum(sigma_a, l) + unbounded_spectrum(sigma_s, l);
+    return spectra.at(spectra.sigma_a, sigma_a, l) + spectra.at(spectra.sigma_s, sigma_s, l);
   }
   // The grey majorant: the largest extinction of any channel.
   float sigma_bar(const SampledWavelengths& l) const { return max_component(sigma_t(l)); }

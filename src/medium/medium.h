@@ -16,6 +16,7 @@
 #include "math/common.h"
 #include "math/rng.h"
 #include "medium/cloud.h"
+#include "medium/coefficient_spectra.h"
 #include "medium/grid_density.h"
 #include "medium/nanovdb_grid.h"
 #include "medium/tracking.h"
@@ -53,12 +54,13 @@ struct MediumInterface {
 // coefficients are these per unit density.
 struct HomogeneousMedium {
   RGB sigma_a{0.f}, sigma_s{0.f};
+  CoefficientSpectra spectra;  // of another colour space, with sampled wavelengths
   float g = 0.f;
   RGB Le{0.f};  // emitted radiance per unit sigma_a ("Le" times "Lescale"); unused per density
   int32_t Le_spectrum = -1;  // Le given as a spectrum: index into MediumPools::spectra
-  Spectrum sigma_t(const SampledWavelengths& l) const {
-    return unbounded_spectrum(sigma_a, l) + unbounded_spectrum(sigma_s, l);
-  }
+  Spectrum sigma_a_at(const SampledWavelengths& l) const { return spectra.at(spectra.sigma_a, sigma_a, l); }
+  Spectrum sigma_s_at(const SampledWavelengths& l) const { return spectra.at(spectra.sigma_s, sigma_s, l); }
+  Spectrum sigma_t(const SampledWavelengths& l) const { return sigma_a_at(l) + sigma_s_at(l); }
 };
 
 // pbrt-v4's "uniformgrid": the coefficients scaled by a density grid.
@@ -125,8 +127,8 @@ struct MediumPools {
       case MediumKind::Grid: {
         const GridMedium& m = grid[h.index()];
         const float rho = m.density.density(p);
-        *sigma_a = unbounded_spectrum(m.per_density.sigma_a, l) * rho;
-        *sigma_s = unbounded_spectrum(m.per_density.sigma_s, l) * rho;
+        *sigma_a = m.per_density.sigma_a_at(l) * rho;
+        *sigma_s = m.per_density.sigma_s_at(l) * rho;
         return;
       }
       case MediumKind::RgbGrid: {
@@ -139,14 +141,14 @@ struct MediumPools {
       case MediumKind::Vdb: {
         const VdbMedium& m = vdb[h.index()];
         const float rho = m.density.density(p);
-        *sigma_a = unbounded_spectrum(m.per_density.sigma_a, l) * rho;
-        *sigma_s = unbounded_spectrum(m.per_density.sigma_s, l) * rho;
+        *sigma_a = m.per_density.sigma_a_at(l) * rho;
+        *sigma_s = m.per_density.sigma_s_at(l) * rho;
         return;
       }
       case MediumKind::Cloud: cloud[h.index()].coefficients(p, l, sigma_a, sigma_s); return;
       default:
-        *sigma_a = unbounded_spectrum(homogeneous[h.index()].sigma_a, l);
-        *sigma_s = unbounded_spectrum(homogeneous[h.index()].sigma_s, l);
+        *sigma_a = homogeneous[h.index()].sigma_a_at(l);
+        *sigma_s = homogeneous[h.index()].sigma_s_at(l);
     }
   }
   // The optical depth per channel along o + s d (d unit length, s a

@@ -122,6 +122,12 @@ class SceneBuilder final : public pbrt::ParserTarget {
   // A colour of a space other than sRGB as the spectrum that space's own
   // table would give it (builder_textures.cpp); -1 where there is none.
   int32_t color_space_spectrum(const pbrt::ParamSet& ps, const pbrt::Param& p, pbrt::ColorUsage usage);
+  // The same as a shape and scale: nullopt for an sRGB colour, or none.
+  std::optional<UnboundedSpectrum> color_space_shape(const pbrt::ParamSet& ps, const pbrt::Param& p,
+                                                     pbrt::ColorUsage usage);
+  // A medium's sigma_a and sigma_s of another space likewise, times scale
+  // (builder_media.cpp); `given` false where both are sRGB's.
+  CoefficientSpectra coefficient_spectra(const pbrt::ParamSet& ps, RGB sigma_a, RGB sigma_s, float scale);
   // An emitter's colour of such a space likewise (builder_lights.cpp).
   std::optional<PiecewiseLinearSpectrum> color_space_emission(const pbrt::ParamSet& ps, const std::string& name);
   // The table of a space other than sRGB, fitted where looked up.

@@ -162,9 +162,29 @@ HomogeneousMedium SceneBuilder::medium_coefficients(const ParamSet& ps, bool pre
   HomogeneousMedium m;
   m.sigma_a = checked_coefficient(ps, "sigma_a", sigma_a, scale);
   m.sigma_s = checked_coefficient(ps, "sigma_s", sigma_s, scale);
+  if (preset.empty()) m.spectra = coefficient_spectra(ps, sigma_a, sigma_s, scale);
   m.g = ps.get_float("g", 0.f);
   if (!(m.g > -1.f && m.g < 1.f)) ps.fail(*ps.find("g"), "\"g\" must lie strictly between -1 and 1");
   return m;
+}
+
+// With sampled wavelengths pbrt-v4 reads a coefficient of another colour
+// space by that space's table: so does Lantern (medium/coefficient_spectra.h),
+// the other coefficient by sRGB's. Both times "scale". sigma_a and sigma_s
+// are the sRGB values before the scale.
+CoefficientSpectra SceneBuilder::coefficient_spectra(const ParamSet& ps, RGB sigma_a, RGB sigma_s, float scale) {
+  CoefficientSpectra c;
+  const pbrt::Param* a = ps.find("sigma_a");
+  const pbrt::Param* s = ps.find("sigma_s");
+  std::optional<UnboundedSpectrum> own_a = a ? color_space_shape(ps, *a, ColorUsage::Unbounded) : std::nullopt;
+  std::optional<UnboundedSpectrum> own_s = s ? color_space_shape(ps, *s, ColorUsage::Unbounded) : std::nullopt;
+  if (!own_a && !own_s) return c;
+  c.given = true;
+  c.sigma_a = own_a ? *own_a : unbounded_spectrum_of(sigma_a);
+  c.sigma_s = own_s ? *own_s : unbounded_spectrum_of(sigma_s);
+  c.sigma_a.scale *= scale;
+  c.sigma_s.scale *= scale;
+  return c;
 }
 
 // pbrt-v4's uniformgrid: "density" (nx * ny * nz values, x fastest) over
@@ -244,6 +264,7 @@ CloudMedium SceneBuilder::cloud(const ParamSet& ps, const Mat4& render_from_medi
   CloudMedium m;
   m.sigma_a = checked_coefficient(ps, "sigma_a", ps.get_rgb("sigma_a", ColorUsage::Unbounded).value_or(RGB(1.f)), 1.f);
   m.sigma_s = checked_coefficient(ps, "sigma_s", ps.get_rgb("sigma_s", ColorUsage::Unbounded).value_or(RGB(1.f)), 1.f);
+  m.spectra = coefficient_spectra(ps, m.sigma_a, m.sigma_s, 1.f);
   m.g = ps.get_float("g", 0.f);
   if (!(m.g > -1.f && m.g < 1.f)) ps.fail(*ps.find("g"), "\"g\" must lie strictly between -1 and 1");
   m.density = ps.get_float("density", 1.f);

@@ -49,26 +49,36 @@ LazyRGBToSpectrumTable& SceneBuilder::color_space_table(const ColorSpace& cs) {
 // exactly as that space's table would hold it, and kept as a spectrum like
 // one given by samples: colours outside sRGB's gamut keep their
 // saturation.
-int32_t SceneBuilder::color_space_spectrum(const ParamSet& ps, const pbrt::Param& p, ColorUsage usage) {
+std::optional<UnboundedSpectrum> SceneBuilder::color_space_shape(const ParamSet& ps, const pbrt::Param& p,
+                                                                 ColorUsage usage) {
   const ColorSpace* cs = ps.color_space;
   if (!cs || cs == &ColorSpace::srgb() || !cs->illuminant || (p.type != "rgb" && p.type != "color") ||
       p.numbers.size() != 3)
-    return -1;
+    return std::nullopt;
   std::array<double, 3> rgb{p.numbers[0], p.numbers[1], p.numbers[2]};
   double scale = 1.0;  // a reflectance: clamped into [0, 1], as pbrt-v4 clamps it
   if (usage == ColorUsage::Reflectance) {
     for (double& c : rgb) c = std::clamp(c, 0.0, 1.0);
   } else {  // unbounded: 2m times the reflectance rgb / 2m, m its largest channel
     scale = 2.0 * std::max({rgb[0], rgb[1], rgb[2]});
-    if (!(scale > 0.0)) return -1;
+    if (!(scale > 0.0)) return std::nullopt;
     for (double& c : rgb) c /= scale;
   }
-  char key[160];  // (exact: the values' bits in hexadecimal)
-  std::snprintf(key, sizeof key, "%.*s %a %a %a %a", int(cs->name.size()), cs->name.data(), rgb[0], rgb[1], rgb[2], scale);
+  UnboundedSpectrum u;
+  u.shape = color_space_table(*cs)(RGB(float(rgb[0]), float(rgb[1]), float(rgb[2])));
+  u.scale = float(scale);
+  return u;
+}
+
+int32_t SceneBuilder::color_space_spectrum(const ParamSet& ps, const pbrt::Param& p, ColorUsage usage) {
+  const std::optional<UnboundedSpectrum> u = color_space_shape(ps, p, usage);
+  if (!u) return -1;
+  char key[160];  // (exact: the polynomial's and the scale's bits in hexadecimal)
+  std::snprintf(key, sizeof key, "%.*s %a %a %a %a", int(ps.color_space->name.size()), ps.color_space->name.data(),
+                double(u->shape.c0), double(u->shape.c1), double(u->shape.c2), double(u->scale));
   if (auto it = color_space_spectra_.find(key); it != color_space_spectra_.end()) return it->second;
-  const SigmoidPolynomial shape = color_space_table(*cs)(RGB(float(rgb[0]), float(rgb[1]), float(rgb[2])));
-  return color_space_spectra_[key] =
-             add_spectrum(spectrum_every_nanometre([&](int nm) { return scale * double(shape(float(nm))); }));
+  return color_space_spectra_[key] = add_spectrum(
+             spectrum_every_nanometre([&](int nm) { return double(u->scale) * double(u->shape(float(nm))); }));
 }
 
 int32_t SceneBuilder::add_spectrum(const PiecewiseLinearSpectrum& s) {

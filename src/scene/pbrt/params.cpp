@@ -163,7 +163,7 @@ RGB ParamSet::to_srgb(const Param& p, const RGB& c, ColorUsage usage, bool warn_
   if (warn_gamut && min_component(r) < -1e-5f * max_component(r) && warn && *warn)
     (*warn)(p.where.str() + ": warning: " + directive + ": \"" + printable(p.name) + "\" (" + std::string(color_space->name) +
             ") lies outside sRGB's gamut, in which the RGB renderer works: there its negative part is clamped "
-            "(with --spectral a material's or an emitter's colour of its own space keeps it)");
+            "(with --spectral a material's, an emitter's or a medium's colour of its own space keeps it)");
   return max(r, RGB(0.f));
 }
 
