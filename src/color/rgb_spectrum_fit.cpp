@@ -100,7 +100,15 @@ SigmoidFit SigmoidFitter::fit(const Vec3d& rgb, const Vec3d& start) const {
   std::array<double, 9> j_xyz;
   Vec3d xyz;
   Vec3d r = residual(f.c, &j_xyz, &xyz);
-  for (int it = 0; it < 50 && norm(r) > 1e-6; ++it) {
+  // The paper's optimiser (rgb2spec_opt): up to 15 full Gauss-Newton
+  // steps, the coefficients scaled down whenever the largest passes
+  // kMaxCoefficient. A colour no spectrum reaches (near or beyond the
+  // spectral locus: the far corners of rec2020's and ACES's tables) would
+  // drive them to infinity, towards a box spectrum, and the table
+  // interpolates between nodes: unbounded, with a line search, ACES's
+  // node fits ran to 1e10 and its saturated colours came out up to 20% off
+  // pbrt-v4's, whose tables are fitted so.
+  for (int it = 0; it < kFitSteps && norm(r) > 1e-6; ++it) {
     // J = d lab / d xyz * d xyz / d c; the Gauss-Newton step solves J d = -r.
     const std::array<double, 9> jl = lab_jacobian(xyz, cs_.white);
     std::array<double, 9> j{};
@@ -109,21 +117,12 @@ SigmoidFit SigmoidFitter::fit(const Vec3d& rgb, const Vec3d& start) const {
         for (size_t k = 0; k < 3; ++k) j[3 * a + b] += jl[3 * a + k] * j_xyz[3 * k + b];
     Vec3d d;
     if (!solve3(j, {-r[0], -r[1], -r[2]}, &d)) break;
-    // Halve the step until the residual falls.
-    bool improved = false;
-    for (int h = 0; h < 20 && !improved; ++h) {
-      const Vec3d c{f.c[0] + d[0], f.c[1] + d[1], f.c[2] + d[2]};
-      std::array<double, 9> jn;
-      Vec3d xn;
-      const Vec3d rn = residual(c, &jn, &xn);
-      if (norm(rn) < norm(r)) {
-        f.c = c, r = rn, j_xyz = jn, xyz = xn;
-        improved = true;
-      } else {
-        for (double& x : d) x *= 0.5;
-      }
-    }
-    if (!improved) break;
+    Vec3d c{f.c[0] + d[0], f.c[1] + d[1], f.c[2] + d[2]};
+    const double largest = std::max({c[0], c[1], c[2]});
+    if (largest > kMaxCoefficient)
+      for (double& x : c) x *= kMaxCoefficient / largest;
+    f.c = c;
+    r = residual(c, &j_xyz, &xyz);
   }
   f.residual = norm(r);
   return f;

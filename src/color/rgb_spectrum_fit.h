@@ -14,6 +14,12 @@
 
 namespace lantern {
 
+// The largest coefficient a fit may reach (one beyond scales all three
+// down to it), and the Gauss-Newton steps it takes at most: Jakob &
+// Hanika's optimiser, rgb2spec_opt, fits so.
+inline constexpr double kMaxCoefficient = 200.0;
+inline constexpr int kFitSteps = 15;
+
 struct SigmoidFit {
   std::array<double, 3> c{0.0, 0.0, 0.0};  // c0, c1, c2 over t in [0, 1]
   double residual = 0.0;                   // CIELAB distance left

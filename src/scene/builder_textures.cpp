@@ -245,7 +245,10 @@ void SceneBuilder::texture(const std::string& name, const std::string& value_typ
   n.is_float = is_float;
   RGBTextureRef result;  // a float texture's value in every channel
   if (cls == "constant") {
-    result = RGBTextureRef::constant(constant("value", 1.f));
+    // A spectrum's value keeps its spectrum (given by samples, or a colour
+    // of another space) as a material's constant parameter does.
+    if (is_float || ps.get_texture("value")) result = RGBTextureRef::constant(constant("value", 1.f));
+    else result = rgb_texture(ps, "value", RGB(1.f));
   } else if (cls == "imagemap") {
     std::string file = ps.get_string("filename", "");
     if (file.empty()) ps.fail("imagemap texture needs a \"filename\"");
