@@ -36,11 +36,13 @@ inline bool reads_spectrum(const RGBTextureRef& t, const SampledWavelengths& l) 
 inline Spectrum reflectance(const TexturePools& tex, const RGBTextureRef& t, const TextureContext& c,
                             const SampledWavelengths& l) {
   if (reads_spectrum(t, l)) return clamp(sampled_constant(tex, t, l), 0.f, 1.f);
+  if (!l.is_rgb() && tex.spectral_tree(t)) return clamp(tex.evaluate_spectrum(t, c, l, true), 0.f, 1.f);
   return albedo_spectrum(tex.evaluate_reflectance(t, c), l);
 }
 inline Spectrum coefficient(const TexturePools& tex, const RGBTextureRef& t, const TextureContext& c,
                             const SampledWavelengths& l) {
   if (reads_spectrum(t, l)) return max(sampled_constant(tex, t, l), Spectrum(0.f));
+  if (!l.is_rgb() && tex.spectral_tree(t)) return tex.evaluate_spectrum(t, c, l, false);
   return unbounded_spectrum(tex.evaluate(t, c), l);
 }
 // pbrt-v4's conductor given by its head-on reflectance r: eta 1 and the k

@@ -99,6 +99,13 @@ FloatTextureRef SceneBuilder::float_texture(const ParamSet& ps, const std::strin
 }
 
 RGBTextureRef SceneBuilder::add_texture_node(TextureNode n) {
+  // Kinds with children: spectral where a child holds a spectrum.
+  const bool parent = n.kind == TextureKind::Checkerboard || n.kind == TextureKind::Dots ||
+                      n.kind == TextureKind::Scale || n.kind == TextureKind::Mix || n.kind == TextureKind::DirectionMix;
+  auto spectral = [&](const RGBTextureRef& r) {
+    return r.spectrum >= 0 || (r.node >= 0 && scene_.textures.nodes[size_t(r.node)].spectral);
+  };
+  n.spectral = parent && !n.is_float && (spectral(n.tex1) || (n.kind != TextureKind::Scale && spectral(n.tex2)));
   scene_.textures.nodes.push_back(std::move(n));
   return RGBTextureRef{RGB(0.f), int32_t(scene_.textures.nodes.size() - 1), -1};
 }

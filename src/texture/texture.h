@@ -61,6 +61,10 @@ struct TextureNode {
   float max_anisotropy = 8.f;
   WrapMode wrap = WrapMode::Repeat;
   bool invert = false;
+  // A leaf below (tex1 or tex2, or deeper) holds a spectrum (given by
+  // samples, or a colour of a space other than sRGB): the spectral
+  // renderer evaluates the tree by wavelength (evaluate_spectrum).
+  bool spectral = false;
 };
 
 struct TexturePools {
@@ -84,8 +88,20 @@ struct TexturePools {
     return clamp(evaluate(t, c), RGB(0.f), RGB(1.f));
   }
 
+  // A tree with a spectrum among its leaves, at the wavelengths, as
+  // pbrt-v4 evaluates its spectrum textures: each leaf's colour becomes a
+  // spectrum (an albedo, clamped into [0, 1], or an unbounded value) and
+  // the nodes combine spectra. Other trees are evaluated in colour and
+  // the result turned into a spectrum (the materials' kernels,
+  // material/bsdf_kernel.h), which keeps their images as they were.
+  bool spectral_tree(const RGBTextureRef& t) const { return t.node >= 0 && nodes[size_t(t.node)].spectral; }
+  Spectrum evaluate_spectrum(const RGBTextureRef& t, const TextureContext& c, const SampledWavelengths& l,
+                             bool albedo) const;
+
  private:
   RGB evaluate_node(const TextureNode& n, const TextureContext& c) const;
+  Spectrum blend_spectrum(float w, const RGBTextureRef& a, const RGBTextureRef& b, const TextureContext& c,
+                          const SampledWavelengths& l, bool albedo) const;
 };
 
 }  // namespace lantern
