@@ -11,6 +11,7 @@
 #include "guiding/directional_tree.h"
 #include "guiding/sd_tree.h"
 #include "integrator/guided_scatter.h"
+#include "integrator/guiding_field.h"
 #include "lantern/error.h"
 #include "lantern/render.h"
 #include "lantern/scene.h"
@@ -407,3 +408,64 @@ TEST(Guiding, ResumesWithTheFieldItLearnt) {
   EXPECT_THROW(render(*scene, o), InputError);
   std::remove(o.checkpoint_path.c_str());
 }
+
+// The field's bytes in a checkpoint: a learnt field comes back bit for bit,
+// and bytes that cannot be a field (cut short, a count beyond them, a node
+// with two parents or none, another scene's bounds) are refused with an
+// error, never a crash or a walk without end. (A damaged file fails its
+// checksum first; these are files whose checksum was made to fit.)
+TEST(Guiding, FieldBytesRoundTripAndBadOnesAreRefused) {
+  const Vec3 lo(-1.f), hi(2.f);
+  GuidingField field(lo, hi, 64);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  for (int iteration = 0; iteration < 3; ++iteration) {
+    std::vector<GuideRecord> records;
+    for (int i = 0; i < 30000; ++i) {
+      const Vec3 p = lo + (hi - lo) * Vec3(u(rng), u(rng), u(rng));
+      GuideRecord r{};
+      r.leaf = field.tree().leaf_of(p);
+      r.bin = uint8_t(i % SDTree::kNormalBins);
+      r.cell = field.tree().leaf(r.leaf).learning[r.bin].cell_of(Vec2(0.1f + 0.3f * u(rng), u(rng)));
+      r.energy = 1.f + u(rng);
+      r.second = r.energy, r.bsdf_pdf = 0.3f, r.guide_pdf = -1.f;
+      records.push_back(r);
+    }
+    field.deposit(records);
+    field.end_iteration();
+  }
+  const std::string bytes = field.save();
+  ASSERT_GT(field.tree().leaves().size(), 1u);  // (it split)
+  GuidingField restored(lo, hi, 64);
+  restored.restore(bytes);
+  EXPECT_EQ(restored.save(), bytes);
+  EXPECT_EQ(restored.iteration(), field.iteration());
+
+  auto refused = [&](std::string b) {
+    GuidingField f(lo, hi, 64);
+    EXPECT_THROW(f.restore(b), std::runtime_error);
+    EXPECT_EQ(f.iteration(), 0u);  // (left as it was)
+  };
+  refused(bytes.substr(0, bytes.size() / 2));
+  refused(bytes + "x");
+  // Layout: u32 iteration, u8 done, the tree: Vec3 lo, float extent, u8
+  // trained, u64 node count, nodes of (u32 child[2], u32 leaf, u8 axis).
+  constexpr size_t kNodeCount = 4 + 1 + 12 + 4 + 1, kFirstNode = kNodeCount + 8;
+  std::string huge = bytes;
+  std::memset(huge.data() + kNodeCount, 0xff, 8);
+  refused(huge);
+  std::string half = bytes;  // the root's children 0 and 1: neither a leaf nor an inner node
+  const uint32_t children[2] = {0, 1};
+  std::memcpy(half.data() + kFirstNode, children, sizeof children);
+  refused(half);
+  std::string shared = bytes;  // both children the same node: a node with two parents
+  uint32_t root[2];
+  std::memcpy(root, bytes.data() + kFirstNode, sizeof root);
+  ASSERT_NE(root[0], 0u);
+  root[1] = root[0];
+  std::memcpy(shared.data() + kFirstNode, root, sizeof root);
+  refused(shared);
+  GuidingField elsewhere(lo, hi + Vec3(1.f), 64);
+  EXPECT_THROW(elsewhere.restore(bytes), std::runtime_error);
+}
+

@@ -1,5 +1,6 @@
 #include "color/cie_daylight.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 

@@ -53,7 +53,7 @@ std::vector<std::array<double, 3>> fit_table_column(const SigmoidFitter& fitter,
 // sRGB's, but fitted only where looked up: a colour's cell's eight nodes,
 // the columns through them fitted when first needed (about 1 ms each)
 // and kept. Its answers are the whole table's, bit for bit. What the scene
-// builder reads colours of other spaces with (rec2020, dci-p3), whose
+// builder reads colours of other spaces with (rec2020, dci-p3, aces2065-1), whose
 // tables the build does not make. Not thread-safe.
 class LazyRGBToSpectrumTable {
  public:

@@ -84,7 +84,10 @@ void write_checkpoint(const std::string& path, const CheckpointInfo& info, const
       w.put(end);
     }
     film.write_state(w);
-    if (!info.learnt.empty()) w.put_vector(std::vector<char>(info.learnt.begin(), info.learnt.end()));
+    if (!info.learnt.empty()) {
+      w.put(uint64_t(info.learnt.size()));
+      w.write(info.learnt.data(), info.learnt.size());
+    }
     uint64_t h = w.hash.h;
     out.write(reinterpret_cast<const char*>(&h), sizeof h);
     if (!out.flush()) {
@@ -153,12 +156,10 @@ CheckpointInfo read_file(const std::string& path, const std::string* expected, F
     const uint64_t size = std::filesystem::file_size(path, ec);
     const std::streamoff at = in.tellg();
     const uint64_t left = ec || at < 0 || uint64_t(at) > size ? 0 : size - uint64_t(at);
-    try {
-      const std::vector<char> learnt = r.get_vector<char>(left);
-      info.learnt.assign(learnt.begin(), learnt.end());
-    } catch (const std::runtime_error&) {
-      throw InputError({path, 0, 0}, "file is damaged (the learnt state's length)");
-    }
+    const uint64_t n = r.get<uint64_t>();
+    if (n > left) throw InputError({path, 0, 0}, "file is damaged (the learnt state's length)");
+    info.learnt.resize(size_t(n));
+    r.read(info.learnt.data(), size_t(n));
   }
   uint64_t computed = r.hash.h, stored = 0;
   if (!in.read(reinterpret_cast<char*>(&stored), sizeof stored)) throw InputError({path, 0, 0}, "file is truncated");
@@ -226,6 +227,11 @@ CheckpointInfo read_checkpoint_pieces(const std::string& path, const std::string
       }
     }
     if (absorbed) continue;
+    // (A learnt state belongs to the units of one process: pieces of
+    // several cannot be joined into one.)
+    if (!first && (!all.learnt.empty() || !infos[i].learnt.empty()))
+      throw InputError({pieces[i], 0, 0}, "holds what its render learnt (a guiding field), as does another piece: "
+                                          "pieces of a render that learns cannot be joined");
     if (first) {
       all = infos[i];
       first = false;

@@ -1,6 +1,7 @@
 #include "guiding/directional_tree.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace lantern {
 
@@ -159,11 +160,24 @@ void DirectionalTree::read_state(StateReader& in) {
   if (node.empty() || energy.size() != 4 * node.size())
     throw std::runtime_error("a directional tree of " + std::to_string(node.size()) + " nodes and " +
                              std::to_string(energy.size()) + " sums");
-  // Children after their parent (so every walk from the root ends).
+  // A tree: every node but the root the child of exactly one node, after
+  // it, no deeper than kMaxDepth (so every walk from the root ends soon);
+  // energies finite and not negative, shares of them in [0, 1].
+  std::vector<uint8_t> parents(node.size(), 0), depth(node.size(), 0);
   for (size_t n = 0; n < node.size(); ++n)
-    for (uint32_t c : node[n].child)
-      if (c != 0 && (c <= n || c >= node.size()))
+    for (uint32_t c : node[n].child) {
+      if (c == 0) continue;
+      if (c <= n || c >= node.size() || parents[c]++ > 0 || depth[n] >= kMaxDepth)
         throw std::runtime_error("a directional tree whose node " + std::to_string(n) + " has child " + std::to_string(c));
+      depth[c] = uint8_t(depth[n] + 1);
+    }
+  for (size_t n = 1; n < node.size(); ++n)
+    if (parents[n] != 1) throw std::runtime_error("a directional tree whose node " + std::to_string(n) + " has no parent");
+  for (double e : energy)
+    if (!(e >= 0.0 && e < std::numeric_limits<double>::infinity())) throw std::runtime_error("a directional tree's energy is " + std::to_string(e));
+  for (const Node& n : node)
+    for (float p : n.probability)
+      if (!(p >= 0.f && p <= 1.f)) throw std::runtime_error("a directional tree's share is " + std::to_string(p));
   node_ = std::move(node);
   energy_ = std::move(energy);
 }

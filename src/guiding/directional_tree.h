@@ -49,7 +49,9 @@ class DirectionalTree {
 
   // The tree as it is, for a checkpoint (what read_state restores bit for
   // bit). read_state throws std::runtime_error for a tree that cannot be
-  // (a child before its parent or past the end, sums that do not fit).
+  // (a node with no parent or two, a child before its parent or past the
+  // end, deeper than kMaxDepth, energies negative or not finite, or
+  // counts of nodes and sums that do not fit).
   void write_state(StateWriter& out) const;
   void read_state(StateReader& in);
 

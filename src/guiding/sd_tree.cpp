@@ -130,15 +130,29 @@ void SDTree::read_state(StateReader& in) {
     n.leaf = in.get<uint32_t>();
     n.axis = in.get<uint8_t>();
   }
+  // A leaf takes at least 12 trees of one node (80 bytes each) and 356
+  // bytes of counts, size, shares and moments: more leaves than the bytes
+  // left could hold are damage.
   const uint64_t leaf_count = in.get<uint64_t>();
-  if (leaf_count == 0 || leaf_count > in.left() / 64) throw std::runtime_error("a guiding tree of " + std::to_string(leaf_count) + " leaves");
-  // Children after their parent (every walk from the root ends), leaves in the list.
+  if (leaf_count == 0 || leaf_count > in.left() / 1316)
+    throw std::runtime_error("a guiding tree of " + std::to_string(leaf_count) + " leaves");
+  // A tree: every node but the root the child of one node, after it, at
+  // most kMaxDepth deep (every walk from the root ends soon); leaves in
+  // the list.
+  constexpr int kMaxDepth = 192;  // (a float's extent halves 24 times per axis at most: 72 levels)
+  std::vector<uint8_t> parents(nodes.size(), 0), depth(nodes.size(), 0);
   for (size_t i = 0; i < nodes.size(); ++i) {
     const Node& n = nodes[i];
     const bool leaf = n.child[0] == 0 && n.child[1] == 0;
-    const bool inner = n.child[0] > i && n.child[1] > i && n.child[0] < node_count && n.child[1] < node_count;
+    const bool inner = n.child[0] > i && n.child[1] > i && n.child[0] < node_count && n.child[1] < node_count &&
+                       n.child[0] != n.child[1] && depth[i] < kMaxDepth;
     if ((!leaf && !inner) || n.axis > 2 || (leaf && n.leaf >= leaf_count))
       throw std::runtime_error("a guiding tree whose node " + std::to_string(i) + " cannot be");
+    if (inner)
+      for (uint32_t c : n.child) {
+        if (parents[c]++ > 0) throw std::runtime_error("a guiding tree whose node " + std::to_string(c) + " has two parents");
+        depth[c] = uint8_t(depth[i] + 1);
+      }
   }
   std::vector<Leaf> leaves(leaf_count);
   for (Leaf& l : leaves) {
@@ -151,6 +165,12 @@ void SDTree::read_state(StateReader& in) {
     l.alpha = in.get<decltype(l.alpha)>();
     l.moment = in.get<decltype(l.moment)>();
     l.moment_records = in.get<decltype(l.moment_records)>();
+    // (records halve at each split: a count far beyond any render's would
+    // split a leaf into more than memory holds.)
+    const bool fine = l.records < (uint64_t(1) << 40) && l.size.x > 0.f && l.size.y > 0.f && l.size.z > 0.f &&
+                      std::isfinite(l.size.x + l.size.y + l.size.z) &&
+                      std::all_of(l.alpha.begin(), l.alpha.end(), [](float a) { return a >= 0.f && a <= 1.f; });
+    if (!fine) throw std::runtime_error("a guiding leaf with " + std::to_string(l.records) + " records, or a size or share that cannot be");
   }
   nodes_ = std::move(nodes);
   leaves_ = std::move(leaves);

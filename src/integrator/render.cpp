@@ -15,6 +15,7 @@
 #include <exception>
 #include <filesystem>
 #include <mutex>
+#include <new>
 #include <optional>
 #include <stdexcept>
 #include <thread>
@@ -499,6 +500,9 @@ RenderResult RenderSession::render_all() {
       try {
         if (checkpoints.learnt().empty()) throw std::runtime_error("it holds no guiding field");
         guiding->restore(checkpoints.learnt());
+      } catch (const std::bad_alloc&) {
+        throw InputError({opt.checkpoint_path, 0, 0}, "checkpoint cannot be resumed with --guide: its guiding field is "
+                                                      "larger than memory holds");
       } catch (const std::runtime_error& e) {
         throw InputError({opt.checkpoint_path, 0, 0}, std::string("checkpoint cannot be resumed with --guide: ") + e.what());
       }

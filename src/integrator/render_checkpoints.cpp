@@ -149,7 +149,11 @@ CheckpointInfo start_checkpointing(const RenderOptions& opt, const RenderHooks& 
 
 void Checkpointer::write_to(const std::string& path, const Film& film) {
   info_.elapsed_seconds = elapsed();
-  if (learnt_) info_.learnt = learnt_();
+  // (What was learnt goes to checkpoints, which a run resumes from; a
+  // film file, which `lantern merge` adds up, has no use for it.)
+  const bool checkpoint = path == own_path();
+  if (learnt_ && checkpoint) info_.learnt = learnt_();
+  else info_.learnt.clear();
   write_checkpoint(path, info_, film);
   last_ = Clock::now();
   if (hooks_.checkpoint_written && path == own_path()) hooks_.checkpoint_written();

@@ -33,23 +33,36 @@ inline Spectrum sampled_constant(const TexturePools& tex, const RGBTextureRef& t
 inline bool reads_spectrum(const RGBTextureRef& t, const SampledWavelengths& l) {
   return t.spectrum >= 0 && t.node < 0 && !l.is_rgb();
 }
+// Whether a reflectance is read by wavelength: a spectrum, or a texture
+// tree with one among its leaves (TexturePools::evaluate_albedo).
+inline bool reads_albedo_spectrum(const TexturePools& tex, const RGBTextureRef& t, const SampledWavelengths& l) {
+  return reads_spectrum(t, l) || (!l.is_rgb() && tex.spectral_tree(t));
+}
 inline Spectrum reflectance(const TexturePools& tex, const RGBTextureRef& t, const TextureContext& c,
                             const SampledWavelengths& l) {
   if (reads_spectrum(t, l)) return clamp(sampled_constant(tex, t, l), 0.f, 1.f);
-  if (!l.is_rgb() && tex.spectral_tree(t)) return clamp(tex.evaluate_spectrum(t, c, l, true), 0.f, 1.f);
+  if (!l.is_rgb() && tex.spectral_tree(t)) return clamp(tex.evaluate_albedo(t, c, l), 0.f, 1.f);
   return albedo_spectrum(tex.evaluate_reflectance(t, c), l);
+}
+// A reflectance times a scale, clamped into [0, 1] after it (pbrt-v4's
+// diffusetransmission).
+inline Spectrum scaled_reflectance(const TexturePools& tex, const RGBTextureRef& t, float scale, const TextureContext& c,
+                                   const SampledWavelengths& l) {
+  if (reads_albedo_spectrum(tex, t, l)) return clamp(scale * reflectance(tex, t, c, l), 0.f, 1.f);
+  return albedo_spectrum(clamp(scale * tex.evaluate(t, c), 0.f, 1.f), l);
 }
 inline Spectrum coefficient(const TexturePools& tex, const RGBTextureRef& t, const TextureContext& c,
                             const SampledWavelengths& l) {
   if (reads_spectrum(t, l)) return max(sampled_constant(tex, t, l), Spectrum(0.f));
-  if (!l.is_rgb() && tex.spectral_tree(t)) return tex.evaluate_spectrum(t, c, l, false);
   return unbounded_spectrum(tex.evaluate(t, c), l);
 }
 // pbrt-v4's conductor given by its head-on reflectance r: eta 1 and the k
 // that gives r.
 inline void conductor_from_reflectance(const TexturePools& tex, const RGBTextureRef& t, const TextureContext& c,
                                        const SampledWavelengths& l, Spectrum* eta, Spectrum* k) {
-  const Spectrum r = min(albedo_spectrum(clamp(tex.evaluate(t, c), 0.f, 0.9999f), l), Spectrum(0.9999f));
+  const Spectrum r = min(reads_albedo_spectrum(tex, t, l) ? reflectance(tex, t, c, l)
+                                                         : albedo_spectrum(clamp(tex.evaluate(t, c), 0.f, 0.9999f), l),
+                         Spectrum(0.9999f));
   *eta = Spectrum(1.f);
   *k = 2.f * sqrt(r) / sqrt(Spectrum(1.f) - r);
 }
@@ -87,8 +100,8 @@ inline DielectricBSDF make_bsdf(const DielectricMaterial& m, const TextureContex
 }
 inline DiffuseTransmissionBSDF make_bsdf(const DiffuseTransmissionMaterial& m, const TextureContext& c,
                                          const TexturePools& tex, const SampledWavelengths& l) {
-  return DiffuseTransmissionBSDF{albedo_spectrum(clamp(m.scale * tex.evaluate(m.reflectance, c), 0.f, 1.f), l),
-                                 albedo_spectrum(clamp(m.scale * tex.evaluate(m.transmittance, c), 0.f, 1.f), l)};
+  return DiffuseTransmissionBSDF{scaled_reflectance(tex, m.reflectance, m.scale, c, l),
+                                 scaled_reflectance(tex, m.transmittance, m.scale, c, l)};
 }
 inline ThinDielectricBSDF make_bsdf(const ThinDielectricMaterial& m, const TextureContext& c, const TexturePools& tex,
                                     const SampledWavelengths& l) {

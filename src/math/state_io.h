@@ -55,8 +55,9 @@ class StateReader {
   template <class T>
   std::vector<T> get_vector(uint64_t most) {
     const uint64_t n = get<uint64_t>();
-    if (n > most || n > left() / sizeof(T)) throw std::runtime_error("a list of " + std::to_string(n) + " elements, more than " +
-                                           std::to_string(most) + " (damaged)");
+    if (n > most || n > left() / sizeof(T))
+      throw std::runtime_error("a list of " + std::to_string(n) + " elements, more than " +
+                               (n > most ? std::to_string(most) : "the bytes left hold") + " (damaged)");
     std::vector<T> v(static_cast<size_t>(n));
     read(v.data(), v.size() * sizeof(T));
     return v;

@@ -321,8 +321,10 @@ void SceneBuilder::texture(const std::string& name, const std::string& value_typ
       n.tex1 = child("tex", 1.f);
       n.tex2 = broadcast(float_texture(ps, "scale", 1.f));
     }
-    result = n.tex1.is_constant() && n.tex2.is_constant() ? RGBTextureRef::constant(n.tex1.value * n.tex2.value[0])
-                                                          : add_texture_node(n);
+    // Two constants fold into one, unless the first holds a spectrum (the
+    // node then scales it by wavelength).
+    const bool fold = n.tex1.is_constant() && n.tex2.is_constant() && n.tex1.spectrum < 0;
+    result = fold ? RGBTextureRef::constant(n.tex1.value * n.tex2.value[0]) : add_texture_node(n);
   } else if (cls == "mix" || cls == "directionmix") {
     n.kind = cls == "mix" ? TextureKind::Mix : TextureKind::DirectionMix;
     n.tex1 = child("tex1", 0.f);

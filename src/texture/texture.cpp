@@ -78,45 +78,40 @@ RGB TexturePools::evaluate_node(const TextureNode& n, const TextureContext& c) c
   return RGB(0.f);
 }
 
-Spectrum TexturePools::evaluate_spectrum(const RGBTextureRef& t, const TextureContext& c, const SampledWavelengths& l,
-                                         bool albedo) const {
+Spectrum TexturePools::evaluate_albedo(const RGBTextureRef& t, const TextureContext& c,
+                                       const SampledWavelengths& l) const {
   if (t.node < 0 && t.spectrum >= 0) {
     const DenselySampledSpectrum& d = spectra[size_t(t.spectrum)];
     Spectrum v;
     for (int i = 0; i < kSpectrumSamples; ++i) v[i] = d(l.nm[size_t(i)]);
-    return albedo ? clamp(v, 0.f, 1.f) : max(v, Spectrum(0.f));
+    return clamp(v, 0.f, 1.f);
   }
   const TextureNode* n = t.node < 0 ? nullptr : &nodes[size_t(t.node)];
-  if (!n || !n->spectral) {
-    const RGB v = evaluate(t, c);
-    return albedo ? albedo_spectrum(clamp(v, RGB(0.f), RGB(1.f)), l) : unbounded_spectrum(max(v, RGB(0.f)), l);
-  }
+  if (!n || !n->spectral) return albedo_spectrum(evaluate_reflectance(t, c), l);
   switch (n->kind) {
     case TextureKind::Checkerboard: {
       const float w = n->dimension == 3 ? checkerboard_3d(n->mapping.map3d(c)) : checkerboard_2d(n->mapping.map_filtered(c));
-      return blend_spectrum(w, n->tex1, n->tex2, c, l, albedo);
+      return blend_albedo(w, n->tex1, n->tex2, c, l);
     }
     case TextureKind::Dots:
-      return evaluate_spectrum(inside_polka_dot(n->mapping.map(c)) ? n->tex1 : n->tex2, c, l, albedo);
+      return evaluate_albedo(inside_polka_dot(n->mapping.map(c)) ? n->tex1 : n->tex2, c, l);
     case TextureKind::Scale: {
       const float s = evaluate(n->tex2, c)[0];
-      return s == 0.f ? Spectrum(0.f) : s * evaluate_spectrum(n->tex1, c, l, albedo);
+      return s == 0.f ? Spectrum(0.f) : s * evaluate_albedo(n->tex1, c, l);
     }
-    case TextureKind::Mix: return blend_spectrum(evaluate_float(n->amount, c), n->tex1, n->tex2, c, l, albedo);
+    case TextureKind::Mix: return blend_albedo(evaluate_float(n->amount, c), n->tex1, n->tex2, c, l);
     case TextureKind::DirectionMix:
-      return blend_spectrum(1.f - std::fabs(glm::dot(c.n, n->dir)), n->tex1, n->tex2, c, l, albedo);
-    default: {  // (no other kind has children: never spectral)
-      const RGB v = evaluate_node(*n, c);
-      return albedo ? albedo_spectrum(clamp(v, RGB(0.f), RGB(1.f)), l) : unbounded_spectrum(max(v, RGB(0.f)), l);
-    }
+      return blend_albedo(1.f - std::fabs(glm::dot(c.n, n->dir)), n->tex1, n->tex2, c, l);
+    default:  // (no other kind has children: never spectral)
+      return albedo_spectrum(clamp(evaluate_node(*n, c), RGB(0.f), RGB(1.f)), l);
   }
 }
 
-Spectrum TexturePools::blend_spectrum(float w, const RGBTextureRef& a, const RGBTextureRef& b, const TextureContext& c,
-                                      const SampledWavelengths& l, bool albedo) const {
-  if (w == 0.f) return evaluate_spectrum(a, c, l, albedo);
-  if (w == 1.f) return evaluate_spectrum(b, c, l, albedo);
-  return (1.f - w) * evaluate_spectrum(a, c, l, albedo) + w * evaluate_spectrum(b, c, l, albedo);
+Spectrum TexturePools::blend_albedo(float w, const RGBTextureRef& a, const RGBTextureRef& b, const TextureContext& c,
+                                    const SampledWavelengths& l) const {
+  if (w == 0.f) return evaluate_albedo(a, c, l);
+  if (w == 1.f) return evaluate_albedo(b, c, l);
+  return (1.f - w) * evaluate_albedo(a, c, l) + w * evaluate_albedo(b, c, l);
 }
 
 }  // namespace lantern

@@ -63,7 +63,8 @@ struct TextureNode {
   bool invert = false;
   // A leaf below (tex1 or tex2, or deeper) holds a spectrum (given by
   // samples, or a colour of a space other than sRGB): the spectral
-  // renderer evaluates the tree by wavelength (evaluate_spectrum).
+  // renderer evaluates the tree by wavelength as a reflectance
+  // (evaluate_albedo).
   bool spectral = false;
 };
 
@@ -88,20 +89,21 @@ struct TexturePools {
     return clamp(evaluate(t, c), RGB(0.f), RGB(1.f));
   }
 
-  // A tree with a spectrum among its leaves, at the wavelengths, as
-  // pbrt-v4 evaluates its spectrum textures: each leaf's colour becomes a
-  // spectrum (an albedo, clamped into [0, 1], or an unbounded value) and
-  // the nodes combine spectra. Other trees are evaluated in colour and
-  // the result turned into a spectrum (the materials' kernels,
-  // material/bsdf_kernel.h), which keeps their images as they were.
+  // A reflectance whose tree has a spectrum among its leaves, at the
+  // wavelengths, as pbrt-v4 evaluates its spectrum textures: each leaf's
+  // colour becomes an albedo spectrum (clamped into [0, 1]) and the nodes
+  // combine spectra. Other trees are evaluated in colour and the result
+  // turned into a spectrum (the materials' kernels,
+  // material/bsdf_kernel.h), which keeps their images as they were; so are
+  // trees giving unbounded values (eta, k, sigma_a): a leaf of another
+  // colour space is fitted as a reflectance when its texture is defined.
   bool spectral_tree(const RGBTextureRef& t) const { return t.node >= 0 && nodes[size_t(t.node)].spectral; }
-  Spectrum evaluate_spectrum(const RGBTextureRef& t, const TextureContext& c, const SampledWavelengths& l,
-                             bool albedo) const;
+  Spectrum evaluate_albedo(const RGBTextureRef& t, const TextureContext& c, const SampledWavelengths& l) const;
 
  private:
   RGB evaluate_node(const TextureNode& n, const TextureContext& c) const;
-  Spectrum blend_spectrum(float w, const RGBTextureRef& a, const RGBTextureRef& b, const TextureContext& c,
-                          const SampledWavelengths& l, bool albedo) const;
+  Spectrum blend_albedo(float w, const RGBTextureRef& a, const RGBTextureRef& b, const TextureContext& c,
+                        const SampledWavelengths& l) const;
 };
 
 }  // namespace lantern
