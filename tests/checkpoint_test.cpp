@@ -71,7 +71,8 @@ TEST_P(CheckpointResume, StopsAndResumesBitForBit) { expect_resumes_bit_for_bit(
 TEST(CheckpointResumeMedia, StopsAndResumesBitForBit) {
   expect_resumes_bit_for_bit("path", "zsobol", "perf/media/fog-sphere.pbrt");
   expect_resumes_bit_for_bit("bdpt", "zsobol", "perf/media/smoke-grid.pbrt");
-  expect_resumes_bit_for_bit("vcm", "zsobol", "perf/media/fog-sphere.pbrt");  // merges in the fog too
+  // (vcm's waves in media are bdpt's with merging: the Release suite's.)
+  if (!LANTERN_ASAN) expect_resumes_bit_for_bit("vcm", "zsobol", "perf/media/fog-sphere.pbrt");  // merges in the fog too
   // tracking draws its numbers from hashes of each segment, not from a
   // stream a resume would have to restore (the Release suite's check)
   if (!LANTERN_ASAN) expect_resumes_bit_for_bit("bdpt", "zsobol", "perf/media/cloud.pbrt");
@@ -186,8 +187,12 @@ RenderResult extended(const Scene& scene, RenderOptions o, uint32_t first_spp, c
 TEST(CheckpointExtend, ALargerBudgetContinuesAFinishedRenderBitForBit) {
   auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
   const std::string kCheckpoint = checkpoint_file();
-  for (const auto& [integrator, sampler, first] :
-       {std::tuple{"path", "halton", 32u}, std::tuple{"bdpt", "zsobol", 48u}, std::tuple{"vcm", "independent", 5u}}) {
+  // (Under the sanitizers bdpt's alone: the extension's code is the same
+  // for all three; which samples continue which is the Release suite's.)
+  std::vector<std::tuple<const char*, const char*, unsigned>> cases = {
+      {"path", "halton", 32u}, {"bdpt", "zsobol", 48u}, {"vcm", "independent", 5u}};
+  if (LANTERN_ASAN) cases = {{"bdpt", "zsobol", 48u}};
+  for (const auto& [integrator, sampler, first] : cases) {
     RenderOptions o = small_render(integrator, sampler);
     o.spp = 64;
     const RenderResult straight = render(*scene, o);

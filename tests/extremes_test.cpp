@@ -120,7 +120,10 @@ TEST_P(ScaleInvariance, SameImageFrom1em4To1e5WithoutLeaks) {
   };
   RegionStats unit = stats_at(1.0);
   EXPECT_GT(unit.mean[0][0], 0.01);
-  for (double s : {1e-4, 1e3, 1e5}) {
+  // (Under the sanitizers the two extremes: the memory checks need the
+  // code paths, not every scale.)
+  const std::vector<double> scales = LANTERN_ASAN ? std::vector<double>{1e-4, 1e5} : std::vector<double>{1e-4, 1e3, 1e5};
+  for (double s : scales) {
     SCOPED_TRACE("scale " + num(s));
     EXPECT_LT(max_z(stats_at(s), unit), 5.0);
   }
