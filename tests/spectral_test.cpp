@@ -24,6 +24,18 @@
 namespace lantern {
 namespace {
 
+// Pixel (1, 1) of a render at maxdepth 1: what a camera sees directly.
+std::array<double, 3> direct_colour(const Scene& scene, int spp, bool spectral) {
+  RenderOptions o;
+  o.spp = spp;
+  o.maxdepth = 1;
+  o.spectral = spectral;
+  const Image img = render(scene, o).image;
+  std::array<double, 3> m{};
+  for (int c = 0; c < 3; ++c) m[size_t(c)] = img.at(1, 1)[c];
+  return m;
+}
+
 // sRGB's matrix from its primaries and the tabulated D65 agrees with IEC
 // 61966-2-1's to the table's precision, and inverts.
 TEST(Spectral, SrgbMatricesFromPrimaries) {
@@ -335,14 +347,7 @@ Film "rgb" "integer xresolution" 4 "integer yresolution" 4
 WorldBegin
 LightSource "infinite" )" + L + "\n",
                                               "illuminant.pbrt");
-    RenderOptions o;
-    o.spp = 256;
-    o.maxdepth = 1;
-    o.spectral = spectral;
-    const Image img = render(*scene, o).image;
-    std::array<double, 3> m{};
-    for (int c = 0; c < 3; ++c) m[size_t(c)] = img.at(1, 1)[c];
-    return m;
+    return direct_colour(*scene, 256, spectral);
   };
   const auto a = sky(R"("spectrum L" "stdillum-A")", false), bb = sky(R"("blackbody L" 2856)", false);
   const auto d65 = sky(R"("spectrum L" "stdillum-D65")", false);
@@ -481,14 +486,7 @@ Material "diffuse" "rgb reflectance" [ )" + reflectance + R"( ]
 Shape "trianglemesh" "point3 P" [-3 -3 0  3 -3 0  3 3 0  -3 3 0] "integer indices" [0 1 2 0 2 3]
 )",
                                               "aces.pbrt");
-    RenderOptions o;
-    o.spp = 64;
-    o.maxdepth = 1;
-    o.spectral = spectral;
-    const Image img = render(*scene, o).image;
-    std::array<double, 3> m{};
-    for (int c = 0; c < 3; ++c) m[size_t(c)] = img.at(1, 1)[c];
-    return m;
+    return direct_colour(*scene, 64, spectral);
   };
   const ColorSpace& aces = *ColorSpace::named("aces2065-1");
   const ColorSpace& srgb = ColorSpace::srgb();
