@@ -12,6 +12,7 @@
 #include "material/bsdf_kernel.h"
 #include "scene/scene.h"
 #include "expect_error.h"
+#include "sanitizer.h"
 #include "stat_compare.h"
 #include "math/rng.h"
 
@@ -238,12 +239,17 @@ void expect_agree(const Estimate& a, const Estimate& ref, const std::string& wha
 
 // The grid: view angle x roughness x base reflectance, with the
 // default thin absorbing layer.
+// (Under the sanitizers the grid's corners: its code paths, not all its
+// numbers, which the Release suite holds.)
 TEST(LayeredBSDF, CoatedDiffuseAlbedoMatchesAnalogSimulation) {
-  for (float roughness : {0.f, 0.1f, 0.3f})
-    for (float R : {0.8f, 0.4f, 0.1f}) {
+  const std::vector<float> roughnesses = LANTERN_ASAN ? std::vector<float>{0.f, 0.3f} : std::vector<float>{0.f, 0.1f, 0.3f};
+  const std::vector<float> bases = LANTERN_ASAN ? std::vector<float>{0.8f} : std::vector<float>{0.8f, 0.4f, 0.1f};
+  const std::vector<float> angles = LANTERN_ASAN ? std::vector<float>{0.f, 75.f} : std::vector<float>{0.f, 45.f, 75.f};
+  for (float roughness : roughnesses)
+    for (float R : bases) {
       Layer l{roughness, R, 0.01f, 0.f, 0.f};
       CoatedDiffuseBSDF b = make_coated(l);
-      for (float theta : {0.f, 45.f, 75.f}) {
+      for (float theta : angles) {
         Vec3 wo = view(theta);
         double se;
         double a = AnalogSlab(l).albedo(wo, 60000, 3, &se);
@@ -264,6 +270,7 @@ TEST(LayeredBSDF, ScatteringLayersMatchAnalogSimulation) {
       {0.f, 0.9f, 0.01f, 0.f, 0.f, 3}, {0.05f, 0.6f, 2.f, 0.f, 0.f},
   };
   for (const Layer& l : layers) {
+    if (LANTERN_ASAN && &l != &layers[1] && &l != &layers[3]) continue;  // (a scattering layer and a short walk)
     CoatedDiffuseBSDF b = make_coated(l);
     for (float theta : {10.f, 60.f}) {
       Vec3 wo = view(theta);
@@ -294,6 +301,7 @@ TEST(LayeredBSDF, CoatedConductorAlbedoMatchesAnalogSimulation) {
                           conductor(0.f, 0.2f, 0.01f, 0.f, 0.f), conductor(0.3f, 0.1f, 0.01f, 0.f, 0.f),
                           conductor(0.05f, 0.3f, 0.5f, 0.7f, 0.3f)};
   for (const Layer& l : layers) {
+    if (LANTERN_ASAN && &l != &layers[0] && &l != &layers[4]) continue;  // (the mirror and the scattering layer)
     CoatedConductorBSDF b = make_coated_conductor(l);
     for (float theta : {10.f, 60.f}) {
       Vec3 wo = view(theta);
