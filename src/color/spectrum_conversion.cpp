@@ -12,11 +12,7 @@ namespace lantern {
 namespace {
 
 // 1 / the integral of D65 times y-bar (1 nm steps, as the tables' whites).
-float white_normalisation() {
-  double y = 0.0;
-  for (int nm = 360; nm <= 830; ++nm) y += double(cie_d65(float(nm))) * double(cie1931_cmf(float(nm))[1]);
-  return float(1.0 / y);
-}
+float white_normalisation() { return float(1.0 / illuminant_luminance(cie_d65)); }
 
 // Scenes repeat their colours (a material's constant, a light's), and the
 // table's lookup is a search and 24 loads: each thread keeps the last
