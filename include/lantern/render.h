@@ -162,9 +162,10 @@ struct RenderStats {
   // half-buffers estimate it (its camera samples'); -1 otherwise.
   double estimated_relmse = -1.0;
   // With path guiding: the field's learning iterations completed, its
-  // spatial leaves, directional nodes (sampled and learning) and bytes.
+  // spatial leaves, directional nodes (sampled and learning) and bytes, and
+  // the leaves whose paths in a medium sample a distribution learnt there.
   uint32_t guiding_iterations = 0;
-  size_t guiding_leaves = 0, guiding_nodes = 0, guiding_bytes = 0;
+  size_t guiding_leaves = 0, guiding_nodes = 0, guiding_bytes = 0, guiding_medium_leaves = 0;
 
   // Subpath vertices on surfaces, and why subpaths ended (escaped, absorbed,
   // roulette, maxdepth), summed over all samples.

@@ -66,6 +66,7 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
     j["guiding"] = {{"iterations", s.guiding_iterations},
                     {"spatial_leaves", s.guiding_leaves},
                     {"directional_nodes", s.guiding_nodes},
+                    {"medium_leaves", s.guiding_medium_leaves},
                     {"bytes", s.guiding_bytes}};
   j["light_paths"] = s.light_paths;
   j["seconds"] = {{"load", run.load_seconds}, {"bvh_build", run.scene_info.bvh_build_seconds}, {"render", s.seconds}};

@@ -54,7 +54,7 @@ void SDTree::split(uint32_t n, uint32_t axis, uint64_t limit) {
 }
 
 void SDTree::choose_alphas(Leaf& l) {
-  for (uint32_t b = 0; b < kNormalBins; ++b) {
+  for (uint32_t b = 0; b < kBins; ++b) {
     if (l.moment_records[b] >= kAlphaMinRecords) {
       const auto& m = l.moment[b];
       l.alpha[b] = kAlphas[size_t(std::min_element(m.begin(), m.end()) - m.begin())];
@@ -76,7 +76,7 @@ void SDTree::update(uint32_t iteration) {
     if (nodes_[n].child[0] == 0) split(n, nodes_[n].axis, limit);
   trained_ = false;
   for (Leaf& l : leaves_) {
-    for (uint32_t b = 0; b < kNormalBins; ++b) {
+    for (uint32_t b = 0; b < kBins; ++b) {
       l.sampled[b] = std::move(l.learning[b]);
       l.learning[b] = l.sampled[b].refined(settings_.directional_threshold);
       trained_ = trained_ || l.sampled[b].total() > 0.0;
@@ -88,7 +88,7 @@ void SDTree::update(uint32_t iteration) {
 size_t SDTree::memory_bytes() const {
   size_t b = nodes_.capacity() * sizeof(Node) + leaves_.capacity() * sizeof(Leaf);
   for (const Leaf& l : leaves_)
-    for (uint32_t k = 0; k < kNormalBins; ++k) b += l.sampled[k].memory_bytes() + l.learning[k].memory_bytes();
+    for (uint32_t k = 0; k < kBins; ++k) b += l.sampled[k].memory_bytes() + l.learning[k].memory_bytes();
   return b;
 }
 
@@ -104,7 +104,7 @@ void SDTree::write_state(StateWriter& out) const {
   }
   out.put(uint64_t(leaves_.size()));
   for (const Leaf& l : leaves_) {
-    for (uint32_t b = 0; b < kNormalBins; ++b) {
+    for (uint32_t b = 0; b < kBins; ++b) {
       l.sampled[b].write_state(out);
       l.learning[b].write_state(out);
     }
@@ -130,11 +130,11 @@ void SDTree::read_state(StateReader& in) {
     n.leaf = in.get<uint32_t>();
     n.axis = in.get<uint8_t>();
   }
-  // A leaf takes at least 12 trees of one node (80 bytes each) and 356
+  // A leaf takes at least 14 trees of one node (80 bytes each) and 412
   // bytes of counts, size, shares and moments: more leaves than the bytes
   // left could hold are damage.
   const uint64_t leaf_count = in.get<uint64_t>();
-  if (leaf_count == 0 || leaf_count > in.left() / 1316)
+  if (leaf_count == 0 || leaf_count > in.left() / 1532)
     throw std::runtime_error("a guiding tree of " + std::to_string(leaf_count) + " leaves");
   // A tree: every node but the root the child of one node, after it, at
   // most kMaxDepth deep (every walk from the root ends soon); leaves in
@@ -156,7 +156,7 @@ void SDTree::read_state(StateReader& in) {
   }
   std::vector<Leaf> leaves(leaf_count);
   for (Leaf& l : leaves) {
-    for (uint32_t b = 0; b < kNormalBins; ++b) {
+    for (uint32_t b = 0; b < kBins; ++b) {
       l.sampled[b].read_state(in);
       l.learning[b].read_state(in);
     }

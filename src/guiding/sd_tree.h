@@ -14,7 +14,8 @@
 //
 // Unlike the paper's tree, a leaf keeps one directional distribution per
 // orientation of the surface (six bins: the normal's largest component and
-// its sign, the normal turned towards the side the path arrived from). A
+// its sign, the normal turned towards the side the path arrived from), and
+// a seventh for the vertices that scatter in a medium there. A
 // cell of the paper's size often holds both sides of a wall, or a floor and
 // the wall it meets; one distribution for all of them sends a path on the
 // dark side of a wall towards the light on the bright side, below its own
@@ -51,6 +52,8 @@ struct GuidingSettings {
 class SDTree {
  public:
   static constexpr uint32_t kNormalBins = 6;
+  static constexpr uint32_t kMediumBin = kNormalBins;  // vertices in a medium
+  static constexpr uint32_t kBins = kNormalBins + 1;
   // The bin of a (unit) normal: its largest component's axis and sign.
   static uint32_t normal_bin(const Vec3& n) {
     const Vec3 a = glm::abs(n);
@@ -63,14 +66,14 @@ class SDTree {
   static constexpr uint32_t kAlphaMinRecords = 256;  // guided records a choice needs
 
   struct Leaf {
-    std::array<DirectionalTree, kNormalBins> sampled, learning;
+    std::array<DirectionalTree, kBins> sampled, learning;
     uint64_t records = 0;  // this iteration's
     Vec3 size{0.f};        // the extents of its box
-    std::array<float, kNormalBins> alpha;
+    std::array<float, kBins> alpha;
     // This iteration's second moments per candidate, and the records they
     // came from.
-    std::array<std::array<double, kAlphas.size()>, kNormalBins> moment{};
-    std::array<uint32_t, kNormalBins> moment_records{};
+    std::array<std::array<double, kAlphas.size()>, kBins> moment{};
+    std::array<uint32_t, kBins> moment_records{};
     Leaf() { alpha.fill(kFirstAlpha); }
   };
   struct Node {

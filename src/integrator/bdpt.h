@@ -139,7 +139,8 @@ class Bdpt {
   void merge_at_eye_vertex(BdptWave& w, uint32_t slot, const Vertex& v) const;
   void prepare_merging(const WaveDesc& wave, BdptWave& w) const;
   MediumVertex medium_vertex(const BdptWave& w, uint32_t i) const;  // ray i's scattering point
-  PathEnd scatter_in_medium(BdptWave& w, SubpathPool& sub, uint32_t i, Vec2 u2, float u_rr, bool light) const;
+  PathEnd scatter_in_medium(BdptWave& w, SubpathPool& sub, uint32_t i, Vec2 u2, float u_rr, bool light,
+                            const GuideAt& guide = {}, float uc = 0.f, ScatterSample* drawn = nullptr) const;
   void eye_medium_stage(BdptWave& w) const;
   void light_medium_stage(BdptWave& w) const;
   void light_medium_arrival(BdptWave& w, uint32_t i) const;

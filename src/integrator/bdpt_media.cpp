@@ -127,15 +127,22 @@ MergeKind Bdpt::light_vertex_merging(const LightVertexPool& v, uint32_t j) const
 }
 
 // Continues a subpath from a medium vertex by sampling the phase function
-// (exactly: the throughput keeps its value). light: the subpath kind.
-PathEnd Bdpt::scatter_in_medium(BdptWave& w, SubpathPool& sub, uint32_t i, Vec2 u2, float u_rr, bool light) const {
+// (exactly: the throughput keeps its value), or on a guided eye subpath
+// the mixture of it and the guide (the throughput divides by the mixture's
+// density, MIS keeps the phase function's: integrator/shade.h says why).
+// light: the subpath kind. *drawn: what was drawn.
+PathEnd Bdpt::scatter_in_medium(BdptWave& w, SubpathPool& sub, uint32_t i, Vec2 u2, float u_rr, bool light,
+                                const GuideAt& guide, float uc, ScatterSample* drawn) const {
   const uint32_t slot = w.active[i];
   const MediumHandle m = w.ends.medium[i];
   const HenyeyGreenstein phase{scene_.media.g(m)};
-  float pdf = 0.f;
   const Vec3 wo = -glm::normalize(w.rays.direction(i));
-  const Vec3 wi = phase.sample(wo, u2, &pdf);
-  if (!(pdf > 0.f)) return PathEnd::Absorbed;
+  const auto d = sample_phase_scatter(phase, wo, guide, uc, u2);
+  if (!d) return PathEnd::Absorbed;
+  if (drawn) *drawn = *d;
+  const Vec3 wi = d->wi;
+  const float pdf = d->bsdf_pdf;
+  sub.beta[slot] *= d->weight;
   mis_after_scatter(sub.mis[slot], 1.f, pdf, pdf, false, w.mis, medium_merging());
   if (!survives_roulette(sub.beta[slot], sub.eta_scale[slot], light ? sub.rr_scale[slot] : 1.f, w.depth >= 2, u_rr))
     return PathEnd::Roulette;
@@ -162,9 +169,19 @@ void Bdpt::eye_medium_stage(BdptWave& w) const {
       connect_light_vertices(w, slot, v);
     }
     if (w.shadow.rays.count >= kMaxPendingConnections) flush_connections(w);
+    const GuidingField::Site site = guiding_ ? guiding_->medium_site(v.p) : GuidingField::Site{};
+    ScatterSample drawn;
     const PathEnd end =
-        scatter_in_medium(w, w.eye, i, s.get2d(dim + dims::kEyeBsdfDirection), s.get1d(dim + dims::kEyeRoulette), false);
-    if (end != PathEnd::Count) ++w.stats.eye_ends[size_t(end)];
+        scatter_in_medium(w, w.eye, i, s.get2d(dim + dims::kEyeBsdfDirection), s.get1d(dim + dims::kEyeRoulette), false,
+                          site.guide, site.guide ? s.get1d(dim + dims::kEyeBsdfComponent) : 0.f, &drawn);
+    if (end != PathEnd::Count) {
+      ++w.stats.eye_ends[size_t(end)];
+      continue;
+    }
+    if (guiding_ && guiding_->learning())
+      w.guide.push(slot, site.leaf, v.p, site.normal_bin,
+                   drawn.guide_pdf >= 0.f ? drawn.square : equal_area_sphere_to_square(drawn.wi), drawn.pdf,
+                   drawn.bsdf_pdf, drawn.bsdf_pdf, drawn.guide_pdf, w.eye.beta[slot]);
   }
 }
 

@@ -24,6 +24,7 @@
 #include "material/bsdf_common.h"
 #include "math/equal_area.h"
 #include "math/frame.h"
+#include "medium/henyey_greenstein.h"
 
 namespace lantern {
 
@@ -96,6 +97,39 @@ std::optional<ScatterSample> sample_scatter(const BSDF& bsdf, const Frame& frame
   if (!(s.pdf > 0.f)) return std::nullopt;
   s.weight = f * (std::fabs(s.wi_local.z) / s.pdf);
   s.transmission = s.wi_local.z * wo.z < 0.f;
+  return s;
+}
+
+// The same mixture at a vertex in a medium, whose "BSDF" is the phase
+// function (no cosine, directions in world space). The phase technique
+// samples the phase function exactly, so its estimate is p_phase / p_mix;
+// the guide's is phase(wi) / p_mix too. bsdf_pdf holds the phase density
+// (what MIS with light sampling and the bidirectional weights use).
+inline std::optional<ScatterSample> sample_phase_scatter(const HenyeyGreenstein& phase, const Vec3& wo,
+                                                         const GuideAt& guide, float uc, Vec2 u2) {
+  ScatterSample s;
+  if (!guide || uc < guide.alpha) {
+    s.wi = phase.sample(wo, u2, &s.bsdf_pdf);
+  } else {
+    float square_pdf = 0.f;
+    s.square = guide.tree->sample(u2, &square_pdf);
+    s.wi = glm::normalize(equal_area_square_to_sphere(s.square));
+    s.bsdf_pdf = phase.p(wo, s.wi);
+    s.guide_pdf = sphere_pdf(square_pdf);
+  }
+  if (!(s.bsdf_pdf > 0.f)) return std::nullopt;
+  if (!guide) {
+    s.pdf = s.bsdf_pdf;
+    s.weight = Spectrum(1.f);
+    return s;
+  }
+  if (s.guide_pdf < 0.f) {
+    s.square = equal_area_sphere_to_square(s.wi);
+    s.guide_pdf = guide.pdf(s.square);
+  }
+  s.pdf = guide.mix(s.bsdf_pdf, s.guide_pdf);
+  if (!(s.pdf > 0.f)) return std::nullopt;
+  s.weight = Spectrum(s.bsdf_pdf / s.pdf);
   return s;
 }
 

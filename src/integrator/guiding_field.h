@@ -44,6 +44,14 @@ class GuidingField {
     s.guide = at(s.leaf, s.normal_bin);
     return s;
   }
+  // Where a vertex in a medium at p finds the field: its leaf's medium bin.
+  Site medium_site(const Vec3& p) const {
+    Site s;
+    s.leaf = tree_.leaf_of(p);
+    s.normal_bin = SDTree::kMediumBin;
+    s.guide = at(s.leaf, s.normal_bin);
+    return s;
+  }
   // The distribution paths sample in a leaf for a normal's bin, if it has
   // one (none before the first iteration ends, or where no energy came).
   GuideAt at(uint32_t leaf, uint32_t normal_bin) const {

@@ -52,7 +52,8 @@ void PathTracer::add_volume_emission(PathWave& w, uint32_t i, const Spectrum& be
 
 // A vertex in a medium: next-event estimation with the phase function, then
 // the path goes on in a direction sampled from it (exactly, so the
-// throughput does not change).
+// throughput does not change), or, in a guided render, from the mixture of
+// it and the guide's medium distribution (integrator/guided_scatter.h).
 void PathTracer::medium_scatter_stage(PathWave& w) const {
   const Scene& sc = scene_;
   const uint32_t dim = dims::vertex(w.bounce());
@@ -66,19 +67,30 @@ void PathTracer::medium_scatter_stage(PathWave& w) const {
     path_next_event(sc, light_sampler_, w, slot, MediumVertex{phase, p, wo, m, w.ends.sigma_t[i]},
                     s.get1d(dim + dims::kEyeLightSelect), s.get2d(dim + dims::kEyeLightPosition), volume_number(w, slot),
                     settings_.maxdepth);
-    float pdf = 0.f;
-    const Vec3 wi = phase.sample(wo, s.get2d(dim + dims::kEyeBsdfDirection), &pdf);
+    const GuidingField::Site site = guiding_ ? guiding_->medium_site(p) : GuidingField::Site{};
+    const float uc = site.guide ? s.get1d(dim + dims::kEyeBsdfComponent) : 0.f;
+    const auto drawn = sample_phase_scatter(phase, wo, site.guide, uc, s.get2d(dim + dims::kEyeBsdfDirection));
     const float u_rr = s.get1d(dim + dims::kEyeRoulette);
-    w.prev_pdf[slot] = pdf;
+    if (!drawn) {
+      ++w.stats.eye_ends[size_t(PathEnd::Absorbed)];
+      continue;
+    }
+    const Vec3 wi = drawn->wi;
+    w.beta[slot] *= drawn->weight;
+    w.prev_pdf[slot] = drawn->bsdf_pdf;  // MIS with light sampling: the phase function's density
     w.prev_specular[slot] = 0;
     if (!survives_roulette(w.beta[slot], w.eta_scale[slot], 1.f, w.depth >= 2, u_rr)) {
       ++w.stats.eye_ends[size_t(PathEnd::Roulette)];
       continue;
     }
-    if (!is_finite(w.beta[slot]) || !(pdf > 0.f)) {
+    if (!is_finite(w.beta[slot])) {
       ++w.stats.eye_ends[size_t(PathEnd::Absorbed)];
       continue;
     }
+    if (guiding_ && guiding_->learning())
+      w.guide.push(slot, site.leaf, p, site.normal_bin,
+                   drawn->guide_pdf >= 0.f ? drawn->square : equal_area_sphere_to_square(wi), drawn->pdf,
+                   drawn->bsdf_pdf, drawn->bsdf_pdf, drawn->guide_pdf, w.beta[slot]);
     w.hits.alive[i] = 1;
     w.prev_p[slot] = p;
     w.prev_n[slot] = Vec3(0.f);

@@ -567,9 +567,11 @@ RenderResult RenderSession::render_all() {
   if (guiding) {
     res.stats.guiding_iterations = guiding->iteration();
     res.stats.guiding_leaves = guiding->tree().leaves().size();
-    for (const SDTree::Leaf& l : guiding->tree().leaves())
-      for (uint32_t b = 0; b < SDTree::kNormalBins; ++b)
+    for (const SDTree::Leaf& l : guiding->tree().leaves()) {
+      for (uint32_t b = 0; b < SDTree::kBins; ++b)
         res.stats.guiding_nodes += l.sampled[b].node_count() + l.learning[b].node_count();
+      if (l.sampled[SDTree::kMediumBin].total() > 0.0) ++res.stats.guiding_medium_leaves;
+    }
     res.stats.guiding_bytes = guiding->tree().memory_bytes();
   }
   res.stats.seconds = std::chrono::duration<double>(Clock::now() - s.start).count();
