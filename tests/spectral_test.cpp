@@ -519,31 +519,99 @@ Shape "trianglemesh" "point3 P" [-3 -3 0  3 -3 0  3 3 0  -3 3 0] "integer indice
 // it, by sRGB's table) the sky came out (0.609, 0.072, 0.054) where it is
 // (0.996, 0.110, 0.068) (checked).
 TEST(Spectral, MediaCoefficientsOfOtherSpacesKeepTheirSpectra) {
-  const auto scene = load_scene_from_string(R"(
+  // The same coefficient as a homogeneous medium's and as an rgbgrid's
+  // eight samples (a grid's values are read as pbrt-v4's RGBGridMedium
+  // reads them: by the space's table; the samples lie at the centres of
+  // the grid's cells, 1.5 from the middle, so the sphere sees them
+  // constant); in RGB, converted into sRGB and clamped into its gamut,
+  // both alike. Read as sRGB values, as they were before, the grid came
+  // out (0.497, 0.090, 0.057) with sampled wavelengths and (0.670, 0.091,
+  // 0.061) in RGB (checked).
+  std::string absorbing, clear;
+  for (int i = 0; i < 8; ++i) absorbing += " 0.1 0.6 0.7", clear += " 0 0 0";
+  const std::vector<std::string> media = {
+      R"(MakeNamedMedium "m" "string type" "homogeneous" "rgb sigma_a" [ 0.1 0.6 0.7 ] "rgb sigma_s" [ 0 0 0 ] "float scale" 2)",
+      R"(MakeNamedMedium "m" "string type" "rgbgrid" "integer nx" 2 "integer ny" 2 "integer nz" 2
+  "point3 p0" [ -3 -3 -3 ] "point3 p1" [ 3 3 3 ] "rgb sigma_a" [)" +
+          absorbing + R"( ] "rgb sigma_s" [)" + clear + R"( ] "float scale" 2)"};
+  LazyRGBToSpectrumTable rec2020(*ColorSpace::named("rec2020"));
+  const double m = 2.0 * 0.7;  // unbounded: 2m times the shape of rgb / 2m, m the largest channel
+  const SigmoidPolynomial shape = rec2020(RGB(float(0.1 / m), float(0.6 / m), float(0.7 / m)));
+  const RGB spectral = reflectance_rgb([&](double nm) { return std::exp(-2.0 * 2.0 * m * double(shape(float(nm)))); });
+  for (const std::string& medium : media) {
+    const auto scene = load_scene_from_string(R"(
 LookAt 0 0 -3  0 0 0  0 1 0
 Camera "orthographic" "float screenwindow" [-0.02 0.02 -0.02 0.02]
 Film "rgb" "integer xresolution" 4 "integer yresolution" 4
 WorldBegin
 LightSource "infinite" "rgb L" [ 1 1 1 ]
 ColorSpace "rec2020"
-MakeNamedMedium "m" "string type" "homogeneous" "rgb sigma_a" [ 0.1 0.6 0.7 ] "rgb sigma_s" [ 0 0 0 ] "float scale" 2
+)" + medium + R"(
 MediumInterface "m" ""
 Material "interface"
 Shape "sphere" "float radius" 1
 )",
-                                            "rec2020-medium.pbrt");
-  RenderOptions o;
-  o.spp = 128;
-  o.spectral = true;
-  // (Four wavelengths a sample through a transmittance that varies 30-fold
-  // over the spectrum: the mean over independent renders, with its error.)
-  const RegionStats st = stats_of(render_runs(*scene, o, 8, 31), {{0, 0, 4, 4}});
-  LazyRGBToSpectrumTable rec2020(*ColorSpace::named("rec2020"));
-  const double m = 2.0 * 0.7;  // unbounded: 2m times the shape of rgb / 2m, m the largest channel
-  const SigmoidPolynomial shape = rec2020(RGB(float(0.1 / m), float(0.6 / m), float(0.7 / m)));
-  const RGB expected = reflectance_rgb([&](double nm) { return std::exp(-2.0 * 2.0 * m * double(shape(float(nm)))); });
-  for (size_t c = 0; c < 3; ++c)
-    EXPECT_NEAR(st.mean[0][c], expected[int(c)], 4.5 * st.std_error[0][c] + 0.002 * expected[int(c)]) << c;
+                                              "rec2020-medium.pbrt");
+    RenderOptions o;
+    o.spp = 128;
+    o.spectral = true;
+    // (Four wavelengths a sample through a transmittance that varies 30-fold
+    // over the spectrum: the mean over independent renders, with its error.)
+    const RegionStats st = stats_of(render_runs(*scene, o, 8, 31), {{0, 0, 4, 4}});
+    for (size_t c = 0; c < 3; ++c)
+      EXPECT_NEAR(st.mean[0][c], spectral[int(c)], 4.5 * st.std_error[0][c] + 0.002 * spectral[int(c)]) << c << medium;
+    // In RGB: the coefficient converted into sRGB, its negative red clamped.
+    o.spectral = false;
+    const Matrix3d to_srgb = rgb_conversion(*ColorSpace::named("rec2020"), ColorSpace::srgb(), true);
+    const RegionStats rgb = stats_of(render_runs(*scene, o, 8, 31), {{0, 0, 4, 4}});
+    for (size_t c = 0; c < 3; ++c) {
+      const double k = std::max(0.0, to_srgb[c][0] * 0.1 + to_srgb[c][1] * 0.6 + to_srgb[c][2] * 0.7);
+      EXPECT_NEAR(rgb.mean[0][c], std::exp(-2.0 * 2.0 * k), 4.5 * rgb.std_error[0][c] + 1e-3) << c << medium;
+    }
+  }
+}
+
+// An rgbgrid's Le of another colour space is that space's illuminant, as a
+// homogeneous medium's Le is (pbrt-v4: RGBIlluminantSpectrum of the space,
+// whose white for aces2065-1 is ACES's daylight): an absorbing ball glowing
+// a saturated ACES green looks the same either way, with sampled
+// wavelengths and in RGB. (The grid's Le is pbrt-v4's, 106.856895 times
+// the homogeneous medium's: Lescale undoes it.) Read as sRGB values, as
+// before, the grid glowed (0.171, 0.770, 0.086) with sampled wavelengths
+// against the homogeneous ball's (-0.421, 0.967, -0.012), and in RGB
+// (0.171, 0.770, 0.086) against (0, 0.996, 0) (checked).
+TEST(Spectral, GridEmissionOfOtherSpacesIsThatSpacesIlluminant) {
+  if (LANTERN_ASAN) GTEST_SKIP() << "statistics only: the Release suite runs it";
+  std::string absorbing, clear, glow;
+  for (int i = 0; i < 8; ++i) absorbing += " 1 1 1", clear += " 0 0 0", glow += " 0.2 0.9 0.1";
+  const std::vector<std::string> media = {
+      R"(MakeNamedMedium "m" "string type" "homogeneous" "rgb sigma_a" [ 1 1 1 ] "rgb sigma_s" [ 0 0 0 ] "rgb Le" [ 0.2 0.9 0.1 ])",
+      R"(MakeNamedMedium "m" "string type" "rgbgrid" "integer nx" 2 "integer ny" 2 "integer nz" 2
+  "point3 p0" [ -3 -3 -3 ] "point3 p1" [ 3 3 3 ] "rgb sigma_a" [)" +
+          absorbing + R"( ] "rgb sigma_s" [)" + clear + R"( ] "rgb Le" [)" + glow + R"( ] "float Lescale" 0.00935830)"};
+  for (bool spectral : {true, false}) {
+    std::vector<RegionStats> st;
+    for (const std::string& medium : media) {
+      const auto scene = load_scene_from_string(R"(
+LookAt 0 0 -3  0 0 0  0 1 0
+Camera "orthographic" "float screenwindow" [-0.5 0.5 -0.5 0.5]
+Film "rgb" "integer xresolution" 4 "integer yresolution" 4
+WorldBegin
+ColorSpace "aces2065-1"
+)" + medium + R"(
+MediumInterface "m" ""
+Material "interface"
+Shape "sphere" "float radius" 1
+)",
+                                                "aces-glow.pbrt");
+      RenderOptions o;
+      o.spp = spectral ? 256 : 16;  // (lit by D65 instead of ACES's white, the spectral glow is 8 standard errors off)
+      o.spectral = spectral;
+      st.push_back(stats_of(render_runs(*scene, o, 8, 51), {{1, 1, 2, 2}}));
+    }
+    max_z(st[0], st[1]);
+    expect_means_agree(st[0], st[1], 0.002, spectral ? "ACES glow, spectral" : "ACES glow, RGB");
+  }
 }
 
 }  // namespace

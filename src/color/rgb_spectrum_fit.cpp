@@ -180,4 +180,13 @@ SigmoidPolynomial LazyRGBToSpectrumTable::operator()(const RGB& in) {
   });
 }
 
+UnboundedSpectrum unbounded_spectrum_in(LazyRGBToSpectrumTable& table, const std::array<double, 3>& rgb) {
+  UnboundedSpectrum u;
+  const double scale = 2.0 * std::max({rgb[0], rgb[1], rgb[2]});
+  if (!(scale > 0.0)) return u;
+  u.shape = table(RGB(float(rgb[0] / scale), float(rgb[1] / scale), float(rgb[2] / scale)));
+  u.scale = float(scale);
+  return u;
+}
+
 }  // namespace lantern

@@ -11,6 +11,7 @@
 
 #include "color/color_space.h"
 #include "color/rgb_spectrum_table.h"
+#include "color/spectrum_conversion.h"
 
 namespace lantern {
 
@@ -66,6 +67,12 @@ class LazyRGBToSpectrumTable {
   std::vector<float> z_;
   std::map<int, std::vector<std::array<double, 3>>> columns_;  // by (largest * res + y) * res + x
 };
+
+// An unbounded colour of the table's space (a medium's coefficient, an
+// emitter's colour before its illuminant) as a spectrum: twice its largest
+// channel m times the reflectance the table holds for rgb / 2m, as pbrt-v4
+// makes one; zero for a colour without a positive channel.
+UnboundedSpectrum unbounded_spectrum_in(LazyRGBToSpectrumTable& table, const std::array<double, 3>& rgb);
 
 // The whole table for colour space cs at res nodes per axis (parallel).
 RGBToSpectrumTable fit_rgb_to_spectrum_table(const ColorSpace& cs, int res);

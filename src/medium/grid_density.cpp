@@ -1,5 +1,7 @@
 #include "medium/grid_density.h"
 
+#include "color/rgb_spectrum_fit.h"
+
 #include <array>
 
 namespace lantern {
@@ -193,6 +195,19 @@ RGB RgbGrid::integrate(const Vec3& o, const Vec3& d, float t0, float t1, int c, 
 const RgbGrid::Spectra& RgbGrid::spectra() const {
   SpectraOnce& cache = *spectra_;
   std::call_once(cache.once, [&] {
+    if (space) {  // by the space's own table
+      LazyRGBToSpectrumTable table(*space);
+      auto convert = [&](const std::vector<RGB>& from, std::vector<UnboundedSpectrum>& to) {
+        to.reserve(from.size());
+        for (const RGB& c : from) to.push_back(unbounded_spectrum_in(table, {double(c[0]), double(c[1]), double(c[2])}));
+      };
+      convert(own_a, cache.spectra.a);
+      convert(own_s, cache.spectra.s);
+      convert(own_Le, cache.spectra.Le);
+      cache.spectra.white = space;
+      cache.spectra.white_scale = float(1.0 / illuminant_luminance(space->illuminant));
+      return;
+    }
     auto convert = [](const std::vector<RGB>& from, std::vector<UnboundedSpectrum>& to) {
       to.reserve(from.size());
       for (const RGB& c : from) to.push_back(unbounded_spectrum_of(c));
@@ -230,8 +245,13 @@ Spectrum RgbGrid::Le_at(const Vec3& p, const SampledWavelengths& l) const {
   double f[3];
   if (Le.empty() || !locate(p, cell, f)) return Spectrum(0.f);
   const Spectra& sp = spectra();
+  Spectrum white;
+  if (sp.white)
+    for (int i = 0; i < kSpectrumSamples; ++i) white[i] = sp.white->illuminant(l.nm[size_t(i)]) * sp.white_scale;
+  else
+    white = white_illuminant(l);
   return trilinear(cell, f, [&](int x, int y, int z) { return inside(x, y, z) ? sp.Le[offset(x, y, z)].at(l) : Spectrum(0.f); }) *
-         white_illuminant(l);
+         white;
 }
 
 Spectrum RgbGrid::integrate(const Vec3& o, const Vec3& d, float t0, float t1, int c, float tau,

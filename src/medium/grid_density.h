@@ -21,6 +21,7 @@
 #include <mutex>
 #include <vector>
 
+#include "color/color_space.h"
 #include "color/spectrum_conversion.h"
 #include "math/common.h"
 
@@ -190,6 +191,13 @@ struct RgbGrid : GridLayout {
   std::vector<RGB> sigma_a, sigma_s;  // empty when not given
   RGB constant_a{0.f}, constant_s{0.f};
   std::vector<RGB> Le;  // emission samples ("Le"); empty when not given
+  // Samples given in another colour space (ColorSpace rec2020, dci-p3,
+  // aces2065-1): their values in it, which sampled wavelengths read by
+  // that space's own table, Le lit by that space's illuminant, as pbrt-v4
+  // reads them (the vectors above hold them converted into sRGB, for the
+  // RGB renderer). Null and empty for sRGB.
+  const ColorSpace* space = nullptr;
+  std::vector<RGB> own_a, own_s, own_Le;
 
   RGB sample_t(int x, int y, int z) const {
     if (!inside(x, y, z)) return RGB(0.f);
@@ -221,6 +229,8 @@ struct RgbGrid : GridLayout {
  private:
   struct Spectra {
     std::vector<UnboundedSpectrum> a, s, Le;
+    const ColorSpace* white = nullptr;  // Le's illuminant: the space's (null: D65)
+    float white_scale = 1.f;            // to luminance 1
   };
   const Spectra& spectra() const;
   Spectrum sample_t(int x, int y, int z, const Spectra& sp, const SampledWavelengths& l) const;

@@ -216,7 +216,10 @@ DensityGrid SceneBuilder::density_grid(const ParamSet& ps, const Mat4& render_fr
 }
 
 // pbrt-v4's rgbgrid: "rgb sigma_a" and/or "rgb sigma_s", one RGB value per
-// sample, times "scale"; one not given is 1 (times scale) in the box.
+// sample, times "scale"; one not given is 1 (times scale) in the box. The
+// values are in the colour space in effect: those of another than sRGB
+// are kept as given for sampled wavelengths (medium/grid_density.h) and
+// converted into sRGB (clamped into its gamut, one warning) for RGB.
 RgbGridMedium SceneBuilder::rgb_grid(const ParamSet& ps, const Mat4& render_from_medium) {
   RgbGridMedium m;
   grid_layout(ps, render_from_medium, &m.grid);
@@ -225,24 +228,36 @@ RgbGridMedium SceneBuilder::rgb_grid(const ParamSet& ps, const Mat4& render_from
   const pbrt::Param* a = ps.find("sigma_a");
   const pbrt::Param* s = ps.find("sigma_s");
   if (!a && !s) ps.fail("an rgbgrid needs \"rgb sigma_a\" and/or \"rgb sigma_s\" values");
-  auto read = [&](const pbrt::Param* p, std::vector<RGB>* out, RGB* constant, float scale) {
+  const bool other_space = ps.color_space && ps.color_space != &ColorSpace::srgb();
+  if (other_space) m.grid.space = ps.color_space;
+  auto read = [&](const pbrt::Param* p, std::vector<RGB>* out, std::vector<RGB>* own, RGB* constant, float scale,
+                  ColorUsage usage) {
     if (!p) {
       *constant = RGB(scale);
       return;
     }
     if (p->type != "rgb" && p->type != "color") ps.fail(*p, "has type \"" + p->type + "\"; expected \"rgb\" values");
     expect_grid_count(ps, *p, m.grid, 3);
+    bool warned = false;
     for (size_t i = 0; i < p->numbers.size(); i += 3) {
-      out->push_back(RGB(float(p->numbers[i]), float(p->numbers[i + 1]), float(p->numbers[i + 2])) * scale);
-      if (!is_finite(out->back())) ps.fail(*p, "values times \"scale\" must be finite");
+      const RGB given = RGB(float(p->numbers[i]), float(p->numbers[i + 1]), float(p->numbers[i + 2])) * scale;
+      if (!is_finite(given)) ps.fail(*p, "values times \"scale\" must be finite");
+      if (!other_space) {
+        out->push_back(given);
+        continue;
+      }
+      bool outside = false;
+      out->push_back(ps.to_srgb(*p, given, usage, !warned, &outside));
+      own->push_back(given);
+      warned = warned || outside;
     }
   };
-  read(a, &m.grid.sigma_a, &m.grid.constant_a, scale);
-  read(s, &m.grid.sigma_s, &m.grid.constant_s, scale);
+  read(a, &m.grid.sigma_a, &m.grid.own_a, &m.grid.constant_a, scale, ColorUsage::Unbounded);
+  read(s, &m.grid.sigma_s, &m.grid.own_s, &m.grid.constant_s, scale, ColorUsage::Unbounded);
   if (const pbrt::Param* Le = ps.find("Le")) {  // emission, as pbrt-v4: only with sigma_a
     if (!a) ps.fail(*Le, "an rgbgrid with \"Le\" needs \"rgb sigma_a\" values");
     RGB unused;
-    read(Le, &m.grid.Le, &unused, 1.f);  // "scale" is for the coefficients only
+    read(Le, &m.grid.Le, &m.grid.own_Le, &unused, 1.f, ColorUsage::Illuminant);  // "scale" is for the coefficients only
     m.Le_scale = ps.get_float("Lescale", 1.f);
     if (!(m.Le_scale >= 0.f) || !std::isfinite(m.Le_scale))
       ps.fail(*ps.find("Lescale"), "\"Lescale\" must be finite and not negative");

@@ -56,17 +56,14 @@ std::optional<UnboundedSpectrum> SceneBuilder::color_space_shape(const ParamSet&
       p.numbers.size() != 3)
     return std::nullopt;
   std::array<double, 3> rgb{p.numbers[0], p.numbers[1], p.numbers[2]};
-  double scale = 1.0;  // a reflectance: clamped into [0, 1], as pbrt-v4 clamps it
-  if (usage == ColorUsage::Reflectance) {
-    for (double& c : rgb) c = std::clamp(c, 0.0, 1.0);
-  } else {  // unbounded: 2m times the reflectance rgb / 2m, m its largest channel
-    scale = 2.0 * std::max({rgb[0], rgb[1], rgb[2]});
-    if (!(scale > 0.0)) return std::nullopt;
-    for (double& c : rgb) c /= scale;
+  if (usage != ColorUsage::Reflectance) {
+    const UnboundedSpectrum u = unbounded_spectrum_in(color_space_table(*cs), rgb);
+    return u.scale > 0.f ? std::optional(u) : std::nullopt;
   }
+  for (double& c : rgb) c = std::clamp(c, 0.0, 1.0);  // a reflectance: clamped into [0, 1], as pbrt-v4 clamps it
   UnboundedSpectrum u;
   u.shape = color_space_table(*cs)(RGB(float(rgb[0]), float(rgb[1]), float(rgb[2])));
-  u.scale = float(scale);
+  u.scale = 1.f;
   return u;
 }
 

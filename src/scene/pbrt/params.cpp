@@ -156,11 +156,13 @@ std::optional<std::string> ParamSet::get_texture(const std::string& name) const 
   return p->strings[0];
 }
 
-RGB ParamSet::to_srgb(const Param& p, const RGB& c, ColorUsage usage, bool warn_gamut) const {
+RGB ParamSet::to_srgb(const Param& p, const RGB& c, ColorUsage usage, bool warn_gamut, bool* outside) const {
   const Matrix3d m = rgb_conversion(*color_space, ColorSpace::srgb(), usage != ColorUsage::Illuminant);
   RGB r;
   for (size_t i = 0; i < 3; ++i) r[int(i)] = float(m[i][0] * c[0] + m[i][1] * c[1] + m[i][2] * c[2]);
-  if (warn_gamut && min_component(r) < -1e-5f * max_component(r) && warn && *warn)
+  const bool out = min_component(r) < -1e-5f * max_component(r);
+  if (outside) *outside = out;
+  if (warn_gamut && out && warn && *warn)
     (*warn)(p.where.str() + ": warning: " + directive + ": \"" + printable(p.name) + "\" (" + std::string(color_space->name) +
             ") lies outside sRGB's gamut, in which the RGB renderer works: there its negative part is clamped "
             "(with --spectral a material's, an emitter's or a medium's colour of its own space keeps it)");

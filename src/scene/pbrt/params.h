@@ -69,7 +69,8 @@ class ParamSet {
   // Colour c of p, in this set's colour space, in linear sRGB as get_rgb
   // converts it; `warn_gamut` false: without the warning for colours
   // outside sRGB's gamut (a second look at a colour get_rgb has read).
-  RGB to_srgb(const Param& p, const RGB& c, ColorUsage usage, bool warn_gamut = true) const;
+  // *outside, if given, says whether c lay outside it (and was clamped).
+  RGB to_srgb(const Param& p, const RGB& c, ColorUsage usage, bool warn_gamut = true, bool* outside = nullptr) const;
   // A "spectrum" parameter given by samples, inline or in a file, or a named
   // metal's measured eta or k; nullopt for any other form or when absent.
   std::optional<PiecewiseLinearSpectrum> get_sampled_spectrum(const std::string& name) const;
