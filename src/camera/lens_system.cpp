@@ -112,7 +112,7 @@ float LensSystem::front_z() const {
 ApertureMask::ApertureMask(int w, int h, std::vector<float> v) : width(w), height(h), values(std::move(v)) {
   double sum = 0.0;
   for (float& x : values) {
-    x = std::isfinite(x) ? std::fmax(x, 0.f) : 0.f;
+    x = std::isfinite(x) ? max_num(x, 0.f) : 0.f;
     sum += x;
   }
   if (width < 1 || height < 1 || size_t(width) * size_t(height) != values.size() || !(sum > 0.0))
@@ -166,7 +166,7 @@ std::optional<ApertureMask> builtin_aperture(const std::string& name) {
     for (int y = 0; y < kRes; ++y)
       for (int x = 0; x < kRes; ++x) {
         const float u = -1.f + 2.f * (float(x) + 0.5f) / kRes, w = -1.f + 2.f * (float(y) + 0.5f) / kRes;
-        v[size_t(y * kRes + x)] = std::fmax(0.f, std::exp(-(u * u + w * w)) - std::exp(-1.f));
+        v[size_t(y * kRes + x)] = max_num(0.f, std::exp(-(u * u + w * w)) - std::exp(-1.f));
       }
   } else if (name == "square") {
     for (int y = kRes / 4; y < 3 * kRes / 4; ++y)

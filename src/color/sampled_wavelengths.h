@@ -54,7 +54,7 @@ struct SampledWavelengths {
       if (nm >= kLambdaMin && nm <= kLambdaMax) {
         l.nm[size_t(i)] = nm, l.pdf[size_t(i)] = pdf;
       } else {  // (rounding at the ends of the range)
-        l.nm[size_t(i)] = std::fmin(std::fmax(nm, kLambdaMin), kLambdaMax);
+        l.nm[size_t(i)] = min_num(max_num(nm, kLambdaMin), kLambdaMax);
         l.pdf[size_t(i)] = visible_wavelength_pdf(l.nm[size_t(i)]);
       }
     }
@@ -70,7 +70,7 @@ struct SampledWavelengths {
     for (int i = 0; i < kSpectrumSamples; ++i) {
       float up = u + float(i) / float(kSpectrumSamples);
       if (up >= 1.f) up -= 1.f;
-      l.nm[size_t(i)] = std::fmin(lo + up * width, hi);
+      l.nm[size_t(i)] = min_num(lo + up * width, hi);
       l.pdf[size_t(i)] = 1.f / width;
     }
     return l;

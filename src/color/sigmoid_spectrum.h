@@ -8,6 +8,8 @@
 
 #include <cmath>
 
+#include "math/max_num.h"
+
 namespace lantern {
 
 constexpr float kLambdaMin = 360.f, kLambdaMax = 830.f;  // the visible range sampled (nm)
@@ -27,10 +29,10 @@ struct SigmoidPolynomial {
   // The largest value over the range: at an end, or at the quadratic's
   // extremum when it lies inside.
   float max_value() const {
-    float m = std::fmax((*this)(kLambdaMin), (*this)(kLambdaMax));
+    float m = max_num((*this)(kLambdaMin), (*this)(kLambdaMax));
     if (c0 != 0.f) {
       const float t = -c1 / (2.f * c0);
-      if (t > 0.f && t < 1.f) m = std::fmax(m, sigmoid((c0 * t + c1) * t + c2));
+      if (t > 0.f && t < 1.f) m = max_num(m, sigmoid((c0 * t + c1) * t + c2));
     }
     return m;
   }

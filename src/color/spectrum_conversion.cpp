@@ -36,7 +36,7 @@ SigmoidPolynomial table_lookup(const RGB& c) {
 
 // The reflectance-shaped part of an unbounded colour and its scale.
 SigmoidPolynomial unbounded_shape(const RGB& c, float* scale) {
-  const float m = std::fmax(std::fmax(c[0], c[1]), c[2]);
+  const float m = max_num(max_num(c[0], c[1]), c[2]);
   *scale = 2.f * m;
   if (!(m > 0.f)) return SigmoidPolynomial::constant(0.f);
   return table_lookup(c / *scale);

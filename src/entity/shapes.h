@@ -79,7 +79,7 @@ struct Instance {
   uint32_t motion = kStill;   // index into ShapePools::motions
 
   static Instance placed(uint32_t prototype, const Mat4& M, uint32_t motion = kStill) {
-    const float stretch = std::fmax(glm::length(Vec3(M[0])), std::fmax(glm::length(Vec3(M[1])), glm::length(Vec3(M[2]))));
+    const float stretch = max_num(glm::length(Vec3(M[0])), max_num(glm::length(Vec3(M[1])), glm::length(Vec3(M[2]))));
     return {prototype, M, glm::inverseTranspose(glm::mat3(M)), stretch, max_abs_component(Vec3(M[3])), motion};
   }
 };

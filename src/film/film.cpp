@@ -101,7 +101,7 @@ double Film::sample_variance(size_t pixel, int c) const {
   const double n = double(count_[pixel]);
   if (square_.empty() || n < 2.0) return 0.0;
   const double sum = sum_[3 * pixel + size_t(c)].value(), sq = square_[3 * pixel + size_t(c)].value();
-  return std::fmax(0.0, (sq - sum * sum / n) / (n - 1.0));
+  return max_num(0.0, (sq - sum * sum / n) / (n - 1.0));
 }
 
 void Film::add(const Film& other) {

@@ -170,8 +170,8 @@ class Film {
     if (!(max_component_ < std::numeric_limits<float>::infinity())) return c;
     const float* m = to_sensor_.data();
     const float largest =
-        std::fmax(m[0] * c[0] + m[1] * c[1] + m[2] * c[2],
-                  std::fmax(m[3] * c[0] + m[4] * c[1] + m[5] * c[2], m[6] * c[0] + m[7] * c[1] + m[8] * c[2]));
+        max_num(m[0] * c[0] + m[1] * c[1] + m[2] * c[2],
+                  max_num(m[3] * c[0] + m[4] * c[1] + m[5] * c[2], m[6] * c[0] + m[7] * c[1] + m[8] * c[2]));
     return largest > max_component_ ? c * (max_component_ / largest) : c;
   }
 

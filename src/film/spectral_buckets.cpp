@@ -40,7 +40,7 @@ constexpr float kCieYIntegral = 106.856895f;
 // film's "maxcomponentvalue" is scaled down to it.
 Spectrum clamped_spectrum(const Spectrum& L, float max_component) {
   float largest = L[0];
-  for (int i = 1; i < kSpectrumSamples; ++i) largest = std::fmax(largest, L[i]);
+  for (int i = 1; i < kSpectrumSamples; ++i) largest = max_num(largest, L[i]);
   return largest > max_component ? L * (max_component / largest) : L;
 }
 

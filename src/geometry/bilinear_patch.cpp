@@ -15,7 +15,7 @@ double det3(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) { ret
 // Real roots of c2 x^2 + c1 x + c0 = 0, in the form that loses no digits to
 // cancellation; returns how many.
 int solve_quadratic(double c2, double c1, double c0, double* r0, double* r1) {
-  const double scale = std::fmax(std::fabs(c2), std::fmax(std::fabs(c1), std::fabs(c0)));
+  const double scale = max_num(std::fabs(c2), max_num(std::fabs(c1), std::fabs(c0)));
   if (scale == 0.0) return 0;
   if (std::fabs(c2) <= 1e-12 * scale) {  // linear
     if (c1 == 0.0) return 0;
@@ -43,7 +43,7 @@ constexpr double kEdgeSlack = 1e-9;  // (u, v) this far past an edge still count
 float sample_linear(float u, float a, float b) {
   if (a == b) return u;
   const float x = u * (a + b) / (a + std::sqrt(glm::mix(a * a, b * b, u)));
-  return std::fmin(x, kOneMinusEpsilon);
+  return min_num(x, kOneMinusEpsilon);
 }
 
 }  // namespace
@@ -119,8 +119,8 @@ SurfacePoint bilinear_point(const BilinearPatchSet& s, uint32_t i, Vec2 uv) {
   Vec2 st[4];
   sp.uv = patch_corner_uvs(s, i, st) ? glm::mix(glm::mix(st[0], st[1], uv.x), glm::mix(st[2], st[3], uv.x), uv.y) : uv;
   sp.error_scale =
-      std::fmax(max_abs_component(sp.p), std::fmax(std::fmax(max_abs_component(c.p00), max_abs_component(c.p10)),
-                                                   std::fmax(max_abs_component(c.p01), max_abs_component(c.p11))));
+      max_num(max_abs_component(sp.p), max_num(max_num(max_abs_component(c.p00), max_abs_component(c.p10)),
+                                                   max_num(max_abs_component(c.p01), max_abs_component(c.p11))));
   return sp;
 }
 
@@ -183,14 +183,14 @@ Vec2 bilinear_uv_of(const PatchCorners& c, const Vec3& p) {
 
 bool is_parallelogram(const Vec3& v00, const Vec3& v10, const Vec3& v01, const Vec3& v11) {
   const float size =
-      std::fmax(std::fmax(glm::length(v10 - v00), glm::length(v01 - v00)), std::fmax(glm::length(v11 - v00), 1e-30f));
+      max_num(max_num(glm::length(v10 - v00), glm::length(v01 - v00)), max_num(glm::length(v11 - v00), 1e-30f));
   // Corners far from the origin carry the rounding of their coordinates
   // (2^-24 of their size each): a flat panel written at x = 1000 misses
   // its fourth corner by some 1e-5 and is still a parallelogram, two
   // triangles that differ from its patch by less than a float can show.
-  const float far = std::fmax(std::fmax(max_abs_component(v00), max_abs_component(v10)),
-                              std::fmax(max_abs_component(v01), max_abs_component(v11)));
-  return glm::length((v00 + v11) - (v10 + v01)) <= 1e-6f * std::fmax(size, far);
+  const float far = max_num(max_num(max_abs_component(v00), max_abs_component(v10)),
+                              max_num(max_abs_component(v01), max_abs_component(v11)));
+  return glm::length((v00 + v11) - (v10 + v01)) <= 1e-6f * max_num(size, far);
 }
 
 }  // namespace lantern

@@ -78,7 +78,7 @@ SurfacePoint curve_point(const CurveSet& c, uint32_t segment, float u, const Vec
   float zl = glm::length(z0);
   z0 = zl > 1e-6f ? z0 / zl : any_perpendicular(T);
   const Vec3 p = o + t * d;
-  const float r = std::fmax(f.radius, 1e-30f);
+  const float r = max_num(f.radius, 1e-30f);
   Vec3 n = z0, across = glm::cross(z0, T);
   if (c.type == CurveType::Ribbon) {
     // Embree's normal, on the side of the normals the curve was given.
@@ -112,8 +112,8 @@ SurfacePoint curve_point(const CurveSet& c, uint32_t segment, float u, const Vec
   // like any other, offset by a tenth of its width.
   const float normal_l1 = std::fabs(n.x) + std::fabs(n.y) + std::fabs(n.z);
   sp.error_scale = c.type == CurveType::Ribbon
-                       ? std::fmax(max_abs_component(p), 0.1f * r / kRayOffsetScale)
-                       : -std::fmax(max_abs_component(p), 2.f * r * normal_l1 / kRayOffsetScale);
+                       ? max_num(max_abs_component(p), 0.1f * r / kRayOffsetScale)
+                       : -max_num(max_abs_component(p), 2.f * r * normal_l1 / kRayOffsetScale);
   return sp;
 }
 

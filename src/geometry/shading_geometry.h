@@ -196,7 +196,7 @@ inline ShadingGeometry curve_shading_geometry(const CurveSet& c, uint32_t segmen
   const Vec2 span = c.u_range[segment];
   ShadingGeometry g;
   g.n = sp.ns;
-  g.dpdu = f.dpdu / std::fmax(span.y - span.x, 1e-30f);
+  g.dpdu = f.dpdu / max_num(span.y - span.x, 1e-30f);
   g.dpdv = (2.f * f.radius) * glm::cross(sp.ns, sp.dpdu);
   if (glm::dot(glm::cross(g.dpdu, g.dpdv), glm::cross(g.dpdu, g.dpdv)) == 0.f) coordinate_system(sp.ns, g.dpdu, g.dpdv);
   return g;

@@ -43,8 +43,8 @@ inline SurfacePoint triangle_point(const TriangleMesh& m, uint32_t prim, float b
   // quad's second triangle, is (0,0), (1,1), (0,1).
   if (m.uvs.empty()) sp.uv = !m.quads.empty() && (prim & 1) ? Vec2(b1, b1 + b2) : Vec2(b1 + b2, b2);
   else sp.uv = b0 * m.uvs[t.x] + b1 * m.uvs[t.y] + b2 * m.uvs[t.z];
-  sp.error_scale = std::fmax(max_abs_component(sp.p),
-                             std::fmax(max_abs_component(p0), std::fmax(max_abs_component(p1), max_abs_component(p2))));
+  sp.error_scale = max_num(max_abs_component(sp.p),
+                             max_num(max_abs_component(p0), max_num(max_abs_component(p1), max_abs_component(p2))));
   return sp;
 }
 
@@ -89,7 +89,7 @@ inline SurfacePoint quadric_point(const Quadric& q, Vec2 uv) {
   n = len > 0.f ? n / len : Vec3(0, 0, 1);
   sp.ng = sp.ns = q.flip_normal ? -n : n;
   sp.uv = uv;
-  sp.error_scale = std::fmax(max_abs_component(sp.p), q.error_scale);
+  sp.error_scale = max_num(max_abs_component(sp.p), q.error_scale);
   return sp;
 }
 

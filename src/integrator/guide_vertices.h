@@ -60,7 +60,7 @@ struct GuideVertices {
       int n = 0;
       for (int c = 0; c < kSpectrumSamples; ++c)
         if (beta[v][c] > 0.f) sum += after[c] / beta[v][c], ++n;
-      const float Li = n > 0 ? std::fmax(sum / float(n), 0.f) : 0.f;
+      const float Li = n > 0 ? max_num(sum / float(n), 0.f) : 0.f;
       const float energy = Li / pdf[v];
       if (!std::isfinite(energy)) continue;
       RandomStream r = RandomStream::make(key, v, 0x6775696465ULL);

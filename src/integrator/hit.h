@@ -56,7 +56,7 @@ inline SurfacePoint to_world(const Instance& inst, const SurfacePoint& local) {
   sp.ns = glm::normalize(inst.normal_to_world * local.ns);
   if (local.dpdu != Vec3(0.f)) sp.dpdu = glm::normalize(glm::mat3(M) * local.dpdu);
   sp.error_scale = std::copysign(
-      std::fmax(max_abs_component(sp.p), std::fabs(local.error_scale) * inst.stretch + inst.offset), local.error_scale);
+      max_num(max_abs_component(sp.p), std::fabs(local.error_scale) * inst.stretch + inst.offset), local.error_scale);
   return sp;
 }
 

@@ -137,7 +137,7 @@ inline Vec3 light_sample_target(const LightSample& ls) {
 inline bool survives_roulette(Spectrum& beta, float eta_scale, float rr_scale, bool eligible, float u_rr) {
   const float rr = max_component(beta * eta_scale) * rr_scale;
   if (rr < 1.f && eligible) {
-    const float q = std::fmax(0.f, 1.f - rr);
+    const float q = max_num(0.f, 1.f - rr);
     if (u_rr < q) return false;
     beta /= 1.f - q;
   }

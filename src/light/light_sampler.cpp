@@ -44,7 +44,7 @@ LightBounds patch_bounds(const BilinearPatchSet& s, uint32_t prim, const AreaLig
   const Vec3 sum = n[0] + n[1] + n[2] + n[3];
   b.w = glm::length(sum) > 0.f ? glm::normalize(sum) : Vec3(0, 0, 1);
   b.cos_theta_o = 1.f;
-  for (const Vec3& ni : n) b.cos_theta_o = std::fmin(b.cos_theta_o, glm::dot(b.w, ni));
+  for (const Vec3& ni : n) b.cos_theta_o = min_num(b.cos_theta_o, glm::dot(b.w, ni));
   if (!(glm::length(sum) > 0.f)) b.cos_theta_o = -1.f;
   b.cos_theta_e = 0.f;  // diffuse emission
   b.two_sided = a.two_sided;

@@ -126,8 +126,8 @@ inline RGB hair_sigma_a(const HairMaterial& m, const TextureContext& c, const Te
     case HairMaterial::Absorption::Melanin:
       break;
   }
-  const float ce = std::fmax(tex.evaluate_float(m.eumelanin, c), 0.f);
-  const float cp = std::fmax(tex.evaluate_float(m.pheomelanin, c), 0.f);
+  const float ce = max_num(tex.evaluate_float(m.eumelanin, c), 0.f);
+  const float cp = max_num(tex.evaluate_float(m.pheomelanin, c), 0.f);
   return ce * RGB(0.419f, 0.697f, 1.37f) + cp * RGB(0.187f, 0.4f, 1.05f);
 }
 // h from pbrt's v across the curve; the fibre's direction from the curve's
@@ -155,7 +155,7 @@ LayeredBSDF<Top, Bottom> make_layered(const Top& top, const Bottom& bottom, cons
                                       const TextureContext& c, const TexturePools& tex, const SampledWavelengths& l) {
   return LayeredBSDF<Top, Bottom>{top,
                                   bottom,
-                                  std::fmax(tex.evaluate_float(layer.thickness, c), std::numeric_limits<float>::min()),
+                                  max_num(tex.evaluate_float(layer.thickness, c), std::numeric_limits<float>::min()),
                                   reflectance(tex, layer.albedo, c, l),
                                   glm::clamp(tex.evaluate_float(layer.g, c), -0.999f, 0.999f),
                                   layer.max_depth,

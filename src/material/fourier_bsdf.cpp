@@ -71,7 +71,7 @@ float cos_delta_phi(const Vec3& a, const Vec3& b) {
 // The tabulated series' value as colour, divided by |mu_i| and, for
 // radiance crossing the boundary, by the relative index squared.
 RGB colour(const FourierTable& t, const Coefficients& c, float cos_phi, float mu_i, float mu_o, TransportMode mode) {
-  const float y = std::fmax(fourier(c.channel[0], c.m, cos_phi), 0.f);
+  const float y = max_num(fourier(c.channel[0], c.m, cos_phi), 0.f);
   float scale = mu_i != 0.f ? 1.f / std::fabs(mu_i) : 0.f;
   if (mode == TransportMode::Radiance && mu_i * mu_o > 0.f) scale /= sqr(mu_i > 0.f ? t.eta : 1.f / t.eta);
   if (t.channels == 1) return RGB(y * scale);
@@ -163,9 +163,9 @@ std::optional<BSDFSample> FourierBSDF::sample_f(const Vec3& wo, float, Vec2 u, T
   // -wi: wo's azimuth turned by phi, at zenith cosine mu_i. Seen from the
   // pole wo has no azimuth; x stands in for it (the limit's series does
   // not depend on phi).
-  const float sin_o = std::sqrt(std::fmax(sin2_o, 0.f));
+  const float sin_o = std::sqrt(max_num(sin2_o, 0.f));
   const Vec2 e1 = sin_o > 1e-6f ? Vec2(wo.x, wo.y) / sin_o : Vec2(1.f, 0.f);
-  const float sin_i = std::sqrt(std::fmax(0.f, 1.f - mu_i * mu_i));
+  const float sin_i = std::sqrt(max_num(0.f, 1.f - mu_i * mu_i));
   const float sp = std::sin(a.phi), cp = std::cos(a.phi);
   BSDFSample s;
   s.wi = -glm::normalize(Vec3(sin_i * (cp * e1.x - sp * e1.y), sin_i * (sp * e1.x + cp * e1.y), mu_i));

@@ -103,9 +103,9 @@ struct HairBSDF {
     int p = 0;
     while (p < kPMax && uc >= w[size_t(p)]) uc -= w[size_t(p++)];
     if (!(w[size_t(p)] > 0.f)) return std::nullopt;
-    uc = std::fmin(uc / w[size_t(p)], 0x1.fffffep-1f);
+    uc = min_num(uc / w[size_t(p)], 0x1.fffffep-1f);
     const Angles t = p < kPMax ? tilted(o, p) : o;
-    const float u0 = std::fmax(u.x, 1e-5f);
+    const float u0 = max_num(u.x, 1e-5f);
     const float cos_theta = 1.f + v_[p] * std::log(u0 + (1.f - u0) * std::exp(-2.f / v_[p]));
     const float sin_theta = safe_sqrt(1.f - sqr(cos_theta));
     const float sin_ti = -cos_theta * t.sin_theta + sin_theta * std::cos(2.f * kPi * u.y) * t.cos_theta;

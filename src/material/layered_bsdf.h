@@ -161,7 +161,7 @@ struct LayeredBSDF {
     // by step max_depth - 1 at the latest, and so must these.
     for (int depth = 0; depth + 1 < max_depth; ++depth) {
       if (depth > 3 && max_component(beta) < 0.25f) {  // Russian roulette
-        float q = std::fmax(0.f, 1.f - max_component(beta));
+        float q = max_num(0.f, 1.f - max_component(beta));
         if (r.next() < q) break;
         beta /= 1.f - q;
       }
@@ -235,7 +235,7 @@ struct LayeredBSDF {
     for (int depth = 0; depth < max_depth; ++depth) {
       float rr_beta = max_component(beta);
       if (depth > 3 && rr_beta < 0.25f) {
-        float q = std::fmax(0.f, 1.f - rr_beta);
+        float q = max_num(0.f, 1.f - rr_beta);
         if (r.next() < q) return std::nullopt;
         beta /= 1.f - q;
       }

@@ -49,7 +49,7 @@ struct RoughnessParams {
   bool remap = true;
 
   TrowbridgeReitz distribution(const TexturePools& tex, const TextureContext& c) const {
-    float ru = std::fmax(tex.evaluate_float(u, c), 0.f), rv = std::fmax(tex.evaluate_float(v, c), 0.f);
+    float ru = max_num(tex.evaluate_float(u, c), 0.f), rv = max_num(tex.evaluate_float(v, c), 0.f);
     return remap ? TrowbridgeReitz{std::sqrt(ru), std::sqrt(rv)} : TrowbridgeReitz{ru, rv};
   }
 };

@@ -25,7 +25,7 @@ float phi_of(const Vec3& w) { return std::atan2(w.y, w.x); }
 // The Jacobian from the unit square to solid angle, 2 pi^2 u sin(theta),
 // kept away from 0 at the pole as the format's own renderers keep it.
 float square_to_solid_angle(float u_theta, float sin_theta) {
-  return std::fmax(2.f * kPi * kPi * u_theta * sin_theta, 1e-6f);
+  return max_num(2.f * kPi * kPi * u_theta * sin_theta, 1e-6f);
 }
 
 std::string shape_text(const TensorFile::Field& f) {
@@ -128,13 +128,13 @@ Spectrum MeasuredBSDF::values(Vec2 u, float phi_o, float theta_o) const {
     float rgb[3];
     for (int c = 0; c < 3; ++c) {
       const float p[3] = {phi_o, theta_o, float(c)};
-      rgb[c] = std::fmax(brdf->rgb.evaluate(u, p), 0.f);
+      rgb[c] = max_num(brdf->rgb.evaluate(u, p), 0.f);
     }
     return Spectrum(rgb[0], rgb[1], rgb[2], rgb[1]);
   }
   for (int i = 0; i < kSpectrumSamples; ++i) {
     const float p[3] = {phi_o, theta_o, nm[size_t(i)]};
-    v[i] = std::fmax(brdf->spectra.evaluate(u, p), 0.f);
+    v[i] = max_num(brdf->spectra.evaluate(u, p), 0.f);
   }
   return v;
 }

@@ -13,7 +13,7 @@ struct TrowbridgeReitz {
 
   // Below this the surface is treated as perfectly smooth (a delta lobe):
   // the density would exceed what float sampling can represent.
-  bool effectively_smooth() const { return std::fmax(alpha_x, alpha_y) < 1e-3f; }
+  bool effectively_smooth() const { return max_num(alpha_x, alpha_y) < 1e-3f; }
 
   float D(const Vec3& wm) const {
     float t2 = tan2_theta(wm);
@@ -51,7 +51,7 @@ struct TrowbridgeReitz {
     p.y = (1.f - s) * h + s * p.y;
     float pz = safe_sqrt(1.f - p.x * p.x - p.y * p.y);
     Vec3 nh = p.x * t1 + p.y * t2 + pz * wh;
-    return glm::normalize(Vec3(alpha_x * nh.x, alpha_y * nh.y, std::fmax(1e-6f, nh.z)));
+    return glm::normalize(Vec3(alpha_x * nh.x, alpha_y * nh.y, max_num(1e-6f, nh.z)));
   }
 };
 

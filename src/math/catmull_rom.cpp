@@ -95,7 +95,7 @@ SplineSample sample_catmull_rom_2d(const std::vector<float>& nodes1, const std::
   const float mass = (target - row_mix(cdf, i)) / width;
   // Newton's method on the segment's integral, kept in a bisection
   // bracket; started where a linear density would put it.
-  float t = s.f0 != s.f1 ? (s.f0 - std::sqrt(std::fmax(0.f, s.f0 * s.f0 + 2.f * mass * (s.f1 - s.f0)))) / (s.f0 - s.f1)
+  float t = s.f0 != s.f1 ? (s.f0 - std::sqrt(max_num(0.f, s.f0 * s.f0 + 2.f * mass * (s.f1 - s.f0)))) / (s.f0 - s.f1)
                          : (s.f0 > 0.f ? mass / s.f0 : 0.5f);
   float lo = 0.f, hi = 1.f, value = s.f0;
   for (int iter = 0; iter < 100; ++iter) {

@@ -1,6 +1,7 @@
 // Small value types and constants shared by every part of the renderer.
 #pragma once
 
+#include "math/max_num.h"
 #include "math/spectrum.h"
 
 #include <glm/glm.hpp>
@@ -24,10 +25,10 @@ inline constexpr float kInfinity = std::numeric_limits<float>::infinity();
 inline constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
 
 inline float sqr(float x) { return x * x; }
-inline float safe_sqrt(float x) { return std::sqrt(std::fmax(0.f, x)); }
-inline float max_component(const Vec3& v) { return std::fmax(v.x, std::fmax(v.y, v.z)); }
+inline float safe_sqrt(float x) { return std::sqrt(max_num(0.f, x)); }
+inline float max_component(const Vec3& v) { return max_num(v.x, max_num(v.y, v.z)); }
 inline float max_abs_component(const Vec3& v) {
-  return std::fmax(std::fabs(v.x), std::fmax(std::fabs(v.y), std::fabs(v.z)));
+  return max_num(std::fabs(v.x), max_num(std::fabs(v.y), std::fabs(v.z)));
 }
 inline bool is_finite(const Vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);

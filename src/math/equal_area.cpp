@@ -39,7 +39,7 @@ float atan_unit(float x) {
 Vec2 equal_area_sphere_to_square(const Vec3& d) {
   float x = std::fabs(d.x), y = std::fabs(d.y), z = std::fabs(d.z);
   float r = safe_sqrt(1.f - z);
-  float a = std::fmax(x, y), b = std::fmin(x, y);
+  float a = max_num(x, y), b = min_num(x, y);
   b = a == 0.f ? 0.f : b / a;
   float phi = atan_unit(b) * 2.f / kPi;
   if (x < y) phi = 1.f - phi;

@@ -23,7 +23,7 @@ FourierSample sample_fourier(const float* a, int m, float u) {
   u = mirror ? 2.f * (1.f - u) : 2.f * u;
   double lo = 0.0, hi = kPi, phi = 0.5 * kPi, f = a[0];
   for (int iter = 0; iter < 100; ++iter) {
-    const double c = std::cos(phi), s = std::sqrt(std::fmax(0.0, 1.0 - c * c));
+    const double c = std::cos(phi), s = std::sqrt(max_num(0.0, 1.0 - c * c));
     double F = double(a[0]) * phi;
     f = a[0];
     double cos_prev = c, cos_cur = 1.0, sin_prev = -s, sin_cur = 0.0;

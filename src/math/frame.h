@@ -33,7 +33,7 @@ struct Frame {
 inline float cos_theta(const Vec3& w) { return w.z; }
 inline float abs_cos_theta(const Vec3& w) { return std::fabs(w.z); }
 inline float cos2_theta(const Vec3& w) { return w.z * w.z; }
-inline float sin2_theta(const Vec3& w) { return std::fmax(0.f, 1.f - cos2_theta(w)); }
+inline float sin2_theta(const Vec3& w) { return max_num(0.f, 1.f - cos2_theta(w)); }
 inline float tan2_theta(const Vec3& w) { return sin2_theta(w) / cos2_theta(w); }
 inline float cos_phi(const Vec3& w) {
   float s = std::sqrt(sin2_theta(w));
@@ -56,7 +56,7 @@ inline bool refract(const Vec3& wi, Vec3 n, float eta, float* etap, Vec3* wt) {
     cos_i = -cos_i;
     n = -n;
   }
-  float sin2_i = std::fmax(0.f, 1.f - cos_i * cos_i);
+  float sin2_i = max_num(0.f, 1.f - cos_i * cos_i);
   float sin2_t = sin2_i / (eta * eta);
   if (sin2_t >= 1.f) return false;
   float cos_t = safe_sqrt(1.f - sin2_t);

@@ -14,7 +14,7 @@ namespace {
 // running from a (at 0) to b (at 1) reaches `mass`; written without the
 // difference a - b in a denominator, so a constant density needs no case.
 float invert_linear(float a, float b, float mass) {
-  const float disc = std::fmax(a * a + 2.f * (b - a) * mass, 0.f);
+  const float disc = max_num(a * a + 2.f * (b - a) * mass, 0.f);
   const float den = a + std::sqrt(disc);
   return den > 0.f ? std::clamp(2.f * mass / den, 0.f, 1.f) : 0.f;
 }
@@ -49,7 +49,7 @@ PiecewiseLinear2D::PiecewiseLinear2D(const float* values, int nx, int ny, std::v
     float* marg = &marginal_[s * size_t(ny)];
     bool any = false;
     for (size_t i = 0; i < n; ++i) {
-      d[i] = std::isfinite(d[i]) ? std::fmax(d[i], 0.f) : 0.f;
+      d[i] = std::isfinite(d[i]) ? max_num(d[i], 0.f) : 0.f;
       any = any || d[i] > 0.f;
     }
     if (!any) std::fill(d, d + n, 1.f);  // nothing to follow: uniform
@@ -80,7 +80,7 @@ PiecewiseLinear2D::Blend PiecewiseLinear2D::blend(const float* param) const {
     if (v.size() == 1) continue;
     const int i = find_interval(int(v.size()), param[d], [&](int k) { return v[size_t(k)]; });
     float w = (param[d] - v[size_t(i)]) / (v[size_t(i) + 1] - v[size_t(i)]);
-    w = w >= 0.f ? std::fmin(w, 1.f) : 0.f;  // outside the range (or NaN): the nearest grid
+    w = w >= 0.f ? min_num(w, 1.f) : 0.f;  // outside the range (or NaN): the nearest grid
     for (int c = 0; c < b.count; ++c) {
       b.slice[c + b.count] = b.slice[c] + uint32_t(i + 1) * strides_[d];
       b.weight[c + b.count] = b.weight[c] * w;

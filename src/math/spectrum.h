@@ -18,6 +18,8 @@
 
 #include <cmath>
 
+#include "math/max_num.h"
+
 namespace lantern {
 
 inline constexpr int kSpectrumSamples = 4;  // as pbrt-v4 samples
@@ -115,12 +117,12 @@ class Channels {
   // Reductions.
   friend constexpr float max_component(const Channels& a) {
     float m = a.c_[0];
-    for (int i = 1; i < N; ++i) m = std::fmax(m, a.c_[i]);
+    for (int i = 1; i < N; ++i) m = max_num(m, a.c_[i]);
     return m;
   }
   friend constexpr float min_component(const Channels& a) {
     float m = a.c_[0];
-    for (int i = 1; i < N; ++i) m = std::fmin(m, a.c_[i]);
+    for (int i = 1; i < N; ++i) m = min_num(m, a.c_[i]);
     return m;
   }
   friend constexpr float sum(const Channels& a) {

@@ -41,7 +41,7 @@ struct Track {
   bool real() const { return t < kInfinity; }
 };
 
-inline float exponential_step(float u, float rate) { return -std::log1p(-std::fmin(u, 0x1.fffffep-1f)) / rate; }
+inline float exponential_step(float u, float rate) { return -std::log1p(-min_num(u, 0x1.fffffep-1f)) / rate; }
 
 // Delta tracking over [0, L]; `at(t, &sigma_a, &sigma_s)` gives the
 // coefficients at distance t. u: the first step's uniform number; rng

@@ -105,7 +105,7 @@ float halton_film(const HaltonLayout& h, uint64_t index, int axis, Randomization
 // loop runs until a digit no longer changes a float.
 float halton_sample(uint64_t index, int dimension, Randomization r, uint64_t seed) {
   const uint32_t base = primes()[size_t(dimension % kHaltonDimensions)];
-  if (r == Randomization::None) return std::fmin(float(radical_inverse(index, base)), kOneMinusEpsilon);
+  if (r == Randomization::None) return min_num(float(radical_inverse(index, base)), kOneMinusEpsilon);
   const uint64_t dim_seed = hash_combine(seed, uint64_t(dimension));
   // In base 2 the radical inverse is the reversed bits, and the digit
   // randomisations are the Sobol samplers' (one hash, not one per digit).
@@ -122,7 +122,7 @@ float halton_sample(uint64_t index, int dimension, Randomization r, uint64_t see
     sum += double(permutation_element(digit, base, s)) * f;
     lower = lower * base + digit + 1;  // + 1: a prefix of zeros differs from none
   }
-  return std::fmin(float(sum), kOneMinusEpsilon);
+  return min_num(float(sum), kOneMinusEpsilon);
 }
 
 }  // namespace lantern

@@ -15,14 +15,14 @@ inline float jitter_offset(bool jitter, uint64_t h) { return jitter ? bits_to_un
 
 inline float stratified_1d(uint32_t i, uint32_t n, bool jitter, uint64_t dim_hash) {
   uint32_t stratum = permutation_element(i, n, dim_hash);
-  return std::fmin((float(stratum) + jitter_offset(jitter, dim_hash ^ i)) / float(n), kOneMinusEpsilon);
+  return min_num((float(stratum) + jitter_offset(jitter, dim_hash ^ i)) / float(n), kOneMinusEpsilon);
 }
 
 inline Vec2 stratified_2d(uint32_t i, uint32_t xs, uint32_t ys, bool jitter, uint64_t dim_hash) {
   uint32_t stratum = permutation_element(i, xs * ys, dim_hash);
   float ux = jitter_offset(jitter, dim_hash ^ i), uy = jitter_offset(jitter, ~dim_hash ^ i);
-  return Vec2(std::fmin((float(stratum % xs) + ux) / float(xs), kOneMinusEpsilon),
-              std::fmin((float(stratum / xs) + uy) / float(ys), kOneMinusEpsilon));
+  return Vec2(min_num((float(stratum % xs) + ux) / float(xs), kOneMinusEpsilon),
+              min_num((float(stratum / xs) + uy) / float(ys), kOneMinusEpsilon));
 }
 
 }  // namespace lantern

@@ -226,7 +226,7 @@ void SceneBuilder::finish() {
   float radius = 1.f;
   if (glm::all(glm::lessThanEqual(scene_.bounds_lo, scene_.bounds_hi))) {  // something is traced
     center = 0.5f * (scene_.bounds_lo + scene_.bounds_hi);
-    radius = std::fmax(glm::length(scene_.bounds_hi - center), 1e-6f);
+    radius = max_num(glm::length(scene_.bounds_hi - center), 1e-6f);
   }
   volume_lights();
   finalize_lights(scene_.lights, scene_.shapes, scene_.textures, center, radius);

@@ -33,8 +33,8 @@ void SceneBuilder::add_quadric(const std::string& type, const ParamSet& ps, cons
   q.phi_max = phi_max_param(ps);
   if (type == "sphere") {
     float z0 = finite_param(ps, "zmin", -r), z1 = finite_param(ps, "zmax", r);
-    q.z_min = glm::clamp(std::fmin(z0, z1), -r, r);
-    q.z_max = glm::clamp(std::fmax(z0, z1), -r, r);
+    q.z_min = glm::clamp(min_num(z0, z1), -r, r);
+    q.z_max = glm::clamp(max_num(z0, z1), -r, r);
     q.theta_z_min = std::acos(glm::clamp(q.z_min / r, -1.f, 1.f));
     q.theta_z_max = std::acos(glm::clamp(q.z_max / r, -1.f, 1.f));
     const float sx = glm::length(Vec3(M[0])), sy = glm::length(Vec3(M[1])), sz = glm::length(Vec3(M[2]));
@@ -56,8 +56,8 @@ void SceneBuilder::add_quadric(const std::string& type, const ParamSet& ps, cons
   } else if (type == "cylinder") {
     float z0 = finite_param(ps, "zmin", -1.f), z1 = finite_param(ps, "zmax", 1.f);
     q.kind = QuadricKind::Cylinder;
-    q.z_min = std::fmin(z0, z1);
-    q.z_max = std::fmax(z0, z1);
+    q.z_min = min_num(z0, z1);
+    q.z_max = max_num(z0, z1);
   } else {  // disk
     q.kind = QuadricKind::Disk;
     q.z_min = q.z_max = finite_param(ps, "height", 0.f);

@@ -19,7 +19,7 @@ struct ColorEncoding {
   float to_linear(float v) const {
     switch (kind) {
       case Linear: return v;
-      case Gamma: return std::pow(std::fmax(v, 0.f), gamma);
+      case Gamma: return std::pow(max_num(v, 0.f), gamma);
       case SRGB: break;
     }
     return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);

@@ -41,7 +41,7 @@ FootprintModel::FootprintModel(const Camera& camera, int samples_per_pixel) : en
       keep_shorter(&min_dir_dx_, rx.d - r.d);
       keep_shorter(&min_dir_dy_, ry.d - r.d);
     }
-  spp_scale_ = std::fmax(0.125f, 1.f / std::sqrt(float(std::max(1, samples_per_pixel))));
+  spp_scale_ = max_num(0.125f, 1.f / std::sqrt(float(std::max(1, samples_per_pixel))));
 }
 
 void FootprintModel::dp_dxy(const Vec3& p, const Vec3& n, Vec3* dpdx, Vec3* dpdy) const {

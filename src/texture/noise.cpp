@@ -61,7 +61,7 @@ namespace {
 // period of about 1.99^-i, and is kept while that exceeds the footprint's
 // length (pbrt-v4: n = -1 - log2(max |dp|^2) / 2, clamped to [0, octaves]).
 float resolved_octaves(Vec3 dpdx, Vec3 dpdy, int octaves) {
-  float len2 = std::fmax(glm::dot(dpdx, dpdx), glm::dot(dpdy, dpdy));
+  float len2 = max_num(glm::dot(dpdx, dpdx), glm::dot(dpdy, dpdy));
   float n = -1.f - 0.5f * std::log2(len2);  // +inf for a zero footprint
   return std::isnan(n) ? 0.f : glm::clamp(n, 0.f, float(octaves));
 }

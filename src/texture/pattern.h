@@ -30,14 +30,14 @@ inline double filtered_square_wave(double x, double r) {
 // The weight of the second texture: 0 on even cells (tex1), 1 on odd ones,
 // in between where the footprint covers both.
 inline float checkerboard_2d(const TexCoord2D& c) {
-  double rs = 1.5 * std::fmax(std::fabs(c.dst_dx.x), std::fabs(c.dst_dy.x));
-  double rt = 1.5 * std::fmax(std::fabs(c.dst_dx.y), std::fabs(c.dst_dy.y));
+  double rs = 1.5 * max_num(std::fabs(c.dst_dx.x), std::fabs(c.dst_dy.x));
+  double rt = 1.5 * max_num(std::fabs(c.dst_dx.y), std::fabs(c.dst_dy.y));
   return float(0.5 - 0.5 * filtered_square_wave(c.st.x, rs) * filtered_square_wave(c.st.y, rt));
 }
 inline float checkerboard_3d(const TexCoord3D& c) {
   double w = 1.0;
   for (int k = 0; k < 3; ++k)
-    w *= filtered_square_wave(c.p[k], 1.5 * std::fmax(std::fabs(c.dpdx[k]), std::fabs(c.dpdy[k])));
+    w *= filtered_square_wave(c.p[k], 1.5 * max_num(std::fabs(c.dpdx[k]), std::fabs(c.dpdy[k])));
   return float(0.5 - 0.5 * w);
 }
 

@@ -46,7 +46,7 @@ float TextureCache::lookup_float(int32_t id, const TextureLookup& q) const {
   }
   if (e.channels == 4) {
     texture(id, q, 3, 1, v);
-    return std::fmin(sanitized(v[0]), 1.f);
+    return min_num(sanitized(v[0]), 1.f);
   }
   texture(id, q, 0, 3, v);
   return (sanitized(v[0]) + sanitized(v[1]) + sanitized(v[2])) / 3.f;
