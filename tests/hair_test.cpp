@@ -95,14 +95,24 @@ TEST(Hair, AbsorptionFromReflectanceAndMelanin) {
   TexturePools tex;
   HairMaterial m;
   m.by = HairMaterial::Absorption::Melanin;
-  RGB brown = hair_sigma_a(m, TextureContext{}, tex, 0.3f);  // eumelanin 1.3
+  const SampledWavelengths rgb = SampledWavelengths::rgb();
+  const Spectrum brown = hair_sigma_a(m, TextureContext{}, tex, 0.3f, rgb);  // eumelanin 1.3
   EXPECT_NEAR(brown[0], 1.3f * 0.419f, 1e-5f);
   EXPECT_NEAR(brown[2], 1.3f * 1.37f, 1e-5f);
   m.by = HairMaterial::Absorption::Reflectance;
   m.reflectance = RGBTextureRef::constant(RGB(1.f, 0.5f, 0.1f));
-  RGB s = hair_sigma_a(m, TextureContext{}, tex, 0.3f);
+  const Spectrum s = hair_sigma_a(m, TextureContext{}, tex, 0.3f, rgb);
   EXPECT_NEAR(s[0], 0.f, 1e-6f);  // white hair absorbs nothing
   EXPECT_GT(s[2], s[1]);
+  // With sampled wavelengths the reflectance is inverted wavelength by
+  // wavelength, as pbrt-v4 inverts it: at each, the albedo spectrum's
+  // value r gives (ln r / d)^2.
+  const SampledWavelengths l = SampledWavelengths::sample_visible(0.3f);
+  const Spectrum r = reflectance(tex, m.reflectance, TextureContext{}, l);
+  const Spectrum sampled = hair_sigma_a(m, TextureContext{}, tex, 0.3f, l);
+  const float d = 5.969f - 0.215f * 0.3f + 2.532f * 0.09f - 10.73f * 0.027f + 5.574f * 0.0081f + 0.245f * 0.00243f;
+  for (int i = 0; i < kSpectrumSamples; ++i)
+    EXPECT_NEAR(sampled[i], sqr(std::log(std::max(r[i], 1e-4f)) / d), 1e-4f * (1.f + sampled[i])) << l.nm[size_t(i)];
 }
 
 }  // namespace
