@@ -51,6 +51,64 @@ DirectionalTree lobed_tree(double threshold) {
 
 constexpr int kGrid = 64;
 
+// The cell of the 64 x 64 grid over the world's equal-area square that
+// direction w falls in.
+size_t grid_cell(const Vec3& w) {
+  const Vec2 p = equal_area_sphere_to_square(w);
+  return size_t(std::min(kGrid - 1, int(p.y * kGrid)) * kGrid + std::min(kGrid - 1, int(p.x * kGrid)));
+}
+
+// Chi-square of n directions binned in `observed` (grid_cell) against the
+// solid-angle density `density(p)` at point p of the square: expected
+// counts its integral over each cell, by 8 x 8 points (the guide's density
+// is constant on a cell; the other factor smooth).
+template <class Density>
+void expect_directions_follow(const std::vector<double>& observed, int n, Density density, const std::string& what) {
+  double chi2 = 0.0;
+  int dof = 0;
+  for (int by = 0; by < kGrid; ++by)
+    for (int bx = 0; bx < kGrid; ++bx) {
+      double e = 0.0;
+      for (int sy = 0; sy < 8; ++sy)
+        for (int sx = 0; sx < 8; ++sx) {
+          const Vec2 p((bx + (sx + 0.5f) / 8.f) / kGrid, (by + (sy + 0.5f) / 8.f) / kGrid);
+          e += density(p) * (4.0 * kPi / (kGrid * kGrid * 64.0));  // times the sphere's area per point
+        }
+      e *= n;
+      if (e < 5.0) continue;
+      chi2 += sqr(observed[size_t(by * kGrid + bx)] - e) / e;
+      ++dof;
+    }
+  EXPECT_LT(chi2, bsdf_checks::chi2_critical(dof - 1)) << what;
+}
+
+// n directions drawn by draw(uc, u2) (a ScatterSample, or none): the mean
+// of their estimates (none counting 0), its standard error, and their
+// directions binned by grid_cell.
+struct Draws {
+  double mean = 0.0, se = 0.0;
+  std::vector<double> observed = std::vector<double>(kGrid * kGrid, 0.0);
+};
+template <class Draw>
+Draws draw_directions(int n, uint32_t seed, Draw draw) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  Draws d;
+  double sum = 0.0, sum2 = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const float uc = u(rng);
+    const Vec2 u2(u(rng), u(rng));
+    const std::optional<ScatterSample> s = draw(uc, u2);
+    if (!s) continue;
+    const double w = s->weight[0];
+    sum += w, sum2 += w * w;
+    d.observed[grid_cell(s->wi)] += 1.0;
+  }
+  d.mean = sum / n;
+  d.se = std::sqrt((sum2 / n - d.mean * d.mean) / n);
+  return d;
+}
+
 }  // namespace
 
 TEST(DirectionalTree, DensityIntegratesToOneAndMatchesItsSamples) {
@@ -167,45 +225,16 @@ void expect_mixture_sound(const BSDF& bsdf, double albedo, const std::string& wh
   const Frame frame = Frame::from_z(glm::normalize(Vec3(0.3f, 0.2f, 1.f)));
   const Vec3 wo = glm::normalize(Vec3(0.2f, -0.1f, 1.f));  // local
   const int n = 300000;
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<float> u(0.f, 1.f);
-  double sum = 0.0, sum2 = 0.0;
-  std::vector<double> observed(kGrid * kGrid, 0.0);
-  for (int i = 0; i < n; ++i) {
-    const auto s = sample_scatter(bsdf, frame, wo, guide, u(rng), Vec2(u(rng), u(rng)), TransportMode::Radiance);
-    if (!s) continue;
-    const double w = s->weight[0];
-    sum += w, sum2 += w * w;
-    const Vec2 p = equal_area_sphere_to_square(s->wi);
-    observed[size_t(std::min(kGrid - 1, int(p.y * kGrid)) * kGrid + std::min(kGrid - 1, int(p.x * kGrid)))] += 1.0;
-  }
-  const double mean = sum / n, se = std::sqrt((sum2 / n - mean * mean) / n);
-  EXPECT_NEAR(mean, albedo, 4.0 * se + 1e-3 * albedo) << what << ": the estimates' mean is the albedo";
-  // Expected counts: the mixture density integrated over each bin, the
-  // guide's constant there, the BSDF's by 8 x 8 points.
-  double chi2 = 0.0;
-  int dof = 0;
-  for (int by = 0; by < kGrid; ++by)
-    for (int bx = 0; bx < kGrid; ++bx) {
-      double e = 0.0;
-      for (int sy = 0; sy < 8; ++sy)
-        for (int sx = 0; sx < 8; ++sx) {
-          const Vec2 p((bx + (sx + 0.5f) / 8.f) / kGrid, (by + (sy + 0.5f) / 8.f) / kGrid);
-          const Vec3 wi = frame.to_local(equal_area_square_to_sphere(p));
-          // (the guide's directions where the BSDF is zero end the path: no sample)
-          const bool reflects = bsdf.f(wo, wi, TransportMode::Radiance)[0] > 0.f;
-          const float pb = reflects ? bsdf.pdf(wo, wi, TransportMode::Radiance) : 0.f;
-          const float pg = reflects ? tree.pdf(p) * kInv4Pi : 0.f;
-          // mixture density over the sphere, times the sphere's area per point
-          e += guide.mix(pb, pg) * (4.0 * kPi / (kGrid * kGrid * 64.0));
-        }
-      e *= n;
-      const double o = observed[size_t(by * kGrid + bx)];
-      if (e < 5.0) continue;
-      chi2 += sqr(o - e) / e;
-      ++dof;
-    }
-  EXPECT_LT(chi2, bsdf_checks::chi2_critical(dof - 1)) << what;
+  const Draws d = draw_directions(n, 7, [&](float uc, Vec2 u2) {
+    return sample_scatter(bsdf, frame, wo, guide, uc, u2, TransportMode::Radiance);
+  });
+  EXPECT_NEAR(d.mean, albedo, 4.0 * d.se + 1e-3 * albedo) << what << ": the estimates' mean is the albedo";
+  expect_directions_follow(d.observed, n, [&](Vec2 p) {
+    const Vec3 wi = frame.to_local(equal_area_square_to_sphere(p));
+    // (the guide's directions where the BSDF is zero end the path: no sample)
+    const bool reflects = bsdf.f(wo, wi, TransportMode::Radiance)[0] > 0.f;
+    return reflects ? guide.mix(bsdf.pdf(wo, wi, TransportMode::Radiance), tree.pdf(p) * kInv4Pi) : 0.f;
+  }, what);
 }
 
 }  // namespace
@@ -250,38 +279,19 @@ TEST(GuidedScatter, PhaseMixtureIsUnbiasedAndFollowsItsDensity) {
   for (float g : {0.7f, -0.4f, 0.f}) {
     const HenyeyGreenstein phase{g};
     const int n = 200000;
-    std::mt19937 rng(11);
-    std::uniform_real_distribution<float> u(0.f, 1.f);
-    double sum = 0.0, sum2 = 0.0;
-    std::vector<double> observed(kGrid * kGrid, 0.0);
-    for (int i = 0; i < n; ++i) {
-      const auto s = sample_phase_scatter(phase, wo, guide, u(rng), Vec2(u(rng), u(rng)));
-      ASSERT_TRUE(s.has_value());
-      EXPECT_NEAR(s->bsdf_pdf, phase.p(wo, s->wi), 1e-4f * s->bsdf_pdf);
-      const double w = s->weight[0];
-      sum += w, sum2 += w * w;
-      const Vec2 p = equal_area_sphere_to_square(s->wi);
-      observed[size_t(std::min(kGrid - 1, int(p.y * kGrid)) * kGrid + std::min(kGrid - 1, int(p.x * kGrid)))] += 1.0;
-    }
-    const double mean = sum / n, se = std::sqrt((sum2 / n - mean * mean) / n);
-    EXPECT_NEAR(mean, 1.0, 4.0 * se + 1e-3) << "g " << g;
-    double chi2 = 0.0;
-    int dof = 0;
-    for (int by = 0; by < kGrid; ++by)
-      for (int bx = 0; bx < kGrid; ++bx) {
-        double e = 0.0;
-        for (int sy = 0; sy < 8; ++sy)
-          for (int sx = 0; sx < 8; ++sx) {
-            const Vec2 p((bx + (sx + 0.5f) / 8.f) / kGrid, (by + (sy + 0.5f) / 8.f) / kGrid);
-            const Vec3 wi = equal_area_square_to_sphere(p);
-            e += guide.mix(phase.p(wo, wi), tree.pdf(p) * kInv4Pi) * (4.0 * kPi / (kGrid * kGrid * 64.0));
-          }
-        e *= n;
-        if (e < 5.0) continue;
-        chi2 += sqr(observed[size_t(by * kGrid + bx)] - e) / e;
-        ++dof;
-      }
-    EXPECT_LT(chi2, bsdf_checks::chi2_critical(dof - 1)) << "g " << g;
+    int drawn = 0, pdf_off = 0;
+    const Draws d = draw_directions(n, 11, [&](float uc, Vec2 u2) {
+      const auto s = sample_phase_scatter(phase, wo, guide, uc, u2);
+      drawn += s.has_value();
+      pdf_off += s && std::fabs(s->bsdf_pdf - phase.p(wo, s->wi)) > 1e-4f * s->bsdf_pdf;
+      return s;
+    });
+    EXPECT_EQ(drawn, n) << "g " << g;
+    EXPECT_EQ(pdf_off, 0) << "g " << g << ": the phase function's density is the one reported";
+    EXPECT_NEAR(d.mean, 1.0, 4.0 * d.se + 1e-3) << "g " << g;
+    expect_directions_follow(d.observed, n, [&](Vec2 p) {
+      return guide.mix(phase.p(wo, equal_area_square_to_sphere(p)), tree.pdf(p) * kInv4Pi);
+    }, "g " + std::to_string(g));
   }
 }
 

@@ -511,6 +511,17 @@ Shape "trianglemesh" "point3 P" [-3 -3 0  3 -3 0  3 3 0  -3 3 0] "integer indice
   EXPECT_GE(rgb_green[0], 0.0);
 }
 
+// A sphere of radius 1 filled with medium "m" (defined by `medium`), seen
+// head-on by a 4x4 orthographic camera whose window is +-`half`; `world`
+// (lights, a colour space) comes before it.
+std::shared_ptr<Scene> medium_ball(const std::string& half, const std::string& world, const std::string& medium) {
+  return load_scene_from_string("LookAt 0 0 -3  0 0 0  0 1 0\nCamera \"orthographic\" \"float screenwindow\" [-" + half +
+                                    " " + half + " -" + half + " " + half +
+                                    "]\nFilm \"rgb\" \"integer xresolution\" 4 \"integer yresolution\" 4\nWorldBegin\n" + world +
+                                    "\n" + medium + "\nMediumInterface \"m\" \"\"\nMaterial \"interface\"\nShape \"sphere\" \"float radius\" 1\n",
+                                "medium-ball.pbrt");
+}
+
 // A medium's coefficient of rec2020 with --spectral is the unbounded
 // spectrum rec2020's own table holds for it, as pbrt-v4 makes it: the
 // white sky seen through an absorbing sphere (a chord of 2 at the middle,
@@ -539,19 +550,7 @@ TEST(Spectral, MediaCoefficientsOfOtherSpacesKeepTheirSpectra) {
   const SigmoidPolynomial shape = rec2020(RGB(float(0.1 / m), float(0.6 / m), float(0.7 / m)));
   const RGB spectral = reflectance_rgb([&](double nm) { return std::exp(-2.0 * 2.0 * m * double(shape(float(nm)))); });
   for (const std::string& medium : media) {
-    const auto scene = load_scene_from_string(R"(
-LookAt 0 0 -3  0 0 0  0 1 0
-Camera "orthographic" "float screenwindow" [-0.02 0.02 -0.02 0.02]
-Film "rgb" "integer xresolution" 4 "integer yresolution" 4
-WorldBegin
-LightSource "infinite" "rgb L" [ 1 1 1 ]
-ColorSpace "rec2020"
-)" + medium + R"(
-MediumInterface "m" ""
-Material "interface"
-Shape "sphere" "float radius" 1
-)",
-                                              "rec2020-medium.pbrt");
+    const auto scene = medium_ball("0.02", "LightSource \"infinite\" \"rgb L\" [ 1 1 1 ]\nColorSpace \"rec2020\"", medium);
     RenderOptions o;
     o.spp = 128;
     o.spectral = true;
@@ -592,18 +591,7 @@ TEST(Spectral, GridEmissionOfOtherSpacesIsThatSpacesIlluminant) {
   for (bool spectral : {true, false}) {
     std::vector<RegionStats> st;
     for (const std::string& medium : media) {
-      const auto scene = load_scene_from_string(R"(
-LookAt 0 0 -3  0 0 0  0 1 0
-Camera "orthographic" "float screenwindow" [-0.5 0.5 -0.5 0.5]
-Film "rgb" "integer xresolution" 4 "integer yresolution" 4
-WorldBegin
-ColorSpace "aces2065-1"
-)" + medium + R"(
-MediumInterface "m" ""
-Material "interface"
-Shape "sphere" "float radius" 1
-)",
-                                                "aces-glow.pbrt");
+      const auto scene = medium_ball("0.5", "ColorSpace \"aces2065-1\"", medium);
       RenderOptions o;
       o.spp = spectral ? 256 : 16;  // (lit by D65 instead of ACES's white, the spectral glow is 8 standard errors off)
       o.spectral = spectral;
