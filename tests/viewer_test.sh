@@ -20,7 +20,7 @@ fail() { echo "viewer test: $*" >&2; echo "--- viewer output:" >&2; cat "$log" >
 # Waits until the viewer's output holds `count` lines matching `pattern`.
 wait_for() {
   pattern=$1 count=$2 tries=0
-  while [ "$(grep -c -- "$pattern" "$log" || true)" -lt "$count" ]; do
+  while n=$(grep -c -- "$pattern" "$log" 2>/dev/null || true); [ "${n:-0}" -lt "$count" ]; do
     tries=$((tries + 1))
     [ $tries -le 600 ] || fail "no '$pattern' (x$count) within 60 s"
     kill -0 "$pid" 2>/dev/null || fail "the viewer exited early"
@@ -37,6 +37,9 @@ press() {
 
 cp "$src/scenes/cornell-box.pbrt" "$work/scene.pbrt"
 settings="--resolution 48 40 --spp 32 --seed 3 --integrator bdpt"
+# (The log exists before the viewer starts: the background job opens it
+# when it runs, and wait_for must not read a missing file as done.)
+: >"$log"
 "$lantern" view "$work/scene.pbrt" $settings --screenshot "$work/shot" >"$log" 2>&1 &
 pid=$!
 wait_for "^view: done 32 spp" 1
