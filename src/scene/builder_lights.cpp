@@ -6,6 +6,8 @@
 
 #include "scene/builder.h"
 
+#include "color/rgb_spectrum_fit.h"
+
 namespace lantern {
 
 using pbrt::ColorUsage;
@@ -115,13 +117,13 @@ std::optional<PiecewiseLinearSpectrum> SceneBuilder::color_space_emission(const 
     return std::nullopt;
   const RGB given(float(p->numbers[0]), float(p->numbers[1]), float(p->numbers[2]));
   const float y = luminance(ps.to_srgb(*p, given, ColorUsage::Illuminant, false));  // (get_rgb's, warned once)
-  const double m = std::max({p->numbers[0], p->numbers[1], p->numbers[2]});
-  if (!(y > 0.f) || !(m > 0.0)) return std::nullopt;
-  const SigmoidPolynomial shape = color_space_table(*cs)(
-      RGB(float(p->numbers[0] / (2.0 * m)), float(p->numbers[1] / (2.0 * m)), float(p->numbers[2] / (2.0 * m))));
+  const UnboundedSpectrum u =
+      unbounded_spectrum_in(color_space_table(*cs), {p->numbers[0], p->numbers[1], p->numbers[2]});
+  if (!(y > 0.f) || !(u.scale > 0.f)) return std::nullopt;
   const double white = 1.0 / illuminant_luminance(cs->illuminant);
-  return spectrum_every_nanometre(
-      [&](int nm) { return 2.0 * m * double(shape(float(nm))) * double(cs->illuminant(float(nm))) * white / double(y); });
+  return spectrum_every_nanometre([&](int nm) {
+    return double(u.scale) * double(u.shape(float(nm))) * double(cs->illuminant(float(nm))) * white / double(y);
+  });
 }
 
 // A light's: kept with the textures' spectra (light_spectrum, light/lights.h); -1 for none.
