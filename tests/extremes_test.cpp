@@ -234,13 +234,18 @@ TEST(ExtremeLights, LightSeenOnlyAtGrazingAngles) {
   auto scene = scene_from(
       "LookAt 0 2 4  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 50 ]\nWorldBegin\n"
       "Shape \"trianglemesh\" \"point3 P\" [ -3 0 -3  3 0 -3  3 0 3  -3 0 3 ] \"integer indices\" [ 0 2 1 0 3 2 ]\n"
-      "AttributeBegin\n AreaLightSource \"diffuse\" \"rgb L\" [ 50 50 50 ]\n"
+      "AttributeBegin\n Material \"diffuse\" \"rgb reflectance\" [ 0 0 0 ]\n"
+      " AreaLightSource \"diffuse\" \"rgb L\" [ 50 50 50 ]\n"
       " Shape \"trianglemesh\" \"point3 P\" [ -3 0.001 -2  -3 0.011 -2  -3 0.011 2  -3 0.001 2 ]"
       " \"integer indices\" [ 0 1 2 0 2 3 ]\nAttributeEnd\n");
   // The strip itself, seen edge-on in the last column, is a sliver a
   // camera ray hits about once in thousands of samples: a heavy tail the
   // path tracer cannot average in 16 x 12 samples. The regions leave it out
-  // and keep the floor it lights at grazing angles.
+  // and keep the floor it lights at grazing angles. The strip is black: a
+  // reflecting one sends 2% more light back to the floor, which bdpt finds
+  // and the path tracer almost never does (a floor point's cosine-sampled
+  // ray hits the 1 cm strip only at grazing angles; pbrt-v4's path and
+  // bdpt differ by the same 2% on that scene, 16384 and 4096 spp).
   const std::vector<Region> regions = {{0, 0, 21, 24}, {0, 0, 10, 24}, {10, 0, 11, 24}};
   auto path = render_stats(*scene, "path", 24, 24, 16, 12, regions);
   auto bdpt = render_stats(*scene, "bdpt", 24, 24, 16, 12, regions);

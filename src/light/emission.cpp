@@ -1,4 +1,5 @@
 #include "light/emission.h"
+#include "light/light_choice.h"
 #include "light/light_sampler.h"
 
 #include "math/sampling.h"
@@ -37,9 +38,10 @@ std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& s
                                         float u_select, Vec2 u_pos, Vec2 u_dir, const SampledWavelengths& l,
                                         float u_volume) {
   if (L.all.empty()) return std::nullopt;
-  float pmf;
-  size_t i = L.selection.sample_discrete(u_select, &pmf);
+  float pmf, rest;
+  size_t i = L.selection.sample_discrete(u_pos.x, &pmf, &rest);
   if (pmf == 0.f) return std::nullopt;
+  u_pos.x = light_point_coordinate(rest, pmf, u_select);
   const LightRef r = L.all[i];
   EmissionSample es;
   es.light = uint32_t(i);

@@ -26,7 +26,9 @@ struct EmissionSample {
 };
 
 // Chooses a light by power, a point on it and a direction leaving it; Le
-// at the wavelengths l.
+// at the wavelengths l. u_pos.x makes the choice and, rescaled, places the
+// point; u_select stands in for it after an unlikely choice
+// (light_choice.h).
 std::optional<EmissionSample> sample_le(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex,
                                         float u_select, Vec2 u_pos, Vec2 u_dir, const SampledWavelengths& l,
                                         float u_volume = 0.5f);

@@ -201,7 +201,7 @@ LightBvh::LightBvh(std::vector<LightBounds> bounds, std::vector<uint32_t> lights
   }
 }
 
-bool LightBvh::sample(const Vec3& p, const Vec3& n, float u, uint32_t* light, float* pmf) const {
+bool LightBvh::sample(const Vec3& p, const Vec3& n, float u, uint32_t* light, float* pmf, float* u_remapped) const {
   if (nodes_.empty()) return false;
   size_t i = 0;
   float prob = 1.f;
@@ -224,6 +224,7 @@ bool LightBvh::sample(const Vec3& p, const Vec3& n, float u, uint32_t* light, fl
   }
   *light = nodes_[i].index;
   *pmf = prob;
+  if (u_remapped) *u_remapped = u;
   return prob > 0.f;
 }
 

@@ -29,8 +29,9 @@ class LightBvh {
 
   bool empty() const { return nodes_.empty(); }
   // Chooses a light for point p with normal n (zero: none); false when
-  // none can light p. u is reused across levels.
-  bool sample(const Vec3& p, const Vec3& n, float u, uint32_t* light, float* pmf) const;
+  // none can light p. u is reused across levels; u_remapped (optional) is
+  // what is left of it at the leaf, uniform in [0, 1) given the choice.
+  bool sample(const Vec3& p, const Vec3& n, float u, uint32_t* light, float* pmf, float* u_remapped = nullptr) const;
   float pmf(const Vec3& p, const Vec3& n, uint32_t light) const;
 
   size_t node_count() const { return nodes_.size(); }

@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 
@@ -174,30 +175,39 @@ LightSampler::LightSampler(const LightPools& lights, const ShapePools& shapes, c
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-bool LightSampler::sample(const Vec3& p, const Vec3& n, float u, uint32_t* light, float* pmf) const {
+bool LightSampler::sample(const Vec3& p, const Vec3& n, float u, uint32_t* light, float* pmf,
+                          float* u_remapped) const {
   const size_t count = eligible_.size();
   if (count == 0) return false;
+  float rest = 0.5f;
+  if (!u_remapped) u_remapped = &rest;
   switch (kind_) {
     case LightSamplerKind::Power: {
-      size_t i = power_.sample_discrete(u, pmf);
+      size_t i = power_.sample_discrete(u, pmf, u_remapped);
       *light = uint32_t(i);
       return *pmf > 0.f;
     }
-    case LightSamplerKind::Uniform:
-      *light = eligible_[std::min(size_t(u * float(count)), count - 1)];
+    case LightSamplerKind::Uniform: {
+      const size_t i = std::min(size_t(u * float(count)), count - 1);
+      *light = eligible_[i];
       *pmf = 1.f / float(count);
+      *u_remapped = std::clamp(u * float(count) - float(i), 0.f, kOneMinusEpsilon);
       return true;
+    }
     case LightSamplerKind::Bvh:
       break;
   }
   if (u < p_infinite_) {
     const size_t k = infinite_.size();
-    *light = infinite_[std::min(size_t(u / p_infinite_ * float(k)), k - 1)];
+    const float x = u / p_infinite_ * float(k);
+    const size_t i = std::min(size_t(x), k - 1);
+    *light = infinite_[i];
     *pmf = p_infinite_ / float(k);
+    *u_remapped = std::clamp(x - float(i), 0.f, kOneMinusEpsilon);
     return true;
   }
   u = std::min((u - p_infinite_) / (1.f - p_infinite_), kOneMinusEpsilon);
-  if (!bvh_.sample(p, n, u, light, pmf)) return false;
+  if (!bvh_.sample(p, n, u, light, pmf, u_remapped)) return false;
   *pmf *= 1.f - p_infinite_;
   return true;
 }

@@ -29,8 +29,10 @@ class LightSampler {
   LightSampler(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex, LightSamplerKind kind);
 
   // Chooses a light (index into LightPools::all) for point p with normal n
-  // (zero: no surface); false when none can light p.
-  bool sample(const Vec3& p, const Vec3& n, float u, uint32_t* light, float* pmf) const;
+  // (zero: no surface); false when none can light p. u_remapped
+  // (optional): u rescaled within the choice's share, uniform in [0, 1)
+  // given the choice (light_choice.h).
+  bool sample(const Vec3& p, const Vec3& n, float u, uint32_t* light, float* pmf, float* u_remapped = nullptr) const;
   // The probability that sample() chooses `light` for (p, n).
   float pmf(const Vec3& p, const Vec3& n, uint32_t light) const;
   // For lights at infinity the choice does not depend on the point.

@@ -1,5 +1,6 @@
 #include "light/lights.h"
 
+#include "light/light_choice.h"
 #include "light/light_sampler.h"
 #include "math/sampling.h"
 #include "geometry/surface.h"
@@ -283,8 +284,9 @@ std::optional<LightSample> sample_light(const LightPools& L, const ShapePools& s
                                         Vec2 u, const SampledWavelengths& l, float u_volume) {
   std::optional<LightSample> ls;
   uint32_t i;
-  float pmf;
-  if (sampler.sample(p, n, u_select, &i, &pmf) && pmf != 0.f) {
+  float pmf, rest;
+  if (sampler.sample(p, n, u.x, &i, &pmf, &rest) && pmf != 0.f) {
+    u.x = light_point_coordinate(rest, pmf, u_select);
     ls.emplace();
     if (sample_light_into(L, shapes, tex, i, p, u, u_volume, l, *ls)) ls->pdf *= pmf;
     else ls.reset();

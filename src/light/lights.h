@@ -138,7 +138,9 @@ float light_power(const LightPools& lights, const LightRef& light, const Texture
 void finalize_lights(LightPools& lights, const ShapePools& shapes, const TexturePools& tex, Vec3 center, float radius);
 
 // Chooses a light for the point p with shading normal n (zero: none) and
-// samples a direction to it from p; L at the wavelengths l.
+// samples a direction to it from p; L at the wavelengths l. u.x makes the
+// choice and, rescaled, places the point; u_select stands in for it after
+// an unlikely choice (light_choice.h).
 std::optional<LightSample> sample_light(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex,
                                         const LightSampler& sampler, const Vec3& p, const Vec3& n, float u_select,
                                         Vec2 u, const SampledWavelengths& l, float u_volume = 0.5f);

@@ -44,9 +44,13 @@ float Distribution1D::sample_continuous(float u, float* pdf, size_t* offset) con
   return std::min((float(i) + du) / float(func_.size()), kOneMinusEpsilon);
 }
 
-size_t Distribution1D::sample_discrete(float u, float* pmf) const {
+size_t Distribution1D::sample_discrete(float u, float* pmf, float* u_remapped) const {
   size_t i = find_interval(u);
   if (pmf) *pmf = integral_ > 0.f ? discrete_pmf(i) : 1.f / float(func_.size());
+  if (u_remapped) {
+    const float width = cdf_[i + 1] - cdf_[i];
+    *u_remapped = width > 0.f ? glm::clamp((u - cdf_[i]) / width, 0.f, kOneMinusEpsilon) : 0.5f;
+  }
   return i;
 }
 

@@ -17,8 +17,11 @@ class Distribution1D {
   float integral() const { return integral_; }
   // Continuous sample in [0, 1); pdf is with respect to that interval.
   float sample_continuous(float u, float* pdf, size_t* offset) const;
-  // Discrete sample; pmf of the chosen index.
-  size_t sample_discrete(float u, float* pmf) const;
+  // Discrete sample; pmf of the chosen index. u_remapped (optional): where
+  // u lies within the chosen index's share of [0, 1), rescaled to [0, 1),
+  // which is uniform again given the choice (reusing it keeps a
+  // stratified u stratified; light_choice.h says when that pays).
+  size_t sample_discrete(float u, float* pmf, float* u_remapped = nullptr) const;
   float discrete_pmf(size_t i) const {
     return integral_ > 0.f ? func_[i] / (integral_ * float(func_.size())) : 0.f;
   }

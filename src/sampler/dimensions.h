@@ -14,8 +14,8 @@ inline constexpr uint32_t kFilm = 0;  // 2D
 inline constexpr uint32_t kLens = 2;  // 2D
 
 // The start of a light subpath (bdpt, lt).
-inline constexpr uint32_t kLightSelect = 4;      // 1D
-inline constexpr uint32_t kLightPosition = 5;    // 2D
+inline constexpr uint32_t kLightSelect = 4;      // 1D: the point's first coordinate after an unlikely choice (light_choice.h)
+inline constexpr uint32_t kLightPosition = 5;    // 2D: the choice of light, and the point
 inline constexpr uint32_t kLightDirection = 7;   // 2D
 inline constexpr uint32_t kLightStartLens = 9;   // 2D: its camera connection (t = 1)
 
@@ -26,8 +26,8 @@ inline constexpr uint32_t vertex(uint32_t depth) { return kVertexBase + kVertexB
 
 // Within an eye vertex's block: next-event estimation (bdpt: s = 1) and
 // continuing the path.
-inline constexpr uint32_t kEyeLightSelect = 0;    // 1D
-inline constexpr uint32_t kEyeLightPosition = 1;  // 2D
+inline constexpr uint32_t kEyeLightSelect = 0;    // 1D: as kLightSelect
+inline constexpr uint32_t kEyeLightPosition = 1;  // 2D: as kLightPosition
 inline constexpr uint32_t kEyeBsdfComponent = 3;  // 1D
 inline constexpr uint32_t kEyeBsdfDirection = 4;  // 2D
 inline constexpr uint32_t kEyeRoulette = 6;       // 1D
