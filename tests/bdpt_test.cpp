@@ -153,12 +153,13 @@ INSTANTIATE_TEST_SUITE_P(
     });
 
 // The negative control: weighting every strategy 1 counts each path several
-// times. The comparison above must see it.
+// times. The comparison above must see it, by a wide margin: z is about 125
+// here, 49 with the sanitized suite's quarter of the samples.
 TEST(Bdpt, UnitWeightsAreCaught) {
   auto scene = shipped("cornell-box.pbrt");
   auto path = render_stats(*scene, "path", 32, 32, 8, 8, kCornellRegions);
   auto broken = render_stats(*scene, "bdpt", 32, 32, 8, 8, kCornellRegions, /*unit_weights=*/true);
-  EXPECT_GT(max_z(broken, path), 10.0 * kMaxZ);
+  EXPECT_GT(max_z(broken, path), 5.0 * kMaxZ);
 }
 
 TEST(Bdpt, BalanceHeuristicAgreesWithPower) {
