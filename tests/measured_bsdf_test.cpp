@@ -282,8 +282,8 @@ TEST(MeasuredBSDF, RendersAsTheConductorItTabulates) {
   auto conductor = scene_with(
       "Material \"conductor\" \"float eta\" 0.6 \"float k\" 2.5 \"float roughness\" 0.3 \"bool remaproughness\" false");
   // The sphere's upper and lower halves and the floor; not the sky around
-  // the sphere's top, which light tracing cannot see (its camera rays
-  // would have to reach the light at infinity).
+  // the sphere's top, which light tracing cannot render: no light subpath
+  // reaches the camera straight from a light at infinity.
   const std::vector<Region> regions = {{9, 5, 6, 4}, {8, 9, 8, 3}, {0, 12, 24, 4}};
   auto options = [](const char* integrator) {
     RenderOptions o;
