@@ -251,5 +251,38 @@ TEST(Sampler, ErrorFallsFasterThanIndependentSampling) {
   }
 }
 
+// Under a time limit the light subpaths' first points are laid out
+// pass-major in groups of four passes (make_light_start_spec): each group's
+// points over the whole image are one net, and so are each pixel's four
+// points of a group. The eye layout's same points are not a net (the test
+// can tell the layouts apart).
+TEST(Sampler, LightStartsOfATimedRenderAreStratifiedOverTheImage) {
+  SamplerSettings st;
+  st.type = SamplerKind::ZSobol;
+  for (const char* r : {"none", "fastowen", "owen"}) {
+    st.randomization = r;
+    const SamplerSpec eye = make_sampler_spec(st, 32, 32, 0, 5);
+    const SamplerSpec start = make_light_start_spec(eye, 32, 32);
+    auto group = [&](const SamplerSpec& spec, uint32_t first, uint32_t groups) {
+      std::vector<Vec2> pts;
+      for (uint32_t pixel = 0; pixel < 32 * 32; ++pixel)
+        for (uint32_t i = first; i < first + 4 * groups; ++i)
+          pts.push_back(PathSampler::make(spec, pixel, i).get2d(dims::kLightPosition));
+      return pts;
+    };
+    for (uint32_t first : {0u, 4u, 20u}) EXPECT_TRUE(is_base2_net(group(start, first, 1))) << r << " group at " << first;
+    EXPECT_TRUE(is_base2_net(group(start, 0, 2))) << r << " two groups";
+    EXPECT_FALSE(is_base2_net(group(eye, 0, 1))) << r << " the eye layout";
+    for (uint32_t pixel : {0u, 333u, 1023u}) {
+      std::vector<Vec2> own;
+      for (uint32_t i = 8; i < 12; ++i) own.push_back(PathSampler::make(start, pixel, i).get2d(dims::kLightPosition));
+      EXPECT_TRUE(is_base2_net(own)) << r << " pixel " << pixel;
+    }
+  }
+  // A planned count keeps the eye layout, whose whole render is one block.
+  const SamplerSpec planned = make_sampler_spec(st, 32, 32, 64, 5);
+  EXPECT_EQ(make_light_start_spec(planned, 32, 32).pixel_bits, 0);
+}
+
 }  // namespace
 }  // namespace lantern

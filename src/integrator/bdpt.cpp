@@ -22,7 +22,8 @@ Bdpt::Bdpt(const Scene& scene, const LightSampler& light_sampler, const BdptSett
       camera_(scene.camera, s.full_width > 0 ? s.full_width : s.width, s.full_height > 0 ? s.full_height : s.height,
               scene.filter.radius),
       mis_{s.mis_beta},
-      sampler_(make_sampler_spec(s.sampler, s.width, s.height, s.planned_spp, s.seed)) {
+      sampler_(make_sampler_spec(s.sampler, s.width, s.height, s.planned_spp, s.seed)),
+      light_start_(make_light_start_spec(sampler_, s.width, s.height)) {
   if (scene.textures.uses_footprint) footprints_ = FootprintModel(camera_, s.footprint_spp);
 }
 

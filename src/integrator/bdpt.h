@@ -187,6 +187,7 @@ class Bdpt {
   FootprintModel footprints_;  // enabled when the scene's textures filter
   MisPower mis_;
   SamplerSpec sampler_;
+  SamplerSpec light_start_;  // the numbers of a light subpath's first point (make_light_start_spec)
   const GuidingField* guiding_ = nullptr;
 };
 

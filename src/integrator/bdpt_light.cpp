@@ -38,8 +38,12 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
     const SampledWavelengths& lambda = w.lambda[slot] =
         settings_.merging ? wave_lambda : sample_wavelengths(settings_.spectral, s, settings_.maxdepth, settings_.wavelengths);
     w.time[slot] = settings_.merging ? wave_time : sample_time(scene_, s, settings_.maxdepth);
-    float u_select = s.get1d(dims::kLightSelect);
-    Vec2 u_pos = s.get2d(dims::kLightPosition), u_dir = s.get2d(dims::kLightDirection);
+    // (its direction, like the rest of the subpath, keeps the pixel's own
+    // layout: measured, the point gains from the image's stratification,
+    // the direction does not)
+    const PathSampler start = wave.chains ? s : PathSampler::make(light_start_, pixel, wave.first_sample + slot % wave.samples);
+    float u_select = start.get1d(dims::kLightSelect);
+    Vec2 u_pos = start.get2d(dims::kLightPosition), u_dir = s.get2d(dims::kLightDirection);
     const float u_volume =
         emissive ? s.get1d(dims::volume_point(dims::vertex(maxdepth + 2), maxdepth, 0, true)) : 0.5f;
     w.pixel[slot] = pixel;

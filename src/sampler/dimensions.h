@@ -13,7 +13,9 @@ namespace lantern::dims {
 inline constexpr uint32_t kFilm = 0;  // 2D
 inline constexpr uint32_t kLens = 2;  // 2D
 
-// The start of a light subpath (bdpt, lt).
+// The start of a light subpath (bdpt, lt). Under a time limit the light
+// and the point (kLightSelect, kLightPosition) read zsobol in a layout of
+// their own (make_light_start_spec, sampler/sampler.h).
 inline constexpr uint32_t kLightSelect = 4;      // 1D: the point's first coordinate after an unlikely choice (light_choice.h)
 inline constexpr uint32_t kLightPosition = 5;    // 2D: the choice of light, and the point
 inline constexpr uint32_t kLightDirection = 7;   // 2D

@@ -29,6 +29,10 @@ struct SamplerSpec {
   uint32_t width = 1;
   int log2_spp = 0;      // zsobol, paddedsobol: bits of a pixel's block of indices
   int index_bits = 0;    // zsobol: of the Morton index and the sample index
+  bool open_count = false;  // planned for a time budget: how many samples a pixel gets is not known
+  // zsobol laid out pass-major (make_light_start_spec): the bits of the
+  // linear pixel index, below the sample index's; 0 for the usual layout.
+  int pixel_bits = 0;
   uint32_t xsamples = 1, ysamples = 1;  // stratified
   bool jitter = true;
   HaltonLayout halton;
@@ -42,6 +46,15 @@ struct SamplerSpec {
 // budget: the per-pixel block is then 2^16 (a render past that many
 // samples per pixel continues with a freshly randomised block).
 SamplerSpec make_sampler_spec(const SamplerSettings& s, int width, int height, uint32_t planned_spp, uint64_t seed);
+// The layout of the light subpath's first point (bdpt, lt, vcm): the eye
+// spec itself, unless it is zsobol under an open count. There each pixel's
+// block of 2^16 samples stratifies its own light points but not the
+// image's, and light tracing splats the points of all pixels' light
+// subpaths onto the same pixels. So the points are laid out pass-major,
+// in groups of four passes: the k-th four samples of every pixel are one
+// aligned block of the sequence, the image's points of each group, and of
+// any number of groups, stratified together (docs/light-sampling.md).
+SamplerSpec make_light_start_spec(const SamplerSpec& eye, int width, int height);
 // Throws std::invalid_argument naming the valid choices.
 Randomization parse_randomization(const std::string& name);
 // pbrt-v4's: permutedigits for halton, fastowen for the Sobol samplers.
