@@ -1,8 +1,11 @@
 #include "light/lights.h"
 
+#include "math/spherical_triangle.h"
+
 #include "light/light_choice.h"
 #include "light/light_sampler.h"
 #include "math/sampling.h"
+#include "math/spherical_triangle.h"
 #include "geometry/surface.h"
 #include "texture/texture.h"
 
@@ -139,6 +142,45 @@ float area_point_density(const ShapePools& shapes, const AreaLight& a, const Vec
   return 1.f / a.area;
 }
 
+// The directions triangle light a subtends from p, if next-event
+// estimation samples them (math/spherical_triangle.h); a zero solid angle
+// otherwise, and for other shapes.
+static SphericalTriangle light_spherical_triangle(const ShapePools& shapes, const AreaLight& a, const Vec3& p) {
+  const Geometry& g = shapes.geometries[a.geometry];
+  if (g.kind != ShapeKind::Mesh) return {};
+  const TriangleMesh& m = shapes.meshes[g.index];
+  const glm::uvec3 t = m.triangle(a.primitive);
+  const Vec3 &p0 = m.positions[t.x], &p1 = m.positions[t.y], &p2 = m.positions[t.z];
+  // Its solid angle, roughly (area times cosine over the squared distance
+  // of the centroid), decides whether the exact one is worth computing.
+  const Vec3 d = (p0 + p1 + p2) / 3.f - p;
+  const float d2 = glm::dot(d, d);
+  const float approx = 0.5f * std::fabs(glm::dot(glm::cross(p1 - p0, p2 - p0), d)) / (d2 * std::sqrt(d2));
+  if (!(approx >= kSphericalSamplingFrom)) return {};
+  return spherical_triangle(p, p0, p1, p2);
+}
+
+// The point where the ray from p in direction w meets the plane of light
+// a's triangle (Moller & Trumbore 1997), kept inside the triangle.
+static std::optional<SurfacePoint> triangle_point_along(const ShapePools& shapes, const AreaLight& a, const Vec3& p,
+                                                       const Vec3& w) {
+  const TriangleMesh& m = shapes.meshes[shapes.geometries[a.geometry].index];
+  const glm::uvec3 t = m.triangle(a.primitive);
+  const glm::dvec3 p0(m.positions[t.x]), e1 = glm::dvec3(m.positions[t.y]) - p0, e2 = glm::dvec3(m.positions[t.z]) - p0;
+  const glm::dvec3 dir(w), pv = glm::cross(dir, e2);
+  const double det = glm::dot(e1, pv);
+  if (!(std::fabs(det) > 0.0)) return std::nullopt;
+  const glm::dvec3 tv = glm::dvec3(p) - p0, qv = glm::cross(tv, e1);
+  double b1 = std::max(glm::dot(tv, pv) / det, 0.0), b2 = std::max(glm::dot(dir, qv) / det, 0.0);
+  if (!std::isfinite(b1 + b2)) return std::nullopt;
+  if (b1 + b2 > 1.0) {
+    const double sum = b1 + b2;
+    b1 /= sum;
+    b2 /= sum;
+  }
+  return triangle_point(m, a.primitive, float(b1), float(b2));
+}
+
 // The samplers below fill a default LightSample in place and say whether
 // there is a sample: built where the caller keeps it, it is never copied
 // (copies of the optional, written field by field and read back whole,
@@ -149,7 +191,13 @@ static bool sample_area(const ShapePools& shapes, const TexturePools& tex, const
   SurfacePoint sp;
   float pdf;
   const float sin2_max = g.kind == ShapeKind::Sphere ? sphere_cone_sin2_max(shapes.spheres[g.index], p) : 1.f;
-  if (sin2_max >= 1.f) {  // by area (a sphere: from inside), converted to solid angle
+  const SphericalTriangle st = light_spherical_triangle(shapes, a, p);
+  if (samples_spherical(st)) {  // uniform over the directions the triangle subtends
+    const std::optional<SurfacePoint> hit = triangle_point_along(shapes, a, p, sample_spherical_triangle(st, u));
+    if (!hit) return false;
+    sp = *hit;
+    pdf = float(1.0 / st.solid_angle);
+  } else if (sin2_max >= 1.f) {  // by area (a sphere: from inside), converted to solid angle
     sp = sample_area_point(shapes, a, u);
     Vec3 d = sp.p - p;
     float dist2 = glm::dot(d, d);
@@ -300,6 +348,10 @@ float area_light_pdf(const LightPools& L, const ShapePools& shapes, const LightS
   const float pmf = sampler.pmf(p, n, L.area_to_all[area_index]);
   if (pmf == 0.f) return 0.f;
   const Geometry& g = shapes.geometries[a.geometry];
+  if (g.kind == ShapeKind::Mesh) {
+    const SphericalTriangle st = light_spherical_triangle(shapes, a, p);
+    if (samples_spherical(st)) return pmf * float(1.0 / st.solid_angle);
+  }
   if (g.kind == ShapeKind::Sphere) {
     const Sphere& s = shapes.spheres[g.index];
     float sin2_max = sphere_cone_sin2_max(s, p);
