@@ -233,9 +233,30 @@ TEST(Camera, SensorSettingsThatMakeNoImageAreClearErrors) {
                     {"s.pbrt:1", "shutterclose", "never opens"});
   expect_load_error("Film \"rgb\" \"float iso\" 0\n", "i.pbrt", {"i.pbrt:1", "iso", "> 0"});
   expect_load_error("Film \"rgb\" \"float whitebalance\" -5\n", "w.pbrt", {"w.pbrt:1", "whitebalance", "kelvin"});
-  expect_load_error("Film \"rgb\" \"string sensor\" \"canon_eos_5d_mkiv\"\n", "c.pbrt",
-                    {"c.pbrt:1", "canon_eos_5d_mkiv", "cie1931"});
+  expect_load_error("Film \"rgb\" \"string sensor\" \"canon_eos_6d\"\n", "c.pbrt",
+                    {"c.pbrt:1", "canon_eos_6d", "cie1931", "canon_eos_5d_mkiv"});
   expect_load_error("ColorSpace \"adobe-rgb\"\n", "a.pbrt", {"a.pbrt:1", "adobe-rgb", "rec2020", "aces2065-1"});
+}
+
+// A camera pbrt-v4 names renders with the CIE 1931 observer, balanced from
+// 6500 K as pbrt-v4 balances a camera unless the film says otherwise, and
+// says so with its line. (pbrt-v4 on a white sky over diffuse patches,
+// canon_eos_5d_mkiv against cie1931: grey 0.794 against 0.800, a saturated
+// blue (0.1, 0.1, 0.8) read as (0.096, 0.055, 0.741) against (0.100,
+// 0.100, 0.801).)
+TEST(Camera, NamedCameraSensorsRenderWithTheObserverAndAWarning) {
+  for (const char* wb : {"", " \"float whitebalance\" 4000"}) {
+    std::vector<std::string> warnings;
+    LoadOptions o;
+    o.warn = [&](const std::string& w) { warnings.push_back(w); };
+    auto s = load_scene_from_string(std::string("Film \"rgb\"\n  \"string sensor\" \"nikon_d850\"") + wb + "\n",
+                                    "n.pbrt", o);
+    EXPECT_EQ(s->settings.whitebalance, *wb ? 4000.f : 6500.f);
+    ASSERT_GE(warnings.size(), 1u);  // (and: the scene has no lights)
+    EXPECT_NE(warnings[0].find("n.pbrt:2"), std::string::npos) << warnings[0];
+    EXPECT_NE(warnings[0].find("nikon_d850"), std::string::npos) << warnings[0];
+    EXPECT_NE(warnings[0].find("CIE 1931"), std::string::npos) << warnings[0];
+  }
 }
 
 }  // namespace

@@ -164,6 +164,7 @@ class SceneBuilder final : public pbrt::ParserTarget {
   std::optional<PiecewiseLinearSpectrum> emission_spectrum(const pbrt::ParamSet& ps, const std::string& name);
   int32_t light_spectrum(const pbrt::ParamSet& ps, const std::string& name);
   void crop(const pbrt::ParamSet& ps);
+  void camera_sensor(const pbrt::ParamSet& ps);
   void spectral_film(const pbrt::ParamSet& ps);
   void realistic_camera(const pbrt::ParamSet& ps);  // builder_camera.cpp
   std::optional<ApertureMask> aperture_mask(const pbrt::ParamSet& ps);
