@@ -135,7 +135,7 @@ TEST(GridMedium, ImagesDoNotDependOnThreads) {
   expect_thread_invariant(*scene, o, {"path", "bdpt", "lt"});
 }
 
-// pbrt-v4 (../shared/anchors, volpath) rendered perf/media/smoke-grid.pbrt
+// pbrt-v4 (a CPU Release build of its public source, volpath) rendered perf/media/smoke-grid.pbrt
 // at 160x120 with 512 spp; its means of the blob (40x40 at 60,25), the
 // whole image and the floor below (40x15 at 50,75), by oiiotool --cut
 // ... --printstats.

@@ -201,7 +201,7 @@ TEST(Media, ImagesDoNotDependOnThreads) {
   expect_thread_invariant(*scene, o, {"path", "bdpt", "lt"});
 }
 
-// pbrt-v4 (../shared/anchors, volpath) rendered perf/media/fog-sphere.pbrt
+// pbrt-v4 (a CPU Release build of its public source, volpath) rendered perf/media/fog-sphere.pbrt
 // at 80x60 with 256 spp; these are its means of the fog ball (20x15 at
 // 30,15) and of the whole image (oiiotool --cut ... --printstats). The
 // allowance covers pbrt's spectral, not RGB, extinction (docs/media.md).
@@ -235,7 +235,7 @@ TEST(Media, BadInputIsRefusedWithItsLine) {
   expect_load_error(head + "MakeNamedMedium \"m\" \"string type\" \"cloud\" \"rgb Le\" [ 1 1 1 ]\n", "l.pbrt",
                     {"l.pbrt:4", "\"Le\" is not a parameter of a cloud medium"});
   expect_load_error(head + "MakeNamedMedium \"m\" \"string type\" \"fog\"\n", "j.pbrt",
-                    {"j.pbrt:4", "unknown medium type \"fog\"", "rgbgrid, cloud or nanovdb"});
+                    {"j.pbrt:4", "unknown medium type \"fog\"", "rgbgrid, cloud, nanovdb or pbrt-v3's heterogeneous"});
   expect_load_error("MediumInterface \"air\"\nLookAt 0 0 0 0 0 1 0 1 0\nCamera \"perspective\"\nWorldBegin\n", "k.pbrt",
                     {"k.pbrt:1", "medium \"air\" is not defined"});
 }

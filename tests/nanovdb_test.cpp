@@ -149,7 +149,7 @@ TEST(NanoVdb, ImagesDoNotDependOnThreads) {
   expect_medium_thread_invariant(*scene);
 }
 
-// pbrt-v4 (../shared/anchors, volpath) rendered perf/media/nanovdb-blobs.pbrt
+// pbrt-v4 (a CPU Release build of its public source, volpath) rendered perf/media/nanovdb-blobs.pbrt
 // (its grid written by lantern-make-nvdb) at 160x120 with 512 spp; its
 // means of the left blob (40x35 at 30,40), the right one (25x25 at 105,55)
 // and the whole image, by oiiotool --cut ... --printstats.

@@ -68,6 +68,9 @@ TEST(PbrtV3, ConstructsRenderAsTheirUpgrades) {
       {"plastic without Ks", R"(MakeNamedMaterial "m" "string type" "plastic" "color Kd" [ 0.6 0.3 0.2 ] "color Ks" [ 0 0 0 ]
           "float roughness" [ 0.2 ])",
        R"(MakeNamedMaterial "m" "string type" "diffuse" "rgb reflectance" [ 0.6 0.3 0.2 ])"},
+      {"disney is a diffuse of its colour", R"(MakeNamedMaterial "m" "string type" "disney" "color color" [ 0.3 0.6 0.2 ]
+          "float metallic" [ 0.5 ] "float roughness" [ 0.2 ])",
+       R"(MakeNamedMaterial "m" "string type" "diffuse" "rgb reflectance" [ 0.3 0.6 0.2 ])"},
       {"an unknown material is matte", R"(MakeNamedMaterial "m" "string type" "BUSH1" "color Kd" [ 0.2 0.5 0.1 ])",
        R"(MakeNamedMaterial "m" "string type" "diffuse" "rgb reflectance" [ 0.2 0.5 0.1 ])"},
       {"area light with a blackbody temperature and scale",
@@ -149,6 +152,61 @@ TEST(PbrtV3, UnknownMaterialWarnsWithItsLine) {
   ASSERT_FALSE(warnings.empty());
   EXPECT_NE(warnings[0].find("bush.pbrt:2"), std::string::npos) << warnings[0];
   EXPECT_NE(warnings[0].find("\"BUSH1\" is unknown"), std::string::npos) << warnings[0];
+}
+
+// pbrt-v3's film scale and sample clamp, filter widths and gaussian falloff,
+// and environment camera, as pbrt-v4's upgrade writes them: Film "scale" s
+// is "iso" 100 s, "maxsampleluminance" is "maxcomponentvalue", "xwidth" and
+// "ywidth" are the radii, "alpha" a is "sigma" 1 / sqrt(2 a), and
+// "environment" is the spherical camera's equirectangular mapping.
+TEST(PbrtV3, FilmFilterAndCameraRenderAsTheirUpgrades) {
+  const std::string world = R"(
+WorldBegin
+LightSource "infinite" "rgb L" [ 0.4 0.5 0.6 ]
+LightSource "point" "rgb I" [ 30 30 30 ] "point3 from" [ 1 2 -1 ]
+Material "diffuse" "rgb reflectance" [ 0.7 0.3 0.2 ]
+Shape "sphere" "float radius" [ 0.5 ]
+Shape "trianglemesh" "point3 P" [ -3 -0.5 -3  3 -0.5 -3  3 -0.5 3  -3 -0.5 3 ] "integer indices" [ 0 1 2 0 2 3 ]
+)";
+  auto v3 = load_scene_from_string(R"(LookAt 0 0.5 -2  0 0 0  0 1 0
+Camera "environment"
+Film "image" "integer xresolution" [ 32 ] "integer yresolution" [ 16 ] "float scale" [ 2 ] "float maxsampleluminance" [ 3 ]
+PixelFilter "gaussian" "float xwidth" [ 1 ] "float ywidth" [ 1.25 ] "float alpha" [ 0.5 ]
+)" + world, "v3.pbrt");
+  auto v4 = load_scene_from_string(R"(LookAt 0 0.5 -2  0 0 0  0 1 0
+Camera "spherical" "string mapping" "equirectangular"
+Film "rgb" "integer xresolution" [ 32 ] "integer yresolution" [ 16 ] "float iso" [ 200 ] "float maxcomponentvalue" [ 3 ]
+PixelFilter "gaussian" "float xradius" [ 1 ] "float yradius" [ 1.25 ] "float sigma" [ 1 ]
+)" + world, "v4.pbrt");
+  EXPECT_EQ(v3->settings.iso, 200.f);
+  EXPECT_EQ(v3->settings.max_component_value, 3.f);
+  EXPECT_EQ(v3->filter.radius, Vec2(1.f, 1.25f));  // (pbrt-v4's defaults: 1.5, sigma 0.5)
+  EXPECT_EQ(v3->filter.sigma, 1.f);
+  expect_identical_renders(*v3, *v4, {"path", "bdpt"});
+}
+
+// pbrt-v3's "heterogeneous" medium is pbrt-v4's "uniformgrid".
+TEST(PbrtV3, HeterogeneousMediumIsAUniformGrid) {
+  auto with = [](const char* type) {
+    return load_scene_from_string(std::string(R"(LookAt 0 0.5 -3  0 0 0  0 1 0
+Camera "perspective" "float fov" [ 40 ]
+Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
+WorldBegin
+LightSource "point" "rgb I" [ 8 8 8 ] "point3 from" [ 1 2 -1 ]
+MakeNamedMedium "fog" "string type" ")") + type + R"(" "integer nx" [ 2 ] "integer ny" [ 1 ] "integer nz" [ 2 ]
+  "float density" [ 0.2 1.5 0.7 3 ] "point3 p0" [ -1 -1 -1 ] "point3 p1" [ 1 1 1 ]
+  "rgb sigma_a" [ 0.2 0.3 0.4 ] "rgb sigma_s" [ 1 0.8 0.6 ]
+AttributeBegin
+  MediumInterface "fog" ""
+  Material "interface"
+  Shape "sphere" "float radius" [ 0.9 ]
+AttributeEnd
+Material "diffuse"
+Shape "trianglemesh" "point3 P" [ -3 -1 -3  3 -1 -3  3 -1 3  -3 -1 3 ] "integer indices" [ 0 1 2 0 2 3 ]
+)",
+                                  "fog.pbrt");
+  };
+  expect_identical_renders(*with("heterogeneous"), *with("uniformgrid"), {"path", "bdpt"});
 }
 
 TEST(PbrtV3, UnsupportedMaterialsAreClearErrors) {

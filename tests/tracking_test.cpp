@@ -131,7 +131,7 @@ TEST(Cloud, ImagesDoNotDependOnThreads) {
   expect_medium_thread_invariant(*scene);
 }
 
-// pbrt-v4 (../shared/anchors, volpath) rendered perf/media/cloud.pbrt at
+// pbrt-v4 (a CPU Release build of its public source, volpath) rendered perf/media/cloud.pbrt at
 // 160x120 with 512 spp; its means of the cloud (60x50 at 50,20), the whole
 // image and the floor (40x15 at 50,100), by oiiotool --cut ... --printstats.
 TEST(Cloud, MatchesPbrt) {

@@ -16,10 +16,12 @@ void SceneBuilder::camera(const std::string& type, const ParamSet& ps, const glm
     c.projection = Projection::Perspective;
   } else if (type == "orthographic") {
     c.projection = Projection::Orthographic;
-  } else if (type == "spherical") {
+  } else if (type == "spherical" || type == "environment") {
+    // (pbrt-v3's "environment" is pbrt-v4's spherical camera in the
+    // equirectangular mapping, as pbrt-v4's upgrade writes it)
     c.projection = Projection::Spherical;
     scene_.settings.screen_window = true;  // the whole sphere, whatever the image's shape
-    std::string mapping = ps.get_string("mapping", "equalarea");
+    std::string mapping = ps.get_string("mapping", type == "environment" ? "equirectangular" : "equalarea");
     if (mapping != "equalarea" && mapping != "equirectangular")
       ps.fail(*ps.find("mapping"), "spherical \"mapping\" \"" + printable(mapping) +
                                        "\" is not known; expected \"equalarea\" or \"equirectangular\"");
@@ -28,7 +30,7 @@ void SceneBuilder::camera(const std::string& type, const ParamSet& ps, const glm
     realistic_camera(ps);
   } else {
     ps.fail("camera type \"" + printable(type) +
-            "\" is not supported; expected perspective, orthographic, spherical or realistic");
+            "\" is not supported; expected perspective, orthographic, spherical, realistic or environment");
   }
   world_from_camera_ = glm::inverse(camera_from_world);
   world_from_camera_end_ = glm::inverse(camera_from_world_end);

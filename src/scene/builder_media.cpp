@@ -37,8 +37,11 @@ void expect_grid_count(const ParamSet& ps, const pbrt::Param& p, const GridLayou
 void SceneBuilder::medium(const std::string& name, const ParamSet& ps, const Mat4& render_from_medium,
                           const std::string& base_dir) {
   if (named_media_.count(name)) ps.fail("medium \"" + printable(name) + "\" is defined twice");
-  const std::string type = ps.get_string("type", "");
-  const char* known = "homogeneous, uniformgrid, rgbgrid, cloud or nanovdb";
+  std::string type = ps.get_string("type", "");
+  // pbrt-v3's grid of densities, pbrt-v4's uniformgrid (the same
+  // parameters, and the same trilinear lookup between cell centres).
+  if (type == "heterogeneous") type = "uniformgrid";
+  const char* known = "homogeneous, uniformgrid, rgbgrid, cloud, nanovdb or pbrt-v3's heterogeneous";
   if (type.empty()) ps.fail(std::string("needs a \"string type\" parameter (") + known + ")");
   if (type != "homogeneous" && type != "uniformgrid" && type != "rgbgrid" && type != "cloud" && type != "nanovdb")
     ps.fail("unknown medium type \"" + printable(type) + "\"; expected " + known);

@@ -29,10 +29,18 @@ void SceneBuilder::film(const std::string& type, const ParamSet& ps) {
   if (!(s.whitebalance >= 0.f) || !std::isfinite(s.whitebalance))
     ps.fail(*ps.find("whitebalance"), "\"whitebalance\" must be a temperature in kelvin, or 0 for none");
   s.color_space = ps.color_space ? std::string(ps.color_space->name) : "srgb";
-  s.max_component_value = ps.get_float("maxcomponentvalue", std::numeric_limits<float>::infinity());
+  // pbrt-v3's "scale" and "maxsampleluminance" are pbrt-v4's iso / 100 and
+  // "maxcomponentvalue", as pbrt-v4's upgrade converts them.
+  if (!ps.find("iso") && ps.find("scale")) {
+    s.iso = 100.f * ps.get_float("scale", 1.f);
+    if (!(s.iso > 0.f) || !std::isfinite(s.iso)) ps.fail(*ps.find("scale"), "\"scale\" must be a finite number > 0");
+  }
+  const char* max_name = !ps.find("maxcomponentvalue") && ps.find("maxsampleluminance") ? "maxsampleluminance"
+                                                                                        : "maxcomponentvalue";
+  s.max_component_value = ps.get_float(max_name, std::numeric_limits<float>::infinity());
   if (!(s.max_component_value > 0.f))
-    ps.fail(*ps.find("maxcomponentvalue"), "\"maxcomponentvalue\" must be a number > 0 (the largest sensor RGB "
-                                           "component a sample keeps)");
+    ps.fail(*ps.find(max_name), "\"" + std::string(max_name) + "\" must be a number > 0 (the largest sensor RGB "
+                                "component a sample keeps)");
   // The sensor's diagonal in mm: the realistic camera's film size.
   const float diagonal = ps.get_float("diagonal", 35.f);
   if (!(diagonal > 0.f) || !std::isfinite(diagonal)) ps.fail(*ps.find("diagonal"), "\"diagonal\" must be a length in mm > 0");
@@ -261,10 +269,22 @@ void SceneBuilder::pixel_filter(const std::string& type, const ParamSet& ps) {
     f.radius = Vec2(1.5f);
   } else {
     f.type = kind->type;
-    f.radius = Vec2(ps.get_float("xradius", kind->radius), ps.get_float("yradius", kind->radius));
+    // pbrt-v3's "xwidth", "ywidth" and a gaussian's "alpha" (exp(-alpha
+    // x^2)) are pbrt-v4's radii and sigma = 1 / sqrt(2 alpha), as pbrt-v4's
+    // upgrade converts them.
+    const char* xr = !ps.find("xradius") && ps.find("xwidth") ? "xwidth" : "xradius";
+    const char* yr = !ps.find("yradius") && ps.find("ywidth") ? "ywidth" : "yradius";
+    f.radius = Vec2(ps.get_float(xr, kind->radius), ps.get_float(yr, kind->radius));
     if (!(f.radius.x > 0.f && f.radius.y > 0.f) || !std::isfinite(f.radius.x) || !std::isfinite(f.radius.y))
       ps.fail("filter radii must be positive");
-    if (f.type == T::Gaussian) f.sigma = ps.get_float("sigma", 0.5f);
+    if (f.type == T::Gaussian) {
+      f.sigma = ps.get_float("sigma", 0.5f);
+      if (!ps.find("sigma") && ps.find("alpha")) {
+        const float alpha = ps.get_float("alpha", 2.f);
+        if (!(alpha > 0.f) || !std::isfinite(alpha)) ps.fail(*ps.find("alpha"), "\"alpha\" must be a number > 0");
+        f.sigma = 1.f / std::sqrt(2.f * alpha);
+      }
+    }
   }
   bool normalises = true;
   if (f.type == T::Mitchell) {

@@ -72,7 +72,18 @@ std::optional<MaterialHandle> SceneBuilder::v3_material(const std::string& type,
     return MaterialHandle::make(MaterialKind::DiffuseTransmission, uint32_t(m.diffuse_transmission.size() - 1));
   }
   if (type == "fourier") return fourier_material(ps);
-  if (type == "disney") ps.fail("the disney BSDF is not supported (nor by pbrt-v4)");
+  if (type == "disney") {
+    // pbrt-v4 has no Disney BSDF: its upgrade writes a diffuse material of
+    // the base "color"; the lobes beyond it are dropped, and said so.
+    static const char* const kLobes[] = {"anisotropic", "clearcoat", "clearcoatgloss", "difftrans", "eta",
+                                         "flatness", "metallic", "roughness", "scatterdistance", "sheen",
+                                         "sheentint", "spectrans", "specular", "speculartint", "thin", "transmission"};
+    for (const char* p : kLobes) ps.find(p);
+    warn(ps.where, "the disney material is not in pbrt-v4: rendering its \"color\" as a diffuse reflectance, as "
+                   "pbrt-v4's upgrade writes it (its other lobes are dropped)");
+    m.diffuse.push_back({rgb_texture(ps, "color", RGB(0.5f))});
+    return MaterialHandle::make(MaterialKind::Diffuse, uint32_t(m.diffuse.size() - 1));
+  }
   return std::nullopt;
 }
 
