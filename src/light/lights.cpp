@@ -185,18 +185,26 @@ static std::optional<SurfacePoint> triangle_point_along(const ShapePools& shapes
 // there is a sample: built where the caller keeps it, it is never copied
 // (copies of the optional, written field by field and read back whole,
 // were a tenth of the path tracer's time).
-static bool sample_area(const ShapePools& shapes, const TexturePools& tex, const AreaLight& a, const Vec3& p, Vec2 u,
+static bool sample_area(const ShapePools& shapes, const TexturePools& tex, const AreaLight& a, const Vec3& p,
+                        const Vec3& n, Vec2 u,
                         const SampledWavelengths& l, LightSample& ls) {
   const Geometry& g = shapes.geometries[a.geometry];
   SurfacePoint sp;
   float pdf;
   const float sin2_max = g.kind == ShapeKind::Sphere ? sphere_cone_sin2_max(shapes.spheres[g.index], p) : 1.f;
   const SphericalTriangle st = light_spherical_triangle(shapes, a, p);
-  if (samples_spherical(st)) {  // uniform over the directions the triangle subtends
+  if (samples_spherical(st)) {  // over the directions the triangle subtends, warped towards n
+    float warp = 1.f;
+    if (n != Vec3(0.f)) {
+      float w[4];
+      cosine_warp_weights(st, n, w);
+      u = sample_bilinear(u, w);
+      warp = bilinear_pdf(u, w);
+    }
     const std::optional<SurfacePoint> hit = triangle_point_along(shapes, a, p, sample_spherical_triangle(st, u));
     if (!hit) return false;
     sp = *hit;
-    pdf = float(1.0 / st.solid_angle);
+    pdf = float(double(warp) / st.solid_angle);
   } else if (sin2_max >= 1.f) {  // by area (a sphere: from inside), converted to solid angle
     sp = sample_area_point(shapes, a, u);
     Vec3 d = sp.p - p;
@@ -238,7 +246,8 @@ static bool sample_area(const ShapePools& shapes, const TexturePools& tex, const
 }
 
 static bool sample_light_into(const LightPools& L, const ShapePools& shapes, const TexturePools& tex, uint32_t i,
-                              const Vec3& p, Vec2 u, float u_volume, const SampledWavelengths& l, LightSample& ls) {
+                              const Vec3& p, const Vec3& n, Vec2 u, float u_volume, const SampledWavelengths& l,
+                              LightSample& ls) {
   const LightRef r = L.all[i];
   switch (r.kind) {
     case LightKind::Volume: {
@@ -255,7 +264,7 @@ static bool sample_light_into(const LightPools& L, const ShapePools& shapes, con
       break;
     }
     case LightKind::Area:
-      if (!sample_area(shapes, tex, L.area[r.index], p, u, l, ls)) return false;
+      if (!sample_area(shapes, tex, L.area[r.index], p, n, u, l, ls)) return false;
       break;
     case LightKind::Point: {
       const PointLight& pl = L.point[r.index];
@@ -323,7 +332,7 @@ std::optional<LightSample> sample_light_from(const LightPools& L, const ShapePoo
                                              uint32_t i, const Vec3& p, Vec2 u, const SampledWavelengths& l,
                                              float u_volume) {
   std::optional<LightSample> ls(std::in_place);
-  if (!sample_light_into(L, shapes, tex, i, p, u, u_volume, l, *ls)) ls.reset();
+  if (!sample_light_into(L, shapes, tex, i, p, Vec3(0.f), u, u_volume, l, *ls)) ls.reset();
   return ls;
 }
 
@@ -336,7 +345,7 @@ std::optional<LightSample> sample_light(const LightPools& L, const ShapePools& s
   if (sampler.sample(p, n, u.x, &i, &pmf, &rest) && pmf != 0.f) {
     u.x = light_point_coordinate(rest, pmf, u_select);
     ls.emplace();
-    if (sample_light_into(L, shapes, tex, i, p, u, u_volume, l, *ls)) ls->pdf *= pmf;
+    if (sample_light_into(L, shapes, tex, i, p, n, u, u_volume, l, *ls)) ls->pdf *= pmf;
     else ls.reset();
   }
   return ls;
@@ -350,7 +359,15 @@ float area_light_pdf(const LightPools& L, const ShapePools& shapes, const LightS
   const Geometry& g = shapes.geometries[a.geometry];
   if (g.kind == ShapeKind::Mesh) {
     const SphericalTriangle st = light_spherical_triangle(shapes, a, p);
-    if (samples_spherical(st)) return pmf * float(1.0 / st.solid_angle);
+    if (samples_spherical(st)) {
+      float warp = 1.f;
+      if (n != Vec3(0.f)) {
+        float w[4];
+        cosine_warp_weights(st, n, w);
+        warp = bilinear_pdf(invert_spherical_triangle(st, glm::normalize(p_light - p)), w);
+      }
+      return pmf * float(double(warp) / st.solid_angle);
+    }
   }
   if (g.kind == ShapeKind::Sphere) {
     const Sphere& s = shapes.spheres[g.index];

@@ -2,6 +2,9 @@
 // its density.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include "math/common.h"
 
 namespace lantern {
@@ -53,6 +56,29 @@ inline Vec3 sample_uniform_cone(Vec2 u, float cos_max) {
   return Vec3(std::cos(phi) * sin_t, std::sin(phi) * sin_t, cos_t);
 }
 inline float uniform_cone_pdf(float cos_max) { return 1.f / (2.f * kPi * (1.f - cos_max)); }
+
+// A point of [0, 1] with density proportional to (1 - x) a + x b (a, b >= 0,
+// not both 0): the inverse of its cumulative distribution, written so that
+// a = b loses no digits.
+inline float sample_linear(float u, float a, float b) {
+  const float s = std::sqrt((1.f - u) * a * a + u * b * b);
+  return a + s > 0.f ? std::min(u * (a + b) / (a + s), 0x1.fffffep-1f) : u;
+}
+
+// A point of the unit square with density proportional to the bilinear
+// interpolation of w at its corners (w[0] at (0, 0), w[1] at (1, 0), w[2]
+// at (0, 1), w[3] at (1, 1); not negative, not all 0): y from its marginal,
+// then x given y.
+inline Vec2 sample_bilinear(Vec2 u, const float w[4]) {
+  const float y = sample_linear(u.y, w[0] + w[1], w[2] + w[3]);
+  return Vec2(sample_linear(u.x, (1.f - y) * w[0] + y * w[2], (1.f - y) * w[1] + y * w[3]), y);
+}
+inline float bilinear_pdf(Vec2 p, const float w[4]) {
+  const float sum = w[0] + w[1] + w[2] + w[3];
+  if (!(sum > 0.f)) return 1.f;
+  return 4.f * ((1.f - p.x) * (1.f - p.y) * w[0] + p.x * (1.f - p.y) * w[1] + (1.f - p.x) * p.y * w[2] +
+                p.x * p.y * w[3]) / sum;
+}
 
 // Uniform barycentrics on a triangle (returns b0, b1; b2 = 1 - b0 - b1),
 // using the low-distortion square-to-triangle map of Heitz 2019.

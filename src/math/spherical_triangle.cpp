@@ -66,4 +66,30 @@ Vec3 sample_spherical_triangle(const SphericalTriangle& t, Vec2 u) {
   return Vec3(glm::normalize(w));
 }
 
+Vec2 invert_spherical_triangle(const SphericalTriangle& t, const Vec3& w_in) {
+  const glm::dvec3 w = glm::normalize(glm::dvec3(w_in));
+  // C' is where the great circle through B and w meets the arc from A to C.
+  glm::dvec3 c_prime = glm::cross(glm::cross(t.b, w), glm::cross(t.a, t.c));
+  const double len = glm::length(c_prime);
+  if (!(len > 0.0)) return Vec2(0.f);
+  c_prime /= len;
+  if (glm::dot(c_prime, t.a + t.c) < 0.0) c_prime = -c_prime;
+  // u.x: the area of A, B, C' over the whole (Van Oosterom and Strackee's
+  // formula for the sub-triangle's solid angle); u.y: along the arc from B.
+  const double sub = 2.0 * std::atan2(std::fabs(glm::dot(t.a, glm::cross(t.b, c_prime))),
+                                      1.0 + glm::dot(t.a, t.b) + glm::dot(t.b, c_prime) + glm::dot(c_prime, t.a));
+  const double den = 1.0 - glm::dot(c_prime, t.b);
+  const double ux = t.solid_angle > 0.0 ? sub / t.solid_angle : 0.0;
+  const double uy = den > 0.0 ? (1.0 - glm::dot(w, t.b)) / den : 0.0;
+  return Vec2(float(std::clamp(ux, 0.0, 1.0)), float(std::clamp(uy, 0.0, 1.0)));
+}
+
+void cosine_warp_weights(const SphericalTriangle& t, const Vec3& n, float w[4]) {
+  const glm::dvec3 nd(n);
+  auto weight = [&](const glm::dvec3& d) { return float(std::max(std::fabs(glm::dot(nd, d)), 0.01)); };
+  w[0] = w[1] = weight(t.b);
+  w[2] = weight(t.a);
+  w[3] = weight(t.c);
+}
+
 }  // namespace lantern

@@ -30,6 +30,20 @@ SphericalTriangle spherical_triangle(const Vec3& p, const Vec3& v0, const Vec3& 
 // along the arc from B, so the map is continuous and keeps stratification.
 Vec3 sample_spherical_triangle(const SphericalTriangle& t, Vec2 u);
 
+// The point of the unit square sample_spherical_triangle maps to direction
+// w (a unit vector inside the triangle): where a density over the square
+// is read back from a direction (the cosine warp below).
+Vec2 invert_spherical_triangle(const SphericalTriangle& t, const Vec3& w);
+
+// Weights at the square's corners for a bilinear warp before the map
+// (math/sampling.h, sample_bilinear): the cosine between the normal n at
+// the shading point and the direction each corner maps to ((0, 0) and
+// (1, 0) to B, (0, 1) to A, (1, 1) to C), at least 0.01. The warped
+// directions' density approximates the cosine the estimate carries, as
+// pbrt-v4 and Hart et al. 2020 ("Practical product sampling by fitting
+// and composing warps", EGSR) warp a spherical triangle's square.
+void cosine_warp_weights(const SphericalTriangle& t, const Vec3& n, float w[4]);
+
 // Where next-event estimation samples a triangle light so: from an
 // approximate solid angle (area times cosine over squared distance, at the
 // centroid) of 0.1 sr up to an exact one of 6.22 sr (pbrt-v4's upper bound:
