@@ -136,13 +136,19 @@ PixelSpread inner_light_pixels(const Image& im) {
   return s;
 }
 
-TEST(LightChoice, LightTracingKeepsAQuadLightsPointsStratified) {
-  auto scene = load_scene_from_string(kQuadLight, "quad.pbrt");
+// The light tracer's view of the quad light alone (maxdepth 1).
+RenderOptions light_tracing_options() {
   RenderOptions o;
   o.integrator = Integrator::Lt;
   o.maxdepth = 1;
-  o.spp = 64;
   o.seed = 3;
+  return o;
+}
+
+TEST(LightChoice, LightTracingKeepsAQuadLightsPointsStratified) {
+  auto scene = load_scene_from_string(kQuadLight, "quad.pbrt");
+  RenderOptions o = light_tracing_options();
+  o.spp = 64;
   const PixelSpread stratified = inner_light_pixels(render(*scene, o).image);
   EXPECT_NEAR(stratified.mean, 2.0, 0.01) << "the light's own radiance";
   EXPECT_LT(stratified.relative_deviation, 0.4 / 16.0) << "the points on the light are not stratified";
@@ -160,11 +166,8 @@ TEST(LightChoice, LightTracingKeepsAQuadLightsPointsStratified) {
 // at about 1800 spp, where the pixels' own blocks left 0.47 (checked).
 TEST(LightChoice, LightTracingUnderATimeLimitKeepsTheImagesPointsStratified) {
   auto scene = load_scene_from_string(kQuadLight, "quad.pbrt");
-  RenderOptions o;
-  o.integrator = Integrator::Lt;
-  o.maxdepth = 1;
+  RenderOptions o = light_tracing_options();
   o.time_limit_seconds = 0.4;
-  o.seed = 3;
   const RenderResult r = render(*scene, o);
   ASSERT_GE(r.stats.min_spp, 16u);
   const PixelSpread s = inner_light_pixels(r.image);
