@@ -223,5 +223,41 @@ TEST(SphericalTriangle, NextEventEstimationOfATriangleLight) {
   }
 }
 
+// At the extremes: points from 1e-5 to 1e5 light sizes away, in the
+// light's plane, on its edges and vertices, with normals in every
+// direction. A sample is either refused or finite, on the triangle, with
+// the density area_light_pdf gives its point (to float precision).
+TEST(SphericalTriangle, NextEventEstimationAtTheExtremes) {
+  auto scene = load_scene_from_string(kTriangleLight, "triangle.pbrt");
+  const LightSampler sampler(scene->lights, scene->shapes, scene->textures, LightSamplerKind::Power);
+  const Vec3 v[3] = {Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(0, 1.2f, 0)};
+  RandomStream r = RandomStream::make(11, 12, 13);
+  int sampled = 0, spherical = 0;
+  for (int k = 0; k < 4000; ++k) {
+    const Vec2 b = r.get2d();
+    Vec3 on = v[0] + b.x * (v[1] - v[0]) + b.y * (1.f - b.x) * (v[2] - v[0]);  // a point of the triangle
+    if (k % 10 == 0) on = v[k / 10 % 3];                                       // a vertex
+    const float dist = std::pow(10.f, -5.f + 10.f * r.get1d());
+    Vec3 off = glm::normalize(Vec3(r.get1d() - 0.5f, r.get1d() - 0.5f, -r.get1d()));
+    if (k % 7 == 0) off.z = 0.f;  // in the light's plane
+    const Vec3 p = on + dist * off;
+    const Vec3 n = glm::normalize(Vec3(r.get1d() - 0.5f, r.get1d() - 0.5f, r.get1d() - 0.5f) + Vec3(1e-4f));
+    if (samples_spherical(spherical_triangle(p, v[0], v[1], v[2]))) ++spherical;
+    for (int i = 0; i < 4; ++i) {
+      auto ls = sample_light(scene->lights, scene->shapes, scene->textures, sampler, p, n, r.get1d(), r.get2d(),
+                             SampledWavelengths::rgb());
+      if (!ls) continue;
+      ++sampled;
+      ASSERT_TRUE(std::isfinite(ls->pdf) && ls->pdf > 0.f) << "p " << p.x << " " << p.y << " " << p.z;
+      ASSERT_TRUE(std::isfinite(ls->L[0]) && std::isfinite(ls->wi.x) && std::isfinite(ls->p_light.x));
+      EXPECT_NEAR(ls->p_light.z, 0.f, 1e-5f);
+      const float pdf = area_light_pdf(scene->lights, scene->shapes, sampler, 0, p, n, ls->p_light, ls->n_light);
+      EXPECT_NEAR(pdf, ls->pdf, 2e-3f * ls->pdf) << "at distance " << dist;
+    }
+  }
+  EXPECT_GT(spherical, 1000);  // both ways of sampling were exercised
+  EXPECT_GT(sampled, 8000);
+}
+
 }  // namespace
 }  // namespace lantern
