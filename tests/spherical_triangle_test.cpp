@@ -203,7 +203,7 @@ Estimate irradiance(const Scene& scene, const Vec3& p, const Vec3& n, bool by_ar
 TEST(SphericalTriangle, NextEventEstimationOfATriangleLight) {
   auto scene = load_scene_from_string(kTriangleLight, "triangle.pbrt");
   const Vec3 v[3] = {Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(0, 1.2f, 0)};
-  // Close (2.1 and 2.8 sr: sampled by solid angle, variance 7.6x and 51x
+  // Close (2.1 and 2.8 sr: sampled by solid angle, variance 24x and 66x
   // below sampling by area's), and far (0.015 sr: by area).
   struct Case {
     Vec3 p, n;
@@ -242,7 +242,11 @@ TEST(SphericalTriangle, NextEventEstimationAtTheExtremes) {
     if (k % 7 == 0) off.z = 0.f;  // in the light's plane
     const Vec3 p = on + dist * off;
     const Vec3 n = glm::normalize(Vec3(r.get1d() - 0.5f, r.get1d() - 0.5f, r.get1d() - 0.5f) + Vec3(1e-4f));
-    if (samples_spherical(spherical_triangle(p, v[0], v[1], v[2]))) ++spherical;
+    // (the renderer's gate: area x cosine / distance^2 at the centroid)
+    const Vec3 d = (v[0] + v[1] + v[2]) / 3.f - p;
+    const float approx = 0.5f * std::fabs(glm::dot(glm::cross(v[1] - v[0], v[2] - v[0]), d)) /
+                         std::pow(glm::dot(d, d), 1.5f);
+    if (approx >= kSphericalSamplingFrom && samples_spherical(spherical_triangle(p, v[0], v[1], v[2]))) ++spherical;
     for (int i = 0; i < 4; ++i) {
       auto ls = sample_light(scene->lights, scene->shapes, scene->textures, sampler, p, n, r.get1d(), r.get2d(),
                              SampledWavelengths::rgb());
@@ -255,7 +259,7 @@ TEST(SphericalTriangle, NextEventEstimationAtTheExtremes) {
       EXPECT_NEAR(pdf, ls->pdf, 2e-3f * ls->pdf) << "at distance " << dist;
     }
   }
-  EXPECT_GT(spherical, 1000);  // both ways of sampling were exercised
+  EXPECT_GT(spherical, 400);  // both ways of sampling were exercised (689 of 4000 points by solid angle)
   EXPECT_GT(sampled, 8000);
 }
 

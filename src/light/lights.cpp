@@ -5,7 +5,6 @@
 #include "light/light_choice.h"
 #include "light/light_sampler.h"
 #include "math/sampling.h"
-#include "math/spherical_triangle.h"
 #include "geometry/surface.h"
 #include "texture/texture.h"
 

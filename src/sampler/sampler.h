@@ -53,7 +53,7 @@ SamplerSpec make_sampler_spec(const SamplerSettings& s, int width, int height, u
 // subpaths onto the same pixels. So the points are laid out pass-major,
 // in groups of four passes: the k-th four samples of every pixel are one
 // aligned block of the sequence, the image's points of each group, and of
-// any number of groups, stratified together (docs/light-sampling.md).
+// the first 2^k groups, stratified together (exact nets when width x height is a power of two, unions of nets otherwise) (docs/light-sampling.md).
 SamplerSpec make_light_start_spec(const SamplerSpec& eye, int width, int height);
 // Throws std::invalid_argument naming the valid choices.
 Randomization parse_randomization(const std::string& name);

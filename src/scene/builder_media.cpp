@@ -39,7 +39,8 @@ void SceneBuilder::medium(const std::string& name, const ParamSet& ps, const Mat
   if (named_media_.count(name)) ps.fail("medium \"" + printable(name) + "\" is defined twice");
   std::string type = ps.get_string("type", "");
   // pbrt-v3's grid of densities, pbrt-v4's uniformgrid (the same
-  // parameters, and the same trilinear lookup between cell centres).
+  // parameters, and the same trilinear lookup between cell centres; what
+  // pbrt-v4's upgrade intends, though its code tests the medium's name).
   if (type == "heterogeneous") type = "uniformgrid";
   const char* known = "homogeneous, uniformgrid, rgbgrid, cloud, nanovdb or pbrt-v3's heterogeneous";
   if (type.empty()) ps.fail(std::string("needs a \"string type\" parameter (") + known + ")");

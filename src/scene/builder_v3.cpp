@@ -77,10 +77,10 @@ std::optional<MaterialHandle> SceneBuilder::v3_material(const std::string& type,
     // the base "color"; the lobes beyond it are dropped, and said so.
     static const char* const kLobes[] = {"anisotropic", "clearcoat", "clearcoatgloss", "difftrans", "eta",
                                          "flatness", "metallic", "roughness", "scatterdistance", "sheen",
-                                         "sheentint", "spectrans", "specular", "speculartint", "thin", "transmission"};
+                                         "sheentint", "spectrans", "speculartint", "thin"};
     for (const char* p : kLobes) ps.find(p);
     warn(ps.where, "the disney material is not in pbrt-v4: rendering its \"color\" as a diffuse reflectance, as "
-                   "pbrt-v4's upgrade writes it (its other lobes are dropped)");
+                   "pbrt-v4's upgrade names it; its other lobes are dropped");
     m.diffuse.push_back({rgb_texture(ps, "color", RGB(0.5f))});
     return MaterialHandle::make(MaterialKind::Diffuse, uint32_t(m.diffuse.size() - 1));
   }
