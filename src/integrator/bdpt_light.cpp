@@ -41,7 +41,9 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
     // (its direction, like the rest of the subpath, keeps the pixel's own
     // layout: measured, the point gains from the image's stratification,
     // the direction does not)
-    const PathSampler start = wave.chains ? s : PathSampler::make(light_start_, pixel, wave.first_sample + slot % wave.samples);
+    const PathSampler start = wave.chains || light_start_.pixel_bits == 0
+                                  ? s  // the same layout as the pixel's: no second key
+                                  : PathSampler::make(light_start_, pixel, wave.first_sample + slot % wave.samples);
     float u_select = start.get1d(dims::kLightSelect);
     Vec2 u_pos = start.get2d(dims::kLightPosition), u_dir = s.get2d(dims::kLightDirection);
     const float u_volume =
