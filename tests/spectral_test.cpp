@@ -11,6 +11,7 @@
 
 #include "color/cie1931.h"
 #include "color/cie_daylight.h"
+#include "color/cie_fluorescent.h"
 #include "color/color_space.h"
 #include "color/rgb_spectrum_fit.h"
 #include "color/rgb_spectrum_table.h"
@@ -358,7 +359,39 @@ LightSource "infinite" )" + L + "\n",
   EXPECT_LT(a[2], 0.5 * a[0]);  // and A is not white
   const auto a_spectral = sky(R"("spectrum L" "stdillum-A")", true);
   for (size_t c = 0; c < 3; ++c) EXPECT_NEAR(a_spectral[c], a[c], 0.02 * a[c]) << c;
-  EXPECT_THROW(sky(R"("spectrum L" "stdillum-F4")", false), InputError);
+  // A fluorescent lamp: its light's colour is its chromaticity's.
+  const auto f4 = sky(R"("spectrum L" "stdillum-F4")", false);
+  EXPECT_GT(f4[0], 1.3f * f4[2]);  // F4, warm white, 2940 K
+  const auto f4_spectral = sky(R"("spectrum L" "stdillum-F4")", true);
+  for (size_t c = 0; c < 3; ++c) EXPECT_NEAR(f4_spectral[c], f4[c], 0.03 * f4[c]) << c;
+  EXPECT_THROW(sky(R"("spectrum L" "stdillum-F13")", false), InputError);
+}
+
+// The fluorescent illuminants' table against the chromaticities CIE
+// 015:2004 publishes for them (Table T.8, 2-degree observer, four
+// decimals): a transposed column, a row out of place or a wrong entry
+// moves them. Integrated at 1 nm over the table's linear interpolation,
+// where the CIE summed at 5 nm, so 0.0015 of slack.
+TEST(Spectral, FluorescentIlluminantsHaveThePublishedChromaticities) {
+  const double published[12][2] = {{0.3131, 0.3373}, {0.3721, 0.3751}, {0.4091, 0.3941}, {0.4402, 0.4031},
+                                   {0.3138, 0.3452}, {0.3779, 0.3882}, {0.3129, 0.3292}, {0.3458, 0.3586},
+                                   {0.3741, 0.3727}, {0.3458, 0.3588}, {0.3805, 0.3769}, {0.4370, 0.4042}};
+  for (int n = 1; n <= 12; ++n) {
+    double X = 0, Y = 0, Z = 0;
+    for (int nm = 380; nm <= 780; ++nm) {
+      const double s = cie_fluorescent(n, float(nm));
+      const Vec3 cmf = cie1931_cmf(float(nm));
+      X += s * cmf.x;
+      Y += s * cmf.y;
+      Z += s * cmf.z;
+    }
+    EXPECT_NEAR(X / (X + Y + Z), published[n - 1][0], 0.0015) << "F" << n;
+    EXPECT_NEAR(Y / (X + Y + Z), published[n - 1][1], 0.0015) << "F" << n;
+  }
+  EXPECT_EQ(cie_fluorescent(0, 500.f), 0.f);
+  EXPECT_EQ(cie_fluorescent(2, 379.f), 0.f);
+  EXPECT_EQ(cie_fluorescent(2, 380.f), 1.18f);
+  EXPECT_FLOAT_EQ(cie_fluorescent(2, 382.5f), 0.5f * (1.18f + 1.48f));
 }
 
 // An rgbgrid medium with sampled wavelengths: its samples' colours become

@@ -2,6 +2,7 @@
 
 #include "color/cie1931.h"
 #include "color/cie_daylight.h"
+#include "color/cie_fluorescent.h"
 #include "color/glass.h"
 #include "color/optical_constants.h"
 #include "color/sigmoid_spectrum.h"
@@ -248,7 +249,7 @@ std::optional<PiecewiseLinearSpectrum> ParamSet::get_sampled_spectrum(const std:
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec))
     fail(*p, "\"" + printable(s) + "\" is neither a named spectrum (metal-{Cu,Au,Ag,Al,CuZn,MgO,TiO2}-{eta,k}, "
-             "glass-{BK7,BAF10,FK51A,LASF9,F5,F10,F11}, stdillum-{D65,A}; pbrt-v4's other illuminants and camera "
+             "glass-{BK7,BAF10,FK51A,LASF9,F5,F10,F11}, stdillum-{A,D50,D65,F1..F12}, illum-acesD60; pbrt-v4's camera "
              "curves are not included: give them as a spectrum file) nor a spectrum file (" + printable(file.string()) + " not found)");
   try {
     return read_spectrum_file(file.string());
@@ -262,8 +263,16 @@ namespace {
 // pbrt-v4's stdillum-D65 (CIE 015:2004, Table T.1, color/cie1931.h),
 // stdillum-D50 and illum-acesD60 (CIE daylight, color/cie_daylight.h) and
 // stdillum-A, which CIE 015:2004 defines by its formula (Planck's law at
-// 2848 K with the second radiation constant 1.435e7 nm K, 100 at 560 nm).
+// 2848 K with the second radiation constant 1.435e7 nm K, 100 at 560 nm),
+// and the fluorescent stdillum-F1 to F12 (color/cie_fluorescent.h).
 // As lights, their spectra are normalised like any other light's.
+// n for "stdillum-Fn" (1 to 12), else 0.
+int fluorescent_number(const std::string& name) {
+  for (int n = 1; n <= 12; ++n)
+    if (name == "stdillum-F" + std::to_string(n)) return n;
+  return 0;
+}
+
 PiecewiseLinearSpectrum standard_illuminant(const std::string& name) {
   PiecewiseLinearSpectrum out;
   for (int nm = int(kLambdaMin); nm <= int(kLambdaMax); ++nm) {
@@ -275,6 +284,8 @@ PiecewiseLinearSpectrum standard_illuminant(const std::string& name) {
       out.value.push_back(double(cie_d50(float(nm))));
     } else if (name == "illum-acesD60") {
       out.value.push_back(double(aces_d60(float(nm))));
+    } else if (const int f = fluorescent_number(name)) {
+      out.value.push_back(double(cie_fluorescent(f, float(nm))));
     } else {
       constexpr double c2 = 1.435e7, T = 2848.0;
       out.value.push_back(100.0 * std::pow(560.0 / l, 5.0) * std::expm1(c2 / (T * 560.0)) / std::expm1(c2 / (T * l)));
@@ -294,7 +305,7 @@ std::optional<PiecewiseLinearSpectrum> named_sampled_spectrum(const std::string&
     }
     return out;
   }
-  if (s == "stdillum-D65" || s == "stdillum-D50" || s == "stdillum-A" || s == "illum-acesD60")
+  if (s == "stdillum-D65" || s == "stdillum-D50" || s == "stdillum-A" || s == "illum-acesD60" || fluorescent_number(s))
     return standard_illuminant(s);
   if (!s.starts_with("metal-")) return std::nullopt;
   const size_t dash = s.rfind('-');
