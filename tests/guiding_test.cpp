@@ -509,20 +509,22 @@ TEST(Guiding, ResumesWithTheFieldItLearnt) {
   o.spp = 16;
   o.resume = true;
   EXPECT_THROW(render(*scene, o), InputError);
-  // A guided checkpoint of format 3 (before media had distributions) is
-  // refused by its version, with what to do.
-  {
-    std::fstream f(o.checkpoint_path, std::ios::in | std::ios::out | std::ios::binary);
-    f.seekp(8);
-    const uint32_t three = 3;
-    f.write(reinterpret_cast<const char*>(&three), sizeof three);
-  }
+  // A guided checkpoint of format 3 (before media had distributions) or 4
+  // (before light subpaths were guided) is refused by its version, with
+  // what to do.
   o.spp = 8;
-  try {
-    render(*scene, o);
-    ADD_FAILURE() << "a format 3 checkpoint was resumed";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("earlier Lantern version"), std::string::npos) << e.what();
+  for (const uint32_t format : {3u, 4u}) {
+    {
+      std::fstream f(o.checkpoint_path, std::ios::in | std::ios::out | std::ios::binary);
+      f.seekp(8);
+      f.write(reinterpret_cast<const char*>(&format), sizeof format);
+    }
+    try {
+      render(*scene, o);
+      ADD_FAILURE() << "a format " << format << " checkpoint was resumed";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("earlier Lantern version"), std::string::npos) << e.what();
+    }
   }
   std::remove(o.checkpoint_path.c_str());
 }

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <vector>
 
+#include "geometry/surface.h"
 #include "lantern/scene.h"
 #include "light/light_sampler.h"
 #include "math/rng.h"

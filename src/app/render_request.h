@@ -28,7 +28,7 @@ struct RenderRequest {
   double target_error = 0.0;  // > 0: adaptive sampling (docs/adaptive-sampling.md)
   uint64_t seed = 0;
   float vcm_radius = 0.f, vcm_alpha = 0.75f;
-  bool spectral = false, guide = false, adaptive = false;
+  bool spectral = false, guide = false, guide_light = false, adaptive = false;
   std::vector<int> resolution;  // empty, or W H
   // The part of the image to render (pbrt-v4's flags of these names):
   // empty, or x0 x1 y0 y1 in [0, 1] / in pixels, or a pixel's X Y.

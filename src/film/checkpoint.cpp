@@ -19,9 +19,10 @@ namespace {
 
 constexpr char kMagic[8] = {'L', 'N', 'T', 'N', 'C', 'K', 'P', 'T'};
 // 2: fixed-point sums, unit sets; 3: and what the integrator learnt; 4:
-// the same, a guiding field with distributions for media too. A render
+// the same, a guiding field with distributions for media too; 5: and which
+// subpaths it guides, with the light subpaths' importance field. A render
 // that learns nothing writes 2, which every version since reads.
-constexpr uint32_t kVersion = 2, kLearntVersion = 4, kSurfaceGuidedVersion = 3;
+constexpr uint32_t kVersion = 2, kLearntVersion = 5, kSurfaceGuidedVersion = 3, kEyeGuidedVersion = 4;
 
 class HashingWriter final : public StateWriter {
  public:
@@ -107,10 +108,12 @@ std::string read_header(HashingReader& r, const std::string& path, uint32_t* ver
   r.read(magic, sizeof magic);
   if (std::memcmp(magic, kMagic, sizeof kMagic) != 0) throw InputError({path, 0, 0}, "not a Lantern checkpoint or part file");
   const uint32_t v = r.get<uint32_t>();
-  if (v == kSurfaceGuidedVersion)
-    throw InputError({path, 0, 0}, "file format version 3 is a guided render's from an earlier Lantern version, whose "
-                                   "guiding field this version cannot continue (its fields learn media too); resume it "
-                                   "with the version that wrote it");
+  if (v == kSurfaceGuidedVersion || v == kEyeGuidedVersion)
+    throw InputError({path, 0, 0}, "file format version " + std::to_string(v) +
+                                       " is a guided render's from an earlier Lantern version, whose guiding field this "
+                                       "version cannot continue (its fields learn " +
+                                       (v == kSurfaceGuidedVersion ? "media" : "light subpaths") +
+                                       " too); resume it with the version that wrote it");
   if (v != kVersion && v != kLearntVersion)
     throw InputError({path, 0, 0}, "file format version " + std::to_string(v) + " is not " + std::to_string(kVersion) +
                                        " or " + std::to_string(kLearntVersion) + " (made by another Lantern version)");

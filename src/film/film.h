@@ -92,6 +92,7 @@ struct WaveOutput {
   std::vector<StrategyRecord> strategies;
   uint64_t light_paths = 0, odd_light_paths = 0;
   std::vector<GuideRecord> guide;  // for the guiding field being learnt (integrator/guiding_field.h)
+  std::vector<GuideRecord> light_guide;  // for its importance field (bdpt's light subpaths)
   // Filled by Film::prepare from samples and splats, in the parallel stage,
   // so that the serial merge only adds integers.
   std::vector<FixedTerm> sample_terms, splat_terms;
@@ -115,6 +116,7 @@ struct WaveOutput {
     splats.clear();
     strategies.clear();
     guide.clear();
+    light_guide.clear();
     light_paths = odd_light_paths = 0;
     sample_terms.clear();
     splat_terms.clear();

@@ -185,7 +185,7 @@ void Bdpt::eye_shade_stage(BdptWave& w) const {
       }
     }
     // Guided where the BSDF is not all delta (as the path tracer).
-    const bool guided = guiding_ && !bsdf.is_specular();
+    const bool guided = guides_eye() && !bsdf.is_specular();
     const GuidingField::Site site = guided ? guiding_->site(v.p, v.ns, v.wo_world) : GuidingField::Site{};
     ScatterSample drawn;
     const PathEnd end = continue_subpath(
@@ -233,6 +233,7 @@ void Bdpt::connection_stage(BdptWave& w) const {
   for (uint32_t r = 0; r < c.rays.count; ++r) {
     if (c.rays.occluded(r)) continue;
     w.L[c.slot[r]] += c.contrib[r];
+    if (learns_light()) gather_for_light_guide(w, c.slot[r], c.light_s[r], c.contrib[r]);
     w.stats.light_samples_unoccluded += c.next_event[r];
     if (c.record) {
       const SampledWavelengths& l = w.lambda[c.slot[r]];
@@ -270,12 +271,13 @@ void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
     fn();
   };
   const bool media = !scene_.media.empty();
-  const bool learning = guiding_ && guiding_->learning();
+  const bool learning = guides_eye() && guiding_->learning();
   auto trace_shadows = [&] {
     if (media) trace_connections(w);
     else w.stream.occluded(w.shadow.rays);
   };
   prepare_merging(wave, w);
+  if (learns_light()) begin_light_learning(w, wave.size());
   timed(Stage::Generate, [&] { start_light_subpaths(wave, w); });
   trace_shadows();
   timed(Stage::Accumulate, [&] { splat_stage(w); });
@@ -326,6 +328,10 @@ void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
       StageTimer t(st, Stage::Accumulate);
       w.guide.make_records(w.L, guiding_->tree(), hash_key(settings_.seed, wave.pixels[0], wave.first_sample),
                            out.guide);
+    }
+    if (learns_light()) {
+      StageTimer t(st, Stage::Accumulate);
+      make_light_guide_records(wave, w, out);
     }
   }
   if (w.chains) return metropolis_samples(wave, w, out);

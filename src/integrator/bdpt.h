@@ -99,15 +99,19 @@ class Bdpt {
   void trace(const WaveDesc& wave, BdptWave& state, WaveOutput& out) const;
   // Path guiding (docs/guiding.md): eye subpaths sample the field's
   // mixture with the BSDF at surface vertices and, while it learns, leave
-  // records of what they gathered; light subpaths are not guided.
+  // records of what they gathered. If the field guides light subpaths
+  // (bdpt only), their surface vertices do the same with its importance
+  // field, learning from what the strategies beyond each vertex brought.
   void set_guiding(const GuidingField* field) { guiding_ = field; }
 
  private:
   // light subpaths (bdpt_light.cpp)
   void start_light_subpaths(const WaveDesc& wave, BdptWave& w) const;
   void start_volume_subpaths(BdptWave& w) const;
+  // mix_pdf_dir: the density es.d was drawn with, where a guide drew it
+  // (MIS keeps es.pdf_dir); negative: es.pdf_dir.
   void begin_light_subpath(BdptWave& w, uint32_t slot, const struct EmissionSample& es, MediumHandle medium,
-                           const Spectrum& sigma_origin) const;
+                           const Spectrum& sigma_origin, float mix_pdf_dir = -1.f) const;
   void light_surface_stage(BdptWave& w) const;
   void light_shade_stage(BdptWave& w) const;
   void splat_stage(BdptWave& w) const;
@@ -179,6 +183,20 @@ class Bdpt {
 
   float first_hit_direct_pdf(const LightOriginPool& o, uint32_t slot, const Vec3& p, const Vec3& ns,
                              const Vec3& p_light) const;
+
+  // Guided light subpaths (bdpt_light_guide.cpp)
+  bool guides_light() const { return guiding_ && guiding_->guides_light_subpaths(); }
+  bool guides_eye() const { return guiding_ && guiding_->guides_eye_subpaths(); }
+  bool learns_light() const { return guides_light() && guiding_->learning(); }
+  void begin_light_learning(BdptWave& w, uint32_t slots) const;
+  // A contribution of slot's strategy with s light vertices, as it reaches the image.
+  static void gather_for_light_guide(BdptWave& w, uint32_t slot, uint32_t s, const Spectrum& c);
+  // An area light's emission direction by the one-sample mixture of its
+  // own distribution and the importance field at its point; false when
+  // the sample is lost (only the guide could draw its direction).
+  bool guide_emission(BdptWave& w, uint32_t slot, struct EmissionSample& es, float u_select, Vec2 u_pos, Vec2 u_dir,
+                      float* mix_pdf_dir) const;
+  void make_light_guide_records(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const;
 
   const Scene& scene_;
   const LightSampler& light_sampler_;  // next-event estimation's (s = 1) choice of light

@@ -60,8 +60,10 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
       w.volume_slots.push_back(slot);
       continue;
     }
+    float mix_pdf_dir = -1.f;
+    if (guides_light() && !guide_emission(w, slot, *es, u_select, u_pos, u_dir, &mix_pdf_dir)) continue;
     begin_light_subpath(w, slot, *es, !scene_.media.empty() ? emission_medium(lights, scene_.shapes, es->light, es->n, es->d) : MediumHandle{},
-                        Spectrum(0.f));
+                        Spectrum(0.f), mix_pdf_dir);
   }
   if (!in_volume.empty()) start_volume_subpaths(w);
 }
@@ -101,7 +103,7 @@ void Bdpt::start_volume_subpaths(BdptWave& w) const {
 // starts (a volume light's; else the one towards es.d); sigma_origin: the
 // extinction at a volume light's point.
 void Bdpt::begin_light_subpath(BdptWave& w, uint32_t slot, const EmissionSample& es, MediumHandle medium,
-                               const Spectrum& sigma_origin) const {
+                               const Spectrum& sigma_origin, float mix_pdf_dir) const {
   const LightPools& lights = scene_.lights;
   const bool on_surface = es.n != Vec3(0.f);
   const float cos_light = on_surface ? std::fabs(glm::dot(es.n, es.d)) : 1.f;
@@ -117,7 +119,7 @@ void Bdpt::begin_light_subpath(BdptWave& w, uint32_t slot, const EmissionSample&
   // position it depends on where it is seen from (the area density, and
   // the light sampler's choice), so it waits for the first hit (-1).
   o.direct_pdf_A[slot] = emission_direct_pdf_fixed(lights, light_sampler_, es);
-  Spectrum beta = es.Le * (cos_light / emission_pdf_W);
+  Spectrum beta = es.Le * (cos_light / (mix_pdf_dir >= 0.f ? es.pdf_pos * mix_pdf_dir : emission_pdf_W));
   w.light.beta[slot] = beta;
   w.light.rr_scale[slot] = max_component(beta) > 0.f ? 1.f / max_component(beta) : 0.f;
   w.light.eta_scale[slot] = 1.f;
@@ -265,14 +267,27 @@ void Bdpt::light_shade_stage(BdptWave& w) const {
       ++w.stats.light_ends[size_t(PathEnd::MaxDepth)];
       return;
     }
+    // Guided where the BSDF is not all delta, by the importance field.
+    const bool guided = guides_light() && !bsdf.is_specular();
+    const GuidingField::Site site = guided ? guiding_->importance_site(v.p, v.ns, v.wo_world) : GuidingField::Site{};
+    ScatterSample drawn;
     const PathEnd end = continue_subpath(
         bsdf, TransportMode::Importance, w.hits, i, v.frame, v.wo, s.get1d(dim + dims::kLightBsdfComponent),
         s.get2d(dim + dims::kLightBsdfDirection), s.get1d(dim + dims::kLightRoulette), depth,
         {w.light.beta[slot], w.light.mis[slot], w.light.prev_p[slot], w.light.prev_n[slot], w.light.eta_scale[slot],
          w.light.rr_scale[slot]},
-        w.mis);
-    if (end != PathEnd::Count) ++w.stats.light_ends[size_t(end)];
-    else if (media) w.light.medium[slot] = v.medium_towards(scene_, w.hits.next_d[i]);
+        w.mis, guided ? &site.guide : nullptr, &drawn);
+    if (end != PathEnd::Count) {
+      ++w.stats.light_ends[size_t(end)];
+      return;
+    }
+    if (media) w.light.medium[slot] = v.medium_towards(scene_, w.hits.next_d[i]);
+    if (guided && guiding_->learning() && !drawn.specular) {
+      w.light_guide.push(slot, site.leaf, v.p, site.normal_bin,
+                         drawn.guide_pdf >= 0.f ? drawn.square : equal_area_sphere_to_square(drawn.wi), drawn.pdf,
+                         average(drawn.weight) * drawn.pdf, drawn.bsdf_pdf, drawn.guide_pdf, w.light.beta[slot]);
+      w.light_guide_depth.push_back(uint8_t(std::min<uint32_t>(ld, 255)));
+    }
   });
 }
 
@@ -284,6 +299,7 @@ void Bdpt::splat_stage(BdptWave& w) const {
     if (c.rays.occluded(r)) continue;
     const SampledWavelengths& l = w.lambda[c.slot[r]];
     const RGB contrib = film_rgb(c.contrib[r], l);
+    if (learns_light()) gather_for_light_guide(w, c.slot[r], c.light_s[r], c.contrib[r]);
     const bool odd = w.odd_sample(c.slot[r]);
     w.out->splats.push_back({c.p_raster[r], contrib, odd});
     Vec2 images[2];

@@ -169,7 +169,7 @@ void Bdpt::eye_medium_stage(BdptWave& w) const {
       connect_light_vertices(w, slot, v);
     }
     if (w.shadow.rays.count >= kMaxPendingConnections) flush_connections(w);
-    const GuidingField::Site site = guiding_ ? guiding_->medium_site(v.p) : GuidingField::Site{};
+    const GuidingField::Site site = guides_eye() ? guiding_->medium_site(v.p) : GuidingField::Site{};
     ScatterSample drawn;
     const PathEnd end =
         scatter_in_medium(w, w.eye, i, s.get2d(dim + dims::kEyeBsdfDirection), s.get1d(dim + dims::kEyeRoulette), false,
@@ -178,7 +178,7 @@ void Bdpt::eye_medium_stage(BdptWave& w) const {
       ++w.stats.eye_ends[size_t(end)];
       continue;
     }
-    if (guiding_ && guiding_->learning())
+    if (guides_eye() && guiding_->learning())
       w.guide.push(slot, site.leaf, v.p, site.normal_bin,
                    drawn.guide_pdf >= 0.f ? drawn.square : equal_area_sphere_to_square(drawn.wi), drawn.pdf,
                    drawn.bsdf_pdf, drawn.bsdf_pdf, drawn.guide_pdf, w.eye.beta[slot]);

@@ -169,6 +169,7 @@ struct Connection {
 struct ConnectionPool {
   RayBatch rays;
   std::vector<uint32_t> slot;
+  std::vector<uint8_t> light_s;  // its strategy's light vertices (what guided light subpaths learn from)
   std::vector<Spectrum> contrib;
   std::vector<Vec2> p_raster;     // light tracing: where the contribution lands on the film
   std::vector<StrategyTag> tags;  // filled only when strategies are recorded
@@ -189,6 +190,7 @@ struct ConnectionPool {
     if (slot.size() <= i) {
       const size_t n = rays.capacity();
       slot.resize(n);
+      light_s.resize(n);
       contrib.resize(n);
       p_raster.resize(n);
       next_event.resize(n);
@@ -201,6 +203,7 @@ struct ConnectionPool {
       }
     }
     slot[i] = s;
+    light_s[i] = uint8_t(std::min<uint32_t>(k.s, 255));
     contrib[i] = c;
     p_raster[i] = k.p_raster;
     next_event[i] = k.light_sample;
@@ -251,6 +254,13 @@ struct BdptWave {
   std::vector<Spectrum> L;
   std::vector<Vec2> raster;  // Metropolis: where its camera sample lies (anywhere on the image)
   GuideVertices guide;       // the eye vertices' records while the guiding field learns
+  // While the importance field learns (guided light subpaths): the light
+  // vertices' records, each one's depth, and per slot and strategy s what
+  // the strategies with s light vertices brought (light_strategies per slot).
+  GuideVertices light_guide;
+  std::vector<uint8_t> light_guide_depth;
+  std::vector<Spectrum> gathered;
+  uint32_t light_strategies = 0;
   SubpathPool eye, light;
   LightOriginPool origin;
   uint32_t depth = 0;  // bounce of the current phase
@@ -292,6 +302,7 @@ struct BdptWave {
   size_t memory_bytes() const {
     const SubpathPool* subpaths[] = {&eye, &light};
     size_t b = vector_bytes(pixel) + vector_bytes(sampler) + vector_bytes(lambda) + vector_bytes(time) + vector_bytes(L) + vector_bytes(raster) + vector_bytes(active) + guide.memory_bytes() +
+               light_guide.memory_bytes() + vector_bytes(light_guide_depth) + vector_bytes(gathered) +
                rays.memory_bytes() + hits.memory_bytes() + shadow.rays.memory_bytes() + vector_bytes(shadow.slot) +
                vector_bytes(shadow.contrib) + vector_bytes(shadow.p_raster) + vector_bytes(shadow.tags) +
                vector_bytes(shadow.next_event);

@@ -26,9 +26,19 @@ class GuidingField {
  public:
   // passes: the render's budget in passes; 0 for a time budget, where the
   // renderer predicts it after each iteration (expect_passes).
-  GuidingField(Vec3 lo, Vec3 hi, uint64_t passes) : tree_(lo, hi), passes_(passes) {}
+  // eye_subpaths: path and the eye subpaths of bdpt and vcm learn and
+  // sample the radiance field; light_subpaths: bdpt's light subpaths the
+  // importance field.
+  GuidingField(Vec3 lo, Vec3 hi, uint64_t passes, bool eye_subpaths = true, bool light_subpaths = false)
+      : tree_(lo, hi), importance_(lo, hi), passes_(passes), eye_subpaths_(eye_subpaths), light_subpaths_(light_subpaths) {}
 
   const SDTree& tree() const { return tree_; }
+  // The importance field bdpt's light subpaths learn and sample (where
+  // what leaves a surface reaches the image: docs/guiding.md), if they are
+  // guided.
+  bool guides_light_subpaths() const { return light_subpaths_; }
+  bool guides_eye_subpaths() const { return eye_subpaths_; }
+  const SDTree& importance_tree() const { return importance_; }
   // Where a surface vertex at p with shading normal ns, reached from
   // direction wo (towards where the path came from), finds the field: its
   // leaf, the bin of the normal turned to the side the path came from, and
@@ -52,14 +62,17 @@ class GuidingField {
     s.guide = at(s.leaf, s.normal_bin);
     return s;
   }
+  // Where a light subpath's surface vertex finds the importance field.
+  Site importance_site(const Vec3& p, const Vec3& ns, const Vec3& wo) const {
+    Site s;
+    s.leaf = importance_.leaf_of(p);
+    s.normal_bin = SDTree::normal_bin(glm::dot(ns, wo) < 0.f ? -ns : ns);
+    s.guide = at(importance_, s.leaf, s.normal_bin);
+    return s;
+  }
   // The distribution paths sample in a leaf for a normal's bin, if it has
   // one (none before the first iteration ends, or where no energy came).
-  GuideAt at(uint32_t leaf, uint32_t normal_bin) const {
-    if (!tree_.trained()) return {};
-    const SDTree::Leaf& l = tree_.leaf(leaf);
-    const DirectionalTree& d = l.sampled[normal_bin];
-    return d.total() > 0.0 ? GuideAt{&d, l.alpha[normal_bin]} : GuideAt{};
-  }
+  GuideAt at(uint32_t leaf, uint32_t normal_bin) const { return at(tree_, leaf, normal_bin); }
   // Whether the waves of the current iteration record: the field they
   // learn is sampled for at least as many passes as the iteration lasts.
   // (Once not, never again: the last field learnt serves to the end, and
@@ -74,11 +87,13 @@ class GuidingField {
   uint64_t iteration_length() const { return uint64_t(1) << iteration_; }
   uint32_t iteration() const { return iteration_; }
 
-  void deposit(const std::vector<GuideRecord>& records) {
+  void deposit(const std::vector<GuideRecord>& records, const std::vector<GuideRecord>& light_records = {}) {
     for (const GuideRecord& r : records) tree_.add(r);
+    for (const GuideRecord& r : light_records) importance_.add(r);
   }
   void end_iteration() {
-    tree_.update(iteration_);
+    if (eye_subpaths_) tree_.update(iteration_);
+    if (light_subpaths_) importance_.update(iteration_);
     if (iteration_ < 62) ++iteration_;
   }
 
@@ -90,6 +105,9 @@ class GuidingField {
     out.put(iteration_);
     out.put(uint8_t(done_));
     tree_.write_state(out);
+    out.put(uint8_t(eye_subpaths_));
+    out.put(uint8_t(light_subpaths_));
+    if (light_subpaths_) importance_.write_state(out);
     return std::move(out.bytes);
   }
   void restore(const std::string& bytes) {
@@ -98,6 +116,12 @@ class GuidingField {
     const bool done = in.get<uint8_t>() != 0;
     if (iteration > 62) throw std::runtime_error("a guiding field in iteration " + std::to_string(iteration));
     tree_.read_state(in);
+    if (bool(in.get<uint8_t>()) != eye_subpaths_)
+      throw std::runtime_error(eye_subpaths_ ? "its eye subpaths were not guided (--guide)" : "its eye subpaths were guided (--guide)");
+    if (bool(in.get<uint8_t>()) != light_subpaths_)
+      throw std::runtime_error(light_subpaths_ ? "its light subpaths were not guided (--guide-light)"
+                                               : "its light subpaths were guided (--guide-light)");
+    if (light_subpaths_) importance_.read_state(in);
     if (in.left() != 0) throw std::runtime_error("the guiding field has trailing bytes");
     iteration_ = iteration;
     done_ = done;
@@ -105,9 +129,18 @@ class GuidingField {
 
  private:
   bool pays(uint64_t passes) const { return iteration_end() + iteration_length() <= passes; }
+  // The distribution a tree's leaf holds for a normal's bin, if any (none
+  // before the first iteration ends, or where no energy came).
+  static GuideAt at(const SDTree& tree, uint32_t leaf, uint32_t normal_bin) {
+    if (!tree.trained()) return {};
+    const SDTree::Leaf& l = tree.leaf(leaf);
+    const DirectionalTree& d = l.sampled[normal_bin];
+    return d.total() > 0.0 ? GuideAt{&d, l.alpha[normal_bin]} : GuideAt{};
+  }
 
-  SDTree tree_;
+  SDTree tree_, importance_;
   uint64_t passes_;
+  bool eye_subpaths_, light_subpaths_;
   uint32_t iteration_ = 0;
   bool done_ = false;
 };

@@ -282,7 +282,7 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
                 film.merge(out);
               }
               if (cx.strategies) cx.strategies->merge(out.strategies, film);
-              if (cx.guiding) cx.guiding->deposit(out.guide);
+              if (cx.guiding) cx.guiding->deposit(out.guide, out.light_guide);
               if (opt.collect_stats) film_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
               if (track) {
                 const auto t1 = Clock::now();
@@ -463,8 +463,8 @@ RenderResult RenderSession::render_all() {
   if (opt.spectral_buckets > 0 && s.film.buckets().count == 0)
     s.film.track_buckets({opt.spectral_buckets, opt.spectral_lambda_min, opt.spectral_lambda_max});
   // MPI hands out units by tickets: each rank would learn another field.
-  if (opt.guiding && s.hooks.next_ticket)
-    throw std::invalid_argument("path guiding (--guide) needs the whole render in one process: not with MPI");
+  if (opt.any_guiding() && s.hooks.next_ticket)
+    throw std::invalid_argument("path guiding (--guide, --guide-light) needs the whole render in one process: not with MPI");
   // Low-discrepancy samplers lay a pixel's samples out for the count they
   // plan for; under a time budget the count is open.
   const uint32_t planned_spp = opt.time_limit_seconds > 0 ? 0u : uint32_t(opt.spp);
@@ -493,8 +493,9 @@ RenderResult RenderSession::render_all() {
   if (scene.textures.cache) scene.textures.cache->reset_lookup_stats(opt.collect_stats);
   StrategyFilm* strategies = strategy_film ? &*strategy_film : nullptr;
   std::optional<GuidingField> guiding;
-  if (opt.guiding) {
-    guiding.emplace(scene.bounds_lo, scene.bounds_hi, opt.time_limit_seconds > 0 ? 0 : uint64_t(opt.spp));
+  if (opt.any_guiding()) {
+    guiding.emplace(scene.bounds_lo, scene.bounds_hi, opt.time_limit_seconds > 0 ? 0 : uint64_t(opt.spp), opt.guiding,
+                    opt.guide_light_subpaths);
     // A resumed render goes on with the field its units learnt.
     if (!checkpoints.done().empty()) {
       try {

@@ -37,6 +37,7 @@ std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& regi
   if (o.target_error > 0) line("target-error", std::to_string(o.target_error));  // adaptive passes
   else if (o.adaptive) line("adaptive", "budget");
   if (o.guiding) line("guiding", "1");  // one sample per pass, guided directions
+  if (o.guide_light_subpaths) line("guide-light", "1");
   if (o.gbuffer) line("gbuffer", "1");  // the film sums the samples' squares too
   if (o.spectral_buckets > 0)  // uniform wavelengths, and the film keeps the buckets
     line("spectral-buckets", std::to_string(o.spectral_buckets) + " over " + std::to_string(o.spectral_lambda_min) +
@@ -71,7 +72,7 @@ std::string extension_refusal(const std::string& saved, const std::string& now, 
   if (was == "time" || is == "time")
     return "a time budget and a sample budget do not continue each other (resume with the budget it was made with)";
   if (o.target_error > 0 || o.adaptive) return "adaptive sampling plans its passes from the image so far: resume with the same --spp";
-  if (o.guiding) return "guided paths learn in iterations planned from the budget: resume with the same --spp";
+  if (o.any_guiding()) return "guided paths learn in iterations planned from the budget: resume with the same --spp";
   const uint32_t old_spp = uint32_t(std::stoul(was.substr(was.find(' ') + 1))), new_spp = uint32_t(o.spp);
   if (new_spp < old_spp)
     return "it holds " + std::to_string(old_spp) + " samples per pixel, more than this render's " +

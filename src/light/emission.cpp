@@ -137,6 +137,16 @@ std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& s
   return es;
 }
 
+bool redirect_area_emission(const LightPools& L, const TexturePools& tex, EmissionSample& es, const Vec3& d,
+                            const SampledWavelengths& l) {
+  if (es.volume || es.infinite || es.light >= L.all.size() || L.all[es.light].kind != LightKind::Area) return false;
+  const AreaLight& a = L.area[L.all[es.light].index];
+  es.d = d;
+  es.pdf_dir = area_dir_pdf(a, es.n, d);
+  es.Le = area_light_Le(a, tex, es.n, es.uv, d, l);
+  return true;
+}
+
 float area_emission_pdf(const LightPools& L, const ShapePools& shapes, uint32_t area_index, const Vec3& p,
                         const Vec3& n, const Vec3& w) {
   const AreaLight& a = L.area[area_index];

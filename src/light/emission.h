@@ -33,6 +33,12 @@ std::optional<EmissionSample> sample_le(const LightPools& lights, const ShapePoo
                                         float u_select, Vec2 u_pos, Vec2 u_dir, const SampledWavelengths& l,
                                         float u_volume = 0.5f);
 
+// Turns an area light's emission sample es towards unit direction d (drawn
+// by another technique, as guided light subpaths do): its radiance and the
+// density sample_le would have given d. False for other kinds of sample.
+bool redirect_area_emission(const LightPools& lights, const TexturePools& tex, EmissionSample& es, const Vec3& d,
+                            const SampledWavelengths& l);
+
 // Emission density (pos incl. the selection pmf, times dir) with which
 // sample_le would start at p_light with normal n_light and leave in w.
 // For lights at infinity, w is the direction the light travels.
