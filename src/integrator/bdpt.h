@@ -109,7 +109,8 @@ class Bdpt {
   void start_light_subpaths(const WaveDesc& wave, BdptWave& w) const;
   void start_volume_subpaths(BdptWave& w) const;
   // mix_pdf_dir: the density es.d was drawn with, where a guide drew it
-  // (MIS keeps es.pdf_dir); negative: es.pdf_dir.
+  // (MIS keeps es.pdf_dir); negative: es.pdf_dir; 0: the subpath ends at
+  // its first point (its s = 1, t = 1 strategy still counts).
   void begin_light_subpath(BdptWave& w, uint32_t slot, const struct EmissionSample& es, MediumHandle medium,
                            const Spectrum& sigma_origin, float mix_pdf_dir = -1.f) const;
   void light_surface_stage(BdptWave& w) const;
@@ -192,9 +193,10 @@ class Bdpt {
   // A contribution of slot's strategy with s light vertices, as it reaches the image.
   static void gather_for_light_guide(BdptWave& w, uint32_t slot, uint32_t s, const Spectrum& c);
   // An area light's emission direction by the one-sample mixture of its
-  // own distribution and the importance field at its point; false when
-  // the sample is lost (only the guide could draw its direction).
-  bool guide_emission(BdptWave& w, uint32_t slot, struct EmissionSample& es, float u_select, Vec2 u_pos, Vec2 u_dir,
+  // own distribution and the importance field at its point, and the
+  // mixture's density; 0 where the subpath must end at its first point
+  // (only the guide could draw the direction).
+  void guide_emission(BdptWave& w, uint32_t slot, struct EmissionSample& es, float u_select, Vec2 u_pos, Vec2 u_dir,
                       float* mix_pdf_dir) const;
   void make_light_guide_records(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const;
 

@@ -61,7 +61,7 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
       continue;
     }
     float mix_pdf_dir = -1.f;
-    if (guides_light() && !guide_emission(w, slot, *es, u_select, u_pos, u_dir, &mix_pdf_dir)) continue;
+    if (guides_light()) guide_emission(w, slot, *es, u_select, u_pos, u_dir, &mix_pdf_dir);
     begin_light_subpath(w, slot, *es, !scene_.media.empty() ? emission_medium(lights, scene_.shapes, es->light, es->n, es->d) : MediumHandle{},
                         Spectrum(0.f), mix_pdf_dir);
   }
@@ -119,7 +119,8 @@ void Bdpt::begin_light_subpath(BdptWave& w, uint32_t slot, const EmissionSample&
   // position it depends on where it is seen from (the area density, and
   // the light sampler's choice), so it waits for the first hit (-1).
   o.direct_pdf_A[slot] = emission_direct_pdf_fixed(lights, light_sampler_, es);
-  Spectrum beta = es.Le * (cos_light / (mix_pdf_dir >= 0.f ? es.pdf_pos * mix_pdf_dir : emission_pdf_W));
+  Spectrum beta = mix_pdf_dir == 0.f ? Spectrum(0.f)
+                  : es.Le * (cos_light / (mix_pdf_dir > 0.f ? es.pdf_pos * mix_pdf_dir : emission_pdf_W));
   w.light.beta[slot] = beta;
   w.light.rr_scale[slot] = max_component(beta) > 0.f ? 1.f / max_component(beta) : 0.f;
   w.light.eta_scale[slot] = 1.f;
@@ -156,7 +157,7 @@ void Bdpt::begin_light_subpath(BdptWave& w, uint32_t slot, const EmissionSample&
       }
     }
   }
-  if (settings_.maxdepth <= int(w.origin.extra_depth[slot])) return;
+  if (settings_.maxdepth <= int(w.origin.extra_depth[slot]) || mix_pdf_dir == 0.f) return;
   Vec3 origin = on_surface ? offset_ray_origin(es.p, es.n, es.error_scale, es.d) : es.p;
   w.active[w.rays.count] = slot;
   w.rays.push(origin, es.d, 0.f, kInfinity, w.time[slot]);

@@ -25,9 +25,9 @@ void Bdpt::begin_light_learning(BdptWave& w, uint32_t slots) const {
   w.gathered.assign(size_t(slots) * w.light_strategies, Spectrum(0.f));
 }
 
-bool Bdpt::guide_emission(BdptWave& w, uint32_t slot, EmissionSample& es, float u_select, Vec2 u_pos, Vec2 u_dir,
+void Bdpt::guide_emission(BdptWave& w, uint32_t slot, EmissionSample& es, float u_select, Vec2 u_pos, Vec2 u_dir,
                           float* mix_pdf_dir) const {
-  if (es.delta_pos || es.delta_dir || es.infinite || es.volume || es.n == Vec3(0.f)) return true;
+  if (es.delta_pos || es.delta_dir || es.infinite || es.volume || es.n == Vec3(0.f)) return;
   const GuidingField::Site site = guiding_->importance_site(es.p, es.n, es.n);
   const GuideAt& guide = site.guide;
   Vec2 square(0.f);
@@ -37,22 +37,29 @@ bool Bdpt::guide_emission(BdptWave& w, uint32_t slot, EmissionSample& es, float 
     if (u_dir.x < a) {  // the light's own distribution: the same point, u_dir's first number rescaled
       const auto again = sample_le(scene_.lights, scene_.shapes, scene_.textures, u_select, u_pos,
                                    Vec2(std::min(u_dir.x / a, 0x1.fffffep-1f), u_dir.y), w.lambda[slot]);
-      if (!again) return false;
+      if (!again) {  // (the point stays: its s = 1, t = 1 strategy does not depend on the direction)
+        *mix_pdf_dir = 0.f;
+        return;
+      }
       es = *again;
     } else {
       float square_pdf = 0.f;
       square = guide.tree->sample(Vec2(std::min((u_dir.x - a) / (1.f - a), 0x1.fffffep-1f), u_dir.y), &square_pdf);
       if (!redirect_area_emission(scene_.lights, scene_.textures, es, glm::normalize(equal_area_square_to_sphere(square)),
                                   w.lambda[slot]))
-        return true;
+        return;
       guide_pdf = sphere_pdf(square_pdf);
     }
     if (guide_pdf < 0.f) {
       square = equal_area_sphere_to_square(es.d);
       guide_pdf = guide.pdf(square);
     }
-    // (a direction only the guide draws has no density for MIS: its weight is 0)
-    if (!(es.pdf_dir > 0.f) || is_black(es.Le)) return false;
+    // (a direction only the guide draws has no density for MIS: its
+    // weight is 0, and the subpath goes no further than its first point)
+    if (!(es.pdf_dir > 0.f) || is_black(es.Le)) {
+      *mix_pdf_dir = 0.f;
+      return;
+    }
     mix = guide.mix(es.pdf_dir, guide_pdf);
   }
   *mix_pdf_dir = mix;
@@ -63,7 +70,6 @@ bool Bdpt::guide_emission(BdptWave& w, uint32_t slot, EmissionSample& es, float 
                        es.Le * (cos_light / (es.pdf_pos * mix)));
     w.light_guide_depth.push_back(0);
   }
-  return true;
 }
 
 void Bdpt::gather_for_light_guide(BdptWave& w, uint32_t slot, uint32_t s, const Spectrum& c) {
