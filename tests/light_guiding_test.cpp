@@ -103,6 +103,7 @@ TEST(LightGuiding, BdptConvergesToTheUnguidedImage) {
   o.collect_stats = true;
   const RenderResult r = render(*scene, o);
   EXPECT_GE(r.stats.guiding_iterations, 2u);
+  EXPECT_GE(r.stats.guiding_light_leaves, 1u) << "the importance field is reported";
   EXPECT_NE(r.image.rgb, render(*scene, p).image.rgb);
 }
 

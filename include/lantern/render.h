@@ -170,6 +170,7 @@ struct RenderStats {
   // the leaves whose paths in a medium sample a distribution learnt there.
   uint32_t guiding_iterations = 0;
   size_t guiding_leaves = 0, guiding_nodes = 0, guiding_bytes = 0, guiding_medium_leaves = 0;
+  size_t guiding_light_leaves = 0;  // the importance field's (--guide-light)
 
   // Subpath vertices on surfaces, and why subpaths ended (escaped, absorbed,
   // roulette, maxdepth), summed over all samples.

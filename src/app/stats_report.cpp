@@ -67,6 +67,7 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
                     {"spatial_leaves", s.guiding_leaves},
                     {"directional_nodes", s.guiding_nodes},
                     {"medium_leaves", s.guiding_medium_leaves},
+                    {"light_leaves", s.guiding_light_leaves},
                     {"bytes", s.guiding_bytes}};
   j["light_paths"] = s.light_paths;
   j["seconds"] = {{"load", run.load_seconds}, {"bvh_build", run.scene_info.bvh_build_seconds}, {"render", s.seconds}};

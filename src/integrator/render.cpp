@@ -574,6 +574,14 @@ RenderResult RenderSession::render_all() {
       if (l.sampled[SDTree::kMediumBin].total() > 0.0) ++res.stats.guiding_medium_leaves;
     }
     res.stats.guiding_bytes = guiding->tree().memory_bytes();
+    if (guiding->guides_light_subpaths()) {  // the importance field
+      const SDTree& importance = guiding->importance_tree();
+      res.stats.guiding_light_leaves = importance.leaves().size();
+      for (const SDTree::Leaf& l : importance.leaves())
+        for (uint32_t b = 0; b < SDTree::kBins; ++b)
+          res.stats.guiding_nodes += l.sampled[b].node_count() + l.learning[b].node_count();
+      res.stats.guiding_bytes += importance.memory_bytes();
+    }
   }
   res.stats.seconds = std::chrono::duration<double>(Clock::now() - s.start).count();
   res.total_render_seconds = prior_seconds + res.stats.seconds;
