@@ -1,8 +1,8 @@
-// Guided light subpaths (--guide-light, docs/guiding.md): bdpt whose light
-// subpaths sample an importance field, at their surface vertices and at an
-// area light's point, converges to the unguided image; it is the same on
-// one and two threads and after stops and resumes; what it cannot do is
-// refused.
+// Guided light subpaths (--guide-light, docs/guiding.md): bdpt and vcm
+// whose light subpaths sample an importance field, at their surface
+// vertices and at an area light's point, converge to their unguided
+// images, the same on one and two threads (and bdpt after stops and
+// resumes); what it cannot do is refused.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -83,7 +83,7 @@ RenderOptions options(bool guide_light, bool guide_eye = false) {
 // guide drew an emission direction the light cannot, its first point's
 // s = 1, t = 1 strategy with it, puts them 4.9-5.3 standard errors off
 // (checked).
-TEST(LightGuiding, BdptConvergesToTheUnguidedImage) {
+TEST(LightGuiding, BdptAndVcmConvergeToTheirUnguidedImages) {
   if (LANTERN_ASAN) GTEST_SKIP() << "statistics only: the Release suite runs it";
   const auto scene = two_rooms();
   std::vector<Region> regions;
@@ -97,6 +97,14 @@ TEST(LightGuiding, BdptConvergesToTheUnguidedImage) {
   max_z(plain, both);
   expect_means_agree(plain, light, 0.0, "guided light subpaths");
   expect_means_agree(plain, both, 0.0, "guided light and eye subpaths");
+  // vcm learns from its merges too (what a light vertex brings to other
+  // samples' pixels); guided and unguided carry the same merging bias.
+  RenderOptions vcm_plain = options(false), vcm_guided = options(true);
+  vcm_plain.integrator = vcm_guided.integrator = Integrator::Vcm;
+  const RegionStats vcm = stats_of(render_runs(*scene, vcm_plain, 8, 400), regions);
+  const RegionStats vcm_light = stats_of(render_runs(*scene, vcm_guided, 8, 500), regions);
+  max_z(vcm, vcm_light);
+  expect_means_agree(vcm, vcm_light, 0.0, "vcm, guided light subpaths");
   // The field was learnt and sampled: the same seed draws other paths.
   RenderOptions o = options(true), p = options(false);
   o.seed = p.seed = 5;
@@ -111,7 +119,7 @@ TEST(LightGuiding, SameImageOnOneAndTwoThreads) {
   const auto scene = two_rooms();
   RenderOptions o = options(true, true);
   o.spp = 16;
-  expect_thread_invariant(*scene, o, {"bdpt"});
+  expect_thread_invariant(*scene, o, {"bdpt", "vcm"});
 }
 
 // A checkpoint carries the importance field: stopped inside the learning
@@ -151,7 +159,7 @@ TEST(LightGuiding, ResumesWithTheFieldItLearnt) {
 
 TEST(LightGuiding, RefusesWhatItCannotDo) {
   const auto scene = two_rooms();
-  for (Integrator other : {Integrator::Path, Integrator::Lt, Integrator::Vcm, Integrator::Bpm, Integrator::Mlt}) {
+  for (Integrator other : {Integrator::Path, Integrator::Lt, Integrator::Bpm, Integrator::Ppm, Integrator::Mlt}) {
     RenderOptions o = options(true);
     o.integrator = other;
     EXPECT_THROW(render(*scene, o), std::invalid_argument) << name(other);

@@ -51,7 +51,7 @@ struct RenderOptions {
   // and sample directions from it, mixed with the BSDF. path only; not with
   // shares, MPI or checkpoints.
   bool guiding = false;
-  // bdpt's light subpaths learn where what leaves a surface reaches the
+  // bdpt's and vcm's light subpaths learn where what leaves a surface reaches the
   // image, and sample it (docs/guiding.md); with or without `guiding`.
   bool guide_light_subpaths = false;
   bool any_guiding() const { return guiding || guide_light_subpaths; }

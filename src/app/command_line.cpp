@@ -99,7 +99,7 @@ void add_render_request_options(CLI::App& c, RenderRequest& r) {
                    "Path guiding: paths learn where light comes from and sample it (path, and the eye subpaths of bdpt and vcm; "
                    "docs/guiding.md)");
   c.add_flag("--guide-light", r.guide_light,
-                   "bdpt: light subpaths learn where what leaves a surface reaches the image and sample it, the "
+                   "bdpt, vcm: light subpaths learn where what leaves a surface reaches the image and sample it, the "
                    "emission directions of area lights too (with --guide, both subpaths are guided; docs/guiding.md)");
   c.add_flag("--spectral", r.spectral,
                    "Render with sampled wavelengths, four per camera sample, as pbrt-v4 does, instead of in RGB "

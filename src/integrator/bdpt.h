@@ -100,7 +100,7 @@ class Bdpt {
   // Path guiding (docs/guiding.md): eye subpaths sample the field's
   // mixture with the BSDF at surface vertices and, while it learns, leave
   // records of what they gathered. If the field guides light subpaths
-  // (bdpt only), their surface vertices do the same with its importance
+  // (bdpt and vcm), their surface vertices do the same with its importance
   // field, learning from what the strategies beyond each vertex brought.
   void set_guiding(const GuidingField* field) { guiding_ = field; }
 

@@ -183,6 +183,8 @@ void Bdpt::merge_at_eye_vertex(BdptWave& w, uint32_t slot, const Vertex& v) cons
     const Spectrum light = lv.beta[j] * joined_dispersion(w.eye.dispersed[slot], lv.is_dispersed(j));
     sum += e.f * light * weight(wt);
     ++w.stats.merges;
+    // (what it brings is the light subpath's too, whichever sample's pixel it lands in)
+    if (learns_light()) gather_for_light_guide(w, lv.slot[j], lv.depth[j] + 1, estimate(e.f * light * weight(wt)));
     if (settings_.record_strategies) {
       const Spectrum u = estimate(e.f * light);
       const SampledWavelengths& l = w.lambda[slot];

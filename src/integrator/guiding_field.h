@@ -27,13 +27,13 @@ class GuidingField {
   // passes: the render's budget in passes; 0 for a time budget, where the
   // renderer predicts it after each iteration (expect_passes).
   // eye_subpaths: path and the eye subpaths of bdpt and vcm learn and
-  // sample the radiance field; light_subpaths: bdpt's light subpaths the
+  // sample the radiance field; light_subpaths: the light subpaths of bdpt and vcm the
   // importance field.
   GuidingField(Vec3 lo, Vec3 hi, uint64_t passes, bool eye_subpaths = true, bool light_subpaths = false)
       : tree_(lo, hi), importance_(lo, hi), passes_(passes), eye_subpaths_(eye_subpaths), light_subpaths_(light_subpaths) {}
 
   const SDTree& tree() const { return tree_; }
-  // The importance field bdpt's light subpaths learn and sample (where
+  // The importance field the light subpaths learn and sample (where
   // what leaves a surface reaches the image: docs/guiding.md), if they are
   // guided.
   bool guides_light_subpaths() const { return light_subpaths_; }

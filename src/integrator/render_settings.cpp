@@ -117,10 +117,10 @@ void check_options(const Scene& scene, const RenderOptions& opt) {
     if (opt.share_count > 1)
       throw std::invalid_argument("path guiding (--guide) needs the whole render in one process: not with --part or MPI");
   }
-  // Light subpaths learn from the strategies that connect their vertices;
-  // vcm's merges would be left out of what they learn.
-  if (opt.guide_light_subpaths && opt.integrator != Integrator::Bdpt)
-    throw std::invalid_argument(std::string("guided light subpaths (--guide-light) work with bdpt, not with ") +
+  // Light subpaths learn from what the strategies that use their vertices
+  // bring: bdpt's and vcm's connections, light tracing and merges.
+  if (opt.guide_light_subpaths && opt.integrator != Integrator::Bdpt && opt.integrator != Integrator::Vcm)
+    throw std::invalid_argument(std::string("guided light subpaths (--guide-light) work with bdpt and vcm, not with ") +
                                 name(opt.integrator));
   if (opt.guide_light_subpaths && opt.share_count > 1)
     throw std::invalid_argument("guided light subpaths (--guide-light) need the whole render in one process: not with "
