@@ -48,8 +48,8 @@ struct RenderOptions {
   // most. Ignored with a target error. The same integrators as a target.
   bool adaptive = false;
   // Path guiding (docs/guiding.md): paths learn where light comes from
-  // and sample directions from it, mixed with the BSDF. path only; not with
-  // shares, MPI or checkpoints.
+  // and sample directions from it, mixed with the BSDF. path, and the eye
+  // subpaths of bdpt and vcm; not with shares or MPI.
   bool guiding = false;
   // bdpt's and vcm's light subpaths learn where what leaves a surface reaches the
   // image, and sample it (docs/guiding.md); with or without `guiding`.

@@ -502,10 +502,10 @@ RenderResult RenderSession::render_all() {
         if (checkpoints.learnt().empty()) throw std::runtime_error("it holds no guiding field");
         guiding->restore(checkpoints.learnt());
       } catch (const std::bad_alloc&) {
-        throw InputError({opt.checkpoint_path, 0, 0}, "checkpoint cannot be resumed with --guide: its guiding field is "
+        throw InputError({opt.checkpoint_path, 0, 0}, "checkpoint cannot be resumed with guiding: its guiding field is "
                                                       "larger than memory holds");
       } catch (const std::runtime_error& e) {
-        throw InputError({opt.checkpoint_path, 0, 0}, std::string("checkpoint cannot be resumed with --guide: ") + e.what());
+        throw InputError({opt.checkpoint_path, 0, 0}, std::string("checkpoint cannot be resumed with guiding: ") + e.what());
       }
     }
     checkpoints.learns([&guiding] { return guiding->save(); });
