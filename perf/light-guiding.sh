@@ -10,7 +10,7 @@
 set -eu
 secs=${1:-10}
 shift 2>/dev/null || true
-scenes=${*:-"caustics door-ajar spotlit-room cornell-box cornell-box-tiny-light lamp-street lantern reading-room"}
+scenes=${*:-"caustics door-ajar spotlit-room cornell-box cornell-box-tiny-light lamp-street lantern"}
 lantern=${LANTERN:-build/lantern}
 integrator=${INTEGRATOR:-bdpt}
 tmp=$(mktemp -d)
