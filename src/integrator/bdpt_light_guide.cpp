@@ -46,8 +46,10 @@ void Bdpt::guide_emission(BdptWave& w, uint32_t slot, EmissionSample& es, float 
       float square_pdf = 0.f;
       square = guide.tree->sample(Vec2(std::min((u_dir.x - a) / (1.f - a), 0x1.fffffep-1f), u_dir.y), &square_pdf);
       if (!redirect_area_emission(scene_.lights, scene_.textures, es, glm::normalize(equal_area_square_to_sphere(square)),
-                                  w.lambda[slot]))
+                                  w.lambda[slot])) {
+        *mix_pdf_dir = 0.f;  // (not an area light's sample: its direction was drawn for the guide's share)
         return;
+      }
       guide_pdf = sphere_pdf(square_pdf);
     }
     if (guide_pdf < 0.f) {

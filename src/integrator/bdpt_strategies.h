@@ -184,7 +184,10 @@ void Bdpt::merge_at_eye_vertex(BdptWave& w, uint32_t slot, const Vertex& v) cons
     sum += e.f * light * weight(wt);
     ++w.stats.merges;
     // (what it brings is the light subpath's too, whichever sample's pixel it lands in)
-    if (learns_light()) gather_for_light_guide(w, lv.slot[j], lv.depth[j] + 1, estimate(e.f * light * weight(wt)));
+    if (learns_light()) {
+      const Spectrum brought = estimate(e.f * light * weight(wt));
+      if (is_finite(brought)) gather_for_light_guide(w, lv.slot[j], lv.depth[j] + 1, brought);
+    }
     if (settings_.record_strategies) {
       const Spectrum u = estimate(e.f * light);
       const SampledWavelengths& l = w.lambda[slot];
