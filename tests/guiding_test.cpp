@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
-#include <fstream>
 #include <random>
 
 #include "bsdf_checks.h"
@@ -20,10 +19,11 @@
 #include "material/diffuse_bsdf.h"
 #include "math/equal_area.h"
 #include "sanitizer.h"
-#include "stop_and_resume.h"
+#include "guided_rooms.h"
 #include "stat_compare.h"
 
 using namespace lantern;
+using namespace lantern::guiding_test;
 
 namespace {
 
@@ -295,83 +295,6 @@ TEST(GuidedScatter, PhaseMixtureIsUnbiasedAndFollowsItsDensity) {
   }
 }
 
-namespace {
-
-// A room (floor, walls, ceiling from `ceiling`) with diffuse, rough
-// conductor and coated (layered, whose sampled density is not its pdf)
-// surfaces, and `lights`.
-std::shared_ptr<Scene> room(const std::string& ceiling, const std::string& lights, const std::string& name) {
-  return load_scene_from_string(R"(
-LookAt 0 1 -2.6  0 1 0  0 1 0
-Camera "perspective" "float fov" [ 70 ]
-Film "rgb" "integer xresolution" [ 32 ] "integer yresolution" [ 32 ]
-WorldBegin
-Material "diffuse" "rgb reflectance" [ 0.7 0.6 0.5 ]
-Shape "trianglemesh" "point3 P" [ -2 0 -3  2 0 -3  2 0 2  -2 0 2 ] "integer indices" [ 0 1 2 0 2 3 ]
-Shape "trianglemesh" "point3 P" [ -2 0 2  2 0 2  2 2 2  -2 2 2 ] "integer indices" [ 0 1 2 0 2 3 ]
-Shape "trianglemesh" "point3 P" [ -2 0 -3  -2 2 -3  2 2 -3  2 0 -3 ] "integer indices" [ 0 1 2 0 2 3 ]
-)" + ceiling + R"(
-Material "conductor" "float roughness" [ 0.3 ]
-Shape "trianglemesh" "point3 P" [ -2 0 -3  -2 0 2  -2 2 2  -2 2 -3 ] "integer indices" [ 0 1 2 0 2 3 ]
-Material "coateddiffuse" "rgb reflectance" [ 0.2 0.5 0.8 ] "float roughness" [ 0.2 ]
-Shape "trianglemesh" "point3 P" [ 2 0 -3  2 2 -3  2 2 2  2 0 2 ] "integer indices" [ 0 1 2 0 2 3 ]
-)" + lights,
-                                name);
-}
-
-// A closed room lit by a small light near the ceiling.
-std::shared_ptr<Scene> guided_room() {
-  return room(R"(Shape "trianglemesh" "point3 P" [ -2 2 -3  -2 2 2  2 2 2  2 2 -3 ] "integer indices" [ 0 1 2 0 2 3 ])",
-              R"(AttributeBegin
-  AreaLightSource "diffuse" "rgb L" [ 40 40 40 ]
-  Translate 1.2 1.8 1.2
-  Shape "sphere" "float radius" [ 0.08 ]
-AttributeEnd)",
-              "guided-room.pbrt");
-}
-
-// The same room lit only by a white sky through a hole in its ceiling:
-// next-event estimation seldom draws a direction through the hole, BSDF
-// sampling a few times more often, so what the eye subpaths gather comes
-// from a narrow cone the guide learns (their MIS weights stay high there).
-std::shared_ptr<Scene> skylit_room() {
-  return room(R"(Shape "trianglemesh" "point3 P" [ -2 2 -3  -2 2 -0.9  2 2 -0.9  2 2 -3 ] "integer indices" [ 0 1 2 0 2 3 ]
-Shape "trianglemesh" "point3 P" [ -2 2 -0.1  -2 2 2  2 2 2  2 2 -0.1 ] "integer indices" [ 0 1 2 0 2 3 ]
-Shape "trianglemesh" "point3 P" [ -2 2 -0.9  -2 2 -0.1  -0.4 2 -0.1  -0.4 2 -0.9 ] "integer indices" [ 0 1 2 0 2 3 ]
-Shape "trianglemesh" "point3 P" [ 0.4 2 -0.9  0.4 2 -0.1  2 2 -0.1  2 2 -0.9 ] "integer indices" [ 0 1 2 0 2 3 ])",
-              R"(LightSource "infinite" "rgb L" [ 1 1 1 ])", "skylit-room.pbrt");
-}
-
-// The skylit room with a ball of fog under the hole: the light its
-// scattering points gather comes through the hole, a narrow cone the
-// guide's medium distributions learn.
-std::shared_ptr<Scene> foggy_skylit_room() {
-  return room(R"(Shape "trianglemesh" "point3 P" [ -2 2 -3  -2 2 -0.9  2 2 -0.9  2 2 -3 ] "integer indices" [ 0 1 2 0 2 3 ]
-Shape "trianglemesh" "point3 P" [ -2 2 -0.1  -2 2 2  2 2 2  2 2 -0.1 ] "integer indices" [ 0 1 2 0 2 3 ]
-Shape "trianglemesh" "point3 P" [ -2 2 -0.9  -2 2 -0.1  -0.4 2 -0.1  -0.4 2 -0.9 ] "integer indices" [ 0 1 2 0 2 3 ]
-Shape "trianglemesh" "point3 P" [ 0.4 2 -0.9  0.4 2 -0.1  2 2 -0.1  2 2 -0.9 ] "integer indices" [ 0 1 2 0 2 3 ])",
-              R"(LightSource "infinite" "rgb L" [ 1 1 1 ]
-MakeNamedMedium "fog" "string type" "homogeneous"
-  "rgb sigma_a" [ 0.1 0.2 0.3 ] "rgb sigma_s" [ 1.5 1.2 1.0 ] "float g" [ 0.4 ]
-AttributeBegin
-  MediumInterface "fog" ""
-  Material "interface"
-  Translate 0 0.9 -0.3
-  Shape "sphere" "float radius" [ 0.75 ]
-AttributeEnd)",
-              "foggy-skylit-room.pbrt");
-}
-
-RenderOptions guided_options(bool guiding) {
-  RenderOptions o;
-  o.integrator = Integrator::Path;
-  o.guiding = guiding;
-  o.spp = 64;
-  o.maxdepth = 5;
-  return o;
-}
-
-}  // namespace
 
 // Guided paths converge to the unguided image: region means over
 // independent runs agree within 4.5 standard errors.
@@ -471,121 +394,3 @@ TEST(Guiding, RefusesWhatItCannotDo) {
   tickets.next_ticket = [] { return UINT64_MAX; };
   EXPECT_THROW(render(*scene, guided_options(true), tickets), std::invalid_argument);
 }
-
-// A checkpoint carries the field with the film: a guided render stopped
-// inside its iterations of learning (and after them) and resumed, on one
-// and two threads in turn, makes the straight render's image bit for bit.
-// Resumed without the field (checked by leaving restore out), paths drew
-// other directions and the image differed.
-TEST(Guiding, ResumesWithTheFieldItLearnt) {
-  const auto scene = guided_room();
-  // (Under the sanitizers the path tracer alone: the field's bytes are the
-  // same code for all three.)
-  const std::vector<Integrator> integrators =
-      LANTERN_ASAN ? std::vector<Integrator>{Integrator::Path}
-                   : std::vector<Integrator>{Integrator::Path, Integrator::Bdpt, Integrator::Vcm};
-  for (Integrator integrator : integrators) {
-    RenderOptions o = guided_options(true);
-    o.integrator = integrator;
-    o.spp = 16;          // iterations end after passes 1, 3 and 7
-    o.wave_size = 128;   // 8 waves a pass: stops fall inside passes
-    const RenderResult straight = render(*scene, o);
-    const std::string checkpoint = ::testing::TempDir() + "/lantern_guided_resume.ckpt";
-    int runs = 0;
-    const RenderResult r = render_stopped_and_resumed(*scene, o, checkpoint, 7, 11, &runs);
-    EXPECT_GE(runs, 4);
-    EXPECT_EQ(r.stats.samples, straight.stats.samples);
-    EXPECT_EQ(0, std::memcmp(r.image.rgb.data(), straight.image.rgb.data(), r.image.rgb.size() * sizeof(float)))
-        << name(integrator);
-    std::remove(checkpoint.c_str());
-  }
-  // Its iterations are planned from the budget: a larger one cannot go on
-  // from it.
-  RenderOptions o = guided_options(true);
-  o.spp = 8;
-  o.checkpoint_path = ::testing::TempDir() + "/lantern_guided_extend.ckpt";
-  o.keep_checkpoint = true;
-  render(*scene, o);
-  o.spp = 16;
-  o.resume = true;
-  EXPECT_THROW(render(*scene, o), InputError);
-  // A guided checkpoint of format 3 (before media had distributions) or 4
-  // (before light subpaths were guided) is refused by its version, with
-  // what to do.
-  o.spp = 8;
-  for (const uint32_t format : {3u, 4u}) {
-    {
-      std::fstream f(o.checkpoint_path, std::ios::in | std::ios::out | std::ios::binary);
-      f.seekp(8);
-      f.write(reinterpret_cast<const char*>(&format), sizeof format);
-    }
-    try {
-      render(*scene, o);
-      ADD_FAILURE() << "a format " << format << " checkpoint was resumed";
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find("earlier Lantern version"), std::string::npos) << e.what();
-    }
-  }
-  std::remove(o.checkpoint_path.c_str());
-}
-
-// The field's bytes in a checkpoint: a learnt field comes back bit for bit,
-// and bytes that cannot be a field (cut short, a count beyond them, a node
-// with two parents or none, another scene's bounds) are refused with an
-// error, never a crash or a walk without end. (A damaged file fails its
-// checksum first; these are files whose checksum was made to fit.)
-TEST(Guiding, FieldBytesRoundTripAndBadOnesAreRefused) {
-  const Vec3 lo(-1.f), hi(2.f);
-  GuidingField field(lo, hi, 64);
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<float> u(0.f, 1.f);
-  for (int iteration = 0; iteration < 3; ++iteration) {
-    std::vector<GuideRecord> records;
-    for (int i = 0; i < 30000; ++i) {
-      const Vec3 p = lo + (hi - lo) * Vec3(u(rng), u(rng), u(rng));
-      GuideRecord r{};
-      r.leaf = field.tree().leaf_of(p);
-      r.bin = uint8_t(i % SDTree::kBins);
-      r.cell = field.tree().leaf(r.leaf).learning[r.bin].cell_of(Vec2(0.1f + 0.3f * u(rng), u(rng)));
-      r.energy = 1.f + u(rng);
-      r.second = r.energy, r.bsdf_pdf = 0.3f, r.guide_pdf = -1.f;
-      records.push_back(r);
-    }
-    field.deposit(records);
-    field.end_iteration();
-  }
-  const std::string bytes = field.save();
-  ASSERT_GT(field.tree().leaves().size(), 1u);  // (it split)
-  GuidingField restored(lo, hi, 64);
-  restored.restore(bytes);
-  EXPECT_EQ(restored.save(), bytes);
-  EXPECT_EQ(restored.iteration(), field.iteration());
-
-  auto refused = [&](std::string b) {
-    GuidingField f(lo, hi, 64);
-    EXPECT_THROW(f.restore(b), std::runtime_error);
-    EXPECT_EQ(f.iteration(), 0u);  // (left as it was)
-  };
-  refused(bytes.substr(0, bytes.size() / 2));
-  refused(bytes + "x");
-  // Layout: u32 iteration, u8 done, the tree: Vec3 lo, float extent, u8
-  // trained, u64 node count, nodes of (u32 child[2], u32 leaf, u8 axis).
-  constexpr size_t kNodeCount = 4 + 1 + 12 + 4 + 1, kFirstNode = kNodeCount + 8;
-  std::string huge = bytes;
-  std::memset(huge.data() + kNodeCount, 0xff, 8);
-  refused(huge);
-  std::string half = bytes;  // the root's children 0 and 1: neither a leaf nor an inner node
-  const uint32_t children[2] = {0, 1};
-  std::memcpy(half.data() + kFirstNode, children, sizeof children);
-  refused(half);
-  std::string shared = bytes;  // both children the same node: a node with two parents
-  uint32_t root[2];
-  std::memcpy(root, bytes.data() + kFirstNode, sizeof root);
-  ASSERT_NE(root[0], 0u);
-  root[1] = root[0];
-  std::memcpy(shared.data() + kFirstNode, root, sizeof root);
-  refused(shared);
-  GuidingField elsewhere(lo, hi + Vec3(1.f), 64);
-  EXPECT_THROW(elsewhere.restore(bytes), std::runtime_error);
-}
-

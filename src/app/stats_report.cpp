@@ -62,7 +62,7 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
   j["min_spp"] = s.min_spp;
   j["max_spp"] = s.max_spp;
   if (s.estimated_relmse >= 0) j["estimated_relmse"] = s.estimated_relmse;
-  if (s.guiding_leaves > 0)
+  if (s.guiding_leaves > 0 || s.guiding_light_leaves > 0)
     j["guiding"] = {{"iterations", s.guiding_iterations},
                     {"spatial_leaves", s.guiding_leaves},
                     {"directional_nodes", s.guiding_nodes},

@@ -21,7 +21,8 @@ constexpr char kMagic[8] = {'L', 'N', 'T', 'N', 'C', 'K', 'P', 'T'};
 // 2: fixed-point sums, unit sets; 3: and what the integrator learnt; 4:
 // the same, a guiding field with distributions for media too; 5: and which
 // subpaths it guides, with the light subpaths' importance field. A render
-// that learns nothing writes 2, which every version since reads.
+// that learns nothing writes 2, which every version since reads; 4 is read
+// as the 5 of a field that guides eye subpaths only.
 constexpr uint32_t kVersion = 2, kLearntVersion = 5, kSurfaceGuidedVersion = 3, kEyeGuidedVersion = 4;
 
 class HashingWriter final : public StateWriter {
@@ -108,13 +109,11 @@ std::string read_header(HashingReader& r, const std::string& path, uint32_t* ver
   r.read(magic, sizeof magic);
   if (std::memcmp(magic, kMagic, sizeof kMagic) != 0) throw InputError({path, 0, 0}, "not a Lantern checkpoint or part file");
   const uint32_t v = r.get<uint32_t>();
-  if (v == kSurfaceGuidedVersion || v == kEyeGuidedVersion)
-    throw InputError({path, 0, 0}, "file format version " + std::to_string(v) +
-                                       " is a guided render's from an earlier Lantern version, whose guiding field this "
-                                       "version cannot continue (its fields learn " +
-                                       (v == kSurfaceGuidedVersion ? "media" : "light subpaths") +
-                                       " too); resume it with the version that wrote it");
-  if (v != kVersion && v != kLearntVersion)
+  if (v == kSurfaceGuidedVersion)
+    throw InputError({path, 0, 0}, "file format version 3 is a guided render's from an earlier Lantern version, whose "
+                                   "guiding field this version cannot continue (its field has distributions for media "
+                                   "too); resume it with the version that wrote it");
+  if (v != kVersion && v != kLearntVersion && v != kEyeGuidedVersion)
     throw InputError({path, 0, 0}, "file format version " + std::to_string(v) + " is not " + std::to_string(kVersion) +
                                        " or " + std::to_string(kLearntVersion) + " (made by another Lantern version)");
   if (version) *version = v;
@@ -158,7 +157,7 @@ CheckpointInfo read_file(const std::string& path, const std::string* expected, F
     throw InputError({path, 0, 0}, "file is damaged (unit list)");
   info.done = UnitSet::of(std::move(intervals));
   film.read_state(r);
-  if (version == kLearntVersion) {
+  if (version == kLearntVersion || version == kEyeGuidedVersion) {
     // No longer than what is left of the file.
     std::error_code ec;
     const uint64_t size = std::filesystem::file_size(path, ec);
@@ -168,6 +167,9 @@ CheckpointInfo read_file(const std::string& path, const std::string* expected, F
     if (n > left) throw InputError({path, 0, 0}, "file is damaged (the learnt state's length)");
     info.learnt.resize(size_t(n));
     r.read(info.learnt.data(), size_t(n));
+    // Version 4's field guided eye subpaths only and did not say so: the
+    // flags version 5 stores after the radiance field (GuidingField::save).
+    if (version == kEyeGuidedVersion) info.learnt += std::string("\x01\x00", 2);
   }
   uint64_t computed = r.hash.h, stored = 0;
   if (!in.read(reinterpret_cast<char*>(&stored), sizeof stored)) throw InputError({path, 0, 0}, "file is truncated");

@@ -92,7 +92,7 @@ struct WaveOutput {
   std::vector<StrategyRecord> strategies;
   uint64_t light_paths = 0, odd_light_paths = 0;
   std::vector<GuideRecord> guide;  // for the guiding field being learnt (integrator/guiding_field.h)
-  std::vector<GuideRecord> light_guide;  // for its importance field (bdpt's light subpaths)
+  std::vector<GuideRecord> light_guide;  // for its importance field (the light subpaths of bdpt and vcm)
   // Filled by Film::prepare from samples and splats, in the parallel stage,
   // so that the serial merge only adds integers.
   std::vector<FixedTerm> sample_terms, splat_terms;

@@ -277,7 +277,7 @@ void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
     else w.stream.occluded(w.shadow.rays);
   };
   prepare_merging(wave, w);
-  if (learns_light()) begin_light_learning(w, wave.size());
+  prepare_light_learning(w, wave.size());
   timed(Stage::Generate, [&] { start_light_subpaths(wave, w); });
   trace_shadows();
   timed(Stage::Accumulate, [&] { splat_stage(w); });

@@ -189,7 +189,7 @@ class Bdpt {
   bool guides_light() const { return guiding_ && guiding_->guides_light_subpaths(); }
   bool guides_eye() const { return guiding_ && guiding_->guides_eye_subpaths(); }
   bool learns_light() const { return guides_light() && guiding_->learning(); }
-  void begin_light_learning(BdptWave& w, uint32_t slots) const;
+  void prepare_light_learning(BdptWave& w, uint32_t slots) const;
   // A contribution of slot's strategy with s light vertices, as it reaches the image.
   static void gather_for_light_guide(BdptWave& w, uint32_t slot, uint32_t s, const Spectrum& c);
   // An area light's emission direction by the one-sample mixture of its

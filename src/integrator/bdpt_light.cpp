@@ -287,7 +287,7 @@ void Bdpt::light_shade_stage(BdptWave& w) const {
       w.light_guide.push(slot, site.leaf, v.p, site.normal_bin,
                          drawn.guide_pdf >= 0.f ? drawn.square : equal_area_sphere_to_square(drawn.wi), drawn.pdf,
                          average(drawn.weight) * drawn.pdf, drawn.bsdf_pdf, drawn.guide_pdf, w.light.beta[slot]);
-      w.light_guide_depth.push_back(uint8_t(std::min<uint32_t>(ld, 255)));
+      w.light_guide_depth.push_back(strategy_count(ld));
     }
   });
 }

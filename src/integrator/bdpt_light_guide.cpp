@@ -1,7 +1,7 @@
 // What guided light subpaths learn (docs/guiding.md, "Guided light
 // subpaths"). A light subpath y0 y1 ... serves every strategy with s >= 2
-// light vertices: connections to eye vertices (t >= 2) and light tracing
-// (t = 1). The direction drawn at vertex y_k (k >= 1) decides the vertices
+// light vertices: connections to eye vertices (t >= 2), light tracing
+// (t = 1) and, in vcm, merges at its vertices. The direction drawn at vertex y_k (k >= 1) decides the vertices
 // y_{k+1}, y_{k+2}, ..., so the strategies with s >= k + 2 are what it
 // brought to the image. Their sum, over the throughput after the vertex,
 // estimates the importance arriving back along that direction: the adjoint
@@ -17,7 +17,11 @@
 
 namespace lantern {
 
-void Bdpt::begin_light_learning(BdptWave& w, uint32_t slots) const {
+void Bdpt::prepare_light_learning(BdptWave& w, uint32_t slots) const {
+  if (!learns_light()) {  // (after the last learning pass the buffers are not needed again)
+    if (!w.gathered.empty()) w.light_guide = {}, w.light_guide_depth = {}, w.gathered = {};
+    return;
+  }
   w.light_guide.clear();
   w.light_guide_depth.clear();
   // s runs from 1 to maxdepth + 1 (and the volume lights' one more)

@@ -61,7 +61,7 @@ void Bdpt::next_event(BdptWave& w, uint32_t slot, const Vertex& v, float u_light
   k.mis.sigma_b = v.sigma_t();
   k.unweighted = w.eye.beta[slot] * e.f * ls->L / ls->pdf;
   k.s = 1;
-  k.t = uint8_t(w.depth + 1);
+  k.t = strategy_count(w.depth + 1);
   k.light_sample = true;
   k.o = v.ray_origin(ls->wi);
   if (ls->infinite) {
@@ -102,8 +102,8 @@ void Bdpt::connect_light_vertices(BdptWave& w, uint32_t slot, const Vertex& v) c
                              light_vertex_merging(lv, j));
     k.mis.sigma_a = r.sigma_t;
     k.mis.sigma_b = v.sigma_t();
-    k.s = uint8_t(lv.depth[j] + 1);
-    k.t = uint8_t(depth + 1);
+    k.s = strategy_count(lv.depth[j] + 1);
+    k.t = strategy_count(depth + 1);
     k.o = v.ray_origin(wi);
     k.d = r.target - k.o;
     if (w.shadow.media) k.start = v.medium_towards(scene_, wi);
@@ -129,7 +129,7 @@ void Bdpt::connect_camera(BdptWave& w, uint32_t slot, uint32_t ld, const Vertex&
   k.mis.sigma_a = v.sigma_t();  // a camera ray would end here by distance sampling
   k.unweighted = w.light.beta[slot] * e.f * (cs->We / cs->pdf);
   k.p_raster = cs->p_raster;
-  k.s = uint8_t(ld + 1);
+  k.s = strategy_count(ld + 1);
   k.t = 1;
   k.o = v.ray_origin(cs->wi);
   k.d = cs->p_lens - k.o;
@@ -191,7 +191,7 @@ void Bdpt::merge_at_eye_vertex(BdptWave& w, uint32_t slot, const Vertex& v) cons
     if (settings_.record_strategies) {
       const Spectrum u = estimate(e.f * light);
       const SampledWavelengths& l = w.lambda[slot];
-      w.out->strategies.push_back({w.pixel[slot], Vec2(0.f), uint8_t(lv.depth[j] + 1), uint8_t(depth + 1),
+      w.out->strategies.push_back({w.pixel[slot], Vec2(0.f), strategy_count(lv.depth[j] + 1), strategy_count(depth + 1),
                                    film_rgb(u * weight(wt), l), film_rgb(u, l), true});
     }
   });

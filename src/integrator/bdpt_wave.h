@@ -4,6 +4,7 @@
 // the light vertex pool holds every connectible light vertex of the wave.
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "accel/ray_stream.h"
@@ -144,6 +145,10 @@ struct LightVertexPool {
   }
 };
 
+// A strategy's s or t as stored: saturated at 255 (bdpt's maxdepth has no
+// upper limit, and a wrapped count would name the wrong strategy).
+inline uint8_t strategy_count(uint32_t n) { return uint8_t(std::min<uint32_t>(n, 255)); }
+
 // The (s, t) strategy of a contribution and its value before the MIS
 // weight: recorded only for per-strategy images.
 struct StrategyTag {
@@ -203,7 +208,7 @@ struct ConnectionPool {
       }
     }
     slot[i] = s;
-    light_s[i] = uint8_t(std::min<uint32_t>(k.s, 255));
+    light_s[i] = k.s;
     contrib[i] = c;
     p_raster[i] = k.p_raster;
     next_event[i] = k.light_sample;
@@ -303,7 +308,7 @@ struct BdptWave {
     const SubpathPool* subpaths[] = {&eye, &light};
     size_t b = vector_bytes(pixel) + vector_bytes(sampler) + vector_bytes(lambda) + vector_bytes(time) + vector_bytes(L) + vector_bytes(raster) + vector_bytes(active) + guide.memory_bytes() +
                light_guide.memory_bytes() + vector_bytes(light_guide_depth) + vector_bytes(gathered) +
-               rays.memory_bytes() + hits.memory_bytes() + shadow.rays.memory_bytes() + vector_bytes(shadow.slot) +
+               rays.memory_bytes() + hits.memory_bytes() + shadow.rays.memory_bytes() + vector_bytes(shadow.slot) + vector_bytes(shadow.light_s) +
                vector_bytes(shadow.contrib) + vector_bytes(shadow.p_raster) + vector_bytes(shadow.tags) +
                vector_bytes(shadow.next_event);
     for (const SubpathPool* p : subpaths)

@@ -1,0 +1,240 @@
+// Guided renders' checkpoints: the field comes back with the film, bit for
+// bit (stops and resumes against the straight render), checkpoints of
+// earlier formats are read or refused by their version, and a field's
+// bytes that cannot be one are refused.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <random>
+
+#include "guided_rooms.h"
+#include "guiding/sd_tree.h"
+#include "integrator/guiding_field.h"
+#include "lantern/error.h"
+#include "lantern/render.h"
+#include "lantern/scene.h"
+#include "math/fnv1a.h"
+#include "sanitizer.h"
+#include "stop_and_resume.h"
+
+using namespace lantern;
+using namespace lantern::guiding_test;
+
+// A checkpoint carries the field with the film: a guided render stopped
+// inside its iterations of learning (and after them) and resumed, on one
+// and two threads in turn, makes the straight render's image bit for bit.
+// Resumed without the field (checked by leaving restore out), paths drew
+// other directions and the image differed.
+TEST(Guiding, ResumesWithTheFieldItLearnt) {
+  const auto scene = guided_room();
+  // (Under the sanitizers the path tracer alone: the field's bytes are the
+  // same code for all three.)
+  const std::vector<Integrator> integrators =
+      LANTERN_ASAN ? std::vector<Integrator>{Integrator::Path}
+                   : std::vector<Integrator>{Integrator::Path, Integrator::Bdpt, Integrator::Vcm};
+  for (Integrator integrator : integrators) {
+    RenderOptions o = guided_options(true);
+    o.integrator = integrator;
+    o.spp = 16;          // iterations end after passes 1, 3 and 7
+    o.wave_size = 128;   // 8 waves a pass: stops fall inside passes
+    const RenderResult straight = render(*scene, o);
+    const std::string checkpoint = ::testing::TempDir() + "/lantern_guided_resume.ckpt";
+    int runs = 0;
+    const RenderResult r = render_stopped_and_resumed(*scene, o, checkpoint, 7, 11, &runs);
+    EXPECT_GE(runs, 4);
+    EXPECT_EQ(r.stats.samples, straight.stats.samples);
+    EXPECT_EQ(0, std::memcmp(r.image.rgb.data(), straight.image.rgb.data(), r.image.rgb.size() * sizeof(float)))
+        << name(integrator);
+    std::remove(checkpoint.c_str());
+  }
+  // Its iterations are planned from the budget: a larger one cannot go on
+  // from it.
+  RenderOptions o = guided_options(true);
+  o.spp = 8;
+  o.checkpoint_path = ::testing::TempDir() + "/lantern_guided_extend.ckpt";
+  o.keep_checkpoint = true;
+  render(*scene, o);
+  o.spp = 16;
+  o.resume = true;
+  EXPECT_THROW(render(*scene, o), InputError);
+  // A guided checkpoint of format 3 (before media had distributions) is
+  // refused by its version, with what to do.
+  o.spp = 8;
+  {
+    const uint32_t format = 3;
+    std::fstream f(o.checkpoint_path, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(8);
+    f.write(reinterpret_cast<const char*>(&format), sizeof format);
+  }
+  try {
+    render(*scene, o);
+    ADD_FAILURE() << "a format 3 checkpoint was resumed";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("earlier Lantern version"), std::string::npos) << e.what();
+  }
+  std::remove(o.checkpoint_path.c_str());
+}
+
+// A guided checkpoint of format 4 (eye subpaths only, before the flags that
+// say which subpaths a field guides) resumes as the straight render: made
+// here from a format-5 file stopped inside the learning iterations, by
+// dropping those two bytes. Refused, or resumed without the field, it fails.
+TEST(Guiding, ResumesAFormatFourCheckpoint) {
+  const auto scene = guided_room();
+  RenderOptions o = guided_options(true);
+  o.spp = 16;
+  o.wave_size = 128;
+  const RenderResult straight = render(*scene, o);
+  o.checkpoint_path = ::testing::TempDir() + "/lantern_guided_format4.ckpt";
+  std::remove(o.checkpoint_path.c_str());
+  o.checkpoint_seconds = 1e-9;  // after every wave
+  std::atomic<bool> cancel{false};
+  int written = 0;
+  RenderHooks hooks;
+  hooks.cancel = &cancel;
+  hooks.checkpoint_written = [&] { cancel = cancel || ++written == 20; };  // pass 2 of 16, inside iteration 1
+  ASSERT_TRUE(render(*scene, o, hooks).interrupted);
+  std::string bytes;
+  {
+    std::ifstream in(o.checkpoint_path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  // ... u64 n, n bytes of field ending in the flags 1 (eye) and 0 (light), u64 hash.
+  ASSERT_GT(bytes.size(), 32u);
+  std::string body = bytes.substr(0, bytes.size() - 8);
+  ASSERT_EQ(body.substr(body.size() - 2), std::string("\x01\x00", 2));
+  uint64_t n = 0;
+  for (n = 2; n + 8 < body.size(); ++n) {
+    uint64_t stored = 0;
+    std::memcpy(&stored, body.data() + body.size() - n - 8, 8);
+    if (stored == n) break;
+  }
+  ASSERT_LT(n + 8, body.size()) << "no field length found";
+  body.resize(body.size() - 2);
+  const uint64_t shorter = n - 2;
+  std::memcpy(body.data() + body.size() - shorter - 8, &shorter, 8);
+  const uint32_t format = 4;
+  std::memcpy(body.data() + 8, &format, 4);
+  Fnv1a hash;
+  hash.add(body.data(), body.size());
+  {
+    std::ofstream out(o.checkpoint_path, std::ios::binary | std::ios::trunc);
+    out.write(body.data(), std::streamsize(body.size()));
+    out.write(reinterpret_cast<const char*>(&hash.h), 8);
+  }
+  o.resume = true;
+  o.checkpoint_seconds = 0;
+  const RenderResult resumed = render(*scene, o);
+  EXPECT_FALSE(resumed.interrupted);
+  EXPECT_EQ(0, std::memcmp(resumed.image.rgb.data(), straight.image.rgb.data(), straight.image.rgb.size() * sizeof(float)));
+  std::remove(o.checkpoint_path.c_str());
+}
+
+// The field's bytes in a checkpoint: a learnt field comes back bit for bit,
+// and bytes that cannot be a field (cut short, a count beyond them, a node
+// with two parents or none, another scene's bounds) are refused with an
+// error, never a crash or a walk without end. (A damaged file fails its
+// checksum first; these are files whose checksum was made to fit.)
+TEST(Guiding, FieldBytesRoundTripAndBadOnesAreRefused) {
+  const Vec3 lo(-1.f), hi(2.f);
+  GuidingField field(lo, hi, 64);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  for (int iteration = 0; iteration < 3; ++iteration) {
+    std::vector<GuideRecord> records;
+    for (int i = 0; i < 30000; ++i) {
+      const Vec3 p = lo + (hi - lo) * Vec3(u(rng), u(rng), u(rng));
+      GuideRecord r{};
+      r.leaf = field.tree().leaf_of(p);
+      r.bin = uint8_t(i % SDTree::kBins);
+      r.cell = field.tree().leaf(r.leaf).learning[r.bin].cell_of(Vec2(0.1f + 0.3f * u(rng), u(rng)));
+      r.energy = 1.f + u(rng);
+      r.second = r.energy, r.bsdf_pdf = 0.3f, r.guide_pdf = -1.f;
+      records.push_back(r);
+    }
+    field.deposit(records);
+    field.end_iteration();
+  }
+  const std::string bytes = field.save();
+  ASSERT_GT(field.tree().leaves().size(), 1u);  // (it split)
+  GuidingField restored(lo, hi, 64);
+  restored.restore(bytes);
+  EXPECT_EQ(restored.save(), bytes);
+  EXPECT_EQ(restored.iteration(), field.iteration());
+
+  auto refused = [&](std::string b) {
+    GuidingField f(lo, hi, 64);
+    EXPECT_THROW(f.restore(b), std::runtime_error);
+    EXPECT_EQ(f.iteration(), 0u);  // (left as it was)
+  };
+  refused(bytes.substr(0, bytes.size() / 2));
+  refused(bytes + "x");
+  // Layout: u32 iteration, u8 done, the tree: Vec3 lo, float extent, u8
+  // trained, u64 node count, nodes of (u32 child[2], u32 leaf, u8 axis).
+  constexpr size_t kNodeCount = 4 + 1 + 12 + 4 + 1, kFirstNode = kNodeCount + 8;
+  std::string huge = bytes;
+  std::memset(huge.data() + kNodeCount, 0xff, 8);
+  refused(huge);
+  std::string half = bytes;  // the root's children 0 and 1: neither a leaf nor an inner node
+  const uint32_t children[2] = {0, 1};
+  std::memcpy(half.data() + kFirstNode, children, sizeof children);
+  refused(half);
+  std::string shared = bytes;  // both children the same node: a node with two parents
+  uint32_t root[2];
+  std::memcpy(root, bytes.data() + kFirstNode, sizeof root);
+  ASSERT_NE(root[0], 0u);
+  root[1] = root[0];
+  std::memcpy(shared.data() + kFirstNode, root, sizeof root);
+  refused(shared);
+  GuidingField elsewhere(lo, hi + Vec3(1.f), 64);
+  EXPECT_THROW(elsewhere.restore(bytes), std::runtime_error);
+}
+
+// With light subpaths guided (--guide-light) the importance field follows
+// the radiance field's bytes: both come back bit for bit, a field restored
+// into a render that guides other subpaths is refused, and so are bytes
+// cut inside the importance field.
+TEST(Guiding, BothFieldsBytesRoundTrip) {
+  const Vec3 lo(-1.f), hi(2.f);
+  GuidingField field(lo, hi, 64, true, true);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  auto records = [&](const SDTree& tree, float scale) {
+    std::vector<GuideRecord> out;
+    for (int i = 0; i < 20000; ++i) {
+      const Vec3 p = lo + (hi - lo) * Vec3(u(rng), u(rng), u(rng)) * Vec3(scale, 1.f, 1.f);
+      GuideRecord r{};
+      r.leaf = tree.leaf_of(p);
+      r.bin = uint8_t(i % SDTree::kBins);
+      r.cell = tree.leaf(r.leaf).learning[r.bin].cell_of(Vec2(u(rng), 0.2f + 0.5f * u(rng)));
+      r.energy = 1.f + u(rng);
+      r.second = r.energy, r.bsdf_pdf = 0.3f, r.guide_pdf = -1.f;
+      out.push_back(r);
+    }
+    return out;
+  };
+  for (int iteration = 0; iteration < 3; ++iteration) {
+    // (the importance records crowd into a third of the box: the two trees split differently)
+    const std::vector<GuideRecord> eye = records(field.tree(), 1.f), light = records(field.importance_tree(), 0.33f);
+    field.deposit(eye, light);
+    field.end_iteration();
+  }
+  ASSERT_GT(field.importance_tree().leaves().size(), 1u);
+  ASSERT_NE(field.importance_tree().leaves().size(), field.tree().leaves().size());
+  const std::string bytes = field.save();
+  GuidingField restored(lo, hi, 64, true, true);
+  restored.restore(bytes);
+  EXPECT_EQ(restored.save(), bytes);
+  EXPECT_EQ(restored.importance_tree().leaves().size(), field.importance_tree().leaves().size());
+  for (const auto& [eye, light] : {std::pair{true, false}, std::pair{false, true}}) {
+    GuidingField other(lo, hi, 64, eye, light);
+    EXPECT_THROW(other.restore(bytes), std::runtime_error) << eye << light;
+  }
+  GuidingField cut(lo, hi, 64, true, true);
+  EXPECT_THROW(cut.restore(bytes.substr(0, bytes.size() - 9)), std::runtime_error);
+}
+
