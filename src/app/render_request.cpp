@@ -43,6 +43,7 @@ RenderOptions resolve_render_options(const Scene& scene, const RenderRequest& a)
   o.integrator = a.integrator.empty() ? ss.integrator : parse_integrator(a.integrator);
   o.vcm_radius = a.vcm_radius;
   o.vcm_alpha = a.vcm_alpha;
+  o.roulette_scale = a.roulette;
   o.mis = parse_mis(a.mis);
   o.spectral = a.spectral;
   o.gbuffer = ss.gbuffer;

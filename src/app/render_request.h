@@ -28,6 +28,7 @@ struct RenderRequest {
   double target_error = 0.0;  // > 0: adaptive sampling (docs/adaptive-sampling.md)
   uint64_t seed = 0;
   float vcm_radius = 0.f, vcm_alpha = 0.75f;
+  float roulette = 2.f;  // path: RenderOptions::roulette_scale
   bool spectral = false, guide = false, guide_light = false, adaptive = false;
   std::vector<int> resolution;  // empty, or W H
   // The part of the image to render (pbrt-v4's flags of these names):

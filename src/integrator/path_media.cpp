@@ -79,7 +79,7 @@ void PathTracer::medium_scatter_stage(PathWave& w) const {
     w.beta[slot] *= drawn->weight;
     w.prev_pdf[slot] = drawn->bsdf_pdf;  // MIS with light sampling: the phase function's density
     w.prev_specular[slot] = 0;
-    if (!survives_roulette(w.beta[slot], w.eta_scale[slot], 1.f, w.depth >= 2, u_rr)) {
+    if (!survives_roulette(w.beta[slot], w.eta_scale[slot], settings_.roulette_scale, w.depth >= 2, u_rr)) {
       ++w.stats.eye_ends[size_t(PathEnd::Roulette)];
       continue;
     }

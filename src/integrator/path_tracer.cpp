@@ -182,7 +182,7 @@ void PathTracer::shade_stage(PathWave& w) const {
     w.prev_pdf[slot] = bs->bsdf_pdf;  // MIS with light sampling: the BSDF's density (path_next_event.h)
     w.prev_specular[slot] = bs->specular;
     if (bs->transmission) w.eta_scale[slot] *= sqr(bs->etap);
-    if (!survives_roulette(w.beta[slot], w.eta_scale[slot], 1.f, w.depth >= 2, u_rr)) {
+    if (!survives_roulette(w.beta[slot], w.eta_scale[slot], settings_.roulette_scale, w.depth >= 2, u_rr)) {
       ++w.stats.eye_ends[size_t(PathEnd::Roulette)];
       return;
     }

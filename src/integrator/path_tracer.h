@@ -37,6 +37,9 @@ struct PathTracerSettings {
   // event after a non-specular bounce, where only emission counts
   // (Integrator::Direct).
   bool direct_lighting = false;
+  // Russian roulette keeps a path with probability min(1, roulette_scale x
+  // its throughput) from the second bounce on (RenderOptions::roulette_scale).
+  float roulette_scale = 2.f;
   // pbrt-v4's ambientocclusion (Integrator::AmbientOcclusion): one
   // occlusion ray at the first hit, nothing else.
   bool ambient_occlusion = false;

@@ -24,6 +24,7 @@ std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& regi
     line("passes", "one sample per pixel, waves of equal size");  // (since merging renders were planned so)
   }
   line("maxdepth", std::to_string(o.maxdepth));
+  if (o.integrator == Integrator::Path) line("roulette", std::to_string(o.roulette_scale));
   line("seed", std::to_string(o.seed));
   line("light-sampler", name(o.light_sampler));
   line("sampler", std::string(name(o.sampler.type)) + " " + o.sampler.randomization + " " + std::to_string(o.sampler.seed) + " " +

@@ -80,6 +80,8 @@ void check_options(const Scene& scene, const RenderOptions& opt) {
   if (merging && (!(opt.vcm_radius >= 0.f) || !std::isfinite(opt.vcm_radius) || !(opt.vcm_alpha > 0.f && opt.vcm_alpha <= 1.f)))
     throw std::invalid_argument(std::string(name(opt.integrator)) + " needs a radius >= 0 (0: automatic) and an alpha in (0, 1]");
   if (opt.spp <= 0 && opt.time_limit_seconds <= 0) throw std::invalid_argument("--spp must be positive");
+  if (!(opt.roulette_scale > 0.f) || !std::isfinite(opt.roulette_scale))
+    throw std::invalid_argument("--roulette must be a positive number (1: pbrt-v4's Russian roulette)");
   if (scene.camera.projection == Projection::Realistic && !traces_paths(opt.integrator))
     throw std::invalid_argument(std::string("the realistic camera works with path, directlighting and ambientocclusion, "
                                             "not ") + name(opt.integrator) +
@@ -228,6 +230,7 @@ PathTracerSettings path_settings(const Scene& scene, const RenderOptions& opt, c
   ps.spectral = opt.spectral;
   ps.wavelengths = wavelength_range(opt);
   ps.direct_lighting = opt.integrator == Integrator::Direct;
+  ps.roulette_scale = opt.roulette_scale;
   ps.ambient_occlusion = opt.integrator == Integrator::AmbientOcclusion;
   ps.ao_max_distance = scene.settings.ao_max_distance;
   ps.ao_cos_sample = scene.settings.ao_cos_sample;

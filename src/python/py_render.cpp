@@ -75,7 +75,8 @@ void read_options(const py::kwargs& kw, RenderRequest& r, Outputs& out) {
     else if (k == "vcm_alpha") {
       r.vcm_alpha = cast_option<float>("vcm_alpha", value);
       if (!(r.vcm_alpha >= 0.01f && r.vcm_alpha <= 1.f)) throw py::value_error("vcm_alpha: expected 0.01 to 1");
-    } else if (k == "spectral") r.spectral = cast_option<bool>("spectral", value);
+    } else if (k == "roulette") r.roulette = float(positive(cast_option<double>("roulette", value), "a positive number"));
+    else if (k == "spectral") r.spectral = cast_option<bool>("spectral", value);
     else if (k == "guide") r.guide = cast_option<bool>("guide", value);
     else if (k == "guide_light") r.guide_light = cast_option<bool>("guide_light", value);
     else if (k == "adaptive") r.adaptive = cast_option<bool>("adaptive", value);
@@ -94,7 +95,7 @@ void read_options(const py::kwargs& kw, RenderRequest& r, Outputs& out) {
       throw py::type_error("unknown render option '" + k +
                            "'; the options are the command line's: integrator, spp, time, target_error, maxdepth, "
                            "seed, sampler, light_sampler, resolution, cropwindow, pixelbounds, pixel, spectral, guide, "
-                           "guide_light, adaptive, threads, wave_size, rays, mis, vcm_radius, vcm_alpha, output, stats, collect_stats, checkpoint, checkpoint_file, resume, "
+                           "guide_light, adaptive, threads, wave_size, rays, mis, vcm_radius, vcm_alpha, roulette, output, stats, collect_stats, checkpoint, checkpoint_file, resume, "
                            "keep_checkpoint");
   }
   if (r.time > 0 && r.spp > 0)
@@ -343,7 +344,7 @@ void bind_render(py::module_& m) {
       "Render a scene; keyword arguments are the command line's options (integrator, spp, time, target_error, "
       "maxdepth, seed, sampler, light_sampler, resolution, cropwindow, pixelbounds, pixel, spectral, guide, guide_light, adaptive, threads, "
       "wave_size, rays, mis, "
-      "vcm_radius, vcm_alpha, checkpoint, checkpoint_file, resume, keep_checkpoint) and the files to write (output, stats). "
+      "vcm_radius, vcm_alpha, roulette, checkpoint, checkpoint_file, resume, keep_checkpoint) and the files to write (output, stats). "
       "progress(p) is called about ten times a second; returning False cancels (None goes on). Ctrl-C cancels, writes the "
       "image so far to output, and raises KeyboardInterrupt.");
   m.def("version", &version_line, "The build's version line, as `lantern --version` prints it");
