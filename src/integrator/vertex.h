@@ -128,11 +128,13 @@ inline Vec3 light_sample_target(const LightSample& ls) {
   return ls.n_light == Vec3(0.f) ? ls.p_light : offset_ray_origin(ls.p_light, ls.n_light, ls.error_scale, -ls.wi);
 }
 
-// Russian roulette (pbrt-v4's rule): a subpath survives with probability
-// its throughput, times eta_scale (eye subpaths: the 1/eta^2 factors of
-// refraction undone) times rr_scale (light subpaths: 1 / the throughput
-// they started with), when that is below 1 and the vertex is `eligible`
-// (past the first bounces); a survivor's throughput is divided by it.
+// Russian roulette (pbrt-v4's rule, scaled): a subpath survives with
+// probability its throughput, times eta_scale (eye subpaths: the 1/eta^2
+// factors of refraction undone) times rr_scale (light subpaths: 1 / the
+// throughput they started with; the path tracer's paths: --roulette, 2 by
+// default, docs/performance.md), when that is below 1 and the vertex is
+// `eligible` (past the first bounces); a survivor's throughput is divided
+// by it.
 // Returns false when the subpath ends.
 inline bool survives_roulette(Spectrum& beta, float eta_scale, float rr_scale, bool eligible, float u_rr) {
   const float rr = max_component(beta * eta_scale) * rr_scale;
