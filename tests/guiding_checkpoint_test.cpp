@@ -107,13 +107,20 @@ TEST(Guiding, ResumesAFormatFourCheckpoint) {
   ASSERT_GT(bytes.size(), 32u);
   std::string body = bytes.substr(0, bytes.size() - 8);
   ASSERT_EQ(body.substr(body.size() - 2), std::string("\x01\x00", 2));
+  // The field's length: the largest n whose 8 bytes before the last n say
+  // n, and whose field starts as one does (u32 iteration up to 62, u8
+  // done). (Searched from the longest: the field's own bytes may hold a
+  // small count that looks like a length.)
   uint64_t n = 0;
-  for (n = 2; n + 8 < body.size(); ++n) {
+  for (uint64_t c = body.size() - 64; c >= 2 && n == 0; --c) {
     uint64_t stored = 0;
-    std::memcpy(&stored, body.data() + body.size() - n - 8, 8);
-    if (stored == n) break;
+    uint32_t iteration = 0;
+    const char* field = body.data() + body.size() - c;
+    std::memcpy(&stored, field - 8, 8);
+    std::memcpy(&iteration, field, 4);
+    if (stored == c && iteration <= 62 && uint8_t(field[4]) <= 1) n = c;
   }
-  ASSERT_LT(n + 8, body.size()) << "no field length found";
+  ASSERT_GT(n, 2u) << "no field length found";
   body.resize(body.size() - 2);
   const uint64_t shorter = n - 2;
   std::memcpy(body.data() + body.size() - shorter - 8, &shorter, 8);
