@@ -70,11 +70,11 @@ TEST(Roulette, PathConvergesToTheSameImageAtEveryScale) {
   }
 }
 
-TEST(Roulette, RefusesAScaleThatIsNotPositive) {
+TEST(Roulette, RefusesAScaleOutsideItsRange) {
   const auto scene = guided_room();
   RenderOptions o = guided_options(false);
   o.spp = 1;
-  for (const float bad : {0.f, -1.f, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+  for (const float bad : {0.f, -1.f, 0.009f, 101.f, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
     o.roulette_scale = bad;
     EXPECT_THROW(render(*scene, o), std::invalid_argument) << bad;
   }

@@ -92,8 +92,8 @@ void add_render_request_options(CLI::App& c, RenderRequest& r) {
       ->check(CLI::Range(0.01, 1.0));
   c.add_option("--roulette", r.roulette,
                      "path: Russian roulette keeps a path with probability min(1, S x its throughput) from the second "
-                     "bounce on; 1 is pbrt-v4's rule; default 2 (docs/performance.md)")
-      ->check(CLI::PositiveNumber);
+                     "bounce on; 1 is pbrt-v4's rule; 0.01 to 100, default 2 (docs/performance.md)")
+      ->check(CLI::Range(0.01, 100.0));
   c.add_option("--mis", r.mis, "bdpt's MIS heuristic: power or balance")
       ->check(CLI::IsMember({"power", "balance"}));
   c.add_flag("--adaptive", r.adaptive,

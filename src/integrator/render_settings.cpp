@@ -80,8 +80,10 @@ void check_options(const Scene& scene, const RenderOptions& opt) {
   if (merging && (!(opt.vcm_radius >= 0.f) || !std::isfinite(opt.vcm_radius) || !(opt.vcm_alpha > 0.f && opt.vcm_alpha <= 1.f)))
     throw std::invalid_argument(std::string(name(opt.integrator)) + " needs a radius >= 0 (0: automatic) and an alpha in (0, 1]");
   if (opt.spp <= 0 && opt.time_limit_seconds <= 0) throw std::invalid_argument("--spp must be positive");
-  if (!(opt.roulette_scale > 0.f) || !std::isfinite(opt.roulette_scale))
-    throw std::invalid_argument("--roulette must be a positive number (1: pbrt-v4's Russian roulette)");
+  // (Far outside this range a path's weight after the roulette overflows
+  // or its survivors vanish: noise, never a better image.)
+  if (!(opt.roulette_scale >= 0.01f && opt.roulette_scale <= 100.f))
+    throw std::invalid_argument("--roulette must be a number from 0.01 to 100 (1: pbrt-v4's Russian roulette)");
   if (scene.camera.projection == Projection::Realistic && !traces_paths(opt.integrator))
     throw std::invalid_argument(std::string("the realistic camera works with path, directlighting and ambientocclusion, "
                                             "not ") + name(opt.integrator) +

@@ -75,8 +75,10 @@ void read_options(const py::kwargs& kw, RenderRequest& r, Outputs& out) {
     else if (k == "vcm_alpha") {
       r.vcm_alpha = cast_option<float>("vcm_alpha", value);
       if (!(r.vcm_alpha >= 0.01f && r.vcm_alpha <= 1.f)) throw py::value_error("vcm_alpha: expected 0.01 to 1");
-    } else if (k == "roulette") r.roulette = float(positive(cast_option<double>("roulette", value), "a positive number"));
-    else if (k == "spectral") r.spectral = cast_option<bool>("spectral", value);
+    } else if (k == "roulette") {
+      r.roulette = cast_option<float>("roulette", value);
+      if (!(r.roulette >= 0.01f && r.roulette <= 100.f)) throw py::value_error("roulette: expected 0.01 to 100");
+    } else if (k == "spectral") r.spectral = cast_option<bool>("spectral", value);
     else if (k == "guide") r.guide = cast_option<bool>("guide", value);
     else if (k == "guide_light") r.guide_light = cast_option<bool>("guide_light", value);
     else if (k == "adaptive") r.adaptive = cast_option<bool>("adaptive", value);
