@@ -11,10 +11,13 @@ set -eu
 secs=${1:-10}
 shift 2>/dev/null || true
 scenes=${*:-"caustics door-ajar spotlit-room cornell-box cornell-box-tiny-light lamp-street lantern"}
+# shellcheck disable=SC2034 # used by two_seeds
 lantern=${LANTERN:-build/lantern}
 integrator=${INTEGRATOR:-bdpt}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
+# shellcheck source=perf/two-seeds.sh
+. "$(dirname "$0")/two-seeds.sh"
 echo "| scene | $integrator | time (s) | spp | relMSE | robust relMSE | MSE | robust relMSE / unguided |"
 echo "|---|---|---|---|---|---|---|---|"
 for s in $scenes; do
@@ -23,19 +26,14 @@ for s in $scenes; do
   plain=""
   for g in unguided guide-light both; do
     case "$g" in unguided) flags="" ;; guide-light) flags="--guide-light" ;; both) flags="--guide --guide-light" ;; esac
-    sum="0 0 0 0"
-    for seed in 7 8; do
-      "$lantern" render "scenes/$s.pbrt" --integrator "$integrator" $flags --time "$secs" --seed $seed --resolution $res \
-        -o "$tmp/$s.exr" 2> "$tmp/log"
-      spp=$(tail -n 1 "$tmp/log" | sed -n 's/.*, \([0-9]*\) spp (min).*/\1/p')
-      out=$("$lantern" compare "$tmp/$s.exr" "$ref")
-      sum=$(echo "$sum $spp $(echo "$out" | sed -n 's/^relmse //p') $(echo "$out" | sed -n 's/^relmse_robust //p') \
-        $(echo "$out" | sed -n 's/^mse //p')" | awk '{ printf "%g %g %g %g", $1 + $5, $2 + $6, $3 + $7, $4 + $8 }')
-    done
-    set -- $sum
-    robust=$(awk "BEGIN { print $3 / 2 }")
+    # shellcheck disable=SC2086 # flags holds zero to two words
+    m=$(two_seeds "$s" "$secs" "$ref" --integrator "$integrator" $flags --resolution $res) ||
+      { echo "| $s | $g | $secs | (failed) | | | | |"; continue; }
+    # shellcheck disable=SC2086 # four numbers
+    set -- $m
+    robust=$3
     ratio=""
     if [ "$g" = unguided ]; then plain=$robust; else ratio=$(awk "BEGIN { printf \"%.3g\", $robust / $plain }"); fi
-    echo "| $s | $g | $secs | $(awk "BEGIN { print int($1 / 2) }") | $(awk "BEGIN { printf \"%.3g\", $2 / 2 }") | $(awk "BEGIN { printf \"%.3g\", $robust }") | $(awk "BEGIN { printf \"%.3g\", $4 / 2 }") | $ratio |"
+    echo "| $s | $g | $secs | $1 | $(awk "BEGIN { printf \"%.3g\", $2 }") | $(awk "BEGIN { printf \"%.3g\", $robust }") | $(awk "BEGIN { printf \"%.3g\", $4 }") | $ratio |"
   done
 done

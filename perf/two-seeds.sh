@@ -1,0 +1,21 @@
+# shellcheck shell=sh disable=SC2154 # lantern and tmp are the caller's
+# Sourced by perf/light-guiding.sh and perf/roulette.sh: one setting of a
+# scene rendered for the same wall time with seeds 7 and 8 and measured
+# against its reference.
+#   two_seeds SCENE SECONDS REFERENCE OPTIONS...
+# prints the means over the two seeds: "spp relMSE robust-relMSE MSE".
+# Needs $lantern (the binary) and $tmp (a scratch folder).
+two_seeds() {
+  _scene=$1 _secs=$2 _ref=$3
+  shift 3
+  _sum="0 0 0 0"
+  for _seed in 7 8; do
+    "$lantern" render "scenes/$_scene.pbrt" "$@" --time "$_secs" --seed $_seed -o "$tmp/$_scene.exr" 2> "$tmp/log" ||
+      { echo "two_seeds: $_scene failed: $(tail -n 1 "$tmp/log")" >&2; return 1; }
+    _spp=$(tail -n 1 "$tmp/log" | sed -n 's/.*, \([0-9]*\) spp (min).*/\1/p')
+    _out=$("$lantern" compare "$tmp/$_scene.exr" "$_ref")
+    _sum=$(echo "$_sum $_spp $(echo "$_out" | sed -n 's/^relmse //p') $(echo "$_out" | sed -n 's/^relmse_robust //p') \
+      $(echo "$_out" | sed -n 's/^mse //p')" | awk '{ printf "%g %g %g %g", $1 + $5, $2 + $6, $3 + $7, $4 + $8 }')
+  done
+  echo "$_sum" | awk '{ printf "%d %g %g %g\n", $1 / 2, $2 / 2, $3 / 2, $4 / 2 }'
+}
