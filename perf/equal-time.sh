@@ -8,7 +8,7 @@
 # Usage: perf/equal-time.sh [seconds] [scenes...]   (from the repository root)
 set -eu
 secs=${1:-20}
-shift 2>/dev/null || true
+if [ $# -gt 0 ]; then shift; fi
 scenes=${*:-"cornell-box lantern door-ajar"}
 lantern=${LANTERN:-build/lantern}
 tmp=$(mktemp -d)

@@ -12,7 +12,7 @@
 # Usage: perf/error-study.sh ["10 30 100"] [scenes...]   (from the repository root)
 set -eu
 times=${1:-"10 30 100"}
-shift 2>/dev/null || true
+if [ $# -gt 0 ]; then shift; fi
 scenes=${*:-"cornell-box cornell-box-tiny-light door-ajar lantern lamp-street caustics pool smoke"}
 variants=${VARIANTS:-"path path+guide bdpt bdpt+guide vcm vcm+guide"}
 lantern=${LANTERN:-build/lantern}

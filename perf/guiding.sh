@@ -7,7 +7,7 @@
 # Usage: perf/guiding.sh [seconds] [scenes...]   (from the repository root)
 set -eu
 secs=${1:-10}
-shift 2>/dev/null || true
+if [ $# -gt 0 ]; then shift; fi
 scenes=${*:-"spotlit-room cornell-box cornell-box-tiny-light door-ajar lantern lamp-street"}
 lantern=${LANTERN:-build/lantern}
 tmp=$(mktemp -d)

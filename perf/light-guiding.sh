@@ -9,7 +9,7 @@
 # Usage: perf/light-guiding.sh [seconds] [scenes...]   (from the repository root)
 set -eu
 secs=${1:-10}
-shift 2>/dev/null || true
+if [ $# -gt 0 ]; then shift; fi
 scenes=${*:-"caustics door-ajar spotlit-room cornell-box cornell-box-tiny-light lamp-street lantern"}
 # shellcheck disable=SC2034 # used by two_seeds
 lantern=${LANTERN:-build/lantern}
@@ -28,12 +28,12 @@ for s in $scenes; do
     case "$g" in unguided) flags="" ;; guide-light) flags="--guide-light" ;; both) flags="--guide --guide-light" ;; esac
     # shellcheck disable=SC2086 # flags holds zero to two words
     m=$(two_seeds "$s" "$secs" "$ref" --integrator "$integrator" $flags --resolution $res) ||
-      { echo "| $s | $g | $secs | (failed) | | | | |"; continue; }
+      { echo "| $s | $g | $secs | (failed) | | | | |"; [ -n "$plain" ] || plain=failed; continue; }
     # shellcheck disable=SC2086 # four numbers
     set -- $m
     robust=$3
     ratio=""
-    if [ "$g" = unguided ]; then plain=$robust; else ratio=$(awk "BEGIN { printf \"%.3g\", $robust / $plain }"); fi
+    if [ "$g" = unguided ]; then plain=$robust; elif [ "$plain" != failed ]; then ratio=$(awk "BEGIN { printf \"%.3g\", $robust / $plain }"); fi
     echo "| $s | $g | $secs | $1 | $(awk "BEGIN { printf \"%.3g\", $2 }") | $(awk "BEGIN { printf \"%.3g\", $robust }") | $(awk "BEGIN { printf \"%.3g\", $4 }") | $ratio |"
   done
 done

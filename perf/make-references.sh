@@ -6,7 +6,7 @@
 # Usage: perf/make-references.sh [seconds per scene] [scenes...]   (from the repository root)
 set -eu
 secs=${1:-150}
-shift 2>/dev/null || true
+if [ $# -gt 0 ]; then shift; fi
 scenes=${*:-"cornell-box cornell-box-tiny-light lantern door-ajar caustics lamp-street volumetric-caustic pool pool-water spotlit-room"}
 lantern=${LANTERN:-build/lantern}
 mkdir -p perf/references

@@ -10,7 +10,7 @@
 # SCALES="1 2 4" chooses the scales, the first being the baseline)
 set -eu
 secs=${1:-10}
-shift 2>/dev/null || true
+if [ $# -gt 0 ]; then shift; fi
 scenes=${*:-"cornell-box cornell-box-tiny-light door-ajar lamp-street lantern spotlit-room caustics pool pool-water volumetric-caustic"}
 scales=${SCALES:-"1 2 4"}
 # shellcheck disable=SC2034 # used by two_seeds
@@ -29,13 +29,13 @@ for s in $scenes; do
   for k in $scales; do
     # shellcheck disable=SC2086 # res is two words
     m=$(two_seeds "$s" "$secs" "$ref" --integrator path --roulette "$k" --resolution $res) ||
-      { echo "| $s | $k | $secs | (failed) | | | | | |"; continue; }
+      { echo "| $s | $k | $secs | (failed) | | | | | |"; [ -n "$base_rel" ] || base_rel=failed; continue; }
     # shellcheck disable=SC2086 # four numbers
     set -- $m
     rel=$2; mse=$4
     r1=""; r2=""
     if [ -z "$base_rel" ]; then base_rel=$rel; base_mse=$mse
-    else r1=$(awk "BEGIN { printf \"%.3g\", $rel / $base_rel }"); r2=$(awk "BEGIN { printf \"%.3g\", $mse / $base_mse }"); fi
+    elif [ "$base_rel" != failed ]; then r1=$(awk "BEGIN { printf \"%.3g\", $rel / $base_rel }"); r2=$(awk "BEGIN { printf \"%.3g\", $mse / $base_mse }"); fi
     echo "| $s | $k | $secs | $1 | $(awk "BEGIN { printf \"%.3g\", $rel }") | $(awk "BEGIN { printf \"%.3g\", $3 }") | $(awk "BEGIN { printf \"%.3g\", $mse }") | $r1 | $r2 |"
   done
 done

@@ -6,7 +6,7 @@
 # Usage: perf/samplers.sh [seconds] [scenes...]   (from the repository root)
 set -eu
 secs=${1:-8}
-shift 2>/dev/null || true
+if [ $# -gt 0 ]; then shift; fi
 scenes=${*:-"cornell-box cornell-box-tiny-light lantern door-ajar caustics lamp-street"}
 lantern=${LANTERN:-build/lantern}
 tmp=$(mktemp -d)

@@ -6,7 +6,7 @@
 # Usage: perf/spectral-trade.sh [rounds] [scenes...]   (from the repository root)
 set -eu
 rounds=${1:-3}
-shift 2>/dev/null || true
+if [ $# -gt 0 ]; then shift; fi
 scenes=${*:-$(ls scenes/*.pbrt | sed 's|scenes/||; s|\.pbrt$||')}
 lantern=${LANTERN:-build/lantern}
 tmp=$(mktemp -d)

@@ -21,7 +21,7 @@
 # Cycles' time limit covers its render alone, as Lantern's --time does.
 set -eu
 times=${1:-"10 30"}
-shift 2>/dev/null || true
+if [ $# -gt 0 ]; then shift; fi
 scenes=${*:-"cornell-box cornell-box-tiny-light door-ajar lamp-street"}
 lantern=${LANTERN:-build/lantern}
 blender=${BLENDER:-blender}

@@ -7,8 +7,11 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <string>
 #include <tuple>
+#include <utility>
 
+#include "film/checkpoint.h"
 #include "lantern/render.h"
 #include "lantern/scene.h"
 #include "sanitizer.h"
@@ -136,6 +139,21 @@ TEST(Checkpoint, RefusesACheckpointOfAnotherRender) {
   other = o;
   other.checkpoint_key = "another scene";
   EXPECT_NE(resume_error(*scene, other).find("another render"), std::string::npos);
+  // The path tracer's roulette: named by its line, which a render at
+  // pbrt-v4's rule does not have (the earlier checkpoints' fingerprint).
+  other = o;
+  other.roulette_scale = 1.f;
+  const std::string e = resume_error(*scene, other);
+  EXPECT_NE(e.find("made with \"roulette=2\" but this render has \"(no roulette line)\""), std::string::npos) << e;
+}
+
+// Fingerprints are compared by key: a line one side lacks is named as
+// missing, not as a shift of every line after it.
+TEST(Checkpoint, FingerprintDifferenceIsByKey) {
+  EXPECT_EQ(fingerprint_difference("a=1\nb=2\n", "a=1\nr=2\nb=2\n"), std::make_pair(std::string("(no r line)"), std::string("r=2")));
+  EXPECT_EQ(fingerprint_difference("a=1\nr=2\nb=2\n", "a=1\nb=2\n"), std::make_pair(std::string("r=2"), std::string("(no r line)")));
+  EXPECT_EQ(fingerprint_difference("a=1\nb=2\n", "a=1\nb=3\n"), std::make_pair(std::string("b=2"), std::string("b=3")));
+  EXPECT_EQ(fingerprint_difference("a=1\nb=2\n", "a=1\nb=2\n"), std::make_pair(std::string(), std::string()));
 }
 
 TEST(Checkpoint, RefusesDamagedAndMissingFiles) {

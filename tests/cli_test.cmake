@@ -125,6 +125,12 @@ endforeach()
 expect_run(NAME compare-png-with-exr EXIT 0 MATCH "ratio (0\\.99[5-9]|1\\.00[0-4])[0-9]* (0\\.99[5-9]|1\\.00[0-4])[0-9]* (0\\.99[5-9]|1\\.00[0-4])"
            ARGS compare ${OUT}/formats.png ${OUT}/formats.exr)
 expect_run(NAME bad-mis EXIT 2 ARGS render ${SRC}/scenes/cornell-box.pbrt --mis nonsense)
+# The path tracer's roulette scale: 0.01 to 100, nan refused as a usage error;
+# the image's header names it.
+expect_run(NAME bad-roulette EXIT 2 MATCH "--roulette: Value nan not in range" ARGS render ${SRC}/scenes/cornell-box.pbrt --roulette nan)
+expect_run(NAME roulette-render EXIT 0 ARGS render ${SRC}/scenes/cornell-box.pbrt --roulette 3 --spp 1 --resolution 8 8
+           --quiet -o ${OUT}/roulette.exr)
+expect_run(NAME roulette-header EXIT 0 MATCH "lantern:roulette 3" ARGS info ${OUT}/roulette.exr)
 
 # SIGINT during a long render: exit 130 and an image with the samples so far,
 # for the path tracer and for bdpt (whose splats go through the same merge).

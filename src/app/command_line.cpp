@@ -1,5 +1,6 @@
 #include "app/command_line.h"
 
+#include <cstdlib>
 #include <algorithm>
 #include <iostream>
 
@@ -93,7 +94,12 @@ void add_render_request_options(CLI::App& c, RenderRequest& r) {
   c.add_option("--roulette", r.roulette,
                      "path: Russian roulette keeps a path with probability min(1, S x its throughput) from the second "
                      "bounce on; 1 is pbrt-v4's rule; 0.01 to 100, default 2 (docs/performance.md)")
-      ->check(CLI::Range(0.01, 100.0));
+      ->check(CLI::Validator(
+          [](std::string& text) {  // (CLI::Range lets nan through)
+            const double v = std::strtod(text.c_str(), nullptr);
+            return v >= 0.01 && v <= 100.0 ? std::string() : "Value " + text + " not in range 0.01 to 100";
+          },
+          "FLOAT in [0.01 - 100]"));
   c.add_option("--mis", r.mis, "bdpt's MIS heuristic: power or balance")
       ->check(CLI::IsMember({"power", "balance"}));
   c.add_flag("--adaptive", r.adaptive,

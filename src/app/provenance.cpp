@@ -1,5 +1,6 @@
 #include "app/provenance.h"
 
+#include <cstdio>
 #include <ctime>
 #include <fstream>
 #include <thread>
@@ -105,7 +106,11 @@ void add_render_settings(ImageMetadata& md, const RenderOptions& o) {
   md.emplace_back("lantern:light_sampler", name(o.light_sampler));
   md.emplace_back("lantern:mis", name(o.mis));
   md.emplace_back("lantern:wave_size", std::to_string(o.wave_size));
-  if (o.integrator == Integrator::Path) md.emplace_back("lantern:roulette", std::to_string(o.roulette_scale));
+  if (o.integrator == Integrator::Path) {
+    char s[32];
+    std::snprintf(s, sizeof s, "%.9g", double(o.roulette_scale));
+    md.emplace_back("lantern:roulette", s);
+  }
   if (o.guiding) md.emplace_back("lantern:guiding", "on");
   if (o.guide_light_subpaths) md.emplace_back("lantern:guide-light", "on");
 }

@@ -55,14 +55,31 @@ class HashingReader final : public StateReader {
 
 }  // namespace
 
+// Compared by key (the text before '='), so that a line one side lacks is
+// named as that, not as a shift of every line after it.
 std::pair<std::string, std::string> fingerprint_difference(const std::string& a, const std::string& b) {
-  std::istringstream sa(a), sb(b);
-  std::string la, lb;
-  while (true) {
-    const bool ga = bool(std::getline(sa, la)), gb = bool(std::getline(sb, lb));
-    if (!ga && !gb) return {};
-    if (ga != gb || la != lb) return {ga ? la : "(nothing)", gb ? lb : "(nothing)"};
+  auto lines = [](const std::string& text) {
+    std::vector<std::pair<std::string, std::string>> out;  // key, line
+    std::istringstream in(text);
+    for (std::string l; std::getline(in, l);) out.emplace_back(l.substr(0, l.find('=')), l);
+    return out;
+  };
+  const auto la = lines(a), lb = lines(b);
+  auto find = [](const auto& v, const std::string& key) -> const std::string* {
+    for (const auto& [k, l] : v)
+      if (k == key) return &l;
+    return nullptr;
+  };
+  const std::string nothing = "(nothing)";
+  for (const auto& [key, line] : lb) {
+    const std::string* other = find(la, key);
+    if (!other) return {"(no " + key + " line)", line};
+    if (*other != line) return {*other, line};
   }
+  for (const auto& [key, line] : la)
+    if (!find(lb, key)) return {line, "(no " + key + " line)"};
+  if (a != b) return {a, b};  // (the same lines in another order, or repeated)
+  return {};
 }
 
 void write_checkpoint(const std::string& path, const CheckpointInfo& info, const Film& film) {
@@ -115,7 +132,8 @@ std::string read_header(HashingReader& r, const std::string& path, uint32_t* ver
                                    "too); resume it with the version that wrote it");
   if (v != kVersion && v != kLearntVersion && v != kEyeGuidedVersion)
     throw InputError({path, 0, 0}, "file format version " + std::to_string(v) + " is not " + std::to_string(kVersion) +
-                                       " or " + std::to_string(kLearntVersion) + " (made by another Lantern version)");
+                                       ", " + std::to_string(kEyeGuidedVersion) + " or " + std::to_string(kLearntVersion) +
+                                       " (made by another Lantern version)");
   if (version) *version = v;
   const uint32_t n = r.get<uint32_t>();
   if (n > (1u << 20)) throw InputError({path, 0, 0}, "file is damaged (fingerprint length)");

@@ -255,7 +255,7 @@ void Bdpt::add_emission(BdptWave& w, uint32_t slot, const Spectrum& unweighted, 
   if (weight == 0.f && !settings_.record_strategies) return;  // (bpm's emission past a merging vertex)
   w.L[slot] += unweighted * weight;
   if (settings_.record_strategies)
-    w.out->strategies.push_back({w.pixel[slot], Vec2(0.f), 0, uint8_t(w.depth + 1),
+    w.out->strategies.push_back({w.pixel[slot], Vec2(0.f), 0, strategy_count(w.depth + 1),
                                  film_rgb(unweighted * weight, w.lambda[slot]), film_rgb(unweighted, w.lambda[slot])});
 }
 

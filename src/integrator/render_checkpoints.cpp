@@ -1,5 +1,6 @@
 #include "integrator/render_checkpoints.h"
 
+#include <cstdio>
 #include <filesystem>
 #include <vector>
 
@@ -13,6 +14,11 @@ std::string own_checkpoint_piece(const RenderOptions& o) {
 }
 
 std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& region) {
+  auto exact = [](float v) {  // (every float its own text)
+    char s[32];
+    std::snprintf(s, sizeof s, "%.9g", double(v));
+    return std::string(s);
+  };
   std::string f;
   auto line = [&](const std::string& k, const std::string& v) { f += k + "=" + v + "\n"; };
   line("scene", o.checkpoint_key);
@@ -24,7 +30,9 @@ std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& regi
     line("passes", "one sample per pixel, waves of equal size");  // (since merging renders were planned so)
   }
   line("maxdepth", std::to_string(o.maxdepth));
-  if (o.integrator == Integrator::Path) line("roulette", std::to_string(o.roulette_scale));
+  // (only off pbrt-v4's rule: renders from before the scale existed keep
+  // their fingerprint, and resume with --roulette 1)
+  if (o.integrator == Integrator::Path && o.roulette_scale != 1.f) line("roulette", exact(o.roulette_scale));
   line("seed", std::to_string(o.seed));
   line("light-sampler", name(o.light_sampler));
   line("sampler", std::string(name(o.sampler.type)) + " " + o.sampler.randomization + " " + std::to_string(o.sampler.seed) + " " +
