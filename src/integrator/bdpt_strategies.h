@@ -186,7 +186,7 @@ void Bdpt::merge_at_eye_vertex(BdptWave& w, uint32_t slot, const Vertex& v) cons
     // (what it brings is the light subpath's too, whichever sample's pixel it lands in)
     if (learns_light()) {
       const Spectrum brought = estimate(e.f * light * weight(wt));
-      if (is_finite(brought)) gather_for_light_guide(w, lv.slot[j], lv.depth[j] + 1, brought);
+      if (is_finite(brought)) gather_for_light_guide(w, lv.slot[j], strategy_count(lv.depth[j] + 1), brought);
     }
     if (settings_.record_strategies) {
       const Spectrum u = estimate(e.f * light);
