@@ -121,5 +121,7 @@ inline bool traces_paths(Integrator i) {
 }
 // The integrators that merge light and eye vertices (docs/vcm.md).
 inline bool merges_vertices(Integrator i) { return i == Integrator::Vcm || i == Integrator::Bpm || i == Integrator::Ppm; }
+// Whose Russian roulette RenderOptions::roulette_scale scales (the others keep pbrt-v4's rule).
+inline bool scales_roulette(Integrator i) { return i == Integrator::Path; }
 
 }  // namespace lantern

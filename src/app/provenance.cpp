@@ -94,7 +94,7 @@ nlohmann::json render_settings_json(const RenderOptions& o) {
                       {"mis", name(o.mis)},               {"colour", o.spectral ? "spectral" : "rgb"},
                       {"wave_size", o.wave_size}};
   if (merges_vertices(o.integrator)) j["vcm"] = {{"radius", o.vcm_radius}, {"alpha", o.vcm_alpha}};
-  if (o.integrator == Integrator::Path) j["roulette"] = o.roulette_scale;
+  if (scales_roulette(o.integrator)) j["roulette"] = o.roulette_scale;
   if (o.guiding) j["guiding"] = true;
   if (o.guide_light_subpaths) j["guide_light"] = true;
   return j;
@@ -106,7 +106,7 @@ void add_render_settings(ImageMetadata& md, const RenderOptions& o) {
   md.emplace_back("lantern:light_sampler", name(o.light_sampler));
   md.emplace_back("lantern:mis", name(o.mis));
   md.emplace_back("lantern:wave_size", std::to_string(o.wave_size));
-  if (o.integrator == Integrator::Path) {
+  if (scales_roulette(o.integrator)) {
     char s[32];
     std::snprintf(s, sizeof s, "%.9g", double(o.roulette_scale));
     md.emplace_back("lantern:roulette", s);

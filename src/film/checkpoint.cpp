@@ -70,7 +70,6 @@ std::pair<std::string, std::string> fingerprint_difference(const std::string& a,
       if (k == key) return &l;
     return nullptr;
   };
-  const std::string nothing = "(nothing)";
   for (const auto& [key, line] : lb) {
     const std::string* other = find(la, key);
     if (!other) return {"(no " + key + " line)", line};

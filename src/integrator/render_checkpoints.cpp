@@ -32,7 +32,7 @@ std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& regi
   line("maxdepth", std::to_string(o.maxdepth));
   // (only off pbrt-v4's rule: renders from before the scale existed keep
   // their fingerprint, and resume with --roulette 1)
-  if (o.integrator == Integrator::Path && o.roulette_scale != 1.f) line("roulette", exact(o.roulette_scale));
+  if (scales_roulette(o.integrator) && o.roulette_scale != 1.f) line("roulette", exact(o.roulette_scale));
   line("seed", std::to_string(o.seed));
   line("light-sampler", name(o.light_sampler));
   line("sampler", std::string(name(o.sampler.type)) + " " + o.sampler.randomization + " " + std::to_string(o.sampler.seed) + " " +

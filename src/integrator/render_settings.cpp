@@ -232,7 +232,7 @@ PathTracerSettings path_settings(const Scene& scene, const RenderOptions& opt, c
   ps.spectral = opt.spectral;
   ps.wavelengths = wavelength_range(opt);
   ps.direct_lighting = opt.integrator == Integrator::Direct;
-  ps.roulette_scale = opt.integrator == Integrator::Path ? opt.roulette_scale : 1.f;  // (directlighting: pbrt-v4's rule)
+  ps.roulette_scale = scales_roulette(opt.integrator) ? opt.roulette_scale : 1.f;  // (directlighting: pbrt-v4's rule)
   ps.ambient_occlusion = opt.integrator == Integrator::AmbientOcclusion;
   ps.ao_max_distance = scene.settings.ao_max_distance;
   ps.ao_cos_sample = scene.settings.ao_cos_sample;
