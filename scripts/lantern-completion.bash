@@ -4,11 +4,11 @@ _lantern() {
   local cur prev words cword
   _init_completion || return
   local subcommands="render view compare merge info"
-  local render_opts="-o --output --spp --time --target-error --adaptive --integrator --vcm-radius --vcm-alpha --roulette --mis --guide
+  local render_opts="-o --output --spp --time --target-error --adaptive --integrator --vcm-radius --vcm-alpha --roulette --light-subpaths --mis --guide
     --spectral --maxdepth --threads --seed --sampler --light-sampler --resolution --cropwindow --pixelbounds --pixel --rays --wave-size
     --progress-interval --write-partial-images --log-level --log-file --stats --dump-rays --strategies --checkpoint --checkpoint-file --resume --keep-checkpoint --texture-cache --texture-dir --trace
     --trace-waves --part --display-server -q --quiet --help"
-  local view_opts="--spp --time --target-error --adaptive --integrator --vcm-radius --vcm-alpha --roulette --mis --guide --spectral
+  local view_opts="--spp --time --target-error --adaptive --integrator --vcm-radius --vcm-alpha --roulette --light-subpaths --mis --guide --spectral
     --maxdepth --threads --seed --sampler --light-sampler --resolution --cropwindow --pixelbounds --pixel --rays --wave-size --screenshot --exposure
     --texture-cache --texture-dir --help"
   local sub=""

@@ -4,6 +4,8 @@
 // and the weights of all strategies must sum to one.
 #include "integrator/bdpt_mis.h"
 
+#include "integrator/light_subpath_rate.h"
+
 #include <gtest/gtest.h>
 
 #include <random>
@@ -69,8 +71,13 @@ double explicit_pdf(const RandomPath& p, int s) {
   return pdf;
 }
 
-// Replays what the integrator computes for strategy s.
-float recursive_weight(const RandomPath& p, int s, MisPower mis) {
+// Replays what the integrator computes for strategy s; *rescaled, if
+// asked for, the part of its ratio sum that the light subpath rate
+// rescales.
+float recursive_weight(const RandomPath& p, int s, MisPower mis, float* rescaled = nullptr) {
+  float unused = 0.f;
+  if (!rescaled) rescaled = &unused;
+  *rescaled = 0.f;
   const int k = p.k();
   const int t = k + 1 - s;
   auto emission_W = [&](int to) { return p.emission_pos_A * p.emission_dir_W(to); };
@@ -96,26 +103,30 @@ float recursive_weight(const RandomPath& p, int s, MisPower mis) {
     // eye is at x1; one more bounce to x0
     mis_after_scatter(eye, p.cos_at(1, 0), p.bsdf_pdf(1, 0), p.bsdf_pdf(1, 2), false, mis);
     mis_after_hit(eye, p.dist2(1, 0), p.cos_at(0, 1), true, mis);
-    return mis_weight_hit_light(eye, p.direct_pdf_A, emission_W(1), mis);
+    return mis_weight_hit_light(eye, p.direct_pdf_A, emission_W(1), mis, rescaled);
   }
+  auto weighed = [&](const DeferredMis& d) {
+    *rescaled = mis_rescaled_vacuum(d);
+    return mis_weight_vacuum(d);
+  };
   if (s == 1 && t == 1)
-    return mis_weight_vacuum(mis_sums_light_origin(p.camera_dir_W(0) * p.cos_at(0, 1) / p.dist2(0, 1), p.emission_pos_A, false, mis));
+    return weighed(mis_sums_light_origin(p.camera_dir_W(0) * p.cos_at(0, 1) / p.dist2(0, 1), p.emission_pos_A, false, mis));
   if (s == 1) {  // next-event estimation from x1
     float light_pdf_W = p.direct_pdf_A * p.dist2(0, 1) / p.cos_at(0, 1);
     float emission_fwd_A = emission_W(1) * p.cos_at(1, 0) / p.dist2(0, 1);
-    return mis_weight_vacuum(mis_sums_next_event(eye, light_pdf_W, p.bsdf_pdf(1, 0), emission_fwd_A, p.direct_pdf_A,
-                                                 p.bsdf_pdf(1, 2), mis));
+    return weighed(mis_sums_next_event(eye, light_pdf_W, p.bsdf_pdf(1, 0), emission_fwd_A, p.direct_pdf_A,
+                                       p.bsdf_pdf(1, 2), mis));
   }
   if (t == 1) {  // light tracing from x_{k-1}
     float camera_pdf_A = p.camera_dir_W(k - 1) * p.cos_at(k - 1, k) / p.dist2(k - 1, k);
-    return mis_weight_vacuum(mis_sums_light_trace(light, camera_pdf_A, p.bsdf_pdf(k - 1, k - 2), mis));
+    return weighed(mis_sums_light_trace(light, camera_pdf_A, p.bsdf_pdf(k - 1, k - 2), mis));
   }
   // connection between x_{s-1} (light) and x_s (eye)
   const int l = s - 1, e = s;
   float d2 = p.dist2(l, e);
   float eye_fwd_A = p.bsdf_pdf(e, l) * p.cos_at(l, e) / d2;
   float light_fwd_A = p.bsdf_pdf(l, e) * p.cos_at(e, l) / d2;
-  return mis_weight_vacuum(mis_sums_connect(eye, light, eye_fwd_A, p.bsdf_pdf(e, e + 1), light_fwd_A, p.bsdf_pdf(l, l - 1), mis));
+  return weighed(mis_sums_connect(eye, light, eye_fwd_A, p.bsdf_pdf(e, e + 1), light_fwd_A, p.bsdf_pdf(l, l - 1), mis));
 }
 
 class MisWeights : public ::testing::TestWithParam<float> {};
@@ -137,6 +148,45 @@ TEST_P(MisWeights, MatchExplicitPathDensitiesAndSumToOne) {
       total += w;
     }
     EXPECT_NEAR(total, 1.0, 1e-3) << "k=" << k << " trial " << trial;
+  }
+}
+
+// With a light subpath rate q (a camera sample traces a light subpath
+// beyond the light with probability q), the strategies that use one
+// (s >= 2) are run q times per camera sample and the others once: each
+// weight must be (n_s p_s)^beta / sum_i (n_i p_i)^beta (Veach 1997, eq.
+// 9.13, with sample counts n_i), and they still sum to one. And the weight
+// at any rate follows from the weight at rate 1 and the part of its ratio
+// sum of the other count class (what the pilot of light_subpath_rate.h
+// reads). Leaving the counts out of either subpath's start, or out of
+// next-event estimation or emission found, breaks the first; not carrying
+// the start's share along the light subpath breaks the second (checked).
+TEST_P(MisWeights, CountTheLightSubpathRate) {
+  const float beta = GetParam();
+  std::mt19937 rng(777);
+  for (const float q : {0.5f, 0.2f}) {
+    MisPower at_rate{beta}, at_one{beta};
+    at_rate.with_light = at_rate(q);
+    at_rate.without_light = at_rate(1.f / q);
+    for (int trial = 0; trial < 200; ++trial) {
+      const int k = 1 + trial % 6;
+      RandomPath p = make_path(k, rng);
+      std::vector<double> term(size_t(k) + 1);
+      double sum = 0.0;
+      for (int s = 0; s <= k; ++s) sum += term[size_t(s)] = std::pow((s >= 2 ? q : 1.0) * explicit_pdf(p, s), double(beta));
+      double total = 0.0;
+      for (int s = 0; s <= k; ++s) {
+        const double expected = term[size_t(s)] / sum;
+        const double w = recursive_weight(p, s, at_rate);
+        EXPECT_NEAR(w, expected, 1e-3 * std::max(1.0, expected)) << "q=" << q << " k=" << k << " s=" << s;
+        float rescaled = 0.f;
+        const float w1 = recursive_weight(p, s, at_one, &rescaled);
+        EXPECT_NEAR(weight_at_rate(w1, rescaled, s >= 2, q, beta), expected, 1e-3 * std::max(1.0, expected))
+            << "from rate 1: q=" << q << " k=" << k << " s=" << s;
+        total += w;
+      }
+      EXPECT_NEAR(total, 1.0, 1e-3) << "q=" << q << " k=" << k;
+    }
   }
 }
 

@@ -12,6 +12,7 @@
 #include "film/checkpoint.h"
 #include "lantern/render.h"
 #include "lantern/scene.h"
+#include "same_image.h"
 
 namespace lantern {
 namespace {
@@ -64,10 +65,6 @@ RenderResult render_rank(const Scene& scene, RenderOptions o, const std::string&
     if (++written == checkpoints) cancel = true;
   };
   return render(scene, o, hooks);
-}
-
-bool same_image(const Image& a, const Image& b) {
-  return a.rgb.size() == b.rgb.size() && std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)) == 0;
 }
 
 TEST(CheckpointPieces, StoppedRanksResumedByOneProcess) {

@@ -145,6 +145,17 @@ TEST(Checkpoint, RefusesACheckpointOfAnotherRender) {
   other.roulette_scale = 1.f;
   const std::string e = resume_error(*scene, other);
   EXPECT_NE(e.find("made with \"roulette=2\" but this render has \"(no roulette line)\""), std::string::npos) << e;
+  // bdpt's light subpath rate likewise: auto (the default) has its line,
+  // rate 1 (pbrt-v4's bdpt, the earlier checkpoints') none.
+  o = small_render("bdpt");
+  make_checkpoint(*scene, o);
+  other = o;
+  other.light_subpath_rate = 1.f;
+  const std::string b = resume_error(*scene, other);
+  EXPECT_NE(b.find("made with \"light-subpaths=auto\" but this render has \"(no light-subpaths line)\""), std::string::npos)
+      << b;
+  other.light_subpath_rate = 0.5f;
+  EXPECT_NE(resume_error(*scene, other).find("\"light-subpaths=0.5\""), std::string::npos);
 }
 
 // Fingerprints are compared by key: a line one side lacks is named as

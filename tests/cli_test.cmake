@@ -131,6 +131,13 @@ expect_run(NAME bad-roulette EXIT 2 MATCH "--roulette: Value nan not in range" A
 expect_run(NAME roulette-render EXIT 0 ARGS render ${SRC}/scenes/cornell-box.pbrt --roulette 3 --spp 1 --resolution 8 8
            --quiet -o ${OUT}/roulette.exr)
 expect_run(NAME roulette-header EXIT 0 MATCH "lantern:roulette 3" ARGS info ${OUT}/roulette.exr)
+# bdpt's light subpath rate: auto or 0.01 to 1, anything else a usage error;
+# the header says what was asked for.
+expect_run(NAME bad-light-subpaths EXIT 2 MATCH "expected auto or a number from 0.01 to 1" ARGS render
+           ${SRC}/scenes/cornell-box.pbrt --integrator bdpt --light-subpaths 0)
+expect_run(NAME light-subpaths-render EXIT 0 ARGS render ${SRC}/scenes/cornell-box.pbrt --integrator bdpt --light-subpaths 0.5
+           --spp 1 --resolution 8 8 --quiet -o ${OUT}/light-subpaths.exr)
+expect_run(NAME light-subpaths-header EXIT 0 MATCH "lantern:light_subpaths 0.5" ARGS info ${OUT}/light-subpaths.exr)
 
 # SIGINT during a long render: exit 130 and an image with the samples so far,
 # for the path tracer and for bdpt (whose splats go through the same merge).

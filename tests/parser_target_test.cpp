@@ -9,6 +9,7 @@
 #include "lantern/render.h"
 #include "scene/builder.h"
 #include "scene/pbrt/parser.h"
+#include "same_image.h"
 
 namespace lantern {
 namespace {
@@ -95,10 +96,6 @@ ObjectInstance "thing"
   EXPECT_FLOAT_EQ(r.light_ctm[3][1], 2.f) << "the light's transformation, composed";
   // (what a target does not read, the parser reports as unused)
   EXPECT_FALSE(r.warnings.empty());
-}
-
-bool same_image(const Image& a, const Image& b) {
-  return a.rgb.size() == b.rgb.size() && std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)) == 0;
 }
 
 pbrt::Param param(const std::string& type, const std::string& name, std::vector<double> numbers) {

@@ -11,6 +11,7 @@
 
 #include "lantern/render.h"
 #include "lantern/scene.h"
+#include "same_image.h"
 
 namespace lantern {
 namespace {
@@ -28,11 +29,6 @@ RenderOptions session_render(Integrator integrator, int spp) {
   // the first 16 samples of a 48-sample render are those of a 16-sample one.
   o.sampler.type = SamplerKind::Independent;
   return o;
-}
-
-bool same_image(const Image& a, const Image& b) {
-  return a.width == b.width && a.height == b.height && a.rgb.size() == b.rgb.size() &&
-         std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)) == 0;
 }
 
 double mean(const Image& im) {

@@ -124,4 +124,22 @@ inline bool merges_vertices(Integrator i) { return i == Integrator::Vcm || i == 
 // Whose Russian roulette RenderOptions::roulette_scale scales (the others keep pbrt-v4's rule).
 inline bool scales_roulette(Integrator i) { return i == Integrator::Path; }
 
+// RenderOptions::light_subpath_rate: bdpt's alone (vcm's merges need every
+// light subpath; lt and mlt are made of them), "auto" or 0.01 to 1.
+inline bool uses_light_subpath_rate(Integrator i) { return i == Integrator::Bdpt; }
+inline constexpr float kLightSubpathsAuto = -1.f;
+inline float parse_light_subpaths(const std::string& w) {
+  if (w == "auto") return kLightSubpathsAuto;
+  size_t end = 0;
+  float v = 0.f;
+  try {
+    v = std::stof(w, &end);
+  } catch (const std::exception&) {
+    end = 0;
+  }
+  if (end == 0 || end != w.size() || !(v >= 0.01f && v <= 1.f))
+    throw std::invalid_argument("light subpaths \"" + w + "\": expected auto or a number from 0.01 to 1");
+  return v;
+}
+
 }  // namespace lantern

@@ -62,6 +62,12 @@ struct RenderOptions {
   // still needs, and leaves less error per second on most scenes
   // (docs/performance.md, "Russian roulette that keeps more paths").
   float roulette_scale = 2.f;
+  // bdpt: the probability that a camera sample traces a light subpath
+  // beyond the light, its strategies weighted for it (docs/bdpt.md, "The
+  // light subpath rate"); 1 is pbrt-v4's bdpt. kLightSubpathsAuto: chosen
+  // before the render by a pilot that estimates each rate's error at equal
+  // time (1, 1/2, 1/4 or 1/8).
+  float light_subpath_rate = kLightSubpathsAuto;
   int maxdepth = 5;
   int threads = 0;  // 0: all cores
   uint64_t seed = 0;
@@ -187,6 +193,11 @@ struct RenderStats {
   uint64_t light_samples = 0, light_samples_unoccluded = 0;
   uint64_t merges = 0;        // vcm: light vertices merged with eye vertices
   float vcm_radius = 0.f;     // vcm: the first pass's merging radius
+  // bdpt: the light subpath rate rendered with; with the pilot's choice,
+  // its candidates and its estimates for each: the relMSE of one camera
+  // sample per pixel, and rays per camera sample.
+  float light_subpath_rate = 0.f;
+  std::vector<double> light_subpath_candidates, light_subpath_error, light_subpath_cost;
   float vcm_last_radius = 0.f;  // vcm: the merging radius of the last pass traced
   uint32_t vcm_last_first_sample = 0;  // vcm: the first sample index of that pass
   double vcm_grid_seconds = 0.0;  // vcm, with stats: thread-seconds building the merging grids

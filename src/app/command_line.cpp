@@ -100,6 +100,20 @@ void add_render_request_options(CLI::App& c, RenderRequest& r) {
             return v >= 0.01 && v <= 100.0 ? std::string() : "Value " + text + " not in range 0.01 to 100";
           },
           "FLOAT in [0.01 - 100]"));
+  c.add_option("--light-subpaths", r.light_subpaths,
+               "bdpt: the probability Q that a camera sample traces a light subpath beyond the light (0.01 to 1; 1 is "
+               "pbrt-v4's bdpt), or auto: chosen per scene by a short pilot that estimates each rate's error at equal "
+               "time (default; docs/bdpt.md)")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            try {
+              parse_light_subpaths(text);
+              return std::string();
+            } catch (const std::invalid_argument& e) {
+              return std::string(e.what());
+            }
+          },
+          "auto|FLOAT in [0.01 - 1]"));
   c.add_option("--mis", r.mis, "bdpt's MIS heuristic: power or balance")
       ->check(CLI::IsMember({"power", "balance"}));
   c.add_flag("--adaptive", r.adaptive,

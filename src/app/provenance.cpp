@@ -95,6 +95,8 @@ nlohmann::json render_settings_json(const RenderOptions& o) {
                       {"wave_size", o.wave_size}};
   if (merges_vertices(o.integrator)) j["vcm"] = {{"radius", o.vcm_radius}, {"alpha", o.vcm_alpha}};
   if (scales_roulette(o.integrator)) j["roulette"] = o.roulette_scale;
+  if (uses_light_subpath_rate(o.integrator))
+    j["light_subpaths"] = o.light_subpath_rate == kLightSubpathsAuto ? nlohmann::json("auto") : nlohmann::json(o.light_subpath_rate);
   if (o.guiding) j["guiding"] = true;
   if (o.guide_light_subpaths) j["guide_light"] = true;
   return j;
@@ -110,6 +112,11 @@ void add_render_settings(ImageMetadata& md, const RenderOptions& o) {
     char s[32];
     std::snprintf(s, sizeof s, "%.9g", double(o.roulette_scale));
     md.emplace_back("lantern:roulette", s);
+  }
+  if (uses_light_subpath_rate(o.integrator)) {
+    char s[32];
+    std::snprintf(s, sizeof s, "%.9g", double(o.light_subpath_rate));
+    md.emplace_back("lantern:light_subpaths", o.light_subpath_rate == kLightSubpathsAuto ? "auto" : s);
   }
   if (o.guiding) md.emplace_back("lantern:guiding", "on");
   if (o.guide_light_subpaths) md.emplace_back("lantern:guide-light", "on");

@@ -52,6 +52,11 @@ struct StrategyRecord {
   uint8_t s, t;
   RGB weighted, unweighted;
   bool merge = false;
+  // For the light subpath rate's pilot (integrator/light_subpath_rate.h):
+  // the wave slot of the camera sample (t >= 2), the MIS weight, and the
+  // part of its ratio sum that a change of the rate rescales.
+  uint32_t slot = 0;
+  float weight = 1.f, rescaled = 0.f;
 };
 
 // A sample's or splat's spectrum and wavelengths, kept beside it when the

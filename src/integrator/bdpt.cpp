@@ -25,6 +25,9 @@ Bdpt::Bdpt(const Scene& scene, const LightSampler& light_sampler, const BdptSett
       sampler_(make_sampler_spec(s.sampler, s.width, s.height, s.planned_spp, s.seed)),
       light_start_(make_light_start_spec(sampler_, s.width, s.height)) {
   if (scene.textures.uses_footprint) footprints_ = FootprintModel(camera_, s.footprint_spp);
+  const float q = s.light_subpath_rate;
+  mis_.with_light = mis_(q);
+  mis_.without_light = q > 0.f ? mis_(1.f / q) : 0.f;  // (no light subpath's quantity is ever made)
 }
 
 WavePools<BdptWave> Bdpt::make_wave_state(uint32_t capacity, RayStream stream) const {
@@ -96,10 +99,11 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
       if (!lights.infinite.empty()) {
         const Vec3 prev = w.eye.prev_p[slot];
         Spectrum Le = infinite_lights_Le(lights, scene_.textures, prev, d, w.lambda[slot]);
+        float rescaled = 0.f;
         float wt = w.depth == 1 ? 1.f
                                 : mis_weight_hit_light(m, infinite_lights_pdf(lights, scene_.textures, light_sampler_, prev, d),
-                                                       infinite_emission_pdf(lights, scene_.textures, d), w.mis);
-        add_emission(w, slot, w.eye.beta[slot] * Le, emission_weight(m, wt));
+                                                       infinite_emission_pdf(lights, scene_.textures, d), w.mis, &rescaled);
+        add_emission(w, slot, w.eye.beta[slot] * Le, emission_weight(m, wt), rescaled);
       }
       continue;
     }
@@ -116,7 +120,7 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
       Spectrum Le = area_light_Le(lights.area[size_t(light)], scene_.textures, sp.ng, sp.uv, -d, w.lambda[slot]);
       if (!is_black(Le)) {
         uint32_t a = uint32_t(light);
-        float wt;
+        float wt, rescaled = 0.f;
         if (w.depth == 1) {
           float pos_pdf = lights.selection.discrete_pmf(lights.area_to_all[a]) *  // emission: by power
                           area_point_density(shapes, lights.area[a], sp.p, sp.ng);
@@ -125,9 +129,9 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
           wt = mis_weight_hit_light(m,
                                     area_light_direct_pdf_area(lights, shapes, light_sampler_, a, prev,
                                                                w.eye.prev_n[slot], sp.p, sp.ng),
-                                    area_emission_pdf(lights, shapes, a, sp.p, sp.ng, -d), w.mis);
+                                    area_emission_pdf(lights, shapes, a, sp.p, sp.ng, -d), w.mis, &rescaled);
         }
-        add_emission(w, slot, w.eye.beta[slot] * Le, emission_weight(m, wt));
+        add_emission(w, slot, w.eye.beta[slot] * Le, emission_weight(m, wt), rescaled);
       }
     }
     if (last) {
@@ -238,7 +242,8 @@ void Bdpt::connection_stage(BdptWave& w) const {
     if (c.record) {
       const SampledWavelengths& l = w.lambda[c.slot[r]];
       w.out->strategies.push_back({w.pixel[c.slot[r]], Vec2(0.f), c.tags[r].s, c.tags[r].t, film_rgb(c.contrib[r], l),
-                                   film_rgb(c.tags[r].unweighted, l)});
+                                   film_rgb(c.tags[r].unweighted, l), false, c.slot[r], c.tags[r].weight,
+                                   c.tags[r].rescaled});
     }
   }
   c.rays.count = 0;
@@ -251,12 +256,13 @@ void Bdpt::flush_connections(BdptWave& w) const {
 }
 
 // s = 0: emission the eye subpath found at its current depth.
-void Bdpt::add_emission(BdptWave& w, uint32_t slot, const Spectrum& unweighted, float weight) const {
+void Bdpt::add_emission(BdptWave& w, uint32_t slot, const Spectrum& unweighted, float weight, float rescaled) const {
   if (weight == 0.f && !settings_.record_strategies) return;  // (bpm's emission past a merging vertex)
   w.L[slot] += unweighted * weight;
   if (settings_.record_strategies)
     w.out->strategies.push_back({w.pixel[slot], Vec2(0.f), 0, strategy_count(w.depth + 1),
-                                 film_rgb(unweighted * weight, w.lambda[slot]), film_rgb(unweighted, w.lambda[slot])});
+                                 film_rgb(unweighted * weight, w.lambda[slot]), film_rgb(unweighted, w.lambda[slot]),
+                                 false, slot, weight, rescaled});
 }
 
 void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {

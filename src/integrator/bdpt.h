@@ -44,6 +44,11 @@ struct BdptSettings {
   Vec2 raster_offset{0.f};
   float mis_beta = 2.f;             // 2: power heuristic, 1: balance heuristic
   bool light_tracing_only = false;  // the `lt` integrator
+  // The light subpath rate q: the probability that a camera sample traces a
+  // light subpath (bdpt_mis.h). Below 1, a camera sample without one is a
+  // path-traced sample (s = 0 and s = 1 only) and one with one weighs its
+  // strategies s >= 2 and t = 1 by 1 / q.
+  float light_subpath_rate = 1.f;
   // Vertex connection and merging (the `vcm` integrator; docs/vcm.md):
   // light vertices within the radius of an eye vertex are merged with it,
   // as further strategies. The radius of sample pass i (counting from 1)
@@ -150,7 +155,8 @@ class Bdpt {
   void light_medium_stage(BdptWave& w) const;
   void light_medium_arrival(BdptWave& w, uint32_t i) const;
   void trace_connections(BdptWave& w) const;
-  void add_emission(BdptWave& w, uint32_t slot, const Spectrum& unweighted, float weight) const;
+  // rescaled: the part of its weight's ratio sum that the light subpath rate rescales
+  void add_emission(BdptWave& w, uint32_t slot, const Spectrum& unweighted, float weight, float rescaled = 0.f) const;
   void add_volume_emission(BdptWave& w, uint32_t i, const Spectrum& beta_before) const;
   float volume_number(const BdptWave& w, uint32_t slot) const;
   struct VolumeSampleEnd {

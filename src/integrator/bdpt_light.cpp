@@ -14,6 +14,20 @@
 
 namespace lantern {
 
+namespace {
+// Whether a light subpath goes on beyond the light (with probability q,
+// the light subpath rate), decided by the first coordinate of the number
+// its direction is drawn with, which is then rescaled to [0, 1) for that
+// draw: at q = 1 the same directions. The light point is drawn for every
+// camera sample, stratified with the image, for s = 1, t = 1.
+bool beyond_light(float q, Vec2& u_dir) {
+  if (q >= 1.f) return true;
+  if (!(u_dir.x < q)) return false;
+  u_dir.x = std::min(u_dir.x / q, kOneMinusEpsilon);
+  return true;
+}
+}  // namespace
+
 void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
   const LightPools& lights = scene_.lights;
   w.rays.count = 0;
@@ -53,6 +67,7 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
     w.light.dispersed[slot] = 0;
     w.sampler[slot] = s;
     w.origin.extra_depth[slot] = 0;
+    const bool traced = beyond_light(settings_.light_subpath_rate, u_dir);
     auto es = sample_le(lights, scene_.shapes, scene_.textures, u_select, u_pos, u_dir, lambda, u_volume);
     if (!es) continue;
     if (es->volume) {
@@ -60,8 +75,8 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
       w.volume_slots.push_back(slot);
       continue;
     }
-    float mix_pdf_dir = -1.f;
-    if (guides_light()) guide_emission(w, slot, *es, u_select, u_pos, u_dir, &mix_pdf_dir);
+    float mix_pdf_dir = traced ? -1.f : 0.f;  // (0: not traced beyond the light)
+    if (traced && guides_light()) guide_emission(w, slot, *es, u_select, u_pos, u_dir, &mix_pdf_dir);
     begin_light_subpath(w, slot, *es, !scene_.media.empty() ? emission_medium(lights, scene_.shapes, es->light, es->n, es->d) : MediumHandle{},
                         Spectrum(0.f), mix_pdf_dir);
   }
@@ -92,8 +107,10 @@ void Bdpt::start_volume_subpaths(BdptWave& w) const {
     complete_volume_sample(scene_.lights, scene_.media, &es.Le, es.p, es.light, w.lambda[w.volume_slots[k]], &m,
                            &sigma_t);
     if (w.volume_media[k] != m || is_black(es.Le)) continue;
-    w.origin.extra_depth[w.volume_slots[k]] = 1;
-    begin_light_subpath(w, w.volume_slots[k], es, m, sigma_t);
+    const uint32_t slot = w.volume_slots[k];
+    Vec2 u_dir = w.sampler[slot].get2d(dims::kLightDirection);
+    w.origin.extra_depth[slot] = 1;
+    begin_light_subpath(w, slot, es, m, sigma_t, beyond_light(settings_.light_subpath_rate, u_dir) ? -1.f : 0.f);
   }
   w.volume_slots.clear();
 }
@@ -119,8 +136,10 @@ void Bdpt::begin_light_subpath(BdptWave& w, uint32_t slot, const EmissionSample&
   // position it depends on where it is seen from (the area density, and
   // the light sampler's choice), so it waits for the first hit (-1).
   o.direct_pdf_A[slot] = emission_direct_pdf_fixed(lights, light_sampler_, es);
+  // (divided by the light subpath rate q: traced with probability q)
+  const float inv_rate = 1.f / settings_.light_subpath_rate;
   Spectrum beta = mix_pdf_dir == 0.f ? Spectrum(0.f)
-                  : es.Le * (cos_light / (mix_pdf_dir > 0.f ? es.pdf_pos * mix_pdf_dir : emission_pdf_W));
+                  : es.Le * (cos_light / (mix_pdf_dir > 0.f ? es.pdf_pos * mix_pdf_dir : emission_pdf_W) * inv_rate);
   w.light.beta[slot] = beta;
   w.light.rr_scale[slot] = max_component(beta) > 0.f ? 1.f / max_component(beta) : 0.f;
   w.light.eta_scale[slot] = 1.f;
@@ -309,7 +328,8 @@ void Bdpt::splat_stage(BdptWave& w) const {
     if (w.out->keep_spectra) w.out->splat_spectra.resize(w.out->splats.size(), SampleSpectrum{c.contrib[r], l});
     if (w.out->keep_slots) w.out->splat_slots.resize(w.out->splats.size(), c.slot[r]);
     if (c.record)
-      w.out->strategies.push_back({0, c.p_raster[r], c.tags[r].s, 1, contrib, film_rgb(c.tags[r].unweighted, l)});
+      w.out->strategies.push_back({0, c.p_raster[r], c.tags[r].s, 1, contrib, film_rgb(c.tags[r].unweighted, l), false,
+                                   c.slot[r], c.tags[r].weight, c.tags[r].rescaled});
   }
   c.rays.count = 0;
 }

@@ -109,17 +109,17 @@ void Bdpt::add_volume_emission(BdptWave& w, uint32_t i, const Spectrum& beta_bef
   const Vec3 x = w.ends.p[i];
   const LightPools& lights = scene_.lights;
   const int64_t light = lights.volume_light_of(w.ends.medium[i]);
-  float wt = 1.f;
+  float wt = 1.f, rescaled = 0.f;
   const MisState& m = w.eye.mis[slot];
   if (light >= 0) {
     const float density = volume_light_density(scene_.lights, light, x);
     const float pos_pdf = lights.selection.discrete_pmf(size_t(light)) * density;  // light subpaths choose by power
     wt = w.depth == 1 ? mis_weight_hit_light_direct(m, pos_pdf, w.mis)
                       : mis_weight_hit_light(m, light_sampler_.pmf(w.eye.prev_p[slot], w.eye.prev_n[slot], uint32_t(light)) * density,
-                                             pos_pdf * uniform_sphere_pdf(), w.mis);
+                                             pos_pdf * uniform_sphere_pdf(), w.mis, &rescaled);
   }
   const Spectrum c = beta_before * w.ends.emission[i];
-  if (is_finite(c)) add_emission(w, slot, c, emission_weight(m, wt));
+  if (is_finite(c)) add_emission(w, slot, c, emission_weight(m, wt), rescaled);
 }
 
 MergeKind Bdpt::light_vertex_merging(const LightVertexPool& v, uint32_t j) const {
@@ -222,7 +222,11 @@ void Bdpt::trace_connections(BdptWave& w) const {
     const float wt = weighted ? mis_weight_deferred(c.deferred[r], c.T_mis[r], w.mis) : 1.f;
     c.contrib[r] *= c.T[r] * wt;
     if (!is_finite(c.contrib[r])) c.rays.tfar[r] = -kInfinity;
-    if (c.record) c.tags[r].unweighted *= c.T[r];
+    if (c.record) {
+      c.tags[r].unweighted *= c.T[r];
+      c.tags[r].weight = wt;
+      c.tags[r].rescaled = weighted ? mis_rescaled_deferred(c.deferred[r], c.T_mis[r], w.mis) : 0.f;
+    }
   }
 }
 

@@ -14,9 +14,13 @@
 // Conventions kept by every caller (they must agree for the weights of all
 // strategies of one path to sum to 1):
 //  - solid angle -> area conversions use the geometric normal's cosine;
-//  - the camera's direction density is pbrt's whole-film 1 / (A cos^3), and
-//    there is one light subpath per camera sample, so light tracing and
-//    camera sampling compare with a subpath-count ratio of 1;
+//  - the camera's direction density is pbrt's whole-film 1 / (A cos^3);
+//  - a camera sample traces a light subpath beyond the light with
+//    probability q (the light subpath rate, 1 unless set), so every
+//    strategy that uses its vertices past the light (s >= 2) is run q times
+//    per camera sample and the others (s = 0, s = 1) once: Veach's sample
+//    counts (1997, eq. 9.13), n_i = q or 1. s = 1, t = 1, the light's own
+//    point seen by the camera, is one of those run once;
 //  - Russian roulette is left out of the densities (as in pbrt): weights stay
 //    a partition of unity, only slightly less optimal;
 //  - a specular (delta) vertex is never connected: sampling through it sets
@@ -42,6 +46,10 @@ struct MisPower {
   // 1 when connections are strategies too (bdpt, vcm), 0 when merges are
   // all there is (bpm, ppm).
   float connect = 1.f;
+  // The light subpath rate q's count ratios: Mis(q), what a strategy that
+  // needs a light subpath weighs against one that does not, and Mis(1 / q)
+  // the other way (both 1 when every camera sample traces one).
+  float with_light = 1.f, without_light = 1.f;
   float operator()(float x) const { return beta == 2.f ? x * x : x; }
   float vm(MergeKind k) const { return k == MergeKind::Surface ? vm_weight : k == MergeKind::Medium ? vm_medium : 0.f; }
 };
@@ -53,6 +61,11 @@ struct MisState {
   float dVCM = 0.f;
   float dVC = 0.f;
   float dVM = 0.f;  // vcm only: the merging strategies' sum (with connections: dVC itself)
+  // A light subpath's share of dVCM and dVC that stands for strategies run
+  // without it (s = 0 and s = 1, from mis_light_start): what a change of
+  // the light subpath rate rescales (light_subpath_rate.h measures with
+  // it). Zero on eye subpaths.
+  float start_dVCM = 0.f, start_dVC = 0.f;
 };
 
 // Eye subpath from a camera ray whose direction has (whole-film) solid-angle
@@ -63,20 +76,30 @@ inline MisState mis_camera_start(float pdf_dir_W, MisPower mis) { return {mis(1.
 // next-event estimation would pick the same light point (as seen from the
 // first hit), emission_pdf_W = p_pos * p_dir * pmf, cos_light at the light
 // (1 for lights at infinity). Delta lights cannot be hit by eye subpaths.
+// Both quantities stand for strategies without a light subpath (s = 0
+// and s = 1), which every strategy using this one weighs by Mis(1 / q).
 inline MisState mis_light_start(float direct_pdf_A, float emission_pdf_W, float cos_light, bool delta_light,
                                 MisPower mis) {
-  const float dVC = delta_light ? 0.f : mis(cos_light / emission_pdf_W);
-  return {mis(direct_pdf_A / emission_pdf_W), dVC, dVC * mis.connect};
+  const float dVC = delta_light ? 0.f : mis(cos_light / emission_pdf_W) * mis.without_light;
+  const float dVCM = mis(direct_pdf_A / emission_pdf_W) * mis.without_light;
+  return {dVCM, dVC, dVC * mis.connect, dVCM, dVC};
 }
 
 // After a ray of squared length dist2 hits a surface at cosine cos_in. The
 // first segment of a light subpath from infinity has no length (its
 // positional density is already per area on the disk): apply_dist = false.
 inline void mis_after_hit(MisState& m, float dist2, float cos_in, bool apply_dist, MisPower mis) {
-  if (apply_dist) m.dVCM *= mis(dist2);
-  m.dVCM /= mis(cos_in);
-  m.dVC /= mis(cos_in);
-  m.dVM /= mis(cos_in);
+  const float c = mis(cos_in);
+  if (apply_dist) {
+    const float d = mis(dist2);
+    m.dVCM *= d;
+    m.start_dVCM *= d;
+  }
+  m.dVCM /= c;
+  m.start_dVCM /= c;
+  m.dVC /= c;
+  m.start_dVC /= c;
+  m.dVM /= c;
 }
 
 // After sampling a direction with density pdf_fwd (pdf_rev: the density of
@@ -85,14 +108,17 @@ inline void mis_after_hit(MisState& m, float dist2, float cos_in, bool apply_dis
 inline void mis_after_scatter(MisState& m, float cos_out, float pdf_fwd, float pdf_rev, bool specular, MisPower mis,
                               MergeKind kind = MergeKind::Surface) {
   if (specular) {
-    m.dVCM = 0.f;
+    m.dVCM = m.start_dVCM = 0.f;
     m.dVC *= mis(cos_out);  // pdf_fwd == pdf_rev for every delta lobe here
+    m.start_dVC *= mis(cos_out);
     m.dVM *= mis(cos_out);
   } else {
-    const float f = mis(cos_out / pdf_fwd), vm = mis.vm(kind);
-    m.dVM = f * (m.dVM * mis(pdf_rev) + m.dVCM * mis.connect + vm);
-    m.dVC = f * (m.dVC * mis(pdf_rev) + m.dVCM + vm);
+    const float f = mis(cos_out / pdf_fwd), vm = mis.vm(kind), rev = mis(pdf_rev);
+    m.dVM = f * (m.dVM * rev + m.dVCM * mis.connect + vm);
+    m.dVC = f * (m.dVC * rev + m.dVCM + vm);
+    m.start_dVC = f * (m.start_dVC * rev + m.start_dVCM);
     m.dVCM = mis(1.f / pdf_fwd);
+    m.start_dVCM = 0.f;
   }
 }
 
@@ -107,6 +133,11 @@ inline void mis_after_scatter(MisState& m, float cos_out, float pdf_fwd, float p
 struct DeferredMis {
   float a = 0.f, b = 0.f;
   Spectrum sigma_a{0.f}, sigma_b{0.f};
+  // The fractions of a and b that stand for strategies of the other
+  // count class (bdpt_mis.h's conventions: those run once per camera
+  // sample if this one needs a light subpath, and the other way round),
+  // which a change of the light subpath rate rescales.
+  float a_rescaled = 0.f, b_rescaled = 0.f;
 };
 inline float mis_weight_deferred(const DeferredMis& d, const Spectrum& T, MisPower mis) {
   return 1.f / (1.f + d.a * mis(mixture_density(d.sigma_a, T)) + d.b * mis(mixture_density(d.sigma_b, T)));
@@ -114,6 +145,12 @@ inline float mis_weight_deferred(const DeferredMis& d, const Spectrum& T, MisPow
 // The same in vacuum, where every segment's transmittance is 1 and so are
 // both mixture densities (mixture_density gives exactly 1 there).
 inline float mis_weight_vacuum(const DeferredMis& d) { return 1.f / (1.f + d.a + d.b); }
+// The part of the weight's sum of ratios that the light subpath rate
+// rescales (DeferredMis::a_rescaled), once the transmittance is known.
+inline float mis_rescaled_deferred(const DeferredMis& d, const Spectrum& T, MisPower mis) {
+  return d.a * d.a_rescaled * mis(mixture_density(d.sigma_a, T)) + d.b * d.b_rescaled * mis(mixture_density(d.sigma_b, T));
+}
+inline float mis_rescaled_vacuum(const DeferredMis& d) { return d.a * d.a_rescaled + d.b * d.b_rescaled; }
 
 // What a connection weighs the strategies of one of its subpaths by,
 // relative to itself, before the factor for the connection's own segment:
@@ -123,12 +160,23 @@ inline float mis_weight_vacuum(const DeferredMis& d) { return 1.f / (1.f + d.a +
 inline float mis_connection_sum(const MisState& m, float pdf_rev_W, MergeKind end, MisPower mis) {
   return mis.vm(end) + m.dVCM + m.dVC * mis(pdf_rev_W);
 }
+// The part of mis_connection_sum at a light vertex that stands for
+// strategies without a light subpath (s = 0, 1), as a fraction of it.
+inline float mis_start_fraction(const MisState& m, float pdf_rev_W, MergeKind end, MisPower mis) {
+  const float sum = mis_connection_sum(m, pdf_rev_W, end, mis);
+  return sum > 0.f ? (m.start_dVCM + m.start_dVC * mis(pdf_rev_W)) / sum : 0.f;
+}
 
 // s = 0: the eye subpath hit an emitter. direct_pdf_A: next-event density of
 // that light point from the previous eye vertex; emission_pdf_W: density of
 // the light emitting towards the previous eye vertex.
-inline float mis_weight_hit_light(const MisState& eye, float direct_pdf_A, float emission_pdf_W, MisPower mis) {
-  return 1.f / (1.f + mis(direct_pdf_A) * eye.dVCM + mis(emission_pdf_W) * eye.dVC);
+// The dVC sum is of strategies with s >= 2, which need a light subpath:
+// *rescaled, if asked for, is its ratio sum (DeferredMis::a_rescaled).
+inline float mis_weight_hit_light(const MisState& eye, float direct_pdf_A, float emission_pdf_W, MisPower mis,
+                                  float* rescaled = nullptr) {
+  const float with_light = mis(emission_pdf_W) * eye.dVC * mis.with_light;
+  if (rescaled) *rescaled = with_light;
+  return 1.f / (1.f + mis(direct_pdf_A) * eye.dVCM + with_light);
 }
 
 // s = 0 for a light seen straight from the camera: the only other strategy
@@ -156,7 +204,9 @@ inline DeferredMis mis_sums_next_event(const MisState& eye, float light_pdf_W, f
                                        MergeKind eye_merge = MergeKind::Surface) {
   DeferredMis d;
   d.a = light_pdf_W > 0.f ? mis(bsdf_pdf_W / light_pdf_W) : 0.f;
-  d.b = mis(emission_fwd_A / direct_pdf_A) * mis_connection_sum(eye, eye_rev_W, eye_merge, mis);
+  // (s >= 2 all: they need a light subpath)
+  d.b = mis(emission_fwd_A / direct_pdf_A) * mis_connection_sum(eye, eye_rev_W, eye_merge, mis) * mis.with_light;
+  d.b_rescaled = 1.f;
   return d;
 }
 
@@ -170,6 +220,7 @@ inline DeferredMis mis_sums_connect(const MisState& eye, const MisState& light, 
   DeferredMis d;
   d.a = mis(eye_fwd_A) * mis_connection_sum(light, light_rev_W, light_merge, mis);
   d.b = mis(light_fwd_A) * mis_connection_sum(eye, eye_rev_W, eye_merge, mis);
+  d.a_rescaled = mis_start_fraction(light, light_rev_W, light_merge, mis);
   return d;
 }
 
@@ -179,6 +230,7 @@ inline DeferredMis mis_sums_light_trace(const MisState& light, float camera_pdf_
                                         MergeKind light_merge = MergeKind::Surface) {
   DeferredMis d;
   d.a = mis(camera_pdf_A) * mis_connection_sum(light, light_rev_W, light_merge, mis);
+  d.a_rescaled = mis_start_fraction(light, light_rev_W, light_merge, mis);
   return d;
 }
 
@@ -211,9 +263,12 @@ inline DeferredMis mis_sums_light_origin(float camera_pdf_A, float emission_pos_
 // below, and to the reverse density of the vertex it started from the same
 // for the opposite direction, rev. After mis_after_hit:
 inline void mis_after_segment(MisState& m, float fwd, float rev, MisPower mis) {
-  m.dVCM /= mis(fwd);
-  m.dVC *= mis(rev / fwd);
-  m.dVM *= mis(rev / fwd);
+  const float f = mis(fwd), r = mis(rev / fwd);
+  m.dVCM /= f;
+  m.start_dVCM /= f;
+  m.dVC *= r;
+  m.start_dVC *= r;
+  m.dVM *= r;
 }
 
 

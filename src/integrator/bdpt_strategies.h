@@ -27,8 +27,10 @@ namespace lantern {
 // In a scene without media a connection's segment adds nothing to the
 // densities (its transmittance is 1): its weight is known now.
 inline void Bdpt::push_connection(BdptWave& w, uint32_t slot, const Connection& k) const {
-  if (w.shadow.media) w.shadow.push(slot, k, k.unweighted, w.lambda[slot], w.time[slot]);
-  else w.shadow.push(slot, k, k.unweighted * (weighted() ? mis_weight_vacuum(k.mis) : 1.f), w.lambda[slot], w.time[slot]);
+  if (k.s >= 2) ++w.stats.light_connections;
+  const float wt = w.shadow.media || !weighted() ? 1.f : mis_weight_vacuum(k.mis);
+  w.shadow.push(slot, k, k.unweighted * wt, w.lambda[slot], w.time[slot]);
+  if (w.shadow.record) w.shadow.tags[w.shadow.rays.count - 1].weight = wt;
 }
 
 // s = 1: next-event estimation from eye vertex v (Veach 1997, sec. 10.2;

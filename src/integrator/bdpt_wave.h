@@ -154,6 +154,7 @@ inline uint8_t strategy_count(uint32_t n) { return uint8_t(std::min<uint32_t>(n,
 struct StrategyTag {
   uint8_t s, t;
   Spectrum unweighted;
+  float weight = 1.f, rescaled = 0.f;  // its MIS weight, and the part of its ratio sum of the other count class
 };
 
 // A connection of two vertices (or of a vertex and the lens): its shadow
@@ -212,7 +213,7 @@ struct ConnectionPool {
     contrib[i] = c;
     p_raster[i] = k.p_raster;
     next_event[i] = k.light_sample;
-    if (record) tags[i] = {k.s, k.t, k.unweighted};
+    if (record) tags[i] = {k.s, k.t, k.unweighted, 1.f, mis_rescaled_vacuum(k.mis)};
     if (media) {
       medium[i] = k.start;
       deferred[i] = k.mis;

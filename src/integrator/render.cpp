@@ -26,6 +26,7 @@
 #include "integrator/adaptive_sampling.h"
 #include "integrator/bdpt.h"
 #include "integrator/bdpt_wave.h"
+#include "integrator/light_subpath_rate.h"
 #include "integrator/path_tracer.h"
 #include "integrator/metropolis.h"
 #include "integrator/pass_context.h"
@@ -536,8 +537,9 @@ RenderResult RenderSession::render_all() {
       stopped = run_metropolis(Bdpt(scene, light_sampler, bdpt_settings(scene, opt, s.region, planned_spp)),
                                metropolis_settings(scene, opt, s.region), cx);
     } else if (!traces_paths(opt.integrator)) {
-      const BdptSettings bs = bdpt_settings(scene, opt, s.region, planned_spp);
+      BdptSettings bs = bdpt_settings(scene, opt, s.region, planned_spp);
       res.stats.vcm_radius = bs.merging ? bs.vcm_radius : 0.f;
+      if (uses_light_subpath_rate(opt.integrator)) set_light_subpath_rate(scene, light_sampler, opt, bs, res.stats);
       Bdpt bdpt(scene, light_sampler, bs);
       bdpt.set_guiding(cx.guiding);
       stopped = run_passes(bdpt, cx);

@@ -84,6 +84,12 @@ void check_options(const Scene& scene, const RenderOptions& opt) {
   // or its survivors vanish: noise, never a better image.)
   if (!(opt.roulette_scale >= 0.01f && opt.roulette_scale <= 100.f))
     throw std::invalid_argument("--roulette must be a number from 0.01 to 100 (1: pbrt-v4's Russian roulette)");
+  // (Not 0: paths that only a light subpath can find, as caustics of a
+  // point light, would be lost.)
+  if (opt.light_subpath_rate != kLightSubpathsAuto &&
+      !(opt.light_subpath_rate >= 0.01f && opt.light_subpath_rate <= 1.f))
+    throw std::invalid_argument("--light-subpaths must be auto or a number from 0.01 to 1 (1: every camera sample "
+                                "traces one, as pbrt-v4's bdpt)");
   if (scene.camera.projection == Projection::Realistic && !traces_paths(opt.integrator))
     throw std::invalid_argument(std::string("the realistic camera works with path, directlighting and ambientocclusion, "
                                             "not ") + name(opt.integrator) +
@@ -187,6 +193,8 @@ BdptSettings bdpt_settings(const Scene& scene, const RenderOptions& opt, const I
   bs.raster_offset = Vec2(float(region.x0), float(region.y0));
   bs.mis_beta = opt.mis == MisHeuristic::Balance ? 1.f : 2.f;
   bs.light_tracing_only = opt.integrator == Integrator::Lt;
+  // (auto: the render's pilot sets it, render.cpp)
+  bs.light_subpath_rate = uses_light_subpath_rate(opt.integrator) && opt.light_subpath_rate > 0.f ? opt.light_subpath_rate : 1.f;
   bs.merging = merging;
   bs.connections = !merging || opt.integrator == Integrator::Vcm;
   bs.photon_mapping = opt.integrator == Integrator::Ppm;

@@ -43,6 +43,7 @@ struct WaveStats {
   // Next-event estimation (the path tracer's, bdpt's s = 1): lights sampled,
   // and those whose sample was non-zero and unoccluded.
   uint64_t light_samples = 0, light_samples_unoccluded = 0;
+  uint64_t light_connections = 0;  // bdpt: shadow rays of strategies with s >= 2 (the cost the light subpath rate scales)
   uint64_t merges = 0;  // vcm: light vertices merged
   double grid_seconds = 0.0;   // vcm, with timing: building the merging grids
   uint32_t last_pass = 0;      // vcm: the largest first sample index of a wave traced

@@ -78,6 +78,15 @@ void read_options(const py::kwargs& kw, RenderRequest& r, Outputs& out) {
     } else if (k == "roulette") {
       r.roulette = cast_option<float>("roulette", value);
       if (!(r.roulette >= 0.01f && r.roulette <= 100.f)) throw py::value_error("roulette: expected 0.01 to 100");
+    } else if (k == "light_subpaths") {
+      // auto, or a number from 0.01 to 1
+      r.light_subpaths = py::isinstance<py::str>(value) ? value.cast<std::string>()
+                                                        : std::to_string(cast_option<double>("light_subpaths", value));
+      try {
+        parse_light_subpaths(r.light_subpaths);
+      } catch (const std::invalid_argument&) {
+        throw py::value_error("light_subpaths: expected \"auto\" or a number from 0.01 to 1");
+      }
     } else if (k == "spectral") r.spectral = cast_option<bool>("spectral", value);
     else if (k == "guide") r.guide = cast_option<bool>("guide", value);
     else if (k == "guide_light") r.guide_light = cast_option<bool>("guide_light", value);
@@ -97,7 +106,7 @@ void read_options(const py::kwargs& kw, RenderRequest& r, Outputs& out) {
       throw py::type_error("unknown render option '" + k +
                            "'; the options are the command line's: integrator, spp, time, target_error, maxdepth, "
                            "seed, sampler, light_sampler, resolution, cropwindow, pixelbounds, pixel, spectral, guide, "
-                           "guide_light, adaptive, threads, wave_size, rays, mis, vcm_radius, vcm_alpha, roulette, output, stats, collect_stats, checkpoint, checkpoint_file, resume, "
+                           "guide_light, adaptive, threads, wave_size, rays, mis, vcm_radius, vcm_alpha, roulette, light_subpaths, output, stats, collect_stats, checkpoint, checkpoint_file, resume, "
                            "keep_checkpoint");
   }
   if (r.time > 0 && r.spp > 0)
@@ -346,7 +355,7 @@ void bind_render(py::module_& m) {
       "Render a scene; keyword arguments are the command line's options (integrator, spp, time, target_error, "
       "maxdepth, seed, sampler, light_sampler, resolution, cropwindow, pixelbounds, pixel, spectral, guide, guide_light, adaptive, threads, "
       "wave_size, rays, mis, "
-      "vcm_radius, vcm_alpha, roulette, checkpoint, checkpoint_file, resume, keep_checkpoint) and the files to write (output, stats). "
+      "vcm_radius, vcm_alpha, roulette, light_subpaths, checkpoint, checkpoint_file, resume, keep_checkpoint) and the files to write (output, stats). "
       "progress(p) is called about ten times a second; returning False cancels (None goes on). Ctrl-C cancels, writes the "
       "image so far to output, and raises KeyboardInterrupt.");
   m.def("version", &version_line, "The build's version line, as `lantern --version` prints it");

@@ -1,0 +1,108 @@
+// The light subpath rate q of bdpt (bdpt_mis.h), chosen per scene by
+// measuring, before the render, what each candidate rate would cost and
+// what error it would leave: the idea of Grittmann et al. 2022
+// ("Efficiency-aware multiple importance sampling for bidirectional
+// rendering algorithms"), here for the one parameter q.
+//
+// A pilot renders the camera's whole image at a low resolution with every
+// camera sample tracing a light subpath (q = 1), and keeps each strategy's
+// sample: its unweighted value U, its MIS weight and the part of the
+// weight's ratio sum whose count class differs from its own. From those,
+// each sample's weight at any other q follows (the counts are q for
+// strategies that use the light subpath's vertices past the light, s >= 2,
+// and 1 for the others), and so the second moment of a camera sample's
+// estimate at q:
+//   E[X^2] = E[A^2] + 2 E[A B] + E[B^2] / q
+// where A sums the sample's strategies run once and B those run with
+// probability q (weighted for q, not divided by it): with probability q
+// the sample has A + B / q, otherwise A. Splats (t = 1) land in other
+// pixels and count as their own samples. The per-pixel variances, relative
+// to the pixel's value squared (plus the image's mean squared, which
+// keeps the choice free of the image's scale), averaged over the image
+// and times the cost per camera sample
+// (rays: eye extensions, light samples and camera rays once, light
+// extensions and connections of s >= 2 q times) give each candidate's
+// error at equal time; the least wins, q = 1 unless another is at least
+// 5% better (the pilot is small, and q = 1 is pbrt-v4's bdpt).
+//
+// Covariances between strategies of different samples are left out, as
+// in Grittmann et al. The pilot covers the whole image at the same seed
+// whatever part of it a process renders, and its sums run in a fixed
+// order, so every part, rank, thread count and resumed run chooses the
+// same q.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "accel/ray_stream.h"
+#include "film/film.h"
+#include "integrator/bdpt.h"
+#include "integrator/wave.h"
+#include "lantern/render.h"
+
+namespace lantern {
+
+class LightSampler;
+struct Scene;
+
+inline constexpr std::array<float, 4> kLightSubpathRates{1.f, 0.5f, 0.25f, 0.125f};
+
+struct LightSubpathRateChoice {
+  float rate = 1.f;
+  // Per candidate (kLightSubpathRates): the pilot image's estimated
+  // relMSE per camera sample and the cost of a camera sample, in rays.
+  std::array<double, kLightSubpathRates.size()> error{}, cost{};
+};
+
+// A strategy's MIS weight had the light subpath rate been q rather than
+// the rate it was computed at, from that weight and the part `rescaled`
+// of its ratio sum of the other count class (bdpt_mis.h), at the rate 1.
+float weight_at_rate(float weight, float rescaled, bool needs_light_subpath, float q, float mis_beta);
+
+// The moments of a pilot's strategy samples (separate from the pilot's
+// rendering so that tests can feed it records of their own).
+class RateMoments {
+ public:
+  // stratified: the sampler lays out each pixel's numbers for the decision
+  // to trace a light subpath stratified, so that a pixel's n samples trace
+  // q n of them (the count's noise is left out).
+  RateMoments(int width, int height, uint32_t spp, float mis_beta, bool stratified);
+  // First every wave's records, in wave order, for the pixel values...
+  void add_values(const std::vector<StrategyRecord>& records);
+  // ...then every wave's again, in the same order, for the moments.
+  void add_moments(const WaveDesc& wave, const std::vector<StrategyRecord>& records);
+  // Each candidate's estimated relMSE of an image of one sample per pixel.
+  std::array<double, kLightSubpathRates.size()> relative_error() const;
+
+ private:
+  int pixel_of(const StrategyRecord& r) const;
+  float weight_at(const StrategyRecord& r, float q) const {
+    return weight_at_rate(r.weight, r.rescaled, r.s >= 2, q, beta_);
+  }
+  static constexpr size_t kRates = kLightSubpathRates.size();
+  bool stratified_;
+  int width_, height_;
+  uint32_t spp_;
+  float beta_;
+  std::vector<double> value_;  // per pixel: the sum of its weighted samples
+  // per pixel and candidate: camera samples' sum and sum of squares, splats' sum of squares
+  std::vector<std::array<double, kRates>> sum_, square_, light_sum_, splat_square_;
+};
+
+// The candidate with the least error at equal cost, from the error and
+// cost per camera sample of each (kLightSubpathRates; 1 unless another is
+// at least 10% better).
+float best_light_subpath_rate(const std::array<double, kLightSubpathRates.size()>& error,
+                              const std::array<double, kLightSubpathRates.size()>& cost);
+
+// Renders the pilot for a bdpt render with `render`'s settings and chooses.
+LightSubpathRateChoice choose_light_subpath_rate(const Scene& scene, const LightSampler& light_sampler,
+                                                 const BdptSettings& render, RayBackend backend);
+
+// bs's rate: the options', or under auto the pilot's choice, which stats
+// report with its estimates.
+void set_light_subpath_rate(const Scene& scene, const LightSampler& light_sampler, const RenderOptions& opt,
+                            BdptSettings& bs, RenderStats& stats);
+
+}  // namespace lantern
