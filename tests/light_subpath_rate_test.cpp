@@ -143,7 +143,8 @@ TEST(LightSubpaths, PilotIsTheSameWhateverTheThreads) {
 }
 
 // The least error at equal cost wins, but only by 5% or more over rate 1;
-// nothing measured leaves rate 1.
+// nothing measured leaves rate 1; no rate leaves a pixel of a planned
+// render fewer than one light subpath.
 TEST(LightSubpaths, ChoiceNeedsAClearGain) {
   EXPECT_EQ(best_light_subpath_rate({1.0, 1.3, 1.8, 2.5}, {10.0, 7.5, 6.2, 5.6}), 1.f);  // 0.975 of rate 1's: not enough
   EXPECT_EQ(best_light_subpath_rate({1.0, 1.2, 1.8, 2.5}, {10.0, 7.5, 6.2, 5.6}), 0.5f);  // 0.90
@@ -152,6 +153,9 @@ TEST(LightSubpaths, ChoiceNeedsAClearGain) {
   EXPECT_EQ(best_light_subpath_rate({1.0, 1.1, 1.2, 1.3}, {10.0, 7.5, 6.2, 5.6}), 0.125f);
   EXPECT_EQ(best_light_subpath_rate({0.0, 0.0, 0.0, 0.0}, {10.0, 7.5, 6.2, 5.6}), 1.f);
   EXPECT_EQ(best_light_subpath_rate({std::nan(""), 1.0, 1.0, 1.0}, {10.0, 7.5, 6.2, 5.6}), 1.f);
+  // Not below one light subpath per pixel of a render of 4 or 1 samples.
+  EXPECT_EQ(best_light_subpath_rate({1.0, 1.1, 1.2, 1.3}, {10.0, 7.5, 6.2, 5.6}, 4), 0.25f);
+  EXPECT_EQ(best_light_subpath_rate({1.0, 1.1, 1.2, 1.3}, {10.0, 7.5, 6.2, 5.6}, 1), 1.f);
 }
 
 // The render reports the rate it used: the pilot's choice under auto

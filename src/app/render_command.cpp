@@ -256,6 +256,9 @@ void report(const std::string& out, const RenderOptions& o, const RenderResult& 
     logging::info("adaptive sampling: %u to %u spp, %.1f on average; estimated relative MSE %.3g%s", s.min_spp,
               s.max_spp, double(s.samples) / (double(r.image.width) * double(r.image.height)), s.estimated_relmse,
               o.target_error > 0 ? (" (target " + std::to_string(o.target_error) + ")").c_str() : "");
+  if (!s.light_subpath_error.empty())
+    logging::info("light subpaths: %g per camera sample, the pilot's choice (--light-subpaths auto)",
+                  double(s.light_subpath_rate));
   if (s.timed && logging::enabled(logging::Level::Info)) print_stage_summary(s);
   logging::verbose("memory: peak %.1f MB resident; wave pools %.1f MB", double(peak_rss_bytes()) * 1e-6,
                double(s.wave_pool_bytes) * 1e-6);

@@ -27,7 +27,7 @@ Bdpt::Bdpt(const Scene& scene, const LightSampler& light_sampler, const BdptSett
   if (scene.textures.uses_footprint) footprints_ = FootprintModel(camera_, s.footprint_spp);
   const float q = s.light_subpath_rate;
   mis_.with_light = mis_(q);
-  mis_.without_light = q > 0.f ? mis_(1.f / q) : 0.f;  // (no light subpath's quantity is ever made)
+  mis_.without_light = mis_(1.f / q);  // (q >= 0.01: check_options)
 }
 
 WavePools<BdptWave> Bdpt::make_wave_state(uint32_t capacity, RayStream stream) const {

@@ -44,10 +44,10 @@ struct BdptSettings {
   Vec2 raster_offset{0.f};
   float mis_beta = 2.f;             // 2: power heuristic, 1: balance heuristic
   bool light_tracing_only = false;  // the `lt` integrator
-  // The light subpath rate q: the probability that a camera sample traces a
-  // light subpath (bdpt_mis.h). Below 1, a camera sample without one is a
-  // path-traced sample (s = 0 and s = 1 only) and one with one weighs its
-  // strategies s >= 2 and t = 1 by 1 / q.
+  // The light subpath rate q: the probability that a camera sample traces
+  // its light subpath beyond the light (bdpt_mis.h). Below 1, a camera
+  // sample without one is a path-traced sample (s = 0 and s = 1, t = 1
+  // only), and one with one divides what its strategies s >= 2 bring by q.
   float light_subpath_rate = 1.f;
   // Vertex connection and merging (the `vcm` integrator; docs/vcm.md):
   // light vertices within the radius of an eye vertex are merged with it,

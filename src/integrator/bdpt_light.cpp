@@ -108,6 +108,7 @@ void Bdpt::start_volume_subpaths(BdptWave& w) const {
                            &sigma_t);
     if (w.volume_media[k] != m || is_black(es.Le)) continue;
     const uint32_t slot = w.volume_slots[k];
+    // (the decision start_light_subpaths made: the same number, unscaled)
     Vec2 u_dir = w.sampler[slot].get2d(dims::kLightDirection);
     w.origin.extra_depth[slot] = 1;
     begin_light_subpath(w, slot, es, m, sigma_t, beyond_light(settings_.light_subpath_rate, u_dir) ? -1.f : 0.f);

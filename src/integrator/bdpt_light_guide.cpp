@@ -73,7 +73,7 @@ void Bdpt::guide_emission(BdptWave& w, uint32_t slot, EmissionSample& es, float 
     const float cos_light = std::fabs(glm::dot(es.n, es.d));
     w.light_guide.push(slot, site.leaf, es.p, site.normal_bin, guide ? square : equal_area_sphere_to_square(es.d), mix,
                        average(es.Le) * cos_light, es.pdf_dir, guide_pdf,
-                       es.Le * (cos_light / (es.pdf_pos * mix)));
+                       es.Le * (cos_light / (es.pdf_pos * mix) / settings_.light_subpath_rate));  // (as the subpath's beta)
     w.light_guide_depth.push_back(0);
   }
 }

@@ -134,9 +134,9 @@ struct DeferredMis {
   float a = 0.f, b = 0.f;
   Spectrum sigma_a{0.f}, sigma_b{0.f};
   // The fractions of a and b that stand for strategies of the other
-  // count class (bdpt_mis.h's conventions: those run once per camera
-  // sample if this one needs a light subpath, and the other way round),
-  // which a change of the light subpath rate rescales.
+  // count class (the conventions above: those run once per camera sample
+  // if this one needs a light subpath, and the other way round), which a
+  // change of the light subpath rate rescales.
   float a_rescaled = 0.f, b_rescaled = 0.f;
 };
 inline float mis_weight_deferred(const DeferredMis& d, const Spectrum& T, MisPower mis) {

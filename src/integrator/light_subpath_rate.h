@@ -68,14 +68,15 @@ class RateMoments {
   // to trace a light subpath stratified, so that a pixel's n samples trace
   // q n of them (the count's noise is left out).
   RateMoments(int width, int height, uint32_t spp, float mis_beta, bool stratified);
-  // First every wave's records, in wave order, for the pixel values...
-  void add_values(const std::vector<StrategyRecord>& records);
-  // ...then every wave's again, in the same order, for the moments.
-  void add_moments(const WaveDesc& wave, const std::vector<StrategyRecord>& records);
+  // A wave's records (the waves in a fixed order, so that the sums are the
+  // same whatever the threads).
+  void add(const WaveDesc& wave, const std::vector<StrategyRecord>& records);
   // Each candidate's estimated relMSE of an image of one sample per pixel.
   std::array<double, kLightSubpathRates.size()> relative_error() const;
 
  private:
+  void add_values(const std::vector<StrategyRecord>& records);
+  void add_moments(const WaveDesc& wave, const std::vector<StrategyRecord>& records);
   int pixel_of(const StrategyRecord& r) const;
   float weight_at(const StrategyRecord& r, float q) const {
     return weight_at_rate(r.weight, r.rescaled, r.s >= 2, q, beta_);
@@ -92,9 +93,12 @@ class RateMoments {
 
 // The candidate with the least error at equal cost, from the error and
 // cost per camera sample of each (kLightSubpathRates; 1 unless another is
-// at least 10% better).
+// at least 5% better). Not a rate below 1 / spp when the render plans spp
+// samples per pixel (0: a time budget): a pixel would trace fewer than one
+// light subpath, and the count noise the pilot takes as stratified away
+// would not be.
 float best_light_subpath_rate(const std::array<double, kLightSubpathRates.size()>& error,
-                              const std::array<double, kLightSubpathRates.size()>& cost);
+                              const std::array<double, kLightSubpathRates.size()>& cost, uint32_t spp = 0);
 
 // Renders the pilot for a bdpt render with `render`'s settings and chooses.
 LightSubpathRateChoice choose_light_subpath_rate(const Scene& scene, const LightSampler& light_sampler,

@@ -35,8 +35,7 @@ std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& regi
   if (scales_roulette(o.integrator) && o.roulette_scale != 1.f) line("roulette", exact(o.roulette_scale));
   // (likewise: bdpt from before the rate existed resumes with --light-subpaths 1)
   if (uses_light_subpath_rate(o.integrator) && o.light_subpath_rate != 1.f)
-    line("light-subpaths", o.light_subpath_rate == kLightSubpathsAuto ? std::string("auto")
-                                                                                    : exact(o.light_subpath_rate));
+    line("light-subpaths", o.light_subpath_rate == kLightSubpathsAuto ? std::string("auto") : exact(o.light_subpath_rate));
   line("seed", std::to_string(o.seed));
   line("light-sampler", name(o.light_sampler));
   line("sampler", std::string(name(o.sampler.type)) + " " + o.sampler.randomization + " " + std::to_string(o.sampler.seed) + " " +

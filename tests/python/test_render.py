@@ -194,6 +194,10 @@ def test_bad_input_raises_clear_errors(tmp_path, cornell_box):
         lantern.render(cornell_box, spp=1, integrator="bdpt", light_subpaths=0)
     with pytest.raises(ValueError, match="light_subpaths"):
         lantern.render(cornell_box, spp=1, integrator="bdpt", light_subpaths="sometimes")
+    with pytest.raises(ValueError, match="light_subpaths"):
+        lantern.render(cornell_box, spp=1, integrator="bdpt", light_subpaths=0.0099999)
+    with pytest.raises(ValueError, match="light_subpaths"):
+        lantern.render(cornell_box, spp=1, integrator="bdpt", light_subpaths=True)
     with pytest.raises(RuntimeError, match="no-such-folder"):
         lantern.render(cornell_box, spp=1, output=str(tmp_path / "no-such-folder" / "x.exr"))
 
