@@ -25,26 +25,13 @@ for s in $scenes; do
   ref="perf/references/$s.exr"
   [ -f "$ref" ] || { echo "perf/light-subpaths.sh: no $ref (perf/make-references.sh makes it)" >&2; continue; }
   res="240 180"; case "$s" in cornell-box*) res="256 256" ;; lamp-street) res="240 135" ;; esac
-  base_rel=""; base_mse=""
-  for k in $rates path; do
-    if [ "$k" = path ]; then
-      # shellcheck disable=SC2086 # res is two words
-      m=$(two_seeds "$s" "$secs" "$ref" --integrator path --resolution $res) || m=""
-      integrator=path; k="-"
-    else
-      # shellcheck disable=SC2086 # res is two words
-      m=$(two_seeds "$s" "$secs" "$ref" --integrator bdpt --light-subpaths "$k" --resolution $res) || m=""
-      integrator=bdpt
-    fi
-    if [ -z "$m" ]; then
-      echo "| $s | $integrator | $k | $secs | (failed) | | | | | |"; [ -n "$base_rel" ] || base_rel=failed; continue
-    fi
-    # shellcheck disable=SC2086 # four numbers
-    set -- $m
-    rel=$2; mse=$4
-    r1=""; r2=""
-    if [ -z "$base_rel" ]; then base_rel=$rel; base_mse=$mse
-    elif [ "$base_rel" != failed ]; then r1=$(awk "BEGIN { printf \"%.3g\", $rel / $base_rel }"); r2=$(awk "BEGIN { printf \"%.3g\", $mse / $base_mse }"); fi
-    echo "| $s | $integrator | $k | $secs | $1 | $(awk "BEGIN { printf \"%.3g\", $rel }") | $(awk "BEGIN { printf \"%.3g\", $3 }") | $(awk "BEGIN { printf \"%.3g\", $mse }") | $r1 | $r2 |"
+  new_baseline
+  for k in $rates; do
+    # shellcheck disable=SC2086 # res is two words
+    m=$(two_seeds "$s" "$secs" "$ref" --integrator bdpt --light-subpaths "$k" --resolution $res) || m=""
+    row "$s | bdpt | $k" "$secs" "$m"
   done
+  # shellcheck disable=SC2086 # res is two words
+  m=$(two_seeds "$s" "$secs" "$ref" --integrator path --resolution $res) || m=""
+  row "$s | path | -" "$secs" "$m"
 done

@@ -1,7 +1,7 @@
 # shellcheck shell=sh disable=SC2154 # lantern and tmp are the caller's
-# Sourced by perf/light-guiding.sh and perf/roulette.sh: one setting of a
-# scene rendered for the same wall time with seeds 7 and 8 and measured
-# against its reference.
+# Sourced by perf/light-guiding.sh, perf/roulette.sh and
+# perf/light-subpaths.sh: one setting of a scene rendered for the same
+# wall time with seeds 7 and 8 and measured against its reference.
 #   two_seeds SCENE SECONDS REFERENCE OPTIONS...
 # prints the means over the two seeds: "spp relMSE robust-relMSE MSE".
 # Needs $lantern (the binary) and $tmp (a scratch folder).
@@ -19,4 +19,28 @@ two_seeds() {
     _sum=$(echo "$_sum $_row" | awk '{ printf "%g %g %g %g", $1 + $5, $2 + $6, $3 + $7, $4 + $8 }')
   done
   echo "$_sum" | awk '{ printf "%d %g %g %g\n", $1 / 2, $2 / 2, $3 / 2, $4 / 2 }'
+}
+
+# Resets the baseline: the next `row` of a scene is it.
+new_baseline() { _base_rel=""; _base_mse=""; }
+
+# row LABELS SECONDS "spp relMSE robust-relMSE MSE"|"" prints a table row:
+# "| LABELS | SECONDS | spp | relMSE | robust relMSE | MSE | relMSE /
+# baseline | MSE / baseline |", LABELS being the row's first cells
+# ("scene | setting"). Empty numbers: a failed render's row. The first row
+# after new_baseline is the baseline (a failed one leaves the ratios out).
+row() {
+  if [ -z "$3" ]; then
+    echo "| $1 | $2 | (failed) | | | | | |"
+    [ -n "$_base_rel" ] || _base_rel=failed
+    return
+  fi
+  # shellcheck disable=SC2086 # four numbers
+  set -- "$1" "$2" $3
+  _r1=""; _r2=""
+  if [ -z "$_base_rel" ]; then _base_rel=$4; _base_mse=$6
+  elif [ "$_base_rel" != failed ]; then
+    _r1=$(awk "BEGIN { printf \"%.3g\", $4 / $_base_rel }"); _r2=$(awk "BEGIN { printf \"%.3g\", $6 / $_base_mse }")
+  fi
+  echo "| $1 | $2 | $3 | $(awk "BEGIN { printf \"%.3g\", $4 }") | $(awk "BEGIN { printf \"%.3g\", $5 }") | $(awk "BEGIN { printf \"%.3g\", $6 }") | $_r1 | $_r2 |"
 }
