@@ -138,6 +138,11 @@ expect_run(NAME bad-light-subpaths EXIT 2 MATCH "expected auto or a number from 
 expect_run(NAME light-subpaths-render EXIT 0 ARGS render ${SRC}/scenes/cornell-box.pbrt --integrator bdpt --light-subpaths 0.5
            --spp 1 --resolution 8 8 --quiet -o ${OUT}/light-subpaths.exr)
 expect_run(NAME light-subpaths-header EXIT 0 MATCH "lantern:light_subpaths 0.5" ARGS info ${OUT}/light-subpaths.exr)
+# Under auto the header also says which rate the pilot chose.
+expect_run(NAME light-subpaths-auto-render EXIT 0 ARGS render ${SRC}/scenes/cornell-box.pbrt --integrator bdpt --spp 8
+           --resolution 16 16 --quiet -o ${OUT}/light-subpaths-auto.exr)
+expect_run(NAME light-subpaths-auto-header EXIT 0 MATCH "lantern:light_subpath_rate (1|0.5|0.25|0.125)" ARGS info
+           ${OUT}/light-subpaths-auto.exr)
 
 # SIGINT during a long render: exit 130 and an image with the samples so far,
 # for the path tracer and for bdpt (whose splats go through the same merge).
