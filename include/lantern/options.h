@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -128,6 +129,15 @@ inline bool scales_roulette(Integrator i) { return i == Integrator::Path; }
 // light subpath; lt and mlt are made of them), "auto" or 0.01 to 1.
 inline bool uses_light_subpath_rate(Integrator i) { return i == Integrator::Bdpt; }
 inline constexpr float kLightSubpathsAuto = -1.f;
+
+// A float option as text that reads back as the same float (headers,
+// fingerprints).
+inline std::string exact_text(float v) {
+  char s[32];
+  std::snprintf(s, sizeof s, "%.9g", double(v));
+  return s;
+}
+inline std::string light_subpaths_text(float rate) { return rate == kLightSubpathsAuto ? "auto" : exact_text(rate); }
 inline float parse_light_subpaths(const std::string& w) {
   if (w == "auto") return kLightSubpathsAuto;
   size_t end = 0;

@@ -1,6 +1,5 @@
 #include "app/provenance.h"
 
-#include <cstdio>
 #include <ctime>
 #include <fstream>
 #include <thread>
@@ -108,16 +107,8 @@ void add_render_settings(ImageMetadata& md, const RenderOptions& o) {
   md.emplace_back("lantern:light_sampler", name(o.light_sampler));
   md.emplace_back("lantern:mis", name(o.mis));
   md.emplace_back("lantern:wave_size", std::to_string(o.wave_size));
-  if (scales_roulette(o.integrator)) {
-    char s[32];
-    std::snprintf(s, sizeof s, "%.9g", double(o.roulette_scale));
-    md.emplace_back("lantern:roulette", s);
-  }
-  if (uses_light_subpath_rate(o.integrator)) {
-    char s[32];
-    std::snprintf(s, sizeof s, "%.9g", double(o.light_subpath_rate));
-    md.emplace_back("lantern:light_subpaths", o.light_subpath_rate == kLightSubpathsAuto ? "auto" : s);
-  }
+  if (scales_roulette(o.integrator)) md.emplace_back("lantern:roulette", exact_text(o.roulette_scale));
+  if (uses_light_subpath_rate(o.integrator)) md.emplace_back("lantern:light_subpaths", light_subpaths_text(o.light_subpath_rate));
   if (o.guiding) md.emplace_back("lantern:guiding", "on");
   if (o.guide_light_subpaths) md.emplace_back("lantern:guide-light", "on");
 }

@@ -160,10 +160,9 @@ inline float mis_rescaled_vacuum(const DeferredMis& d) { return d.a * d.a_rescal
 inline float mis_connection_sum(const MisState& m, float pdf_rev_W, MergeKind end, MisPower mis) {
   return mis.vm(end) + m.dVCM + m.dVC * mis(pdf_rev_W);
 }
-// The part of mis_connection_sum at a light vertex that stands for
-// strategies without a light subpath (s = 0, 1), as a fraction of it.
-inline float mis_start_fraction(const MisState& m, float pdf_rev_W, MergeKind end, MisPower mis) {
-  const float sum = mis_connection_sum(m, pdf_rev_W, end, mis);
+// The fraction of a light vertex's connection sum (above) that stands for
+// strategies without a light subpath (s = 0, 1).
+inline float mis_start_fraction(const MisState& m, float pdf_rev_W, float sum, MisPower mis) {
   return sum > 0.f ? (m.start_dVCM + m.start_dVC * mis(pdf_rev_W)) / sum : 0.f;
 }
 
@@ -218,9 +217,10 @@ inline DeferredMis mis_sums_connect(const MisState& eye, const MisState& light, 
                                     float light_fwd_A, float light_rev_W, MisPower mis,
                                     MergeKind eye_merge = MergeKind::Surface, MergeKind light_merge = MergeKind::Surface) {
   DeferredMis d;
-  d.a = mis(eye_fwd_A) * mis_connection_sum(light, light_rev_W, light_merge, mis);
+  const float light_sum = mis_connection_sum(light, light_rev_W, light_merge, mis);
+  d.a = mis(eye_fwd_A) * light_sum;
   d.b = mis(light_fwd_A) * mis_connection_sum(eye, eye_rev_W, eye_merge, mis);
-  d.a_rescaled = mis_start_fraction(light, light_rev_W, light_merge, mis);
+  d.a_rescaled = mis_start_fraction(light, light_rev_W, light_sum, mis);
   return d;
 }
 
@@ -229,8 +229,9 @@ inline DeferredMis mis_sums_connect(const MisState& eye, const MisState& light, 
 inline DeferredMis mis_sums_light_trace(const MisState& light, float camera_pdf_A, float light_rev_W, MisPower mis,
                                         MergeKind light_merge = MergeKind::Surface) {
   DeferredMis d;
-  d.a = mis(camera_pdf_A) * mis_connection_sum(light, light_rev_W, light_merge, mis);
-  d.a_rescaled = mis_start_fraction(light, light_rev_W, light_merge, mis);
+  const float light_sum = mis_connection_sum(light, light_rev_W, light_merge, mis);
+  d.a = mis(camera_pdf_A) * light_sum;
+  d.a_rescaled = mis_start_fraction(light, light_rev_W, light_sum, mis);
   return d;
 }
 

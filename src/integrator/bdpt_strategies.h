@@ -30,7 +30,11 @@ inline void Bdpt::push_connection(BdptWave& w, uint32_t slot, const Connection& 
   if (k.s >= 2) ++w.stats.light_connections;
   const float wt = w.shadow.media || !weighted() ? 1.f : mis_weight_vacuum(k.mis);
   w.shadow.push(slot, k, k.unweighted * wt, w.lambda[slot], w.time[slot]);
-  if (w.shadow.record) w.shadow.tags[w.shadow.rays.count - 1].weight = wt;
+  if (w.shadow.record && !w.shadow.media) {  // (with media: trace_connections)
+    StrategyTag& tag = w.shadow.tags[w.shadow.rays.count - 1];
+    tag.weight = wt;
+    tag.rescaled = weighted() ? mis_rescaled_vacuum(k.mis) : 0.f;
+  }
 }
 
 // s = 1: next-event estimation from eye vertex v (Veach 1997, sec. 10.2;

@@ -213,7 +213,7 @@ struct ConnectionPool {
     contrib[i] = c;
     p_raster[i] = k.p_raster;
     next_event[i] = k.light_sample;
-    if (record) tags[i] = {k.s, k.t, k.unweighted, 1.f, mis_rescaled_vacuum(k.mis)};
+    if (record) tags[i] = {k.s, k.t, k.unweighted};  // (weight and rescaled: once weighted)
     if (media) {
       medium[i] = k.start;
       deferred[i] = k.mis;

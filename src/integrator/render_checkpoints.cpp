@@ -1,6 +1,5 @@
 #include "integrator/render_checkpoints.h"
 
-#include <cstdio>
 #include <filesystem>
 #include <vector>
 
@@ -14,11 +13,6 @@ std::string own_checkpoint_piece(const RenderOptions& o) {
 }
 
 std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& region) {
-  auto exact = [](float v) {  // (every float its own text)
-    char s[32];
-    std::snprintf(s, sizeof s, "%.9g", double(v));
-    return std::string(s);
-  };
   std::string f;
   auto line = [&](const std::string& k, const std::string& v) { f += k + "=" + v + "\n"; };
   line("scene", o.checkpoint_key);
@@ -32,10 +26,10 @@ std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& regi
   line("maxdepth", std::to_string(o.maxdepth));
   // (only off pbrt-v4's rule: renders from before the scale existed keep
   // their fingerprint, and resume with --roulette 1)
-  if (scales_roulette(o.integrator) && o.roulette_scale != 1.f) line("roulette", exact(o.roulette_scale));
+  if (scales_roulette(o.integrator) && o.roulette_scale != 1.f) line("roulette", exact_text(o.roulette_scale));
   // (likewise: bdpt from before the rate existed resumes with --light-subpaths 1)
   if (uses_light_subpath_rate(o.integrator) && o.light_subpath_rate != 1.f)
-    line("light-subpaths", o.light_subpath_rate == kLightSubpathsAuto ? std::string("auto") : exact(o.light_subpath_rate));
+    line("light-subpaths", light_subpaths_text(o.light_subpath_rate));
   line("seed", std::to_string(o.seed));
   line("light-sampler", name(o.light_sampler));
   line("sampler", std::string(name(o.sampler.type)) + " " + o.sampler.randomization + " " + std::to_string(o.sampler.seed) + " " +
