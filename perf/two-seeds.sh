@@ -12,7 +12,7 @@ two_seeds() {
   for _seed in 7 8; do
     "$lantern" render "scenes/$_scene.pbrt" "$@" --time "$_secs" --seed $_seed -o "$tmp/$_scene.exr" 2> "$tmp/log" ||
       { echo "two_seeds: $_scene failed: $(tail -n 1 "$tmp/log")" >&2; return 1; }
-    _spp=$(tail -n 1 "$tmp/log" | sed -n 's/.*, \([0-9]*\) spp (min).*/\1/p')
+    _spp=$(sed -n 's/.*, \([0-9]*\) spp (min).*/\1/p' "$tmp/log" | tail -n 1)
     _out=$("$lantern" compare "$tmp/$_scene.exr" "$_ref") || { echo "two_seeds: $_scene: compare failed" >&2; return 1; }
     _row="$_spp $(echo "$_out" | sed -n 's/^relmse //p') $(echo "$_out" | sed -n 's/^relmse_robust //p') $(echo "$_out" | sed -n 's/^mse //p')"
     [ "$(echo "$_row" | wc -w)" -eq 4 ] || { echo "two_seeds: $_scene: expected spp, relmse, relmse_robust, mse; got '$_row'" >&2; return 1; }

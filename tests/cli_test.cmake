@@ -131,17 +131,27 @@ expect_run(NAME bad-roulette EXIT 2 MATCH "--roulette: Value nan not in range" A
 expect_run(NAME roulette-render EXIT 0 ARGS render ${SRC}/scenes/cornell-box.pbrt --roulette 3 --spp 1 --resolution 8 8
            --quiet -o ${OUT}/roulette.exr)
 expect_run(NAME roulette-header EXIT 0 MATCH "lantern:roulette 3" ARGS info ${OUT}/roulette.exr)
-# bdpt's light subpath rate: auto or 0.01 to 1, anything else a usage error;
+# bdpt's light subpath rate: auto, 0 or 0.01 to 1, anything else a usage error;
 # the header says what was asked for.
-expect_run(NAME bad-light-subpaths EXIT 2 MATCH "expected auto or a number from 0.01 to 1" ARGS render
-           ${SRC}/scenes/cornell-box.pbrt --integrator bdpt --light-subpaths 0)
+expect_run(NAME bad-light-subpaths EXIT 2 MATCH "expected auto, 0 or a number from 0.01 to 1" ARGS render
+           ${SRC}/scenes/cornell-box.pbrt --integrator bdpt --light-subpaths 0.005)
+# 0, the eye subpaths alone: the path tracer renders them, and the header
+# says so; refused, with the reason, where a spot light's light needs light
+# subpaths.
+expect_run(NAME light-subpaths-zero-render EXIT 0 ARGS render ${SRC}/scenes/cornell-box.pbrt --integrator bdpt
+           --light-subpaths 0 --spp 1 --resolution 8 8 --quiet -o ${OUT}/light-subpaths-zero.exr)
+expect_run(NAME light-subpaths-zero-header EXIT 0 MATCH "lantern:light_subpath_rate 0([^.0-9]|$)" ARGS info
+           ${OUT}/light-subpaths-zero.exr)
+expect_run(NAME light-subpaths-zero-refused EXIT 1 MATCH "the scene has a spot light" ARGS render
+           ${SRC}/scenes/spotlit-room.pbrt --integrator bdpt --light-subpaths 0 --spp 1 --resolution 8 8 -o
+           ${OUT}/light-subpaths-refused.exr)
 expect_run(NAME light-subpaths-render EXIT 0 ARGS render ${SRC}/scenes/cornell-box.pbrt --integrator bdpt --light-subpaths 0.5
            --spp 1 --resolution 8 8 --quiet -o ${OUT}/light-subpaths.exr)
 expect_run(NAME light-subpaths-header EXIT 0 MATCH "lantern:light_subpaths 0.5" ARGS info ${OUT}/light-subpaths.exr)
 # Under auto the header also says which rate the pilot chose.
 expect_run(NAME light-subpaths-auto-render EXIT 0 ARGS render ${SRC}/scenes/cornell-box.pbrt --integrator bdpt --spp 8
            --resolution 16 16 --quiet -o ${OUT}/light-subpaths-auto.exr)
-expect_run(NAME light-subpaths-auto-header EXIT 0 MATCH "lantern:light_subpath_rate (1|0.5|0.25|0.125)" ARGS info
+expect_run(NAME light-subpaths-auto-header EXIT 0 MATCH "lantern:light_subpath_rate (1|0.5|0.25|0.125|0)" ARGS info
            ${OUT}/light-subpaths-auto.exr)
 
 # SIGINT during a long render: exit 130 and an image with the samples so far,

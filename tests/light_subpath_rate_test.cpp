@@ -176,20 +176,21 @@ TEST(LightSubpaths, RenderReportsItsRate) {
   o.integrator = Integrator::Vcm;
   o.light_subpath_rate = kLightSubpathsAuto;
   r = render(*scene, o);
-  EXPECT_EQ(r.stats.light_subpath_rate, 0.f);
+  EXPECT_EQ(r.stats.light_subpath_rate, -1.f);
 }
 
 TEST(LightSubpaths, RefusesARateOutsideItsRange) {
   const auto scene = guided_room();
   RenderOptions o = bdpt_options(1.f);
   o.spp = 1;
-  for (const float bad : {0.f, -0.5f, 0.009f, 1.01f, std::numeric_limits<float>::quiet_NaN(),
+  for (const float bad : {-0.5f, 0.009f, 1e-30f, 1.01f, std::numeric_limits<float>::quiet_NaN(),
                           std::numeric_limits<float>::infinity()}) {
     o.light_subpath_rate = bad;
     EXPECT_THROW(render(*scene, o), std::invalid_argument) << bad;
   }
-  for (const char* bad : {"", "0", "1.5", "nan", "0.5x", "Auto", "-1"})
+  for (const char* bad : {"", "0.005", "1.5", "nan", "0.5x", "Auto", "-1"})
     EXPECT_THROW(parse_light_subpaths(bad), std::invalid_argument) << bad;
   EXPECT_EQ(parse_light_subpaths("auto"), kLightSubpathsAuto);
+  EXPECT_EQ(parse_light_subpaths("0"), 0.f);  // (the eye subpaths alone: eye_subpaths_alone_test.cpp)
   EXPECT_EQ(parse_light_subpaths("0.25"), 0.25f);
 }

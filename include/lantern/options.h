@@ -126,7 +126,8 @@ inline bool merges_vertices(Integrator i) { return i == Integrator::Vcm || i == 
 inline bool scales_roulette(Integrator i) { return i == Integrator::Path; }
 
 // RenderOptions::light_subpath_rate: bdpt's alone (vcm's merges need every
-// light subpath; lt and mlt are made of them), "auto" or 0.01 to 1.
+// light subpath; lt and mlt are made of them), "auto", 0 (none: the path
+// tracer, integrator/light_subpath_rate.h) or 0.01 to 1.
 inline bool uses_light_subpath_rate(Integrator i) { return i == Integrator::Bdpt; }
 inline constexpr float kLightSubpathsAuto = -1.f;
 
@@ -147,8 +148,8 @@ inline float parse_light_subpaths(const std::string& w) {
   } catch (const std::exception&) {
     end = 0;
   }
-  if (end == 0 || end != w.size() || !(v >= 0.01f && v <= 1.f))
-    throw std::invalid_argument("light subpaths \"" + w + "\": expected auto or a number from 0.01 to 1");
+  if (end == 0 || end != w.size() || !(v == 0.f || (v >= 0.01f && v <= 1.f)))
+    throw std::invalid_argument("light subpaths \"" + w + "\": expected auto, 0 or a number from 0.01 to 1");
   return v;
 }
 

@@ -193,10 +193,11 @@ struct RenderStats {
   uint64_t light_samples = 0, light_samples_unoccluded = 0;
   uint64_t merges = 0;        // vcm: light vertices merged with eye vertices
   float vcm_radius = 0.f;     // vcm: the first pass's merging radius
-  // bdpt: the light subpath rate rendered with; with the pilot's choice,
-  // its candidates and its estimates for each: the relMSE of one camera
-  // sample per pixel, and rays per camera sample.
-  float light_subpath_rate = 0.f;
+  // bdpt: the light subpath rate rendered with (0: the eye subpaths alone;
+  // -1: not bdpt); with the pilot's choice, its candidates and its
+  // estimates for each: the relMSE of one camera sample per pixel, and
+  // rays per camera sample.
+  float light_subpath_rate = -1.f;
   std::vector<double> light_subpath_candidates, light_subpath_error, light_subpath_cost;
   float vcm_last_radius = 0.f;  // vcm: the merging radius of the last pass traced
   uint32_t vcm_last_first_sample = 0;  // vcm: the first sample index of that pass

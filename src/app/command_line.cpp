@@ -102,8 +102,8 @@ void add_render_request_options(CLI::App& c, RenderRequest& r) {
           "FLOAT in [0.01 - 100]"));
   c.add_option("--light-subpaths", r.light_subpaths,
                "bdpt: the probability Q that a camera sample traces a light subpath beyond the light (0.01 to 1; 1 is "
-               "pbrt-v4's bdpt), or auto: chosen per scene by a short pilot that estimates each rate's error at equal "
-               "time (default; docs/bdpt.md)")
+               "pbrt-v4's bdpt; 0: none, the eye subpaths alone, as the path tracer), or auto: chosen per scene by a "
+               "short pilot that estimates each rate's error at equal time (default; docs/bdpt.md)")
       ->check(CLI::Validator(
           [](std::string& text) {
             try {

@@ -257,8 +257,9 @@ void report(const std::string& out, const RenderOptions& o, const RenderResult& 
               s.max_spp, double(s.samples) / (double(r.image.width) * double(r.image.height)), s.estimated_relmse,
               o.target_error > 0 ? (" (target " + std::to_string(o.target_error) + ")").c_str() : "");
   if (!s.light_subpath_error.empty())
-    logging::info("light subpaths: %g per camera sample, the pilot's choice (--light-subpaths auto)",
-                  double(s.light_subpath_rate));
+    logging::info("light subpaths: %g per camera sample, the pilot's choice (--light-subpaths auto)%s",
+                  double(s.light_subpath_rate),
+                  s.light_subpath_rate == 0.f ? ": they do not pay here, the path tracer rendered the eye subpaths alone" : "");
   if (s.timed && logging::enabled(logging::Level::Info)) print_stage_summary(s);
   logging::verbose("memory: peak %.1f MB resident; wave pools %.1f MB", double(peak_rss_bytes()) * 1e-6,
                double(s.wave_pool_bytes) * 1e-6);

@@ -144,7 +144,7 @@ ImageMetadata render_metadata(const Scene& scene, const std::string& scene_path,
                       {"lantern:interrupted", r.interrupted ? "true" : "false"},
                       {"lantern:scene", scene_path}};
   add_render_settings(md, o);
-  if (r.stats.light_subpath_rate > 0.f)  // bdpt: the rate used (the pilot's choice under auto)
+  if (r.stats.light_subpath_rate >= 0.f)  // bdpt: the rate used (the pilot's choice under auto)
     md.emplace_back("lantern:light_subpath_rate", exact_text(r.stats.light_subpath_rate));
   add_provenance(md, provenance);
   if (const ImageRegion region = image_region(scene, o); region.cropped())

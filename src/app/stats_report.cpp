@@ -118,7 +118,7 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
                 {"first_radius", s.vcm_radius},
                 {"last_radius", s.vcm_last_radius},
                 {"grid_build_seconds", s.vcm_grid_seconds}};
-  if (s.light_subpath_rate > 0.f) {
+  if (s.light_subpath_rate >= 0.f) {
     j["light_subpaths"] = {{"rate", s.light_subpath_rate}};
     if (!s.light_subpath_error.empty())
       j["light_subpaths"]["pilot"] = {{"rates", s.light_subpath_candidates},

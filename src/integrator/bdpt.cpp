@@ -195,7 +195,9 @@ void Bdpt::eye_shade_stage(BdptWave& w) const {
     const PathEnd end = continue_subpath(
         bsdf, TransportMode::Radiance, w.hits, i, v.frame, v.wo, s.get1d(dim + dims::kEyeBsdfComponent),
         s.get2d(dim + dims::kEyeBsdfDirection), s.get1d(dim + dims::kEyeRoulette), depth,
-        {w.eye.beta[slot], w.eye.mis[slot], w.eye.prev_p[slot], w.eye.prev_n[slot], w.eye.eta_scale[slot], 1.f}, w.mis,
+        {w.eye.beta[slot], w.eye.mis[slot], w.eye.prev_p[slot], w.eye.prev_n[slot], w.eye.eta_scale[slot],
+         settings_.eye_roulette_scale},
+        w.mis,
         guided ? &site.guide : nullptr, &drawn);
     if (end != PathEnd::Count) {
       ++w.stats.eye_ends[size_t(end)];

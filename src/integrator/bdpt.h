@@ -49,6 +49,10 @@ struct BdptSettings {
   // sample without one is a path-traced sample (s = 0 and s = 1, t = 1
   // only), and one with one divides what its strategies s >= 2 bring by q.
   float light_subpath_rate = 1.f;
+  // Russian roulette of eye subpaths, scaled as the path tracer's
+  // (vertex.h): 1 (pbrt-v4's rule) but in the pilot that stands in for the
+  // path tracer (light_subpath_rate.h).
+  float eye_roulette_scale = 1.f;
   // Vertex connection and merging (the `vcm` integrator; docs/vcm.md):
   // light vertices within the radius of an eye vertex are merged with it,
   // as further strategies. The radius of sample pass i (counting from 1)

@@ -144,7 +144,8 @@ PathEnd Bdpt::scatter_in_medium(BdptWave& w, SubpathPool& sub, uint32_t i, Vec2 
   const float pdf = d->bsdf_pdf;
   sub.beta[slot] *= d->weight;
   mis_after_scatter(sub.mis[slot], 1.f, pdf, pdf, false, w.mis, medium_merging());
-  if (!survives_roulette(sub.beta[slot], sub.eta_scale[slot], light ? sub.rr_scale[slot] : 1.f, w.depth >= 2, u_rr))
+  if (!survives_roulette(sub.beta[slot], sub.eta_scale[slot], light ? sub.rr_scale[slot] : settings_.eye_roulette_scale, w.depth >= 2,
+                         u_rr))
     return PathEnd::Roulette;
   if (!is_finite(sub.beta[slot])) return PathEnd::Absorbed;
   w.hits.alive[i] = 1;

@@ -1,13 +1,13 @@
 #include "integrator/light_subpath_rate.h"
 
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include "integrator/bdpt_wave.h"
+#include "integrator/eye_subpaths_alone.h"
+#include "integrator/pilot.h"
 #include "light/light_sampler.h"
 #include "scene/scene.h"
 
@@ -22,8 +22,6 @@ namespace {
 // at a time and their records read in wave order, then freed.
 constexpr double kPilotPixels = 4096.0;
 constexpr uint32_t kPilotSpp = 8;
-constexpr uint32_t kPilotWaveSlots = 1024;
-constexpr size_t kPilotBatch = 8;  // waves
 }  // namespace
 
 RateMoments::RateMoments(int width, int height, uint32_t spp, float mis_beta, bool stratified)
@@ -36,7 +34,10 @@ RateMoments::RateMoments(int width, int height, uint32_t spp, float mis_beta, bo
       sum_(value_.size()),
       square_(value_.size()),
       light_sum_(value_.size()),
-      splat_square_(value_.size()) {}
+      splat_square_(value_.size()),
+      alone_sum_(value_.size(), 0.0),
+      alone_square_(value_.size(), 0.0),
+      alone_mis_(value_.size(), 0.0) {}
 
 int RateMoments::pixel_of(const StrategyRecord& r) const {
   if (r.t >= 2) return int(r.pixel);
@@ -86,8 +87,22 @@ void RateMoments::add_moments(const WaveDesc& wave, const std::vector<StrategyRe
     auto& sums = needs_light_subpath ? with_light[r.slot] : once[r.slot];
     for (size_t k = 0; k < kRates; ++k) sums[k] += double(weight_at(r, kLightSubpathRates[k])) * u;
   }
+  std::vector<double> alone(wave.size(), 0.0);
+  for (const StrategyRecord& r : records) {
+    const double u = double(average(r.unweighted));
+    if (r.t >= 2 && r.s <= 1 && r.slot < wave.size()) {
+      const double v = double(eye_alone_weight(r, beta_)) * u;
+      if (std::isfinite(v)) alone[r.slot] += v;
+    }
+    if (const int p = pixel_of(r); p >= 0 && u != 0.0 && std::isfinite(u)) {
+      const double m = double(r.weight) * u * u * eye_alone_density_ratio(r);
+      alone_mis_[size_t(p)] += std::isfinite(m) ? m : std::numeric_limits<double>::infinity();
+    }
+  }
   for (uint32_t slot = 0; slot < wave.size(); ++slot) {
     const size_t p = wave.pixels[slot / wave.samples];
+    alone_sum_[p] += alone[slot];
+    alone_square_[p] += alone[slot] * alone[slot];
     for (size_t k = 0; k < kRates; ++k) {
       const double a = once[slot][k], b = with_light[slot][k], q = kLightSubpathRates[k];
       sum_[p][k] += a + b;
@@ -97,18 +112,26 @@ void RateMoments::add_moments(const WaveDesc& wave, const std::vector<StrategyRe
   }
 }
 
-std::array<double, RateMoments::kRates> RateMoments::relative_error() const {
-  std::array<double, kRates> e{};
-  const double n = double(spp_);
+std::vector<double> RateMoments::relative_scale() const {
   // (relative to the pixel's value squared plus the image's mean squared:
   // free of the image's scale, and near `lantern compare`'s 0.01 on images
   // of mean 0.1)
+  const double n = double(spp_);
   double image = 0.0;
   for (const double v : value_) image += v / n;
   image /= double(value_.size());
-  if (!(image > 0.0) || !std::isfinite(image)) return e;  // a black image: nothing to choose by
+  if (!(image > 0.0) || !std::isfinite(image)) return {};  // a black image: nothing to choose by
+  std::vector<double> scale(value_.size());
+  for (size_t p = 0; p < value_.size(); ++p) scale[p] = 1.0 / ((value_[p] / n) * (value_[p] / n) + image * image);
+  return scale;
+}
+
+std::array<double, RateMoments::kRates> RateMoments::relative_error() const {
+  std::array<double, kRates> e{};
+  const double n = double(spp_);
+  const std::vector<double> scale = relative_scale();
+  if (scale.empty()) return e;
   for (size_t p = 0; p < value_.size(); ++p) {
-    const double mean = value_[p] / n, scale = 1.0 / (mean * mean + image * image);
     for (size_t k = 0; k < kRates; ++k) {
       // The variance of the pixel's mean: its camera samples' spread, and
       // its splats' second moment.
@@ -116,11 +139,26 @@ std::array<double, RateMoments::kRates> RateMoments::relative_error() const {
       double spread = square_[p][k] - sum_[p][k] * sum_[p][k] / n;
       if (stratified_) spread -= n * b * b * (1.0 / q - 1.0);
       if (!std::isfinite(spread) || !std::isfinite(splat_square_[p][k])) continue;  // (a sample the film would drop)
-      e[k] += (std::max(0.0, spread) + splat_square_[p][k]) / (n * n) * scale;
+      e[k] += (std::max(0.0, spread) + splat_square_[p][k]) / (n * n) * scale[p];
     }
   }
   for (double& x : e) x *= n / double(value_.size());  // (per camera sample: n times the pilot image's)
   return e;
+}
+
+double RateMoments::eye_alone_error() const {
+  const std::vector<double> scale = relative_scale();
+  if (scale.empty()) return 0.0;
+  const double n = double(spp_);
+  double spread = 0.0, weighed = 0.0;
+  for (size_t p = 0; p < value_.size(); ++p) {
+    spread += std::max(0.0, alone_square_[p] - alone_sum_[p] * alone_sum_[p] / n) / (n * n) * scale[p];
+    const double mean = value_[p] / n;
+    weighed += std::max(0.0, alone_mis_[p] / n - mean * mean) / n * scale[p];
+  }
+  // (the second, whose paths are sampled by bdpt's strategies, leaves out
+  // the covariances of one eye subpath's lengths: the larger)
+  return std::max(spread, weighed) * n / double(value_.size());
 }
 
 float best_light_subpath_rate(const std::array<double, kLightSubpathRates.size()>& error,
@@ -133,8 +171,34 @@ float best_light_subpath_rate(const std::array<double, kLightSubpathRates.size()
   return error[best] * cost[best] <= 0.95 * base ? kLightSubpathRates[best] : 1.f;
 }
 
+namespace {
+// The eye subpaths alone as a candidate against bdpt at the best rate k
+// (eye_subpaths_alone.h): the first pilot's ratio of their errors, and
+// the grid pilot where they may still pay. As this pilot sees them (their
+// rays, `alone_cost`, at pbrt-v4's roulette, fewer than the path tracer's:
+// in their favour) they cannot pay where the grid would have to find a
+// ratio more than kPilotsAgree times below this pilot's.
+void consider_eye_subpaths_alone(const Scene& scene, const LightSampler& light_sampler, const BdptSettings& render,
+                                 const PathTracerSettings& eye_alone, RayBackend backend, const RateMoments& moments,
+                                 double alone_cost, LightSubpathRateChoice& choice) {
+  const float best = best_light_subpath_rate(choice.error, choice.cost, render.planned_spp);
+  const size_t k = size_t(std::find(kLightSubpathRates.begin(), kLightSubpathRates.end(), best) - kLightSubpathRates.begin());
+  const double ratio = choice.error[k] > 0.0 ? moments.eye_alone_error() / choice.error[k] : 0.0;
+  choice.eye_alone_first_ratio = ratio;
+  const double bdpt_cost = choice.cost[k] + 1.0;  // (its work that casts no ray: as the grid pilot counts it)
+  if (!(ratio > 0.0 && ratio / kPilotsAgree <= kClearGain * bdpt_cost / alone_cost)) return;
+  const EyeAloneEstimate e = estimate_eye_subpaths_alone(scene, light_sampler, render, best, eye_alone, backend);
+  choice.eye_alone = e;
+  if (e.bdpt_error > 0.0 && e.bdpt_cost > 0.0) {  // (for --stats, in this pilot's units)
+    choice.eye_alone_error = choice.error[k] * e.alone_error / e.bdpt_error;
+    choice.eye_alone_cost = choice.cost[k] * e.alone_cost / e.bdpt_cost;
+  }
+}
+}  // namespace
+
 LightSubpathRateChoice choose_light_subpath_rate(const Scene& scene, const LightSampler& light_sampler,
-                                                 const BdptSettings& render, RayBackend backend) {
+                                                 const BdptSettings& render, RayBackend backend,
+                                                 const PathTracerSettings* eye_alone) {
   const int full_w = render.full_width > 0 ? render.full_width : render.width;
   const int full_h = render.full_height > 0 ? render.full_height : render.height;
   const int shrink = std::max(1, int(std::ceil(std::sqrt(double(full_w) * double(full_h) / kPilotPixels))));
@@ -147,59 +211,48 @@ LightSubpathRateChoice choose_light_subpath_rate(const Scene& scene, const Light
   pilot.record_strategies = true;
   pilot.light_subpath_rate = 1.f;
   const Bdpt bdpt(scene, light_sampler, pilot);
-
   RateMoments moments(pilot.width, pilot.height, kPilotSpp, pilot.mis_beta, pilot.sampler.type != SamplerKind::Independent);
-  const std::vector<uint32_t> order = tile_order(pilot.width, pilot.height);
-  const uint32_t per_wave = kPilotWaveSlots / kPilotSpp;
-  const size_t waves = (order.size() + per_wave - 1) / per_wave;
-  auto wave_at = [&](size_t i) {
-    return WaveDesc{order.data() + i * per_wave, uint32_t(std::min<size_t>(per_wave, order.size() - i * per_wave)), 0u,
-                    kPilotSpp};
-  };
-  std::vector<WaveOutput> outputs(kPilotBatch);
-  using State = WavePools<BdptWave>;
-  tbb::enumerable_thread_specific<State> states([&] {
-    State s = bdpt.make_wave_state(kPilotWaveSlots, RayStream(scene.accel->handle(), backend, nullptr));
-    s->stream.set_scene(scene.accel->instance_base(), &scene.shapes);
-    return s;
-  });
-  for (size_t first = 0; first < waves; first += kPilotBatch) {
-    const size_t n = std::min(kPilotBatch, waves - first);
-    tbb::parallel_for(size_t(0), n, [&](size_t i) {
-      outputs[i].clear();
-      bdpt.trace(wave_at(first + i), *states.local(), outputs[i]);
-    });
-    for (size_t i = 0; i < n; ++i) moments.add(wave_at(first + i), outputs[i].strategies);
-  }
+  const WaveStats bdpt_stats =
+      trace_pilot(scene, bdpt, tile_order(pilot.width, pilot.height), kPilotSpp, backend,
+                  [&](const WaveDesc& wave, size_t, const WaveOutput& out) { moments.add(wave, out.strategies); });
   LightSubpathRateChoice choice;
   choice.error = moments.relative_error();
   // Rays per camera sample: what every sample casts (its eye subpath's
   // rays, each ending at a vertex or escaping; its light samples; its
   // light's own point joined to the camera, about one), and what its light
   // subpath adds.
-  const double samples = double(order.size()) * kPilotSpp;
+  const double samples = double(pilot.width) * double(pilot.height) * kPilotSpp;
   const size_t escaped = size_t(PathEnd::Escaped);
-  double once = samples, light = 0.0;
-  for (const State& s : states) {
-    once += double(s->stats.eye_vertices + s->stats.eye_ends[escaped] + s->stats.light_samples);
-    light += double(s->stats.light_vertices + s->stats.light_ends[escaped] + s->stats.light_connections);
-  }
-  once /= samples;
-  light /= samples;
+  const WaveStats& b = bdpt_stats;
+  const double once = (samples + double(b.eye_vertices + b.eye_ends[escaped] + b.light_samples)) / samples;
+  const double light = double(b.light_vertices + b.light_ends[escaped] + b.light_connections) / samples;
   for (size_t k = 0; k < kLightSubpathRates.size(); ++k) choice.cost[k] = once + double(kLightSubpathRates[k]) * light;
-  choice.rate = best_light_subpath_rate(choice.error, choice.cost, render.planned_spp);
+  if (eye_alone) consider_eye_subpaths_alone(scene, light_sampler, render, *eye_alone, backend, moments, once - 1.0, choice);
+  choice.rate = best_light_subpath_rate(choice, render.planned_spp);
   return choice;
 }
 
+float best_light_subpath_rate(const LightSubpathRateChoice& c, uint32_t spp) {
+  const float rate = best_light_subpath_rate(c.error, c.cost, spp);
+  return c.eye_alone && eye_subpaths_alone_pay(*c.eye_alone, c.eye_alone_first_ratio) ? 0.f : rate;
+}
+
 void set_light_subpath_rate(const Scene& scene, const LightSampler& light_sampler, const RenderOptions& opt,
-                            BdptSettings& bs, RenderStats& stats) {
+                            const PathTracerSettings& eye_alone, BdptSettings& bs, RenderStats& stats) {
   // (Debug unit weights have no counts to rescale: rate 1.)
   if (opt.light_subpath_rate == kLightSubpathsAuto && !bs.unit_weights) {
-    const LightSubpathRateChoice c = choose_light_subpath_rate(scene, light_sampler, bs, opt.ray_backend);
+    const bool alone = may_render_eye_subpaths_alone(scene, opt) && worth_a_grid_pilot(bs);
+    const LightSubpathRateChoice c =
+        choose_light_subpath_rate(scene, light_sampler, bs, opt.ray_backend, alone ? &eye_alone : nullptr);
     bs.light_subpath_rate = c.rate;
     stats.light_subpath_candidates.assign(kLightSubpathRates.begin(), kLightSubpathRates.end());
     stats.light_subpath_error.assign(c.error.begin(), c.error.end());
     stats.light_subpath_cost.assign(c.cost.begin(), c.cost.end());
+    if (c.eye_alone_error >= 0.0) {
+      stats.light_subpath_candidates.push_back(0.0);
+      stats.light_subpath_error.push_back(c.eye_alone_error);
+      stats.light_subpath_cost.push_back(c.eye_alone_cost);
+    }
   }
   stats.light_subpath_rate = bs.light_subpath_rate;
 }

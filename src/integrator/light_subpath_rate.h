@@ -25,6 +25,15 @@
 // error at equal time; the least wins, q = 1 unless another is at least
 // 5% better (the pilot is small, and q = 1 is pbrt-v4's bdpt).
 //
+// Where every light can be hit by an eye subpath (area, infinite and
+// volume lights: no point, spot or distant light, whose light only light
+// subpaths carry through glass or mirrors), the eye subpaths alone are one
+// more candidate, q = 0: the strategies s = 0 and s = 1 weighted against
+// each other only, which is the path tracer (eye_subpaths_alone.h). This
+// pilot estimates their error too (RateMoments::eye_alone_error), and a
+// second pilot measures it at the image's own resolution where they may
+// pay; when they do, bdpt renders with the path tracer's kernel.
+//
 // Covariances between strategies of different samples are left out, as
 // in Grittmann et al. The pilot covers the whole image at the same seed
 // whatever part of it a process renders, and its sums run in a fixed
@@ -33,11 +42,14 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "accel/ray_stream.h"
 #include "film/film.h"
 #include "integrator/bdpt.h"
+#include "integrator/eye_subpaths_alone.h"
+#include "integrator/path_tracer.h"
 #include "integrator/wave.h"
 #include "lantern/render.h"
 
@@ -49,11 +61,21 @@ struct Scene;
 inline constexpr std::array<float, 4> kLightSubpathRates{1.f, 0.5f, 0.25f, 0.125f};
 
 struct LightSubpathRateChoice {
-  float rate = 1.f;
+  float rate = 1.f;  // 0: the eye subpaths alone (the path tracer)
   // Per candidate (kLightSubpathRates): the pilot image's estimated
   // relMSE per camera sample and the cost of a camera sample, in rays.
   std::array<double, kLightSubpathRates.size()> error{}, cost{};
+  // The eye subpaths alone, when a candidate: the grid pilot's estimates
+  // (eye_subpaths_alone.h), and this pilot's ratio of their error to
+  // bdpt's at the best rate.
+  std::optional<EyeAloneEstimate> eye_alone;
+  double eye_alone_first_ratio = 0.0;
+  // The eye subpaths alone in this pilot's units (the grid pilot's ratios
+  // to bdpt at the best rate, times this pilot's figures for that rate):
+  // for --stats. Error -1: not a candidate.
+  double eye_alone_error = -1.0, eye_alone_cost = 0.0;
 };
+
 
 // A strategy's MIS weight had the light subpath rate been q rather than
 // the rate it was computed at, from that weight and the part `rescaled`
@@ -73,6 +95,12 @@ class RateMoments {
   void add(const WaveDesc& wave, const std::vector<StrategyRecord>& records);
   // Each candidate's estimated relMSE of an image of one sample per pixel.
   std::array<double, kLightSubpathRates.size()> relative_error() const;
+  // The same for the eye subpaths alone (eye_subpaths_alone.h), from the
+  // same records: the larger of their own samples' spread (strategies
+  // s = 0 and s = 1 reweighed) and the second moment that every
+  // strategy's samples estimate for them (eye_alone_density_ratio), which
+  // sees the rare bright paths that their own samples miss.
+  double eye_alone_error() const;
 
  private:
   void add_values(const std::vector<StrategyRecord>& records);
@@ -86,9 +114,12 @@ class RateMoments {
   int width_, height_;
   uint32_t spp_;
   float beta_;
+  // (1 / (the pixel's value squared + the image's mean squared), per pixel)
+  std::vector<double> relative_scale() const;
   std::vector<double> value_;  // per pixel: the sum of its weighted samples
   // per pixel and candidate: camera samples' sum and sum of squares, splats' sum of squares
   std::vector<std::array<double, kRates>> sum_, square_, light_sum_, splat_square_;
+  std::vector<double> alone_sum_, alone_square_, alone_mis_;  // per pixel: the eye subpaths alone
 };
 
 // The candidate with the least error at equal cost, from the error and
@@ -97,16 +128,23 @@ class RateMoments {
 // samples per pixel (0: a time budget): a pixel would trace fewer than one
 // light subpath, and the count noise the pilot takes as stratified away
 // would not be.
+// Then the eye subpaths alone, when a candidate, if they pay
+// (eye_subpaths_alone_pay): 0.
 float best_light_subpath_rate(const std::array<double, kLightSubpathRates.size()>& error,
                               const std::array<double, kLightSubpathRates.size()>& cost, uint32_t spp = 0);
+float best_light_subpath_rate(const LightSubpathRateChoice& c, uint32_t spp);
 
-// Renders the pilot for a bdpt render with `render`'s settings and chooses.
+// Renders the pilot for a bdpt render with `render`'s settings and chooses;
+// with `eye_alone` (the path tracer's settings for the same render), that
+// too is a candidate.
 LightSubpathRateChoice choose_light_subpath_rate(const Scene& scene, const LightSampler& light_sampler,
-                                                 const BdptSettings& render, RayBackend backend);
+                                                 const BdptSettings& render, RayBackend backend,
+                                                 const PathTracerSettings* eye_alone = nullptr);
 
 // bs's rate: the options', or under auto the pilot's choice, which stats
-// report with its estimates.
+// report with its estimates. A rate of 0 asks for the path tracer with
+// `eye_alone`'s settings in bdpt's place.
 void set_light_subpath_rate(const Scene& scene, const LightSampler& light_sampler, const RenderOptions& opt,
-                            BdptSettings& bs, RenderStats& stats);
+                            const PathTracerSettings& eye_alone, BdptSettings& bs, RenderStats& stats);
 
 }  // namespace lantern

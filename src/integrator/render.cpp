@@ -533,23 +533,27 @@ RenderResult RenderSession::render_all() {
   {
     ProgressReporter reporter(opt, s.hooks, s.start, s.done, s.total);
     bool stopped;
+    auto run = [&cx](auto&& tracer) {
+      tracer.set_guiding(cx.guiding);
+      return run_passes(tracer, cx);
+    };
     if (opt.integrator == Integrator::Mlt) {
       stopped = run_metropolis(Bdpt(scene, light_sampler, bdpt_settings(scene, opt, s.region, planned_spp)),
                                metropolis_settings(scene, opt, s.region), cx);
     } else if (!traces_paths(opt.integrator)) {
       BdptSettings bs = bdpt_settings(scene, opt, s.region, planned_spp);
       res.stats.vcm_radius = bs.merging ? bs.vcm_radius : 0.f;
-      if (uses_light_subpath_rate(opt.integrator)) set_light_subpath_rate(scene, light_sampler, opt, bs, res.stats);
-      Bdpt bdpt(scene, light_sampler, bs);
-      bdpt.set_guiding(cx.guiding);
-      stopped = run_passes(bdpt, cx);
+      const PathTracerSettings eye_alone = path_settings(scene, opt, s.region, planned_spp);
+      if (uses_light_subpath_rate(opt.integrator))
+        set_light_subpath_rate(scene, light_sampler, opt, eye_alone, bs, res.stats);
+      // (no light subpaths: the path tracer, eye_subpaths_alone.h)
+      stopped = bs.light_subpath_rate == 0.f ? run(PathTracer(scene, light_sampler, eye_alone))
+                                             : run(Bdpt(scene, light_sampler, bs));
       if (bs.merging)  // the radius of the last pass traced (Bdpt::prepare_merging)
         res.stats.vcm_last_radius =
             bs.vcm_radius * std::pow(float(res.stats.vcm_last_first_sample + 1), 0.5f * (bs.vcm_alpha - 1.f));
     } else {
-      PathTracer tracer(scene, light_sampler, path_settings(scene, opt, s.region, planned_spp));
-      tracer.set_guiding(cx.guiding);
-      stopped = run_passes(tracer, cx);
+      stopped = run(PathTracer(scene, light_sampler, path_settings(scene, opt, s.region, planned_spp)));
     }
     // A stop that came after the last unit left nothing undone.
     interrupted = stopped && cx.stop_requested();

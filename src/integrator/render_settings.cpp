@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "integrator/eye_subpaths_alone.h"
 #include "math/rng.h"
 #include "scene/scene.h"
 
@@ -84,12 +85,16 @@ void check_options(const Scene& scene, const RenderOptions& opt) {
   // or its survivors vanish: noise, never a better image.)
   if (!(opt.roulette_scale >= 0.01f && opt.roulette_scale <= 100.f))
     throw std::invalid_argument("--roulette must be a number from 0.01 to 100 (1: pbrt-v4's Russian roulette)");
-  // (Not 0: paths that only a light subpath can find, as caustics of a
-  // point light, would be lost.)
-  if (opt.light_subpath_rate != kLightSubpathsAuto &&
+  if (opt.light_subpath_rate != kLightSubpathsAuto && opt.light_subpath_rate != 0.f &&
       !(opt.light_subpath_rate >= 0.01f && opt.light_subpath_rate <= 1.f))
-    throw std::invalid_argument("--light-subpaths must be auto or a number from 0.01 to 1 (1: every camera sample "
+    throw std::invalid_argument("--light-subpaths must be auto, 0 or a number from 0.01 to 1 (1: every camera sample "
                                 "traces one, as pbrt-v4's bdpt)");
+  // (0 where paths that only a light subpath can find, as caustics of a
+  // point light, would be lost, or bdpt is asked for what the path tracer
+  // does not do: refused.)
+  if (opt.light_subpath_rate == 0.f && uses_light_subpath_rate(opt.integrator))
+    if (const std::string why = why_not_eye_subpaths_alone(scene, opt); !why.empty())
+      throw std::invalid_argument("--light-subpaths 0 (the eye subpaths alone) cannot render this: " + why);
   if (scene.camera.projection == Projection::Realistic && !traces_paths(opt.integrator))
     throw std::invalid_argument(std::string("the realistic camera works with path, directlighting and ambientocclusion, "
                                             "not ") + name(opt.integrator) +
@@ -194,7 +199,7 @@ BdptSettings bdpt_settings(const Scene& scene, const RenderOptions& opt, const I
   bs.mis_beta = opt.mis == MisHeuristic::Balance ? 1.f : 2.f;
   bs.light_tracing_only = opt.integrator == Integrator::Lt;
   // (auto: the render's pilot sets it, render.cpp)
-  bs.light_subpath_rate = uses_light_subpath_rate(opt.integrator) && opt.light_subpath_rate > 0.f ? opt.light_subpath_rate : 1.f;
+  bs.light_subpath_rate = uses_light_subpath_rate(opt.integrator) && opt.light_subpath_rate != kLightSubpathsAuto ? opt.light_subpath_rate : 1.f;
   bs.merging = merging;
   bs.connections = !merging || opt.integrator == Integrator::Vcm;
   bs.photon_mapping = opt.integrator == Integrator::Ppm;
@@ -240,7 +245,11 @@ PathTracerSettings path_settings(const Scene& scene, const RenderOptions& opt, c
   ps.spectral = opt.spectral;
   ps.wavelengths = wavelength_range(opt);
   ps.direct_lighting = opt.integrator == Integrator::Direct;
-  ps.roulette_scale = scales_roulette(opt.integrator) ? opt.roulette_scale : 1.f;  // (directlighting: pbrt-v4's rule)
+  // (directlighting: pbrt-v4's rule; bdpt's eye subpaths alone: the path
+  // tracer's default)
+  ps.roulette_scale = scales_roulette(opt.integrator)      ? opt.roulette_scale
+                      : opt.integrator == Integrator::Bdpt ? PathTracerSettings{}.roulette_scale
+                                                           : 1.f;
   ps.ambient_occlusion = opt.integrator == Integrator::AmbientOcclusion;
   ps.ao_max_distance = scene.settings.ao_max_distance;
   ps.ao_cos_sample = scene.settings.ao_cos_sample;

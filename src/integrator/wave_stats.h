@@ -57,6 +57,7 @@ struct WaveStats {
     light_vertices += o.light_vertices;
     light_samples += o.light_samples;
     light_samples_unoccluded += o.light_samples_unoccluded;
+    light_connections += o.light_connections;
     for (int i = 0; i < kPathEndCount; ++i) {
       eye_ends[size_t(i)] += o.eye_ends[size_t(i)];
       light_ends[size_t(i)] += o.light_ends[size_t(i)];

@@ -79,17 +79,17 @@ void read_options(const py::kwargs& kw, RenderRequest& r, Outputs& out) {
       r.roulette = cast_option<float>("roulette", value);
       if (!(r.roulette >= 0.01f && r.roulette <= 100.f)) throw py::value_error("roulette: expected 0.01 to 100");
     } else if (k == "light_subpaths") {
-      // auto, or a number from 0.01 to 1, read as the command line reads
+      // auto, 0 or a number from 0.01 to 1, read as the command line reads
       // its text (Python's own repr of the number: every digit kept)
       const bool number = (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)) &&
                           !py::isinstance<py::bool_>(value);
       if (!number && !py::isinstance<py::str>(value))
-        throw py::value_error("light_subpaths: expected \"auto\" or a number from 0.01 to 1");
+        throw py::value_error("light_subpaths: expected \"auto\", 0 or a number from 0.01 to 1");
       r.light_subpaths = std::string(py::str(value));
       try {
         parse_light_subpaths(r.light_subpaths);
       } catch (const std::invalid_argument&) {
-        throw py::value_error("light_subpaths: expected \"auto\" or a number from 0.01 to 1");
+        throw py::value_error("light_subpaths: expected \"auto\", 0 or a number from 0.01 to 1");
       }
     } else if (k == "spectral") r.spectral = cast_option<bool>("spectral", value);
     else if (k == "guide") r.guide = cast_option<bool>("guide", value);

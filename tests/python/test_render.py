@@ -191,7 +191,7 @@ def test_bad_input_raises_clear_errors(tmp_path, cornell_box):
     with pytest.raises(ValueError, match="roulette"):
         lantern.render(cornell_box, spp=1, roulette=0)
     with pytest.raises(ValueError, match="light_subpaths"):
-        lantern.render(cornell_box, spp=1, integrator="bdpt", light_subpaths=0)
+        lantern.render(cornell_box, spp=1, integrator="bdpt", light_subpaths=0.005)
     with pytest.raises(ValueError, match="light_subpaths"):
         lantern.render(cornell_box, spp=1, integrator="bdpt", light_subpaths="sometimes")
     with pytest.raises(ValueError, match="light_subpaths"):

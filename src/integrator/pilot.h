@@ -1,0 +1,55 @@
+// The short renders bdpt runs before its own to choose how it renders
+// (light_subpath_rate.h, eye_subpaths_alone.h): waves of a given list of
+// pixels traced a batch at a time, their outputs read in wave order (so
+// that sums are the same whatever the threads) and then freed.
+#pragma once
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "film/film.h"
+#include "integrator/wave.h"
+#include "integrator/wave_stats.h"
+#include "scene/scene.h"
+
+namespace lantern {
+
+inline constexpr uint32_t kPilotWaveSlots = 1024;
+inline constexpr size_t kPilotBatch = 8;  // waves
+
+// Traces spp samples of each of `pixels` with `tracer` and hands each wave,
+// the index in `pixels` of its first pixel and its output to `read`.
+// Returns the waves' stats, summed.
+template <class Tracer, class Read>
+WaveStats trace_pilot(const Scene& scene, const Tracer& tracer, const std::vector<uint32_t>& pixels, uint32_t spp,
+                      RayBackend backend, Read&& read) {
+  const uint32_t per_wave = std::max(1u, kPilotWaveSlots / spp);
+  const size_t waves = (pixels.size() + per_wave - 1) / per_wave;
+  auto wave_at = [&](size_t i) {
+    return WaveDesc{pixels.data() + i * per_wave, uint32_t(std::min<size_t>(per_wave, pixels.size() - i * per_wave)), 0u,
+                    spp};
+  };
+  std::vector<WaveOutput> outputs(kPilotBatch);
+  using State = decltype(tracer.make_wave_state(0, RayStream(scene.accel->handle(), backend, nullptr)));
+  tbb::enumerable_thread_specific<State> states([&] {
+    State s = tracer.make_wave_state(per_wave * spp, RayStream(scene.accel->handle(), backend, nullptr));
+    s->stream.set_scene(scene.accel->instance_base(), &scene.shapes);
+    return s;
+  });
+  for (size_t first = 0; first < waves; first += kPilotBatch) {
+    const size_t n = std::min(kPilotBatch, waves - first);
+    tbb::parallel_for(size_t(0), n, [&](size_t i) {
+      outputs[i].clear();
+      tracer.trace(wave_at(first + i), *states.local(), outputs[i]);
+    });
+    for (size_t i = 0; i < n; ++i) read(wave_at(first + i), (first + i) * per_wave, outputs[i]);
+  }
+  WaveStats total;
+  for (const State& s : states) total += s->stats;
+  return total;
+}
+
+}  // namespace lantern
