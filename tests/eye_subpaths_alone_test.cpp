@@ -28,51 +28,11 @@
 using namespace lantern;
 using namespace lantern::guiding_test;
 
-namespace {
-
-RenderOptions eye_alone_options(float rate) {
-  RenderOptions o = guided_options(false);
-  o.integrator = Integrator::Bdpt;
-  o.light_subpath_rate = rate;
-  return o;
-}
-
-// The mean over `runs` renders of a pixel's value, and of its variance
-// times spp relative to its value squared plus the image's mean squared
-// (the pilots' measure), averaged over the image.
-double relative_variance_of(const std::vector<Image>& images, int spp) {
-  const Image& first = images[0];
-  const double runs = double(images.size());
-  auto value = [](const Image& im, int x, int y) {
-    const float* p = im.at(x, y);
-    return (double(p[0]) + double(p[1]) + double(p[2])) / 3.0;
-  };
-  double image = 0.0;
-  for (const Image& im : images)
-    for (int y = 0; y < first.height; ++y)
-      for (int x = 0; x < first.width; ++x) image += value(im, x, y);
-  image /= runs * first.width * first.height;
-  double e = 0.0;
-  for (int y = 0; y < first.height; ++y)
-    for (int x = 0; x < first.width; ++x) {
-      double sum = 0.0, sum2 = 0.0;
-      for (const Image& im : images) {
-        sum += value(im, x, y);
-        sum2 += value(im, x, y) * value(im, x, y);
-      }
-      const double mean = sum / runs, var = (sum2 - runs * mean * mean) / (runs - 1.0);
-      e += var * spp / (mean * mean + image * image);
-    }
-  return e / (double(first.width) * first.height);
-}
-
-}  // namespace
-
 // With no light subpaths bdpt renders the path tracer's image, bit for
 // bit (its kernel, with its roulette), and says so.
 TEST(EyeSubpathsAlone, RenderTheImageOfThePathTracer) {
   const auto scene = guided_room();
-  RenderOptions o = eye_alone_options(0.f);
+  RenderOptions o = bdpt_options(0.f);
   o.spp = 4;
   const RenderResult alone = render(*scene, o);
   EXPECT_EQ(alone.stats.light_subpath_rate, 0.f);
@@ -101,7 +61,7 @@ Material "diffuse"
 Shape "trianglemesh" "point3 P" [ -2 -0.5 -2  2 -0.5 -2  2 -0.5 2  -2 -0.5 2 ] "integer indices" [ 0 1 2 0 2 3 ]
 )",
                                               "spotlit-glass.pbrt");
-  RenderOptions o = eye_alone_options(0.f);
+  RenderOptions o = bdpt_options(0.f);
   o.spp = 1;
   try {
     render(*spotlit, o);
@@ -135,7 +95,7 @@ TEST(EyeSubpathsAlone, RecordsReweighedConvergeToTheImage) {
   if (LANTERN_ASAN) GTEST_SKIP() << "statistics only: the Release suite runs it";
   const auto scene = guided_room();
   const LightSampler light_sampler(scene->lights, scene->shapes, scene->textures, LightSamplerKind::Bvh);
-  RenderOptions o = eye_alone_options(1.f);
+  RenderOptions o = bdpt_options(1.f);
   o.spp = 32;
   std::vector<Region> regions;
   for (int y = 0; y < 32; y += 8)
@@ -208,7 +168,7 @@ TEST(EyeSubpathsAlone, DensityRatiosFollowTheDensities) {
 TEST(EyeSubpathsAlone, FirstPilotSeesTheCausticsOfASmallLight) {
   const auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/caustics.pbrt");
   const LightSampler light_sampler(scene->lights, scene->shapes, scene->textures, LightSamplerKind::Bvh);
-  RenderOptions o = eye_alone_options(kLightSubpathsAuto);
+  RenderOptions o = bdpt_options(kLightSubpathsAuto);
   o.width = 120;
   o.height = 90;
   double least = std::numeric_limits<double>::infinity(), most = 0.0;
@@ -236,7 +196,7 @@ TEST(EyeSubpathsAlone, GridPilotPredictsTheRatioOfErrors) {
   if (LANTERN_ASAN) GTEST_SKIP() << "statistics only: the Release suite runs it";
   const auto scene = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
   const LightSampler light_sampler(scene->lights, scene->shapes, scene->textures, LightSamplerKind::Bvh);
-  RenderOptions o = eye_alone_options(0.5f);
+  RenderOptions o = bdpt_options(0.5f);
   o.width = o.height = 64;
   o.maxdepth = 10;
   o.spp = 64;
@@ -260,7 +220,7 @@ TEST(EyeSubpathsAlone, GridPilotPredictsTheRatioOfErrors) {
 TEST(EyeSubpathsAlone, GridPilotIsTheSameWhateverTheThreads) {
   const auto scene = guided_room();
   const LightSampler light_sampler(scene->lights, scene->shapes, scene->textures, LightSamplerKind::Bvh);
-  const RenderOptions o = eye_alone_options(kLightSubpathsAuto);
+  const RenderOptions o = bdpt_options(kLightSubpathsAuto);
   const ImageRegion region = image_region(*scene, o);
   const BdptSettings bs = bdpt_settings(*scene, o, region, 0);
   const PathTracerSettings ps = path_settings(*scene, o, region, 0);

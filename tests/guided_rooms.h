@@ -83,4 +83,12 @@ inline RenderOptions guided_options(bool guiding) {
   return o;
 }
 
+// bdpt at a light subpath rate (RenderOptions::light_subpath_rate).
+inline RenderOptions bdpt_options(float light_subpath_rate) {
+  RenderOptions o = guided_options(false);
+  o.integrator = Integrator::Bdpt;
+  o.light_subpath_rate = light_subpath_rate;
+  return o;
+}
+
 }  // namespace lantern::guiding_test

@@ -23,47 +23,6 @@
 using namespace lantern;
 using namespace lantern::guiding_test;
 
-namespace {
-
-RenderOptions bdpt_options(float rate) {
-  RenderOptions o = guided_options(false);
-  o.integrator = Integrator::Bdpt;
-  o.light_subpath_rate = rate;
-  return o;
-}
-
-// The per-pixel variance of one camera sample, relative to the pixel's
-// value squared plus the image's mean squared (as the pilot measures),
-// averaged over the image: from `runs` renders of `spp` samples at each
-// seed.
-double measured_relative_variance(const Scene& scene, RenderOptions o, int runs) {
-  const std::vector<Image> images = render_runs(scene, o, runs, 500);
-  const Image& first = images[0];
-  auto value = [&](const Image& im, int x, int y) {
-    const auto p = im.at(x, y);
-    return (double(p[0]) + double(p[1]) + double(p[2])) / 3.0;
-  };
-  double image = 0.0;
-  for (const Image& im : images)
-    for (int y = 0; y < first.height; ++y)
-      for (int x = 0; x < first.width; ++x) image += value(im, x, y);
-  image /= double(runs) * first.width * first.height;
-  double e = 0.0;
-  for (int y = 0; y < first.height; ++y)
-    for (int x = 0; x < first.width; ++x) {
-      double sum = 0.0, sum2 = 0.0;
-      for (const Image& im : images) {
-        sum += value(im, x, y);
-        sum2 += value(im, x, y) * value(im, x, y);
-      }
-      const double mean = sum / runs, var = (sum2 - runs * mean * mean) / (runs - 1);
-      e += var * o.spp / (mean * mean + image * image);
-    }
-  return e / (double(first.width) * first.height);
-}
-
-}  // namespace
-
 // The same means at every rate, on surfaces (a closed room with a small
 // light) and in a fog lit through a hole: region means over independent
 // renders agree within 4.5 standard errors with every camera sample
@@ -110,10 +69,10 @@ TEST(LightSubpaths, PilotPredictsTheErrorOfEachRate) {
     const LightSubpathRateChoice c = choose_light_subpath_rate(*scene, light_sampler, bs, RayBackend::StreamNp);
     for (size_t k = 0; k < predicted.size(); ++k) predicted[k] += c.error[k] / c.error[0] / kPilots;
   }
-  const double at_one = measured_relative_variance(*scene, o, 48);
+  const double at_one = relative_variance_of(render_runs(*scene, o, 48, 500), o.spp);
   for (size_t k = 1; k < kLightSubpathRates.size(); ++k) {
     o.light_subpath_rate = kLightSubpathRates[k];
-    const double measured = measured_relative_variance(*scene, o, 48) / at_one;
+    const double measured = relative_variance_of(render_runs(*scene, o, 48, 500), o.spp) / at_one;
     EXPECT_NEAR(predicted[k] / measured, 1.0, 0.1)
         << "rate " << kLightSubpathRates[k] << ": predicted " << predicted[k] << " measured " << measured;
   }

@@ -149,6 +149,36 @@ inline double print_z(const char* what, double z) {
   return z;
 }
 
+// The variance of one sample per pixel over independent renders of `spp`
+// samples each, relative to the pixel's mean squared plus the image's
+// mean squared (as the pilots of light_subpath_rate.h and
+// eye_subpaths_alone.h measure), averaged over the image.
+inline double relative_variance_of(const std::vector<Image>& images, int spp) {
+  const Image& first = images[0];
+  const double runs = double(images.size());
+  auto value = [](const Image& im, int x, int y) {
+    const float* p = im.at(x, y);
+    return (double(p[0]) + double(p[1]) + double(p[2])) / 3.0;
+  };
+  double image = 0.0;
+  for (const Image& im : images)
+    for (int y = 0; y < first.height; ++y)
+      for (int x = 0; x < first.width; ++x) image += value(im, x, y);
+  image /= runs * first.width * first.height;
+  double e = 0.0;
+  for (int y = 0; y < first.height; ++y)
+    for (int x = 0; x < first.width; ++x) {
+      double sum = 0.0, sum2 = 0.0;
+      for (const Image& im : images) {
+        sum += value(im, x, y);
+        sum2 += value(im, x, y) * value(im, x, y);
+      }
+      const double mean = sum / runs, var = (sum2 - runs * mean * mean) / (runs - 1.0);
+      e += var * spp / (mean * mean + image * image);
+    }
+  return e / (double(first.width) * first.height);
+}
+
 // b's region means within 4.5 standard errors of the difference plus
 // `allowance` (relative) of a's (a the reference: bdpt's, the path
 // tracer's). (Means may be negative: colours outside sRGB's gamut.)

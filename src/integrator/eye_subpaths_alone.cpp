@@ -164,20 +164,10 @@ EyeAloneEstimate estimate_eye_subpaths_alone(const Scene& scene, const LightSamp
   const int width = render.full_width > 0 ? render.full_width : render.width;
   const int height = render.full_height > 0 ? render.full_height : render.height;
   const int stride = std::max(1, int(std::ceil(std::sqrt(double(width) * double(height) / kGridPixels))));
-  BdptSettings pilot = render;
-  pilot.width = width;
-  pilot.height = height;
-  pilot.full_width = pilot.full_height = 0;
-  pilot.raster_offset = Vec2(0.f);
-  pilot.planned_spp = kGridSpp;
+  BdptSettings pilot = pilot_settings(render, width, height, kGridSpp);
   pilot.record_strategies = true;
   pilot.light_subpath_rate = 1.f;
-  PathTracerSettings path = eye_alone;
-  path.width = width;
-  path.height = height;
-  path.full_width = path.full_height = 0;
-  path.raster_offset = Vec2(0.f);
-  path.planned_spp = kGridSpp;
+  PathTracerSettings path = pilot_settings(eye_alone, width, height, kGridSpp);
   EyeAloneMoments moments(width, height, stride, kGridSpp, q, pilot.mis_beta, pilot.sampler.type != SamplerKind::Independent);
   WaveStats b, p;
   for (int seed = 0; seed < 2; ++seed) {

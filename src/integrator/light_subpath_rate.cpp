@@ -202,12 +202,7 @@ LightSubpathRateChoice choose_light_subpath_rate(const Scene& scene, const Light
   const int full_w = render.full_width > 0 ? render.full_width : render.width;
   const int full_h = render.full_height > 0 ? render.full_height : render.height;
   const int shrink = std::max(1, int(std::ceil(std::sqrt(double(full_w) * double(full_h) / kPilotPixels))));
-  BdptSettings pilot = render;
-  pilot.width = std::max(1, full_w / shrink);
-  pilot.height = std::max(1, full_h / shrink);
-  pilot.full_width = pilot.full_height = 0;
-  pilot.raster_offset = Vec2(0.f);
-  pilot.planned_spp = kPilotSpp;
+  BdptSettings pilot = pilot_settings(render, std::max(1, full_w / shrink), std::max(1, full_h / shrink), kPilotSpp);
   pilot.record_strategies = true;
   pilot.light_subpath_rate = 1.f;
   const Bdpt bdpt(scene, light_sampler, pilot);

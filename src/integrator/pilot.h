@@ -20,6 +20,20 @@ namespace lantern {
 inline constexpr uint32_t kPilotWaveSlots = 1024;
 inline constexpr size_t kPilotBatch = 8;  // waves
 
+// A pilot's settings from a render's (BdptSettings, PathTracerSettings):
+// an image of width x height of its own, not a part of another, planned
+// for spp samples per pixel.
+template <class Settings>
+Settings pilot_settings(const Settings& render, int width, int height, uint32_t spp) {
+  Settings s = render;
+  s.width = width;
+  s.height = height;
+  s.full_width = s.full_height = 0;
+  s.raster_offset = Vec2(0.f);
+  s.planned_spp = spp;
+  return s;
+}
+
 // Traces spp samples of each of `pixels` with `tracer` and hands each wave,
 // the index in `pixels` of its first pixel and its output to `read`.
 // Returns the waves' stats, summed.
