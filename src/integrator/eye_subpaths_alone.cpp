@@ -15,7 +15,8 @@
 namespace lantern {
 
 namespace {
-// About 1024 pixels of the image, 32 samples each, twice.
+// About 512 pixels of the image at its own resolution, 64 samples each,
+// with two seeds, for bdpt and for the path tracer.
 constexpr double kGridPixels = 512.0;
 constexpr uint32_t kGridSpp = 64;
 }  // namespace
