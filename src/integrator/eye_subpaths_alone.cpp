@@ -152,11 +152,12 @@ bool eye_subpaths_alone_pay(const EyeAloneEstimate& e, double first_ratio) {
   return e.alone_error * e.alone_cost <= kClearGain * e.bdpt_error * e.bdpt_cost;
 }
 
+double grid_pilot_samples() { return 4.0 * kGridPixels * kGridSpp; }  // (two seeds, bdpt and the path tracer)
+
 bool worth_a_grid_pilot(const BdptSettings& render) {
   const double width = render.full_width > 0 ? render.full_width : render.width;
   const double height = render.full_height > 0 ? render.full_height : render.height;
-  const double pilot = 4.0 * kGridPixels * kGridSpp;  // (two seeds, bdpt and the path tracer)
-  return render.planned_spp == 0 || double(render.planned_spp) * width * height >= 16.0 * pilot;
+  return render.planned_spp == 0 || double(render.planned_spp) * width * height >= 16.0 * grid_pilot_samples();
 }
 
 EyeAloneEstimate estimate_eye_subpaths_alone(const Scene& scene, const LightSampler& light_sampler,

@@ -121,10 +121,12 @@ bool eye_subpaths_alone_pay(const EyeAloneEstimate& e, double first_ratio);
 inline constexpr double kPilotsAgree = 4.0, kClearGain = 0.95;
 
 // Whether a render is large enough for the grid pilot: 16 times its
-// camera samples (131072, half of them bdpt's) or more over the whole
-// image, or a time budget. Smaller renders keep light subpaths: the pilot
-// would cost more than it could save.
+// camera samples (grid_pilot_samples, half of them bdpt's) or more over
+// the whole image, or a time budget (for which the rate pilot's time
+// decides: light_subpath_rate.cpp). Smaller renders keep light subpaths:
+// the pilot would cost more than it could save.
 bool worth_a_grid_pilot(const BdptSettings& render);
+double grid_pilot_samples();
 
 // Runs the pilot for a bdpt render with `render`'s settings: bdpt at rate
 // q against the eye subpaths alone with Russian roulette scaled by

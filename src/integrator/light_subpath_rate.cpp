@@ -1,6 +1,7 @@
 #include "integrator/light_subpath_rate.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -177,10 +178,15 @@ namespace {
 // the grid pilot where they may still pay. As this pilot sees them (their
 // rays, `alone_cost`, at pbrt-v4's roulette, fewer than the path tracer's:
 // in their favour) they cannot pay where the grid would have to find a
-// ratio more than kPilotsAgree times below this pilot's.
+// ratio more than kPilotsAgree times below this pilot's. Under a time
+// budget, only if the grid pilot, as long as this one took per sample,
+// takes at most a sixteenth of it (the one choice that depends on time:
+// such renders' sample counts do too).
 void consider_eye_subpaths_alone(const Scene& scene, const LightSampler& light_sampler, const BdptSettings& render,
                                  const PathTracerSettings& eye_alone, RayBackend backend, const RateMoments& moments,
-                                 double alone_cost, LightSubpathRateChoice& choice) {
+                                 double alone_cost, double pilot_seconds_per_sample, double time_budget,
+                                 LightSubpathRateChoice& choice) {
+  if (time_budget > 0.0 && 16.0 * grid_pilot_samples() * pilot_seconds_per_sample > time_budget) return;
   const float best = best_light_subpath_rate(choice.error, choice.cost, render.planned_spp);
   const size_t k = size_t(std::find(kLightSubpathRates.begin(), kLightSubpathRates.end(), best) - kLightSubpathRates.begin());
   const double ratio = choice.error[k] > 0.0 ? moments.eye_alone_error() / choice.error[k] : 0.0;
@@ -198,7 +204,8 @@ void consider_eye_subpaths_alone(const Scene& scene, const LightSampler& light_s
 
 LightSubpathRateChoice choose_light_subpath_rate(const Scene& scene, const LightSampler& light_sampler,
                                                  const BdptSettings& render, RayBackend backend,
-                                                 const PathTracerSettings* eye_alone) {
+                                                 const PathTracerSettings* eye_alone, double time_budget) {
+  const auto start = std::chrono::steady_clock::now();
   const int full_w = render.full_width > 0 ? render.full_width : render.width;
   const int full_h = render.full_height > 0 ? render.full_height : render.height;
   const int shrink = std::max(1, int(std::ceil(std::sqrt(double(full_w) * double(full_h) / kPilotPixels))));
@@ -222,7 +229,11 @@ LightSubpathRateChoice choose_light_subpath_rate(const Scene& scene, const Light
   const double once = (samples + double(b.eye_vertices + b.eye_ends[escaped] + b.light_samples)) / samples;
   const double light = double(b.light_vertices + b.light_ends[escaped] + b.light_connections) / samples;
   for (size_t k = 0; k < kLightSubpathRates.size(); ++k) choice.cost[k] = once + double(kLightSubpathRates[k]) * light;
-  if (eye_alone) consider_eye_subpaths_alone(scene, light_sampler, render, *eye_alone, backend, moments, once - 1.0, choice);
+  if (eye_alone) {
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    consider_eye_subpaths_alone(scene, light_sampler, render, *eye_alone, backend, moments, once - 1.0,
+                                seconds / samples, time_budget, choice);
+  }
   choice.rate = best_light_subpath_rate(choice, render.planned_spp);
   return choice;
 }
@@ -238,7 +249,8 @@ void set_light_subpath_rate(const Scene& scene, const LightSampler& light_sample
   if (opt.light_subpath_rate == kLightSubpathsAuto && !bs.unit_weights) {
     const bool alone = may_render_eye_subpaths_alone(scene, opt) && worth_a_grid_pilot(bs);
     const LightSubpathRateChoice c =
-        choose_light_subpath_rate(scene, light_sampler, bs, opt.ray_backend, alone ? &eye_alone : nullptr);
+        choose_light_subpath_rate(scene, light_sampler, bs, opt.ray_backend, alone ? &eye_alone : nullptr,
+                                  opt.time_limit_seconds);
     bs.light_subpath_rate = c.rate;
     stats.light_subpath_candidates.assign(kLightSubpathRates.begin(), kLightSubpathRates.end());
     stats.light_subpath_error.assign(c.error.begin(), c.error.end());

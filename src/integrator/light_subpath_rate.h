@@ -136,10 +136,10 @@ float best_light_subpath_rate(const LightSubpathRateChoice& c, uint32_t spp);
 
 // Renders the pilot for a bdpt render with `render`'s settings and chooses;
 // with `eye_alone` (the path tracer's settings for the same render), that
-// too is a candidate.
+// too is a candidate. time_budget: the render's, in seconds (0: none).
 LightSubpathRateChoice choose_light_subpath_rate(const Scene& scene, const LightSampler& light_sampler,
                                                  const BdptSettings& render, RayBackend backend,
-                                                 const PathTracerSettings* eye_alone = nullptr);
+                                                 const PathTracerSettings* eye_alone = nullptr, double time_budget = 0.0);
 
 // bs's rate: the options', or under auto the pilot's choice, which stats
 // report with its estimates. A rate of 0 asks for the path tracer with
