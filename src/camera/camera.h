@@ -85,6 +85,9 @@ class Camera {
   // gives the strategies that connect to the camera (t = 1) weight 0.
   float pdf_dir(const Vec3& d) const;
   bool area_sensor() const { return projection_ == Projection::Orthographic && lens_radius_ > 0.f; }
+  // Whether generate_ray and sample_wi read their lens numbers: a pinhole
+  // does not, and its callers need not draw them.
+  bool reads_lens_numbers() const { return projection_ == Projection::Realistic || lens_radius_ > 0.f; }
   // The camera's density of its first vertex at a point dist2 away along d
   // with cosine cos_at_point there, relative to sample_wi's choice of lens
   // point: what bidirectional MIS compares a connection to the camera with.

@@ -10,6 +10,7 @@
 #include "integrator/hit.h"
 #include "integrator/hit_material.h"
 #include "integrator/shade.h"
+#include "integrator/shutter.h"
 #include "light/emission.h"
 #include "sampler/dimensions.h"
 
@@ -46,7 +47,7 @@ void Bdpt::start_eye_subpaths(const WaveDesc& wave, BdptWave& w) const {
                                          settings_.raster_offset;
     std::optional<Camera> moved;
     const Camera& camera = camera_at(camera_, w.time[slot], moved);
-    CameraRay r = camera.generate_ray(p_raster, s.get2d(dims::kLens));
+    CameraRay r = camera.generate_ray(p_raster, lens_numbers(camera, s, dims::kLens));
     w.eye.beta[slot] = Spectrum(r.weight);
     w.eye.dispersed[slot] = 0;
     w.eye.mis[slot] = mis_camera_start(camera.pdf_dir(r.d), w.mis);
@@ -176,7 +177,7 @@ void Bdpt::eye_shade_stage(BdptWave& w) const {
                                                            media ? w.ends.medium[i] : MediumHandle{});
     if (!bsdf.is_specular()) {  // (eye vertices deeper than maxdepth are not shaded: eye_surface_stage)
       if (settings_.connections) {
-        next_event(w, slot, v, s.get1d(dim + dims::kEyeLightSelect), s.get2d(dim + dims::kEyeLightPosition));
+        next_event(w, slot, v, LazyNumber(s, dim + dims::kEyeLightSelect), s.get2d(dim + dims::kEyeLightPosition));
         if (settings_.merging) merge_at_eye_vertex(w, slot, v);
         connect_light_vertices(w, slot, v);
         if (w.shadow.rays.count >= kMaxPendingConnections) flush_connections(w);
@@ -193,8 +194,8 @@ void Bdpt::eye_shade_stage(BdptWave& w) const {
     const GuidingField::Site site = guided ? guiding_->site(v.p, v.ns, v.wo_world) : GuidingField::Site{};
     ScatterSample drawn;
     const PathEnd end = continue_subpath(
-        bsdf, TransportMode::Radiance, w.hits, i, v.frame, v.wo, s.get1d(dim + dims::kEyeBsdfComponent),
-        s.get2d(dim + dims::kEyeBsdfDirection), s.get1d(dim + dims::kEyeRoulette), depth,
+        bsdf, TransportMode::Radiance, w.hits, i, v.frame, v.wo, LazyNumber(s, dim + dims::kEyeBsdfComponent),
+        s.get2d(dim + dims::kEyeBsdfDirection), LazyNumber(s, dim + dims::kEyeRoulette), depth,
         {w.eye.beta[slot], w.eye.mis[slot], w.eye.prev_p[slot], w.eye.prev_n[slot], w.eye.eta_scale[slot],
          settings_.eye_roulette_scale},
         w.mis,

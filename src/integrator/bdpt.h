@@ -142,7 +142,7 @@ class Bdpt {
   LightVertexResponse light_vertex_response(const LightVertexPool& v, uint32_t j, const Vec3& wi_w) const;
   // The connection strategies, each once for either kind of vertex (bdpt_strategies.h)
   template <class Vertex>  // s = 1
-  void next_event(BdptWave& w, uint32_t slot, const Vertex& v, float u_light, Vec2 u_light2) const;
+  void next_event(BdptWave& w, uint32_t slot, const Vertex& v, LazyNumber u_light, Vec2 u_light2) const;
   template <class Vertex>  // s >= 2
   void connect_light_vertices(BdptWave& w, uint32_t slot, const Vertex& v) const;
   template <class Vertex>  // t = 1
@@ -153,7 +153,7 @@ class Bdpt {
   void merge_at_eye_vertex(BdptWave& w, uint32_t slot, const Vertex& v) const;
   void prepare_merging(const WaveDesc& wave, BdptWave& w) const;
   MediumVertex medium_vertex(const BdptWave& w, uint32_t i) const;  // ray i's scattering point
-  PathEnd scatter_in_medium(BdptWave& w, SubpathPool& sub, uint32_t i, Vec2 u2, float u_rr, bool light,
+  PathEnd scatter_in_medium(BdptWave& w, SubpathPool& sub, uint32_t i, Vec2 u2, LazyNumber u_rr, bool light,
                             const GuideAt& guide = {}, float uc = 0.f, ScatterSample* drawn = nullptr) const;
   void eye_medium_stage(BdptWave& w) const;
   void light_medium_stage(BdptWave& w) const;
@@ -206,7 +206,7 @@ class Bdpt {
   // own distribution and the importance field at its point, and the
   // mixture's density; 0 where the subpath must end at its first point
   // (only the guide could draw the direction).
-  void guide_emission(BdptWave& w, uint32_t slot, struct EmissionSample& es, float u_select, Vec2 u_pos, Vec2 u_dir,
+  void guide_emission(BdptWave& w, uint32_t slot, struct EmissionSample& es, LazyNumber u_select, Vec2 u_pos, Vec2 u_dir,
                       float* mix_pdf_dir) const;
   void make_light_guide_records(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const;
 

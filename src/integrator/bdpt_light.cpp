@@ -58,7 +58,7 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
     const PathSampler start = wave.chains || light_start_.pixel_bits == 0
                                   ? s  // the same layout as the pixel's: no second key
                                   : PathSampler::make(light_start_, pixel, wave.first_sample + slot % wave.samples);
-    float u_select = start.get1d(dims::kLightSelect);
+    const LazyNumber u_select(start, dims::kLightSelect);
     Vec2 u_pos = start.get2d(dims::kLightPosition), u_dir = s.get2d(dims::kLightDirection);
     const float u_volume =
         emissive ? s.get1d(dims::volume_point(dims::vertex(maxdepth + 2), maxdepth, 0, true)) : 0.5f;
@@ -150,7 +150,7 @@ void Bdpt::begin_light_subpath(BdptWave& w, uint32_t slot, const EmissionSample&
     w.light.medium[slot] = medium;
     w.light.sigma_prev[slot] = sigma_origin;  // a volume light's point is reached by distance sampling
   }
-  const Vec2 u_lens = w.sampler[slot].get2d(dims::kLightStartLens);
+  const Vec2 u_lens = lens_numbers(camera_, w.sampler[slot], dims::kLightStartLens);
   // s = 1, t = 1: the light's own point seen by the camera (bpm and ppm
   // see lights only through eye subpaths). Not for a point of zero size
   // (point, spot, goniometric and projection lights): its image is one
@@ -282,7 +282,7 @@ void Bdpt::light_shade_stage(BdptWave& w) const {
                          .bsdf = settings_.connections ? w.vertices.bsdfs.push(bsdf) : BsdfRef{},
                          .tangent = tangent_or_null(h.tangent, i), .medium = {}, .sigma_t = Spectrum(0.f),
                          .dispersed = w.light.dispersed[slot] != 0});
-      connect_camera(w, slot, ld, v, s.get2d(dim + dims::kLightLens));
+      connect_camera(w, slot, ld, v, lens_numbers(camera_, s, dim + dims::kLightLens));
     }
     if (ld >= maxdepth) {  // deeper vertices would only make paths longer than maxdepth
       ++w.stats.light_ends[size_t(PathEnd::MaxDepth)];
@@ -293,8 +293,8 @@ void Bdpt::light_shade_stage(BdptWave& w) const {
     const GuidingField::Site site = guided ? guiding_->importance_site(v.p, v.ns, v.wo_world) : GuidingField::Site{};
     ScatterSample drawn;
     const PathEnd end = continue_subpath(
-        bsdf, TransportMode::Importance, w.hits, i, v.frame, v.wo, s.get1d(dim + dims::kLightBsdfComponent),
-        s.get2d(dim + dims::kLightBsdfDirection), s.get1d(dim + dims::kLightRoulette), depth,
+        bsdf, TransportMode::Importance, w.hits, i, v.frame, v.wo, LazyNumber(s, dim + dims::kLightBsdfComponent),
+        s.get2d(dim + dims::kLightBsdfDirection), LazyNumber(s, dim + dims::kLightRoulette), depth,
         {w.light.beta[slot], w.light.mis[slot], w.light.prev_p[slot], w.light.prev_n[slot], w.light.eta_scale[slot],
          w.light.rr_scale[slot]},
         w.mis, guided ? &site.guide : nullptr, &drawn);

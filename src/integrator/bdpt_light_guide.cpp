@@ -29,7 +29,7 @@ void Bdpt::prepare_light_learning(BdptWave& w, uint32_t slots) const {
   w.gathered.assign(size_t(slots) * w.light_strategies, Spectrum(0.f));
 }
 
-void Bdpt::guide_emission(BdptWave& w, uint32_t slot, EmissionSample& es, float u_select, Vec2 u_pos, Vec2 u_dir,
+void Bdpt::guide_emission(BdptWave& w, uint32_t slot, EmissionSample& es, LazyNumber u_select, Vec2 u_pos, Vec2 u_dir,
                           float* mix_pdf_dir) const {
   if (es.delta_pos || es.delta_dir || es.infinite || es.volume || es.n == Vec3(0.f)) return;
   const GuidingField::Site site = guiding_->importance_site(es.p, es.n, es.n);

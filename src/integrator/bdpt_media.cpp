@@ -131,7 +131,7 @@ MergeKind Bdpt::light_vertex_merging(const LightVertexPool& v, uint32_t j) const
 // the mixture of it and the guide (the throughput divides by the mixture's
 // density, MIS keeps the phase function's: integrator/shade.h says why).
 // light: the subpath kind. *drawn: what was drawn.
-PathEnd Bdpt::scatter_in_medium(BdptWave& w, SubpathPool& sub, uint32_t i, Vec2 u2, float u_rr, bool light,
+PathEnd Bdpt::scatter_in_medium(BdptWave& w, SubpathPool& sub, uint32_t i, Vec2 u2, LazyNumber u_rr, bool light,
                                 const GuideAt& guide, float uc, ScatterSample* drawn) const {
   const uint32_t slot = w.active[i];
   const MediumHandle m = w.ends.medium[i];
@@ -166,14 +166,14 @@ void Bdpt::eye_medium_stage(BdptWave& w) const {
     const MediumVertex v = medium_vertex(w, i);
     if (depth <= maxdepth && medium_merging() == MergeKind::Medium) merge_at_eye_vertex(w, slot, v);
     if (depth <= maxdepth && settings_.connections) {
-      next_event(w, slot, v, s.get1d(dim + dims::kEyeLightSelect), s.get2d(dim + dims::kEyeLightPosition));
+      next_event(w, slot, v, LazyNumber(s, dim + dims::kEyeLightSelect), s.get2d(dim + dims::kEyeLightPosition));
       connect_light_vertices(w, slot, v);
     }
     if (w.shadow.rays.count >= kMaxPendingConnections) flush_connections(w);
     const GuidingField::Site site = guides_eye() ? guiding_->medium_site(v.p) : GuidingField::Site{};
     ScatterSample drawn;
     const PathEnd end =
-        scatter_in_medium(w, w.eye, i, s.get2d(dim + dims::kEyeBsdfDirection), s.get1d(dim + dims::kEyeRoulette), false,
+        scatter_in_medium(w, w.eye, i, s.get2d(dim + dims::kEyeBsdfDirection), LazyNumber(s, dim + dims::kEyeRoulette), false,
                           site.guide, site.guide ? s.get1d(dim + dims::kEyeBsdfComponent) : 0.f, &drawn);
     if (end != PathEnd::Count) {
       ++w.stats.eye_ends[size_t(end)];
@@ -198,13 +198,13 @@ void Bdpt::light_medium_stage(BdptWave& w) const {
       w.vertices.push(slot, ld, w.light.beta[slot], w.light.mis[slot],
                       {.p = v.p, .wo = v.wo_world, .bsdf = {}, .medium = v.medium, .sigma_t = v.sigma,
                        .dispersed = w.light.dispersed[slot] != 0});
-    connect_camera(w, slot, ld, v, s.get2d(dim + dims::kLightLens));
+    connect_camera(w, slot, ld, v, lens_numbers(camera_, s, dim + dims::kLightLens));
     if (ld >= uint32_t(settings_.maxdepth)) {
       ++w.stats.light_ends[size_t(PathEnd::MaxDepth)];
       continue;
     }
     const PathEnd end = scatter_in_medium(w, w.light, i, s.get2d(dim + dims::kLightBsdfDirection),
-                                          s.get1d(dim + dims::kLightRoulette), true);
+                                          LazyNumber(s, dim + dims::kLightRoulette), true);
     if (end != PathEnd::Count) ++w.stats.light_ends[size_t(end)];
   }
 }

@@ -41,7 +41,7 @@ inline void Bdpt::push_connection(BdptWave& w, uint32_t slot, const Connection& 
 // the weight's sums are Georgiev 2012's eq. 44, with the light's
 // emission density towards v for the eye subpath's side).
 template <class Vertex>
-void Bdpt::next_event(BdptWave& w, uint32_t slot, const Vertex& v, float u_light, Vec2 u_light2) const {
+void Bdpt::next_event(BdptWave& w, uint32_t slot, const Vertex& v, LazyNumber u_light, Vec2 u_light2) const {
   const Scene& sc = scene_;
   ++w.stats.light_samples;
   auto ls = sample_light(sc.lights, sc.shapes, sc.textures, light_sampler_, v.p, v.light_sampler_normal(), u_light,

@@ -24,6 +24,7 @@
 #include "material/bsdf_common.h"
 #include "math/equal_area.h"
 #include "math/frame.h"
+#include "math/lazy_number.h"
 #include "medium/henyey_greenstein.h"
 
 namespace lantern {
@@ -54,12 +55,14 @@ struct ScatterSample {
 };
 
 // Draws a direction at a vertex with shading frame `frame` and outgoing
-// direction wo (local). uc picks the technique and is reused by the BSDF.
+// direction wo (local). uc picks the technique and is reused by the BSDF;
+// it is drawn only if one of them reads it.
 template <class BSDF>
 std::optional<ScatterSample> sample_scatter(const BSDF& bsdf, const Frame& frame, const Vec3& wo, const GuideAt& guide,
-                                            float uc, Vec2 u2, TransportMode mode) {
+                                            LazyNumber u_component, Vec2 u2, TransportMode mode) {
   ScatterSample s;
   const float a = guide.alpha;
+  float uc = guide || reads_component_number<BSDF>() ? u_component() : 0.f;
   if (!guide || uc < a) {
     if (guide) uc = std::min(uc / a, 0x1.fffffep-1f);
     auto bs = bsdf.sample_f(wo, uc, u2, mode);

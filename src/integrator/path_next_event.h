@@ -18,7 +18,7 @@ namespace lantern {
 
 template <class Vertex>
 void path_next_event(const Scene& sc, const LightSampler& light_sampler, PathWave& w, uint32_t slot, const Vertex& v,
-                     float u_light, Vec2 u_light2, float u_volume, int maxdepth) {
+                     LazyNumber u_light, Vec2 u_light2, float u_volume, int maxdepth) {
   ++w.stats.light_samples;
   const SampledWavelengths& lambda = w.lambda[slot];
   auto ls = sample_light(sc.lights, sc.shapes, sc.textures, light_sampler, v.p, v.light_sampler_normal(), u_light,

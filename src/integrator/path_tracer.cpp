@@ -51,7 +51,7 @@ void PathTracer::generate_camera_rays(const WaveDesc& wave, PathWave& w) const {
     Vec2 p_raster = sample_raster_position(scene_.filter, pixel, width, s.get2d(dims::kFilm)) + settings_.raster_offset;
     const float time = sample_time(scene_, s, settings_.maxdepth);
     std::optional<Camera> moved;
-    CameraRay r = camera_at(camera_, time, moved).generate_ray(p_raster, s.get2d(dims::kLens));
+    CameraRay r = camera_at(camera_, time, moved).generate_ray(p_raster, lens_numbers(camera_, s, dims::kLens));
     w.pixel[slot] = pixel;
     w.sampler[slot] = s;
     w.lambda[slot] = sample_wavelengths(settings_.spectral, s, settings_.maxdepth, settings_.wavelengths);
@@ -160,19 +160,17 @@ void PathTracer::shade_stage(PathWave& w) const {
     const auto v = surface_vertex<TransportMode::Radiance>(w.hits, i, bsdf, w.rays.geom_id[i],
                                   sc.media.empty() ? MediumHandle{} : w.ends.medium[i]);
     const Vec3& wo = v.wo;
-    float u_light = s.get1d(dim + dims::kEyeLightSelect);
-    Vec2 u_light2 = s.get2d(dim + dims::kEyeLightPosition);
+    const LazyNumber u_light(s, dim + dims::kEyeLightSelect);
     // Guided where the BSDF is not all delta.
     const bool guided = guiding_ && !bsdf.is_specular();
     const GuidingField::Site site = guided ? guiding_->site(v.p, v.ns, v.wo_world) : GuidingField::Site{};
     const GuideAt& guide = site.guide;
     if (!bsdf.is_specular())
-      path_next_event(sc, light_sampler_, w, slot, v, u_light, u_light2, volume_number(w, slot), settings_.maxdepth);
+      path_next_event(sc, light_sampler_, w, slot, v, u_light, s.get2d(dim + dims::kEyeLightPosition),
+                      volume_number(w, slot), settings_.maxdepth);
     // Continue the path by sampling the BSDF, or the mixture with the guide.
-    float uc = s.get1d(dim + dims::kEyeBsdfComponent);
-    Vec2 u2 = s.get2d(dim + dims::kEyeBsdfDirection);
-    float u_rr = s.get1d(dim + dims::kEyeRoulette);
-    auto bs = sample_scatter(bsdf, v.frame, wo, guide, uc, u2, TransportMode::Radiance);
+    const LazyNumber uc(s, dim + dims::kEyeBsdfComponent), u_rr(s, dim + dims::kEyeRoulette);
+    auto bs = sample_scatter(bsdf, v.frame, wo, guide, uc, s.get2d(dim + dims::kEyeBsdfDirection), TransportMode::Radiance);
     if (!bs) {
       ++w.stats.eye_ends[size_t(PathEnd::Absorbed)];
       return;

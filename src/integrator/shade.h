@@ -54,7 +54,7 @@ struct SubpathRef {
 // weight has density: the mixture is at least alpha times the BSDF's.
 template <class BSDF>
 PathEnd continue_subpath(const BSDF& bsdf, TransportMode mode, HitPool& hits, uint32_t i, const Frame& frame,
-                         const Vec3& wo, float uc, Vec2 u2, float u_rr, uint32_t depth, SubpathRef sub, MisPower mis,
+                         const Vec3& wo, LazyNumber uc, Vec2 u2, LazyNumber u_rr, uint32_t depth, SubpathRef sub, MisPower mis,
                          const GuideAt* guide = nullptr, ScatterSample* drawn = nullptr) {
   const bool importance = mode == TransportMode::Importance;
   const TransportMode reverse = importance ? TransportMode::Radiance : TransportMode::Importance;
@@ -72,7 +72,7 @@ PathEnd continue_subpath(const BSDF& bsdf, TransportMode mode, HitPool& hits, ui
     pdf_rev = s->specular ? s->pdf : bsdf.pdf(s->wi_local, wo, reverse);
     etap = s->etap, specular = s->specular, transmission = s->transmission;
   } else {
-    auto bs = bsdf.sample_f(wo, uc, u2, mode);
+    auto bs = bsdf.sample_f(wo, reads_component_number<BSDF>() ? uc() : 0.f, u2, mode);
     if (!bs || bs->pdf == 0.f || is_black(bs->f)) return PathEnd::Absorbed;
     wi = frame.from_local(bs->wi);
     float scale = std::fabs(bs->wi.z) / bs->pdf;

@@ -16,6 +16,7 @@
 #include "integrator/bdpt_mis.h"
 #include "integrator/hit.h"
 #include "material/bsdf_kernel.h"
+#include "math/lazy_number.h"
 #include "medium/henyey_greenstein.h"
 #include "scene/scene.h"
 
@@ -136,11 +137,11 @@ inline Vec3 light_sample_target(const LightSample& ls) {
 // `eligible` (past the first bounces); a survivor's throughput is divided
 // by it.
 // Returns false when the subpath ends.
-inline bool survives_roulette(Spectrum& beta, float eta_scale, float rr_scale, bool eligible, float u_rr) {
+inline bool survives_roulette(Spectrum& beta, float eta_scale, float rr_scale, bool eligible, LazyNumber u_rr) {
   const float rr = max_component(beta * eta_scale) * rr_scale;
   if (rr < 1.f && eligible) {
     const float q = max_num(0.f, 1.f - rr);
-    if (u_rr < q) return false;
+    if (u_rr() < q) return false;
     beta /= 1.f - q;
   }
   return true;

@@ -35,7 +35,7 @@ void start_on_disk(const LightPools& L, Vec2 u, EmissionSample* es) {
 }  // namespace
 
 std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& shapes, const TexturePools& tex,
-                                        float u_select, Vec2 u_pos, Vec2 u_dir, const SampledWavelengths& l,
+                                        LazyNumber u_select, Vec2 u_pos, Vec2 u_dir, const SampledWavelengths& l,
                                         float u_volume) {
   if (L.all.empty()) return std::nullopt;
   float pmf, rest;

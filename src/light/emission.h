@@ -30,7 +30,7 @@ struct EmissionSample {
 // point; u_select stands in for it after an unlikely choice
 // (light_choice.h).
 std::optional<EmissionSample> sample_le(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex,
-                                        float u_select, Vec2 u_pos, Vec2 u_dir, const SampledWavelengths& l,
+                                        LazyNumber u_select, Vec2 u_pos, Vec2 u_dir, const SampledWavelengths& l,
                                         float u_volume = 0.5f);
 
 // Turns an area light's emission sample es towards unit direction d (drawn

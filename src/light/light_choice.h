@@ -19,6 +19,8 @@
 // coordinate from the choice's own number instead, as before.
 #pragma once
 
+#include "math/lazy_number.h"
+
 namespace lantern {
 
 inline constexpr float kReuseMinPmf = 1.f / 1024.f;
@@ -26,8 +28,8 @@ inline constexpr float kReuseMinPmf = 1.f / 1024.f;
 // The first coordinate of the chosen light's point: `rest` (what the choice
 // left of the coordinate that made it) or, for an unlikely choice, the
 // independent number `fallback`.
-inline float light_point_coordinate(float rest, float pmf, float fallback) {
-  return pmf >= kReuseMinPmf ? rest : fallback;
+inline float light_point_coordinate(float rest, float pmf, LazyNumber fallback) {
+  return pmf >= kReuseMinPmf ? rest : fallback();
 }
 
 }  // namespace lantern

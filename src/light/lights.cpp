@@ -336,7 +336,7 @@ std::optional<LightSample> sample_light_from(const LightPools& L, const ShapePoo
 }
 
 std::optional<LightSample> sample_light(const LightPools& L, const ShapePools& shapes, const TexturePools& tex,
-                                        const LightSampler& sampler, const Vec3& p, const Vec3& n, float u_select,
+                                        const LightSampler& sampler, const Vec3& p, const Vec3& n, LazyNumber u_select,
                                         Vec2 u, const SampledWavelengths& l, float u_volume) {
   std::optional<LightSample> ls;
   uint32_t i;

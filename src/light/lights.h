@@ -6,13 +6,14 @@
 #include <optional>
 #include <vector>
 
-#include "math/distribution.h"
-#include "math/equal_area.h"
-#include "math/frame.h"
 #include "color/spectrum_conversion.h"
 #include "light/intensity_profile.h"
 #include "light/portal.h"
 #include "light/volume_light.h"
+#include "math/distribution.h"
+#include "math/equal_area.h"
+#include "math/frame.h"
+#include "math/lazy_number.h"
 #include "medium/medium.h"
 #include "texture/texture.h"
 
@@ -142,7 +143,7 @@ void finalize_lights(LightPools& lights, const ShapePools& shapes, const Texture
 // choice and, rescaled, places the point; u_select stands in for it after
 // an unlikely choice (light_choice.h).
 std::optional<LightSample> sample_light(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex,
-                                        const LightSampler& sampler, const Vec3& p, const Vec3& n, float u_select,
+                                        const LightSampler& sampler, const Vec3& p, const Vec3& n, LazyNumber u_select,
                                         Vec2 u, const SampledWavelengths& l, float u_volume = 0.5f);
 
 // Density (solid angle at p, times the light sampler's pmf for (p, n)) that

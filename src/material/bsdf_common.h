@@ -20,6 +20,15 @@ inline TransportMode adjoint(TransportMode m) {
 enum class Lobes : uint8_t { Reflection = 1, Transmission = 2, All = 3 };
 inline bool has(Lobes set, Lobes l) { return (uint8_t(set) & uint8_t(l)) != 0; }
 
+// Whether a BSDF's sample_f reads its number uc (the choice among lobes or
+// layers): a BSDF of one lobe declares kReadsComponentNumber = false, and
+// its callers need not draw the number (math/lazy_number.h).
+template <class BSDF>
+constexpr bool reads_component_number() {
+  if constexpr (requires { BSDF::kReadsComponentNumber; }) return BSDF::kReadsComponentNumber;
+  else return true;
+}
+
 struct BSDFSample {
   Spectrum f{0.f};
   Vec3 wi{0.f};

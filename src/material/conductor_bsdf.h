@@ -13,6 +13,8 @@ struct ConductorBSDF {
   Spectrum mirror_reflectance;
   bool mirror;  // constant reflectance instead of Fresnel
 
+  static constexpr bool kReadsComponentNumber = false;  // sample_f draws with u alone
+
   bool is_specular() const { return distrib.effectively_smooth(); }
   Spectrum fresnel(float cos_i) const { return mirror ? mirror_reflectance : fr_complex(cos_i, eta, k); }
 

@@ -40,6 +40,7 @@ struct FourierBSDF {
   SampledWavelengths lambda;  // where the tabulated colour becomes a spectrum
 
   static constexpr bool kAlwaysSpecular = false;
+  static constexpr bool kReadsComponentNumber = false;  // sample_f draws with u alone
   bool is_specular() const { return false; }
 
   Spectrum f(const Vec3& wo, const Vec3& wi, TransportMode mode) const;

@@ -42,6 +42,7 @@ struct MeasuredBSDF {
   std::array<float, kSpectrumSamples> nm{};  // the sample's wavelengths; zeros: RGB
 
   static constexpr bool kAlwaysSpecular = false;
+  static constexpr bool kReadsComponentNumber = false;  // sample_f draws with u alone
   bool is_specular() const { return false; }
 
   Spectrum f(const Vec3& wo, const Vec3& wi, TransportMode) const;
