@@ -558,19 +558,18 @@ RenderResult RenderSession::render_all() {
     // A stop that came after the last unit left nothing undone.
     interrupted = stopped && cx.stop_requested();
   }
-  if (checkpoints.enabled()) {
-    if (interrupted || opt.keep_checkpoint) {
-      checkpoints.write(film);
-    } else {
-      std::error_code ec;
-      std::filesystem::remove(checkpoints.own_path(), ec);  // done: nothing left to resume
-    }
-  }
+  const bool keep_piece = interrupted || opt.keep_checkpoint;
+  if (checkpoints.enabled() && keep_piece) checkpoints.write(film);
   if (!opt.film_path.empty()) checkpoints.write_to(opt.film_path, film);
   if (s.hooks.reduce_film) {
     std::lock_guard<std::mutex> lock(s.film_mutex);
     s.hooks.reduce_film(film);
   }
+  // Done: nothing left to resume. A rank's piece goes only once every
+  // rank's film has joined (a rank out of units waits there while others
+  // render, and one of them may yet die and leave the job to a resume).
+  std::error_code ec;
+  if (checkpoints.enabled() && !keep_piece) std::filesystem::remove(checkpoints.own_path(), ec);
 
   res.image = snapshot();
   if (opt.gbuffer) {
