@@ -9,15 +9,20 @@
 
 namespace lantern {
 
-double estimated_relmse(const Film& film, const uint32_t* pixels, size_t n) {
+double estimated_error(const Film& film, const uint32_t* pixels, size_t n, ErrorMeasure measure) {
   if (n == 0 || film.sample_count(pixels[0]) < 2) return 0.0;
   double e = 0.0;
   for (size_t i = 0; i < n; ++i)
     for (int c = 0; c < 3; ++c) {
       const Film::Halves h = film.halves(pixels[i], c);
-      e += (h.even - h.odd) * (h.even - h.odd) / 4.0 / (h.value * h.value + kRelMseEpsilon);
+      const double scale = h.value * h.value + kRelMseEpsilon;
+      e += (h.even - h.odd) * (h.even - h.odd) / 4.0 / (measure == ErrorMeasure::Relative ? scale : std::sqrt(scale));
     }
   return e / (3.0 * double(n));
+}
+
+double estimated_relmse(const Film& film, const uint32_t* pixels, size_t n) {
+  return estimated_error(film, pixels, n, ErrorMeasure::Relative);
 }
 
 double estimated_image_relmse(const Film& film) {
@@ -62,9 +67,9 @@ PassSummary summarize_budget_pass(const Film& film, const std::vector<uint32_t>&
   double error = 0.0;
   size_t pixels = 0;
   for_each_block(order, pixels_per_wave, [&](const uint32_t* block, size_t n) {
-    const double e = estimated_relmse(film, block, n);
-    error += e * double(n);
+    error += estimated_relmse(film, block, n) * double(n);
     pixels += n;
+    const double e = estimated_error(film, block, n, ErrorMeasure::Balanced);
     roots.emplace_back(std::sqrt(e * double(film.sample_count(block[0]))), n);
   });
   PassSummary s;
@@ -84,18 +89,19 @@ PassSummary summarize_budget_pass(const Film& film, const std::vector<uint32_t>&
 }
 
 void decide_pass(Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave, double lambda,
-                 uint32_t pass) {
+                 uint32_t pass, ErrorMeasure measure) {
   uint8_t* mask = film.pass_mask(pass);
   for_each_block(order, pixels_per_wave, [&](const uint32_t* pixels, size_t n) {
     // A block's pixels have taken the same passes, so the same count.
     const uint32_t count = film.sample_count(pixels[0]);
-    const bool needed = count < kAdaptiveMinSamples || estimated_relmse(film, pixels, n) > lambda * double(count);
+    const bool needed =
+        count < kAdaptiveMinSamples || estimated_error(film, pixels, n, measure) > lambda * double(count);
     for (size_t i = 0; i < n; ++i) mask[pixels[i]] = needed ? 1 : 0;
   });
 }
 
 void trim_pass(Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave, uint32_t pass,
-               uint64_t pixels) {
+               uint64_t pixels, ErrorMeasure measure) {
   uint8_t* mask = film.pass_mask(pass);
   struct Block {
     double need;
@@ -107,7 +113,7 @@ void trim_pass(Film& film, const std::vector<uint32_t>& order, uint32_t pixels_p
   for_each_block(order, pixels_per_wave, [&](const uint32_t* block, size_t n) {
     if (!mask[block[0]]) return;
     const double count = std::max(1.0, double(film.sample_count(block[0])));
-    taking.push_back({estimated_relmse(film, block, n) / count, block, n});
+    taking.push_back({estimated_error(film, block, n, measure) / count, block, n});
     total += n;
   });
   if (total <= pixels) return;
@@ -170,7 +176,7 @@ void AdaptivePasses::measure_before(uint32_t pass) {
   if (measured.size() >= 2 * size_t(pass)) return;
   PassSummary m = goal_.target > 0 ? summarize_pass(film_, order_, pixels_per_wave_, goal_.target)
                                    : summarize_budget_pass(film_, order_, pixels_per_wave_, pass, pass_spp_);
-  decide_pass(film_, order_, pixels_per_wave_, m.lambda, pass + 1);
+  decide_pass(film_, order_, pixels_per_wave_, m.lambda, pass + 1, goal_.measure());
   if (goal_.target <= 0 && pixels_taking(film_, pass + 1) == 0) {
     // No block's estimate asks for more (an image without light, or one
     // converged to the estimate's precision): a budget is spent evenly
@@ -186,7 +192,7 @@ void AdaptivePasses::measure_before(uint32_t pass) {
       m.lambda = std::numeric_limits<double>::infinity();
       std::fill_n(film_.pass_mask(pass + 1), order_.size(), uint8_t(0));
     } else {
-      trim_pass(film_, order_, pixels_per_wave_, pass + 1, uint64_t(left));
+      trim_pass(film_, order_, pixels_per_wave_, pass + 1, uint64_t(left), goal_.measure());
     }
   }
   measured.push_back(m.lambda);
