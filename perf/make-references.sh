@@ -9,6 +9,8 @@ secs=${1:-150}
 if [ $# -gt 0 ]; then shift; fi
 scenes=${*:-"cornell-box cornell-box-tiny-light lantern door-ajar caustics lamp-street volumetric-caustic pool pool-water spotlit-room"}
 lantern=${LANTERN:-build/lantern}
+# Checked before the renders, which take minutes each.
+command -v oiiotool > /dev/null || { echo "perf/make-references.sh: needs oiiotool (Debian's openimageio-tools)" >&2; exit 2; }
 mkdir -p perf/references
 for s in $scenes; do
   res="240 180"; case "$s" in cornell-box*) res="256 256" ;; lamp-street) res="240 135" ;; esac

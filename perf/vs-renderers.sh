@@ -14,6 +14,14 @@
 # 600), kept in $CACHE (default ~/.cache/lantern-vs-renderers) by scene,
 # resolution and renderer. Lantern's references are perf/references/.
 #
+# PAIRS=1 renders Lantern's and Cycles' timed images twice, seeds 7 and 8,
+# and adds each one's variance measured without a reference: half the MSE
+# and relMSE between the two images (the second image stands in for the
+# reference in relMSE's denominator). A converged image's own noise adds
+# to the error against it (the Cornell box's reference in
+# perf/references/ once added more than a 30 s render's variance); the
+# pair has none, and an unbiased renderer's error is its variance.
+#
 # pbrt-v4 has no time budget: it renders a number of samples per pixel
 # chosen from a short timing run to take about the budget, and its error
 # is scaled to the budget by the time it took (error falls as 1/time for
@@ -63,11 +71,24 @@ pbrt_spp_for() {
   awk -v s="$(pbrt_seconds "$tmp/probe.log")" -v t="$2" 'BEGIN { n = int(8 * t / (s > 0.01 ? s : 0.01)); print (n < 1 ? 1 : n) }'
 }
 
-row() { echo "| $1 | $2 | $3 | $4 | $5 | $6 |"; }
+pairs=${PAIRS:-}
+row() {
+  if [ -n "$pairs" ]; then echo "| $1 | $2 | $3 | $4 | $5 | $6 | ${7:-} | ${8:-} |"
+  else echo "| $1 | $2 | $3 | $4 | $5 | $6 |"; fi
+}
 errors() { "$lantern" compare "$1" "$2" | sed -n 's/^\(relmse\|mse\) //p' | tr '\n' ' '; }
+# pair_errors A B: half the relMSE and MSE between two seeds' images.
+pair_errors() {
+  "$lantern" compare "$1" "$2" | sed -n 's/^\(relmse\|mse\) //p' | awk '{ printf "%.3g ", $1 / 2 }'
+}
 
-echo "| scene | renderer | time (s) | spp | relMSE | MSE |"
-echo "|---|---|---|---|---|---|"
+if [ -n "$pairs" ]; then
+  echo "| scene | renderer | time (s) | spp | relMSE | MSE | relMSE, seeds 7 and 8 | MSE, seeds 7 and 8 |"
+  echo "|---|---|---|---|---|---|---|---|"
+else
+  echo "| scene | renderer | time (s) | spp | relMSE | MSE |"
+  echo "|---|---|---|---|---|---|"
+fi
 for s in $scenes; do
   res="240 180"; case "$s" in cornell-box*) res="256 256" ;; lamp-street) res="240 135" ;; esac
   w=${res% *}; h=${res#* }
@@ -76,9 +97,14 @@ for s in $scenes; do
     for i in path bdpt; do
       "$lantern" render "scenes/$s.pbrt" --integrator $i --time "$t" --seed 7 --resolution $res -o "$tmp/l.exr" \
         2> "$tmp/log"
-      spp=$(tail -n 1 "$tmp/log" | sed -n 's/.*, \([0-9]*\) spp (min).*/\1/p')
-      set -- $(errors "$tmp/l.exr" "$ref")
-      row "$s" "Lantern $i" "$t" "$spp" "$2" "$1"
+      spp=$(sed -n 's/.*, \([0-9]*\) spp (min).*/\1/p' "$tmp/log" | tail -n 1)  # (bdpt's rate line may follow)
+      pair=""
+      if [ -n "$pairs" ]; then
+        "$lantern" render "scenes/$s.pbrt" --integrator $i --time "$t" --seed 8 --resolution $res -q -o "$tmp/l8.exr"
+        pair=$(pair_errors "$tmp/l.exr" "$tmp/l8.exr")
+      fi
+      set -- $(errors "$tmp/l.exr" "$ref") $pair
+      row "$s" "Lantern $i" "$t" "$spp" "$2" "$1" "${4:-}" "${3:-}"
     done
     if [ -n "${PBRT:-}" ]; then
       for i in path bdpt; do
@@ -110,8 +136,13 @@ for s in $scenes; do
         # shellcheck disable=SC2086 # flags holds zero or one word
         if "$blender" -b --factory-startup -P "$here/cycles/scene_to_cycles.py" -- "scenes/$s.pbrt" "$tmp/c.exr" --time "$t" \
           --seed 7 --resolution $w $h $flags > "$tmp/clog" 2>&1; then
-          set -- $(errors "$tmp/c.exr" "$cref")
-          row "$s" "$([ $v = cycles ] && echo Cycles || echo "Cycles, guided")" "$t" "" "$2" "$1"
+          pair=""
+          if [ -n "$pairs" ] && "$blender" -b --factory-startup -P "$here/cycles/scene_to_cycles.py" -- "scenes/$s.pbrt" \
+            "$tmp/c8.exr" --time "$t" --seed 8 --resolution $w $h $flags > "$tmp/clog" 2>&1; then
+            pair=$(pair_errors "$tmp/c.exr" "$tmp/c8.exr")
+          fi
+          set -- $(errors "$tmp/c.exr" "$cref") $pair
+          row "$s" "$([ $v = cycles ] && echo Cycles || echo "Cycles, guided")" "$t" "" "$2" "$1" "${4:-}" "${3:-}"
         else
           row "$s" "$v" "$t" "(failed: $(tail -n 1 "$tmp/clog"))" "" ""
         fi

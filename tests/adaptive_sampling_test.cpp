@@ -132,7 +132,8 @@ TEST(AdaptiveSampling, BudgetIsSpentWhereItPays) {
 
 double mse(const Image& a, const Image& ref) {
   double e = 0.0;
-  for (size_t k = 0; k < a.rgb.size(); ++k) e += (double(a.rgb[k]) - double(ref.rgb[k])) * (double(a.rgb[k]) - double(ref.rgb[k]));
+  for (size_t k = 0; k < a.rgb.size(); ++k)
+    e += (double(a.rgb[k]) - double(ref.rgb[k])) * (double(a.rgb[k]) - double(ref.rgb[k]));
   return e / double(a.rgb.size());
 }
 

@@ -88,8 +88,8 @@ PassSummary summarize_budget_pass(const Film& film, const std::vector<uint32_t>&
   return s;
 }
 
-void decide_pass(Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave, double lambda,
-                 uint32_t pass, ErrorMeasure measure) {
+void decide_pass(Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave, double lambda, uint32_t pass,
+                 ErrorMeasure measure) {
   uint8_t* mask = film.pass_mask(pass);
   for_each_block(order, pixels_per_wave, [&](const uint32_t* pixels, size_t n) {
     // A block's pixels have taken the same passes, so the same count.
@@ -100,8 +100,8 @@ void decide_pass(Film& film, const std::vector<uint32_t>& order, uint32_t pixels
   });
 }
 
-void trim_pass(Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave, uint32_t pass,
-               uint64_t pixels, ErrorMeasure measure) {
+void trim_pass(Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave, uint32_t pass, uint64_t pixels,
+               ErrorMeasure measure) {
   uint8_t* mask = film.pass_mask(pass);
   struct Block {
     double need;

@@ -115,12 +115,12 @@ PassSummary summarize_budget_pass(const Film& film, const std::vector<uint32_t>&
 
 // At the end of pass p - 2: which blocks take pass p under `lambda`
 // (Film::pass_mask).
-void decide_pass(Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave, double lambda,
-                 uint32_t pass, ErrorMeasure measure);
+void decide_pass(Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave, double lambda, uint32_t pass,
+                 ErrorMeasure measure);
 // Keeps at most `pixels` of those that take pass p (p >= 2): whole blocks,
 // those of largest e_b / n_b first (ties: tile order).
-void trim_pass(Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave, uint32_t pass,
-               uint64_t pixels, ErrorMeasure measure);
+void trim_pass(Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave, uint32_t pass, uint64_t pixels,
+               ErrorMeasure measure);
 // The pixels that take pass p.
 uint64_t pixels_taking(const Film& film, uint32_t pass);
 

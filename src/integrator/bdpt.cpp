@@ -2,9 +2,9 @@
 // them: s = 0 (the eye subpath finds an emitter), s = 1 (next-event
 // estimation) and s >= 2 (connections to the slot's stored light vertices).
 #include "integrator/bdpt.h"
-#include "integrator/bdpt_strategies.h"
 
 #include "film/pixel_filter.h"
+#include "integrator/bdpt_strategies.h"
 #include "integrator/bdpt_wave.h"
 #include "integrator/dispersion.h"
 #include "integrator/hit.h"
@@ -198,8 +198,7 @@ void Bdpt::eye_shade_stage(BdptWave& w) const {
         s.get2d(dim + dims::kEyeBsdfDirection), LazyNumber(s, dim + dims::kEyeRoulette), depth,
         {w.eye.beta[slot], w.eye.mis[slot], w.eye.prev_p[slot], w.eye.prev_n[slot], w.eye.eta_scale[slot],
          settings_.eye_roulette_scale},
-        w.mis,
-        guided ? &site.guide : nullptr, &drawn);
+        w.mis, guided ? &site.guide : nullptr, &drawn);
     if (end != PathEnd::Count) {
       ++w.stats.eye_ends[size_t(end)];
       return;

@@ -206,8 +206,8 @@ class Bdpt {
   // own distribution and the importance field at its point, and the
   // mixture's density; 0 where the subpath must end at its first point
   // (only the guide could draw the direction).
-  void guide_emission(BdptWave& w, uint32_t slot, struct EmissionSample& es, LazyNumber u_select, Vec2 u_pos, Vec2 u_dir,
-                      float* mix_pdf_dir) const;
+  void guide_emission(BdptWave& w, uint32_t slot, struct EmissionSample& es, LazyNumber u_select, Vec2 u_pos,
+                      Vec2 u_dir, float* mix_pdf_dir) const;
   void make_light_guide_records(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const;
 
   const Scene& scene_;

@@ -173,8 +173,8 @@ void Bdpt::eye_medium_stage(BdptWave& w) const {
     const GuidingField::Site site = guides_eye() ? guiding_->medium_site(v.p) : GuidingField::Site{};
     ScatterSample drawn;
     const PathEnd end =
-        scatter_in_medium(w, w.eye, i, s.get2d(dim + dims::kEyeBsdfDirection), LazyNumber(s, dim + dims::kEyeRoulette), false,
-                          site.guide, site.guide ? s.get1d(dim + dims::kEyeBsdfComponent) : 0.f, &drawn);
+        scatter_in_medium(w, w.eye, i, s.get2d(dim + dims::kEyeBsdfDirection), LazyNumber(s, dim + dims::kEyeRoulette),
+                          false, site.guide, site.guide ? s.get1d(dim + dims::kEyeBsdfComponent) : 0.f, &drawn);
     if (end != PathEnd::Count) {
       ++w.stats.eye_ends[size_t(end)];
       continue;

@@ -65,8 +65,8 @@ void PathTracer::medium_scatter_stage(PathWave& w) const {
     const HenyeyGreenstein phase{sc.media.g(m)};
     ++w.stats.eye_vertices;
     path_next_event(sc, light_sampler_, w, slot, MediumVertex{phase, p, wo, m, w.ends.sigma_t[i]},
-                    LazyNumber(s, dim + dims::kEyeLightSelect), s.get2d(dim + dims::kEyeLightPosition), volume_number(w, slot),
-                    settings_.maxdepth);
+                    LazyNumber(s, dim + dims::kEyeLightSelect), s.get2d(dim + dims::kEyeLightPosition),
+                    volume_number(w, slot), settings_.maxdepth);
     const GuidingField::Site site = guiding_ ? guiding_->medium_site(p) : GuidingField::Site{};
     const float uc = site.guide ? s.get1d(dim + dims::kEyeBsdfComponent) : 0.f;
     const auto drawn = sample_phase_scatter(phase, wo, site.guide, uc, s.get2d(dim + dims::kEyeBsdfDirection));

@@ -170,7 +170,8 @@ void PathTracer::shade_stage(PathWave& w) const {
                       volume_number(w, slot), settings_.maxdepth);
     // Continue the path by sampling the BSDF, or the mixture with the guide.
     const LazyNumber uc(s, dim + dims::kEyeBsdfComponent), u_rr(s, dim + dims::kEyeRoulette);
-    auto bs = sample_scatter(bsdf, v.frame, wo, guide, uc, s.get2d(dim + dims::kEyeBsdfDirection), TransportMode::Radiance);
+    auto bs =
+        sample_scatter(bsdf, v.frame, wo, guide, uc, s.get2d(dim + dims::kEyeBsdfDirection), TransportMode::Radiance);
     if (!bs) {
       ++w.stats.eye_ends[size_t(PathEnd::Absorbed)];
       return;

@@ -54,8 +54,8 @@ struct SubpathRef {
 // weight has density: the mixture is at least alpha times the BSDF's.
 template <class BSDF>
 PathEnd continue_subpath(const BSDF& bsdf, TransportMode mode, HitPool& hits, uint32_t i, const Frame& frame,
-                         const Vec3& wo, LazyNumber uc, Vec2 u2, LazyNumber u_rr, uint32_t depth, SubpathRef sub, MisPower mis,
-                         const GuideAt* guide = nullptr, ScatterSample* drawn = nullptr) {
+                         const Vec3& wo, LazyNumber uc, Vec2 u2, LazyNumber u_rr, uint32_t depth, SubpathRef sub,
+                         MisPower mis, const GuideAt* guide = nullptr, ScatterSample* drawn = nullptr) {
   const bool importance = mode == TransportMode::Importance;
   const TransportMode reverse = importance ? TransportMode::Radiance : TransportMode::Importance;
   Vec3 wi;

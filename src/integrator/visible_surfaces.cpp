@@ -75,7 +75,8 @@ VisibleSurfaces PathTracer::visible_surfaces(uint32_t samples, bool world_space,
             sample_raster_position(scene_.filter, pixel, uint32_t(out.width), u_film) + settings_.raster_offset;
         const float time = sample_time(scene_, s, settings_.maxdepth);
         std::optional<Camera> moved;
-        const CameraRay r = camera_at(camera_, time, moved).generate_ray(p_raster, lens_numbers(camera_, s, dims::kLens));
+        const CameraRay r =
+            camera_at(camera_, time, moved).generate_ray(p_raster, lens_numbers(camera_, s, dims::kLens));
         rays.push(r.o, r.d, 0.f, r.weight > 0.f ? kInfinity : 0.f, time);
       }
     }

@@ -25,8 +25,10 @@ inline bool has(Lobes set, Lobes l) { return (uint8_t(set) & uint8_t(l)) != 0; }
 // its callers need not draw the number (math/lazy_number.h).
 template <class BSDF>
 constexpr bool reads_component_number() {
-  if constexpr (requires { BSDF::kReadsComponentNumber; }) return BSDF::kReadsComponentNumber;
-  else return true;
+  if constexpr (requires { BSDF::kReadsComponentNumber; })
+    return BSDF::kReadsComponentNumber;
+  else
+    return true;
 }
 
 struct BSDFSample {
