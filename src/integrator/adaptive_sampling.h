@@ -39,7 +39,8 @@
 // Without a target (--adaptive), the render has a budget instead: a mean
 // number of samples per pixel, or a time. The same allocation, n_b
 // proportional to sqrt(v_b) with v_b in the balanced measure (ErrorMeasure
-// below), is then followed for a total that grows pass by pass: deciding pass p + 1, a block takes it while
+// below), is then followed for a total that grows pass by pass: deciding
+// pass p + 1, a block takes it while
 //   n_b < s sqrt(v_b) / R,   s = (p + 1) * pass samples,
 // R the 95th percentile of sqrt(v_b) over the image's pixels. So the
 // blocks at R and above take every pass (one pass is the most a block can
