@@ -1,10 +1,11 @@
 #!/bin/sh
-# Error at equal time against other renderers: Lantern (path, bdpt), pbrt-v4
-# (path, bdpt) and Blender's Cycles (CPU; path tracing with its adaptive
+# Error at equal time against other renderers: Lantern, pbrt-v4 and
+# Blender's Cycles (CPU; path tracing with its adaptive
 # sampling, and with its path guiding where the build has it) on shipped
 # scenes, each renderer's relMSE and MSE against its own converged image of
 # the same scene, so that no renderer is charged for another's small
-# differences of model. Prints a Markdown table.
+# differences of model. Prints a Markdown table (perf/vs-summary.py reduces
+# it to Lantern's best against each peer's best).
 #
 #   perf/vs-renderers.sh ["10 30"] [scenes...]      (from the repository root)
 #
@@ -14,13 +15,22 @@
 # 600), kept in $CACHE (default ~/.cache/lantern-vs-renderers) by scene,
 # resolution and renderer. Lantern's references are perf/references/.
 #
-# PAIRS=1 renders Lantern's and Cycles' timed images twice, seeds 7 and 8,
-# and adds each one's variance measured without a reference: half the MSE
-# and relMSE between the two images (the second image stands in for the
-# reference in relMSE's denominator). A converged image's own noise adds
-# to the error against it (the Cornell box's reference in
-# perf/references/ once added more than a 30 s render's variance); the
-# pair has none, and an unbiased renderer's error is its variance.
+# Each renderer runs its path tracer and bdpt, and also the scene's own
+# integrator where it is another (sppm: Lantern's vcm and pbrt-v4's sppm);
+# pbrt-v4's path tracer is its volpath where the scene has media. LANTERN_EXTRA
+# adds Lantern runs, each an integrator with options joined by commas
+# (LANTERN_EXTRA="path,--guide bdpt,--guide").
+#
+# PAIRS=1 renders every timed image twice, seeds 7 and 8, and adds each
+# one's variance measured without a reference: half the MSE and relMSE
+# between the two images (their mean stands in for the reference in
+# relMSE's denominator). A converged image's own noise adds to the error
+# against it (the Cornell box's reference in perf/references/ once added
+# more than a 30 s render's variance); the pair has none, and an unbiased
+# renderer's error is its variance (a consistent one's, vcm's and sppm's,
+# is its variance and its bias, which the pair does not see). With PAIRS=1
+# a scene without a Lantern reference is measured by its pairs alone, for
+# every renderer (no converged images are made for it).
 #
 # pbrt-v4 has no time budget: it renders a number of samples per pixel
 # chosen from a short timing run to take about the budget, and its error
@@ -51,9 +61,14 @@ src, w, h, integrator, out = sys.argv[1:]
 t = open(src).read()
 t = re.sub(r'("integer xresolution"\s*)\[?\s*\d+\s*\]?', r'\g<1>[ %s ]' % w, t)
 t = re.sub(r'("integer yresolution"\s*)\[?\s*\d+\s*\]?', r'\g<1>[ %s ]' % h, t)
-t = re.sub(r'Integrator\s+"\w+"', 'Integrator "%s"' % integrator, t)
-if integrator != "path":  # pbrt-v4's bdpt has no light sampler to choose
-    t = re.sub(r'"string lightsampler"\s*\[?\s*"\w+"\s*\]?', '', t)
+def integrator_line(m):
+    # pbrt-v4 refuses parameters an integrator does not read: another
+    # integrator keeps only maxdepth, and the path tracers the light sampler.
+    own, params = m.group(1), re.findall(r'"(\w+) (\w+)"\s*(\[[^\]]*\]|"[^"]*"|[^\s"\[]+)', m.group(2))
+    keep = [p for p in params if own == integrator or p[1] == "maxdepth"
+            or (p[1] == "lightsampler" and integrator in ("path", "volpath"))]
+    return 'Integrator "%s"' % integrator + "".join(' "%s %s" %s' % p for p in keep) + "\n"
+t = re.sub(r'Integrator\s+"(\w+)"((?:\s*"\w+ \w+"\s*(?:\[[^\]]*\]|"[^"]*"|[^\s"\[]+))*)\s*', integrator_line, t)
 open(out, 'w').write(t)
 EOF
 }
@@ -67,19 +82,32 @@ pbrt_render() { (cd "$(dirname "$1")" && "$PBRT" --seed "${5:-7}" --spp "$2" "$(
 
 # pbrt_spp_for SCENE_FILE SECONDS: samples per pixel for about SECONDS.
 pbrt_spp_for() {
-  pbrt_render "$1" 8 "$tmp/probe.exr" "$tmp/probe.log"
+  pbrt_render "$1" 8 "$tmp/probe.exr" "$tmp/probe.log" || return 1
   awk -v s="$(pbrt_seconds "$tmp/probe.log")" -v t="$2" 'BEGIN { n = int(8 * t / (s > 0.01 ? s : 0.01)); print (n < 1 ? 1 : n) }'
 }
 
+# to_budget ERROR TOOK BUDGET: an error measured after TOOK seconds, at the
+# budget (empty stays empty).
+to_budget() { [ -z "$1" ] || awk -v e="$1" -v a="$2" -v t="$3" 'BEGIN { printf "%.3g", e * a / t }'; }
+
 pairs=${PAIRS:-}
+if [ -n "$pairs" ] && ! command -v oiiotool > /dev/null; then
+  echo "perf/vs-renderers.sh: PAIRS=1 needs oiiotool (Debian's openimageio-tools)" >&2
+  exit 2
+fi
 row() {
   if [ -n "$pairs" ]; then echo "| $1 | $2 | $3 | $4 | $5 | $6 | ${7:-} | ${8:-} |"
   else echo "| $1 | $2 | $3 | $4 | $5 | $6 |"; fi
 }
 errors() { "$lantern" compare "$1" "$2" | sed -n 's/^\(relmse\|mse\) //p' | tr '\n' ' '; }
-# pair_errors A B: half the relMSE and MSE between two seeds' images.
+# pair_errors A B: one image's variance from two seeds' images, as relMSE
+# and MSE: twice the errors of A against their mean M. (a - m)^2 is a
+# quarter of (a - b)^2, whose half estimates the variance. The mean in
+# relMSE's denominator, not B: a dark pixel of B under a bright one of A
+# would count hundreds of times what it does against a converged image.
 pair_errors() {
-  "$lantern" compare "$1" "$2" | sed -n 's/^\(relmse\|mse\) //p' | awk '{ printf "%.3g ", $1 / 2 }'
+  oiiotool "$1" "$2" --add --mulc 0.5 -o "$tmp/mean.exr"
+  "$lantern" compare "$1" "$tmp/mean.exr" | sed -n 's/^\(relmse\|mse\) //p' | awk '{ printf "%.3g ", $1 * 2 }'
 }
 
 if [ -n "$pairs" ]; then
@@ -93,39 +121,65 @@ for s in $scenes; do
   res="240 180"; case "$s" in cornell-box*) res="256 256" ;; lamp-street) res="240 135" ;; esac
   w=${res% *}; h=${res#* }
   ref="perf/references/$s.exr"
+  if [ ! -f "$ref" ] && [ -z "$pairs" ]; then
+    echo "perf/vs-renderers.sh: $ref is missing (make it with perf/make-references.sh, or measure by pairs: PAIRS=1)" >&2
+    exit 2
+  fi
+  own=$(sed -n 's/^ *Integrator *"\([a-z]*\)".*/\1/p' "scenes/$s.pbrt" | head -n 1)
+  lruns="path bdpt"; pruns="path bdpt"
+  case "$own" in sppm) lruns="$lruns vcm"; pruns="$pruns sppm" ;; vcm | bpm | ppm) lruns="$lruns $own" ;; esac
+  grep -q MakeNamedMedium "scenes/$s.pbrt" && pruns=$(echo "$pruns" | sed 's/path/volpath/')
   for t in $times; do
-    for i in path bdpt; do
-      "$lantern" render "scenes/$s.pbrt" --integrator $i --time "$t" --seed 7 --resolution $res -o "$tmp/l.exr" \
+    for run in $lruns ${LANTERN_EXTRA:-}; do
+      args=$(echo "$run" | tr ',' ' ')
+      i=${args%% *}; opts=""; [ "$i" != "$args" ] && opts=${args#* }
+      # shellcheck disable=SC2086 # opts holds the run's own options, split on purpose
+      "$lantern" render "scenes/$s.pbrt" --integrator $i $opts --time "$t" --seed 7 --resolution $res -o "$tmp/l.exr" \
         2> "$tmp/log"
       spp=$(sed -n 's/.*, \([0-9]*\) spp (min).*/\1/p' "$tmp/log" | tail -n 1)  # (bdpt's rate line may follow)
       pair=""
       if [ -n "$pairs" ]; then
-        "$lantern" render "scenes/$s.pbrt" --integrator $i --time "$t" --seed 8 --resolution $res -q -o "$tmp/l8.exr"
+        # shellcheck disable=SC2086
+        "$lantern" render "scenes/$s.pbrt" --integrator $i $opts --time "$t" --seed 8 --resolution $res -q -o "$tmp/l8.exr"
         pair=$(pair_errors "$tmp/l.exr" "$tmp/l8.exr")
       fi
-      set -- $(errors "$tmp/l.exr" "$ref") $pair
-      row "$s" "Lantern $i" "$t" "$spp" "$2" "$1" "${4:-}" "${3:-}"
+      if [ -f "$ref" ]; then set -- $(errors "$tmp/l.exr" "$ref") $pair; else set -- "" "" $pair; fi
+      row "$s" "Lantern $args" "$t" "$spp" "$2" "$1" "${4:-}" "${3:-}"
     done
     if [ -n "${PBRT:-}" ]; then
-      for i in path bdpt; do
+      for i in $pruns; do
         scene_for "scenes/$s.pbrt" "$w" "$h" "$i" "$tmp/$s-$i.pbrt"
         pref="$cache/pbrt-$s-$w-$h-$i.exr"
-        if [ ! -f "$pref" ]; then
+        # a scene pbrt-v4 refuses (its bdpt takes perspective cameras only)
+        # gets its message in the table
+        if ! n=$(pbrt_spp_for "$tmp/$s-$i.pbrt" "$t"); then
+          row "$s" "pbrt-v4 $i" "" "(failed: $(grep -a Error "$tmp/probe.log" | head -n 1 | sed 's/\x1b\[[0-9;]*m//g'))" "" ""
+          continue
+        fi
+        if [ -f "$ref" ] && [ ! -f "$pref" ]; then
           pbrt_render "$tmp/$s-$i.pbrt" "$(pbrt_spp_for "$tmp/$s-$i.pbrt" "$reftime")" "$pref" "$tmp/plog" 1
         fi
-        n=$(pbrt_spp_for "$tmp/$s-$i.pbrt" "$t")
         pbrt_render "$tmp/$s-$i.pbrt" "$n" "$tmp/p.exr" "$tmp/plog"
         took=$(pbrt_seconds "$tmp/plog")
-        set -- $(errors "$tmp/p.exr" "$pref")
-        row "$s" "pbrt-v4 $i" "$took" "$n" "$(awk -v e="$2" -v a="$took" -v t="$t" 'BEGIN { printf "%.3g", e * a / t }')" \
-          "$(awk -v e="$1" -v a="$took" -v t="$t" 'BEGIN { printf "%.3g", e * a / t }')"
+        pair=""
+        if [ -n "$pairs" ]; then
+          pbrt_render "$tmp/$s-$i.pbrt" "$n" "$tmp/p8.exr" "$tmp/plog8" 8
+          pair=$(pair_errors "$tmp/p.exr" "$tmp/p8.exr")
+        fi
+        # scaled to the budget: error falls as 1/time
+        if [ -f "$ref" ]; then set -- $(errors "$tmp/p.exr" "$pref") $pair; else set -- "" "" $pair; fi
+        row "$s" "pbrt-v4 $i" "$took" "$n" "$(to_budget "$2" "$took" "$t")" "$(to_budget "$1" "$took" "$t")" \
+          "$(to_budget "${4:-}" "$took" "$t")" "$(to_budget "${3:-}" "$took" "$t")"
       done
     fi
     if [ $have_blender = yes ]; then
       cref="$cache/cycles-$s-$w-$h.exr"
-      if [ ! -f "$cref" ]; then
-        "$blender" -b --factory-startup -P "$here/cycles/scene_to_cycles.py" -- "scenes/$s.pbrt" "$cref" --time "$reftime" \
-          --no-adaptive --seed 1 --resolution $w $h > "$tmp/clog" 2>&1 || { tail -n 5 "$tmp/clog" >&2; exit 1; }
+      if [ -f "$ref" ] && [ ! -f "$cref" ] && ! { "$blender" -b --factory-startup -P "$here/cycles/scene_to_cycles.py" -- \
+        "scenes/$s.pbrt" "$cref" --time "$reftime" --no-adaptive --seed 1 --resolution $w $h > "$tmp/clog" 2>&1 &&
+        [ -f "$cref" ]; }; then
+        # a scene the Blender script cannot build (it says which line)
+        row "$s" Cycles "$t" "(failed: $(grep scene_to_cycles "$tmp/clog" | tail -n 1))" "" ""
+        continue
       fi
       variants=cycles
       "$blender" -b --factory-startup --python-expr \
@@ -133,15 +187,16 @@ for s in $scenes; do
         > /dev/null 2>&1 && variants="cycles cycles+guiding"
       for v in $variants; do
         flags=""; [ $v = cycles+guiding ] && flags="--guiding"
+        rm -f "$tmp/c.exr" "$tmp/c8.exr"  # (Blender's exit status alone does not say it wrote one)
         # shellcheck disable=SC2086 # flags holds zero or one word
         if "$blender" -b --factory-startup -P "$here/cycles/scene_to_cycles.py" -- "scenes/$s.pbrt" "$tmp/c.exr" --time "$t" \
-          --seed 7 --resolution $w $h $flags > "$tmp/clog" 2>&1; then
+          --seed 7 --resolution $w $h $flags > "$tmp/clog" 2>&1 && [ -f "$tmp/c.exr" ]; then
           pair=""
           if [ -n "$pairs" ] && "$blender" -b --factory-startup -P "$here/cycles/scene_to_cycles.py" -- "scenes/$s.pbrt" \
-            "$tmp/c8.exr" --time "$t" --seed 8 --resolution $w $h $flags > "$tmp/clog" 2>&1; then
+            "$tmp/c8.exr" --time "$t" --seed 8 --resolution $w $h $flags > "$tmp/clog" 2>&1 && [ -f "$tmp/c8.exr" ]; then
             pair=$(pair_errors "$tmp/c.exr" "$tmp/c8.exr")
           fi
-          set -- $(errors "$tmp/c.exr" "$cref") $pair
+          if [ -f "$ref" ]; then set -- $(errors "$tmp/c.exr" "$cref") $pair; else set -- "" "" $pair; fi
           row "$s" "$([ $v = cycles ] && echo Cycles || echo "Cycles, guided")" "$t" "" "$2" "$1" "${4:-}" "${3:-}"
         else
           row "$s" "$v" "$t" "(failed: $(tail -n 1 "$tmp/clog"))" "" ""

@@ -303,5 +303,26 @@ TEST(Parser, HostileBytesGiveShortPrintableErrors) {
             std::string::npos);
 }
 
+// pbrt-v4 looks the camera's medium up at the Camera, so a medium named
+// after it stops pbrt-v4; Lantern renders such a file and says so.
+TEST(Parser, ACameraMediumNamedAfterTheCameraWarnsThatPbrtV4RefusesIt) {
+  const std::string medium = "MakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n";
+  const std::string camera = "MediumInterface \"\" \"fog\"\nCamera \"perspective\"\n";
+  std::vector<std::string> warnings;
+  auto refusals = [&warnings] {  // (the scene's want of lights is a warning too)
+    std::erase_if(warnings, [](const std::string& w) { return w.find("pbrt-v4 refuses") == std::string::npos; });
+    return warnings;
+  };
+  auto late = load(camera + "WorldBegin\n" + medium, &warnings);
+  EXPECT_FALSE(late->media.camera.vacuum());
+  ASSERT_EQ(refusals().size(), 1u);
+  EXPECT_NE(warnings[0].find("t.pbrt:1:"), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[0].find("\"fog\""), std::string::npos) << warnings[0];
+  warnings.clear();
+  auto early = load(medium + camera + "WorldBegin\n", &warnings);
+  EXPECT_FALSE(early->media.camera.vacuum());
+  EXPECT_TRUE(refusals().empty()) << warnings[0];
+}
+
 }  // namespace
 }  // namespace lantern

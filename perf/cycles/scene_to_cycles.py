@@ -9,7 +9,7 @@
 # "perspective" (fov), Film resolution, Integrator maxdepth, Attribute
 # blocks, ReverseOrientation, named and inline materials (diffuse,
 # conductor, coateddiffuse, dielectric), AreaLightSource "diffuse",
-# LightSource "infinite" (a constant colour), Shape "trianglemesh" and
+# LightSource "infinite" (a constant colour) and "spot", Shape "trianglemesh" and
 # "sphere". Anything else stops it with the file's line. Materials are
 # approximated by Cycles' closures (a conductor as a GGX glossy of a copper
 # or grey colour); each renderer's error is measured against its own
@@ -83,7 +83,10 @@ def parse(path):
 def nums(params, name, default=None):
     if name not in params:
         return default
-    return [float(v) for v in params[name][1]]
+    try:
+        return [float(v) for v in params[name][1]]
+    except ValueError:
+        fail('"%s %s" is not a list of numbers (named spectra are not built)' % (params[name][0], name))
 
 
 def look_at(e, l, u):
@@ -164,13 +167,38 @@ def add_mesh(name, verts, faces, mat):
     return ob
 
 
+def spot_light(ctm, params):
+    """pbrt-v4's spot light as Cycles' (position, direction, light data).
+    pbrt's intensity I (W/sr) on the axis is a Cycles spot of power 4 pi I
+    W: Cycles gives a point or spot light of power P the intensity
+    P / (4 pi) whatever its cone. pbrt's falloff is a smoothstep from
+    cos(coneangle) to cos(coneangle - conedeltaangle), Cycles' from the
+    cosine of its half angle c over the fraction blend of 1 - c."""
+    I = nums(params, "I", [1.0, 1.0, 1.0])
+    scale = nums(params, "scale", [1.0])[0]
+    cone = nums(params, "coneangle", [30.0])[0]
+    delta = nums(params, "conedeltaangle", [5.0])[0]
+    frm = ctm @ mathutils.Vector(nums(params, "from", [0.0, 0.0, 0.0]))
+    to = ctm @ mathutils.Vector(nums(params, "to", [0.0, 0.0, 1.0]))
+    light = bpy.data.lights.new("spot", type="SPOT")
+    peak = max(I) * scale
+    light.color = [c * scale / peak for c in I] if peak > 0 else [0.0, 0.0, 0.0]
+    light.energy = 4 * math.pi * peak
+    light.shadow_soft_size = 0.0  # a point, as pbrt's
+    light.spot_size = math.radians(2 * cone)
+    c_end, c_start = math.cos(math.radians(cone)), math.cos(math.radians(max(0.0, cone - delta)))
+    light.spot_blend = min(1.0, max(0.0, (c_start - c_end) / (1 - c_end))) if c_end < 1 else 0.0
+    light.cycles.max_bounces = 1024
+    return frm, (to - frm).normalized(), light
+
+
 def build(path, opts):
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
     ctm = mathutils.Matrix.Identity(4)
     camera_from_world, fov, res, maxdepth = None, 90.0, [640, 480], 5
     state = {"material": ("diffuse", {}), "area": None, "reverse": False}
-    stack, named, background, meshes = [], {}, None, []
+    stack, named, background, meshes, spots = [], {}, None, [], []
     for name, args, params, line in parse(path):
         where = "%s:%d" % (path, line)
         if name == "LookAt":
@@ -210,9 +238,12 @@ def build(path, opts):
             s = nums(params, "scale", [1.0])[0]
             state["area"] = [c * s for c in L]
         elif name == "LightSource":
-            if args[0] != "infinite" or "filename" in params:
-                fail("%s: light %s is not built (area and constant infinite lights only)" % (where, args[0]))
-            background = nums(params, "L", [1.0, 1.0, 1.0])
+            if args[0] == "spot":
+                spots.append(spot_light(ctm, params))
+            elif args[0] == "infinite" and "filename" not in params:
+                background = nums(params, "L", [1.0, 1.0, 1.0])
+            else:
+                fail("%s: light %s is not built (area, spot and constant infinite lights only)" % (where, args[0]))
         elif name == "Shape":
             if args[0] == "trianglemesh":
                 P = nums(params, "P")
@@ -256,6 +287,13 @@ def build(path, opts):
             verts = [mirror @ v for v in verts]
             faces = [tuple(reversed(f)) for f in faces]  # the normals stay on their side
         add_mesh("shape%d" % n, verts, faces, mat)
+    for n, (position, direction, light) in enumerate(spots):
+        if mirror is not None:
+            position, direction = mirror @ position, mirror.to_3x3() @ direction
+        ob = bpy.data.objects.new("spot%d" % n, light)
+        # a Blender spot shines down its local -z
+        ob.matrix_world = mathutils.Matrix.Translation(position) @ direction.to_track_quat("-Z", "Y").to_matrix().to_4x4()
+        scene.collection.objects.link(ob)
     cam = bpy.data.cameras.new("camera")
     w, h = opts.get("resolution") or res
     cam.sensor_fit = "VERTICAL" if w >= h else "HORIZONTAL"
@@ -339,4 +377,9 @@ def main():
     print("scene_to_cycles.py: %s: %dx%d, %.2f s render" % (out, w, h, time.time() - t0))
 
 
-main()
+try:
+    main()
+except SystemExit:
+    raise
+except Exception as e:  # Blender itself would exit 0 after a script's exception
+    fail("%s: %s" % (type(e).__name__, e))

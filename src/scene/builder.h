@@ -233,6 +233,7 @@ class SceneBuilder final : public pbrt::ParserTarget {
   SourceLocation camera_where_;  // a realistic camera's focus distance
   std::string camera_medium_;
   SourceLocation camera_medium_where_;
+  bool camera_medium_named_later_ = false;  // than the Camera: pbrt-v4 refuses that
 
   // PLY meshes whose place in the pools is taken, read at finish().
   struct PendingMesh {

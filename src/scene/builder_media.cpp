@@ -352,6 +352,7 @@ MediumInterface SceneBuilder::medium_interface(const GraphicsState& gs) const {
 void SceneBuilder::camera_medium(const std::string& name, const SourceLocation& where) {
   camera_medium_ = name;
   camera_medium_where_ = where;
+  camera_medium_named_later_ = !name.empty() && !named_media_.count(name);
 }
 
 // Shapes [first, end) take the graphics state's media. A shape of the
@@ -378,6 +379,12 @@ void SceneBuilder::assign_light_media(size_t points, size_t spots, size_t at_inf
 
 void SceneBuilder::finish_media() {
   scene_.media.camera = find_medium(camera_medium_, camera_medium_where_);
+  // Read here, since the camera's medium is looked up once the scene is
+  // read; pbrt-v4 looks it up at the Camera and stops.
+  if (camera_medium_named_later_)
+    warn(camera_medium_where_, "the camera stands in medium \"" + printable(camera_medium_) +
+                                   "\", named by a MakeNamedMedium after the Camera: pbrt-v4 refuses this file "
+                                   "(name the medium before the Camera)");
 }
 
 namespace {

@@ -1,0 +1,75 @@
+#!/usr/bin/env python3
+"""Lantern's best run against each peer's best, from perf/vs-renderers.sh's
+table (standard input or a file): per scene and time, the least relMSE and
+the least MSE among Lantern's rows, over the least among pbrt-v4's and
+among Cycles' rows. Prints a Markdown table; a ratio under 0.5 meets the
+goal of half the peer's error.
+
+Errors against the references are used where the table has them, the
+pairs' (PAIRS=1) where it has only those, or everywhere with --pairs. A
+pair sees no reference's noise, but it caps a rare bright sample: against
+the pair's mean a pixel's relative error is at most about 2, where against
+a converged image a caustic a path tracer found once counts in full.
+
+    python3 perf/vs-summary.py [--pairs] /tmp/vs.txt
+"""
+import sys
+
+
+def number(text):
+    try:
+        return float(text)
+    except ValueError:
+        return None
+
+
+def read_rows(lines, prefer_pairs):
+    rows = []
+    for line in lines:
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) < 6 or cells[0] in ("scene", "") or cells[0].startswith("---"):
+            continue
+        rel, mse = number(cells[4]), number(cells[5])
+        if len(cells) >= 8 and number(cells[6]) is not None and (prefer_pairs or rel is None):
+            rel, mse = number(cells[6]), number(cells[7])
+        if rel is None or mse is None:
+            continue  # a failed run
+        renderer = cells[1]
+        peer = "Lantern" if renderer.startswith("Lantern") else "pbrt-v4" if renderer.startswith("pbrt-v4") else "Cycles"
+        rows.append((cells[0], cells[2] if peer != "pbrt-v4" else None, peer, renderer, rel, mse))
+    return rows
+
+
+def main():
+    args = sys.argv[1:]
+    prefer_pairs = "--pairs" in args
+    args = [a for a in args if a != "--pairs"]
+    lines = open(args[0]).readlines() if args else sys.stdin.readlines()
+    rows = read_rows(lines, prefer_pairs)
+    # pbrt-v4's time column says what it took; its errors are already
+    # scaled to the budget: it belongs to the Lantern rows' budget before it.
+    budget, keyed = None, []
+    for scene, t, peer, renderer, rel, mse in rows:
+        if t is not None:
+            budget = t
+        keyed.append(((scene, budget), peer, renderer, rel, mse))
+    groups = {}
+    for key, peer, renderer, rel, mse in keyed:
+        groups.setdefault(key, {}).setdefault(peer, []).append((renderer, rel, mse))
+    print("| scene | time (s) | Lantern's least relMSE (run) | / pbrt-v4's | / Cycles' "
+          "| Lantern's least MSE (run) | / pbrt-v4's | / Cycles' |")
+    print("|---|---|---|---|---|---|---|---|")
+    for (scene, t), peers in groups.items():
+        if "Lantern" not in peers:
+            continue
+        out = [scene, t]
+        for k in (1, 2):
+            run, best = min(((r[0], r[k]) for r in peers["Lantern"]), key=lambda x: x[1])
+            out.append("%.3g (%s)" % (best, run.replace("Lantern ", "")))
+            for peer in ("pbrt-v4", "Cycles"):
+                theirs = min((r[k] for r in peers.get(peer, [])), default=None)
+                out.append("%.2g" % (best / theirs) if theirs else "")
+        print("| " + " | ".join(out) + " |")
+
+
+main()
