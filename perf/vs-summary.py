@@ -48,14 +48,11 @@ def main():
     rows = read_rows(lines, prefer_pairs)
     # pbrt-v4's time column says what it took; its errors are already
     # scaled to the budget: it belongs to the Lantern rows' budget before it.
-    budget, keyed = None, []
+    budget, groups = None, {}
     for scene, t, peer, renderer, rel, mse in rows:
         if t is not None:
             budget = t
-        keyed.append(((scene, budget), peer, renderer, rel, mse))
-    groups = {}
-    for key, peer, renderer, rel, mse in keyed:
-        groups.setdefault(key, {}).setdefault(peer, []).append((renderer, rel, mse))
+        groups.setdefault((scene, budget), {}).setdefault(peer, []).append((renderer, rel, mse))
     print("| scene | time (s) | Lantern's least relMSE (run) | / pbrt-v4's | / Cycles' "
           "| Lantern's least MSE (run) | / pbrt-v4's | / Cycles' |")
     print("|---|---|---|---|---|---|---|---|")

@@ -188,7 +188,6 @@ def spot_light(ctm, params):
     light.spot_size = math.radians(2 * cone)
     c_end, c_start = math.cos(math.radians(cone)), math.cos(math.radians(max(0.0, cone - delta)))
     light.spot_blend = min(1.0, max(0.0, (c_start - c_end) / (1 - c_end))) if c_end < 1 else 0.0
-    light.cycles.max_bounces = 1024
     return frm, (to - frm).normalized(), light
 
 
