@@ -142,8 +142,8 @@ expect_run(NAME light-subpaths-zero-render EXIT 0 ARGS render ${SRC}/scenes/corn
            --light-subpaths 0 --spp 1 --resolution 8 8 --quiet -o ${OUT}/light-subpaths-zero.exr)
 expect_run(NAME light-subpaths-zero-header EXIT 0 MATCH "lantern:light_subpath_rate 0([^.0-9]|$)" ARGS info
            ${OUT}/light-subpaths-zero.exr)
-expect_run(NAME light-subpaths-zero-refused EXIT 1 MATCH "the scene has a spot light" ARGS render
-           ${SRC}/scenes/spotlit-room.pbrt --integrator bdpt --light-subpaths 0 --spp 1 --resolution 8 8 -o
+expect_run(NAME light-subpaths-zero-refused EXIT 1 MATCH "the scene has a spot light and a dielectric" ARGS render
+           ${SRC}/scenes/prism.pbrt --integrator bdpt --light-subpaths 0 --spp 1 --resolution 8 8 -o
            ${OUT}/light-subpaths-refused.exr)
 expect_run(NAME light-subpaths-render EXIT 0 ARGS render ${SRC}/scenes/cornell-box.pbrt --integrator bdpt --light-subpaths 0.5
            --spp 1 --resolution 8 8 --quiet -o ${OUT}/light-subpaths.exr)

@@ -9,6 +9,7 @@
 #include "integrator/path_wave.h"
 #include "integrator/pilot.h"
 #include "light/light_sampler.h"
+#include "material/may_be_specular.h"
 #include "math/rng.h"
 #include "scene/scene.h"
 
@@ -25,8 +26,13 @@ std::string why_not_eye_subpaths_alone(const Scene& scene, const RenderOptions& 
   const LightPools& lights = scene.lights;
   if (opt.integrator != Integrator::Bdpt) return std::string("the integrator is ") + name(opt.integrator) + ", not bdpt";
   if (!lights.point.empty() || !lights.spot.empty() || !lights.distant.empty())
-    return std::string("the scene has a ") + (!lights.point.empty() ? "point" : !lights.spot.empty() ? "spot" : "distant") +
-           " light, whose light only light subpaths carry through glass or mirrors";
+    if (const std::string kind = kind_that_may_be_specular(scene.materials, scene.textures); !kind.empty())
+      return std::string("the scene has a ") +
+             (!lights.point.empty()  ? "point"
+              : !lights.spot.empty() ? "spot"
+                                     : "distant") +
+             " light and a " + kind +
+             " material that may be smooth, and only light subpaths carry that light through it";
   if (opt.strategies) return "per-strategy images need light subpaths";
   if (opt.debug_unit_mis_weights) return "unit MIS weights are bdpt's own";
   if (opt.guide_light_subpaths) return "guided light subpaths (--guide-light) need light subpaths";

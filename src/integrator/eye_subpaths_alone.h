@@ -40,9 +40,10 @@ class LightSampler;
 struct Scene;
 
 // Whether a bdpt render may run with the eye subpaths alone: they must
-// reach every light (no point, spot or distant light, whose light only
-// light subpaths carry through glass or mirrors), so that they render the
-// same image, and nothing be asked of bdpt that the path tracer does not do
+// reach all the light: no point, spot or distant light where a material
+// may be specular (material/may_be_specular.h), since only light subpaths
+// carry their light through glass or off mirrors. So they render the same
+// image, and nothing be asked of bdpt that the path tracer does not do
 // (per-strategy images, unit weights, guided light subpaths, the balance
 // heuristic).
 bool may_render_eye_subpaths_alone(const Scene& scene, const RenderOptions& opt);

@@ -17,6 +17,13 @@
 
 namespace lantern {
 
+// Bounds on the values a float texture can take anywhere (texture_range.cpp);
+// infinite where nothing bounds them.
+struct ValueRange {
+  float lo = -kInfinity, hi = kInfinity;
+  bool contains(float v) const { return lo <= v && v <= hi; }
+};
+
 // A float parameter and a colour parameter are distinct types, as pbrt-v4's
 // FloatTexture and SpectrumTexture are: a float is never turned into a
 // spectrum, and a colour is never read as one of its channels.
@@ -83,6 +90,11 @@ struct TexturePools {
   float evaluate_float(const FloatTextureRef& t, const TextureContext& c) const {
     return t.node < 0 ? t.value : evaluate_node(nodes[size_t(t.node)], c)[0];
   }
+  // Bounds on what the float texture evaluates to, for the questions a
+  // scene asks before it renders (can this roughness reach 0?). Wide where
+  // a kind's values are not bounded by its parameters: images, bilerp,
+  // fbm and windy.
+  ValueRange range(const FloatTextureRef& t) const;
   float image_mean(int32_t image) const { return images[size_t(image)].mean; }
   // Reflectances are clamped to [0, 1], as pbrt-v4's materials do.
   RGB evaluate_reflectance(const RGBTextureRef& t, const TextureContext& c) const {
@@ -102,6 +114,8 @@ struct TexturePools {
 
  private:
   RGB evaluate_node(const TextureNode& n, const TextureContext& c) const;
+  ValueRange range(const RGBTextureRef& t) const;  // (over the channels)
+  ValueRange range_of_node(const TextureNode& n) const;
   Spectrum blend_albedo(float w, const RGBTextureRef& a, const RGBTextureRef& b, const TextureContext& c,
                         const SampledWavelengths& l) const;
 };

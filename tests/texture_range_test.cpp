@@ -1,0 +1,180 @@
+// Bounds on float textures (TexturePools::range) against the values the
+// textures take at random points, directions and footprints, and against
+// closed forms; and which materials may be specular
+// (material/may_be_specular.h), the question the bounds answer.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "lantern/render.h"
+#include "material/may_be_specular.h"
+#include "math/rng.h"
+#include "scene/scene.h"
+
+namespace lantern {
+namespace {
+
+// A scene whose conductors take, in order, each given float texture (or
+// value) as their roughness: "texture roughness" "name" or "float roughness" [v].
+std::shared_ptr<Scene> roughness_scene(const std::string& textures, const std::vector<std::string>& roughness) {
+  std::string text = "WorldBegin\n" + textures + "\n";
+  for (const std::string& r : roughness)
+    text += "Material \"conductor\" " + r + "\nShape \"sphere\" \"float radius\" [ 0.1 ]\n";
+  return load_scene_from_string(text, "range.pbrt", {});
+}
+
+const FloatTextureRef& roughness_of(const Scene& s, size_t i) { return s.materials.conductor.at(i).roughness.u; }
+
+const char* const kTextures = R"(
+Texture "checks" "float" "checkerboard" "float uscale" [ 7 ] "float vscale" [ 3 ] "float tex1" [ 0.02 ] "float tex2" [ 0.25 ]
+Texture "checks3d" "float" "checkerboard" "integer dimension" [ 3 ] "float tex1" [ -1 ] "float tex2" [ 2 ]
+Texture "dots" "float" "dots" "float uscale" [ 5 ] "float vscale" [ 5 ] "float inside" [ 0.7 ] "float outside" [ 0.1 ]
+Texture "wear" "float" "wrinkled" "integer octaves" [ 4 ]
+Texture "worn" "float" "mix" "float tex1" [ 0.03 ] "float tex2" [ 0.2 ] "texture amount" "wear"
+Texture "signed" "float" "scale" "texture tex" "checks3d" "float scale" [ -0.5 ]
+Texture "scaledwear" "float" "scale" "texture tex" "wear" "texture scale" "dots"
+Texture "facing" "float" "directionmix" "float tex1" [ 0.4 ] "float tex2" [ 0.9 ] "vector3 dir" [ 0 0 1 ]
+Texture "blend" "float" "mix" "texture tex1" "checks" "texture tex2" "dots" "texture amount" "checks"
+Texture "noise" "float" "fbm"
+Texture "gust" "float" "windy"
+Texture "negwear" "float" "wrinkled" "float roughness" [ -0.5 ]
+Texture "noisemix" "float" "mix" "texture tex1" "noise" "float tex2" [ 0.5 ] "float amount" [ 0.3 ]
+)";
+const char* const kNames[] = {"checks", "checks3d", "dots",  "wear", "worn",    "signed",  "scaledwear",
+                              "facing", "blend",    "noise", "gust", "negwear", "noisemix"};
+
+std::shared_ptr<Scene> named_textures() {
+  std::vector<std::string> r;
+  for (const char* n : kNames) r.push_back(std::string("\"texture roughness\" \"") + n + "\"");
+  return roughness_scene(kTextures, r);
+}
+
+// Each texture at 40,000 random points, normals, (u, v) and footprints
+// stays within its bounds (up to the blend's rounding), and the finite
+// bounds are reached to within a tenth of their width: they are the
+// closed forms, not merely bounds.
+TEST(TextureRange, ValuesStayWithinTheBoundsAndReachThem) {
+  const auto s = named_textures();
+  RandomStream rng = RandomStream::make(11, 12, 13);
+  for (size_t t = 0; t < std::size(kNames); ++t) {
+    const FloatTextureRef& ref = roughness_of(*s, t);
+    const ValueRange r = s->textures.range(ref);
+    float lo = kInfinity, hi = -kInfinity;
+    for (int i = 0; i < 40000; ++i) {
+      Footprint fp;
+      const float f = i % 2 ? 0.f : 0.05f * rng.get1d();  // (filtered and point lookups)
+      fp.duvdx = Vec2(f, 0.f);
+      fp.duvdy = Vec2(0.f, f);
+      fp.dpdx = Vec3(f, 0.f, 0.f);
+      fp.dpdy = Vec3(0.f, f, 0.f);
+      const Vec3 n = glm::normalize(Vec3(rng.get1d() - 0.5f, rng.get1d() - 0.5f, rng.get1d() - 0.5f));
+      const TextureContext c{10.f * Vec3(rng.get1d(), rng.get1d(), rng.get1d()), n,
+                             4.f * Vec2(rng.get1d(), rng.get1d()), &fp};
+      const float v = s->textures.evaluate_float(ref, c);
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+      ASSERT_TRUE(v >= r.lo - 1e-6f && v <= r.hi + 1e-6f)
+          << kNames[t] << ": " << v << " outside [" << r.lo << ", " << r.hi << "]";
+    }
+    if (std::isfinite(r.lo) && std::isfinite(r.hi)) {
+      EXPECT_LE(lo, r.lo + 0.1f * (r.hi - r.lo)) << kNames[t];
+      EXPECT_GE(hi, r.hi - 0.1f * (r.hi - r.lo)) << kNames[t];
+    }
+  }
+}
+
+// The bounds by kind: patterns hull their two values, scale multiplies
+// bounds, mix blends them (by an amount bounded on one side only, for a
+// wrinkled one), the signed noises and a wrinkled texture of negative
+// roughness are unbounded.
+TEST(TextureRange, BoundsByKind) {
+  const auto s = named_textures();
+  const auto range = [&](const char* name) {
+    for (size_t t = 0; t < std::size(kNames); ++t)
+      if (std::string(kNames[t]) == name) return s->textures.range(roughness_of(*s, t));
+    ADD_FAILURE() << name;
+    return ValueRange{};
+  };
+  const auto expect = [&](const char* name, float lo, float hi) {
+    const ValueRange r = range(name);
+    EXPECT_FLOAT_EQ(r.lo, lo) << name;
+    EXPECT_FLOAT_EQ(r.hi, hi) << name;
+  };
+  expect("checks", 0.02f, 0.25f);
+  expect("checks3d", -1.f, 2.f);
+  expect("dots", 0.1f, 0.7f);
+  expect("wear", 0.f, kInfinity);
+  expect("worn", 0.03f, kInfinity);
+  expect("signed", -1.f, 0.5f);
+  expect("scaledwear", 0.f, kInfinity);
+  expect("facing", 0.4f, 0.9f);
+  expect("blend", 0.02f + 0.02f * 0.08f, 0.25f + 0.25f * 0.45f);  // (tex1 + amount (tex2 - tex1))
+  for (const char* wide : {"noise", "gust", "negwear", "noisemix"}) expect(wide, -kInfinity, kInfinity);
+}
+
+struct SpecularCase {
+  const char* material;
+  bool specular;
+};
+
+// Which materials may scatter through a delta lobe: pbrt-v4's
+// effectively smooth distributions (alpha below 1e-3, after the square
+// root that remaproughness takes), an index of 1, a thin dielectric, a
+// mirror, a smooth coat or a smooth conductor under one, either side of a
+// mix; a textured roughness by its bounds.
+TEST(MayBeSpecular, FollowsTheRoughnessBounds) {
+  const SpecularCase cases[] = {
+      {R"("diffuse")", false},
+      {R"("conductor" "float roughness" [ 0 ])", true},
+      {R"("conductor" "float roughness" [ 0.01 ])", false},
+      {R"("conductor" "float roughness" [ 0.0000009 ])", true},
+      {R"("conductor" "float roughness" [ 0.0005 ] "bool remaproughness" false)", true},
+      {R"("conductor" "float roughness" [ 0.002 ] "bool remaproughness" false)", false},
+      {R"("conductor" "float uroughness" [ 0.2 ] "float vroughness" [ 0 ])", false},
+      {R"("conductor" "texture roughness" "checks")", false},
+      {R"("conductor" "texture roughness" "checks0")", true},
+      {R"("conductor" "texture roughness" "worn")", false},
+      {R"("conductor" "texture roughness" "noise")", true},
+      {R"("mirror")", true},
+      {R"("dielectric" "float roughness" [ 0.1 ])", false},
+      {R"("dielectric" "float roughness" [ 0.1 ] "float eta" [ 1 ])", true},
+      {R"("dielectric")", true},
+      {R"("thindielectric")", true},
+      {R"("coateddiffuse")", true},
+      {R"("coateddiffuse" "float roughness" [ 0.1 ])", false},
+      {R"("coatedconductor" "float interface.roughness" [ 0.1 ])", true},
+      {R"("coatedconductor" "float interface.roughness" [ 0.1 ] "float conductor.roughness" [ 0.1 ])", false},
+      {R"("diffusetransmission")", false},
+      {R"("hair")", false},
+  };
+  const std::string textures = R"(
+Texture "checks" "float" "checkerboard" "float tex1" [ 0.02 ] "float tex2" [ 0.25 ]
+Texture "checks0" "float" "checkerboard" "float tex1" [ 0 ] "float tex2" [ 0.25 ]
+Texture "wear" "float" "wrinkled"
+Texture "worn" "float" "mix" "float tex1" [ 0.03 ] "float tex2" [ 0.2 ] "texture amount" "wear"
+Texture "noise" "float" "fbm"
+)";
+  for (const SpecularCase& c : cases) {
+    const auto s = load_scene_from_string("WorldBegin\n" + textures + "MakeNamedMaterial \"m\" \"string type\" " +
+                                              c.material + "\nNamedMaterial \"m\"\nShape \"sphere\"\n",
+                                          "specular.pbrt", {});
+    EXPECT_EQ(!kind_that_may_be_specular(s->materials, s->textures).empty(), c.specular) << c.material;
+  }
+  // A mix is specular where either of its materials may be.
+  const auto mix = load_scene_from_string(R"(WorldBegin
+MakeNamedMaterial "rough" "string type" "conductor" "float roughness" [ 0.1 ]
+MakeNamedMaterial "smooth" "string type" "dielectric"
+MakeNamedMaterial "both" "string type" "mix" "string materials" [ "rough" "smooth" ] "float amount" [ 0.1 ]
+MakeNamedMaterial "rough2" "string type" "conductor" "float roughness" [ 0.2 ]
+MakeNamedMaterial "neither" "string type" "mix" "string materials" [ "rough" "rough2" ]
+)",
+                                          "mix.pbrt", {});
+  ASSERT_EQ(mix->materials.mix.size(), 2u);
+  EXPECT_TRUE(may_be_specular(mix->materials, mix->textures, MaterialHandle::make(MaterialKind::Mix, 0)));
+  EXPECT_FALSE(may_be_specular(mix->materials, mix->textures, MaterialHandle::make(MaterialKind::Mix, 1)));
+}
+
+}  // namespace
+}  // namespace lantern
