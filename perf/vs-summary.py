@@ -10,8 +10,12 @@ pairs' (PAIRS=1) where it has only those, or everywhere with --pairs. A
 pair sees no reference's noise, but it caps a rare bright sample: against
 the pair's mean a pixel's relative error is at most about 2, where against
 a converged image a caustic a path tracer found once counts in full.
+--robust takes relMSE from the robust column instead (against the
+references, without the 0.01% of pixels whose error is largest; MSE is
+unchanged). Columns are found by their headers, so tables of earlier
+versions of the script, without the robust column, read as before.
 
-    python3 perf/vs-summary.py [--pairs] /tmp/vs.txt
+    python3 perf/vs-summary.py [--pairs | --robust] /tmp/vs.txt
 """
 import sys
 
@@ -23,15 +27,30 @@ def number(text):
         return None
 
 
-def read_rows(lines, prefer_pairs):
-    rows = []
+def cells_of(line):
+    return [c.strip() for c in line.strip().strip("|").split("|")]
+
+
+def read_rows(lines, prefer):
+    rows, column = [], {}
     for line in lines:
-        cells = [c.strip() for c in line.strip().strip("|").split("|")]
-        if len(cells) < 6 or cells[0] in ("scene", "") or cells[0].startswith("---"):
+        cells = cells_of(line)
+        if cells[0] == "scene":
+            column = {name: k for k, name in enumerate(cells)}
             continue
-        rel, mse = number(cells[4]), number(cells[5])
-        if len(cells) >= 8 and number(cells[6]) is not None and (prefer_pairs or rel is None):
-            rel, mse = number(cells[6]), number(cells[7])
+        if len(cells) < 6 or not column or cells[0] == "" or cells[0].startswith("---"):
+            continue
+
+        def at(name):
+            k = column.get(name)
+            return number(cells[k]) if k is not None and k < len(cells) else None
+
+        rel, mse = at("relMSE"), at("MSE")
+        pair_rel, pair_mse = at("relMSE, seeds 7 and 8"), at("MSE, seeds 7 and 8")
+        if pair_rel is not None and (prefer == "pairs" or rel is None):
+            rel, mse = pair_rel, pair_mse
+        elif prefer == "robust" and at("robust relMSE") is not None:
+            rel = at("robust relMSE")
         if rel is None or mse is None:
             continue  # a failed run
         renderer = cells[1]
@@ -42,10 +61,10 @@ def read_rows(lines, prefer_pairs):
 
 def main():
     args = sys.argv[1:]
-    prefer_pairs = "--pairs" in args
-    args = [a for a in args if a != "--pairs"]
+    prefer = "pairs" if "--pairs" in args else "robust" if "--robust" in args else None
+    args = [a for a in args if a not in ("--pairs", "--robust")]
     lines = open(args[0]).readlines() if args else sys.stdin.readlines()
-    rows = read_rows(lines, prefer_pairs)
+    rows = read_rows(lines, prefer)
     # pbrt-v4's time column says what it took; its errors are already
     # scaled to the budget: it belongs to the Lantern rows' budget before it.
     budget, groups = None, {}
