@@ -6,8 +6,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <string>
+#include <unistd.h>
+#include <vector>
 
+#include "lantern/image.h"
 #include "lantern/render.h"
 #include "material/may_be_specular.h"
 #include "math/rng.h"
@@ -51,16 +55,16 @@ std::shared_ptr<Scene> named_textures() {
   return roughness_scene(kTextures, r);
 }
 
-// Each texture at 40,000 random points, normals, (u, v) and footprints
-// stays within its bounds (up to the blend's rounding), and the finite
-// bounds are reached to within a tenth of their width: they are the
-// closed forms, not merely bounds.
-TEST(TextureRange, ValuesStayWithinTheBoundsAndReachThem) {
-  const auto s = named_textures();
+// Evaluates each texture (the scene's conductors' roughness, in order) at
+// 40,000 random points, normals, (u, v) and footprints: every value stays
+// within its bounds (up to the blend's rounding), and finite bounds are
+// reached to within a tenth of their width, so they are the closed forms,
+// not merely bounds.
+void expect_values_within_bounds(const Scene& s, const std::vector<std::string>& names) {
   RandomStream rng = RandomStream::make(11, 12, 13);
-  for (size_t t = 0; t < std::size(kNames); ++t) {
-    const FloatTextureRef& ref = roughness_of(*s, t);
-    const ValueRange r = s->textures.range(ref);
+  for (size_t t = 0; t < names.size(); ++t) {
+    const FloatTextureRef& ref = roughness_of(s, t);
+    const ValueRange r = s.textures.range(ref);
     float lo = kInfinity, hi = -kInfinity;
     for (int i = 0; i < 40000; ++i) {
       Footprint fp;
@@ -70,19 +74,55 @@ TEST(TextureRange, ValuesStayWithinTheBoundsAndReachThem) {
       fp.dpdx = Vec3(f, 0.f, 0.f);
       fp.dpdy = Vec3(0.f, f, 0.f);
       const Vec3 n = glm::normalize(Vec3(rng.get1d() - 0.5f, rng.get1d() - 0.5f, rng.get1d() - 0.5f));
-      const TextureContext c{10.f * Vec3(rng.get1d(), rng.get1d(), rng.get1d()), n,
-                             4.f * Vec2(rng.get1d(), rng.get1d()), &fp};
-      const float v = s->textures.evaluate_float(ref, c);
+      const Vec3 p = 10.f * Vec3(rng.get1d(), rng.get1d(), rng.get1d());
+      const TextureContext c{p, n, 4.f * Vec2(rng.get1d(), rng.get1d()) - Vec2(1.f), &fp};
+      const float v = s.textures.evaluate_float(ref, c);
       lo = std::min(lo, v);
       hi = std::max(hi, v);
       ASSERT_TRUE(v >= r.lo - 1e-6f && v <= r.hi + 1e-6f)
-          << kNames[t] << ": " << v << " outside [" << r.lo << ", " << r.hi << "]";
+          << names[t] << ": " << v << " outside [" << r.lo << ", " << r.hi << "]";
     }
     if (std::isfinite(r.lo) && std::isfinite(r.hi)) {
-      EXPECT_LE(lo, r.lo + 0.1f * (r.hi - r.lo)) << kNames[t];
-      EXPECT_GE(hi, r.hi - 0.1f * (r.hi - r.lo)) << kNames[t];
+      EXPECT_LE(lo, r.lo + 0.1f * (r.hi - r.lo)) << names[t];
+      EXPECT_GE(hi, r.hi - 0.1f * (r.hi - r.lo)) << names[t];
     }
   }
+}
+
+TEST(TextureRange, ValuesStayWithinTheBoundsAndReachThem) {
+  expect_values_within_bounds(*named_textures(), std::vector<std::string>(std::begin(kNames), std::end(kNames)));
+}
+
+// An image held in memory spans its texels' channels (a float lookup reads
+// the mean of RGB, or the first channel with the point filter), with 0
+// where the black wrap reads outside it, scaled and inverted.
+TEST(TextureRange, ResidentImagesSpanTheirTexels) {
+  const std::string file = (std::filesystem::temp_directory_path() /
+                            ("lantern-range-" + std::to_string(::getpid()) + ".exr")).string();
+  write_image(file, Image{2, 2, {0.2f, 0.3f, 0.4f, 0.9f, 0.8f, 0.7f, 0.5f, 0.5f, 0.5f, 0.25f, 0.6f, 0.35f}}, {});
+  const std::string image = "\"float\" \"imagemap\" \"string filename\" \"" + file + "\"";
+  const std::vector<std::string> names = {"point", "black", "plain", "scaled", "inverted"};
+  const std::string point = " \"string filter\" \"point\"";
+  std::string textures;
+  const std::string params[] = {point, point + " \"string wrap\" \"black\"", "", " \"float scale\" [ -2 ]",
+                                " \"bool invert\" true"};
+  std::vector<std::string> materials;
+  for (size_t t = 0; t < names.size(); ++t) {
+    textures += "Texture \"" + names[t] + "\" " + image + params[t] + "\n";
+    materials.push_back("\"texture roughness\" \"" + names[t] + "\"");
+  }
+  const auto s = roughness_scene(textures, materials);
+  std::filesystem::remove(file);
+  ASSERT_EQ(s->textures.images.size(), 1u) << "resident";
+  const ValueRange expected[] = {{0.2f, 0.9f}, {0.f, 0.9f}, {0.2f, 0.9f}, {-1.8f, -0.4f}, {0.1f, 0.8f}};
+  for (size_t t = 0; t < names.size(); ++t) {
+    const ValueRange r = s->textures.range(roughness_of(*s, t));
+    EXPECT_NEAR(r.lo, expected[t].lo, 2e-3f) << names[t];  // (the file's half floats)
+    EXPECT_NEAR(r.hi, expected[t].hi, 2e-3f) << names[t];
+  }
+  // (bilinear lookups of the mean of RGB, from 0.3 to 0.8, reach neither
+  // bound; point lookups read the first channel, from 0.2 to 0.9)
+  expect_values_within_bounds(*s, {"point", "black"});
 }
 
 // The bounds by kind: patterns hull their two values, scale multiplies

@@ -183,6 +183,8 @@ TextureImage load_texture_image(const std::string& path, ColorEncoding encoding)
   img.texels.resize(size_t(spec.width) * size_t(spec.height));
   if (img.channels == 4) img.alpha.resize(img.texels.size());
   double sum = 0.0;
+  img.least = kInfinity;
+  img.greatest = -kInfinity;
   for (size_t i = 0; i < img.texels.size(); ++i) {
     const float* px = &data[i * size_t(nc)];
     RGB c = nc >= 3 ? RGB(decode(px[0]), decode(px[1]), decode(px[2])) : RGB(decode(px[0]));
@@ -193,6 +195,8 @@ TextureImage load_texture_image(const std::string& path, ColorEncoding encoding)
     sum += double(img.texels[i][0] + img.texels[i][1] + img.texels[i][2]) / 3.0;
     // pbrt-v4 decodes every channel of an integer file, alpha included.
     if (img.channels == 4) img.alpha[i] = glm::clamp(decode(px[3]), 0.f, 1.f);
+    img.least = std::min({img.least, min_component(img.texels[i]), img.channels == 4 ? img.alpha[i] : kInfinity});
+    img.greatest = std::max({img.greatest, max_component(img.texels[i]), img.channels == 4 ? img.alpha[i] : -kInfinity});
   }
   img.mean = float(sum / double(img.texels.size()));
   return img;

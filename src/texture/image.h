@@ -23,6 +23,9 @@ struct TextureImage {
   std::vector<float> alpha; // RGBA files only
   std::string filename;
   float mean = 0.f;         // of the texels over their channels (light power)
+  // Of any texel's channels and alpha, for TexturePools::range (as set by
+  // load_texture_image; empty, so unknown, otherwise).
+  float least = kInfinity, greatest = -kInfinity;
 
   // pbrt-v4's lookups: st with t = 0 at the top row. A float lookup reads a
   // grey file's value, the mean of RGB, or (filtered) an RGBA file's alpha.

@@ -92,8 +92,8 @@ struct TexturePools {
   }
   // Bounds on what the float texture evaluates to, for the questions a
   // scene asks before it renders (can this roughness reach 0?). Wide where
-  // a kind's values are not bounded by its parameters: images, bilerp,
-  // fbm and windy.
+  // a kind's values are not bounded by its parameters or held: images read
+  // through the cache, bilerp, fbm and windy.
   ValueRange range(const FloatTextureRef& t) const;
   float image_mean(int32_t image) const { return images[size_t(image)].mean; }
   // Reflectances are clamped to [0, 1], as pbrt-v4's materials do.

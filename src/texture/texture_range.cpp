@@ -1,8 +1,8 @@
 // Bounds on a float texture's values, by interval arithmetic over its tree:
 // each kind maps its children's bounds to its own. A kind whose values its
-// parameters do not bound (an image's texels, bilerp's unbounded
-// coordinates, the signed noises) is wide; so is anything that would need
-// 0 times infinity or infinity minus infinity.
+// parameters do not bound (an image read through the cache, bilerp's
+// unbounded coordinates, the signed noises) is wide; so is anything that
+// would need 0 times infinity or infinity minus infinity.
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
@@ -47,6 +47,22 @@ ValueRange blend(const ValueRange& w, const ValueRange& a, const ValueRange& b) 
                        at(w.hi, a.lo, b.lo), at(w.hi, a.lo, b.hi), at(w.hi, a.hi, b.lo), at(w.hi, a.hi, b.hi)});
 }
 
+// A resident image's values (its texels' channels and alpha, which its
+// lookups interpolate), scaled and inverted as texture.cpp's image_value
+// does; 0 too where a "black" wrap reads it outside the image. (A lookup
+// more than a billion texels out reads 0 whatever the wrap: a measure of
+// nothing.) An image read through the cache is wide: its texels are not
+// held.
+ValueRange image_range(const TexturePools& pools, const TextureNode& n) {
+  if (n.image < 0) return kWide;
+  const TextureImage& img = pools.images[size_t(n.image)];
+  ValueRange r{img.least, img.greatest};
+  if (!(r.lo <= r.hi)) return kWide;  // (an image made otherwise than by loading one)
+  if (n.wrap == WrapMode::Black) r = hull(r, {0.f, 0.f});
+  r = product(r, {n.scale, n.scale});
+  return n.invert ? ValueRange{std::max(0.f, 1.f - r.hi), std::max(0.f, 1.f - r.lo)} : r;
+}
+
 }  // namespace
 
 ValueRange TexturePools::range(const FloatTextureRef& t) const {
@@ -74,6 +90,7 @@ ValueRange TexturePools::range_of_node(const TextureNode& n) const {
     case TextureKind::Marble:
       return unit;  // (clamped)
     case TextureKind::Image:
+      return image_range(*this, n);
     case TextureKind::Bilerp:
     case TextureKind::FBm:
     case TextureKind::Windy:
