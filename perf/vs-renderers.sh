@@ -17,7 +17,8 @@
 #
 # Each renderer runs its path tracer and bdpt, and also the scene's own
 # integrator where it is another (sppm: Lantern's vcm and pbrt-v4's sppm);
-# pbrt-v4's path tracer is its volpath where the scene has media. LANTERN_EXTRA
+# pbrt-v4's path tracer is its volpath where the scene has media, and its
+# sppm, which ignores media, is not run there (a row says so). LANTERN_EXTRA
 # adds Lantern runs, each an integrator with options joined by commas
 # (LANTERN_EXTRA="path,--guide bdpt,--guide").
 #
@@ -166,6 +167,12 @@ for s in $scenes; do
     done
     if [ -n "${PBRT:-}" ]; then
       for i in $pruns; do
+        # pbrt-v4's sppm passes through medium boundaries and never samples
+        # a medium: its image would be another scene's
+        if [ "$i" = sppm ] && grep -q MakeNamedMedium "scenes/$s.pbrt"; then
+          row "$s" "pbrt-v4 $i" "" "(not run: pbrt-v4's sppm ignores participating media)" "" ""
+          continue
+        fi
         scene_for "scenes/$s.pbrt" "$w" "$h" "$i" "$tmp/$s-$i.pbrt"
         pref="$cache/pbrt-$s-$w-$h-$i.exr"
         # a scene pbrt-v4 refuses (its bdpt takes perspective cameras only)
