@@ -8,18 +8,34 @@
 # environment lights use: LookAt, Scale, Translate, Rotate, Camera
 # "perspective" (fov), Film resolution, Integrator maxdepth, Attribute
 # blocks, ReverseOrientation, named and inline materials (diffuse,
-# conductor, coateddiffuse, dielectric), AreaLightSource "diffuse",
+# conductor, coateddiffuse, dielectric, interface), AreaLightSource "diffuse",
 # LightSource "infinite" (a constant colour) and "spot", Shape "trianglemesh" and
-# "sphere". Anything else stops it with the file's line. Materials are
+# "sphere", and media (MakeNamedMedium "homogeneous" and "uniformgrid",
+# MediumInterface; below). Anything else stops it with the file's line. Materials are
 # approximated by Cycles' closures (a conductor as a GGX glossy of a copper
 # or grey colour); each renderer's error is measured against its own
 # converged image, so what matters is that the light has the same paths to
 # find, not that the images match.
 #
+# Media: the camera's medium fills Blender's world volume; a shape whose
+# inside is another medium carries that medium as its material's volume
+# (Cycles enters it through the shape's front face, as pbrt does through
+# its normal's back side), and a uniformgrid becomes a Volume object read
+# from an OpenVDB file written here (Debian's python3-openvdb; the grid's
+# samples at its voxels' centres, interpolated linearly as pbrt-v4's
+# SampledGrid is). sigma_a and sigma_s are Cycles' absorption and
+# scattering densities (Volume Absorption of colour 1 - sigma_a / max,
+# Volume Scatter of colour sigma_s / max, Henyey-Greenstein g alike). Where
+# a shape's inside is vacuum in the camera's medium (the glass ball of the
+# volumetric caustic), Cycles' world volume fills the inside too: its
+# volumes add up and none subtracts.
+#
 # Emission: a surface emission shader of strength 1 and colour L, and a
 # background of strength 1 and colour L, appear with value L, as pbrt's
 # radiance L does; pbrt's area lights emit on the side of their normal only.
+import glob
 import math
+import os
 import re
 import sys
 import time
@@ -118,6 +134,8 @@ def material_node_tree(mat, kind, params):
         b = nt.nodes.new("ShaderNodeBsdfGlass")
         b.inputs["IOR"].default_value = nums(params, "eta", [1.5])[0]
         b.inputs["Roughness"].default_value = 0.0
+    elif kind == "interface":
+        b = None  # no surface: the material is its volume alone
     elif kind == "coateddiffuse":
         b = nt.nodes.new("ShaderNodeBsdfPrincipled")
         b.inputs["Base Color"].default_value = nums(params, "reflectance", [0.5] * 3) + [1]
@@ -130,11 +148,94 @@ def material_node_tree(mat, kind, params):
     return nt, b, out
 
 
-def make_material(state, name_hint):
+def volume_shader(nt, params, density_socket=None):
+    """pbrt-v4's homogeneous coefficients (times a grid's density, from
+    density_socket, if given) as Cycles' absorption plus scattering."""
+    scale = nums(params, "scale", [1.0])[0]
+    sa = [v * scale for v in nums(params, "sigma_a", [1.0, 1.0, 1.0])]
+    ss = [v * scale for v in nums(params, "sigma_s", [1.0, 1.0, 1.0])]
+    if "Le" in params or "Lescale" in params:
+        fail("emissive media are not built")
+    add = nt.nodes.new("ShaderNodeAddShader")
+    for k, (sigma, node_type) in enumerate(((sa, "ShaderNodeVolumeAbsorption"), (ss, "ShaderNodeVolumeScatter"))):
+        node = nt.nodes.new(node_type)
+        top = max(sigma)
+        colour = [(1 - c / top) if node_type.endswith("Absorption") else c / top for c in sigma] if top > 0 else [0.0] * 3
+        node.inputs["Color"].default_value = colour + [1]
+        if node_type.endswith("Scatter"):
+            node.inputs["Anisotropy"].default_value = nums(params, "g", [0.0])[0]
+        if density_socket is None:
+            node.inputs["Density"].default_value = top
+        else:
+            mul = nt.nodes.new("ShaderNodeMath")
+            mul.operation = "MULTIPLY"
+            mul.inputs[1].default_value = top
+            nt.links.new(density_socket, mul.inputs[0])
+            nt.links.new(mul.outputs[0], node.inputs["Density"])
+        nt.links.new(node.outputs[0], add.inputs[k])
+    return add.outputs[0]
+
+
+def medium_params(media, name, where):
+    if name not in media:
+        fail('%s: medium "%s" is not defined' % (where, name))
+    kind, params, ctm = media[name]
+    if kind != "homogeneous":
+        fail('%s: a %s medium as a shape\'s inside or the camera\'s is not built (homogeneous only; a uniformgrid '
+             'inside an "interface" shape is)' % (where, kind))
+    return params
+
+
+def grid_volume(name, params, ctm, vdb_path):
+    """A uniformgrid medium as a Blender Volume object read from a VDB file."""
+    import numpy
+    try:
+        import pyopenvdb
+    except ImportError:
+        fail("a uniformgrid medium needs OpenVDB's Python module (Debian: python3-openvdb)")
+    n = [int(nums(params, k, [1])[0]) for k in ("nx", "ny", "nz")]
+    d = nums(params, "density")
+    if d is None or len(d) != n[0] * n[1] * n[2]:
+        fail('uniformgrid "%s": "density" needs nx * ny * nz values' % name)
+    p0, p1 = [mathutils.Vector(nums(params, k, dflt)) for k, dflt in (("p0", [0.0] * 3), ("p1", [1.0] * 3))]
+    # pbrt-v4 stores x fastest, then y, then z: values[(z * ny + y) * nx + x]
+    a = numpy.array(d, dtype=numpy.float32).reshape(n[2], n[1], n[0]).transpose(2, 1, 0).copy()
+    grid = pyopenvdb.FloatGrid()
+    grid.copyFromArray(a)
+    grid.name = "density"
+    voxel = [(p1[k] - p0[k]) / n[k] for k in range(3)]
+    # index (i, j, k) -> p0 + (index + 1/2) * voxel, then the medium's
+    # transform; OpenVDB's matrices act on row vectors
+    index_to_medium = mathutils.Matrix.Translation(p0 + 0.5 * mathutils.Vector(voxel)) @ mathutils.Matrix.Diagonal(voxel + [1.0])
+    m = ctm @ index_to_medium
+    grid.transform = pyopenvdb.createLinearTransform([[m[c][r] for c in range(4)] for r in range(4)])
+    pyopenvdb.write(vdb_path, grids=[grid])
+    vol = bpy.data.volumes.new(name)
+    vol.filepath = vdb_path
+    ob = bpy.data.objects.new(name, vol)
+    mat = bpy.data.materials.new(name)
+    mat.use_nodes = True
+    nt = mat.node_tree
+    nt.nodes.clear()
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    attr = nt.nodes.new("ShaderNodeAttribute")
+    attr.attribute_name = "density"
+    nt.links.new(volume_shader(nt, params, attr.outputs["Fac"]), out.inputs["Volume"])
+    ob.data.materials.append(mat)
+    return ob
+
+
+def make_material(state, name_hint, inside=None):
     kind, params = state["material"]
     mat = bpy.data.materials.new(name_hint)
     mat.use_nodes = True
     nt, bsdf, out = material_node_tree(mat, kind, params)
+    if inside is not None:
+        nt.links.new(volume_shader(nt, inside), out.inputs["Volume"])
+    if bsdf is None:
+        if state["area"] is not None:
+            fail('an area light with the "interface" material is not built')
+        return mat
     shader = bsdf.outputs[0]
     if state["area"] is not None:
         L = state["area"]
@@ -196,8 +297,9 @@ def build(path, opts):
     scene = bpy.context.scene
     ctm = mathutils.Matrix.Identity(4)
     camera_from_world, fov, res, maxdepth = None, 90.0, [640, 480], 5
-    state = {"material": ("diffuse", {}), "area": None, "reverse": False}
+    state = {"material": ("diffuse", {}), "area": None, "reverse": False, "inside": "", "outside": ""}
     stack, named, background, meshes, spots = [], {}, None, [], []
+    media, camera_medium, volumes = {}, "", {}
     for name, args, params, line in parse(path):
         where = "%s:%d" % (path, line)
         if name == "LookAt":
@@ -212,6 +314,7 @@ def build(path, opts):
             if args[0] != "perspective":
                 fail("%s: camera %s is not built" % (where, args[0]))
             camera_from_world, fov = ctm.copy(), nums(params, "fov", [90.0])[0]
+            camera_medium = state["outside"]  # pbrt-v4: the current outside medium
         elif name == "Film":
             res = [int(nums(params, "xresolution", [1280])[0]), int(nums(params, "yresolution", [720])[0])]
         elif name == "Integrator":
@@ -224,6 +327,11 @@ def build(path, opts):
             stack.append((ctm.copy(), dict(state)))
         elif name == "AttributeEnd":
             ctm, state = stack.pop()
+        elif name == "MakeNamedMedium":
+            media[args[0]] = (params.get("type", ("", [""]))[1][0], params, ctm.copy())
+        elif name == "MediumInterface":
+            state["inside"] = args[0] if args else ""
+            state["outside"] = args[1] if len(args) > 1 else state["inside"]
         elif name == "ReverseOrientation":
             state["reverse"] = not state["reverse"]
         elif name == "MakeNamedMaterial":
@@ -244,6 +352,14 @@ def build(path, opts):
             else:
                 fail("%s: light %s is not built (area, spot and constant infinite lights only)" % (where, args[0]))
         elif name == "Shape":
+            ins = state["inside"]
+            inside = None
+            if ins != state["outside"] and ins not in ("", camera_medium):
+                if ins in media and media[ins][0] == "uniformgrid" and state["material"][0] == "interface":
+                    if ins not in volumes:  # the grid bounds itself: its interface shape is not needed
+                        volumes[ins] = grid_volume(ins, media[ins][1], media[ins][2], opts["vdb"] % len(volumes))
+                    continue
+                inside = medium_params(media, ins, where)
             if args[0] == "trianglemesh":
                 P = nums(params, "P")
                 idx = [int(v) for v in nums(params, "indices")]
@@ -251,7 +367,7 @@ def build(path, opts):
                 flip = state["reverse"] != (ctm.to_3x3().determinant() < 0)
                 faces = [(idx[3 * k], idx[3 * k + 2], idx[3 * k + 1]) if flip else tuple(idx[3 * k:3 * k + 3])
                          for k in range(len(idx) // 3)]
-                meshes.append((verts, faces, make_material(state, "m%d" % len(meshes))))
+                meshes.append((verts, faces, make_material(state, "m%d" % len(meshes), inside)))
             elif args[0] == "sphere":
                 r = nums(params, "radius", [1.0])[0]
                 verts, faces = [], []
@@ -267,7 +383,7 @@ def build(path, opts):
                         a, b = j * seg + k, j * seg + (k + 1) % seg
                         c, d = a + seg, b + seg
                         faces.append((a, c, d, b) if not state["reverse"] else (a, b, d, c))
-                meshes.append((verts, faces, make_material(state, "m%d" % len(meshes))))
+                meshes.append((verts, faces, make_material(state, "m%d" % len(meshes), inside)))
             else:
                 fail("%s: shape %s is not built" % (where, args[0]))
         else:
@@ -293,6 +409,10 @@ def build(path, opts):
         # a Blender spot shines down its local -z
         ob.matrix_world = mathutils.Matrix.Translation(position) @ direction.to_track_quat("-Z", "Y").to_matrix().to_4x4()
         scene.collection.objects.link(ob)
+    for ob in volumes.values():
+        if mirror is not None:
+            ob.matrix_world = mirror
+        scene.collection.objects.link(ob)
     cam = bpy.data.cameras.new("camera")
     w, h = opts.get("resolution") or res
     cam.sensor_fit = "VERTICAL" if w >= h else "HORIZONTAL"
@@ -310,6 +430,9 @@ def build(path, opts):
     bg = world.node_tree.nodes["Background"]
     bg.inputs["Color"].default_value = (background or [0.0, 0.0, 0.0]) + [1]
     bg.inputs["Strength"].default_value = 1.0
+    if camera_medium:
+        out = world.node_tree.nodes["World Output"]
+        world.node_tree.links.new(volume_shader(world.node_tree, medium_params(media, camera_medium, path)), out.inputs["Volume"])
     scene.world = world
     return w, h, maxdepth
 
@@ -333,6 +456,7 @@ def main():
             i += 1
         else:
             fail("unknown option " + a)
+    opts["vdb"] = out + ".grid%d.vdb"  # a uniformgrid's file, removed after the render
     w, h, maxdepth = build(path, opts)
     scene = bpy.context.scene
     scene.render.engine = "CYCLES"
@@ -346,8 +470,8 @@ def main():
     c.filter_width = 1.0
     c.use_denoising = False
     c.seed = int(opts.get("seed", 0))
-    c.max_bounces = c.diffuse_bounces = c.glossy_bounces = c.transmission_bounces = maxdepth
-    c.transparent_max_bounces = 0
+    c.max_bounces = c.diffuse_bounces = c.glossy_bounces = c.transmission_bounces = c.volume_bounces = maxdepth
+    c.transparent_max_bounces = maxdepth  # (a shape of the "interface" material is a transparent one to Cycles)
     c.sample_clamp_direct = c.sample_clamp_indirect = 0.0
     c.blur_glossy = 0.0
     c.caustics_reflective = c.caustics_refractive = True
@@ -372,7 +496,11 @@ def main():
     scene.render.image_settings.color_depth = "32"
     scene.render.filepath = out
     t0 = time.time()
-    bpy.ops.render.render(write_still=True)
+    try:
+        bpy.ops.render.render(write_still=True)
+    finally:
+        for f in glob.glob(glob.escape(out) + ".grid*.vdb"):
+            os.remove(f)
     print("scene_to_cycles.py: %s: %dx%d, %.2f s render" % (out, w, h, time.time() - t0))
 
 
