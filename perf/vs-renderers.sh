@@ -1,7 +1,9 @@
 #!/bin/sh
 # Error at equal time against other renderers: Lantern, pbrt-v4 and
 # Blender's Cycles (CPU; path tracing with its adaptive
-# sampling, and with its path guiding where the build has it) on shipped
+# sampling, without it, and with its path guiding where the build has it:
+# its adaptive sampling, aiming at a low noise threshold to use the whole
+# budget, can leave more error than uniform sampling) on shipped
 # scenes, each renderer's relMSE and MSE against its own converged image of
 # the same scene, so that no renderer is charged for another's small
 # differences of model. Prints a Markdown table (perf/vs-summary.py reduces
@@ -209,12 +211,13 @@ for s in $scenes; do
         row "$s" Cycles "$t" "(failed: $(grep scene_to_cycles "$tmp/clog" | tail -n 1))" "" ""
         continue
       fi
-      variants=cycles
+      variants="cycles cycles-uniform"
       "$blender" -b --factory-startup --python-expr \
         'import sys, _cycles; sys.exit(0 if getattr(_cycles, "with_path_guiding", False) else 1)' \
-        > /dev/null 2>&1 && variants="cycles cycles+guiding"
+        > /dev/null 2>&1 && variants="$variants cycles+guiding"
       for v in $variants; do
-        flags=""; [ $v = cycles+guiding ] && flags="--guiding"
+        case $v in cycles+guiding) flags="--guiding" name="Cycles, guided" ;;
+          cycles-uniform) flags="--no-adaptive" name="Cycles, uniform" ;; *) flags="" name=Cycles ;; esac
         rm -f "$tmp/c.exr" "$tmp/c8.exr"  # (Blender's exit status alone does not say it wrote one)
         # shellcheck disable=SC2086 # flags holds zero or one word
         if "$blender" -b --factory-startup -P "$here/cycles/scene_to_cycles.py" -- "scenes/$s.pbrt" "$tmp/c.exr" --time "$t" \
@@ -228,7 +231,7 @@ for s in $scenes; do
           # shellcheck disable=SC2086
           [ -f "$ref" ] && rob=$(robust "$cref" $seeds)
           if [ -f "$ref" ]; then set -- $(errors "$tmp/c.exr" "$cref") $pair; else set -- "" "" $pair; fi
-          row "$s" "$([ $v = cycles ] && echo Cycles || echo "Cycles, guided")" "$t" "" "$2" "$1" "${4:-}" "${3:-}" "$rob"
+          row "$s" "$name" "$t" "" "$2" "$1" "${4:-}" "${3:-}" "$rob"
         else
           row "$s" "$v" "$t" "(failed: $(tail -n 1 "$tmp/clog"))" "" ""
         fi
