@@ -22,11 +22,12 @@ namespace {
 
 // A scene whose conductors take, in order, each given float texture (or
 // value) as their roughness: "texture roughness" "name" or "float roughness" [v].
-std::shared_ptr<Scene> roughness_scene(const std::string& textures, const std::vector<std::string>& roughness) {
+std::shared_ptr<Scene> roughness_scene(const std::string& textures, const std::vector<std::string>& roughness,
+                                       const LoadOptions& options = {}) {
   std::string text = "WorldBegin\n" + textures + "\n";
   for (const std::string& r : roughness)
     text += "Material \"conductor\" " + r + "\nShape \"sphere\" \"float radius\" [ 0.1 ]\n";
-  return load_scene_from_string(text, "range.pbrt", {});
+  return load_scene_from_string(text, "range.pbrt", options);
 }
 
 const FloatTextureRef& roughness_of(const Scene& s, size_t i) { return s.materials.conductor.at(i).roughness.u; }
@@ -123,6 +124,33 @@ TEST(TextureRange, ResidentImagesSpanTheirTexels) {
   // (bilinear lookups of the mean of RGB, from 0.3 to 0.8, reach neither
   // bound; point lookups read the first channel, from 0.2 to 0.9)
   expect_values_within_bounds(*s, {"point", "black"});
+}
+
+// An image read through the texture cache (a trilinear filter) spans the
+// texels its prepared file holds, as recorded when the file was made and
+// read back when a later load finds the file made: an 8-bit PNG of greys
+// from 0.1 to 0.9 (sRGB-encoded, decoded at preparation), with 0 where the
+// black wrap reads outside it.
+TEST(TextureRange, CachedImagesSpanTheirPreparedTexels) {
+  const auto dir = std::filesystem::temp_directory_path() / ("lantern-range-cache-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string file = (dir / "greys.png").string();
+  write_image(file, Image{2, 2, {0.1f, 0.1f, 0.1f, 0.3f, 0.3f, 0.3f, 0.6f, 0.6f, 0.6f, 0.9f, 0.9f, 0.9f}}, {});
+  const std::string image = "\"float\" \"imagemap\" \"string filename\" \"" + file + "\" \"string filter\" \"trilinear\"";
+  const std::string textures = "Texture \"plain\" " + image + "\nTexture \"black\" " + image + " \"string wrap\" \"black\"\n";
+  LoadOptions options;
+  options.texture_directory = (dir / "prepared").string();
+  for (const char* load : {"preparing the file", "finding it prepared"}) {
+    const auto s = roughness_scene(textures, {"\"texture roughness\" \"plain\"", "\"texture roughness\" \"black\""}, options);
+    ASSERT_TRUE(s->textures.images.empty()) << "read through the cache";
+    const ValueRange plain = s->textures.range(roughness_of(*s, 0)), black = s->textures.range(roughness_of(*s, 1));
+    EXPECT_NEAR(plain.lo, 0.1f, 5e-3f) << load;  // (8-bit sRGB steps: 0.008 of linear at 0.9)
+    EXPECT_NEAR(plain.hi, 0.9f, 5e-3f) << load;
+    EXPECT_EQ(black.lo, 0.f) << load;
+    EXPECT_EQ(black.hi, plain.hi) << load;
+    expect_values_within_bounds(*s, {"plain", "black"});
+  }
+  std::filesystem::remove_all(dir);
 }
 
 // The bounds by kind: patterns hull their two values, scale multiplies

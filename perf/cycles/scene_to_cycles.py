@@ -6,14 +6,19 @@
 #
 # It reads the subset of pbrt-v4's format the shipped scenes with area and
 # environment lights use: LookAt, Scale, Translate, Rotate, Camera
-# "perspective" (fov), Film resolution, Integrator maxdepth, Attribute
-# blocks, ReverseOrientation, named and inline materials (diffuse,
-# conductor, coateddiffuse, dielectric, interface), AreaLightSource "diffuse",
-# LightSource "infinite" (a constant colour) and "spot", Shape "trianglemesh" and
-# "sphere", and media (MakeNamedMedium "homogeneous" and "uniformgrid",
-# MediumInterface; below). Anything else stops it with the file's line. Materials are
+# "perspective" (fov) and "spherical" (equirectangular), Film resolution,
+# Integrator maxdepth, Attribute blocks, ReverseOrientation, named and
+# inline materials (diffuse, conductor, coateddiffuse, coatedconductor,
+# dielectric, thindielectric, diffusetransmission, hair, interface),
+# AreaLightSource "diffuse", LightSource "infinite" (a constant colour) and
+# "spot", Shape "trianglemesh", "sphere", "disk", "cylinder" and "curve"
+# (pbrt_shapes.py makes the last four meshes; a curve is a tube), and
+# media (MakeNamedMedium "homogeneous" and "uniformgrid", MediumInterface;
+# below). Anything else stops it with the file's line. Materials are
 # approximated by Cycles' closures (a conductor as a GGX glossy of a copper
-# or grey colour); each renderer's error is measured against its own
+# or grey colour, a thin dielectric as a Fresnel mix of a mirror and a
+# transparent surface, hair as a rough surface of its melanin's colour);
+# each renderer's error is measured against its own
 # converged image, so what matters is that the light has the same paths to
 # find, not that the images match.
 #
@@ -42,6 +47,9 @@ import time
 
 import bpy
 import mathutils
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import pbrt_shapes  # noqa: E402 (found beside this script)
 
 
 def fail(msg):
@@ -134,6 +142,40 @@ def material_node_tree(mat, kind, params):
         b = nt.nodes.new("ShaderNodeBsdfGlass")
         b.inputs["IOR"].default_value = nums(params, "eta", [1.5])[0]
         b.inputs["Roughness"].default_value = 0.0
+    elif kind == "thindielectric":
+        # a sharp reflection by the Fresnel factor, straight through otherwise
+        b = nt.nodes.new("ShaderNodeMixShader")
+        fresnel = nt.nodes.new("ShaderNodeFresnel")
+        fresnel.inputs["IOR"].default_value = nums(params, "eta", [1.5])[0]
+        through = nt.nodes.new("ShaderNodeBsdfTransparent")
+        mirror = nt.nodes.new("ShaderNodeBsdfGlossy")
+        mirror.inputs["Roughness"].default_value = 0.0
+        nt.links.new(fresnel.outputs[0], b.inputs[0])
+        nt.links.new(through.outputs[0], b.inputs[1])
+        nt.links.new(mirror.outputs[0], b.inputs[2])
+    elif kind == "diffusetransmission":
+        b = nt.nodes.new("ShaderNodeAddShader")
+        for k, (name, node_type) in enumerate((("reflectance", "ShaderNodeBsdfDiffuse"),
+                                               ("transmittance", "ShaderNodeBsdfTranslucent"))):
+            node = nt.nodes.new(node_type)
+            node.inputs["Color"].default_value = nums(params, name, [0.25] * 3) + [1]
+            nt.links.new(node.outputs[0], b.inputs[k])
+    elif kind == "coatedconductor":
+        b = nt.nodes.new("ShaderNodeBsdfPrincipled")
+        b.inputs["Base Color"].default_value = (0.95, 0.64, 0.54, 1)  # pbrt-v4's default conductor: copper
+        b.inputs["Metallic"].default_value = 1.0
+        b.inputs["Roughness"].default_value = math.sqrt(math.sqrt(nums(params, "conductor.roughness", [0.0])[0]))
+        b.inputs["Clearcoat"].default_value = 1.0
+        b.inputs["Clearcoat Roughness"].default_value = math.sqrt(math.sqrt(nums(params, "interface.roughness", [0.0])[0]))
+    elif kind == "hair":
+        # Cycles' hair BSDF shades curves only, and the fibres are tubes
+        # here: a rough dielectric of the colour a fibre's melanin leaves
+        # after two crossings (d'Eon et al. 2011's absorption coefficients)
+        eu, pheo = nums(params, "eumelanin", [1.3])[0], nums(params, "pheomelanin", [0.0])[0]
+        sigma = [eu * e + pheo * p for e, p in zip((0.419, 0.697, 1.37), (0.187, 0.4, 1.05))]
+        b = nt.nodes.new("ShaderNodeBsdfPrincipled")
+        b.inputs["Base Color"].default_value = [math.exp(-2 * c) for c in sigma] + [1]
+        b.inputs["Roughness"].default_value = min(1.0, nums(params, "beta_m", [0.3])[0] * 2)
     elif kind == "interface":
         b = None  # no surface: the material is its volume alone
     elif kind == "coateddiffuse":
@@ -268,6 +310,26 @@ def add_mesh(name, verts, faces, mat):
     return ob
 
 
+def quadric_or_curve(kind, params):
+    """pbrt-v4's sphere, disk, cylinder or curve as (vertices, faces) in
+    its object space, or None for another shape."""
+    one = lambda name, default: nums(params, name, [default])[0]
+    if kind == "sphere":
+        r = one("radius", 1.0)
+        return pbrt_shapes.sphere(r, one("zmin", -r), one("zmax", r), one("phimax", 360.0))
+    if kind == "disk":
+        return pbrt_shapes.disk(one("radius", 1.0), one("innerradius", 0.0), one("height", 0.0), one("phimax", 360.0))
+    if kind == "cylinder":
+        return pbrt_shapes.cylinder(one("radius", 1.0), one("zmin", -1.0), one("zmax", 1.0), one("phimax", 360.0))
+    if kind == "curve":
+        P = nums(params, "P")
+        if params.get("basis", ("", ["bezier"]))[1][0] != "bezier" or P is None or len(P) != 12:
+            fail("curves other than one cubic Bezier segment (four points) are not built")
+        w = one("width", 1.0)
+        return pbrt_shapes.curve_tube([P[0:3], P[3:6], P[6:9], P[9:12]], one("width0", w), one("width1", w))
+    return None
+
+
 def spot_light(ctm, params):
     """pbrt-v4's spot light as Cycles' (position, direction, light data).
     pbrt's intensity I (W/sr) on the axis is a Cycles spot of power 4 pi I
@@ -296,7 +358,7 @@ def build(path, opts):
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
     ctm = mathutils.Matrix.Identity(4)
-    camera_from_world, fov, res, maxdepth = None, 90.0, [640, 480], 5
+    camera_from_world, fov, res, maxdepth, panorama = None, 90.0, [640, 480], 5, False
     state = {"material": ("diffuse", {}), "area": None, "reverse": False, "inside": "", "outside": ""}
     stack, named, background, meshes, spots = [], {}, None, [], []
     media, camera_medium, volumes = {}, "", {}
@@ -311,9 +373,12 @@ def build(path, opts):
         elif name == "Rotate":
             ctm = ctm @ mathutils.Matrix.Rotation(math.radians(float(args[0])), 4, [float(a) for a in args[1:4]])
         elif name == "Camera":
-            if args[0] != "perspective":
+            if args[0] not in ("perspective", "spherical"):
                 fail("%s: camera %s is not built" % (where, args[0]))
+            if args[0] == "spherical" and params.get("mapping", ("", ["equalarea"]))[1][0] != "equirectangular":
+                fail("%s: a spherical camera's equal-area mapping is not built (equirectangular only)" % where)
             camera_from_world, fov = ctm.copy(), nums(params, "fov", [90.0])[0]
+            panorama = args[0] == "spherical"
             camera_medium = state["outside"]  # pbrt-v4: the current outside medium
         elif name == "Film":
             res = [int(nums(params, "xresolution", [1280])[0]), int(nums(params, "yresolution", [720])[0])]
@@ -368,24 +433,14 @@ def build(path, opts):
                 faces = [(idx[3 * k], idx[3 * k + 2], idx[3 * k + 1]) if flip else tuple(idx[3 * k:3 * k + 3])
                          for k in range(len(idx) // 3)]
                 meshes.append((verts, faces, make_material(state, "m%d" % len(meshes), inside)))
-            elif args[0] == "sphere":
-                r = nums(params, "radius", [1.0])[0]
-                verts, faces = [], []
-                seg, rings = 64, 32
-                for j in range(rings + 1):
-                    th = math.pi * j / rings
-                    for k in range(seg):
-                        ph = 2 * math.pi * k / seg
-                        verts.append(ctm @ mathutils.Vector((r * math.sin(th) * math.cos(ph), r * math.sin(th) * math.sin(ph),
-                                                             r * math.cos(th))))
-                for j in range(rings):
-                    for k in range(seg):
-                        a, b = j * seg + k, j * seg + (k + 1) % seg
-                        c, d = a + seg, b + seg
-                        faces.append((a, c, d, b) if not state["reverse"] else (a, b, d, c))
-                meshes.append((verts, faces, make_material(state, "m%d" % len(meshes), inside)))
             else:
-                fail("%s: shape %s is not built" % (where, args[0]))
+                shape = quadric_or_curve(args[0], params)
+                if shape is None:
+                    fail("%s: shape %s is not built" % (where, args[0]))
+                flip = state["reverse"] != (ctm.to_3x3().determinant() < 0)
+                verts = [ctm @ mathutils.Vector(v) for v in shape[0]]
+                faces = [tuple(reversed(f)) if flip else f for f in shape[1]]
+                meshes.append((verts, faces, make_material(state, "m%d" % len(meshes), inside)))
         else:
             fail("%s: directive %s is not built" % (where, name))
     if camera_from_world is None:
@@ -416,7 +471,18 @@ def build(path, opts):
     cam = bpy.data.cameras.new("camera")
     w, h = opts.get("resolution") or res
     cam.sensor_fit = "VERTICAL" if w >= h else "HORIZONTAL"
-    if w >= h:
+    if panorama:
+        # pbrt-v4's equirectangular image looks along the camera's +x at
+        # its left edge, forward at a quarter of its width and left at
+        # its centre, turning left as it goes right; Cycles' looks forward
+        # at its centre and turns right, unless its longitudes run
+        # backwards. So they run backwards, and the camera turns left by
+        # a quarter turn (below).
+        cam.type = "PANO"
+        cam.cycles.panorama_type = "EQUIRECTANGULAR"
+        cam.cycles.longitude_min, cam.cycles.longitude_max = math.pi, -math.pi
+        cam_world = cam_world @ mathutils.Matrix.Rotation(math.pi / 2, 4, "Y")
+    elif w >= h:
         cam.angle_y = math.radians(fov)
     else:
         cam.angle_x = math.radians(fov)

@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <OpenImageIO/half.h>
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
@@ -65,11 +66,28 @@ std::string source_stamp(const fs::path& source) {
 }
 
 constexpr char kStampAttribute[] = "lantern:source_stamp";
+// The texels' bounds as written (PreparedTexture::least, greatest); files
+// prepared before these were recorded have none, and read as unknown.
+constexpr char kLeastAttribute[] = "lantern:least";
+constexpr char kGreatestAttribute[] = "lantern:greatest";
 
-bool is_current(const fs::path& target, const std::string& stamp) {
+// Whether target was made from this version of the source; if so, its
+// recorded bounds go to out.
+bool is_current(const fs::path& target, const std::string& stamp, PreparedTexture* out) {
   auto in = OIIO::ImageInput::open(target.string());
-  return in && in->spec().get_string_attribute(kStampAttribute) == stamp;
+  if (!in || in->spec().get_string_attribute(kStampAttribute) != stamp) return false;
+  const OIIO::ParamValue* lo = in->spec().find_attribute(kLeastAttribute, OIIO::TypeDesc::FLOAT);
+  const OIIO::ParamValue* hi = in->spec().find_attribute(kGreatestAttribute, OIIO::TypeDesc::FLOAT);
+  if (lo && hi) {
+    out->least = lo->get_float();
+    out->greatest = hi->get_float();
+  }
+  return true;
 }
+
+// A bound as the file stores it: rounding to half floats is monotonic, so
+// the rounded bounds bound the rounded texels.
+float as_stored(float v, bool to_half) { return to_half ? float(half(v)) : v; }
 
 // Decodes the source (checking every texel) and writes it as a tiled,
 // MIP-mapped OpenEXR file: half floats for decoded integer images, the
@@ -81,6 +99,12 @@ void convert(const std::string& source, ColorEncoding encoding, bool float_sourc
   OIIO::ImageSpec spec(img.width, img.height, nc, OIIO::TypeDesc::FLOAT);
   spec.alpha_channel = -1;  // a value like the others: no premultiplication anywhere
   spec.attribute(kStampAttribute, stamp);
+  if (img.least <= img.greatest) {
+    out->least = as_stored(img.least, !float_source);
+    out->greatest = as_stored(img.greatest, !float_source);
+    spec.attribute(kLeastAttribute, out->least);
+    spec.attribute(kGreatestAttribute, out->greatest);
+  }
   OIIO::ImageBuf buf(spec);
   std::vector<float> row(size_t(img.width) * size_t(nc));
   for (int y = 0; y < img.height; ++y) {
@@ -156,7 +180,7 @@ PreparedTexture prepare_texture(const std::string& source, ColorEncoding encodin
   fs::path target = fs::path(directory) / cache_name(source, encoding);
   t.path = target.string();
   const std::string stamp = source_stamp(source);
-  if (fs::exists(target, ec) && is_current(target, stamp)) return t;
+  if (fs::exists(target, ec) && is_current(target, stamp, &t)) return t;
   convert(source, encoding, float_source, target, stamp, &t);
   return t;
 }

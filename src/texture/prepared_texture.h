@@ -20,6 +20,11 @@ struct PreparedTexture {
   int channels = 3;   // 1, 3 or 4 (RGBA), as in the source
   int width = 0, height = 0;
   bool converted = false;  // written into the texture directory by this call
+  // The least and greatest value of any texel's channels (and alpha) as
+  // the file holds them, which its MIP levels' averages and every filtered
+  // lookup stay within: known for files Lantern prepared (recorded in the
+  // file), unknown (empty) for a file used as it is.
+  float least = kInfinity, greatest = -kInfinity;
 };
 
 // The resolution of an image file, read from its header; throws InputError

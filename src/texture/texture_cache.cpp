@@ -1,5 +1,7 @@
 #include "texture/texture_cache.h"
 
+#include <algorithm>
+
 #include "texture/image_io_module.h"
 
 namespace lantern {
@@ -18,7 +20,14 @@ TextureCache::~TextureCache() { io_->cache_destroy(handle_); }
 
 int32_t TextureCache::add(const PreparedTexture& t, ImageFilter filter, WrapMode wrap, float max_anisotropy) {
   int32_t id = io_->cache_add(handle_, t.path, filter, wrap, max_anisotropy);
-  entries_.push_back(Entry{t.channels, filter == ImageFilter::Point});
+  // Lookups read negative values as 0 (sanitized) and alpha at most 1:
+  // within [max(0, least), greatest] still.
+  Entry e{t.channels, filter == ImageFilter::Point};
+  if (t.least <= t.greatest) {
+    e.least = std::max(t.least, 0.f);
+    e.greatest = std::max(t.greatest, 0.f);
+  }
+  entries_.push_back(e);
   return id;
 }
 

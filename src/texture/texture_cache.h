@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "texture/image.h"
@@ -48,6 +49,13 @@ class TextureCache {
   const TextureCacheSettings& settings() const { return settings_; }
   // Registers a prepared texture with its lookup options; returns its id.
   int32_t add(const PreparedTexture& t, ImageFilter filter, WrapMode wrap, float max_anisotropy);
+  // The least and greatest value any lookup of texture id reads where its
+  // file is read (a failed read gives 0), as the prepared file recorded
+  // them; lo > hi where they are not known.
+  std::pair<float, float> bounds(int32_t id) const {
+    const Entry& e = entries_[size_t(id)];
+    return {e.least, e.greatest};
+  }
 
   // pbrt-v4's lookups: a float lookup reads a grey file's value, the mean
   // of RGB, or an RGBA file's alpha (point lookups: the first channel).
@@ -64,6 +72,7 @@ class TextureCache {
   struct Entry {
     int channels = 3;
     bool point = false;
+    float least = kInfinity, greatest = -kInfinity;  // PreparedTexture's, lookups' sanitizing applied
   };
   // n channels from `first` into out; zeros where the file failed.
   void texture(int32_t id, const TextureLookup& q, int first, int n, float* out) const;

@@ -47,16 +47,24 @@ ValueRange blend(const ValueRange& w, const ValueRange& a, const ValueRange& b) 
                        at(w.hi, a.lo, b.lo), at(w.hi, a.lo, b.hi), at(w.hi, a.hi, b.lo), at(w.hi, a.hi, b.hi)});
 }
 
-// A resident image's values (its texels' channels and alpha, which its
-// lookups interpolate), scaled and inverted as texture.cpp's image_value
-// does; 0 too where a "black" wrap reads it outside the image. (A lookup
-// more than a billion texels out reads 0 whatever the wrap: a measure of
-// nothing.) An image read through the cache is wide: its texels are not
-// held.
+// An image's values (its texels' channels and alpha, which its lookups
+// interpolate), scaled and inverted as texture.cpp's image_value does; 0
+// too where a "black" wrap reads it outside the image. (A lookup more than
+// a billion texels out reads 0 whatever the wrap: a measure of nothing.)
+// Resident images found theirs at load; an image read through the cache
+// has the bounds its prepared file recorded, and none (wide) if it was
+// used as it is.
 ValueRange image_range(const TexturePools& pools, const TextureNode& n) {
-  if (n.image < 0) return kWide;
-  const TextureImage& img = pools.images[size_t(n.image)];
-  ValueRange r{img.least, img.greatest};
+  ValueRange r;
+  if (n.image >= 0) {
+    const TextureImage& img = pools.images[size_t(n.image)];
+    r = {img.least, img.greatest};
+  } else if (n.cached >= 0 && pools.cache) {
+    const auto [lo, hi] = pools.cache->bounds(n.cached);
+    r = {lo, hi};
+  } else {
+    return kWide;
+  }
   if (!(r.lo <= r.hi)) return kWide;  // (an image made otherwise than by loading one)
   if (n.wrap == WrapMode::Black) r = hull(r, {0.f, 0.f});
   r = product(r, {n.scale, n.scale});
