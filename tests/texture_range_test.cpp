@@ -136,12 +136,15 @@ TEST(TextureRange, CachedImagesSpanTheirPreparedTexels) {
   std::filesystem::create_directories(dir);
   const std::string file = (dir / "greys.png").string();
   write_image(file, Image{2, 2, {0.1f, 0.1f, 0.1f, 0.3f, 0.3f, 0.3f, 0.6f, 0.6f, 0.6f, 0.9f, 0.9f, 0.9f}}, {});
-  const std::string image = "\"float\" \"imagemap\" \"string filename\" \"" + file + "\" \"string filter\" \"trilinear\"";
-  const std::string textures = "Texture \"plain\" " + image + "\nTexture \"black\" " + image + " \"string wrap\" \"black\"\n";
+  const std::string image =
+      "\"float\" \"imagemap\" \"string filename\" \"" + file + "\" \"string filter\" \"trilinear\"";
+  const std::string textures =
+      "Texture \"plain\" " + image + "\nTexture \"black\" " + image + " \"string wrap\" \"black\"\n";
   LoadOptions options;
   options.texture_directory = (dir / "prepared").string();
   for (const char* load : {"preparing the file", "finding it prepared"}) {
-    const auto s = roughness_scene(textures, {"\"texture roughness\" \"plain\"", "\"texture roughness\" \"black\""}, options);
+    const auto s =
+        roughness_scene(textures, {"\"texture roughness\" \"plain\"", "\"texture roughness\" \"black\""}, options);
     ASSERT_TRUE(s->textures.images.empty()) << "read through the cache";
     const ValueRange plain = s->textures.range(roughness_of(*s, 0)), black = s->textures.range(roughness_of(*s, 1));
     EXPECT_NEAR(plain.lo, 0.1f, 5e-3f) << load;  // (8-bit sRGB steps: 0.008 of linear at 0.9)
