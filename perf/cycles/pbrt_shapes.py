@@ -27,44 +27,37 @@ def _band(rings, closed):
     return faces
 
 
+def _rings(phis, ring_params, point):
+    """Rings of vertices point(t, phi), one per t in ring_params, and
+    their indices."""
+    verts, ring_ids = [], []
+    for t in ring_params:
+        ring_ids.append(list(range(len(verts), len(verts) + len(phis))))
+        verts.extend(point(t, ph) for ph in phis)
+    return verts, ring_ids
+
+
 def sphere(radius, zmin=None, zmax=None, phimax=360.0, seg=64, rings=32):
     zmin = -radius if zmin is None else max(-radius, min(zmin, radius))
     zmax = radius if zmax is None else max(-radius, min(zmax, radius))
     th0, th1 = math.acos(zmax / radius), math.acos(zmin / radius)
     phis, closed = _phi_steps(phimax, seg)
-    verts, ring_ids = [], []
     # from the bottom (theta1) up, so that each band's quads face out
-    for j in range(rings + 1):
-        th = th1 + (th0 - th1) * j / rings
-        ids = []
-        for ph in phis:
-            ids.append(len(verts))
-            verts.append((radius * math.sin(th) * math.cos(ph), radius * math.sin(th) * math.sin(ph), radius * math.cos(th)))
-        ring_ids.append(ids)
+    thetas = [th1 + (th0 - th1) * j / rings for j in range(rings + 1)]
+    verts, ring_ids = _rings(phis, thetas, lambda th, ph: (radius * math.sin(th) * math.cos(ph),
+                                                           radius * math.sin(th) * math.sin(ph), radius * math.cos(th)))
     return verts, _band(ring_ids, closed)
 
 
 def cylinder(radius, zmin=-1.0, zmax=1.0, phimax=360.0, seg=64):
     phis, closed = _phi_steps(phimax, seg)
-    verts, ring_ids = [], []
-    for z in (zmin, zmax):
-        ids = []
-        for ph in phis:
-            ids.append(len(verts))
-            verts.append((radius * math.cos(ph), radius * math.sin(ph), z))
-        ring_ids.append(ids)
+    verts, ring_ids = _rings(phis, (zmin, zmax), lambda z, ph: (radius * math.cos(ph), radius * math.sin(ph), z))
     return verts, _band(ring_ids, closed)
 
 
 def disk(radius, innerradius=0.0, height=0.0, phimax=360.0, seg=64):
     phis, closed = _phi_steps(phimax, seg)
-    verts, ring_ids = [], []
-    for r in (innerradius, radius):
-        ids = []
-        for ph in phis:
-            ids.append(len(verts))
-            verts.append((r * math.cos(ph), r * math.sin(ph), height))
-        ring_ids.append(ids)
+    verts, ring_ids = _rings(phis, (innerradius, radius), lambda r, ph: (r * math.cos(ph), r * math.sin(ph), height))
     # rings from the inside out: a band's quads face -z, so they are
     # reversed (triangles at the centre when innerradius is 0)
     faces = []
