@@ -119,10 +119,33 @@ float DensityGrid::density(const Vec3& p) const {
   return trilinear(cell, f, [&](int x, int y, int z) { return sample(x, y, z); });
 }
 
+// The eight samples of lattice cell c (v[x][y][z] offsets); false if all
+// are zero. A cell inside the grid reads them at fixed strides from its
+// first: only the cells at the box's faces, whose outer samples are zero,
+// test each sample's indices.
+bool DensityGrid::cell_samples(const int c[3], float v[2][2][2]) const {
+  if (c[0] >= 0 && c[1] >= 0 && c[2] >= 0 && c[0] + 1 < nx && c[1] + 1 < ny && c[2] + 1 < nz) {
+    const size_t sy = size_t(nx), sz = size_t(nx) * size_t(ny);
+    const float* p = values.data() + offset(c[0], c[1], c[2]);
+    for (int e = 0; e < 2; ++e, p += sz) {
+      v[0][0][e] = p[0], v[1][0][e] = p[1];
+      v[0][1][e] = p[sy], v[1][1][e] = p[sy + 1];
+    }
+  } else {
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b)
+        for (int e = 0; e < 2; ++e) v[a][b][e] = sample(c[0] + a, c[1] + b, c[2] + e);
+  }
+  bool any = false;
+  for (int a = 0; a < 8; ++a) any |= v[a >> 2][(a >> 1) & 1][a & 1] != 0.f;
+  return any;
+}
+
 float DensityGrid::integrate(const Vec3& o, const Vec3& d, float t0, float t1, float target, float* t_hit) const {
   lattice::DepthSum depth(target, t_hit);
   lattice::walk(frame(), o, d, t0, t1, [&](const int c[3], double t, double t_exit, const double f0[3], const double dg[3]) {
-    return depth.add(c, t, t_exit, f0, dg, [&](int x, int y, int z) { return sample(x, y, z); });
+    float v[2][2][2];
+    return cell_samples(c, v) && depth.add(v, t, t_exit, f0, dg);  // cells with no sample cost the gather
   });
   return depth.result();
 }

@@ -183,6 +183,9 @@ struct DensityGrid : GridLayout {
   // where the integral reaches target: *t_hit is that t and target is
   // returned; otherwise *t_hit is infinity.
   float integrate(const Vec3& o, const Vec3& d, float t0, float t1, float target, float* t_hit) const;
+
+ private:
+  bool cell_samples(const int c[3], float v[2][2][2]) const;
 };
 
 // pbrt-v4's "rgbgrid": RGB absorption and scattering per sample (scaled);
