@@ -84,6 +84,43 @@ TEST(GridDensity, RandomRaysMatchABruteForceSumAndSamplingInvertsIt) {
   }
 }
 
+// The cells found empty are skipped (DensityGrid::occupied): integrals and
+// sampled points are those of the grid that reads every cell's samples,
+// bit for bit, on rays through a sparse random grid (most cells empty, some
+// at the box's faces), and a grid with no sample set has no cell set.
+TEST(GridDensity, SkippingEmptyCellsChangesNothing) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  DensityGrid plain;
+  plain.nx = 7, plain.ny = 5, plain.nz = 6;
+  for (int i = 0; i < 7 * 5 * 6; ++i) plain.values.push_back(u(rng) < 0.9f ? 0.f : 2.f * u(rng));
+  plain.p0 = Vec3(-1.f, 0.f, 0.f);
+  plain.p1 = Vec3(1.f, 1.f, 2.f);
+  DensityGrid skipping = plain;
+  skipping.find_occupied_cells();
+  int nonzero = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const Vec3 target(plain.p0 + (plain.p1 - plain.p0) * Vec3(u(rng), u(rng), u(rng)));
+    const Vec3 o = target + 4.f * glm::normalize(Vec3(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f));
+    const Vec3 d = glm::normalize(target - o);
+    float hit_a, hit_b;
+    const float a = plain.integrate(o, d, 0.f, 8.f, -1.f, &hit_a), b = skipping.integrate(o, d, 0.f, 8.f, -1.f, &hit_b);
+    ASSERT_EQ(a, b) << "ray " << k;
+    nonzero += a > 0.f;
+    if (a > 0.f) {
+      const float want = a * u(rng);
+      plain.integrate(o, d, 0.f, 8.f, want, &hit_a);
+      skipping.integrate(o, d, 0.f, 8.f, want, &hit_b);
+      ASSERT_EQ(hit_a, hit_b) << "ray " << k;
+    }
+  }
+  EXPECT_GT(nonzero, 200);  // (the test sees occupied cells, not only empty ones)
+  DensityGrid empty = plain;
+  std::fill(empty.values.begin(), empty.values.end(), 0.f);
+  empty.find_occupied_cells();
+  for (uint64_t w : empty.occupied) EXPECT_EQ(w, 0u);
+}
+
 // A slab of grid medium (constant samples; 4 along z over 2 units: 1.875
 // units of density on the axis) before an emitter of radiance 1, at
 // maxdepth 0: each pixel's expectation is exp(-sigma_t D / cos) on its ray.

@@ -63,6 +63,7 @@ void CloudMedium::build_proxy(int n) {
         const Vec3 u = (Vec3(float(x), float(y), float(z)) + 0.5f) / float(n);
         proxy.values[proxy.offset(x, y, z)] = density_in_medium(p0 + u * (p1 - p0));
       }
+  proxy.find_occupied_cells();
 }
 
 }  // namespace lantern

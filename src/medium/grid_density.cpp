@@ -124,6 +124,10 @@ float DensityGrid::density(const Vec3& p) const {
 // first: only the cells at the box's faces, whose outer samples are zero,
 // test each sample's indices.
 bool DensityGrid::cell_samples(const int c[3], float v[2][2][2]) const {
+  if (!occupied.empty()) {
+    const size_t bit = cell_bit(c);
+    if (!((occupied[bit >> 6] >> (bit & 63)) & 1)) return false;
+  }
   if (c[0] >= 0 && c[1] >= 0 && c[2] >= 0 && c[0] + 1 < nx && c[1] + 1 < ny && c[2] + 1 < nz) {
     const size_t sy = size_t(nx), sz = size_t(nx) * size_t(ny);
     const float* p = values.data() + offset(c[0], c[1], c[2]);
@@ -139,6 +143,22 @@ bool DensityGrid::cell_samples(const int c[3], float v[2][2][2]) const {
   bool any = false;
   for (int a = 0; a < 8; ++a) any |= v[a >> 2][(a >> 1) & 1][a & 1] != 0.f;
   return any;
+}
+
+void DensityGrid::find_occupied_cells() {
+  occupied.assign(((size_t(nx) + 1) * (size_t(ny) + 1) * (size_t(nz) + 1) + 63) / 64, 0);
+  for (int z = 0; z < nz; ++z)
+    for (int y = 0; y < ny; ++y)
+      for (int x = 0; x < nx; ++x) {
+        if (values[offset(x, y, z)] == 0.f) continue;
+        for (int e = 0; e < 2; ++e)  // the eight cells this sample is a corner of
+          for (int b = 0; b < 2; ++b)
+            for (int a = 0; a < 2; ++a) {
+              const int c[3] = {x - a, y - b, z - e};
+              const size_t bit = cell_bit(c);
+              occupied[bit >> 6] |= uint64_t(1) << (bit & 63);
+            }
+      }
 }
 
 float DensityGrid::integrate(const Vec3& o, const Vec3& d, float t0, float t1, float target, float* t_hit) const {

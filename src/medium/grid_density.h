@@ -173,7 +173,14 @@ float max_over(const GridLayout& g, const Vec3& u0, const Vec3& u1, F&& f) {
 // pbrt-v4's "uniformgrid" density.
 struct DensityGrid : GridLayout {
   std::vector<float> values;
+  // One bit per lattice cell the walk may cross ((nx + 1)(ny + 1)(nz + 1),
+  // from -1 on each axis), set where any of its eight samples is nonzero,
+  // so that an empty cell costs one bit; empty until find_occupied_cells
+  // is called, when every cell reads its samples.
+  std::vector<uint64_t> occupied;
 
+  // Builds `occupied` from the values (after they change, again).
+  void find_occupied_cells();
   // Sample (x, y, z); zero outside the grid.
   float sample(int x, int y, int z) const { return inside(x, y, z) ? values[offset(x, y, z)] : 0.f; }
   // The density at a point of render space.
@@ -185,6 +192,9 @@ struct DensityGrid : GridLayout {
   float integrate(const Vec3& o, const Vec3& d, float t0, float t1, float target, float* t_hit) const;
 
  private:
+  size_t cell_bit(const int c[3]) const {
+    return (size_t(c[2] + 1) * size_t(ny + 1) + size_t(c[1] + 1)) * size_t(nx + 1) + size_t(c[0] + 1);
+  }
   bool cell_samples(const int c[3], float v[2][2][2]) const;
 };
 

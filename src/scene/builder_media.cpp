@@ -216,6 +216,7 @@ DensityGrid SceneBuilder::density_grid(const ParamSet& ps, const Mat4& render_fr
   if (!density) ps.fail("a uniformgrid needs \"float density\" values");
   expect_grid_count(ps, *density, g, 1);
   g.values = ps.get_floats("density");
+  g.find_occupied_cells();
   return g;
 }
 
