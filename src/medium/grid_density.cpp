@@ -165,7 +165,7 @@ float DensityGrid::integrate(const Vec3& o, const Vec3& d, float t0, float t1, f
   lattice::DepthSum depth(target, t_hit);
   lattice::walk(frame(), o, d, t0, t1, [&](const int c[3], double t, double t_exit, const double f0[3], const double dg[3]) {
     float v[2][2][2];
-    return cell_samples(c, v) && depth.add(v, t, t_exit, f0, dg);  // cells with no sample cost the gather
+    return cell_samples(c, v) && depth.add(v, t, t_exit, f0, dg);  // (an empty cell costs its bit)
   });
   return depth.result();
 }
