@@ -131,6 +131,12 @@ expect_run(NAME bad-roulette EXIT 2 MATCH "--roulette: Value nan not in range" A
 expect_run(NAME roulette-render EXIT 0 ARGS render ${SRC}/scenes/cornell-box.pbrt --roulette 3 --spp 1 --resolution 8 8
            --quiet -o ${OUT}/roulette.exr)
 expect_run(NAME roulette-header EXIT 0 MATCH "lantern:roulette 3" ARGS info ${OUT}/roulette.exr)
+# Paths per camera sample: 1, 2, 4, 8 or 16, anything else a usage error; the
+# image's header names it, and a time budget renders with it.
+expect_run(NAME bad-split EXIT 2 MATCH "--split: 3 not in" ARGS render ${SRC}/scenes/cornell-box.pbrt --split 3)
+expect_run(NAME split-timed EXIT 0 ARGS render ${SRC}/scenes/cornell-box.pbrt --split 4 --time 0.3 --resolution 16 16
+           --quiet -o ${OUT}/split.exr)
+expect_run(NAME split-header EXIT 0 MATCH "lantern:split 4" ARGS info ${OUT}/split.exr)
 # bdpt's light subpath rate: auto, 0 or 0.01 to 1, anything else a usage error;
 # the header says what was asked for.
 expect_run(NAME bad-light-subpaths EXIT 2 MATCH "expected auto, 0 or a number from 0.01 to 1" ARGS render

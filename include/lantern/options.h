@@ -130,6 +130,8 @@ inline bool scales_roulette(Integrator i) { return i == Integrator::Path; }
 // tracer, integrator/light_subpath_rate.h) or 0.01 to 1.
 inline bool uses_light_subpath_rate(Integrator i) { return i == Integrator::Bdpt; }
 inline constexpr float kLightSubpathsAuto = -1.f;
+// RenderOptions::split chosen per scene by a pilot (integrator/split_choice.h).
+inline constexpr uint32_t kSplitAuto = 0;
 
 // A float option as text that reads back as the same float (headers,
 // fingerprints).
@@ -151,6 +153,13 @@ inline float parse_light_subpaths(const std::string& w) {
   if (end == 0 || end != w.size() || !(v == 0.f || (v >= 0.01f && v <= 1.f)))
     throw std::invalid_argument("light subpaths \"" + w + "\": expected auto, 0 or a number from 0.01 to 1");
   return v;
+}
+inline std::string split_text(uint32_t split) { return split == kSplitAuto ? "auto" : std::to_string(split); }
+inline uint32_t parse_split(const std::string& w) {
+  for (uint32_t k : {1u, 2u, 4u, 8u, 16u})
+    if (w == std::to_string(k)) return k;
+  if (w == "auto") return kSplitAuto;
+  throw std::invalid_argument("split \"" + w + "\": expected auto, 1, 2, 4, 8 or 16");
 }
 
 }  // namespace lantern

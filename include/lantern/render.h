@@ -62,6 +62,15 @@ struct RenderOptions {
   // still needs, and leaves less error per second on most scenes
   // (docs/performance.md, "Russian roulette that keeps more paths").
   float roulette_scale = 2.f;
+  // The path tracer: each camera sample's first hit shared by `split`
+  // paths (1, 2, 4, 8 or 16), its camera ray, emission and next-event
+  // estimate computed once, the BSDF sampled per path; spp then counts
+  // paths. Pixels that see an emitter, an infinite light or a surface that
+  // may be specular keep whole camera samples (docs/splitting.md). Not
+  // with media or guiding, where it is 1. kSplitAuto: chosen per scene by
+  // a pilot that measures 1's and 4's error at equal time, for renders
+  // large enough to be worth it (integrator/split_choice.h).
+  uint32_t split = kSplitAuto;
   // bdpt: the probability that a camera sample traces a light subpath
   // beyond the light, its strategies weighted for it (docs/bdpt.md, "The
   // light subpath rate"); 1 is pbrt-v4's bdpt. kLightSubpathsAuto: chosen
@@ -199,6 +208,13 @@ struct RenderStats {
   // rays per camera sample.
   float light_subpath_rate = -1.f;
   std::vector<double> light_subpath_candidates, light_subpath_error, light_subpath_cost;
+  // path: the paths per camera sample rendered with (0: not the path
+  // tracer); with the pilot's choice (--split auto), its estimates: each
+  // candidate's error at equal time relative to 1's, and the share of a
+  // path's work its camera sample does once.
+  uint32_t split = 0;
+  std::vector<double> split_error;
+  double split_camera_share = 0.0;
   float vcm_last_radius = 0.f;  // vcm: the merging radius of the last pass traced
   uint32_t vcm_last_first_sample = 0;  // vcm: the first sample index of that pass
   double vcm_grid_seconds = 0.0;  // vcm, with stats: thread-seconds building the merging grids

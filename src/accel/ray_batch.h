@@ -52,6 +52,14 @@ struct RayBatch {
     inst_id[i] = kInvalidGeometry;
     return i;
   }
+  // Appends a copy of ray i with its hit.
+  uint32_t push_copy(uint32_t i) {
+    const uint32_t j = push(origin(i), direction(i), tnear[i], tfar[i], time[i]);
+    mask[j] = mask[i], flags[j] = flags[i];
+    ng_x[j] = ng_x[i], ng_y[j] = ng_y[i], ng_z[j] = ng_z[i], u[j] = u[i], v[j] = v[i];
+    prim_id[j] = prim_id[i], geom_id[j] = geom_id[i], inst_id[j] = inst_id[i];
+    return j;
+  }
   Vec3 origin(uint32_t i) const { return Vec3(org_x[i], org_y[i], org_z[i]); }
   Vec3 direction(uint32_t i) const { return Vec3(dir_x[i], dir_y[i], dir_z[i]); }
   bool hit(uint32_t i) const { return geom_id[i] != kInvalidGeometry; }

@@ -100,6 +100,12 @@ void add_render_request_options(CLI::App& c, RenderRequest& r) {
             return v >= 0.01 && v <= 100.0 ? std::string() : "Value " + text + " not in range 0.01 to 100";
           },
           "FLOAT in [0.01 - 100]"));
+  c.add_option("--split", r.split,
+               "path: N paths (1, 2, 4, 8 or 16) share each camera sample's first hit, its camera ray and next-event "
+               "estimate; --spp counts paths. Pays where light that bounces makes the noise, not direct light. auto: "
+               "chosen per scene by a short pilot that estimates each count's error at equal time "
+               "(docs/splitting.md); default auto")
+      ->check(CLI::IsMember({"auto", "1", "2", "4", "8", "16"}));
   c.add_option("--light-subpaths", r.light_subpaths,
                "bdpt: the probability Q that a camera sample traces a light subpath beyond the light (0.01 to 1; 1 is "
                "pbrt-v4's bdpt; 0: none, the eye subpaths alone, as the path tracer), or auto: chosen per scene by a "

@@ -256,6 +256,8 @@ void report(const std::string& out, const RenderOptions& o, const RenderResult& 
     logging::info("adaptive sampling: %u to %u spp, %.1f on average; estimated relative MSE %.3g%s", s.min_spp,
               s.max_spp, double(s.samples) / (double(r.image.width) * double(r.image.height)), s.estimated_relmse,
               o.target_error > 0 ? (" (target " + std::to_string(o.target_error) + ")").c_str() : "");
+  if (!s.split_error.empty())
+    logging::info("split: %u paths per camera sample, the pilot's choice (--split auto)", s.split);
   if (!s.light_subpath_error.empty())
     logging::info("light subpaths: %g per camera sample, the pilot's choice (--light-subpaths auto)%s",
                   double(s.light_subpath_rate),

@@ -44,6 +44,7 @@ RenderOptions resolve_render_options(const Scene& scene, const RenderRequest& a)
   o.vcm_radius = a.vcm_radius;
   o.vcm_alpha = a.vcm_alpha;
   o.roulette_scale = a.roulette;
+  o.split = parse_split(a.split);
   o.light_subpath_rate = parse_light_subpaths(a.light_subpaths);
   o.mis = parse_mis(a.mis);
   o.spectral = a.spectral;

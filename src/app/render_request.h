@@ -29,6 +29,7 @@ struct RenderRequest {
   uint64_t seed = 0;
   float vcm_radius = 0.f, vcm_alpha = 0.75f;
   float roulette = 2.f;  // path: RenderOptions::roulette_scale
+  std::string split = "auto";           // path: RenderOptions::split (auto, 1, 2, 4, 8, 16)
   std::string light_subpaths = "auto";  // bdpt: RenderOptions::light_subpath_rate, "auto" or 0.01 to 1
   bool spectral = false, guide = false, guide_light = false, adaptive = false;
   std::vector<int> resolution;  // empty, or W H

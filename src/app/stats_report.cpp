@@ -118,6 +118,13 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
                 {"first_radius", s.vcm_radius},
                 {"last_radius", s.vcm_last_radius},
                 {"grid_build_seconds", s.vcm_grid_seconds}};
+  if (s.split > 0) {
+    j["split"] = {{"paths_per_camera_sample", s.split}};
+    if (!s.split_error.empty())
+      j["split"]["pilot"] = {{"candidates", {1, 4}},  // (integrator/split_choice.h)
+                             {"error_at_equal_time", s.split_error},
+                             {"camera_sample_share_of_work", s.split_camera_share}};
+  }
   if (s.light_subpath_rate >= 0.f) {
     j["light_subpaths"] = {{"rate", s.light_subpath_rate}};
     if (!s.light_subpath_error.empty())

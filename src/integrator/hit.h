@@ -8,8 +8,9 @@
 
 #include "accel/ray_batch.h"
 #include "color/sampled_wavelengths.h"
-#include "material/material.h"
+#include "entity/shapes.h"
 #include "geometry/surface.h"
+#include "material/material.h"
 #include "texture/mapping.h"
 
 namespace lantern {
@@ -144,6 +145,18 @@ struct HitPool {
     material[i] = m;
     lambda[i] = l;
     bins[size_t(m.kind())].push_back(i);
+  }
+  // Copies hit i to j (another path from the same point) and bins it.
+  void copy(uint32_t i, uint32_t j) {
+    for (auto* v : {&p, &ng, &ns, &wo}) (*v)[j] = (*v)[i];
+    uv[j] = uv[i];
+    error_scale[j] = error_scale[i];
+    material[j] = material[i];
+    lambda[j] = lambda[i];
+    if (!footprint.empty()) footprint[j] = footprint[i];
+    if (!tangent.empty()) tangent[j] = tangent[i];
+    alive[j] = 0;
+    bins[size_t(material[j].kind())].push_back(j);
   }
   // The next rays of the bounce's surviving paths, in order; active[] is
   // compacted alongside.

@@ -32,6 +32,7 @@ struct PassContext {
   Checkpointer& checkpoints;
   GuidingField* guiding;  // null: paths are not guided
   const std::atomic<bool>& cancelled;  // RenderSession::cancel
+  uint32_t split = 1;                  // the path tracer's paths per camera sample (PathTracerSettings::split)
   bool stop_requested() const { return cancelled.load() || (hooks.cancel && hooks.cancel->load()); }
 };
 

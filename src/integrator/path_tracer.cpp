@@ -35,6 +35,14 @@ PathTracer::PathTracer(const Scene& scene, const LightSampler& light_sampler, co
       camera_(scene.camera, s.full_width > 0 ? s.full_width : s.width, s.full_height > 0 ? s.full_height : s.height),
       sampler_(make_sampler_spec(s.sampler, s.width, s.height, s.planned_spp, s.seed)) {
   if (scene.textures.uses_footprint) footprints_ = FootprintModel(camera_, s.footprint_spp);
+  if (s.split > 1 && scene.media.empty() && !s.ambient_occlusion && !s.direct_lighting) {
+    while ((2u << split_log2_) <= s.split) ++split_log2_;
+    // The camera samples are a sequence of their own: N paths per pixel
+    // are N / split camera samples, each stratified against the others.
+    const uint32_t planned = s.planned_spp > 0 ? std::max(1u, s.planned_spp >> split_log2_) : 0u;
+    camera_sampler_ = make_sampler_spec(s.sampler, s.width, s.height, planned, s.seed ^ 0x5EED5EED5EED5EEDULL);
+    split_pixels_ = find_split_pixels(s.ray_backend);
+  }
 }
 
 WavePools<PathWave> PathTracer::make_wave_state(uint32_t capacity, RayStream stream) const {
@@ -43,18 +51,35 @@ WavePools<PathWave> PathTracer::make_wave_state(uint32_t capacity, RayStream str
 
 void PathTracer::generate_camera_rays(const WaveDesc& wave, PathWave& w) const {
   w.rays.count = 0;
+  w.slots = wave.size();
+  // (one sample per pixel and wave, or a Markov chain's: no groups)
+  w.split = split_log2_ > 0 && wave.samples > 1 && !wave.chains;
+  const uint32_t group_mask = (1u << split_log2_) - 1;
   const uint32_t width = uint32_t(settings_.width);
   for (uint32_t slot = 0; slot < wave.size(); ++slot) {
     uint32_t pixel = wave.pixels[slot / wave.samples];
     uint32_t sample_index = wave.first_sample + slot % wave.samples;
     PathSampler s = PathSampler::make(sampler_, pixel, sample_index);
-    Vec2 p_raster = sample_raster_position(scene_.filter, pixel, width, s.get2d(dims::kFilm)) + settings_.raster_offset;
-    const float time = sample_time(scene_, s, settings_.maxdepth);
+    if (w.split) {
+      // A camera sample's paths are adjacent slots of the pixel; the first
+      // one's camera ray stands for all.
+      const bool splits = splits_pixel(pixel);
+      if (splits && slot % wave.samples != 0 && (sample_index & group_mask) != 0) {
+        follow_camera_sample(w, slot, w.leader[slot - 1], s);
+        continue;
+      }
+      w.leader[slot] = slot;
+      w.camera_sampler[slot] = splits ? PathSampler::make(camera_sampler_, pixel, sample_index >> split_log2_) : s;
+    }
+    const PathSampler& cs = w.split ? w.camera_sampler[slot] : s;
+    Vec2 p_raster =
+        sample_raster_position(scene_.filter, pixel, width, cs.get2d(dims::kFilm)) + settings_.raster_offset;
+    const float time = sample_time(scene_, cs, settings_.maxdepth);
     std::optional<Camera> moved;
-    CameraRay r = camera_at(camera_, time, moved).generate_ray(p_raster, lens_numbers(camera_, s, dims::kLens));
+    CameraRay r = camera_at(camera_, time, moved).generate_ray(p_raster, lens_numbers(camera_, cs, dims::kLens));
     w.pixel[slot] = pixel;
     w.sampler[slot] = s;
-    w.lambda[slot] = sample_wavelengths(settings_.spectral, s, settings_.maxdepth, settings_.wavelengths);
+    w.lambda[slot] = sample_wavelengths(settings_.spectral, cs, settings_.maxdepth, settings_.wavelengths);
     w.time[slot] = time;
     w.beta[slot] = Spectrum(r.weight);
     w.dispersed[slot] = 0;
@@ -64,10 +89,56 @@ void PathTracer::generate_camera_rays(const WaveDesc& wave, PathWave& w) const {
     w.prev_specular[slot] = 1;
     w.prev_p[slot] = r.o;
     w.prev_n[slot] = Vec3(0.f);
-    w.active[slot] = slot;
+    w.active[w.rays.count] = slot;
     w.rays.push(r.o, r.d, 0.f, kInfinity, time);
   }
   if (traces_media()) std::fill(w.medium.begin(), w.medium.begin() + wave.size(), scene_.media.camera);
+}
+
+// A path of a split camera sample starts as its leader's: the same
+// wavelengths, time and camera weight; it has no ray of its own.
+void PathTracer::follow_camera_sample(PathWave& w, uint32_t slot, uint32_t leader, const PathSampler& s) const {
+  w.pixel[slot] = w.pixel[leader];
+  w.sampler[slot] = s;
+  w.leader[slot] = leader;
+  w.lambda[slot] = w.lambda[leader];
+  w.time[slot] = w.time[leader];
+  w.beta[slot] = w.beta[leader];
+  w.dispersed[slot] = 0;
+  w.L[slot] = Spectrum(0.f);
+  w.prev_pdf[slot] = 1.f;
+  w.eta_scale[slot] = 1.f;
+  w.prev_specular[slot] = 1;
+  w.prev_p[slot] = w.prev_p[leader];
+  w.prev_n[slot] = Vec3(0.f);
+}
+
+// The first hits of split camera samples, copied to the other paths of
+// each: every path samples the BSDF there with its own numbers.
+void PathTracer::branch_first_hits(PathWave& w) const {
+  for (auto& bin : w.hits.bins) {
+    const size_t n = bin.size();  // (the copies join the bin)
+    for (size_t b = 0; b < n; ++b) {
+      const uint32_t i = bin[b], leader = w.active[i];
+      for (uint32_t f = leader + 1; f < w.slots && w.leader[f] == leader; ++f) {
+        const uint32_t j = w.rays.push_copy(i);
+        w.hits.copy(i, j);
+        ++w.stats.eye_vertices;  // (each path has the vertex)
+        w.active[j] = f;
+        w.beta[f] = w.beta[leader];
+        w.dispersed[f] = w.dispersed[leader];
+      }
+    }
+  }
+}
+
+// What the camera sample's first hit gathered (its emission, its
+// next-event estimate) belongs to each of its paths: so the film's mean
+// over the paths is the camera sample's estimate plus the mean of the
+// paths' continuations.
+void PathTracer::share_first_hit_light(PathWave& w) const {
+  for (uint32_t slot = 0; slot < w.slots; ++slot)
+    if (w.leader[slot] != slot) w.L[slot] = w.L[w.leader[slot]];
 }
 
 // Hit reconstruction, emission with MIS, maxdepth, and binning by material.
@@ -160,13 +231,17 @@ void PathTracer::shade_stage(PathWave& w) const {
     const auto v = surface_vertex<TransportMode::Radiance>(w.hits, i, bsdf, w.rays.geom_id[i],
                                   sc.media.empty() ? MediumHandle{} : w.ends.medium[i]);
     const Vec3& wo = v.wo;
-    const LazyNumber u_light(s, dim + dims::kEyeLightSelect);
+    // A split camera sample's first hit: its leader estimates next events
+    // once, with the camera sample's numbers.
+    const bool first_of_split = w.split && w.depth == 1;
+    const PathSampler& s_light = first_of_split ? w.camera_sampler[slot] : s;
+    const LazyNumber u_light(s_light, dim + dims::kEyeLightSelect);
     // Guided where the BSDF is not all delta.
     const bool guided = guiding_ && !bsdf.is_specular();
     const GuidingField::Site site = guided ? guiding_->site(v.p, v.ns, v.wo_world) : GuidingField::Site{};
     const GuideAt& guide = site.guide;
-    if (!bsdf.is_specular())
-      path_next_event(sc, light_sampler_, w, slot, v, u_light, s.get2d(dim + dims::kEyeLightPosition),
+    if (!bsdf.is_specular() && !(first_of_split && w.leader[slot] != slot))
+      path_next_event(sc, light_sampler_, w, slot, v, u_light, s_light.get2d(dim + dims::kEyeLightPosition),
                       volume_number(w, slot), settings_.maxdepth);
     // Continue the path by sampling the BSDF, or the mixture with the guide.
     const LazyNumber uc(s, dim + dims::kEyeBsdfComponent), u_rr(s, dim + dims::kEyeRoulette);
@@ -243,6 +318,7 @@ void PathTracer::trace(const WaveDesc& wave, PathWave& w, WaveOutput& out) const
     {
       StageTimer t(st, Stage::Surface);
       surface_stage(w);
+      if (w.split && w.depth == 1) branch_first_hits(w);
     }
     {
       StageTimer t(st, Stage::Shade);
@@ -259,6 +335,7 @@ void PathTracer::trace(const WaveDesc& wave, PathWave& w, WaveOutput& out) const
       StageTimer t(st, Stage::Accumulate);
       if (media) media_shadow_stage(w);
       else shadow_stage(w);
+      if (w.split && w.depth == 1) share_first_hit_light(w);
       if (learning) w.guide.end_bounce(w.L);
     }
     {
@@ -273,11 +350,15 @@ void PathTracer::trace(const WaveDesc& wave, PathWave& w, WaveOutput& out) const
     StageTimer t(st, Stage::Accumulate);
     w.guide.make_records(w.L, guiding_->tree(), hash_key(settings_.seed, wave.pixels[0], wave.first_sample), out.guide);
   }
-  for (uint32_t slot = 0; slot < wave.size(); ++slot)
-    out.samples.push_back({w.pixel[slot], film_rgb(w.L[slot], w.lambda[slot]),
-                           ((wave.first_sample + slot % wave.samples) & 1) != 0,
-                           scene_.filter.is_signed() &&
-                               pixel_filter_negative(scene_.filter, w.sampler[slot].get2d(dims::kFilm))});
+  for (uint32_t slot = 0; slot < wave.size(); ++slot) {
+    // A split camera sample's paths go to the same half of the film's
+    // samples (adaptive sampling's two estimates must be independent).
+    const uint32_t index = wave.first_sample + slot % wave.samples;
+    const uint32_t camera_index = w.split && splits_pixel(w.pixel[slot]) ? index >> split_log2_ : index;
+    const PathSampler& cs = w.split ? w.camera_sampler[w.leader[slot]] : w.sampler[slot];
+    out.samples.push_back({w.pixel[slot], film_rgb(w.L[slot], w.lambda[slot]), (camera_index & 1) != 0,
+                           scene_.filter.is_signed() && pixel_filter_negative(scene_.filter, cs.get2d(dims::kFilm))});
+  }
   if (out.keep_spectra)
     for (uint32_t slot = 0; slot < wave.size(); ++slot) out.sample_spectra.push_back({w.L[slot], w.lambda[slot]});
 }

@@ -40,6 +40,17 @@ struct PathTracerSettings {
   // Russian roulette keeps a path with probability min(1, roulette_scale x
   // its throughput) from the second bounce on (RenderOptions::roulette_scale).
   float roulette_scale = 2.f;
+  // Each camera sample's first hit is shared by `split` paths (a power of
+  // two up to 16): its camera ray, emission and next-event estimation are
+  // computed once, its BSDF sampled once per path (docs/splitting.md).
+  // A sample index then counts paths: samples i to i + split - 1 of a
+  // pixel (aligned) are one camera sample's. 1 in scenes with media, for
+  // guided paths, ambient occlusion and directlighting.
+  uint32_t split = 1;
+  RayBackend ray_backend = RayBackend::StreamNp;  // of the rays that find the pixels to split
+  // Which pixels may be split: those at (s/2 + i s, s/2 + j s) for a probe
+  // stride s (a pilot's: integrator/split_choice.h); 1: all of them.
+  uint32_t probe_stride = 1;
   // pbrt-v4's ambientocclusion (Integrator::AmbientOcclusion): one
   // occlusion ray at the first hit, nothing else.
   bool ambient_occlusion = false;
@@ -81,9 +92,24 @@ class PathTracer {
   // it has learnt something and record into it while it learns. The
   // renderer changes the field only between waves.
   void set_guiding(const GuidingField* field) { guiding_ = field; }
+  // Whether the camera samples of a pixel of the film are split
+  // (split_pixels.cpp).
+  bool splits_pixel(uint32_t pixel) const {
+    if (split_pixels_.empty()) return false;
+    if (settings_.probe_stride == 1) return split_pixels_[pixel] != 0;
+    const uint32_t s = settings_.probe_stride, x = pixel % uint32_t(settings_.width),
+                   y = pixel / uint32_t(settings_.width);
+    if (x % s != s / 2 || y % s != s / 2) return false;
+    return split_pixels_[size_t(y / s) * probe_columns() + x / s] != 0;
+  }
 
  private:
   void generate_camera_rays(const WaveDesc& wave, PathWave& w) const;
+  void follow_camera_sample(PathWave& w, uint32_t slot, uint32_t leader, const PathSampler& s) const;
+  void branch_first_hits(PathWave& w) const;
+  std::vector<uint8_t> find_split_pixels(RayBackend backend) const;  // split_pixels.cpp
+  std::vector<uint8_t> probe_pixels(const std::vector<uint32_t>& pixels, RayBackend backend) const;
+  void share_first_hit_light(PathWave& w) const;
   void surface_stage(PathWave& w) const;
   void shade_stage(PathWave& w) const;
   void shadow_stage(PathWave& w) const;
@@ -103,6 +129,19 @@ class PathTracer {
   Camera camera_;
   FootprintModel footprints_;  // enabled when the scene's textures filter
   SamplerSpec sampler_;
+  SamplerSpec camera_sampler_;  // of the camera samples, when they are split
+  uint32_t split_log2_ = 0;
+  // Per probed pixel of the film, row by row: 1 where its camera samples
+  // are split.
+  std::vector<uint8_t> split_pixels_;
+  size_t probe_columns() const {
+    const uint32_t s = settings_.probe_stride;
+    return (uint32_t(settings_.width) + s - 1 - s / 2) / s;
+  }
+  size_t probe_rows() const {
+    const uint32_t s = settings_.probe_stride;
+    return (uint32_t(settings_.height) + s - 1 - s / 2) / s;
+  }
   const GuidingField* guiding_ = nullptr;
 };
 

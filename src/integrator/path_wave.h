@@ -31,6 +31,15 @@ struct PathWave {
   std::vector<Vec3> prev_n;  // its shading normal (the light sampler's context; zero at the camera)
   std::vector<uint8_t> prev_specular;
   std::vector<uint8_t> dispersed;  // scattered at a dispersive surface (integrator/dispersion.h)
+  // A camera sample split at its first hit (PathTracerSettings::split):
+  // per slot, the slot of its camera sample's first path (the leader,
+  // itself when not split), and the leader's numbers for the camera sample
+  // and the first hit's next-event estimation; `split` when the wave has
+  // such groups.
+  std::vector<uint32_t> leader;
+  std::vector<PathSampler> camera_sampler;
+  bool split = false;
+  uint32_t slots = 0;  // of the wave being traced
   // The segments all active paths have: 1 at the first hit, as bdpt counts
   // (bdpt_wave.h). The sample dimensions are laid out by bounce (depth - 1).
   uint32_t depth = 1;
@@ -88,19 +97,21 @@ struct PathWave {
   }
 
   size_t memory_bytes() const {
-    return vector_bytes(pixel) + vector_bytes(sampler) + vector_bytes(beta) + vector_bytes(L) + vector_bytes(lambda) + vector_bytes(time) + vector_bytes(prev_pdf) +
-           vector_bytes(eta_scale) + vector_bytes(prev_p) + vector_bytes(prev_n) + vector_bytes(prev_specular) + vector_bytes(active) +
-           rays.memory_bytes() + hits.memory_bytes() + shadow.memory_bytes() + vector_bytes(shadow_slot) +
-           vector_bytes(shadow_contrib) + vector_bytes(medium) + vector_bytes(ray_medium) + vector_bytes(u_distance) +
-           vector_bytes(ray_lambda) + vector_bytes(shadow_lambda) +
-           ends.memory_bytes() + vector_bytes(scattered) + vector_bytes(shadow_medium) + vector_bytes(shadow_T) + vector_bytes(shadow_T_mis) +
+    return vector_bytes(pixel) + vector_bytes(sampler) + vector_bytes(leader) + vector_bytes(camera_sampler) +
+           vector_bytes(beta) + vector_bytes(L) + vector_bytes(lambda) + vector_bytes(time) + vector_bytes(prev_pdf) +
+           vector_bytes(eta_scale) + vector_bytes(prev_p) + vector_bytes(prev_n) + vector_bytes(prev_specular) +
+           vector_bytes(active) + rays.memory_bytes() + hits.memory_bytes() + shadow.memory_bytes() +
+           vector_bytes(shadow_slot) + vector_bytes(shadow_contrib) + vector_bytes(medium) + vector_bytes(ray_medium) +
+           vector_bytes(u_distance) + vector_bytes(ray_lambda) + vector_bytes(shadow_lambda) + ends.memory_bytes() +
+           vector_bytes(scattered) + vector_bytes(shadow_medium) + vector_bytes(shadow_T) + vector_bytes(shadow_T_mis) +
            vector_bytes(shadow_light_pdf) + vector_bytes(shadow_scatter_pdf) + vector_bytes(shadow_expect) +
            vector_bytes(shadow_sigma_end) + crossing.memory_bytes() + guide.memory_bytes();
   }
 
   void resize(uint32_t n) {
-    for (auto* v : {&pixel, &active, &shadow_slot}) v->resize(n);
+    for (auto* v : {&pixel, &active, &shadow_slot, &leader}) v->resize(n);
     sampler.resize(n);
+    camera_sampler.resize(n);
     for (auto* v : {&beta, &L, &shadow_contrib}) v->resize(n);
     lambda.resize(n);
     for (auto* v : {&time, &prev_pdf, &eta_scale}) v->resize(n);

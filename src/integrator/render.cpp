@@ -5,6 +5,8 @@
 // merges whole waves in wave order. So every sum is formed in the same order
 // whatever the thread count, and random numbers depend only on (seed, pixel,
 // sample index, dimension).
+#include "lantern/render.h"
+
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_pipeline.h>
@@ -27,17 +29,17 @@
 #include "integrator/bdpt.h"
 #include "integrator/bdpt_wave.h"
 #include "integrator/light_subpath_rate.h"
-#include "integrator/path_tracer.h"
 #include "integrator/metropolis.h"
 #include "integrator/pass_context.h"
+#include "integrator/path_tracer.h"
+#include "integrator/path_wave.h"
 #include "integrator/render_checkpoints.h"
 #include "integrator/render_progress.h"
 #include "integrator/render_settings.h"
-#include "trace/timeline.h"
-#include "integrator/path_wave.h"
+#include "integrator/split_choice.h"
 #include "integrator/wave_stats.h"
 #include "lantern/error.h"
-#include "lantern/render.h"
+#include "trace/timeline.h"
 
 namespace lantern {
 
@@ -131,10 +133,14 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
   // from one sample per pixel (integrator/guiding_field.h). Not adaptive
   // sampling under a time limit, whose pixels differ in samples anyway: a
   // pass of one sample would be a wave or two, too few to keep the threads
-  // busy (a timed adaptive render drew 30% fewer samples so).
+  // busy (a timed adaptive render drew 30% fewer samples so). A timed
+  // render whose camera samples are split takes one camera sample per
+  // pixel a pass: its `split` paths.
   const bool merging = merges_vertices(opt.integrator);
-  const uint32_t pass_spp =
-      (timed && !goal.on()) || merging || cx.guiding ? 1u : std::min<uint32_t>(total_spp, 16u);
+  const uint32_t split = cx.split;
+  const uint32_t pass_spp = merging || cx.guiding   ? 1u
+                            : (timed && !goal.on()) ? split
+                                                    : std::min<uint32_t>(total_spp, 16u);
   uint32_t pixels_per_wave = std::max<uint32_t>(1, uint32_t(opt.wave_size) / pass_spp);
   if (merging) {  // waves of equal size: a pass's last wave would have fewer light vertices to merge with
     const uint32_t n = uint32_t((order.size() + pixels_per_wave - 1) / pixels_per_wave);
@@ -553,7 +559,11 @@ RenderResult RenderSession::render_all() {
         res.stats.vcm_last_radius =
             bs.vcm_radius * std::pow(float(res.stats.vcm_last_first_sample + 1), 0.5f * (bs.vcm_alpha - 1.f));
     } else {
-      stopped = run(PathTracer(scene, light_sampler, path_settings(scene, opt, s.region, planned_spp)));
+      PathTracerSettings ps = path_settings(scene, opt, s.region, planned_spp);
+      if (ps.split == kSplitAuto) set_split(scene, light_sampler, opt, ps, res.stats);
+      res.stats.split = ps.split;
+      cx.split = ps.split;
+      stopped = run(PathTracer(scene, light_sampler, ps));
     }
     // A stop that came after the last unit left nothing undone.
     interrupted = stopped && cx.stop_requested();

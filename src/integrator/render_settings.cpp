@@ -85,6 +85,8 @@ void check_options(const Scene& scene, const RenderOptions& opt) {
   // or its survivors vanish: noise, never a better image.)
   if (!(opt.roulette_scale >= 0.01f && opt.roulette_scale <= 100.f))
     throw std::invalid_argument("--roulette must be a number from 0.01 to 100 (1: pbrt-v4's Russian roulette)");
+  if (opt.split != kSplitAuto && (opt.split > 16 || (opt.split & (opt.split - 1)) != 0))
+    throw std::invalid_argument("--split must be auto, 1, 2, 4, 8 or 16 (paths per camera sample)");
   if (opt.light_subpath_rate != kLightSubpathsAuto && opt.light_subpath_rate != 0.f &&
       !(opt.light_subpath_rate >= 0.01f && opt.light_subpath_rate <= 1.f))
     throw std::invalid_argument("--light-subpaths must be auto, 0 or a number from 0.01 to 1 (1: every camera sample "
@@ -229,6 +231,10 @@ MetropolisSettings metropolis_settings(const Scene& scene, const RenderOptions& 
   return m;
 }
 
+uint32_t camera_sample_split(const Scene& scene, const RenderOptions& opt) {
+  return opt.integrator == Integrator::Path && scene.media.empty() && !opt.any_guiding() ? opt.split : 1u;
+}
+
 PathTracerSettings path_settings(const Scene& scene, const RenderOptions& opt, const ImageRegion& region,
                                  uint32_t planned_spp) {
   PathTracerSettings ps;
@@ -251,6 +257,8 @@ PathTracerSettings path_settings(const Scene& scene, const RenderOptions& opt, c
                       : opt.integrator == Integrator::Bdpt ? PathTracerSettings{}.roulette_scale
                                                            : 1.f;
   ps.ambient_occlusion = opt.integrator == Integrator::AmbientOcclusion;
+  ps.split = camera_sample_split(scene, opt);
+  ps.ray_backend = opt.ray_backend;
   ps.ao_max_distance = scene.settings.ao_max_distance;
   ps.ao_cos_sample = scene.settings.ao_cos_sample;
   return ps;

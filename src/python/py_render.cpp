@@ -78,6 +78,17 @@ void read_options(const py::kwargs& kw, RenderRequest& r, Outputs& out) {
     } else if (k == "roulette") {
       r.roulette = cast_option<float>("roulette", value);
       if (!(r.roulette >= 0.01f && r.roulette <= 100.f)) throw py::value_error("roulette: expected 0.01 to 100");
+    } else if (k == "split") {
+      // "auto" or a count, as the command line reads its text
+      const bool number = py::isinstance<py::int_>(value) && !py::isinstance<py::bool_>(value);
+      if (!number && !py::isinstance<py::str>(value))
+        throw py::value_error("split: expected \"auto\", 1, 2, 4, 8 or 16");
+      r.split = std::string(py::str(value));
+      try {
+        parse_split(r.split);
+      } catch (const std::invalid_argument&) {
+        throw py::value_error("split: expected \"auto\", 1, 2, 4, 8 or 16");
+      }
     } else if (k == "light_subpaths") {
       // auto, 0 or a number from 0.01 to 1, read as the command line reads
       // its text (Python's own repr of the number: every digit kept)
@@ -91,7 +102,8 @@ void read_options(const py::kwargs& kw, RenderRequest& r, Outputs& out) {
       } catch (const std::invalid_argument&) {
         throw py::value_error("light_subpaths: expected \"auto\", 0 or a number from 0.01 to 1");
       }
-    } else if (k == "spectral") r.spectral = cast_option<bool>("spectral", value);
+    } else if (k == "spectral")
+      r.spectral = cast_option<bool>("spectral", value);
     else if (k == "guide") r.guide = cast_option<bool>("guide", value);
     else if (k == "guide_light") r.guide_light = cast_option<bool>("guide_light", value);
     else if (k == "adaptive") r.adaptive = cast_option<bool>("adaptive", value);
@@ -110,7 +122,8 @@ void read_options(const py::kwargs& kw, RenderRequest& r, Outputs& out) {
       throw py::type_error("unknown render option '" + k +
                            "'; the options are the command line's: integrator, spp, time, target_error, maxdepth, "
                            "seed, sampler, light_sampler, resolution, cropwindow, pixelbounds, pixel, spectral, guide, "
-                           "guide_light, adaptive, threads, wave_size, rays, mis, vcm_radius, vcm_alpha, roulette, light_subpaths, output, stats, collect_stats, checkpoint, checkpoint_file, resume, "
+                           "guide_light, adaptive, threads, wave_size, rays, mis, vcm_radius, vcm_alpha, roulette, "
+                           "split, light_subpaths, output, stats, collect_stats, checkpoint, checkpoint_file, resume, "
                            "keep_checkpoint");
   }
   if (r.time > 0 && r.spp > 0)
@@ -357,10 +370,13 @@ void bind_render(py::module_& m) {
       },
       py::arg("scene"), py::kw_only(), py::arg("progress") = py::none(),
       "Render a scene; keyword arguments are the command line's options (integrator, spp, time, target_error, "
-      "maxdepth, seed, sampler, light_sampler, resolution, cropwindow, pixelbounds, pixel, spectral, guide, guide_light, adaptive, threads, "
+      "maxdepth, seed, sampler, light_sampler, resolution, cropwindow, pixelbounds, pixel, spectral, guide, "
+      "guide_light, adaptive, threads, "
       "wave_size, rays, mis, "
-      "vcm_radius, vcm_alpha, roulette, light_subpaths, checkpoint, checkpoint_file, resume, keep_checkpoint) and the files to write (output, stats). "
-      "progress(p) is called about ten times a second; returning False cancels (None goes on). Ctrl-C cancels, writes the "
+      "vcm_radius, vcm_alpha, roulette, split, light_subpaths, checkpoint, checkpoint_file, resume, keep_checkpoint) "
+      "and the files to write (output, stats). "
+      "progress(p) is called about ten times a second; returning False cancels (None goes on). Ctrl-C cancels, writes "
+      "the "
       "image so far to output, and raises KeyboardInterrupt.");
   m.def("version", &version_line, "The build's version line, as `lantern --version` prints it");
 }
