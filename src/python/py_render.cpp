@@ -42,6 +42,24 @@ T cast_option(const char* name, const py::handle& v) {
   }
 }
 
+// "auto" or a number (an integer unless `floats`), as the text the command
+// line reads (Python's own repr of a number: every digit kept), checked by
+// `parse`; anything else is refused with what `expected` says.
+template <class Parse>
+std::string auto_or_number(const char* name, const py::handle& v, bool floats, const char* expected, Parse&& parse) {
+  const bool number =
+      (py::isinstance<py::int_>(v) || (floats && py::isinstance<py::float_>(v))) && !py::isinstance<py::bool_>(v);
+  const std::string refusal = std::string(name) + ": expected " + expected;
+  if (!number && !py::isinstance<py::str>(v)) throw py::value_error(refusal);
+  std::string text = py::str(v);
+  try {
+    parse(text);
+  } catch (const std::invalid_argument&) {
+    throw py::value_error(refusal);
+  }
+  return text;
+}
+
 // The keyword arguments of render() and RenderSession(), checked as the
 // command line checks its options.
 void read_options(const py::kwargs& kw, RenderRequest& r, Outputs& out) {
@@ -79,29 +97,10 @@ void read_options(const py::kwargs& kw, RenderRequest& r, Outputs& out) {
       r.roulette = cast_option<float>("roulette", value);
       if (!(r.roulette >= 0.01f && r.roulette <= 100.f)) throw py::value_error("roulette: expected 0.01 to 100");
     } else if (k == "split") {
-      // "auto" or a count, as the command line reads its text
-      const bool number = py::isinstance<py::int_>(value) && !py::isinstance<py::bool_>(value);
-      if (!number && !py::isinstance<py::str>(value))
-        throw py::value_error("split: expected \"auto\", 1, 2, 4, 8 or 16");
-      r.split = std::string(py::str(value));
-      try {
-        parse_split(r.split);
-      } catch (const std::invalid_argument&) {
-        throw py::value_error("split: expected \"auto\", 1, 2, 4, 8 or 16");
-      }
+      r.split = auto_or_number("split", value, false, "\"auto\", 1, 2, 4, 8 or 16", parse_split);
     } else if (k == "light_subpaths") {
-      // auto, 0 or a number from 0.01 to 1, read as the command line reads
-      // its text (Python's own repr of the number: every digit kept)
-      const bool number = (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)) &&
-                          !py::isinstance<py::bool_>(value);
-      if (!number && !py::isinstance<py::str>(value))
-        throw py::value_error("light_subpaths: expected \"auto\", 0 or a number from 0.01 to 1");
-      r.light_subpaths = std::string(py::str(value));
-      try {
-        parse_light_subpaths(r.light_subpaths);
-      } catch (const std::invalid_argument&) {
-        throw py::value_error("light_subpaths: expected \"auto\", 0 or a number from 0.01 to 1");
-      }
+      r.light_subpaths =
+          auto_or_number("light_subpaths", value, true, "\"auto\", 0 or a number from 0.01 to 1", parse_light_subpaths);
     } else if (k == "spectral")
       r.spectral = cast_option<bool>("spectral", value);
     else if (k == "guide") r.guide = cast_option<bool>("guide", value);

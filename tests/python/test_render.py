@@ -198,8 +198,19 @@ def test_bad_input_raises_clear_errors(tmp_path, cornell_box):
         lantern.render(cornell_box, spp=1, integrator="bdpt", light_subpaths=0.0099999)
     with pytest.raises(ValueError, match="light_subpaths"):
         lantern.render(cornell_box, spp=1, integrator="bdpt", light_subpaths=True)
+    for bad_split in (3, 4.0, "four", True, 32):
+        with pytest.raises(ValueError, match="split"):
+            lantern.render(cornell_box, spp=1, split=bad_split)
     with pytest.raises(RuntimeError, match="no-such-folder"):
         lantern.render(cornell_box, spp=1, output=str(tmp_path / "no-such-folder" / "x.exr"))
+
+
+def test_split_camera_samples(cornell_box):
+    # Paths per camera sample: a count, or the pilot's choice; --stats says which.
+    four = lantern.render(cornell_box, spp=8, resolution=(16, 16), split=4, collect_stats=True)
+    assert four.stats["split"]["paths_per_camera_sample"] == 4
+    chosen = lantern.render(cornell_box, spp=8, resolution=(16, 16), split="auto", collect_stats=True)
+    assert chosen.stats["split"]["paths_per_camera_sample"] == 1  # (too small a render for the pilot)
 
 
 def test_warnings_reach_python(tmp_path):
