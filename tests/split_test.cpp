@@ -118,6 +118,23 @@ TEST(Split, AdaptiveSamplingEstimatesTheErrorOfSplitSamples) {
   EXPECT_LT(ratio, 1.5) << "estimated " << r.stats.estimated_relmse << ", measured " << c.relmse;
 }
 
+// bdpt without light subpaths renders with the path tracer's kernel, and
+// splits its camera samples as the path tracer does: the same image, bit
+// for bit. With light subpaths, whole camera samples.
+TEST(Split, BdptsEyeSubpathsAloneSplitAsThePathTracer) {
+  const auto scene = guiding_test::guided_room();
+  RenderOptions o = split_options(4);
+  o.spp = 8;
+  const RenderResult path = render(*scene, o);
+  o.integrator = Integrator::Bdpt;
+  o.light_subpath_rate = 0.f;
+  const RenderResult alone = render(*scene, o);
+  EXPECT_EQ(alone.stats.split, 4u);
+  EXPECT_EQ(alone.image.rgb, path.image.rgb);
+  o.light_subpath_rate = 1.f;
+  EXPECT_EQ(render(*scene, o).stats.split, 0u);  // (not the path tracer)
+}
+
 TEST(Split, SameImageOnOneAndTwoThreads) {
   RenderOptions o = split_options(4);
   o.spp = 24;  // (the last pass holds two camera samples of four paths)

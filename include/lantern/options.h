@@ -129,6 +129,9 @@ inline bool scales_roulette(Integrator i) { return i == Integrator::Path; }
 // light subpath; lt and mlt are made of them), "auto", 0 (none: the path
 // tracer, integrator/light_subpath_rate.h) or 0.01 to 1.
 inline bool uses_light_subpath_rate(Integrator i) { return i == Integrator::Bdpt; }
+// The path tracer's split camera samples (RenderOptions::split): path, and
+// bdpt where it renders the eye subpaths alone with the path tracer's kernel.
+inline bool splits_camera_samples(Integrator i) { return i == Integrator::Path || i == Integrator::Bdpt; }
 inline constexpr float kLightSubpathsAuto = -1.f;
 // RenderOptions::split chosen per scene by a pilot (integrator/split_choice.h).
 inline constexpr uint32_t kSplitAuto = 0;

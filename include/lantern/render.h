@@ -62,7 +62,8 @@ struct RenderOptions {
   // still needs, and leaves less error per second on most scenes
   // (docs/performance.md, "Russian roulette that keeps more paths").
   float roulette_scale = 2.f;
-  // The path tracer: each camera sample's first hit shared by `split`
+  // The path tracer (and bdpt's eye subpaths alone, which it renders):
+  // each camera sample's first hit shared by `split`
   // paths (1, 2, 4, 8 or 16), its camera ray, emission and next-event
   // estimate computed once, the BSDF sampled per path; spp then counts
   // paths. Pixels that see an emitter, an infinite light or a surface that

@@ -94,7 +94,7 @@ nlohmann::json render_settings_json(const RenderOptions& o) {
                       {"wave_size", o.wave_size}};
   if (merges_vertices(o.integrator)) j["vcm"] = {{"radius", o.vcm_radius}, {"alpha", o.vcm_alpha}};
   if (scales_roulette(o.integrator)) j["roulette"] = o.roulette_scale;
-  if (o.integrator == Integrator::Path && o.split != 1) j["split"] = split_text(o.split);
+  if (splits_camera_samples(o.integrator) && o.split != 1) j["split"] = split_text(o.split);
   if (uses_light_subpath_rate(o.integrator))
     j["light_subpaths"] = o.light_subpath_rate == kLightSubpathsAuto ? nlohmann::json("auto") : nlohmann::json(o.light_subpath_rate);
   if (o.guiding) j["guiding"] = true;
@@ -109,7 +109,7 @@ void add_render_settings(ImageMetadata& md, const RenderOptions& o) {
   md.emplace_back("lantern:mis", name(o.mis));
   md.emplace_back("lantern:wave_size", std::to_string(o.wave_size));
   if (scales_roulette(o.integrator)) md.emplace_back("lantern:roulette", exact_text(o.roulette_scale));
-  if (o.integrator == Integrator::Path && o.split != 1) md.emplace_back("lantern:split", split_text(o.split));
+  if (splits_camera_samples(o.integrator) && o.split != 1) md.emplace_back("lantern:split", split_text(o.split));
   if (uses_light_subpath_rate(o.integrator)) md.emplace_back("lantern:light_subpaths", light_subpaths_text(o.light_subpath_rate));
   if (o.guiding) md.emplace_back("lantern:guiding", "on");
   if (o.guide_light_subpaths) md.emplace_back("lantern:guide-light", "on");

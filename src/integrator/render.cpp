@@ -549,20 +549,25 @@ RenderResult RenderSession::render_all() {
     } else if (!traces_paths(opt.integrator)) {
       BdptSettings bs = bdpt_settings(scene, opt, s.region, planned_spp);
       res.stats.vcm_radius = bs.merging ? bs.vcm_radius : 0.f;
-      const PathTracerSettings eye_alone = path_settings(scene, opt, s.region, planned_spp);
+      PathTracerSettings eye_alone = path_settings(scene, opt, s.region, planned_spp);
       if (uses_light_subpath_rate(opt.integrator))
         set_light_subpath_rate(scene, light_sampler, opt, eye_alone, bs, res.stats);
-      // (no light subpaths: the path tracer, eye_subpaths_alone.h)
-      stopped = bs.light_subpath_rate == 0.f ? run(PathTracer(scene, light_sampler, eye_alone))
-                                             : run(Bdpt(scene, light_sampler, bs));
+      // (no light subpaths: the path tracer, eye_subpaths_alone.h, whose
+      // camera samples may split as its own do)
+      if (bs.light_subpath_rate == 0.f) {
+        if (eye_alone.split == kSplitAuto) set_split(scene, light_sampler, opt, eye_alone, res.stats);
+        res.stats.split = cx.split = eye_alone.split;
+        stopped = run(PathTracer(scene, light_sampler, eye_alone));
+      } else {
+        stopped = run(Bdpt(scene, light_sampler, bs));
+      }
       if (bs.merging)  // the radius of the last pass traced (Bdpt::prepare_merging)
         res.stats.vcm_last_radius =
             bs.vcm_radius * std::pow(float(res.stats.vcm_last_first_sample + 1), 0.5f * (bs.vcm_alpha - 1.f));
     } else {
       PathTracerSettings ps = path_settings(scene, opt, s.region, planned_spp);
       if (ps.split == kSplitAuto) set_split(scene, light_sampler, opt, ps, res.stats);
-      res.stats.split = ps.split;
-      cx.split = ps.split;
+      res.stats.split = cx.split = ps.split;
       stopped = run(PathTracer(scene, light_sampler, ps));
     }
     // A stop that came after the last unit left nothing undone.

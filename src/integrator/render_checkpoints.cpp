@@ -31,7 +31,7 @@ std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& regi
   if (uses_light_subpath_rate(o.integrator) && o.light_subpath_rate != 1.f)
     line("light-subpaths", light_subpaths_text(o.light_subpath_rate));
   // (the camera samples' layout; renders from before splitting resume with --split 1)
-  if (o.integrator == Integrator::Path && o.split != 1) line("split", split_text(o.split));
+  if (splits_camera_samples(o.integrator) && o.split != 1) line("split", split_text(o.split));
   line("seed", std::to_string(o.seed));
   line("light-sampler", name(o.light_sampler));
   line("sampler", std::string(name(o.sampler.type)) + " " + o.sampler.randomization + " " + std::to_string(o.sampler.seed) + " " +

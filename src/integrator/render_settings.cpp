@@ -232,7 +232,7 @@ MetropolisSettings metropolis_settings(const Scene& scene, const RenderOptions& 
 }
 
 uint32_t camera_sample_split(const Scene& scene, const RenderOptions& opt) {
-  return opt.integrator == Integrator::Path && scene.media.empty() && !opt.any_guiding() ? opt.split : 1u;
+  return splits_camera_samples(opt.integrator) && scene.media.empty() && !opt.any_guiding() ? opt.split : 1u;
 }
 
 PathTracerSettings path_settings(const Scene& scene, const RenderOptions& opt, const ImageRegion& region,

@@ -33,8 +33,8 @@ MetropolisSettings metropolis_settings(const Scene& scene, const RenderOptions& 
 BdptSettings bdpt_settings(const Scene& scene, const RenderOptions& opt, const ImageRegion& region,
                            uint32_t planned_spp);
 // The paths per camera sample the path tracer renders (RenderOptions::split,
-// kSplitAuto for the pilot's choice): 1 for other integrators, in scenes
-// with media and for guided paths.
+// kSplitAuto for the pilot's choice; bdpt's eye subpaths alone too): 1 for
+// other integrators, in scenes with media and for guided paths.
 uint32_t camera_sample_split(const Scene& scene, const RenderOptions& opt);
 PathTracerSettings path_settings(const Scene& scene, const RenderOptions& opt, const ImageRegion& region,
                                  uint32_t planned_spp);
