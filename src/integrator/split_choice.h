@@ -4,14 +4,16 @@
 // and Křivánek 2016 ("Adjoint-driven Russian roulette and splitting") and
 // Rath et al. 2022 ("EARS") follow from variance and cost.
 //
-// The pilot renders the camera's whole image at about 64 x 64 pixels and
-// 32 paths per pixel, with each candidate and two seeds: half the squared
-// difference of the two images is the candidate's variance, measured with
-// its own sample numbers (a split camera sample's next-event estimate is
-// stratified across the pixel's camera samples, which a model of
-// independent samples would miss: it predicted 1.1 times the error of
-// whole camera samples in the Cornell box, where splitting by 4 leaves
-// 0.88). Each pixel weighs as relative to its value squared plus the
+// The pilot renders about 4,096 pixels spread over the image (every
+// stride-th pixel of every stride-th row, at the image's own resolution:
+// at a lower one a pixel holds more of the scene, and splitting looks
+// worse), 32 paths each, with each candidate and two seeds (the same two
+// for both). Half the squared difference of a candidate's two images is
+// its variance, measured with its own sample numbers: a split camera
+// sample's next-event estimate is stratified across the pixel's camera
+// samples, which a model of independent samples would miss (one predicted
+// 1.1 times the error of whole camera samples in the Cornell box, where
+// splitting by 4 leaves 0.88). Each pixel weighs as relative to its value squared plus the
 // image's mean squared (as bdpt's light subpath rate weighs them,
 // light_subpath_rate.h). The cost of a path split k ways is a / k + 1 - a
 // of a whole camera sample's, with a = 0.5 / v the share of its work done

@@ -144,10 +144,19 @@ def test_an_exception_in_progress_cancels_and_is_raised(cornell_box):
 
 def test_ctrl_c_writes_the_image_so_far_then_raises(cornell_box, tmp_path):
     out = tmp_path / "interrupted.exr"
-    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    # Ctrl-C once the render has samples (before, the pilot that chooses
+    # the split may still run: the image so far would have none).
+    rendering = threading.Event()
+
+    def interrupt():
+        rendering.wait(30)
+        os.kill(os.getpid(), signal.SIGINT)
+
+    timer = threading.Thread(target=interrupt)
     timer.start()
     with pytest.raises(KeyboardInterrupt):
-        lantern.render(cornell_box, time=60, resolution=(64, 64), output=str(out))
+        lantern.render(cornell_box, time=60, resolution=(64, 64), output=str(out),
+                       progress=lambda p: rendering.set() if p.spp > 0 else None)
     timer.join()
     header = dict(lantern.image_metadata(str(out)))
     assert header["lantern:interrupted"] == "true"
