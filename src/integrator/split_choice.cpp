@@ -57,24 +57,24 @@ SplitChoice best_split(const std::array<double, kSplitCandidates.size()>& varian
 
 bool worth_a_split_pilot(const PathTracerSettings& render, double time_budget) {
   if (time_budget > 0.0) return time_budget >= 8.0;
-  const double width = render.full_width > 0 ? render.full_width : render.width;
-  const double height = render.full_height > 0 ? render.full_height : render.height;
+  const double width = render.width, height = render.height;
   const double pilot_paths = 2.0 * double(kSplitCandidates.size()) * kPilotPixels * kPilotSpp;
   return render.planned_spp == 0 || double(render.planned_spp) * width * height >= 16.0 * pilot_paths;
 }
 
 SplitChoice choose_split(const Scene& scene, const LightSampler& light_sampler, const PathTracerSettings& render,
                          RayBackend backend) {
-  const int full_w = render.full_width > 0 ? render.full_width : render.width;
-  const int full_h = render.full_height > 0 ? render.full_height : render.height;
-  // Every stride-th pixel of every stride-th row, at the image's own
-  // resolution: what a pixel sees varies within it as in the render.
-  const int stride = std::max(1, int(std::ceil(std::sqrt(double(full_w) * double(full_h) / kPilotPixels))));
-  PathTracerSettings pilot = pilot_settings(render, full_w, full_h, kPilotSpp);
-  pilot.probe_stride = uint32_t(stride);
+  // Every stride-th pixel of every stride-th row of the film (the crop's,
+  // with one), at the image's own resolution: what a pixel sees varies
+  // within it as in the render.
+  const uint32_t width = uint32_t(render.width), height = uint32_t(render.height);
+  const uint32_t stride = std::max(1u, uint32_t(std::ceil(std::sqrt(double(width) * double(height) / kPilotPixels))));
+  PathTracerSettings pilot = render;
+  pilot.planned_spp = kPilotSpp;
+  pilot.probe_stride = stride;
   std::vector<uint32_t> pixels;
-  for (int y = stride / 2; y < full_h; y += stride)
-    for (int x = stride / 2; x < full_w; x += stride) pixels.push_back(uint32_t(y) * uint32_t(full_w) + uint32_t(x));
+  for (uint32_t y = stride / 2; y < height; y += stride)
+    for (uint32_t x = stride / 2; x < width; x += stride) pixels.push_back(y * width + x);
   // Two seeds of each candidate; every pixel weighed by its value squared
   // plus the image's mean squared, from whole camera samples.
   std::array<std::array<PilotImage, 2>, kSplitCandidates.size()> images;

@@ -23,9 +23,10 @@
 // candidate other than 1 must leave at most kSplitGain of 1's error: the
 // pilot is small.
 //
-// The pilot covers the whole image at the same seed whatever part of it a
-// process renders, and sums in a fixed order: every part, rank, thread
-// count and resumed run chooses the same.
+// The pilot covers the film's pixels (a crop's, with one: every process of
+// a render has the same film, and shares its waves) at the same seed, and
+// sums in a fixed order: every part, rank, thread count and resumed run
+// chooses the same.
 #pragma once
 
 #include <array>

@@ -79,7 +79,7 @@ std::vector<uint8_t> PathTracer::find_split_pixels(RayBackend backend) const {
     std::vector<uint8_t> whole_here(split.size(), 0);
     tbb::parallel_for(0, height, [&](int y) {
       std::vector<uint32_t> row(static_cast<size_t>(width));
-      for (int x = 0; x < width; ++x) row[size_t(x)] = uint32_t(y * width + x);
+      for (int x = 0; x < width; ++x) row[size_t(x)] = uint32_t(y) * uint32_t(width) + uint32_t(x);
       const std::vector<uint8_t> w = probe_pixels(row, backend);
       std::copy(w.begin(), w.end(), whole_here.begin() + ptrdiff_t(y) * width);
     });
@@ -103,7 +103,7 @@ std::vector<uint8_t> PathTracer::find_split_pixels(RayBackend backend) const {
       const size_t before = around.size();
       for (int yy = std::max(y - 1, 0); yy <= std::min(y + 1, height - 1); ++yy)
         for (int xx = std::max(x - 1, 0); xx <= std::min(x + 1, width - 1); ++xx)
-          around.push_back(uint32_t(yy * width + xx));
+          around.push_back(uint32_t(yy) * uint32_t(width) + uint32_t(xx));
       count.push_back(uint32_t(around.size() - before));
     }
     const std::vector<uint8_t> w = probe_pixels(around, backend);
