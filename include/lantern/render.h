@@ -210,10 +210,11 @@ struct RenderStats {
   float light_subpath_rate = -1.f;
   std::vector<double> light_subpath_candidates, light_subpath_error, light_subpath_cost;
   // path: the paths per camera sample rendered with (0: not the path
-  // tracer); with the pilot's choice (--split auto), its estimates: each
-  // candidate's error at equal time relative to 1's, and the share of a
-  // path's work its camera sample does once.
+  // tracer); with the pilot's choice (--split auto), its candidates and
+  // its estimates: each one's error at equal time relative to 1's, and the
+  // share of a path's work its camera sample does once.
   uint32_t split = 0;
+  std::vector<uint32_t> split_candidates;
   std::vector<double> split_error;
   double split_camera_share = 0.0;
   float vcm_last_radius = 0.f;  // vcm: the merging radius of the last pass traced

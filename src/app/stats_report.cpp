@@ -121,7 +121,7 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
   if (s.split > 0) {
     j["split"] = {{"paths_per_camera_sample", s.split}};
     if (!s.split_error.empty())
-      j["split"]["pilot"] = {{"candidates", {1, 4}},  // (integrator/split_choice.h)
+      j["split"]["pilot"] = {{"candidates", s.split_candidates},
                              {"error_at_equal_time", s.split_error},
                              {"camera_sample_share_of_work", s.split_camera_share}};
   }

@@ -462,32 +462,10 @@ RenderResult RenderSession::render_all() {
   State& s = *state_;
   const Scene& scene = s.scene;
   const RenderOptions& opt = s.opt;
-  if (opt.target_error > 0 || opt.adaptive) {
-    if (opt.target_error <= 0 && opt.time_limit_seconds <= 0 && opt.spp < int(2 * kAdaptiveMinSamples))
-      throw std::invalid_argument("adaptive sampling to a mean of " + std::to_string(opt.spp) +
-                                  " samples per pixel: it needs 32 or more, as its first two passes give every pixel 16 each");
-    // Its decisions read the whole of each pixel's samples, which one
-    // process holds only when it renders them all; a merging pass shares
-    // light vertices between pixels that do and do not take it.
-    if (merges_vertices(opt.integrator))
-      throw std::invalid_argument("adaptive sampling (a target error or a budget) works with path, directlighting, ambientocclusion, bdpt and lt, not with " +
-                                  std::string(name(opt.integrator)));
-    if (opt.share_count > 1 || s.hooks.next_ticket)
-      throw std::invalid_argument("adaptive sampling (a target error or a budget) needs the whole render in one process: not with "
-                                  "--part or MPI");
-  }
-  if (opt.integrator == Integrator::Mlt && (s.hooks.next_ticket || s.hooks.reduce_film))
-    throw std::invalid_argument("mlt needs the whole render in one process: not with MPI");
-  if (opt.gbuffer && (opt.share_count > 1 || s.hooks.next_ticket || s.hooks.reduce_film))
-    throw std::invalid_argument("Film \"gbuffer\" needs the whole render in one process: not with --part or MPI");
+  check_processes(opt, s.hooks);
   if (opt.gbuffer) s.film.track_moments();
-  if (opt.spectral_buckets > 0 && (opt.share_count > 1 || s.hooks.next_ticket || s.hooks.reduce_film))
-    throw std::invalid_argument("Film \"spectral\" needs the whole render in one process: not with --part or MPI");
   if (opt.spectral_buckets > 0 && s.film.buckets().count == 0)
     s.film.track_buckets({opt.spectral_buckets, opt.spectral_lambda_min, opt.spectral_lambda_max});
-  // MPI hands out units by tickets: each rank would learn another field.
-  if (opt.any_guiding() && s.hooks.next_ticket)
-    throw std::invalid_argument("path guiding (--guide, --guide-light) needs the whole render in one process: not with MPI");
   // Low-discrepancy samplers lay a pixel's samples out for the count they
   // plan for; under a time budget the count is open.
   const uint32_t planned_spp = opt.time_limit_seconds > 0 ? 0u : uint32_t(opt.spp);

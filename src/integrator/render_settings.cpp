@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "integrator/adaptive_sampling.h"
 #include "integrator/eye_subpaths_alone.h"
 #include "math/rng.h"
 #include "scene/scene.h"
@@ -233,6 +234,37 @@ MetropolisSettings metropolis_settings(const Scene& scene, const RenderOptions& 
 
 uint32_t camera_sample_split(const Scene& scene, const RenderOptions& opt) {
   return splits_camera_samples(opt.integrator) && scene.media.empty() && !opt.any_guiding() ? opt.split : 1u;
+}
+
+void check_processes(const RenderOptions& opt, const RenderHooks& hooks) {
+  if (opt.target_error > 0 || opt.adaptive) {
+    if (opt.target_error <= 0 && opt.time_limit_seconds <= 0 && opt.spp < int(2 * kAdaptiveMinSamples))
+      throw std::invalid_argument(
+          "adaptive sampling to a mean of " + std::to_string(opt.spp) +
+          " samples per pixel: it needs 32 or more, as its first two passes give every pixel 16 each");
+    // Its decisions read the whole of each pixel's samples, which one
+    // process holds only when it renders them all; a merging pass shares
+    // light vertices between pixels that do and do not take it.
+    if (merges_vertices(opt.integrator))
+      throw std::invalid_argument(
+          "adaptive sampling (a target error or a budget) works with path, directlighting, ambientocclusion, bdpt and "
+          "lt, not with " +
+          std::string(name(opt.integrator)));
+    if (opt.share_count > 1 || hooks.next_ticket)
+      throw std::invalid_argument(
+          "adaptive sampling (a target error or a budget) needs the whole render in one process: not with "
+          "--part or MPI");
+  }
+  if (opt.integrator == Integrator::Mlt && (hooks.next_ticket || hooks.reduce_film))
+    throw std::invalid_argument("mlt needs the whole render in one process: not with MPI");
+  if (opt.gbuffer && (opt.share_count > 1 || hooks.next_ticket || hooks.reduce_film))
+    throw std::invalid_argument("Film \"gbuffer\" needs the whole render in one process: not with --part or MPI");
+  if (opt.spectral_buckets > 0 && (opt.share_count > 1 || hooks.next_ticket || hooks.reduce_film))
+    throw std::invalid_argument("Film \"spectral\" needs the whole render in one process: not with --part or MPI");
+  // MPI hands out units by tickets: each rank would learn another field.
+  if (opt.any_guiding() && hooks.next_ticket)
+    throw std::invalid_argument(
+        "path guiding (--guide, --guide-light) needs the whole render in one process: not with MPI");
 }
 
 PathTracerSettings path_settings(const Scene& scene, const RenderOptions& opt, const ImageRegion& region,

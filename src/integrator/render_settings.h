@@ -13,6 +13,11 @@ namespace lantern {
 
 // Throws std::invalid_argument, naming what is wrong.
 void check_options(const Scene& scene, const RenderOptions& opt);
+// Throws std::invalid_argument where what a render asks for needs the
+// whole render in one process and `hooks` share it (MPI's tickets, a
+// reduced film), or --part does; and for adaptive sampling that cannot
+// decide (too few samples, merging).
+void check_processes(const RenderOptions& opt, const RenderHooks& hooks);
 
 // The pixels a render covers: the camera's whole image (the options'
 // resolution, else the scene's), and the part of it the film holds, as

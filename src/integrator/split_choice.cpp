@@ -104,6 +104,7 @@ void set_split(const Scene& scene, const LightSampler& light_sampler, const Rend
   if (!worth_a_split_pilot(render, opt.time_limit_seconds)) return;
   const SplitChoice c = choose_split(scene, light_sampler, render, opt.ray_backend);
   render.split = c.split;
+  stats.split_candidates.assign(kSplitCandidates.begin(), kSplitCandidates.end());
   stats.split_error.assign(c.error.begin(), c.error.end());
   stats.split_camera_share = c.camera_share;
 }
