@@ -5,6 +5,7 @@
 // those it accepts) and name() back.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstdio>
@@ -122,6 +123,18 @@ inline bool traces_paths(Integrator i) {
 }
 // The integrators that merge light and eye vertices (docs/vcm.md).
 inline bool merges_vertices(Integrator i) { return i == Integrator::Vcm || i == Integrator::Bpm || i == Integrator::Ppm; }
+// Paths per wave by default (RenderOptions::wave_size): 4096, and for the
+// integrators that merge, 16384 light subpaths for each eye vertex to merge
+// with; a scene that asks for photon mapping (an "sppm" Integrator) merges
+// with its "photonsperiteration", by default a whole pass's (one sample of
+// every pixel), at most kPhotonWaveLimit per wave (docs/vcm.md, "Light
+// subpaths per merge").
+inline constexpr int kPathWaveSize = 4096, kMergingWaveSize = 16384, kPhotonWaveLimit = 1 << 17;
+inline int default_wave_size(Integrator i, int64_t photons_per_iteration) {
+  if (!merges_vertices(i)) return kPathWaveSize;
+  if (photons_per_iteration == 0) return kMergingWaveSize;
+  return photons_per_iteration < 0 ? kPhotonWaveLimit : int(std::min<int64_t>(photons_per_iteration, kPhotonWaveLimit));
+}
 // Whose Russian roulette RenderOptions::roulette_scale scales (the others keep pbrt-v4's rule).
 inline bool scales_roulette(Integrator i) { return i == Integrator::Path; }
 

@@ -218,6 +218,7 @@ struct RenderStats {
   std::vector<double> split_error;
   double split_camera_share = 0.0;
   float vcm_last_radius = 0.f;  // vcm: the merging radius of the last pass traced
+  uint32_t vcm_wave_paths = 0;  // vcm: each wave's light subpaths, which its eye vertices merge with
   uint32_t vcm_last_first_sample = 0;  // vcm: the first sample index of that pass
   double vcm_grid_seconds = 0.0;  // vcm, with stats: thread-seconds building the merging grids
   // mlt: the mean importance of the bootstrap samples (b), the chains, and

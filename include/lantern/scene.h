@@ -37,6 +37,11 @@ struct SceneSettings {
   LightSamplerKind light_sampler = LightSamplerKind::Bvh;
   // An "sppm" Integrator's "radius": vcm's first merging radius (0: automatic).
   float merge_radius = 0.f;
+  // An "sppm" Integrator's "photonsperiteration": the light subpaths each
+  // eye vertex merges with, per pass; -1 (pbrt-v4's default) a pass's
+  // pixels. 0 when the scene asks for no photon mapping (its vcm keeps
+  // waves of the default size: docs/vcm.md, "Light subpaths per merge").
+  int64_t photons_per_iteration = 0;
   // An "ambientocclusion" Integrator's "maxdistance" (what lies farther
   // does not occlude) and "cossample" (directions drawn by the cosine, or
   // uniformly over the hemisphere): pbrt-v4's defaults.

@@ -177,7 +177,11 @@ void add_render_request_options(CLI::App& c, RenderRequest& r) {
   });
   c.add_option("--rays", r.rays, "Ray query back end: stream (Embree Np streams), stream-1m, single, packet16")
       ->check(CLI::IsMember({"stream", "stream-1m", "single", "packet16"}));
-  c.add_option("--wave-size", r.wave_size, "Paths per wave (default 4096; 16384 for vcm, bpm and ppm, whose eye vertices merge with the light vertices of their wave)")->check(integer_in(1, 1 << 22, "an integer from 1 to 4194304"));
+  c.add_option(
+       "--wave-size", r.wave_size,
+       "Paths per wave (default 4096; 16384 for vcm, bpm and ppm, whose eye vertices merge with the light vertices of "
+       "their wave; for those, an sppm scene's photonsperiteration, by default a whole pass, at most 131072)")
+      ->check(integer_in(1, 1 << 22, "an integer from 1 to 4194304"));
 }
 
 }  // namespace lantern::cli

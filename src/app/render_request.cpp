@@ -81,7 +81,7 @@ RenderOptions resolve_render_options(const Scene& scene, const RenderRequest& a)
   }
   set_render_region(a, o);
   o.ray_backend = parse_ray_backend(a.rays);
-  o.wave_size = a.wave_size > 0 ? a.wave_size : merges_vertices(o.integrator) ? 16384 : 4096;
+  o.wave_size = a.wave_size > 0 ? a.wave_size : default_wave_size(o.integrator, ss.photons_per_iteration);
   return o;
 }
 

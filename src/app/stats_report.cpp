@@ -115,6 +115,7 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
   if (s.vcm_radius > 0.f)
     j["vcm"] = {{"merges", s.merges},
                 {"merges_per_eye_vertex", s.eye_vertices ? double(s.merges) / double(s.eye_vertices) : 0.0},
+                {"light_subpaths_per_wave", s.vcm_wave_paths},
                 {"first_radius", s.vcm_radius},
                 {"last_radius", s.vcm_last_radius},
                 {"grid_build_seconds", s.vcm_grid_seconds}};

@@ -155,13 +155,14 @@ void Bdpt::prepare_merging(const WaveDesc& wave, BdptWave& w) const {
   if (!settings_.merging) return;
   const float pass = float(wave.first_sample + 1);
   const float r = settings_.vcm_radius * std::pow(pass, 0.5f * (settings_.vcm_alpha - 1.f));
-  const float eta = kPi * r * r * float(wave.size()), eta_medium = eta * r * (4.f / 3.f);
+  const float area = kPi * r * r, volume = area * r * (4.f / 3.f);
+  const float weighed = float(std::min(wave.size(), kMergeWeightPaths)), n = float(wave.size());
   w.vm_radius = r;
-  w.mis.vm_weight = mis_(eta);
-  w.mis.vm_medium = medium_merging() == MergeKind::Medium ? mis_(eta_medium) : 0.f;
+  w.mis.vm_weight = mis_(area * weighed);
+  w.mis.vm_medium = medium_merging() == MergeKind::Medium ? mis_(volume * weighed) : 0.f;
   w.mis.connect = settings_.connections ? 1.f : 0.f;
-  w.vm_normalization = 1.f / eta;
-  w.vm_normalization_medium = 1.f / eta_medium;
+  w.vm_normalization = 1.f / (area * n);
+  w.vm_normalization_medium = 1.f / (volume * n);
 }
 
 // Each eye vertex on a surface, with its BSDF built (its textures

@@ -19,17 +19,18 @@
 
 #include "accel/ray_stream.h"
 #include "camera/camera.h"
-#include "texture/footprint.h"
 #include "film/film.h"
 #include "integrator/bdpt_mis.h"
 #include "integrator/guiding_field.h"
 #include "integrator/vertex.h"
 #include "integrator/wave.h"
-#include "integrator/wavelengths.h"
 #include "integrator/wave_stats.h"
+#include "integrator/wavelengths.h"
+#include "lantern/options.h"
 #include "light/light_sampler.h"
 #include "sampler/sampler.h"
 #include "scene/scene.h"
+#include "texture/footprint.h"
 
 namespace lantern {
 
@@ -99,6 +100,14 @@ struct LightVertexResponse {
 // Occlusion queries are flushed when this many connections are waiting, so
 // memory stays bounded however long the subpaths get.
 inline constexpr uint32_t kMaxPendingConnections = 1u << 16;
+
+// vcm: merges weigh against the other strategies as if merged with at most
+// this many light subpaths (eta = pi r^2 min(n, this)), however many their
+// wave holds; each merge's estimate divides by the true n. The weights
+// stay a partition of unity either way, so a wave of more light subpaths
+// lowers the merges' variance without giving their blur (the radius'
+// bias) more weight than the default wave size does (docs/vcm.md).
+inline constexpr uint32_t kMergeWeightPaths = uint32_t(kMergingWaveSize);
 
 class Bdpt {
  public:

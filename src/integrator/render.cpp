@@ -108,6 +108,15 @@ class TicketCursor {
   bool holding_ = false, exhausted_ = false;
 };
 
+// The paths of each wave of a pass of one sample per pixel (vcm, bpm, ppm):
+// at most wave_size, all waves of a pass the same size (a pass's last wave
+// would otherwise have fewer light vertices to merge with).
+uint32_t merging_wave_paths(uint32_t pixels, int wave_size) {
+  const uint32_t most = std::max<uint32_t>(1, uint32_t(wave_size));
+  const uint32_t waves = (pixels + most - 1) / most;
+  return std::max<uint32_t>(1, (pixels + waves - 1) / waves);
+}
+
 // Runs one integrator over all passes. Waves flow through a pipeline whose
 // last stage adds their output to the film, one wave at a time (in wave
 // order, though the fixed-point sums would not mind another).
@@ -141,11 +150,8 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
   const uint32_t pass_spp = merging || cx.guiding   ? 1u
                             : (timed && !goal.on()) ? split
                                                     : std::min<uint32_t>(total_spp, 16u);
-  uint32_t pixels_per_wave = std::max<uint32_t>(1, uint32_t(opt.wave_size) / pass_spp);
-  if (merging) {  // waves of equal size: a pass's last wave would have fewer light vertices to merge with
-    const uint32_t n = uint32_t((order.size() + pixels_per_wave - 1) / pixels_per_wave);
-    pixels_per_wave = uint32_t((order.size() + n - 1) / n);
-  }
+  const uint32_t pixels_per_wave = merging ? merging_wave_paths(uint32_t(order.size()), opt.wave_size)
+                                           : std::max<uint32_t>(1, uint32_t(opt.wave_size) / pass_spp);
   const uint32_t capacity = pixels_per_wave * pass_spp;
   const uint32_t waves = uint32_t((order.size() + pixels_per_wave - 1) / pixels_per_wave);
   checkpoints.set_units(timed ? 0 : (total_spp + pass_spp - 1) / pass_spp, waves);
@@ -527,6 +533,8 @@ RenderResult RenderSession::render_all() {
     } else if (!traces_paths(opt.integrator)) {
       BdptSettings bs = bdpt_settings(scene, opt, s.region, planned_spp);
       res.stats.vcm_radius = bs.merging ? bs.vcm_radius : 0.f;
+      if (bs.merging)
+        res.stats.vcm_wave_paths = merging_wave_paths(uint32_t(film.width() * film.height()), opt.wave_size);
       PathTracerSettings eye_alone = path_settings(scene, opt, s.region, planned_spp);
       if (uses_light_subpath_rate(opt.integrator))
         set_light_subpath_rate(scene, light_sampler, opt, eye_alone, bs, res.stats);

@@ -227,9 +227,16 @@ void SceneBuilder::integrator(const std::string& type, const ParamSet& ps) {
       if (!(radius > 0.f) || !std::isfinite(radius)) ps.fail(*r, "\"radius\" must be a positive number");
       scene_.settings.merge_radius = radius;
     }
-    if (ps.find("photonsperiteration"))
-      warn(ps.where, "sppm's \"photonsperiteration\" is not used: vcm merges with the light subpaths of its wave "
-                     "(see --wave-size)");
+    // Its "photonsperiteration" is how many light subpaths each eye vertex
+    // merges with in a pass (a wave's: --wave-size), pbrt-v4's default of
+    // -1 a pass's pixels.
+    scene_.settings.photons_per_iteration = -1;
+    if (const pbrt::Param* n = ps.find("photonsperiteration")) {
+      const int photons = ps.get_int("photonsperiteration", -1);
+      if (photons == 0 || photons < -1)
+        ps.fail(*n, "\"photonsperiteration\" must be a positive number of light paths, or -1 for the image's pixels");
+      scene_.settings.photons_per_iteration = photons;
+    }
     ps.find("seed");
   } else {
     warn(ps.where, "integrator \"" + printable(type) + "\" is not available; using \"path\" (choose with --integrator)");
