@@ -16,7 +16,7 @@ float area_dir_pdf(const AreaLight& a, const Vec3& n, const Vec3& w) {
 }
 
 float spot_falloff(const SpotLight& s, const Vec3& w) {
-  return glm::smoothstep(s.cos_falloff_end, s.cos_falloff_start, glm::dot(w, s.frame.n));
+  return smooth_cone_weight(glm::dot(w, s.frame.n), s.cos_falloff_start, s.cos_falloff_end);
 }
 
 float disk_pdf(const LightPools& L) { return 1.f / (kPi * sqr(L.scene_radius)); }
@@ -97,8 +97,10 @@ std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& s
     case LightKind::Spot: {
       const SpotLight& s = L.spot[r.index];
       es.p = s.p;
-      es.d = s.frame.from_local(sample_uniform_cone(u_dir, s.cos_falloff_end));
-      es.pdf_dir = uniform_cone_pdf(s.cos_falloff_end);
+      // (directions by the falloff: the intensity over the density is constant)
+      const Vec3 local = sample_smooth_cone(u_dir, s.cos_falloff_start, s.cos_falloff_end);
+      es.d = s.frame.from_local(local);
+      es.pdf_dir = smooth_cone_pdf(local.z, s.cos_falloff_start, s.cos_falloff_end);
       es.Le = light_spectrum(s.I, s.spectrum, tex, l) * spot_falloff(s, es.d);
       es.error_scale = max_abs_component(s.p);
       es.delta_pos = true;
@@ -172,8 +174,10 @@ float emission_pdf(const LightPools& L, const ShapePools& shapes, const TextureP
       const PointLight& pl = L.point[r.index];
       return pmf * (pl.profile < 0 ? uniform_sphere_pdf() : profile_pdf(L.profiles[size_t(pl.profile)], w));
     }
-    case LightKind::Spot:
-      return pmf * uniform_cone_pdf(L.spot[r.index].cos_falloff_end);
+    case LightKind::Spot: {
+      const SpotLight& s = L.spot[r.index];
+      return pmf * smooth_cone_pdf(glm::dot(w, s.frame.n), s.cos_falloff_start, s.cos_falloff_end);
+    }
     case LightKind::Distant:
       return pmf * disk_pdf(L);
     case LightKind::Volume:

@@ -41,7 +41,7 @@ float light_power(const LightPools& L, const LightRef& r, const TexturePools& te
     case LightKind::Point: return 4.f * kPi * point_mean_intensity(L, L.point[r.index]);
     case LightKind::Spot: {
       const SpotLight& s = L.spot[r.index];
-      return avg(s.I) * 2.f * kPi * (1.f - 0.5f * (s.cos_falloff_start + s.cos_falloff_end));
+      return avg(s.I) * smooth_cone_mass(s.cos_falloff_start, s.cos_falloff_end);
     }
     case LightKind::Distant: return avg(L.distant[r.index].L) * disk;
     case LightKind::Volume: return L.volume[r.index].power;
@@ -281,7 +281,7 @@ static bool sample_light_into(const LightPools& L, const ShapePools& shapes, con
       if (!(dist2 > 0.f)) return false;
       Vec3 wi = d / std::sqrt(dist2);
       float cos_t = glm::dot(-wi, s.frame.n);
-      float falloff = glm::smoothstep(s.cos_falloff_end, s.cos_falloff_start, cos_t);
+      float falloff = smooth_cone_weight(cos_t, s.cos_falloff_start, s.cos_falloff_end);
       ls = LightSample{light_spectrum(s.I, s.spectrum, tex, l) * falloff / dist2, wi, 1.f, s.p, Vec3(0.f), max_abs_component(s.p), true, false};
       break;
     }

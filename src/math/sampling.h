@@ -57,6 +57,66 @@ inline Vec3 sample_uniform_cone(Vec2 u, float cos_max) {
 }
 inline float uniform_cone_pdf(float cos_max) { return 1.f / (2.f * kPi * (1.f - cos_max)); }
 
+// A point t of [0, 1] with density proportional to smoothstep(t) = 3t^2 -
+// 2t^3, that is 6t^2 - 4t^3: its cumulative distribution 2t^3 - t^4 is
+// inverted by Newton's method, kept inside a bracket that halves when a
+// step would leave it (the distribution is increasing on [0, 1]).
+inline float sample_smoothstep(float u) {
+  // (starting where the distribution's ends are: 2t^3 near 0, 1 - 2(1 - t) near 1)
+  float lo = 0.f, hi = 1.f, t = u < 0.5f ? std::cbrt(0.5f * u) : 1.f - 0.5f * (1.f - u);
+  for (int i = 0; i < 24; ++i) {
+    const float f = t * t * t * (2.f - t) - u, slope = 2.f * t * t * (3.f - 2.f * t);
+    if (f == 0.f) break;
+    (f < 0.f ? lo : hi) = t;
+    float next = slope > 0.f ? t - f / slope : 0.5f * (lo + hi);
+    if (!(next > lo && next < hi)) next = 0.5f * (lo + hi);
+    if (std::fabs(next - t) < 1e-7f) {
+      t = next;
+      break;
+    }
+    t = next;
+  }
+  return t;
+}
+
+// Directions in a cone around +z with density proportional to a spot
+// light's falloff: 1 where cos theta >= cos_inner, smoothstep from
+// cos_outer (0) to cos_inner (1) between, 0 beyond. Uniform in cos theta
+// and phi times that weight, so the mass is 2 pi ((1 - cos_inner) +
+// (cos_inner - cos_outer) / 2): the inner cone or the edge is chosen by
+// its share, then cos theta within it. A spot light's emission weighed so
+// has a constant intensity over density (pbrt-v4 samples its spot lights
+// this way too).
+// An inner cone no narrower than the outer one (a "conedeltaangle" of 0,
+// or more than the cone) leaves a hard edge at cos_outer.
+inline float smooth_cone_mass(float cos_inner, float cos_outer) {
+  const float inner = std::max(cos_inner, cos_outer);
+  return 2.f * kPi * ((1.f - inner) + 0.5f * (inner - cos_outer));
+}
+inline float smooth_cone_weight(float cos_t, float cos_inner, float cos_outer) {
+  if (cos_t >= cos_inner && cos_t >= cos_outer) return 1.f;
+  if (cos_t <= cos_outer) return 0.f;
+  const float t = (cos_t - cos_outer) / (cos_inner - cos_outer);
+  return t * t * (3.f - 2.f * t);
+}
+inline float smooth_cone_pdf(float cos_t, float cos_inner, float cos_outer) {
+  return smooth_cone_weight(cos_t, cos_inner, cos_outer) / smooth_cone_mass(cos_inner, cos_outer);
+}
+inline Vec3 sample_smooth_cone(Vec2 u, float cos_inner, float cos_outer) {
+  cos_inner = std::max(cos_inner, cos_outer);
+  const float inner = 1.f - cos_inner, edge = 0.5f * (cos_inner - cos_outer);
+  const float p_inner = inner / (inner + edge);
+  float cos_t;
+  if (u.x < p_inner) {
+    cos_t = 1.f - (u.x / p_inner) * inner;
+  } else {
+    const float v = std::min((u.x - p_inner) / (1.f - p_inner), 0x1.fffffep-1f);
+    cos_t = cos_outer + sample_smoothstep(v) * (cos_inner - cos_outer);
+  }
+  const float sin_t = safe_sqrt(1.f - cos_t * cos_t), phi = u.y * 2.f * kPi;
+  return Vec3(std::cos(phi) * sin_t, std::sin(phi) * sin_t, cos_t);
+}
+
 // A point of [0, 1] with density proportional to (1 - x) a + x b (a, b >= 0,
 // not both 0): the inverse of its cumulative distribution, written so that
 // a = b loses no digits.

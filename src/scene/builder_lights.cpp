@@ -38,6 +38,9 @@ void SceneBuilder::add_light(const std::string& type, const ParamSet& ps, const 
     RGB I = ps.get_rgb("I", ColorUsage::Illuminant).value_or(RGB(1.f)) * scale;
     Vec3 from = ps.get_point3("from", Vec3(0.f)), to = ps.get_point3("to", Vec3(0, 0, 1));
     float cone = ps.get_float("coneangle", 30.f), delta = ps.get_float("conedeltaangle", 5.f);
+    if (!(cone > 0.f && cone <= 180.f)) ps.fail(*ps.find("coneangle"), "\"coneangle\" must lie in (0, 180] degrees");
+    if (!(delta >= 0.f) || !std::isfinite(delta))
+      ps.fail(*ps.find("conedeltaangle"), "\"conedeltaangle\" must be a finite angle of 0 degrees or more");
     float cos_end = std::cos(glm::radians(cone)), cos_start = std::cos(glm::radians(cone - delta));
     if (ps.has("power")) I *= ps.get_float("power", 1.f) / (2.f * kPi * ((1.f - cos_start) + (cos_start - cos_end) / 2.f));
     Vec3 axis = Vec3(ctm * Vec4(to - from, 0.f));
