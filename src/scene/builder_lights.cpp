@@ -4,9 +4,9 @@
 #endif
 #include <filesystem>
 
-#include "scene/builder.h"
-
 #include "color/rgb_spectrum_fit.h"
+#include "math/sampling.h"
+#include "scene/builder.h"
 
 namespace lantern {
 
@@ -42,7 +42,7 @@ void SceneBuilder::add_light(const std::string& type, const ParamSet& ps, const 
     if (!(delta >= 0.f) || !std::isfinite(delta))
       ps.fail(*ps.find("conedeltaangle"), "\"conedeltaangle\" must be a finite angle of 0 degrees or more");
     float cos_end = std::cos(glm::radians(cone)), cos_start = std::cos(glm::radians(cone - delta));
-    if (ps.has("power")) I *= ps.get_float("power", 1.f) / (2.f * kPi * ((1.f - cos_start) + (cos_start - cos_end) / 2.f));
+    if (ps.has("power")) I *= ps.get_float("power", 1.f) / smooth_cone_mass(cos_start, cos_end);
     Vec3 axis = Vec3(ctm * Vec4(to - from, 0.f));
     if (!(glm::length(axis) > 0.f)) ps.fail("\"from\" and \"to\" must differ");
     L.spot.push_back({Vec3(ctm * Vec4(from, 1.f)), Frame::from_z(glm::normalize(axis)), I, cos_start, cos_end, {},
