@@ -134,6 +134,12 @@ expect_run(NAME roulette-header EXIT 0 MATCH "lantern:roulette 3" ARGS info ${OU
 # Paths per camera sample: 1, 2, 4, 8 or 16, anything else a usage error; the
 # image's header names it, and a time budget renders with it.
 expect_run(NAME bad-split EXIT 2 MATCH "--split: 3 not in" ARGS render ${SRC}/scenes/cornell-box.pbrt --split 3)
+expect_run(NAME bad-light-choice EXIT 2 MATCH "--light-choice: bvh not in" ARGS render ${SRC}/scenes/cornell-box.pbrt
+           --light-choice bvh)
+# The prism's pilot gives light subpaths another choice than power, and says so.
+expect_run(NAME light-choice-stats EXIT 0 MATCH "\"light_choice\": {[^}]*\"chosen\": \"(measured|mixed|uniform)\""
+           ARGS render ${SRC}/scenes/prism.pbrt --integrator bdpt --spp 1 --resolution 48 36 --quiet -o ${OUT}/prism.exr
+           --stats -)
 expect_run(NAME split-timed EXIT 0 ARGS render ${SRC}/scenes/cornell-box.pbrt --split 4 --time 0.3 --resolution 16 16
            --quiet -o ${OUT}/split.exr)
 expect_run(NAME split-header EXIT 0 MATCH "lantern:split 4" ARGS info ${OUT}/split.exr)

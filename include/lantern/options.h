@@ -40,6 +40,8 @@ enum class MisHeuristic : uint8_t { Power, Balance };  // bdpt's: beta = 2 or 1
 // pbrt-v4's samplers (docs/samplers.md).
 enum class SamplerKind : uint8_t { Independent, Stratified, Halton, Sobol, PaddedSobol, ZSobol };
 enum class LightSamplerKind : uint8_t { Bvh, Power, Uniform };  // next-event estimation's choice of light
+// How light subpaths choose their light (RenderOptions::light_choice).
+enum class LightChoiceKind : uint8_t { Auto, Power, Uniform };
 // Embree's interfaces, on the same batches: rtcIntersectNp (stream),
 // rtcIntersect1M, rtcIntersect1, 16-wide packets.
 enum class RayBackend : uint8_t { StreamNp, Stream1M, Single, Packet16 };
@@ -74,6 +76,8 @@ inline constexpr std::array<Word<SamplerKind>, 6> kSamplers{{{SamplerKind::ZSobo
                                                              {SamplerKind::Independent, "independent"}}};
 inline constexpr std::array<Word<LightSamplerKind>, 3> kLightSamplers{
     {{LightSamplerKind::Bvh, "bvh"}, {LightSamplerKind::Power, "power"}, {LightSamplerKind::Uniform, "uniform"}}};
+inline constexpr std::array<Word<LightChoiceKind>, 3> kLightChoices{
+    {{LightChoiceKind::Auto, "auto"}, {LightChoiceKind::Power, "power"}, {LightChoiceKind::Uniform, "uniform"}}};
 inline constexpr std::array<Word<MemoryLayout>, 3> kMemoryLayouts{
     {{MemoryLayout::Auto, "auto"}, {MemoryLayout::Fast, "fast"}, {MemoryLayout::Compact, "compact"}}};
 inline constexpr std::array<Word<RayBackend>, 4> kRayBackends{{{RayBackend::StreamNp, "stream"},
@@ -103,6 +107,9 @@ inline SamplerKind parse_sampler(std::string_view w) { return option_words::pars
 inline LightSamplerKind parse_light_sampler(std::string_view w) {
   return option_words::parse(w, option_words::kLightSamplers, "light sampler");
 }
+inline LightChoiceKind parse_light_choice(std::string_view w) {
+  return option_words::parse(w, option_words::kLightChoices, "light choice");
+}
 // ("stream-np" is accepted too, for the stream back end.)
 inline RayBackend parse_ray_backend(std::string_view w) {
   return w == "stream-np" ? RayBackend::StreamNp : option_words::parse(w, option_words::kRayBackends, "ray back end");
@@ -115,6 +122,7 @@ inline const char* name(Integrator i) { return option_words::name(i, option_word
 inline const char* name(MisHeuristic m) { return option_words::name(m, option_words::kMis); }
 inline const char* name(SamplerKind s) { return option_words::name(s, option_words::kSamplers); }
 inline const char* name(LightSamplerKind l) { return option_words::name(l, option_words::kLightSamplers); }
+inline const char* name(LightChoiceKind l) { return option_words::name(l, option_words::kLightChoices); }
 inline const char* name(RayBackend b) { return option_words::name(b, option_words::kRayBackends); }
 
 // The integrators the path tracer runs (integrator/path_tracer.h).

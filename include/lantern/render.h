@@ -83,6 +83,12 @@ struct RenderOptions {
   uint64_t seed = 0;
   SamplerSettings sampler;  // the app passes the scene's (or --sampler's)
   LightSamplerKind light_sampler = LightSamplerKind::Bvh;  // next-event estimation's choice of light
+  // How light subpaths (bdpt, lt, vcm, bpm, ppm) choose their light: by
+  // power (pbrt-v4's), uniformly over the lights that emit, or auto: for
+  // bdpt with light_subpath_rate auto, the rate's pilot chooses among
+  // those and two choices it measures (integrator/light_choice_pilot.h);
+  // otherwise by power.
+  LightChoiceKind light_choice = LightChoiceKind::Auto;
   int width = 0, height = 0;  // 0: the scene's Film resolution
   // The part of the image to render, over the Film's own "cropwindow" and
   // "pixelbounds", as pbrt-v4's --cropwindow, --pixelbounds and --pixel
@@ -209,6 +215,15 @@ struct RenderStats {
   // rays per camera sample.
   float light_subpath_rate = -1.f;
   std::vector<double> light_subpath_candidates, light_subpath_error, light_subpath_cost;
+  // bdpt with several lights: how light subpaths chose their light (the
+  // pilot's choice: "power", as pbrt-v4, or another candidate), its
+  // probability per light (empty: by power), and each candidate's name,
+  // estimated relMSE per camera sample at its best rate, and rays per
+  // camera sample.
+  std::string light_choice;
+  std::vector<double> light_choice_probability;
+  std::vector<std::string> light_choice_candidates;
+  std::vector<double> light_choice_error, light_choice_cost;
   // path: the paths per camera sample rendered with (0: not the path
   // tracer); with the pilot's choice (--split auto), its candidates and
   // its estimates: each one's error at equal time relative to 1's, and the

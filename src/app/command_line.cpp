@@ -146,6 +146,11 @@ void add_render_request_options(CLI::App& c, RenderRequest& r) {
                      "How next-event estimation chooses lights: bvh, power or uniform (default: the scene's "
                      "Integrator \"lightsampler\", else bvh)")
       ->check(CLI::IsMember({"bvh", "power", "uniform"}));
+  c.add_option("--light-choice", r.light_choice,
+               "How light subpaths choose their light: power (pbrt-v4's), uniform, or auto: for bdpt with "
+               "--light-subpaths auto, chosen per scene with several lights by the same pilot, which also weighs "
+               "choices it measures; otherwise power (default auto; docs/bdpt.md)")
+      ->check(CLI::IsMember({"auto", "power", "uniform"}));
   c.add_option("--resolution", r.resolution, "Image size W H (default: the scene's Film)")->expected(2)->check(integer_in(1, 65536, "an integer from 1 to 65536"));
   CLI::Option* crop = c.add_option("--cropwindow", r.crop_window,
                                    "Render only this part of the image: x0,x1,y0,y1 in [0, 1] (pbrt-v4's flag; over the "

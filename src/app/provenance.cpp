@@ -95,6 +95,7 @@ nlohmann::json render_settings_json(const RenderOptions& o) {
   if (merges_vertices(o.integrator)) j["vcm"] = {{"radius", o.vcm_radius}, {"alpha", o.vcm_alpha}};
   if (scales_roulette(o.integrator)) j["roulette"] = o.roulette_scale;
   if (splits_camera_samples(o.integrator) && o.split != 1) j["split"] = split_text(o.split);
+  if (o.light_choice != LightChoiceKind::Auto) j["light_choice"] = name(o.light_choice);
   if (uses_light_subpath_rate(o.integrator))
     j["light_subpaths"] = o.light_subpath_rate == kLightSubpathsAuto ? nlohmann::json("auto") : nlohmann::json(o.light_subpath_rate);
   if (o.guiding) j["guiding"] = true;
@@ -106,6 +107,7 @@ void add_render_settings(ImageMetadata& md, const RenderOptions& o) {
   md.emplace_back("lantern:budget", budget(o));
   md.emplace_back("lantern:sampler", sampler(o));
   md.emplace_back("lantern:light_sampler", name(o.light_sampler));
+  if (o.light_choice != LightChoiceKind::Auto) md.emplace_back("lantern:light_choice", name(o.light_choice));
   md.emplace_back("lantern:mis", name(o.mis));
   md.emplace_back("lantern:wave_size", std::to_string(o.wave_size));
   if (scales_roulette(o.integrator)) md.emplace_back("lantern:roulette", exact_text(o.roulette_scale));

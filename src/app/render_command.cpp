@@ -262,6 +262,8 @@ void report(const std::string& out, const RenderOptions& o, const RenderResult& 
     logging::info("light subpaths: %g per camera sample, the pilot's choice (--light-subpaths auto)%s",
                   double(s.light_subpath_rate),
                   s.light_subpath_rate == 0.f ? ": they do not pay here, the path tracer rendered the eye subpaths alone" : "");
+  if (!s.light_choice.empty() && s.light_subpath_rate > 0.f)
+    logging::info("light subpaths choose their light: %s, the pilot's choice", s.light_choice.c_str());
   if (s.timed && logging::enabled(logging::Level::Info)) print_stage_summary(s);
   logging::verbose("memory: peak %.1f MB resident; wave pools %.1f MB", double(peak_rss_bytes()) * 1e-6,
                double(s.wave_pool_bytes) * 1e-6);

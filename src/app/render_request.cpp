@@ -67,6 +67,7 @@ RenderOptions resolve_render_options(const Scene& scene, const RenderRequest& a)
   o.seed = a.seed;
   o.sampler = ss.sampler;
   o.light_sampler = a.light_sampler.empty() ? ss.light_sampler : parse_light_sampler(a.light_sampler);
+  o.light_choice = parse_light_choice(a.light_choice);
   if (!a.sampler.empty() && parse_sampler(a.sampler) != ss.sampler.type) {
     o.sampler = SamplerSettings{};  // the scene's parameters belong to its own type
     o.sampler.type = parse_sampler(a.sampler);

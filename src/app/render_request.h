@@ -19,6 +19,7 @@ struct RenderRequest {
   std::string integrator;     // empty: the scene's Integrator
   std::string sampler;        // empty: the scene's Sampler
   std::string light_sampler;  // empty: the scene's "lightsampler", else bvh
+  std::string light_choice = "auto";  // RenderOptions::light_choice
   std::string mis = "power", rays = "stream";
   int spp = 0;         // 0: the scene's pixelsamples
   int maxdepth = -1;   // -1: the scene's

@@ -132,6 +132,13 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
       j["light_subpaths"]["pilot"] = {{"rates", s.light_subpath_candidates},
                                       {"relmse_per_sample", s.light_subpath_error},
                                       {"rays_per_sample", s.light_subpath_cost}};
+    if (!s.light_choice.empty())
+      j["light_subpaths"]["light_choice"] = {{"chosen", s.light_choice},
+                                             {"probabilities", s.light_choice_probability},
+                                             {"pilot",
+                                              {{"candidates", s.light_choice_candidates},
+                                               {"relmse_per_sample", s.light_choice_error},
+                                               {"rays_per_sample", s.light_choice_cost}}}};
   }
   if (s.mlt_chains > 0)
     j["mlt"] = {{"chains", s.mlt_chains},

@@ -144,6 +144,19 @@ void Film::set_region(int x0, int y0, int full_width, int full_height) {
   x0_ = x0, y0_ = y0, full_width_ = full_width, full_height_ = full_height;
 }
 
+double splat_square_share(const PixelFilter& f) {
+  // (on an image wide enough for every pixel a splat at its centre reaches)
+  const int side = 2 * int(std::ceil(std::max(f.radius.x, f.radius.y))) + 3;
+  constexpr int kGrid = 8;
+  double sum = 0.0;
+  for (int j = 0; j < kGrid; ++j)
+    for (int i = 0; i < kGrid; ++i) {
+      const Vec2 p(float(side / 2) + (float(i) + 0.5f) / kGrid, float(side / 2) + (float(j) + 0.5f) / kGrid);
+      for_each_splat_pixel(f, side, side, p, [&](size_t, float w) { sum += double(w) * double(w); });
+    }
+  return sum / double(kGrid * kGrid);
+}
+
 double Film::splat_scale() const {
   const double pixels = full_width_ > 0 ? double(full_width_) * double(full_height_) : double(width_) * double(height_);
   return light_paths_ ? pixels / double(light_paths_) : 0.0;

@@ -46,6 +46,8 @@ struct Splat {
 // One contribution of one bidirectional strategy (s light vertices, t eye
 // vertices), kept only when per-strategy images are asked for. A merge
 // (vcm) counts the merged vertex on both sides.
+inline constexpr uint32_t kNoLight = ~0u;
+
 struct StrategyRecord {
   uint32_t pixel;  // t >= 2: the pixel of the camera sample
   Vec2 p_raster;   // t = 1: where the splat lands
@@ -57,6 +59,9 @@ struct StrategyRecord {
   // part of its ratio sum that a change of the rate rescales.
   uint32_t slot = 0;
   float weight = 1.f, rescaled = 0.f;
+  // The light the path ends at (an index into LightPools::all; kNoLight
+  // when not known), whose share of light subpaths the pilot may change.
+  uint32_t light = kNoLight;
 };
 
 // A sample's or splat's spectrum and wavelengths, kept beside it when the
@@ -134,6 +139,12 @@ struct WaveOutput {
 // covers raster point p: the weights a splat at p is spread with.
 template <class Fn>
 void for_each_splat_pixel(const PixelFilter& f, int width, int height, Vec2 p, Fn&& fn);
+// The sum of a splat's weights squared over the pixels it is spread on, on
+// average over where in a pixel it lands: the share of a splat's square
+// that lands in the pixels' variances (1 for a box filter of one pixel,
+// about 0.3 for pbrt-v4's default Gaussian), where a camera sample, drawn
+// through the filter, adds its whole square to one pixel.
+double splat_square_share(const PixelFilter& f);
 
 class Film {
  public:

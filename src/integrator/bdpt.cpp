@@ -19,6 +19,8 @@ namespace lantern {
 Bdpt::Bdpt(const Scene& scene, const LightSampler& light_sampler, const BdptSettings& s)
     : scene_(scene),
       light_sampler_(light_sampler),
+      emission_choice_(s.light_choice.size() == scene.lights.all.size() ? Distribution1D(s.light_choice)
+                                                                        : scene.lights.selection),
       settings_(s),
       camera_(scene.camera, s.full_width > 0 ? s.full_width : s.width, s.full_height > 0 ? s.full_height : s.height,
               scene.filter.radius),
@@ -101,10 +103,13 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
         const Vec3 prev = w.eye.prev_p[slot];
         Spectrum Le = infinite_lights_Le(lights, scene_.textures, prev, d, w.lambda[slot]);
         float rescaled = 0.f;
-        float wt = w.depth == 1 ? 1.f
-                                : mis_weight_hit_light(m, infinite_lights_pdf(lights, scene_.textures, light_sampler_, prev, d),
-                                                       infinite_emission_pdf(lights, scene_.textures, d), w.mis, &rescaled);
-        add_emission(w, slot, w.eye.beta[slot] * Le, emission_weight(m, wt), rescaled);
+        float wt = w.depth == 1
+                       ? 1.f
+                       : mis_weight_hit_light(m, infinite_lights_pdf(lights, scene_.textures, light_sampler_, prev, d),
+                                              infinite_emission_pdf(lights, scene_.textures, emission_choice_, d),
+                                              w.mis, &rescaled);
+        add_emission(w, slot, w.eye.beta[slot] * Le, emission_weight(m, wt), rescaled,
+                     lights.infinite.size() == 1 ? lights.infinite_to_all[0] : kNoLight);
       }
       continue;
     }
@@ -123,16 +128,15 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
         uint32_t a = uint32_t(light);
         float wt, rescaled = 0.f;
         if (w.depth == 1) {
-          float pos_pdf = lights.selection.discrete_pmf(lights.area_to_all[a]) *  // emission: by power
+          float pos_pdf = emission_choice_.discrete_pmf(lights.area_to_all[a]) *
                           area_point_density(shapes, lights.area[a], sp.p, sp.ng);
           wt = mis_weight_hit_light_direct(m, pos_pdf, w.mis);
         } else {
-          wt = mis_weight_hit_light(m,
-                                    area_light_direct_pdf_area(lights, shapes, light_sampler_, a, prev,
-                                                               w.eye.prev_n[slot], sp.p, sp.ng),
-                                    area_emission_pdf(lights, shapes, a, sp.p, sp.ng, -d), w.mis, &rescaled);
+          wt = mis_weight_hit_light(
+              m, area_light_direct_pdf_area(lights, shapes, light_sampler_, a, prev, w.eye.prev_n[slot], sp.p, sp.ng),
+              area_emission_pdf(lights, shapes, emission_choice_, a, sp.p, sp.ng, -d), w.mis, &rescaled);
         }
-        add_emission(w, slot, w.eye.beta[slot] * Le, emission_weight(m, wt), rescaled);
+        add_emission(w, slot, w.eye.beta[slot] * Le, emission_weight(m, wt), rescaled, lights.area_to_all[a]);
       }
     }
     if (last) {
@@ -246,7 +250,7 @@ void Bdpt::connection_stage(BdptWave& w) const {
       const SampledWavelengths& l = w.lambda[c.slot[r]];
       w.out->strategies.push_back({w.pixel[c.slot[r]], Vec2(0.f), c.tags[r].s, c.tags[r].t, film_rgb(c.contrib[r], l),
                                    film_rgb(c.tags[r].unweighted, l), false, c.slot[r], c.tags[r].weight,
-                                   c.tags[r].rescaled});
+                                   c.tags[r].rescaled, c.tags[r].s >= 2 ? w.origin.light[c.slot[r]] : c.tags[r].light});
     }
   }
   c.rays.count = 0;
@@ -259,13 +263,14 @@ void Bdpt::flush_connections(BdptWave& w) const {
 }
 
 // s = 0: emission the eye subpath found at its current depth.
-void Bdpt::add_emission(BdptWave& w, uint32_t slot, const Spectrum& unweighted, float weight, float rescaled) const {
+void Bdpt::add_emission(BdptWave& w, uint32_t slot, const Spectrum& unweighted, float weight, float rescaled,
+                        uint32_t light) const {
   if (weight == 0.f && !settings_.record_strategies) return;  // (bpm's emission past a merging vertex)
   w.L[slot] += unweighted * weight;
   if (settings_.record_strategies)
     w.out->strategies.push_back({w.pixel[slot], Vec2(0.f), 0, strategy_count(w.depth + 1),
                                  film_rgb(unweighted * weight, w.lambda[slot]), film_rgb(unweighted, w.lambda[slot]),
-                                 false, slot, weight, rescaled});
+                                 false, slot, weight, rescaled, light});
 }
 
 void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {

@@ -50,6 +50,11 @@ struct BdptSettings {
   // sample without one is a path-traced sample (s = 0 and s = 1, t = 1
   // only), and one with one divides what its strategies s >= 2 bring by q.
   float light_subpath_rate = 1.f;
+  // How light subpaths choose their light: a weight per light
+  // (LightPools::all), or empty: by power (LightPools::selection), as
+  // pbrt-v4's do. The light subpath rate's pilot may choose other weights
+  // (light_subpath_rate.h).
+  std::vector<float> light_choice;
   // Russian roulette of eye subpaths, scaled as the path tracer's
   // (vertex.h): 1 (pbrt-v4's rule) but in the pilot that stands in for the
   // path tracer (light_subpath_rate.h).
@@ -169,7 +174,9 @@ class Bdpt {
   void light_medium_arrival(BdptWave& w, uint32_t i) const;
   void trace_connections(BdptWave& w) const;
   // rescaled: the part of its weight's ratio sum that the light subpath rate rescales
-  void add_emission(BdptWave& w, uint32_t slot, const Spectrum& unweighted, float weight, float rescaled = 0.f) const;
+  // light: the light found (LightPools::all), for recorded strategies.
+  void add_emission(BdptWave& w, uint32_t slot, const Spectrum& unweighted, float weight, float rescaled,
+                    uint32_t light) const;
   void add_volume_emission(BdptWave& w, uint32_t i, const Spectrum& beta_before) const;
   float volume_number(const BdptWave& w, uint32_t slot) const;
   struct VolumeSampleEnd {
@@ -221,6 +228,7 @@ class Bdpt {
 
   const Scene& scene_;
   const LightSampler& light_sampler_;  // next-event estimation's (s = 1) choice of light
+  Distribution1D emission_choice_;     // light subpaths' choice of light (BdptSettings::light_choice)
   BdptSettings settings_;
   Camera camera_;
   FootprintModel footprints_;  // enabled when the scene's textures filter

@@ -68,7 +68,8 @@ void Bdpt::start_light_subpaths(const WaveDesc& wave, BdptWave& w) const {
     w.sampler[slot] = s;
     w.origin.extra_depth[slot] = 0;
     const bool traced = beyond_light(settings_.light_subpath_rate, u_dir);
-    auto es = sample_le(lights, scene_.shapes, scene_.textures, u_select, u_pos, u_dir, lambda, u_volume);
+    auto es =
+        sample_le(lights, scene_.shapes, scene_.textures, emission_choice_, u_select, u_pos, u_dir, lambda, u_volume);
     if (!es) continue;
     if (es->volume) {
       in_volume.push_back(*es);
@@ -330,7 +331,7 @@ void Bdpt::splat_stage(BdptWave& w) const {
     if (w.out->keep_slots) w.out->splat_slots.resize(w.out->splats.size(), c.slot[r]);
     if (c.record)
       w.out->strategies.push_back({0, c.p_raster[r], c.tags[r].s, 1, contrib, film_rgb(c.tags[r].unweighted, l), false,
-                                   c.slot[r], c.tags[r].weight, c.tags[r].rescaled});
+                                   c.slot[r], c.tags[r].weight, c.tags[r].rescaled, w.origin.light[c.slot[r]]});
   }
   c.rays.count = 0;
 }

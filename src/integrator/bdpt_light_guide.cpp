@@ -39,7 +39,7 @@ void Bdpt::guide_emission(BdptWave& w, uint32_t slot, EmissionSample& es, LazyNu
   if (guide) {
     const float a = guide.alpha;
     if (u_dir.x < a) {  // the light's own distribution: the same point, u_dir's first number rescaled
-      const auto again = sample_le(scene_.lights, scene_.shapes, scene_.textures, u_select, u_pos,
+      const auto again = sample_le(scene_.lights, scene_.shapes, scene_.textures, emission_choice_, u_select, u_pos,
                                    Vec2(std::min(u_dir.x / a, 0x1.fffffep-1f), u_dir.y), w.lambda[slot]);
       if (!again) {  // (the point stays: its s = 1, t = 1 strategy does not depend on the direction)
         *mix_pdf_dir = 0.f;

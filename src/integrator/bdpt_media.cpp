@@ -113,13 +113,13 @@ void Bdpt::add_volume_emission(BdptWave& w, uint32_t i, const Spectrum& beta_bef
   const MisState& m = w.eye.mis[slot];
   if (light >= 0) {
     const float density = volume_light_density(scene_.lights, light, x);
-    const float pos_pdf = lights.selection.discrete_pmf(size_t(light)) * density;  // light subpaths choose by power
+    const float pos_pdf = emission_choice_.discrete_pmf(size_t(light)) * density;
     wt = w.depth == 1 ? mis_weight_hit_light_direct(m, pos_pdf, w.mis)
                       : mis_weight_hit_light(m, light_sampler_.pmf(w.eye.prev_p[slot], w.eye.prev_n[slot], uint32_t(light)) * density,
                                              pos_pdf * uniform_sphere_pdf(), w.mis, &rescaled);
   }
   const Spectrum c = beta_before * w.ends.emission[i];
-  if (is_finite(c)) add_emission(w, slot, c, emission_weight(m, wt), rescaled);
+  if (is_finite(c)) add_emission(w, slot, c, emission_weight(m, wt), rescaled, light >= 0 ? uint32_t(light) : kNoLight);
 }
 
 MergeKind Bdpt::light_vertex_merging(const LightVertexPool& v, uint32_t j) const {

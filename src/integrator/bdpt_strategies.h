@@ -57,8 +57,8 @@ void Bdpt::next_event(BdptWave& w, uint32_t slot, const Vertex& v, LazyNumber u_
   // MIS ratios would be 0/0.
   if (is_black(e.f) || !(direct_pdf_A > 0.f)) return;
   const float emission_fwd_A =
-      emission_pdf(sc.lights, sc.shapes, sc.textures, ls->light, ls->p_light, ls->n_light, -ls->wi) * v.cos(ls->wi) /
-      dist2;
+      emission_pdf(sc.lights, sc.shapes, sc.textures, emission_choice_, ls->light, ls->p_light, ls->n_light, -ls->wi) *
+      v.cos(ls->wi) / dist2;
   Connection k;
   // (BSDF sampling cannot hit a delta light: its density is left out)
   k.mis = mis_sums_next_event(w.eye.mis[slot], ls->delta ? 0.f : ls->pdf, e.pdf_fwd, emission_fwd_A, direct_pdf_A,
@@ -69,6 +69,7 @@ void Bdpt::next_event(BdptWave& w, uint32_t slot, const Vertex& v, LazyNumber u_
   k.s = 1;
   k.t = strategy_count(w.depth + 1);
   k.light_sample = true;
+  k.light = ls->light;
   k.o = v.ray_origin(ls->wi);
   if (ls->infinite) {
     k.d = ls->wi;
@@ -198,7 +199,8 @@ void Bdpt::merge_at_eye_vertex(BdptWave& w, uint32_t slot, const Vertex& v) cons
       const Spectrum u = estimate(e.f * light);
       const SampledWavelengths& l = w.lambda[slot];
       w.out->strategies.push_back({w.pixel[slot], Vec2(0.f), strategy_count(lv.depth[j] + 1), strategy_count(depth + 1),
-                                   film_rgb(u * weight(wt), l), film_rgb(u, l), true});
+                                   film_rgb(u * weight(wt), l), film_rgb(u, l), true, slot, wt, 0.f,
+                                   w.origin.light[lv.slot[j]]});
     }
   });
   if (is_black(sum)) return;

@@ -155,6 +155,7 @@ struct StrategyTag {
   uint8_t s, t;
   Spectrum unweighted;
   float weight = 1.f, rescaled = 0.f;  // its MIS weight, and the part of its ratio sum of the other count class
+  uint32_t light = kNoLight;           // s = 1: the light sampled (StrategyRecord::light)
 };
 
 // A connection of two vertices (or of a vertex and the lens): its shadow
@@ -167,6 +168,7 @@ struct Connection {
   Vec2 p_raster{0.f};         // t = 1: where it lands on the film
   uint8_t s = 0, t = 0;       // its strategy (for per-strategy images)
   bool light_sample = false;  // s = 1 (for --stats)
+  uint32_t light = kNoLight;  // s = 1: the light sampled (for the pilot's records)
   MediumHandle start;         // with media: the medium the ray starts in
   MediumHandle expect;        // a volume light's point: the medium the ray must end in
 };
@@ -213,7 +215,7 @@ struct ConnectionPool {
     contrib[i] = c;
     p_raster[i] = k.p_raster;
     next_event[i] = k.light_sample;
-    if (record) tags[i] = {k.s, k.t, k.unweighted};  // (weight and rescaled: once weighted)
+    if (record) tags[i] = {k.s, k.t, k.unweighted, 1.f, 0.f, k.light};  // (weight and rescaled: once weighted)
     if (media) {
       medium[i] = k.start;
       deferred[i] = k.mis;

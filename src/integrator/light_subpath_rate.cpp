@@ -8,6 +8,7 @@
 
 #include "integrator/bdpt_wave.h"
 #include "integrator/eye_subpaths_alone.h"
+#include "integrator/light_choice_pilot.h"
 #include "integrator/pilot.h"
 #include "light/light_sampler.h"
 #include "scene/scene.h"
@@ -23,19 +24,54 @@ namespace {
 // at a time and their records read in wave order, then freed.
 constexpr double kPilotPixels = 4096.0;
 constexpr uint32_t kPilotSpp = 8;
+constexpr uint32_t kTargetSpp = 2;  // the light choice's first pass (light_choice_pilot.h)
+
+// The light choice with the least error at equal cost, each at its best
+// rate, if at least 5% below power's (the first); its rates' errors into
+// `choice`.
+void pick_light_choice(const RateMoments& moments, const LightChoices& lights, uint32_t spp,
+                       LightSubpathRateChoice& choice) {
+  std::vector<std::array<double, kLightSubpathRates.size()>> errors;
+  size_t best = 0;
+  for (size_t c = 0; c < lights.names.size(); ++c) {
+    errors.push_back(moments.relative_error(c));
+    const float q = best_light_subpath_rate(errors[c], choice.cost, spp);
+    const size_t k =
+        size_t(std::find(kLightSubpathRates.begin(), kLightSubpathRates.end(), q) - kLightSubpathRates.begin());
+    choice.light_choice_error.push_back(errors[c][k]);
+    choice.light_choice_cost.push_back(choice.cost[k]);
+    const double e = errors[c][k] * choice.cost[k],
+                 least = choice.light_choice_error[best] * choice.light_choice_cost[best];
+    if (std::isfinite(e) && e > 0.0 && (!(least > 0.0) || e < least)) best = c;
+  }
+  const double power = choice.light_choice_error[0] * choice.light_choice_cost[0];
+  if (best > 0 && !(choice.light_choice_error[best] * choice.light_choice_cost[best] <= 0.95 * power)) best = 0;
+  choice.error = errors[best];
+  if (lights.names.size() > 1)
+    choice.light_choice_candidates = lights.names;
+  else
+    choice.light_choice_error.clear(), choice.light_choice_cost.clear();
+  if (best > 0) {
+    choice.light_choice = lights.probabilities[best];
+    choice.light_choice_name = lights.names[best];
+  }
+}
 }  // namespace
 
-RateMoments::RateMoments(int width, int height, uint32_t spp, float mis_beta, bool stratified)
+RateMoments::RateMoments(int width, int height, uint32_t spp, float mis_beta, bool stratified,
+                         std::vector<std::vector<float>> light_ratios, double splat_share)
     : stratified_(stratified),
       width_(width),
       height_(height),
       spp_(spp),
       beta_(mis_beta),
+      ratios_(light_ratios.empty() ? std::vector<std::vector<float>>{{}} : std::move(light_ratios)),
+      splat_share_(splat_share),
       value_(size_t(width) * size_t(height), 0.0),
-      sum_(value_.size()),
-      square_(value_.size()),
-      light_sum_(value_.size()),
-      splat_square_(value_.size()),
+      sum_(value_.size() * ratios_.size()),
+      square_(sum_.size()),
+      light_sum_(sum_.size()),
+      splat_square_(sum_.size()),
       alone_sum_(value_.size(), 0.0),
       alone_square_(value_.size(), 0.0),
       alone_mis_(value_.size(), 0.0) {}
@@ -69,25 +105,7 @@ void RateMoments::add(const WaveDesc& wave, const std::vector<StrategyRecord>& r
 }
 
 void RateMoments::add_moments(const WaveDesc& wave, const std::vector<StrategyRecord>& records) {
-  // Per camera sample of the wave (its slot) and candidate: A and B.
-  std::vector<std::array<double, kRates>> once(wave.size()), with_light(wave.size());
-  for (const StrategyRecord& r : records) {
-    const double u = double(average(r.unweighted));
-    if (!(u != 0.0) || !std::isfinite(u) || !std::isfinite(double(average(r.weighted)))) continue;
-    const bool needs_light_subpath = r.s >= 2;
-    if (r.t == 1) {  // a splat: a sample of the pixel it lands in
-      const int p = pixel_of(r);
-      if (p < 0) continue;
-      for (size_t k = 0; k < kRates; ++k) {
-        const double v = double(weight_at(r, kLightSubpathRates[k])) * u;
-        if (std::isfinite(v * v)) splat_square_[size_t(p)][k] += needs_light_subpath ? v * v / double(kLightSubpathRates[k]) : v * v;
-      }
-      continue;
-    }
-    if (r.slot >= wave.size()) continue;
-    auto& sums = needs_light_subpath ? with_light[r.slot] : once[r.slot];
-    for (size_t k = 0; k < kRates; ++k) sums[k] += double(weight_at(r, kLightSubpathRates[k])) * u;
-  }
+  for (size_t c = 0; c < ratios_.size(); ++c) add_choice_moments(wave, records, c);
   std::vector<double> alone(wave.size(), 0.0);
   for (const StrategyRecord& r : records) {
     const double u = double(average(r.unweighted));
@@ -104,11 +122,43 @@ void RateMoments::add_moments(const WaveDesc& wave, const std::vector<StrategyRe
     const size_t p = wave.pixels[slot / wave.samples];
     alone_sum_[p] += alone[slot];
     alone_square_[p] += alone[slot] * alone[slot];
+  }
+}
+
+void RateMoments::add_choice_moments(const WaveDesc& wave, const std::vector<StrategyRecord>& records, size_t choice) {
+  // Per camera sample of the wave (its slot) and rate: A and B, and the
+  // rho of its light subpath's light.
+  std::vector<std::array<double, kRates>> once(wave.size()), with_light(wave.size());
+  std::vector<double> rho(wave.size(), 1.0);
+  for (const StrategyRecord& r : records) {
+    const double u = double(average(r.unweighted));
+    if (!(u != 0.0) || !std::isfinite(u) || !std::isfinite(double(average(r.weighted)))) continue;
+    const bool needs_light_subpath = r.s >= 2;
+    const float ratio = light_ratio(choice, r.light);
+    if (r.t == 1) {  // a splat: a sample of the pixel it lands in
+      const int p = pixel_of(r);
+      if (p < 0) continue;
+      for (size_t k = 0; k < kRates; ++k) {
+        const float count = kLightSubpathRates[k] * ratio;
+        const double v = double(weight_at(r, count)) * u;
+        const double square = splat_share_ * v * v;
+        if (std::isfinite(square))
+          splat_square_[at(choice, size_t(p))][k] += needs_light_subpath ? square / double(count) : square;
+      }
+      continue;
+    }
+    if (r.slot >= wave.size()) continue;
+    if (needs_light_subpath) rho[r.slot] = double(ratio);
+    auto& sums = needs_light_subpath ? with_light[r.slot] : once[r.slot];
+    for (size_t k = 0; k < kRates; ++k) sums[k] += double(weight_at(r, kLightSubpathRates[k] * ratio)) * u;
+  }
+  for (uint32_t slot = 0; slot < wave.size(); ++slot) {
+    const size_t p = at(choice, wave.pixels[slot / wave.samples]);
     for (size_t k = 0; k < kRates; ++k) {
-      const double a = once[slot][k], b = with_light[slot][k], q = kLightSubpathRates[k];
+      const double a = once[slot][k], b = with_light[slot][k], count = kLightSubpathRates[k] * rho[slot];
       sum_[p][k] += a + b;
       light_sum_[p][k] += b;
-      square_[p][k] += a * a + 2.0 * a * b + b * b / q;
+      square_[p][k] += a * a + 2.0 * a * b + b * b / count;
     }
   }
 }
@@ -127,20 +177,21 @@ std::vector<double> RateMoments::relative_scale() const {
   return scale;
 }
 
-std::array<double, RateMoments::kRates> RateMoments::relative_error() const {
+std::array<double, RateMoments::kRates> RateMoments::relative_error(size_t choice) const {
   std::array<double, kRates> e{};
   const double n = double(spp_);
   const std::vector<double> scale = relative_scale();
   if (scale.empty()) return e;
   for (size_t p = 0; p < value_.size(); ++p) {
+    const size_t i = at(choice, p);
     for (size_t k = 0; k < kRates; ++k) {
       // The variance of the pixel's mean: its camera samples' spread, and
       // its splats' second moment.
-      const double q = kLightSubpathRates[k], b = light_sum_[p][k] / n;
-      double spread = square_[p][k] - sum_[p][k] * sum_[p][k] / n;
+      const double q = kLightSubpathRates[k], b = light_sum_[i][k] / n;
+      double spread = square_[i][k] - sum_[i][k] * sum_[i][k] / n;
       if (stratified_) spread -= n * b * b * (1.0 / q - 1.0);
-      if (!std::isfinite(spread) || !std::isfinite(splat_square_[p][k])) continue;  // (a sample the film would drop)
-      e[k] += (std::max(0.0, spread) + splat_square_[p][k]) / (n * n) * scale[p];
+      if (!std::isfinite(spread) || !std::isfinite(splat_square_[i][k])) continue;  // (a sample the film would drop)
+      e[k] += (std::max(0.0, spread) + splat_square_[i][k]) / (n * n) * scale[p];
     }
   }
   for (double& x : e) x *= n / double(value_.size());  // (per camera sample: n times the pilot image's)
@@ -204,7 +255,8 @@ void consider_eye_subpaths_alone(const Scene& scene, const LightSampler& light_s
 
 LightSubpathRateChoice choose_light_subpath_rate(const Scene& scene, const LightSampler& light_sampler,
                                                  const BdptSettings& render, RayBackend backend,
-                                                 const PathTracerSettings* eye_alone, double time_budget) {
+                                                 const PathTracerSettings* eye_alone, double time_budget,
+                                                 bool choose_light) {
   const auto start = std::chrono::steady_clock::now();
   const int full_w = render.full_width > 0 ? render.full_width : render.width;
   const int full_h = render.full_height > 0 ? render.full_height : render.height;
@@ -212,13 +264,24 @@ LightSubpathRateChoice choose_light_subpath_rate(const Scene& scene, const Light
   BdptSettings pilot = pilot_settings(render, std::max(1, full_w / shrink), std::max(1, full_h / shrink), kPilotSpp);
   pilot.record_strategies = true;
   pilot.light_subpath_rate = 1.f;
+  // With several lights, light subpaths may choose theirs otherwise than
+  // by power (light_choice_pilot.h): this pilot draws them half by power,
+  // half uniformly, and weighs the candidates.
+  LightChoices lights{{"power"}, {{}}};
+  std::vector<std::vector<float>> ratios{{}};
+  if (choose_light && scene.lights.all.size() > 1 && pilot.light_choice.empty()) {
+    pilot.light_choice = first_pass_choice(scene.lights);
+    lights = light_choice_candidates(power_choice(scene.lights),
+                                     light_choice_target(scene, light_sampler, pilot, kTargetSpp, backend));
+    ratios = light_choice_ratios(lights, pilot.light_choice);
+  }
   const Bdpt bdpt(scene, light_sampler, pilot);
-  RateMoments moments(pilot.width, pilot.height, kPilotSpp, pilot.mis_beta, pilot.sampler.type != SamplerKind::Independent);
+  RateMoments moments(pilot.width, pilot.height, kPilotSpp, pilot.mis_beta,
+                      pilot.sampler.type != SamplerKind::Independent, ratios, splat_square_share(scene.filter));
   const WaveStats bdpt_stats =
       trace_pilot(scene, bdpt, tile_order(pilot.width, pilot.height), kPilotSpp, backend,
                   [&](const WaveDesc& wave, size_t, const WaveOutput& out) { moments.add(wave, out.strategies); });
   LightSubpathRateChoice choice;
-  choice.error = moments.relative_error();
   // Rays per camera sample: what every sample casts (its eye subpath's
   // rays, each ending at a vertex or escaping; its light samples; its
   // light's own point joined to the camera, about one), and what its light
@@ -229,6 +292,7 @@ LightSubpathRateChoice choose_light_subpath_rate(const Scene& scene, const Light
   const double once = (samples + double(b.eye_vertices + b.eye_ends[escaped] + b.light_samples)) / samples;
   const double light = double(b.light_vertices + b.light_ends[escaped] + b.light_connections) / samples;
   for (size_t k = 0; k < kLightSubpathRates.size(); ++k) choice.cost[k] = once + double(kLightSubpathRates[k]) * light;
+  pick_light_choice(moments, lights, render.planned_spp, choice);
   if (eye_alone) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     consider_eye_subpaths_alone(scene, light_sampler, render, *eye_alone, backend, moments, once - 1.0,
@@ -250,8 +314,16 @@ void set_light_subpath_rate(const Scene& scene, const LightSampler& light_sample
     const bool alone = may_render_eye_subpaths_alone(scene, opt) && worth_a_grid_pilot(bs);
     const LightSubpathRateChoice c =
         choose_light_subpath_rate(scene, light_sampler, bs, opt.ray_backend, alone ? &eye_alone : nullptr,
-                                  opt.time_limit_seconds);
+                                  opt.time_limit_seconds, opt.light_choice == LightChoiceKind::Auto);
     bs.light_subpath_rate = c.rate;
+    if (c.rate > 0.f) bs.light_choice = c.light_choice;
+    if (!c.light_choice_candidates.empty()) {
+      stats.light_choice = c.light_choice_name;
+      stats.light_choice_probability.assign(c.light_choice.begin(), c.light_choice.end());
+      stats.light_choice_candidates = c.light_choice_candidates;
+      stats.light_choice_error = c.light_choice_error;
+      stats.light_choice_cost = c.light_choice_cost;
+    }
     stats.light_subpath_candidates.assign(kLightSubpathRates.begin(), kLightSubpathRates.end());
     stats.light_subpath_error.assign(c.error.begin(), c.error.end());
     stats.light_subpath_cost.assign(c.cost.begin(), c.cost.end());

@@ -43,6 +43,7 @@
 
 #include <array>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "accel/ray_stream.h"
@@ -74,6 +75,14 @@ struct LightSubpathRateChoice {
   // to bdpt at the best rate, times this pilot's figures for that rate):
   // for --stats. Error -1: not a candidate.
   double eye_alone_error = -1.0, eye_alone_cost = 0.0;
+  // The light light subpaths start from (light_choice_pilot.h): the
+  // winner's probability per light (empty: by power) and name; with
+  // several lights, each candidate's name and error per camera sample at
+  // its best rate, its cost in rays (error and cost above: the winner's).
+  std::vector<float> light_choice;
+  std::string light_choice_name = "power";
+  std::vector<std::string> light_choice_candidates;
+  std::vector<double> light_choice_error, light_choice_cost;
 };
 
 
@@ -84,17 +93,33 @@ float weight_at_rate(float weight, float rescaled, bool needs_light_subpath, flo
 
 // The moments of a pilot's strategy samples (separate from the pilot's
 // rendering so that tests can feed it records of their own).
+//
+// Besides the rates, it weighs other choices of the light a light subpath
+// starts from (light_choice_pilot.h). A choice that gives light j the
+// probability p'_j where the pilot's light subpaths had p_j scales the
+// densities of the strategies s >= 2 of paths to light j by
+// rho_j = p'_j / p_j: as a rate does, for those paths only. So a record of
+// a path to light j is reweighed at the count q rho_j, a camera sample
+// whose light subpath started at light i has the second moment
+//   E[A^2] + 2 E[A B] + E[B^2] / (q rho_i)
+// (B weighted at q rho_i), and its splats v^2 / (q rho_i).
 class RateMoments {
  public:
   // stratified: the sampler lays out each pixel's numbers for the decision
   // to trace a light subpath stratified, so that a pixel's n samples trace
-  // q n of them (the count's noise is left out).
-  RateMoments(int width, int height, uint32_t spp, float mis_beta, bool stratified);
+  // q n of them (the count's noise is left out). light_ratios: per choice
+  // of light, rho per light (LightPools::all); an empty one, or a record
+  // of no known light, has rho = 1: the pilot's own choice.
+  // splat_share: the film's splat_square_share (its splats' squares are
+  // counted times it).
+  RateMoments(int width, int height, uint32_t spp, float mis_beta, bool stratified,
+              std::vector<std::vector<float>> light_ratios = {{}}, double splat_share = 1.0);
   // A wave's records (the waves in a fixed order, so that the sums are the
   // same whatever the threads).
   void add(const WaveDesc& wave, const std::vector<StrategyRecord>& records);
-  // Each candidate's estimated relMSE of an image of one sample per pixel.
-  std::array<double, kLightSubpathRates.size()> relative_error() const;
+  // Each rate's estimated relMSE of an image of one sample per pixel,
+  // with light subpaths choosing their light by choice `choice`.
+  std::array<double, kLightSubpathRates.size()> relative_error(size_t choice = 0) const;
   // The same for the eye subpaths alone (eye_subpaths_alone.h), from the
   // same records: the larger of their own samples' spread (strategies
   // s = 0 and s = 1 reweighed) and the second moment that every
@@ -105,19 +130,28 @@ class RateMoments {
  private:
   void add_values(const std::vector<StrategyRecord>& records);
   void add_moments(const WaveDesc& wave, const std::vector<StrategyRecord>& records);
+  void add_choice_moments(const WaveDesc& wave, const std::vector<StrategyRecord>& records, size_t choice);
   int pixel_of(const StrategyRecord& r) const;
   float weight_at(const StrategyRecord& r, float q) const {
     return weight_at_rate(r.weight, r.rescaled, r.s >= 2, q, beta_);
   }
+  float light_ratio(size_t choice, uint32_t light) const {
+    const std::vector<float>& rho = ratios_[choice];
+    return light < rho.size() ? rho[light] : 1.f;
+  }
+  size_t at(size_t choice, size_t pixel) const { return choice * value_.size() + pixel; }
   static constexpr size_t kRates = kLightSubpathRates.size();
   bool stratified_;
   int width_, height_;
   uint32_t spp_;
   float beta_;
+  std::vector<std::vector<float>> ratios_;
+  double splat_share_;
   // (1 / (the pixel's value squared + the image's mean squared), per pixel)
   std::vector<double> relative_scale() const;
   std::vector<double> value_;  // per pixel: the sum of its weighted samples
-  // per pixel and candidate: camera samples' sum and sum of squares, splats' sum of squares
+  // per choice and pixel (at), per rate: camera samples' sum and sum of
+  // squares, splats' sum of squares
   std::vector<std::array<double, kRates>> sum_, square_, light_sum_, splat_square_;
   std::vector<double> alone_sum_, alone_square_, alone_mis_;  // per pixel: the eye subpaths alone
 };
@@ -137,9 +171,12 @@ float best_light_subpath_rate(const LightSubpathRateChoice& c, uint32_t spp);
 // Renders the pilot for a bdpt render with `render`'s settings and chooses;
 // with `eye_alone` (the path tracer's settings for the same render), that
 // too is a candidate. time_budget: the render's, in seconds (0: none).
+// With several lights and choose_light, the light light subpaths start
+// from too (light_choice_pilot.h), unless `render` has a choice of its own.
 LightSubpathRateChoice choose_light_subpath_rate(const Scene& scene, const LightSampler& light_sampler,
                                                  const BdptSettings& render, RayBackend backend,
-                                                 const PathTracerSettings* eye_alone = nullptr, double time_budget = 0.0);
+                                                 const PathTracerSettings* eye_alone = nullptr,
+                                                 double time_budget = 0.0, bool choose_light = true);
 
 // bs's rate: the options', or under auto the pilot's choice, which stats
 // report with its estimates. A rate of 0 asks for the path tracer with

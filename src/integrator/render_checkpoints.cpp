@@ -34,6 +34,10 @@ std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& regi
   if (splits_camera_samples(o.integrator) && o.split != 1) line("split", split_text(o.split));
   line("seed", std::to_string(o.seed));
   line("light-sampler", name(o.light_sampler));
+  // (auto, the default, keeps the fingerprint of renders from before the
+  // choice existed: every choice leaves the same image, and a resumed
+  // render's pilot chooses again as the first did)
+  if (o.light_choice != LightChoiceKind::Auto) line("light-choice", name(o.light_choice));
   line("sampler", std::string(name(o.sampler.type)) + " " + o.sampler.randomization + " " + std::to_string(o.sampler.seed) + " " +
                       std::to_string(o.sampler.xsamples) + "x" + std::to_string(o.sampler.ysamples) +
                       (o.sampler.jitter ? " jitter" : ""));

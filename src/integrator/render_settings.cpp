@@ -9,6 +9,7 @@
 
 #include "integrator/adaptive_sampling.h"
 #include "integrator/eye_subpaths_alone.h"
+#include "integrator/light_choice_pilot.h"
 #include "math/rng.h"
 #include "scene/scene.h"
 
@@ -203,6 +204,7 @@ BdptSettings bdpt_settings(const Scene& scene, const RenderOptions& opt, const I
   bs.light_tracing_only = opt.integrator == Integrator::Lt;
   // (auto: the render's pilot sets it, render.cpp)
   bs.light_subpath_rate = uses_light_subpath_rate(opt.integrator) && opt.light_subpath_rate != kLightSubpathsAuto ? opt.light_subpath_rate : 1.f;
+  if (opt.light_choice == LightChoiceKind::Uniform) bs.light_choice = uniform_choice(scene.lights);
   bs.merging = merging;
   bs.connections = !merging || opt.integrator == Integrator::Vcm;
   bs.photon_mapping = opt.integrator == Integrator::Ppm;

@@ -35,11 +35,11 @@ void start_on_disk(const LightPools& L, Vec2 u, EmissionSample* es) {
 }  // namespace
 
 std::optional<EmissionSample> sample_le(const LightPools& L, const ShapePools& shapes, const TexturePools& tex,
-                                        LazyNumber u_select, Vec2 u_pos, Vec2 u_dir, const SampledWavelengths& l,
-                                        float u_volume) {
+                                        const Distribution1D& choice, LazyNumber u_select, Vec2 u_pos, Vec2 u_dir,
+                                        const SampledWavelengths& l, float u_volume) {
   if (L.all.empty()) return std::nullopt;
   float pmf, rest;
-  size_t i = L.selection.sample_discrete(u_pos.x, &pmf, &rest);
+  size_t i = choice.sample_discrete(u_pos.x, &pmf, &rest);
   if (pmf == 0.f) return std::nullopt;
   u_pos.x = light_point_coordinate(rest, pmf, u_select);
   const LightRef r = L.all[i];
@@ -149,27 +149,27 @@ bool redirect_area_emission(const LightPools& L, const TexturePools& tex, Emissi
   return true;
 }
 
-float area_emission_pdf(const LightPools& L, const ShapePools& shapes, uint32_t area_index, const Vec3& p,
-                        const Vec3& n, const Vec3& w) {
+float area_emission_pdf(const LightPools& L, const ShapePools& shapes, const Distribution1D& choice,
+                        uint32_t area_index, const Vec3& p, const Vec3& n, const Vec3& w) {
   const AreaLight& a = L.area[area_index];
-  return L.selection.discrete_pmf(L.area_to_all[area_index]) * area_point_density(shapes, a, p, n) *
-         area_dir_pdf(a, n, w);
+  return choice.discrete_pmf(L.area_to_all[area_index]) * area_point_density(shapes, a, p, n) * area_dir_pdf(a, n, w);
 }
 
-float infinite_emission_pdf(const LightPools& L, const TexturePools& tex, const Vec3& w_to_light) {
-  float pdf = 0.f;  // light subpaths choose by power
+float infinite_emission_pdf(const LightPools& L, const TexturePools& tex, const Distribution1D& choice,
+                            const Vec3& w_to_light) {
+  float pdf = 0.f;
   for (uint32_t i = 0; i < L.infinite.size(); ++i)
-    pdf += L.selection.discrete_pmf(L.infinite_to_all[i]) * infinite_light_emission_dir_pdf(L, tex, i, w_to_light);
+    pdf += choice.discrete_pmf(L.infinite_to_all[i]) * infinite_light_emission_dir_pdf(L, tex, i, w_to_light);
   return pdf * disk_pdf(L);
 }
 
-float emission_pdf(const LightPools& L, const ShapePools& shapes, const TexturePools& tex, uint32_t light, const Vec3& p,
-                   const Vec3& n, const Vec3& w) {
+float emission_pdf(const LightPools& L, const ShapePools& shapes, const TexturePools& tex, const Distribution1D& choice,
+                   uint32_t light, const Vec3& p, const Vec3& n, const Vec3& w) {
   const LightRef r = L.all[light];
-  float pmf = L.selection.discrete_pmf(light);
+  float pmf = choice.discrete_pmf(light);
   switch (r.kind) {
     case LightKind::Area:
-      return area_emission_pdf(L, shapes, r.index, p, n, w);
+      return area_emission_pdf(L, shapes, choice, r.index, p, n, w);
     case LightKind::Point: {
       const PointLight& pl = L.point[r.index];
       return pmf * (pl.profile < 0 ? uniform_sphere_pdf() : profile_pdf(L.profiles[size_t(pl.profile)], w));

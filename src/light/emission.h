@@ -25,13 +25,14 @@ struct EmissionSample {
   bool volume = false;
 };
 
-// Chooses a light by power, a point on it and a direction leaving it; Le
-// at the wavelengths l. u_pos.x makes the choice and, rescaled, places the
-// point; u_select stands in for it after an unlikely choice
-// (light_choice.h).
+// Chooses a light by `choice` (over LightPools::all: LightPools::selection
+// chooses by power, as pbrt-v4's light subpaths do), a point on it and a
+// direction leaving it; Le at the wavelengths l. u_pos.x makes the choice
+// and, rescaled, places the point; u_select stands in for it after an
+// unlikely choice (light_choice.h).
 std::optional<EmissionSample> sample_le(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex,
-                                        LazyNumber u_select, Vec2 u_pos, Vec2 u_dir, const SampledWavelengths& l,
-                                        float u_volume = 0.5f);
+                                        const Distribution1D& choice, LazyNumber u_select, Vec2 u_pos, Vec2 u_dir,
+                                        const SampledWavelengths& l, float u_volume = 0.5f);
 
 // Turns an area light's emission sample es towards unit direction d (drawn
 // by another technique, as guided light subpaths do): its radiance and the
@@ -42,13 +43,15 @@ bool redirect_area_emission(const LightPools& lights, const TexturePools& tex, E
 // Emission density (pos incl. the selection pmf, times dir) with which
 // sample_le would start at p_light with normal n_light and leave in w.
 // For lights at infinity, w is the direction the light travels.
-float emission_pdf(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex, uint32_t light,
-                   const Vec3& p_light, const Vec3& n_light, const Vec3& w);
+float emission_pdf(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex,
+                   const Distribution1D& choice, uint32_t light, const Vec3& p_light, const Vec3& n_light,
+                   const Vec3& w);
 // Same for the area light hit by a ray: area_index indexes LightPools::area.
-float area_emission_pdf(const LightPools& lights, const ShapePools& shapes, uint32_t area_index, const Vec3& p_light,
-                        const Vec3& n_light, const Vec3& w);
+float area_emission_pdf(const LightPools& lights, const ShapePools& shapes, const Distribution1D& choice,
+                        uint32_t area_index, const Vec3& p_light, const Vec3& n_light, const Vec3& w);
 // Emission density of the infinite lights (summed) sending light along -w_to_light.
-float infinite_emission_pdf(const LightPools& lights, const TexturePools& tex, const Vec3& w_to_light);
+float infinite_emission_pdf(const LightPools& lights, const TexturePools& tex, const Distribution1D& choice,
+                            const Vec3& w_to_light);
 
 // Radiance or intensity a light with finite position emits from (p, n) in
 // w, at the wavelengths l.

@@ -90,6 +90,8 @@ struct LightPools {
   std::vector<uint32_t> area_to_all;
   std::vector<uint32_t> infinite_to_all;
   std::vector<uint32_t> volume_to_all;
+  // By power: how light subpaths choose their light, unless a pilot chose
+  // otherwise (BdptSettings::light_choice).
   Distribution1D selection;
   Vec3 scene_center{0.f};
   float scene_radius = 1.f;

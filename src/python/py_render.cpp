@@ -73,6 +73,8 @@ void read_options(const py::kwargs& kw, RenderRequest& r, Outputs& out) {
     if (k == "integrator") r.integrator = cast_option<std::string>("integrator", value);
     else if (k == "sampler") r.sampler = cast_option<std::string>("sampler", value);
     else if (k == "light_sampler") r.light_sampler = cast_option<std::string>("light_sampler", value);
+    else if (k == "light_choice")
+      r.light_choice = cast_option<std::string>("light_choice", value);
     else if (k == "mis") r.mis = cast_option<std::string>("mis", value);
     else if (k == "rays") r.rays = cast_option<std::string>("rays", value);
     else if (k == "spp") r.spp = int(positive(cast_option<int>("spp", value), "a positive integer"));
@@ -118,12 +120,13 @@ void read_options(const py::kwargs& kw, RenderRequest& r, Outputs& out) {
     else if (k == "resume") out.resume = cast_option<bool>("resume", value);
     else if (k == "keep_checkpoint") out.keep_checkpoint = cast_option<bool>("keep_checkpoint", value);
     else
-      throw py::type_error("unknown render option '" + k +
-                           "'; the options are the command line's: integrator, spp, time, target_error, maxdepth, "
-                           "seed, sampler, light_sampler, resolution, cropwindow, pixelbounds, pixel, spectral, guide, "
-                           "guide_light, adaptive, threads, wave_size, rays, mis, vcm_radius, vcm_alpha, roulette, "
-                           "split, light_subpaths, output, stats, collect_stats, checkpoint, checkpoint_file, resume, "
-                           "keep_checkpoint");
+      throw py::type_error(
+          "unknown render option '" + k +
+          "'; the options are the command line's: integrator, spp, time, target_error, maxdepth, "
+          "seed, sampler, light_sampler, light_choice, resolution, cropwindow, pixelbounds, pixel, spectral, guide, "
+          "guide_light, adaptive, threads, wave_size, rays, mis, vcm_radius, vcm_alpha, roulette, "
+          "split, light_subpaths, output, stats, collect_stats, checkpoint, checkpoint_file, resume, "
+          "keep_checkpoint");
   }
   if (r.time > 0 && r.spp > 0)
     throw py::value_error("spp and time: give one budget (time renders passes until the time is up), as on the "
@@ -369,7 +372,8 @@ void bind_render(py::module_& m) {
       },
       py::arg("scene"), py::kw_only(), py::arg("progress") = py::none(),
       "Render a scene; keyword arguments are the command line's options (integrator, spp, time, target_error, "
-      "maxdepth, seed, sampler, light_sampler, resolution, cropwindow, pixelbounds, pixel, spectral, guide, "
+      "maxdepth, seed, sampler, light_sampler, light_choice, resolution, cropwindow, pixelbounds, pixel, spectral, "
+      "guide, "
       "guide_light, adaptive, threads, "
       "wave_size, rays, mis, "
       "vcm_radius, vcm_alpha, roulette, split, light_subpaths, checkpoint, checkpoint_file, resume, keep_checkpoint) "
