@@ -140,11 +140,16 @@ TEST(LightSubpathChoice, PilotFindsTheLightThatMatters) {
   ASSERT_FALSE(c.light_choice.empty()) << "kept " << c.light_choice_name;
   std::printf("  the spot's share: %.3f (%s)\n", probability_of(c.light_choice, spot), c.light_choice_name.c_str());
   EXPECT_GT(probability_of(c.light_choice, spot), 0.2) << c.light_choice_name;
-  // Power's error at equal cost is well above the winner's.
-  double winner = 0.0;
+  // Power's relMSE and MSE at equal cost are well above the winner's.
+  ASSERT_EQ(c.light_choice_mse.size(), c.light_choice_candidates.size());
+  double winner = 0.0, winner_mse = 0.0;
   for (size_t k = 0; k < c.light_choice_candidates.size(); ++k)
-    if (c.light_choice_candidates[k] == c.light_choice_name) winner = c.light_choice_error[k] * c.light_choice_cost[k];
+    if (c.light_choice_candidates[k] == c.light_choice_name) {
+      winner = c.light_choice_error[k] * c.light_choice_cost[k];
+      winner_mse = c.light_choice_mse[k] * c.light_choice_cost[k];
+    }
   EXPECT_LT(winner, 0.5 * c.light_choice_error[0] * c.light_choice_cost[0]);
+  EXPECT_LT(winner_mse, 0.5 * c.light_choice_mse[0] * c.light_choice_cost[0]);
 }
 
 // Every thread count makes the same choice, and a scene of one light, or a
@@ -187,6 +192,7 @@ TEST(LightSubpathChoice, RenderReportsItsChoice) {
   EXPECT_FALSE(r.stats.light_choice.empty());
   EXPECT_EQ(r.stats.light_choice_candidates.size(), 4u);
   EXPECT_EQ(r.stats.light_choice_error.size(), 4u);
+  EXPECT_EQ(r.stats.light_choice_mse.size(), 4u);
   o.light_choice = LightChoiceKind::Power;
   r = render(*scene, o);
   EXPECT_TRUE(r.stats.light_choice.empty());

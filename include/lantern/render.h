@@ -218,12 +218,12 @@ struct RenderStats {
   // bdpt with several lights: how light subpaths chose their light (the
   // pilot's choice: "power", as pbrt-v4, or another candidate), its
   // probability per light (empty: by power), and each candidate's name,
-  // estimated relMSE per camera sample at its best rate, and rays per
-  // camera sample.
+  // estimated relMSE and MSE (over the image's mean squared) per camera
+  // sample at its best rate, and rays per camera sample.
   std::string light_choice;
   std::vector<double> light_choice_probability;
   std::vector<std::string> light_choice_candidates;
-  std::vector<double> light_choice_error, light_choice_cost;
+  std::vector<double> light_choice_error, light_choice_mse, light_choice_cost;
   // path: the paths per camera sample rendered with (0: not the path
   // tracer); with the pilot's choice (--split auto), its candidates and
   // its estimates: each one's error at equal time relative to 1's, and the

@@ -138,6 +138,7 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
                                              {"pilot",
                                               {{"candidates", s.light_choice_candidates},
                                                {"relmse_per_sample", s.light_choice_error},
+                                               {"mse_per_sample", s.light_choice_mse},
                                                {"rays_per_sample", s.light_choice_cost}}}};
   }
   if (s.mlt_chains > 0)

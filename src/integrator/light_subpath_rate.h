@@ -78,11 +78,12 @@ struct LightSubpathRateChoice {
   // The light light subpaths start from (light_choice_pilot.h): the
   // winner's probability per light (empty: by power) and name; with
   // several lights, each candidate's name and error per camera sample at
-  // its best rate, its cost in rays (error and cost above: the winner's).
+  // its best rate (relMSE, and MSE over the image's mean squared), and its
+  // cost in rays (error and cost above: the winner's).
   std::vector<float> light_choice;
   std::string light_choice_name = "power";
   std::vector<std::string> light_choice_candidates;
-  std::vector<double> light_choice_error, light_choice_cost;
+  std::vector<double> light_choice_error, light_choice_mse, light_choice_cost;
 };
 
 
@@ -118,8 +119,9 @@ class RateMoments {
   // same whatever the threads).
   void add(const WaveDesc& wave, const std::vector<StrategyRecord>& records);
   // Each rate's estimated relMSE of an image of one sample per pixel,
-  // with light subpaths choosing their light by choice `choice`.
-  std::array<double, kLightSubpathRates.size()> relative_error(size_t choice = 0) const;
+  // with light subpaths choosing their light by choice `choice`; or
+  // (absolute) its MSE over the image's mean squared.
+  std::array<double, kLightSubpathRates.size()> relative_error(size_t choice = 0, bool absolute = false) const;
   // The same for the eye subpaths alone (eye_subpaths_alone.h), from the
   // same records: the larger of their own samples' spread (strategies
   // s = 0 and s = 1 reweighed) and the second moment that every
@@ -135,6 +137,11 @@ class RateMoments {
   float weight_at(const StrategyRecord& r, float q) const {
     return weight_at_rate(r.weight, r.rescaled, r.s >= 2, q, beta_);
   }
+  // A strategy of a light seen from the camera (s = 1, t = 1 or s = 0,
+  // t = 2), whose ratio sum is all the other's: its weight at rho.
+  float seen_weight(const StrategyRecord& r, float rho) const {
+    return weight_at_rate(r.weight, r.weight > 0.f ? 1.f / r.weight - 1.f : 0.f, r.s == 1, rho, beta_);
+  }
   float light_ratio(size_t choice, uint32_t light) const {
     const std::vector<float>& rho = ratios_[choice];
     return light < rho.size() ? rho[light] : 1.f;
@@ -149,6 +156,7 @@ class RateMoments {
   double splat_share_;
   // (1 / (the pixel's value squared + the image's mean squared), per pixel)
   std::vector<double> relative_scale() const;
+  std::vector<double> absolute_scale() const;  // (1 / the image's mean squared, per pixel)
   std::vector<double> value_;  // per pixel: the sum of its weighted samples
   // per choice and pixel (at), per rate: camera samples' sum and sum of
   // squares, splats' sum of squares
