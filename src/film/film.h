@@ -100,6 +100,10 @@ struct WaveOutput {
   std::vector<FilmSample> samples;
   std::vector<Splat> splats;
   std::vector<StrategyRecord> strategies;
+  // With the strategies recorded (bdpt's pilot): per light
+  // (LightPools::all), the rays its light subpaths cast (extensions and
+  // connections of s >= 2: what the rate and the choice of light scale).
+  std::vector<uint64_t> light_rays_by_light;
   uint64_t light_paths = 0, odd_light_paths = 0;
   std::vector<GuideRecord> guide;  // for the guiding field being learnt (integrator/guiding_field.h)
   std::vector<GuideRecord> light_guide;  // for its importance field (the light subpaths of bdpt and vcm)
@@ -125,6 +129,7 @@ struct WaveOutput {
     samples.clear();
     splats.clear();
     strategies.clear();
+    light_rays_by_light.clear();
     guide.clear();
     light_guide.clear();
     light_paths = odd_light_paths = 0;

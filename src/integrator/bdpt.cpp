@@ -279,6 +279,7 @@ void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
   w.first_sample = wave.first_sample;
   w.samples_per_pixel = wave.samples;
   w.shadow.record = settings_.record_strategies;
+  if (settings_.record_strategies) out.light_rays_by_light.assign(scene_.lights.all.size(), 0);
   WaveStats& st = w.stats;
   auto timed = [&](Stage stage, auto&& fn) {
     StageTimer t(st, stage);

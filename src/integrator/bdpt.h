@@ -177,6 +177,9 @@ class Bdpt {
   // light: the light found (LightPools::all), for recorded strategies.
   void add_emission(BdptWave& w, uint32_t slot, const Spectrum& unweighted, float weight, float rescaled,
                     uint32_t light) const;
+  // A ray of slot's light subpath (an extension or a connection of
+  // s >= 2), counted by its light when strategies are recorded.
+  void count_light_ray(BdptWave& w, uint32_t slot) const;
   void add_volume_emission(BdptWave& w, uint32_t i, const Spectrum& beta_before) const;
   float volume_number(const BdptWave& w, uint32_t slot) const;
   struct VolumeSampleEnd {

@@ -200,6 +200,7 @@ void Bdpt::light_surface_stage(BdptWave& w) const {
       light_medium_arrival(w, i);
       continue;
     }
+    count_light_ray(w, slot);
     if (!w.rays.hit(i)) {
       ++w.stats.light_ends[size_t(PathEnd::Escaped)];
       continue;
@@ -235,6 +236,7 @@ void Bdpt::light_surface_stage(BdptWave& w) const {
 void Bdpt::light_medium_arrival(BdptWave& w, uint32_t i) const {
   const uint32_t slot = w.active[i];
   ++w.stats.light_vertices;
+  count_light_ray(w, slot);
   const Vec3 p = w.ends.p[i], prev = w.light.prev_p[slot];
   const Vec3 d = glm::normalize(w.rays.direction(i));
   const float dist2 = glm::dot(p - prev, p - prev);

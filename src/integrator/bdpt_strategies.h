@@ -26,8 +26,15 @@ namespace lantern {
 
 // In a scene without media a connection's segment adds nothing to the
 // densities (its transmittance is 1): its weight is known now.
+inline void Bdpt::count_light_ray(BdptWave& w, uint32_t slot) const {
+  if (settings_.record_strategies) ++w.out->light_rays_by_light[w.origin.light[slot]];
+}
+
 inline void Bdpt::push_connection(BdptWave& w, uint32_t slot, const Connection& k) const {
-  if (k.s >= 2) ++w.stats.light_connections;
+  if (k.s >= 2) {
+    ++w.stats.light_connections;
+    count_light_ray(w, slot);
+  }
   const float wt = w.shadow.media || !weighted() ? 1.f : mis_weight_vacuum(k.mis);
   w.shadow.push(slot, k, k.unweighted * wt, w.lambda[slot], w.time[slot]);
   if (w.shadow.record && !w.shadow.media) {  // (with media: trace_connections)

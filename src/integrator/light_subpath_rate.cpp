@@ -25,30 +25,33 @@ namespace {
 constexpr double kPilotPixels = 4096.0;
 constexpr uint32_t kPilotSpp = 8;
 constexpr uint32_t kTargetSpp = 2;  // the light choice's first pass (light_choice_pilot.h)
-constexpr double kClearLightGain = 0.8;
+constexpr double kClearLightGain = 0.7;
 
 // The light choice with the least relMSE at equal cost, each at its best
-// rate, among those at least 20% below power's that do not raise the MSE
+// rate, among those at least 30% below power's that do not raise the MSE
 // (relative to the image's mean squared) either: a choice that moves light
 // subpaths to a dim light can lower the relative error of what it lights
-// and raise the absolute error of the rest. (20%: the other choices'
-// estimates are extrapolated from light subpaths drawn otherwise; on the
-// reading room, gains of 5-12% the pilot saw were not there at equal
-// time.) Its rates' errors into `choice`.
-void pick_light_choice(const RateMoments& moments, const LightChoices& lights, uint32_t spp,
-                       LightSubpathRateChoice& choice) {
-  std::vector<std::array<double, kLightSubpathRates.size()>> errors;
+// and raise the absolute error of the rest. (30%: the cost counts rays,
+// and a light subpath through a medium or one whose splats spread over
+// the filter's pixels costs more time than its rays say; on the reading
+// room and the smoke, gains of 5-23% the pilot saw were not there at
+// equal time.) Its rates' errors and costs into `choice`.
+using RateArray = std::array<double, kLightSubpathRates.size()>;
+
+void pick_light_choice(const RateMoments& moments, const LightChoices& lights, const std::vector<RateArray>& costs,
+                       uint32_t spp, LightSubpathRateChoice& choice) {
+  std::vector<RateArray> errors;
   std::vector<double> relative, absolute;  // per candidate at its best rate, times its cost
   for (size_t c = 0; c < lights.names.size(); ++c) {
     errors.push_back(moments.relative_error(c));
-    const float q = best_light_subpath_rate(errors[c], choice.cost, spp);
+    const float q = best_light_subpath_rate(errors[c], costs[c], spp);
     const size_t k =
         size_t(std::find(kLightSubpathRates.begin(), kLightSubpathRates.end(), q) - kLightSubpathRates.begin());
     choice.light_choice_error.push_back(errors[c][k]);
     choice.light_choice_mse.push_back(moments.relative_error(c, true)[k]);
-    choice.light_choice_cost.push_back(choice.cost[k]);
-    relative.push_back(errors[c][k] * choice.cost[k]);
-    absolute.push_back(choice.light_choice_mse[c] * choice.cost[k]);
+    choice.light_choice_cost.push_back(costs[c][k]);
+    relative.push_back(errors[c][k] * costs[c][k]);
+    absolute.push_back(choice.light_choice_mse[c] * costs[c][k]);
   }
   size_t best = 0;
   for (size_t c = 1; c < lights.names.size(); ++c)
@@ -56,6 +59,7 @@ void pick_light_choice(const RateMoments& moments, const LightChoices& lights, u
         relative[c] > 0.0)
       best = c;
   choice.error = errors[best];
+  choice.cost = costs[best];
   if (lights.names.size() > 1)
     choice.light_choice_candidates = lights.names;
   else
@@ -277,7 +281,9 @@ void consider_eye_subpaths_alone(const Scene& scene, const LightSampler& light_s
   choice.eye_alone_first_ratio = ratio;
   const double bdpt_cost = choice.cost[k] + 1.0;  // (its work that casts no ray: as the grid pilot counts it)
   if (!(ratio > 0.0 && ratio / kPilotsAgree <= kClearGain * bdpt_cost / alone_cost)) return;
-  const EyeAloneEstimate e = estimate_eye_subpaths_alone(scene, light_sampler, render, best, eye_alone, backend);
+  BdptSettings bdpt = render;  // (with the light choice made)
+  bdpt.light_choice = choice.light_choice;
+  const EyeAloneEstimate e = estimate_eye_subpaths_alone(scene, light_sampler, bdpt, best, eye_alone, backend);
   choice.eye_alone = e;
   if (e.bdpt_error > 0.0 && e.bdpt_cost > 0.0) {  // (for --stats, in this pilot's units)
     choice.eye_alone_error = choice.error[k] * e.alone_error / e.bdpt_error;
@@ -290,7 +296,6 @@ LightSubpathRateChoice choose_light_subpath_rate(const Scene& scene, const Light
                                                  const BdptSettings& render, RayBackend backend,
                                                  const PathTracerSettings* eye_alone, double time_budget,
                                                  bool choose_light) {
-  const auto start = std::chrono::steady_clock::now();
   const int full_w = render.full_width > 0 ? render.full_width : render.width;
   const int full_h = render.full_height > 0 ? render.full_height : render.height;
   const int shrink = std::max(1, int(std::ceil(std::sqrt(double(full_w) * double(full_h) / kPilotPixels))));
@@ -308,12 +313,17 @@ LightSubpathRateChoice choose_light_subpath_rate(const Scene& scene, const Light
                                      light_choice_target(scene, light_sampler, pilot, kTargetSpp, backend));
     ratios = light_choice_ratios(lights, pilot.light_choice);
   }
+  const auto start = std::chrono::steady_clock::now();  // (this pilot's own time, per sample: the first pass's is not)
   const Bdpt bdpt(scene, light_sampler, pilot);
   RateMoments moments(pilot.width, pilot.height, kPilotSpp, pilot.mis_beta,
                       pilot.sampler.type != SamplerKind::Independent, ratios, splat_square_share(scene.filter));
-  const WaveStats bdpt_stats =
-      trace_pilot(scene, bdpt, tile_order(pilot.width, pilot.height), kPilotSpp, backend,
-                  [&](const WaveDesc& wave, size_t, const WaveOutput& out) { moments.add(wave, out.strategies); });
+  std::vector<double> light_rays(scene.lights.all.size(), 0.0);  // per light: its light subpaths' rays
+  const WaveStats bdpt_stats = trace_pilot(scene, bdpt, tile_order(pilot.width, pilot.height), kPilotSpp, backend,
+                                           [&](const WaveDesc& wave, size_t, const WaveOutput& out) {
+                                             moments.add(wave, out.strategies);
+                                             for (size_t j = 0; j < out.light_rays_by_light.size(); ++j)
+                                               light_rays[j] += double(out.light_rays_by_light[j]);
+                                           });
   LightSubpathRateChoice choice;
   // Rays per camera sample: what every sample casts (its eye subpath's
   // rays, each ending at a vertex or escaping; its light samples; its
@@ -324,8 +334,17 @@ LightSubpathRateChoice choose_light_subpath_rate(const Scene& scene, const Light
   const WaveStats& b = bdpt_stats;
   const double once = (samples + double(b.eye_vertices + b.eye_ends[escaped] + b.light_samples)) / samples;
   const double light = double(b.light_vertices + b.light_ends[escaped] + b.light_connections) / samples;
-  for (size_t k = 0; k < kLightSubpathRates.size(); ++k) choice.cost[k] = once + double(kLightSubpathRates[k]) * light;
-  pick_light_choice(moments, lights, render.planned_spp, choice);
+  // Under another choice of light, each light's rays scale with its rho.
+  std::vector<RateArray> costs(lights.names.size());
+  for (size_t c = 0; c < costs.size(); ++c) {
+    double light_c = light;
+    if (!ratios[c].empty()) {
+      light_c = 0.0;
+      for (size_t j = 0; j < light_rays.size(); ++j) light_c += double(ratios[c][j]) * light_rays[j] / samples;
+    }
+    for (size_t k = 0; k < kLightSubpathRates.size(); ++k) costs[c][k] = once + double(kLightSubpathRates[k]) * light_c;
+  }
+  pick_light_choice(moments, lights, costs, render.planned_spp, choice);
   if (eye_alone) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     consider_eye_subpaths_alone(scene, light_sampler, render, *eye_alone, backend, moments, once - 1.0,
