@@ -5,7 +5,6 @@
 #include "integrator/light_choice_pilot.h"
 
 #include <gtest/gtest.h>
-#include <tbb/global_control.h>
 
 #include <cstdio>
 #include <string>
@@ -15,6 +14,7 @@
 #include "integrator/render_settings.h"
 #include "lantern/render.h"
 #include "light/light_sampler.h"
+#include "pilot_threads.h"
 #include "sanitizer.h"
 #include "scene/scene.h"
 #include "stat_compare.h"
@@ -156,28 +156,20 @@ TEST(LightSubpathChoice, PilotFindsTheLightThatMatters) {
 // render that asks for power, has none to make.
 TEST(LightSubpathChoice, PilotIsTheSameWhateverTheThreads) {
   const auto scene = sky_and_lamp();
-  const LightSampler light_sampler(scene->lights, scene->shapes, scene->textures, LightSamplerKind::Bvh);
   const RenderOptions o = bdpt_options(kLightSubpathsAuto);
-  const BdptSettings bs = bdpt_settings(*scene, o, image_region(*scene, o), 0);
-  LightSubpathRateChoice one, two;
-  {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
-    one = choose_light_subpath_rate(*scene, light_sampler, bs, RayBackend::StreamNp);
-  }
-  two = choose_light_subpath_rate(*scene, light_sampler, bs, RayBackend::StreamNp);
+  const auto [one, two] = pilots_on_one_and_all_threads(*scene, o);
   EXPECT_EQ(one.light_choice_name, two.light_choice_name);
   EXPECT_EQ(one.light_choice, two.light_choice);
   EXPECT_EQ(one.light_choice_error, two.light_choice_error);
   EXPECT_EQ(one.rate, two.rate);
 
+  const LightSampler light_sampler(scene->lights, scene->shapes, scene->textures, LightSamplerKind::Bvh);
   const LightSubpathRateChoice none =
-      choose_light_subpath_rate(*scene, light_sampler, bs, RayBackend::StreamNp, nullptr, 0.0, false);
+      choose_light_subpath_rate(*scene, light_sampler, bdpt_settings(*scene, o, image_region(*scene, o), 0),
+                                RayBackend::StreamNp, nullptr, 0.0, false);
   EXPECT_TRUE(none.light_choice.empty());
   EXPECT_TRUE(none.light_choice_candidates.empty());
-  const auto one_light = guided_room();
-  const LightSampler its_sampler(one_light->lights, one_light->shapes, one_light->textures, LightSamplerKind::Bvh);
-  const LightSubpathRateChoice single = choose_light_subpath_rate(
-      *one_light, its_sampler, bdpt_settings(*one_light, o, image_region(*one_light, o), 0), RayBackend::StreamNp);
+  const LightSubpathRateChoice single = pilots_on_one_and_all_threads(*guided_room(), o).first;
   EXPECT_TRUE(single.light_choice.empty());
   EXPECT_TRUE(single.light_choice_candidates.empty());
 }

@@ -5,7 +5,6 @@
 #include "integrator/light_subpath_rate.h"
 
 #include <gtest/gtest.h>
-#include <tbb/global_control.h>
 
 #include <cmath>
 #include <limits>
@@ -16,6 +15,7 @@
 #include "integrator/render_settings.h"
 #include "lantern/render.h"
 #include "light/light_sampler.h"
+#include "pilot_threads.h"
 #include "sanitizer.h"
 #include "scene/scene.h"
 #include "stat_compare.h"
@@ -81,16 +81,7 @@ TEST(LightSubpaths, PilotPredictsTheErrorOfEachRate) {
 // Every thread count makes the same pilot, bit for bit, and so the same
 // choice: its sums run in wave order.
 TEST(LightSubpaths, PilotIsTheSameWhateverTheThreads) {
-  const auto scene = guided_room();
-  const LightSampler light_sampler(scene->lights, scene->shapes, scene->textures, LightSamplerKind::Bvh);
-  const RenderOptions o = bdpt_options(kLightSubpathsAuto);
-  const BdptSettings bs = bdpt_settings(*scene, o, image_region(*scene, o), 0);
-  LightSubpathRateChoice one, two;
-  {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
-    one = choose_light_subpath_rate(*scene, light_sampler, bs, RayBackend::StreamNp);
-  }
-  two = choose_light_subpath_rate(*scene, light_sampler, bs, RayBackend::StreamNp);
+  const auto [one, two] = pilots_on_one_and_all_threads(*guided_room(), bdpt_options(kLightSubpathsAuto));
   EXPECT_EQ(one.rate, two.rate);
   for (size_t k = 0; k < kLightSubpathRates.size(); ++k) {
     EXPECT_EQ(one.error[k], two.error[k]) << k;

@@ -345,6 +345,18 @@ LightSubpathRateChoice choose_light_subpath_rate(const Scene& scene, const Light
     for (size_t k = 0; k < kLightSubpathRates.size(); ++k) costs[c][k] = once + double(kLightSubpathRates[k]) * light_c;
   }
   pick_light_choice(moments, lights, costs, render.planned_spp, choice);
+  if (lights.names.size() > 1 && choice.light_choice.empty()) {
+    // Power stays: its rate from a pilot whose light subpaths it draws
+    // (this one's, drawn otherwise, only estimate it), as on a scene of one
+    // light; the candidates' estimates kept for --stats.
+    LightSubpathRateChoice by_power =
+        choose_light_subpath_rate(scene, light_sampler, render, backend, eye_alone, time_budget, false);
+    by_power.light_choice_candidates = choice.light_choice_candidates;
+    by_power.light_choice_error = choice.light_choice_error;
+    by_power.light_choice_mse = choice.light_choice_mse;
+    by_power.light_choice_cost = choice.light_choice_cost;
+    return by_power;
+  }
   if (eye_alone) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     consider_eye_subpaths_alone(scene, light_sampler, render, *eye_alone, backend, moments, once - 1.0,
