@@ -28,10 +28,12 @@ constexpr uint32_t kTargetSpp = 2;  // the light choice's first pass (light_choi
 constexpr double kClearLightGain = 0.7;
 
 // The light choice with the least relMSE at equal cost, each at its best
-// rate, among those at least 30% below power's that do not raise the MSE
-// (relative to the image's mean squared) either: a choice that moves light
-// subpaths to a dim light can lower the relative error of what it lights
-// and raise the absolute error of the rest. (30%: the cost counts rays,
+// rate, among those that raise neither it nor the MSE (relative to the
+// image's mean squared) above power's and lower one of them by 30%: a
+// choice that moves light subpaths to a dim light can lower the relative
+// error of what it lights and raise the absolute error of the rest, and
+// one that moves them to a light that makes a bright caustic can lower
+// the MSE most. (30%: the cost counts rays,
 // and a light subpath through a medium or one whose splats spread over
 // the filter's pixels costs more time than its rays say; on the reading
 // room and the smoke, gains of 5-23% the pilot saw were not there at
@@ -55,8 +57,9 @@ void pick_light_choice(const RateMoments& moments, const LightChoices& lights, c
   }
   size_t best = 0;
   for (size_t c = 1; c < lights.names.size(); ++c)
-    if (relative[c] <= kClearLightGain * relative[0] && absolute[c] <= absolute[0] && relative[c] < relative[best] &&
-        relative[c] > 0.0)
+    if (relative[c] <= relative[0] && absolute[c] <= absolute[0] &&
+        (relative[c] <= kClearLightGain * relative[0] || absolute[c] <= kClearLightGain * absolute[0]) &&
+        relative[c] < relative[best] && relative[c] > 0.0)
       best = c;
   choice.error = errors[best];
   choice.cost = costs[best];
