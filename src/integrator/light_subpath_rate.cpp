@@ -33,11 +33,11 @@ constexpr double kClearLightGain = 0.7;
 // choice that moves light subpaths to a dim light can lower the relative
 // error of what it lights and raise the absolute error of the rest, and
 // one that moves them to a light that makes a bright caustic can lower
-// the MSE most. (30%: the cost counts rays,
-// and a light subpath through a medium or one whose splats spread over
-// the filter's pixels costs more time than its rays say; on the reading
-// room and the smoke, gains of 5-23% the pilot saw were not there at
-// equal time.) Its rates' errors and costs into `choice`.
+// the MSE most. (30%: the cost counts rays, and a light subpath through a
+// medium or one whose splats spread over the filter's pixels costs more
+// time than its rays say; on the reading room and the smoke, gains of
+// 5-23% the pilot saw were not there at equal time.) Its rates' errors
+// and costs into `choice`.
 using RateArray = std::array<double, kLightSubpathRates.size()>;
 
 void pick_light_choice(const RateMoments& moments, const LightChoices& lights, const std::vector<RateArray>& costs,

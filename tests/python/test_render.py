@@ -207,11 +207,25 @@ def test_bad_input_raises_clear_errors(tmp_path, cornell_box):
         lantern.render(cornell_box, spp=1, integrator="bdpt", light_subpaths=0.0099999)
     with pytest.raises(ValueError, match="light_subpaths"):
         lantern.render(cornell_box, spp=1, integrator="bdpt", light_subpaths=True)
+    with pytest.raises(ValueError, match="light choice"):
+        lantern.render(cornell_box, spp=1, integrator="bdpt", light_choice="bvh")
     for bad_split in (3, 4.0, "four", True, 32):
         with pytest.raises(ValueError, match="split"):
             lantern.render(cornell_box, spp=1, split=bad_split)
     with pytest.raises(RuntimeError, match="no-such-folder"):
         lantern.render(cornell_box, spp=1, output=str(tmp_path / "no-such-folder" / "x.exr"))
+
+
+def test_light_choice(source_dir):
+    # How light subpaths choose their light: given, or (auto) the pilot's
+    # choice on a scene of several lights (the prism's sky and spot).
+    prism = lantern.load_scene(str(source_dir / "scenes" / "prism.pbrt"))
+    chosen = lantern.render(prism, spp=1, resolution=(48, 36), integrator="bdpt", collect_stats=True)
+    choice = chosen.stats["light_subpaths"]["light_choice"]
+    assert choice["chosen"] != "power" and len(choice["probabilities"]) == 2
+    given = lantern.render(prism, spp=1, resolution=(48, 36), integrator="bdpt", light_choice="power",
+                           collect_stats=True)
+    assert "light_choice" not in given.stats["light_subpaths"]
 
 
 def test_split_camera_samples(cornell_box):
