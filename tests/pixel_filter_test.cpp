@@ -3,16 +3,18 @@
 // it while camera samples are drawn by sample_pixel_filter. And the
 // Gaussian must be pbrt-v4's: per axis, the normal density less its value
 // at the radius.
+#include "film/pixel_filter.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <functional>
 #include <vector>
 
 #include "film/film.h"
-#include "film/pixel_filter.h"
 
 namespace lantern {
 namespace {
@@ -169,6 +171,25 @@ TEST(PixelFilter, FilmKeepsSignedCounts) {
   EXPECT_EQ(restored.resolve().rgb, img.rgb);
   restored.add(film);  // twice the samples, the same ratio
   EXPECT_FLOAT_EQ(restored.resolve().rgb[0], 0.5f);
+}
+
+// The share of a splat's square that stays in the pixels' variances
+// (splat_square_share, which bdpt's pilot counts): 1 for a box of one
+// pixel (a splat lands whole in one), 4 x (1/4)^2 for a box of radius 1
+// (four pixels of a quarter each), and near 1 / (4 pi sigma^2) = 0.32 for
+// pbrt-v4's default Gaussian (sigma 0.5, cut at 1.5 and offset to zero
+// there). Summing the weights instead of their squares gives 1 for all.
+TEST(PixelFilter, SplatSquareShareIsTheSumOfSquaredWeights) {
+  PixelFilter box;
+  box.type = PixelFilter::Type::Box;
+  box.radius = Vec2(0.5f);
+  EXPECT_NEAR(splat_square_share(box), 1.0, 1e-6);
+  box.radius = Vec2(1.f);
+  EXPECT_NEAR(splat_square_share(box), 0.25, 1e-6);
+  const PixelFilter gaussian;  // (the default: pbrt-v4's)
+  std::printf("  Gaussian's share: %.3f\n", splat_square_share(gaussian));
+  EXPECT_GT(splat_square_share(gaussian), 0.25);
+  EXPECT_LT(splat_square_share(gaussian), 0.4);
 }
 
 }  // namespace

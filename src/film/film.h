@@ -147,7 +147,7 @@ void for_each_splat_pixel(const PixelFilter& f, int width, int height, Vec2 p, F
 // The sum of a splat's weights squared over the pixels it is spread on, on
 // average over where in a pixel it lands: the share of a splat's square
 // that lands in the pixels' variances (1 for a box filter of one pixel,
-// about 0.3 for pbrt-v4's default Gaussian), where a camera sample, drawn
+// 0.34 for pbrt-v4's default Gaussian), where a camera sample, drawn
 // through the filter, adds its whole square to one pixel.
 double splat_square_share(const PixelFilter& f);
 
