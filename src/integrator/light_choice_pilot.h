@@ -25,9 +25,11 @@
 // subpaths.
 //
 // The pilot then weighs each candidate with its records (RateMoments:
-// the MIS weights at each candidate's densities), and the least error at
-// equal cost wins if it is at least 5% below power's. Light subpaths'
-// cost is taken as the same whichever light they start from.
+// the MIS weights at each candidate's densities) and its cost (each
+// light's rays per light subpath, weighed by the candidate's
+// probabilities). A candidate wins if it raises neither relMSE nor MSE at
+// equal cost above power's and lowers one of them by 30%
+// (light_subpath_rate.cpp, pick_light_choice).
 #pragma once
 
 #include <string>

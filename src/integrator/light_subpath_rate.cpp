@@ -192,35 +192,27 @@ void RateMoments::add_choice_moments(const WaveDesc& wave, const std::vector<Str
   }
 }
 
-std::vector<double> RateMoments::relative_scale() const {
+std::vector<double> RateMoments::relative_scale(bool absolute) const {
   // (relative to the pixel's value squared plus the image's mean squared:
   // free of the image's scale, and near `lantern compare`'s 0.01 on images
-  // of mean 0.1)
+  // of mean 0.1; absolute: to the image's mean squared alone)
   const double n = double(spp_);
   double image = 0.0;
   for (const double v : value_) image += v / n;
   image /= double(value_.size());
   if (!(image > 0.0) || !std::isfinite(image)) return {};  // a black image: nothing to choose by
   std::vector<double> scale(value_.size());
-  for (size_t p = 0; p < value_.size(); ++p) scale[p] = 1.0 / ((value_[p] / n) * (value_[p] / n) + image * image);
-  return scale;
-}
-
-std::vector<double> RateMoments::absolute_scale() const {
-  std::vector<double> scale = relative_scale();
-  if (scale.empty()) return scale;
-  const double n = double(spp_);
-  double image = 0.0;
-  for (const double v : value_) image += v / n;
-  image /= double(value_.size());
-  std::fill(scale.begin(), scale.end(), 1.0 / (image * image));
+  for (size_t p = 0; p < value_.size(); ++p) {
+    const double pixel = absolute ? 0.0 : value_[p] / n;
+    scale[p] = 1.0 / (pixel * pixel + image * image);
+  }
   return scale;
 }
 
 std::array<double, RateMoments::kRates> RateMoments::relative_error(size_t choice, bool absolute) const {
   std::array<double, kRates> e{};
   const double n = double(spp_);
-  const std::vector<double> scale = absolute ? absolute_scale() : relative_scale();
+  const std::vector<double> scale = relative_scale(absolute);
   if (scale.empty()) return e;
   for (size_t p = 0; p < value_.size(); ++p) {
     const size_t i = at(choice, p);

@@ -155,8 +155,8 @@ class RateMoments {
   std::vector<std::vector<float>> ratios_;
   double splat_share_;
   // (1 / (the pixel's value squared + the image's mean squared), per pixel)
-  std::vector<double> relative_scale() const;
-  std::vector<double> absolute_scale() const;  // (1 / the image's mean squared, per pixel)
+  // (absolute: 1 / the image's mean squared for every pixel)
+  std::vector<double> relative_scale(bool absolute = false) const;
   std::vector<double> value_;  // per pixel: the sum of its weighted samples
   // per choice and pixel (at), per rate: camera samples' sum and sum of
   // squares, splats' sum of squares
