@@ -39,8 +39,9 @@ expect_run(NAME version EXIT 0 MATCH "^lantern [0-9]+\\.[0-9]+\\.[0-9]+ \\(commi
 expect_run(NAME flag-near-miss EXIT 2 MATCH "did you mean \"--spp\"" ARGS render ${SRC}/scenes/cornell-box.pbrt --sp 16)
 expect_run(NAME command-near-miss EXIT 2 MATCH "did you mean \"render\"" ARGS rendr ${SRC}/scenes/cornell-box.pbrt)
 expect_run(NAME negative-seed EXIT 2 MATCH "--seed: must be an integer of 0 or more" ARGS render ${SRC}/scenes/cornell-box.pbrt --seed -1)
-expect_run(NAME target-error-vcm EXIT 1 MATCH "target error .*not with vcm"
-           ARGS render ${SRC}/scenes/cornell-box.pbrt --integrator vcm --target-error 0.01 --resolution 8 8 -o ${OUT}/x.exr)
+expect_run(NAME target-error-part EXIT 1 MATCH "target error .*not with --part"
+           ARGS render ${SRC}/scenes/cornell-box.pbrt --integrator vcm --target-error 0.01 --part 1/2 --resolution 8 8
+           -o ${OUT}/x.part)
 expect_run(NAME missing-scene EXIT 2 MATCH "cannot open scene file" ARGS render ${OUT}/no-such-scene.pbrt -o ${OUT}/x.png)
 file(WRITE ${OUT}/broken.pbrt "WorldBegin\nShape \"sphere\" \"float radius\" [ 1\n")
 expect_run(NAME syntax-error EXIT 2 MATCH "broken.pbrt:2:.*error: .*missing" ARGS render ${OUT}/broken.pbrt -o ${OUT}/x.png)

@@ -116,7 +116,7 @@ TEST(FourierSeries, EvaluatesAndSamplesItsSeries) {
 
 // The analytic BSDFs the tables are written from: a coloured diffuse
 // reflector and transmitter, and rough glass.
-const DiffuseTransmissionBSDF kDiffuse{Spectrum(0.6f, 0.4f, 0.2f, 0.4f), Spectrum(0.1f, 0.3f, 0.5f, 0.3f)};
+const DiffuseTransmissionBSDF kDiffuseSlab{Spectrum(0.6f, 0.4f, 0.2f, 0.4f), Spectrum(0.1f, 0.3f, 0.5f, 0.3f)};
 const DielectricBSDF kGlass{TrowbridgeReitz{0.4f, 0.4f}, 1.5f};
 
 template <class BSDF>
@@ -131,7 +131,7 @@ std::shared_ptr<const FourierTable> table_of(const BSDF& b, float eta, const std
   return FourierTable::load(path.string());
 }
 const FourierTable& diffuse_table() {
-  static const auto t = table_of(kDiffuse, 1.f, "diffuse.bsdf");
+  static const auto t = table_of(kDiffuseSlab, 1.f, "diffuse.bsdf");
   return *t;
 }
 const FourierTable& glass_table() {
@@ -162,7 +162,7 @@ TEST(FourierBSDF, ValuesMatchTheBSDFTheyTabulate) {
     EXPECT_LT(errors[errors.size() / 2], median) << what << ": median";
     EXPECT_LT(errors[errors.size() * 9 / 10], p90) << what << ": 90th percentile";
   };
-  check(kDiffuse, diffuse_table(), 0.01f, 1e-4f, 1e-4f, "diffuse");
+  check(kDiffuseSlab, diffuse_table(), 0.01f, 1e-4f, 1e-4f, "diffuse");
   // Measured: diffuse exact to 2e-6; rough glass 0.4% (median) and 9% (90th
   // percentile), where the splines in mu smooth the reflection's and the
   // transmission's meeting at mu_i = 0 and the edge of total internal
@@ -187,7 +187,7 @@ TEST(FourierBSDF, AlbedoMatchesTheAnalyticBSDF) {
     for (bool transmitted : {false, true}) {
       const Vec3 wo = bsdf_checks::dir_from_angles(theta, 15.f);
       const FourierBSDF d{&diffuse_table(), SampledWavelengths::rgb()}, g{&glass_table(), SampledWavelengths::rgb()};
-      const Spectrum a = albedo(kDiffuse, wo, transmitted), b = albedo(d, wo, transmitted);
+      const Spectrum a = albedo(kDiffuseSlab, wo, transmitted), b = albedo(d, wo, transmitted);
       for (int c = 0; c < 3; ++c)
         EXPECT_NEAR(b[c], a[c], 0.02f * a[c] + 0.003f) << "diffuse, theta " << theta << ", " << c;
       const Spectrum x = albedo(kGlass, wo, transmitted), y = albedo(g, wo, transmitted);

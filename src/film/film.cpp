@@ -54,14 +54,18 @@ void Film::prepare(WaveOutput& out) const {
       ++out.nonfinite;
     }
   }
+  // (adaptive merging: into the sample sums of the pixels taking the pass)
+  const bool per_pass = out.pass_light_paths > 0;
+  const float pass_scale = per_pass ? float(pass_splat_scale(out.pass_light_paths)) : 1.f;
+  std::vector<FixedTerm>& terms = per_pass ? out.sample_terms : out.splat_terms;
   for (const Splat& s : out.splats) {
-    const RGB L = sensed(clamped(s.L));
+    const RGB L = sensed(clamped(s.L)) * pass_scale;
     if (!addable(L)) {
       ++out.nonfinite;
       continue;
     }
     for_each_splat_pixel(filter_, width_, height_, s.p_raster - raster_offset(), [&](size_t pixel, float w) {
-      out.splat_terms.push_back(fixed_term(uint32_t(pixel), w * L, s.odd));
+      if (!out.splat_pixels || out.splat_pixels[pixel]) terms.push_back(fixed_term(uint32_t(pixel), w * L, s.odd));
     });
   }
   if (buckets_.count > 0) prepare_buckets(out);
@@ -160,6 +164,11 @@ double splat_square_share(const PixelFilter& f) {
 double Film::splat_scale() const {
   const double pixels = full_width_ > 0 ? double(full_width_) * double(full_height_) : double(width_) * double(height_);
   return light_paths_ ? pixels / double(light_paths_) : 0.0;
+}
+
+double Film::pass_splat_scale(uint64_t pass_light_paths) const {
+  const double pixels = full_width_ > 0 ? double(full_width_) * double(full_height_) : double(width_) * double(height_);
+  return pass_light_paths ? pixels / double(pass_light_paths) : 0.0;
 }
 
 void Film::track_halves() {

@@ -105,6 +105,14 @@ struct WaveOutput {
   // connections of s >= 2: what the rate and the choice of light scale).
   std::vector<uint64_t> light_rays_by_light;
   uint64_t light_paths = 0, odd_light_paths = 0;
+  // Adaptive merging (integrator/adaptive_sampling.h): set by the renderer,
+  // > 0, the light paths of the wave's whole pass. The splats then count as
+  // the pass's own estimate, scaled by the image's pixels over that number,
+  // and only in the pixels that take the pass (`splat_pixels`, a byte a
+  // pixel, null: all), in their sample sums: a pixel's splats are averaged
+  // over the passes it takes, as its camera samples are.
+  uint64_t pass_light_paths = 0;
+  const uint8_t* splat_pixels = nullptr;
   std::vector<GuideRecord> guide;  // for the guiding field being learnt (integrator/guiding_field.h)
   std::vector<GuideRecord> light_guide;  // for its importance field (the light subpaths of bdpt and vcm)
   // Filled by Film::prepare from samples and splats, in the parallel stage,
@@ -132,7 +140,8 @@ struct WaveOutput {
     light_rays_by_light.clear();
     guide.clear();
     light_guide.clear();
-    light_paths = odd_light_paths = 0;
+    light_paths = odd_light_paths = pass_light_paths = 0;
+    splat_pixels = nullptr;
     sample_terms.clear();
     splat_terms.clear();
     square_terms.clear();
@@ -170,6 +179,10 @@ class Film {
   // spreads over all of them), however few pixels the film holds and
   // however few light paths it traced.
   double splat_scale() const;
+  // What a pass's splats are scaled by when they go into the sample sums
+  // (WaveOutput::pass_light_paths): the whole image's pixels over the
+  // pass's light paths.
+  double pass_splat_scale(uint64_t pass_light_paths) const;
 
   // The sensor every sample's colour passes through before it is added
   // (color/sensor.h): a 3x3 matrix on linear RGB, row-major. The identity

@@ -80,11 +80,17 @@ void Film::prepare_buckets(WaveOutput& out) const {
       out.bucket_terms.push_back(
           {uint32_t(size_t(out.samples[k].pixel) * n + size_t(b)), FixedSum::to_fixed(out.samples[k].negative ? -v : v)});
     });
+  // (adaptive merging: into the sample sums, as Film::prepare)
+  const bool per_pass = out.pass_light_paths > 0;
+  const float pass_scale = per_pass ? float(pass_splat_scale(out.pass_light_paths)) : 1.f;
+  std::vector<BucketTerm>& terms = per_pass ? out.bucket_terms : out.bucket_splat_terms;
   for (size_t k = 0; k < out.splats.size(); ++k)
     for_each_bucket_value(buckets_, out.splat_spectra[k], max_component_, [&](int b, float v) {
-      for_each_splat_pixel(filter_, width_, height_, out.splats[k].p_raster - raster_offset(), [&](size_t pixel, float w) {
-        out.bucket_splat_terms.push_back({uint32_t(pixel * n + size_t(b)), FixedSum::to_fixed(w * v)});
-      });
+      for_each_splat_pixel(
+          filter_, width_, height_, out.splats[k].p_raster - raster_offset(), [&](size_t pixel, float w) {
+            if (!out.splat_pixels || out.splat_pixels[pixel])
+              terms.push_back({uint32_t(pixel * n + size_t(b)), FixedSum::to_fixed(w * v * pass_scale)});
+          });
     });
 }
 

@@ -44,6 +44,7 @@ void Bdpt::start_eye_subpaths(const WaveDesc& wave, BdptWave& w) const {
   for (uint32_t slot = 0; slot < wave.size(); ++slot) {
     const PathSampler& s = w.sampler[slot];
     uint32_t pixel = w.pixel[slot];
+    if (!wave.takes_eye(pixel)) continue;
     const Vec2 p_raster = w.chains ? w.raster[slot] = metropolis_raster(s.get2d(dims::kFilm))
                                    : sample_raster_position(scene_.filter, pixel, width, s.get2d(dims::kFilm)) +
                                          settings_.raster_offset;
@@ -56,7 +57,7 @@ void Bdpt::start_eye_subpaths(const WaveDesc& wave, BdptWave& w) const {
     w.eye.prev_p[slot] = r.o;
     w.eye.prev_n[slot] = Vec3(0.f);
     w.eye.eta_scale[slot] = 1.f;
-    w.active[slot] = slot;
+    w.active[w.rays.count] = slot;
     w.rays.push(r.o, r.d, 0.f, kInfinity, w.time[slot]);
   }
   if (!scene_.media.empty())
@@ -350,13 +351,14 @@ void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
     }
   }
   if (w.chains) return metropolis_samples(wave, w, out);
-  for (uint32_t slot = 0; slot < wave.size(); ++slot)
+  for (uint32_t slot = 0; slot < wave.size(); ++slot) {
+    if (!wave.takes_eye(w.pixel[slot])) continue;
     out.samples.push_back({w.pixel[slot], film_rgb(w.L[slot], w.lambda[slot]),
                            ((wave.first_sample + slot % wave.samples) & 1) != 0,
                            scene_.filter.is_signed() &&
                                pixel_filter_negative(scene_.filter, w.sampler[slot].get2d(dims::kFilm))});
-  if (out.keep_spectra)
-    for (uint32_t slot = 0; slot < wave.size(); ++slot) out.sample_spectra.push_back({w.L[slot], w.lambda[slot]});
+    if (out.keep_spectra) out.sample_spectra.push_back({w.L[slot], w.lambda[slot]});
+  }
   out.light_paths += wave.size();
   for (uint32_t k = 0; k < wave.samples; ++k)  // the odd half's (adaptive sampling's estimate)
     if ((wave.first_sample + k) & 1) out.odd_light_paths += wave.pixel_count;

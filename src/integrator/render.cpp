@@ -117,6 +117,23 @@ uint32_t merging_wave_paths(uint32_t pixels, int wave_size) {
   return std::max<uint32_t>(1, (pixels + waves - 1) / waves);
 }
 
+// Adaptive sampling: the pixels of `wave` that take `pass`. Merging, every
+// pixel's light subpath is still traced, so that each pass's merges and
+// splats are what they are without adaptive sampling; the camera samples
+// are taken, and the splats kept, only for the pixels that take the pass
+// (WaveDesc::eye_pixels, WaveOutput::pass_light_paths).
+void choose_adaptive(const AdaptivePasses& adaptive, uint32_t pass, bool merging, const Film& film,
+                     uint64_t pass_light_paths, WaveDesc& wave, WaveOutput& out, std::vector<uint32_t>& active) {
+  if (merging) {
+    wave.eye_pixels = out.splat_pixels = pass >= 2 ? film.pass_mask(pass) : nullptr;
+    out.pass_light_paths = pass_light_paths;
+    return;
+  }
+  adaptive.choose(pass, wave.pixels, wave.pixel_count, active);
+  wave.pixels = active.data();
+  wave.pixel_count = uint32_t(active.size());
+}
+
 // Runs one integrator over all passes. Waves flow through a pipeline whose
 // last stage adds their output to the film, one wave at a time (in wave
 // order, though the fixed-point sums would not mind another).
@@ -181,10 +198,19 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
   // Adaptive sampling chooses the pixels of pass p at the end of pass p - 2
   // (adaptive_sampling.h): with no more waves in flight than a pass has,
   // the first wave of pass p - 1, whose merge takes that measurement, has
-  // retired by the time pass p's first wave is issued.
-  AdaptivePasses adaptive(film, cx.film_mutex, order, pixels_per_wave, pass_spp, goal);
+  // retired by the time pass p's first wave is issued. (A pass of adaptive
+  // sampling may be two of the pipeline's: below.)
+  //
+  // Passes of one sample (merging, guiding) are decided in pairs, so that
+  // every pixel's even and odd samples stay as many (Film::halves).
+  // Merging, a pass's splats count only in the pixels that take it, scaled
+  // by its own light paths (choose_adaptive): vcm's weights change from
+  // pass to pass (the radius shrinks), so a pixel's light tracing must be
+  // averaged over the passes its camera samples are.
+  const uint32_t adaptive_spp = pass_spp == 1 ? 2 : pass_spp;
+  AdaptivePasses adaptive(film, cx.film_mutex, order, pixels_per_wave, adaptive_spp, goal);
   size_t tokens = 2 * size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
-  if (adaptive.on()) tokens = std::min<size_t>(tokens, waves);
+  if (adaptive.on()) tokens = std::min<size_t>(tokens, size_t(waves) * (adaptive_spp / pass_spp));
   std::vector<WaveOutput> outputs(tokens);
   for (WaveOutput& o : outputs) o.keep_spectra = film.buckets().count > 0;  // Film "spectral"
   std::vector<std::vector<uint32_t>> active(adaptive.on() ? tokens : 0);  // each slot's pixels that take the pass
@@ -228,7 +254,7 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
                                            const bool ticketed = bool(hooks.next_ticket);
                                            for (;;) {
                                              if (first >= total_spp || first >= segment_end ||
-                                                 adaptive.reached(first / pass_spp))
+                                                 adaptive.reached(first / adaptive_spp))
                                                break;
                                              if (!ticketed && !tickets.next(first, next, waves, wanted)) {
                                                if (advance_pass()) continue;
@@ -265,12 +291,10 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
                                                                  item.first, std::min(pass_spp, total_spp - item.first)};
                                                    WaveOutput& out = outputs[item.slot];
                                                    out.clear();
-                                                   if (adaptive.on()) {
-                                                     std::vector<uint32_t>& a = active[item.slot];
-                                                     adaptive.choose(item.first / pass_spp, wave.pixels, wave.pixel_count, a);
-                                                     wave.pixels = a.data();
-                                                     wave.pixel_count = uint32_t(a.size());
-                                                   }
+                                                   if (adaptive.on())
+                                                     choose_adaptive(adaptive, item.first / adaptive_spp, merging, film,
+                                                                     uint64_t(order.size()) * pass_spp, wave, out,
+                                                                     active[item.slot]);
                                                    if (wave.pixel_count > 0)
                                                      trace_wave(tracer, wave, *states.local(), out, hooks.timeline,
                                                                 int64_t(unit_of(item.first, wi)));
@@ -282,7 +306,7 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
               // a new pass means the one before is complete.
               if (merged_pass_first != item.first) {
                 if (merged_pass_first != kNoPass) pass_done(merged_pass_first);
-                adaptive.measure_before(item.first / pass_spp);
+                adaptive.measure_before(item.first / adaptive_spp);
                 merged_pass_first = item.first;
               }
               const uint64_t unit = unit_of(item.first, item.wave);

@@ -245,13 +245,7 @@ void check_processes(const RenderOptions& opt, const RenderHooks& hooks) {
           "adaptive sampling to a mean of " + std::to_string(opt.spp) +
           " samples per pixel: it needs 32 or more, as its first two passes give every pixel 16 each");
     // Its decisions read the whole of each pixel's samples, which one
-    // process holds only when it renders them all; a merging pass shares
-    // light vertices between pixels that do and do not take it.
-    if (merges_vertices(opt.integrator))
-      throw std::invalid_argument(
-          "adaptive sampling (a target error or a budget) works with path, directlighting, ambientocclusion, bdpt and "
-          "lt, not with " +
-          std::string(name(opt.integrator)));
+    // process holds only when it renders them all.
     if (opt.share_count > 1 || hooks.next_ticket)
       throw std::invalid_argument(
           "adaptive sampling (a target error or a budget) needs the whole render in one process: not with "

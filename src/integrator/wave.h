@@ -20,6 +20,11 @@ struct WaveDesc {
   // Metropolis (integrator/metropolis.h): slot k's numbers are chain k's
   // proposal, its camera sample anywhere on the image; null otherwise.
   MetropolisSampler* chains = nullptr;
+  // Adaptive merging (vcm, bpm, ppm): a byte a pixel (y * width + x), the
+  // pixels whose camera samples this wave takes; every slot still traces
+  // its light subpath. Null: all.
+  const uint8_t* eye_pixels = nullptr;
+  bool takes_eye(uint32_t pixel) const { return !eye_pixels || eye_pixels[pixel]; }
   uint32_t size() const { return pixel_count * samples; }
 };
 

@@ -1,0 +1,97 @@
+// Adaptive sampling with vcm (integrator/render.cpp's choose_adaptive):
+// every pass traces all its light subpaths, takes camera samples only for
+// the pixels that take it, and keeps its splats to those pixels, scaled by
+// its own light paths. So each pixel averages whole passes of vcm, whose
+// weights change from pass to pass (the merging radius shrinks): the
+// image's means are uniform vcm's, and the render is as deterministic as
+// any other.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include "lantern/render.h"
+#include "lantern/scene.h"
+#include "sanitizer.h"
+#include "stat_compare.h"
+#include "stop_and_resume.h"
+
+namespace lantern {
+namespace {
+
+std::shared_ptr<Scene> shipped_scene(const char* name) {
+  return load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/" + name);
+}
+
+RenderOptions small_vcm(int spp) {
+  RenderOptions o;
+  o.integrator = Integrator::Vcm;
+  o.sampler.type = SamplerKind::Independent;  // (the half-buffer estimate assumes independent samples)
+  o.spp = spp;
+  o.width = 32;
+  o.height = 32;
+  o.maxdepth = 5;
+  return o;
+}
+
+// The caustics scene: a 2 cm light over glass and gold on a diffuse floor,
+// whose caustics vcm finds by light tracing and merging, and whose budget
+// goes unevenly (42 to 848 samples a pixel at a mean of 256). Region means
+// of adaptive vcm, to a budget and to a target, against uniform vcm's.
+// Splats kept in every pixel, whether it takes the pass or not, put the
+// light tracing of passes a pixel skipped over the camera samples it took:
+// z = 60 in the floor's caustic, and the test fails.
+TEST(AdaptiveMerging, MeansMatchUniformVcm) {
+  auto scene = shipped_scene("caustics.pbrt");
+  const std::vector<Region> regions = {
+      {0, 0, 16, 16}, {16, 0, 16, 16}, {0, 16, 16, 16}, {16, 16, 16, 16}, {8, 8, 16, 16}};
+  const RegionStats uniform = stats_of(render_runs(*scene, small_vcm(256), 8, 1), regions);
+  for (bool budget : {true, false}) {
+    RenderOptions o = small_vcm(budget ? 256 : 1 << 12);
+    if (budget)
+      o.adaptive = true;
+    else
+      o.target_error = LANTERN_ASAN ? 0.05 : 0.01;
+    const std::vector<Image> runs = render_runs(*scene, o, 8, 101);
+    const RegionStats adaptive = stats_of(runs, regions);
+    print_z(budget ? "adaptive vcm (budget) against uniform" : "adaptive vcm (target) against uniform",
+            max_z_of(uniform, adaptive));
+    expect_means_agree(uniform, adaptive, 0.01, budget ? "budget" : "target");
+  }
+}
+
+// The samples do go where the estimate asks: a budget leaves some pixels
+// at the first passes' 16 and gives others several times the mean.
+TEST(AdaptiveMerging, BudgetGoesWhereItPays) {
+  auto scene = shipped_scene("caustics.pbrt");
+  RenderOptions o = small_vcm(LANTERN_ASAN ? 64 : 256);
+  o.adaptive = true;
+  const RenderResult r = render(*scene, o);
+  EXPECT_EQ(r.stats.samples, uint64_t(o.spp) * 32u * 32u);
+  EXPECT_LT(r.stats.min_spp, uint32_t(o.spp / 2));
+  EXPECT_GT(r.stats.max_spp, uint32_t(2 * o.spp));
+  EXPECT_GT(r.stats.estimated_relmse, 0.0);
+}
+
+// Decisions read only the film: the same image on one thread and two, and
+// after being stopped and resumed, bit for bit; bpm and ppm (merging
+// alone) too.
+TEST(AdaptiveMerging, SameImageAcrossThreadsAndResumes) {
+  auto scene = shipped_scene("caustics.pbrt");
+  RenderOptions o = small_vcm(LANTERN_ASAN ? 40 : 64);
+  o.wave_size = 256;  // four waves a pass, so stops fall inside passes
+  o.adaptive = true;
+  expect_thread_invariant(*scene, o, {"vcm", "bpm", "ppm"});
+  const RenderResult straight = render(*scene, o);
+  const std::string checkpoint = ::testing::TempDir() + "/lantern_adaptive_vcm_resume.ckpt";
+  int runs = 0;
+  const RenderResult r = render_stopped_and_resumed(*scene, o, checkpoint, 7, 23, &runs);
+  EXPECT_GE(runs, 3);
+  EXPECT_EQ(r.stats.samples, straight.stats.samples);
+  EXPECT_EQ(0, std::memcmp(r.image.rgb.data(), straight.image.rgb.data(), r.image.rgb.size() * sizeof(float)));
+  std::remove(checkpoint.c_str());
+}
+
+}  // namespace
+}  // namespace lantern
