@@ -9,13 +9,27 @@
 
 namespace lantern {
 
+namespace {
+
+// The pixel's mean squared, which the relative error divides by: the
+// product of its halves, each independent of the other, so that a rare
+// bright sample in one half raises the numerator (A - B)^2 without raising
+// this as much as it raises I^2 (E[A B] = E[A] E[B], the mean squared,
+// where I^2 correlates with the numerator); not below (0.7 I)^2, where a
+// half that found nothing would make it 0.
+double mean_squared(const Film::Halves& h) {
+  return std::max(h.even * h.odd, kHalvesFloor * kHalvesFloor * h.value * h.value);
+}
+
+}  // namespace
+
 double estimated_error(const Film& film, const uint32_t* pixels, size_t n, ErrorMeasure measure) {
   if (n == 0 || film.sample_count(pixels[0]) < 2) return 0.0;
   double e = 0.0;
   for (size_t i = 0; i < n; ++i)
     for (int c = 0; c < 3; ++c) {
       const Film::Halves h = film.halves(pixels[i], c);
-      const double scale = h.value * h.value + kRelMseEpsilon;
+      const double scale = mean_squared(h) + kRelMseEpsilon;
       e += (h.even - h.odd) * (h.even - h.odd) / 4.0 / (measure == ErrorMeasure::Relative ? scale : std::sqrt(scale));
     }
   return e / (3.0 * double(n));
@@ -89,13 +103,14 @@ PassSummary summarize_budget_pass(const Film& film, const std::vector<uint32_t>&
 }
 
 void decide_pass(Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave, double lambda, uint32_t pass,
-                 ErrorMeasure measure) {
+                 uint32_t pass_spp, ErrorMeasure measure) {
   uint8_t* mask = film.pass_mask(pass);
   for_each_block(order, pixels_per_wave, [&](const uint32_t* pixels, size_t n) {
     // A block's pixels have taken the same passes, so the same count.
     const uint32_t count = film.sample_count(pixels[0]);
+    // (the pass under way, which it may be taking, counted as taken)
     const bool needed =
-        count < kAdaptiveMinSamples || estimated_error(film, pixels, n, measure) > lambda * double(count);
+        count + pass_spp < kAdaptiveFirstSamples || estimated_error(film, pixels, n, measure) > lambda * double(count);
     for (size_t i = 0; i < n; ++i) mask[pixels[i]] = needed ? 1 : 0;
   });
 }
@@ -176,7 +191,7 @@ void AdaptivePasses::measure_before(uint32_t pass) {
   if (measured.size() >= 2 * size_t(pass)) return;
   PassSummary m = goal_.target > 0 ? summarize_pass(film_, order_, pixels_per_wave_, goal_.target)
                                    : summarize_budget_pass(film_, order_, pixels_per_wave_, pass, pass_spp_);
-  decide_pass(film_, order_, pixels_per_wave_, m.lambda, pass + 1, goal_.measure());
+  decide_pass(film_, order_, pixels_per_wave_, m.lambda, pass + 1, pass_spp_, goal_.measure());
   if (goal_.target <= 0 && pixels_taking(film_, pass + 1) == 0) {
     // No block's estimate asks for more (an image without light, or one
     // converged to the estimate's precision): a budget is spent evenly

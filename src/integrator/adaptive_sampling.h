@@ -10,11 +10,13 @@
 //   Var(I) ~ (A - B)^2 / 4,
 // an unbiased estimate from one pixel, however its samples are
 // distributed (Rousselle et al. 2012 and Cycles use the same two
-// half-buffers). The relative MSE divides it by I^2 + 0.01, as the image
-// metrics do (film/image_metrics.h) with the reference's value, which is
-// not known here. Where rare bright samples (caustics found by light
-// tracing) raise a pixel, that hides part of their own error: the estimate
-// is low there (docs/adaptive-sampling.md). Correlated samples (the
+// half-buffers). The relative MSE divides it by the pixel's mean squared
+// plus 0.01, as the image metrics do (film/image_metrics.h) with the
+// reference's value, which is not known here: estimated by A B, not below
+// (0.7 I)^2. I^2 itself would hide part of the error of rare bright samples
+// (caustics found by light tracing, a lamp seen through a gap), which
+// raise it with the numerator: the estimate was half the measured error
+// there (docs/adaptive-sampling.md). Correlated samples (the
 // low-discrepancy samplers) make the estimate high: each half converges
 // more slowly than the whole does.
 //
@@ -32,9 +34,9 @@
 // passes so far (splats of every wave included), for the pass after next
 // (the next one's waves may already be running): they do not depend on the
 // thread count or the scheduling, and the film keeps them for a resume.
-// Every block takes the first two passes and any pass while it has fewer
-// than kAdaptiveMinSamples. The render stops before pass p when the image
-// estimate at the end of pass p - 2 is below E.
+// Every block takes passes until it has kAdaptiveFirstSamples (the first
+// two passes of 16 samples; of two, sixteen). The render stops before pass
+// p when the image estimate at the end of pass p - 2 is below E.
 //
 // Without a target (--adaptive), the render has a budget instead: a mean
 // number of samples per pixel, or a time. The same allocation, n_b
@@ -62,12 +64,18 @@
 
 namespace lantern {
 
-inline constexpr uint32_t kAdaptiveMinSamples = 16;
+inline constexpr uint32_t kAdaptiveFirstSamples = 32;
 inline constexpr uint32_t kAdaptiveBlock = 16;
 // A budget's per-pixel limit.
 inline constexpr uint32_t kAdaptiveMaxSpp = 1u << 16;
 // Which quantile of the blocks' root variances takes every pass.
 inline constexpr double kAdaptiveRateQuantile = 0.95;
+// The least a pixel's mean is taken to be, as a share of its value, where
+// one half's mean times the other's is less (estimated_error): chosen by
+// measurement (docs/adaptive-sampling.md, "The estimate"): 0.5 left the
+// Cornell box's estimate 2.1 times its measured error, 1 (the value
+// squared) the lamp street's 0.42 times.
+inline constexpr double kHalvesFloor = 0.7;
 
 // What a block's error is measured in when blocks are chosen: its
 // variance estimate (A - B)^2 / 4 over I^2 + 0.01 (Relative: relMSE's, what
@@ -115,9 +123,9 @@ PassSummary summarize_budget_pass(const Film& film, const std::vector<uint32_t>&
                                   uint32_t pass, uint32_t pass_spp);
 
 // At the end of pass p - 2: which blocks take pass p under `lambda`
-// (Film::pass_mask).
+// (Film::pass_mask), passes being `pass_spp` samples.
 void decide_pass(Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave, double lambda, uint32_t pass,
-                 ErrorMeasure measure);
+                 uint32_t pass_spp, ErrorMeasure measure);
 // Keeps at most `pixels` of those that take pass p (p >= 2): whole blocks,
 // those of largest e_b / n_b first (ties: tile order).
 void trim_pass(Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave, uint32_t pass, uint64_t pixels,

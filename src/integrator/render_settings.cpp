@@ -240,7 +240,7 @@ uint32_t camera_sample_split(const Scene& scene, const RenderOptions& opt) {
 
 void check_processes(const RenderOptions& opt, const RenderHooks& hooks) {
   if (opt.target_error > 0 || opt.adaptive) {
-    if (opt.target_error <= 0 && opt.time_limit_seconds <= 0 && opt.spp < int(2 * kAdaptiveMinSamples))
+    if (opt.target_error <= 0 && opt.time_limit_seconds <= 0 && opt.spp < int(kAdaptiveFirstSamples))
       throw std::invalid_argument(
           "adaptive sampling to a mean of " + std::to_string(opt.spp) +
           " samples per pixel: it needs 32 or more, as its first two passes give every pixel 16 each");
