@@ -37,6 +37,7 @@
 #include "integrator/render_progress.h"
 #include "integrator/render_settings.h"
 #include "integrator/split_choice.h"
+#include "integrator/ticket_cursor.h"
 #include "integrator/wave_stats.h"
 #include "lantern/error.h"
 #include "trace/timeline.h"
@@ -69,43 +70,6 @@ void trace_wave(const Tracer& tracer, const WaveDesc& wave, State& state, WaveOu
 // pass (its first sample index).
 struct WaveItem {
   uint32_t wave, slot, first;  // trivial: oneTBB carries it in place
-};
-
-// Walks the units this render wants, pass by pass, stopping at those its
-// tickets name (all of them without a ticket source).
-class TicketCursor {
- public:
-  explicit TicketCursor(const std::function<uint64_t()>& source) : source_(source) {}
-  // Moves `wave` to the next unit of this pass to render; false when the
-  // pass has none left (the ticket, if any, is kept for a later pass).
-  template <class Wanted>
-  bool next(uint32_t first, uint32_t& wave, uint32_t waves, const Wanted& wanted) {
-    if (exhausted_) return false;
-    if (source_ && !holding_) {
-      target_ = source_();
-      holding_ = true;
-      if (target_ == UINT64_MAX) {
-        exhausted_ = true;
-        return false;
-      }
-    }
-    for (; wave < waves; ++wave) {
-      if (!wanted(first, wave)) continue;
-      if (!source_ || seen_ == target_) {
-        ++seen_;
-        holding_ = false;
-        return true;
-      }
-      ++seen_;
-    }
-    return false;
-  }
-  bool exhausted() const { return exhausted_; }
-
- private:
-  const std::function<uint64_t()>& source_;
-  uint64_t seen_ = 0, target_ = 0;  // wanted units passed; the ticket held
-  bool holding_ = false, exhausted_ = false;
 };
 
 // The paths of each wave of a pass of one sample per pixel (vcm, bpm, ppm):
