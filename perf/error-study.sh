@@ -3,10 +3,11 @@
 # variant after each of several wall times, on the shipped scenes, against
 # perf/references/<scene>.exr (made by perf/make-references.sh). The
 # variants: path, path with guiding (--guide), bdpt, bdpt with guiding, vcm,
-# vcm with guiding. (Adaptive
-# sampling is compared at the time its target takes, docs/adaptive-sampling.md:
-# within a fixed time a target no block reaches sends every pass to the
-# noisiest pixels.) Prints a Markdown table; the last column is each
+# vcm with guiding; "+adaptive" adds --adaptive to a variant (vcm+adaptive,
+# path+adaptive: a budget spent where the estimate says it pays). (A target
+# is compared at the time it takes, docs/adaptive-sampling.md: within a
+# fixed time a target no block reaches sends every pass to the noisiest
+# pixels.) Prints a Markdown table; the last column is each
 # variant's relMSE over path's at the same time (below 1: it pays).
 # VARIANTS="path bdpt" chooses among them (path first: the ratios are to it).
 # Usage: perf/error-study.sh ["10 30 100"] [scenes...]   (from the repository root)
@@ -28,7 +29,7 @@ for s in $scenes; do
     path_err=""
     for v in $variants; do
       integrator=${v%%+*}
-      flags=""; case "$v" in *+guide) flags="--guide" ;; esac
+      flags=""; case "$v" in *+guide) flags="--guide" ;; *+adaptive) flags="--adaptive" ;; esac
       # shellcheck disable=SC2086 # flags holds zero or one word
       "$lantern" render "scenes/$s.pbrt" --integrator "$integrator" $flags --time "$t" --seed 7 --resolution $res \
         -o "$tmp/$s-$v.exr" 2> "$tmp/log" || { echo "| $s | $v | $t | (failed: $(tail -n 1 "$tmp/log")) | | | |"; continue; }
