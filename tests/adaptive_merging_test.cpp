@@ -7,8 +7,6 @@
 // any other.
 #include <gtest/gtest.h>
 
-#include <cstdio>
-#include <cstring>
 #include <string>
 
 #include "lantern/render.h"
@@ -88,14 +86,7 @@ TEST(AdaptiveMerging, SameImageAcrossThreadsAndResumes) {
   o.wave_size = 256;  // four waves a pass, so stops fall inside passes
   o.adaptive = true;
   expect_thread_invariant(*scene, o, {"vcm", "bpm", "ppm"});
-  const RenderResult straight = render(*scene, o);
-  const std::string checkpoint = ::testing::TempDir() + "/lantern_adaptive_vcm_resume.ckpt";
-  int runs = 0;
-  const RenderResult r = render_stopped_and_resumed(*scene, o, checkpoint, 7, 23, &runs);
-  EXPECT_GE(runs, 3);
-  EXPECT_EQ(r.stats.samples, straight.stats.samples);
-  EXPECT_EQ(0, std::memcmp(r.image.rgb.data(), straight.image.rgb.data(), r.image.rgb.size() * sizeof(float)));
-  std::remove(checkpoint.c_str());
+  expect_resumes_to_the_straight_image(*scene, o, "lantern_adaptive_vcm_resume.ckpt", 7, 23, 3);
 }
 
 }  // namespace

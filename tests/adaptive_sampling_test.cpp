@@ -228,16 +228,8 @@ TEST(AdaptiveSampling, SameImageAcrossThreadsAndResumes) {
     // (The resumes below alternate one thread and two: under the
     // sanitizers they stand for this check too.)
     if (!LANTERN_ASAN) expect_thread_invariant(*scene, o, {"path", "bdpt"});
-    const RenderResult straight = render(*scene, o);
-
-    const std::string checkpoint = ::testing::TempDir() + "/lantern_adaptive_resume.ckpt";
-    int runs = 0;
-    const RenderResult r = render_stopped_and_resumed(*scene, o, checkpoint, 7, 11, &runs);
-    EXPECT_GE(runs, 3);
-    EXPECT_EQ(r.stats.samples, straight.stats.samples);
-    EXPECT_EQ(0, std::memcmp(r.image.rgb.data(), straight.image.rgb.data(), r.image.rgb.size() * sizeof(float)))
-        << (budget ? "budget" : "target");
-    std::remove(checkpoint.c_str());
+    expect_resumes_to_the_straight_image(*scene, o, "lantern_adaptive_resume.ckpt", 7, 11, 3,
+                                         budget ? "budget" : "target");
   }
 }
 

@@ -43,15 +43,7 @@ TEST(Guiding, ResumesWithTheFieldItLearnt) {
     o.integrator = integrator;
     o.spp = 16;          // iterations end after passes 1, 3 and 7
     o.wave_size = 128;   // 8 waves a pass: stops fall inside passes
-    const RenderResult straight = render(*scene, o);
-    const std::string checkpoint = ::testing::TempDir() + "/lantern_guided_resume.ckpt";
-    int runs = 0;
-    const RenderResult r = render_stopped_and_resumed(*scene, o, checkpoint, 7, 11, &runs);
-    EXPECT_GE(runs, 4);
-    EXPECT_EQ(r.stats.samples, straight.stats.samples);
-    EXPECT_EQ(0, std::memcmp(r.image.rgb.data(), straight.image.rgb.data(), r.image.rgb.size() * sizeof(float)))
-        << name(integrator);
-    std::remove(checkpoint.c_str());
+    expect_resumes_to_the_straight_image(*scene, o, "lantern_guided_resume.ckpt", 7, 11, 4, name(integrator));
   }
   // Its iterations are planned from the budget: a larger one cannot go on
   // from it.

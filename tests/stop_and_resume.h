@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <cstdio>
+#include <cstring>
 #include <functional>
 #include <string>
 
@@ -44,6 +45,21 @@ inline RenderResult render_stopped_and_resumed(const Scene& scene, RenderOptions
     if (r.interrupted && interrupted) interrupted(r);
   } while (r.interrupted);
   return r;
+}
+
+// The render of `o`, stopped and resumed (as above) at least `min_runs`
+// times, ends on the image of a render that ran straight through, bit for
+// bit, with as many samples.
+inline void expect_resumes_to_the_straight_image(const Scene& scene, const RenderOptions& o, const char* name,
+                                                 int first_stop, int step, int min_runs, const std::string& what = "") {
+  const RenderResult straight = render(scene, o);
+  const std::string checkpoint = ::testing::TempDir() + "/" + name;
+  int runs = 0;
+  const RenderResult r = render_stopped_and_resumed(scene, o, checkpoint, first_stop, step, &runs);
+  EXPECT_GE(runs, min_runs) << what;
+  EXPECT_EQ(r.stats.samples, straight.stats.samples) << what;
+  EXPECT_EQ(0, std::memcmp(r.image.rgb.data(), straight.image.rgb.data(), r.image.rgb.size() * sizeof(float))) << what;
+  std::remove(checkpoint.c_str());
 }
 
 }  // namespace lantern
