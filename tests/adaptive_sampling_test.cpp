@@ -85,6 +85,29 @@ TEST(AdaptiveSampling, EstimateTracksTheMeasuredError) {
   }
 }
 
+// With zsobol, the default sampler, the halves are runs of consecutive
+// indices of each pass (halves_bit): each is as good a pattern as a pass
+// of half the samples. The Cornell box in bdpt at 64 spp is estimated at
+// 1.25 times its measured error; halved into odd and even indices, each
+// half a worse pattern than the whole, at 1.85, and the test fails.
+TEST(AdaptiveSampling, EstimateWithZSobolHalvesRunsOfAPass) {
+  if (LANTERN_ASAN) GTEST_SKIP() << "a reference at 1024 spp";
+  auto scene = shipped("cornell-box.pbrt");
+  RenderOptions ro = small("bdpt", 1024);
+  ro.sampler.type = SamplerKind::ZSobol;
+  ro.seed = 99;
+  const Image ref = render(*scene, ro).image;
+  RenderOptions o = ro;
+  o.spp = 64;
+  o.seed = 1;
+  o.target_error = 1e-12;
+  const RenderResult r = render(*scene, o);
+  const double measured = relmse(r.image, ref), ratio = r.stats.estimated_relmse / measured;
+  std::printf("zsobol: estimated relMSE %.5f, measured %.5f\n", r.stats.estimated_relmse, measured);
+  EXPECT_LT(ratio, 1.5);
+  EXPECT_GT(ratio, 1.0 / 1.5);
+}
+
 // The render stops once the estimate is below the target: the measured
 // error is at most 10% above it, with samples spread unevenly. (Targets
 // the box reaches in its first passes spread nothing: with the path
@@ -98,7 +121,10 @@ TEST(AdaptiveSampling, StopsAtTheTargetError) {
     o.target_error = target;
     const RenderResult r = render(*scene, o);
     EXPECT_FALSE(r.interrupted);
-    EXPECT_LT(r.stats.estimated_relmse, target);
+    // (The render stops when the estimate at the end of pass p - 2 is
+    // below the target; the final one, with pass p - 1's samples, may be
+    // a little above it: 0.0043 for 0.004.)
+    EXPECT_LT(r.stats.estimated_relmse, 1.1 * target);
     EXPECT_LT(relmse(r.image, ref), 1.1 * target) << target;
     EXPECT_GT(r.stats.max_spp, 2 * r.stats.min_spp) << "samples should go where the error is";
     EXPECT_LT(r.stats.max_spp, 1u << 16);

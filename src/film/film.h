@@ -32,7 +32,7 @@ namespace lantern {
 struct FilmSample {
   uint32_t pixel;
   RGB L;
-  bool odd = false;  // its sample index is odd (the half-buffers of adaptive sampling)
+  bool odd = false;  // in the odd half of its pixel's samples (adaptive sampling's half-buffers: WaveDesc::odd)
   // Drawn where a filter with negative lobes is negative (pixel_filter.h):
   // it counts -1 in its pixel's signed count and its L is subtracted.
   bool negative = false;
@@ -40,7 +40,7 @@ struct FilmSample {
 struct Splat {
   Vec2 p_raster;
   RGB L;             // contribution, already divided by nothing: the film normalises by the light-path count
-  bool odd = false;  // from the light path of an odd sample index
+  bool odd = false;  // from the light path of a sample of the odd half
 };
 
 // One contribution of one bidirectional strategy (s light vertices, t eye
@@ -92,7 +92,7 @@ struct BucketTerm {
 // A sample or a splat's share of one pixel, converted to fixed point.
 struct FixedTerm {
   uint32_t pixel;
-  bool odd;  // a camera sample of odd sample index
+  bool odd;  // a camera sample of the odd half
   FixedSum::Raw rgb[3];
 };
 
@@ -241,13 +241,14 @@ class Film {
   }
 
   // Adaptive sampling's half-buffers (integrator/adaptive_sampling.h): the
-  // camera samples of odd sample index summed apart too, so that the means
-  // of the even and of the odd ones can be compared. Off until asked for.
+  // camera samples of the odd half (WaveDesc::odd: half of each pass's
+  // sample indices) summed apart too, so that the means of the even and of
+  // the odd ones can be compared. Off until asked for.
   void track_halves();
   bool tracks_halves() const { return !odd_.empty(); }
   // A pixel's value in channel c (what resolve gives), and the same from
   // the even and from the odd samples only (camera samples and the splats
-  // of light paths of even or odd sample index, each normalised by its own
+  // of light paths of the even or the odd half, each normalised by its own
   // count); the halves' values are 0 until both halves have samples.
   struct Halves {
     double value, even, odd;

@@ -2,8 +2,9 @@
 // estimated from its own samples, and samples spent only where the
 // estimate is above the target, or where they pay the most.
 //
-// The estimate compares two halves of a pixel's samples, those of even
-// and of odd sample index: the film sums the odd camera samples, the odd
+// The estimate compares two halves of a pixel's samples, "even" and "odd"
+// (each half of a pass's sample indices: halves_bit in wave.h), the film
+// summing the odd camera samples, the odd
 // light paths' splats and their count apart (Film::track_halves), so that
 // it can give a pixel's value from each half alone. With A and B those
 // and I the pixel, A - B has four times the variance of I, so

@@ -279,6 +279,7 @@ void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
   w.chains = wave.chains;
   w.first_sample = wave.first_sample;
   w.samples_per_pixel = wave.samples;
+  w.half_bit = wave.half_bit;
   w.shadow.record = settings_.record_strategies;
   if (settings_.record_strategies) out.light_rays_by_light.assign(scene_.lights.all.size(), 0);
   WaveStats& st = w.stats;
@@ -353,15 +354,14 @@ void Bdpt::trace(const WaveDesc& wave, BdptWave& w, WaveOutput& out) const {
   if (w.chains) return metropolis_samples(wave, w, out);
   for (uint32_t slot = 0; slot < wave.size(); ++slot) {
     if (!wave.takes_eye(w.pixel[slot])) continue;
-    out.samples.push_back({w.pixel[slot], film_rgb(w.L[slot], w.lambda[slot]),
-                           ((wave.first_sample + slot % wave.samples) & 1) != 0,
-                           scene_.filter.is_signed() &&
-                               pixel_filter_negative(scene_.filter, w.sampler[slot].get2d(dims::kFilm))});
+    out.samples.push_back(
+        {w.pixel[slot], film_rgb(w.L[slot], w.lambda[slot]), wave.odd(wave.first_sample + slot % wave.samples),
+         scene_.filter.is_signed() && pixel_filter_negative(scene_.filter, w.sampler[slot].get2d(dims::kFilm))});
     if (out.keep_spectra) out.sample_spectra.push_back({w.L[slot], w.lambda[slot]});
   }
   out.light_paths += wave.size();
   for (uint32_t k = 0; k < wave.samples; ++k)  // the odd half's (adaptive sampling's estimate)
-    if ((wave.first_sample + k) & 1) out.odd_light_paths += wave.pixel_count;
+    if (wave.odd(wave.first_sample + k)) out.odd_light_paths += wave.pixel_count;
 }
 
 }  // namespace lantern

@@ -302,7 +302,8 @@ struct BdptWave {
   VertexGrid grid;
   RayStream stream;
   uint32_t first_sample = 0, samples_per_pixel = 1;  // of the wave: a slot's sample index
-  bool odd_sample(uint32_t slot) const { return ((first_sample + slot % samples_per_pixel) & 1) != 0; }
+  uint32_t half_bit = 1;                             // (WaveDesc::half_bit)
+  bool odd_sample(uint32_t slot) const { return ((first_sample + slot % samples_per_pixel) & half_bit) != 0; }
   WaveOutput* out = nullptr;  // of the wave being traced
   MetropolisSampler* chains = nullptr;  // of the wave being traced (WaveDesc::chains)
   WaveStats stats;

@@ -352,11 +352,11 @@ void PathTracer::trace(const WaveDesc& wave, PathWave& w, WaveOutput& out) const
   }
   for (uint32_t slot = 0; slot < wave.size(); ++slot) {
     // A split camera sample's paths go to the same half of the film's
-    // samples (adaptive sampling's two estimates must be independent).
+    // samples (adaptive sampling's two estimates must be independent):
+    // its paths' indices differ below the halves' bit (halves_bit).
     const uint32_t index = wave.first_sample + slot % wave.samples;
-    const uint32_t camera_index = w.split && splits_pixel(w.pixel[slot]) ? index >> split_log2_ : index;
     const PathSampler& cs = w.split ? w.camera_sampler[w.leader[slot]] : w.sampler[slot];
-    out.samples.push_back({w.pixel[slot], film_rgb(w.L[slot], w.lambda[slot]), (camera_index & 1) != 0,
+    out.samples.push_back({w.pixel[slot], film_rgb(w.L[slot], w.lambda[slot]), wave.odd(index),
                            scene_.filter.is_signed() && pixel_filter_negative(scene_.filter, cs.get2d(dims::kFilm))});
   }
   if (out.keep_spectra)
