@@ -35,9 +35,9 @@
 // passes so far (splats of every wave included), for the pass after next
 // (the next one's waves may already be running): they do not depend on the
 // thread count or the scheduling, and the film keeps them for a resume.
-// Every block takes passes until it has kAdaptiveFirstSamples (the first
-// two passes of 16 samples; of two, sixteen). The render stops before pass
-// p when the image estimate at the end of pass p - 2 is below E.
+// Every block takes passes until it has kAdaptiveFirstSamples (two passes
+// of 16 samples, or sixteen pairs of one). The render stops before pass p
+// when the image estimate at the end of pass p - 2 is below E.
 //
 // Without a target (--adaptive), the render has a budget instead: a mean
 // number of samples per pixel, or a time. The same allocation, n_b
