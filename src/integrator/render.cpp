@@ -172,7 +172,6 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
   // pass to pass (the radius shrinks), so a pixel's light tracing must be
   // averaged over the passes its camera samples are.
   const uint32_t adaptive_spp = pass_spp == 1 ? 2 : pass_spp;
-  const uint32_t half_bit = halves_bit(pass_spp, split);
   AdaptivePasses adaptive(film, cx.film_mutex, order, pixels_per_wave, adaptive_spp, goal);
   size_t tokens = 2 * size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
   if (adaptive.on()) tokens = std::min<size_t>(tokens, size_t(waves) * (adaptive_spp / pass_spp));
@@ -254,7 +253,8 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
                                                                      pixels_per_wave,
                                                                      order.size() - size_t(wi) * pixels_per_wave)),
                                                                  item.first, std::min(pass_spp, total_spp - item.first)};
-                                                   wave.half_bit = half_bit;
+                                                   // (a last pass cut short by the budget halved as it is)
+                                                   wave.half_bit = halves_bit(wave.samples, split);
                                                    WaveOutput& out = outputs[item.slot];
                                                    out.clear();
                                                    if (adaptive.on())
