@@ -161,14 +161,10 @@ double splat_square_share(const PixelFilter& f) {
   return sum / double(kGrid * kGrid);
 }
 
-double Film::splat_scale() const {
-  const double pixels = full_width_ > 0 ? double(full_width_) * double(full_height_) : double(width_) * double(height_);
-  return light_paths_ ? pixels / double(light_paths_) : 0.0;
-}
+double Film::splat_scale() const { return pass_splat_scale(light_paths_); }
 
-double Film::pass_splat_scale(uint64_t pass_light_paths) const {
-  const double pixels = full_width_ > 0 ? double(full_width_) * double(full_height_) : double(width_) * double(height_);
-  return pass_light_paths ? pixels / double(pass_light_paths) : 0.0;
+double Film::pass_splat_scale(uint64_t light_paths) const {
+  return light_paths ? image_pixels() / double(light_paths) : 0.0;
 }
 
 void Film::track_halves() {
@@ -190,7 +186,7 @@ Film::Halves Film::halves(size_t pixel, int c) const {
   if (n >= 2) h.even = (sum - odd) / n_even * share, h.odd = odd / n_odd * share;
   if (!splat_.empty() && light_paths_ > 0) {
     // (over the whole image's pixels, as resolve: splat_scale)
-    const double pixels = double(full_width()) * double(full_height());
+    const double pixels = image_pixels();
     const double splat = splat_[k].value(), odd_splat = odd_splat_[k].value();
     const uint64_t even_paths = light_paths_ - odd_light_paths_;
     h.value += splat * pixels / double(light_paths_);

@@ -171,6 +171,8 @@ class Film {
   void set_region(int x0, int y0, int full_width, int full_height);
   Vec2 raster_offset() const { return Vec2(float(x0_), float(y0_)); }
   bool cropped() const { return full_width_ > 0; }
+  // The whole camera image's pixels, which splats are spread over.
+  double image_pixels() const { return double(full_width()) * double(full_height()); }
   int full_width() const { return cropped() ? full_width_ : width_; }
   int full_height() const { return cropped() ? full_height_ : height_; }
   // What resolve multiplies the splat sums by: the whole image's pixels
@@ -181,8 +183,8 @@ class Film {
   double splat_scale() const;
   // What a pass's splats are scaled by when they go into the sample sums
   // (WaveOutput::pass_light_paths): the whole image's pixels over the
-  // pass's light paths.
-  double pass_splat_scale(uint64_t pass_light_paths) const;
+  // pass's light paths (splat_scale: over all of them).
+  double pass_splat_scale(uint64_t light_paths) const;
 
   // The sensor every sample's colour passes through before it is added
   // (color/sensor.h): a 3x3 matrix on linear RGB, row-major. The identity
