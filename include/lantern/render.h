@@ -78,6 +78,10 @@ struct RenderOptions {
   // before the render by a pilot that estimates each rate's error at equal
   // time (1, 1/2, 1/4 or 1/8).
   float light_subpath_rate = kLightSubpathsAuto;
+  // vcm: whether a pilot may find that merges do not pay and render as
+  // bdpt (--merging auto, the default; docs/vcm.md, "Merges that pay"),
+  // or merges are kept whatever they pay (--merging on).
+  bool merging_pilot = true;
   int maxdepth = 5;
   int threads = 0;  // 0: all cores
   uint64_t seed = 0;
@@ -232,6 +236,13 @@ struct RenderStats {
   std::vector<uint32_t> split_candidates;
   std::vector<double> split_error;
   double split_camera_share = 0.0;
+  // vcm with --merging auto: whether its pilot kept merges (1) or had it
+  // render as bdpt (0), and its estimates for vcm and for bdpt: relMSE
+  // per camera sample and rays per camera sample (-1: no pilot ran); of
+  // bdpt's error, the part from light its pilot missed.
+  int merging_pilot = -1;
+  std::array<double, 2> merging_error{}, merging_cost{};
+  double merging_missed = 0.0;
   float vcm_last_radius = 0.f;  // vcm: the merging radius of the last pass traced
   uint32_t vcm_wave_paths = 0;  // vcm: each wave's light subpaths, which its eye vertices merge with
   uint32_t vcm_last_first_sample = 0;  // vcm: the first sample index of that pass

@@ -106,6 +106,10 @@ void add_render_request_options(CLI::App& c, RenderRequest& r) {
                "chosen per scene by a short pilot that estimates each count's error at equal time "
                "(docs/splitting.md); default auto")
       ->check(CLI::IsMember({"auto", "1", "2", "4", "8", "16"}));
+  c.add_option("--merging", r.merging,
+               "vcm: auto (default): a short pilot estimates vcm's and bdpt's error at equal time, and where merges do "
+               "not pay the render is bdpt's; on: merge whatever it pays (docs/vcm.md)")
+      ->check(CLI::IsMember({"auto", "on"}));
   c.add_option("--light-subpaths", r.light_subpaths,
                "bdpt: the probability Q that a camera sample traces a light subpath beyond the light (0.01 to 1; 1 is "
                "pbrt-v4's bdpt; 0: none, the eye subpaths alone, as the path tracer), or auto: chosen per scene by a "

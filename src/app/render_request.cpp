@@ -46,6 +46,7 @@ RenderOptions resolve_render_options(const Scene& scene, const RenderRequest& a)
   o.roulette_scale = a.roulette;
   o.split = parse_split(a.split);
   o.light_subpath_rate = parse_light_subpaths(a.light_subpaths);
+  o.merging_pilot = a.merging != "on";
   o.mis = parse_mis(a.mis);
   o.spectral = a.spectral;
   o.gbuffer = ss.gbuffer;

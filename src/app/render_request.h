@@ -32,6 +32,7 @@ struct RenderRequest {
   float roulette = 2.f;  // path: RenderOptions::roulette_scale
   std::string split = "auto";           // path: RenderOptions::split (auto, 1, 2, 4, 8, 16)
   std::string light_subpaths = "auto";  // bdpt: RenderOptions::light_subpath_rate, "auto" or 0.01 to 1
+  std::string merging = "auto";         // vcm: RenderOptions::merging_pilot, "auto" or "on"
   bool spectral = false, guide = false, guide_light = false, adaptive = false;
   std::vector<int> resolution;  // empty, or W H
   // The part of the image to render (pbrt-v4's flags of these names):

@@ -33,6 +33,7 @@ inline void Bdpt::count_light_ray(BdptWave& w, uint32_t slot) const {
 inline void Bdpt::push_connection(BdptWave& w, uint32_t slot, const Connection& k) const {
   if (k.s >= 2) {
     ++w.stats.light_connections;
+    if (k.t == 1) ++w.stats.camera_connections;
     count_light_ray(w, slot);
   }
   const float wt = w.shadow.media || !weighted() ? 1.f : mis_weight_vacuum(k.mis);

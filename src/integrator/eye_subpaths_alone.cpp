@@ -73,6 +73,8 @@ EyeAloneMoments::EyeAloneMoments(int width, int height, int stride, uint32_t spp
   coin_.assign(n, 0.0);
   value_.assign(n, 0.0);
   splat_square_.assign(n, 0.0);
+  sample_sum_.assign(n, 0.0);
+  sample_square_.assign(n, 0.0);
 }
 
 int EyeAloneMoments::grid_index(int x, int y) const {
@@ -94,7 +96,7 @@ void EyeAloneMoments::add_bdpt(int seed, size_t first, const WaveDesc& wave, con
   // render receives from its light subpaths: the pilot traces one for each
   // of the cells' pixels' samples; `area` is the image over the cells).
   const double area = double(width_) * double(height_) / (double(pixels_.size()) * stride_ * stride_);
-  std::vector<double> once(wave.size(), 0.0), with_light(wave.size(), 0.0);
+  std::vector<double> once(wave.size(), 0.0), with_light(wave.size(), 0.0), at_one(wave.size(), 0.0);
   for (const StrategyRecord& r : records) {
     const double u = double(average(r.unweighted)), weighted = double(average(r.weighted));
     if (!(u != 0.0) || !std::isfinite(u) || !std::isfinite(weighted)) continue;  // (as the film drops it)
@@ -108,6 +110,7 @@ void EyeAloneMoments::add_bdpt(int seed, size_t first, const WaveDesc& wave, con
       }
     } else if (r.slot < wave.size()) {
       value_[first + r.slot / wave.samples] += weighted;
+      at_one[r.slot] += weighted;
       (needs_light_subpath ? with_light : once)[r.slot] += v;
     }
   }
@@ -116,6 +119,8 @@ void EyeAloneMoments::add_bdpt(int seed, size_t first, const WaveDesc& wave, con
     bdpt_[g][size_t(seed)] += once[slot] + with_light[slot];
     light_[g][size_t(seed)] += with_light[slot];
     coin_[g] += with_light[slot] * with_light[slot];
+    sample_sum_[g] += at_one[slot];
+    sample_square_[g] += at_one[slot] * at_one[slot];
   }
 }
 
@@ -152,10 +157,26 @@ std::array<double, 2> EyeAloneMoments::relative_error() const {
   return e;
 }
 
+GridMeans EyeAloneMoments::bdpt_means() const {
+  const double n = 2.0 * double(spp_);
+  GridMeans m;
+  m.samples = n;
+  for (size_t g = 0; g < pixels_.size(); ++g) {
+    const double spread = std::max(0.0, sample_square_[g] - sample_sum_[g] * sample_sum_[g] / n) / (n - 1.0);
+    m.mean.push_back(value_[g] / n);
+    m.variance.push_back((spread + splat_square_[g] / n) / n);
+  }
+  return m;
+}
+
 bool eye_subpaths_alone_pay(const EyeAloneEstimate& e, double first_ratio) {
   const double grid_ratio = e.alone_error / e.bdpt_error, agreement = first_ratio / grid_ratio;
   if (!(agreement >= 1.0 / kPilotsAgree && agreement <= kPilotsAgree)) return false;  // (also: nothing measured, or not finite)
   return e.alone_error * e.alone_cost <= kClearGain * e.bdpt_error * e.bdpt_cost;
+}
+
+int grid_pilot_stride(int width, int height) {
+  return std::max(1, int(std::ceil(std::sqrt(double(width) * double(height) / kGridPixels))));
 }
 
 double grid_pilot_samples() { return 4.0 * kGridPixels * kGridSpp; }  // (two seeds, bdpt and the path tracer)
@@ -168,10 +189,10 @@ bool worth_a_grid_pilot(const BdptSettings& render) {
 
 EyeAloneEstimate estimate_eye_subpaths_alone(const Scene& scene, const LightSampler& light_sampler,
                                              const BdptSettings& render, float q, const PathTracerSettings& eye_alone,
-                                             RayBackend backend) {
+                                             RayBackend backend, bool with_alone) {
   const int width = render.full_width > 0 ? render.full_width : render.width;
   const int height = render.full_height > 0 ? render.full_height : render.height;
-  const int stride = std::max(1, int(std::ceil(std::sqrt(double(width) * double(height) / kGridPixels))));
+  const int stride = grid_pilot_stride(width, height);
   BdptSettings pilot = pilot_settings(render, width, height, kGridSpp);
   pilot.record_strategies = true;
   pilot.light_subpath_rate = 1.f;
@@ -185,6 +206,7 @@ EyeAloneEstimate estimate_eye_subpaths_alone(const Scene& scene, const LightSamp
                      [&](const WaveDesc& wave, size_t first, const WaveOutput& out) {
                        moments.add_bdpt(seed, first, wave, out.strategies);
                      });
+    if (!with_alone) continue;
     const PathTracer tracer(scene, light_sampler, path);
     p += trace_pilot(scene, tracer, moments.pixels(), kGridSpp, backend,
                      [&](const WaveDesc&, size_t, const WaveOutput& out) { moments.add_alone(seed, out.samples); });
@@ -193,6 +215,7 @@ EyeAloneEstimate estimate_eye_subpaths_alone(const Scene& scene, const LightSamp
   const std::array<double, 2> error = moments.relative_error();
   e.bdpt_error = error[0];
   e.alone_error = error[1];
+  e.bdpt_means = moments.bdpt_means();
   // Rays per camera sample; bdpt's also its work that casts no ray
   // (choosing and sampling the light subpath's first vertex, joining it to
   // the camera and splatting it, the vertices' MIS sums), about one ray:

@@ -70,6 +70,13 @@ float eye_alone_weight(const StrategyRecord& r, float mis_beta);
 // few as a pilot's, would mostly miss it.
 double eye_alone_density_ratio(const StrategyRecord& r);
 
+// Per pixel of a grid pilot: an estimator's mean and the variance of that
+// mean (the merge pilot compares bdpt's with vcm's: merge_pilot.h).
+struct GridMeans {
+  std::vector<double> mean, variance;
+  double samples = 0.0;  // camera samples per pixel
+};
+
 // The pilot's sums: per pixel of the grid and seed, the mean of bdpt at
 // rate q (its camera samples, the light subpath's share weighted for q but
 // not divided by it: the coin that decides whether a sample traces one is
@@ -89,6 +96,9 @@ class EyeAloneMoments {
   // its value squared plus the image's mean squared, times spp): bdpt at q
   // and the eye subpaths alone.
   std::array<double, 2> relative_error() const;
+  // bdpt's mean per pixel of the grid and its variance, from the
+  // samples' spread (which a stratified sampler's mean has less of).
+  GridMeans bdpt_means() const;
 
  private:
   int grid_index(int x, int y) const;  // -1: not on the grid
@@ -104,11 +114,13 @@ class EyeAloneMoments {
   // and the splats' second moment
   std::vector<std::array<double, 2>> bdpt_, alone_, light_;
   std::vector<double> coin_, value_, splat_square_;
+  std::vector<double> sample_sum_, sample_square_;  // bdpt's camera samples at rate 1, over both seeds
 };
 
 struct EyeAloneEstimate {
   double bdpt_error = 0.0, alone_error = 0.0;  // relMSE per camera sample
   double bdpt_cost = 0.0, alone_cost = 0.0;    // per camera sample, in rays
+  GridMeans bdpt_means;                        // at rate 1, splats included
 };
 
 // Whether the eye subpaths alone pay: their error times their cost at
@@ -128,12 +140,15 @@ inline constexpr double kPilotsAgree = 4.0, kClearGain = 0.95;
 // the pilot would cost more than it could save.
 bool worth_a_grid_pilot(const BdptSettings& render);
 double grid_pilot_samples();
+// The grid's pixels: every stride-th in x and y, about 512 of them.
+int grid_pilot_stride(int width, int height);
 
 // Runs the pilot for a bdpt render with `render`'s settings: bdpt at rate
 // q against the eye subpaths alone with Russian roulette scaled by
-// eye_roulette (the path tracer's).
+// eye_roulette (the path tracer's); with_alone false: bdpt's side only
+// (the merge pilot's, merge_pilot.h, for a bdpt that keeps light subpaths).
 EyeAloneEstimate estimate_eye_subpaths_alone(const Scene& scene, const LightSampler& light_sampler,
                                              const BdptSettings& render, float q, const PathTracerSettings& eye_alone,
-                                             RayBackend backend);
+                                             RayBackend backend, bool with_alone = true);
 
 }  // namespace lantern

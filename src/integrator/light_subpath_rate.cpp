@@ -367,13 +367,15 @@ float best_light_subpath_rate(const LightSubpathRateChoice& c, uint32_t spp) {
 }
 
 void set_light_subpath_rate(const Scene& scene, const LightSampler& light_sampler, const RenderOptions& opt,
-                            const PathTracerSettings& eye_alone, BdptSettings& bs, RenderStats& stats) {
+                            const PathTracerSettings& eye_alone, BdptSettings& bs, RenderStats& stats,
+                            const LightSubpathRateChoice* known) {
   // (Debug unit weights have no counts to rescale: rate 1.)
   if (opt.light_subpath_rate == kLightSubpathsAuto && !bs.unit_weights) {
     const bool alone = may_render_eye_subpaths_alone(scene, opt) && worth_a_grid_pilot(bs);
     const LightSubpathRateChoice c =
-        choose_light_subpath_rate(scene, light_sampler, bs, opt.ray_backend, alone ? &eye_alone : nullptr,
-                                  opt.time_limit_seconds, opt.light_choice == LightChoiceKind::Auto);
+        known ? *known
+              : choose_light_subpath_rate(scene, light_sampler, bs, opt.ray_backend, alone ? &eye_alone : nullptr,
+                                          opt.time_limit_seconds, opt.light_choice == LightChoiceKind::Auto);
     bs.light_subpath_rate = c.rate;
     if (c.rate > 0.f) bs.light_choice = c.light_choice;
     if (!c.light_choice_candidates.empty()) {

@@ -186,10 +186,12 @@ LightSubpathRateChoice choose_light_subpath_rate(const Scene& scene, const Light
                                                  const PathTracerSettings* eye_alone = nullptr,
                                                  double time_budget = 0.0, bool choose_light = true);
 
-// bs's rate: the options', or under auto the pilot's choice, which stats
-// report with its estimates. A rate of 0 asks for the path tracer with
-// `eye_alone`'s settings in bdpt's place.
+// bs's rate: the options', or under auto the pilot's choice (`known`:
+// already made, by vcm's merge pilot), which stats report with its
+// estimates. A rate of 0 asks for the path tracer with `eye_alone`'s
+// settings in bdpt's place.
 void set_light_subpath_rate(const Scene& scene, const LightSampler& light_sampler, const RenderOptions& opt,
-                            const PathTracerSettings& eye_alone, BdptSettings& bs, RenderStats& stats);
+                            const PathTracerSettings& eye_alone, BdptSettings& bs, RenderStats& stats,
+                            const LightSubpathRateChoice* known = nullptr);
 
 }  // namespace lantern

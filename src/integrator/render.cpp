@@ -29,6 +29,7 @@
 #include "integrator/bdpt.h"
 #include "integrator/bdpt_wave.h"
 #include "integrator/light_subpath_rate.h"
+#include "integrator/merge_pilot.h"
 #include "integrator/metropolis.h"
 #include "integrator/pass_context.h"
 #include "integrator/path_tracer.h"
@@ -71,15 +72,6 @@ void trace_wave(const Tracer& tracer, const WaveDesc& wave, State& state, WaveOu
 struct WaveItem {
   uint32_t wave, slot, first;  // trivial: oneTBB carries it in place
 };
-
-// The paths of each wave of a pass of one sample per pixel (vcm, bpm, ppm):
-// at most wave_size, all waves of a pass the same size (a pass's last wave
-// would otherwise have fewer light vertices to merge with).
-uint32_t merging_wave_paths(uint32_t pixels, int wave_size) {
-  const uint32_t most = std::max<uint32_t>(1, uint32_t(wave_size));
-  const uint32_t waves = (pixels + most - 1) / most;
-  return std::max<uint32_t>(1, (pixels + waves - 1) / waves);
-}
 
 // Adaptive sampling: the pixels of `wave` that take `pass`. Merging, every
 // pixel's light subpath is still traced, so that each pass's merges and
@@ -426,6 +418,14 @@ bool RenderSession::wait_for(double seconds) {
                                  [&] { return state_->finished; });
 }
 
+// --stats: the merge pilot's estimates (merge_pilot.h).
+static void report_merging(const MergeEstimate& e, bool merge, RenderStats& stats) {
+  stats.merging_pilot = merge ? 1 : 0;
+  stats.merging_error = {e.vcm_error, e.bdpt_error};
+  stats.merging_cost = {e.vcm_cost, e.bdpt_cost};
+  stats.merging_missed = e.missed;
+}
+
 // --stats: the fields guiding learnt (a tree the render does not sample,
 // the radiance field under --guide-light alone, is not counted).
 static void report_guiding(const GuidingField& guiding, RenderStats& stats) {
@@ -457,19 +457,25 @@ RenderResult RenderSession::run() {
 RenderResult RenderSession::render_all() {
   State& s = *state_;
   const Scene& scene = s.scene;
-  const RenderOptions& opt = s.opt;
-  check_processes(opt, s.hooks);
-  if (opt.gbuffer) s.film.track_moments();
-  if (opt.spectral_buckets > 0 && s.film.buckets().count == 0)
-    s.film.track_buckets({opt.spectral_buckets, opt.spectral_lambda_min, opt.spectral_lambda_max});
+  const RenderOptions& asked = s.opt;
+  check_processes(asked, s.hooks);
+  if (asked.gbuffer) s.film.track_moments();
+  if (asked.spectral_buckets > 0 && s.film.buckets().count == 0)
+    s.film.track_buckets({asked.spectral_buckets, asked.spectral_lambda_min, asked.spectral_lambda_max});
   // Low-discrepancy samplers lay a pixel's samples out for the count they
   // plan for; under a time budget the count is open.
-  const uint32_t planned_spp = opt.time_limit_seconds > 0 ? 0u : uint32_t(opt.spp);
+  const uint32_t planned_spp = asked.time_limit_seconds > 0 ? 0u : uint32_t(asked.spp);
   std::optional<tbb::global_control> limit;
-  if (opt.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(opt.threads));
+  if (asked.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(asked.threads));
 
   Film& film = s.film;
-  const LightSampler light_sampler(scene.lights, scene.shapes, scene.textures, opt.light_sampler);
+  const LightSampler light_sampler(scene.lights, scene.shapes, scene.textures, asked.light_sampler);
+  // vcm whose merges do not pay renders as bdpt, in every respect
+  // (merge_pilot.h); its pilot's time counts in a time budget.
+  const Clock::time_point pilots_start = Clock::now();
+  const MergingChoice merging = choose_merging(scene, light_sampler, asked, s.region, planned_spp);
+  const RenderOptions chosen = rendered_as(asked, merging, scene);
+  const RenderOptions& opt = chosen;
   std::optional<StrategyFilm> strategy_film;
   if (opt.strategies) strategy_film.emplace(s.width, s.height, scene.filter);
   RayCounters counters;
@@ -482,7 +488,7 @@ RenderResult RenderSession::render_all() {
   }();
   res.resumed_samples = film.total_samples();
   const double prior_seconds = info.elapsed_seconds;
-  s.start = Clock::now();
+  s.start = pilots_start;
   s.done = res.resumed_samples;
   s.total = uint64_t(s.width) * uint64_t(s.height) * (opt.time_limit_seconds > 0 ? 1 : uint64_t(opt.spp));
   s.began = true;
@@ -527,7 +533,9 @@ RenderResult RenderSession::render_all() {
         res.stats.vcm_wave_paths = merging_wave_paths(uint32_t(film.width() * film.height()), opt.wave_size);
       PathTracerSettings eye_alone = path_settings(scene, opt, s.region, planned_spp);
       if (uses_light_subpath_rate(opt.integrator))
-        set_light_subpath_rate(scene, light_sampler, opt, eye_alone, bs, res.stats);
+        set_light_subpath_rate(scene, light_sampler, opt, eye_alone, bs, res.stats,
+                               merging.bdpt ? &*merging.bdpt : nullptr);
+      if (merging.estimate) report_merging(*merging.estimate, merging.merge, res.stats);
       // (no light subpaths: the path tracer, eye_subpaths_alone.h, whose
       // camera samples may split as its own do)
       if (bs.light_subpath_rate == 0.f) {

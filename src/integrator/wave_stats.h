@@ -44,6 +44,7 @@ struct WaveStats {
   // and those whose sample was non-zero and unoccluded.
   uint64_t light_samples = 0, light_samples_unoccluded = 0;
   uint64_t light_connections = 0;  // bdpt: shadow rays of strategies with s >= 2 (the cost the light subpath rate scales)
+  uint64_t camera_connections = 0;  // of those, t = 1's: a light subpath's vertices joined to the camera
   uint64_t merges = 0;  // vcm: light vertices merged
   double grid_seconds = 0.0;   // vcm, with timing: building the merging grids
   uint32_t last_pass = 0;      // vcm: the largest first sample index of a wave traced
@@ -58,6 +59,7 @@ struct WaveStats {
     light_samples += o.light_samples;
     light_samples_unoccluded += o.light_samples_unoccluded;
     light_connections += o.light_connections;
+    camera_connections += o.camera_connections;
     for (int i = 0; i < kPathEndCount; ++i) {
       eye_ends[size_t(i)] += o.eye_ends[size_t(i)];
       light_ends[size_t(i)] += o.light_ends[size_t(i)];

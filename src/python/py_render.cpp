@@ -103,6 +103,9 @@ void read_options(const py::kwargs& kw, RenderRequest& r, Outputs& out) {
     } else if (k == "light_subpaths") {
       r.light_subpaths =
           auto_or_number("light_subpaths", value, true, "\"auto\", 0 or a number from 0.01 to 1", parse_light_subpaths);
+    } else if (k == "merging") {
+      r.merging = cast_option<std::string>("merging", value);
+      if (r.merging != "auto" && r.merging != "on") throw py::value_error("merging: expected \"auto\" or \"on\"");
     } else if (k == "spectral")
       r.spectral = cast_option<bool>("spectral", value);
     else if (k == "guide") r.guide = cast_option<bool>("guide", value);
@@ -125,7 +128,7 @@ void read_options(const py::kwargs& kw, RenderRequest& r, Outputs& out) {
           "'; the options are the command line's: integrator, spp, time, target_error, maxdepth, "
           "seed, sampler, light_sampler, light_choice, resolution, cropwindow, pixelbounds, pixel, spectral, guide, "
           "guide_light, adaptive, threads, wave_size, rays, mis, vcm_radius, vcm_alpha, roulette, "
-          "split, light_subpaths, output, stats, collect_stats, checkpoint, checkpoint_file, resume, "
+          "split, light_subpaths, merging, output, stats, collect_stats, checkpoint, checkpoint_file, resume, "
           "keep_checkpoint");
   }
   if (r.time > 0 && r.spp > 0)

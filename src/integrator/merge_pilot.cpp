@@ -1,0 +1,291 @@
+#include "integrator/merge_pilot.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "film/checkpoint.h"
+#include "integrator/bdpt_wave.h"
+#include "integrator/pilot.h"
+#include "math/rng.h"
+#include "scene/scene.h"
+
+namespace lantern {
+
+namespace {
+
+// Per pixel of the grid: per seed, the sum of its camera samples over the
+// pilot's passes; over both seeds, its value (camera samples and the
+// splats its cell receives, as the render would weigh them) and the
+// splats' second moment.
+class VcmMoments {
+ public:
+  // splat_scale: what a splat landing in a cell counts for in one pixel of
+  // the render (the render's light subpaths per pass over the pilot's,
+  // over the pixels of a cell).
+  VcmMoments(int width, int height, int stride, double splat_scale)
+      : width_(width), height_(height), stride_(stride), splat_scale_(splat_scale) {
+    const int half = stride / 2;
+    columns_ = (width - half + stride - 1) / stride;
+    for (int y = half; y < height; y += stride)
+      for (int x = half; x < width; x += stride) pixels_.push_back(uint32_t(y) * uint32_t(width) + uint32_t(x));
+    camera_.assign(pixels_.size(), {0.0, 0.0});
+    camera_square_.assign(pixels_.size(), 0.0);
+    value_.assign(pixels_.size(), 0.0);
+    splat_square_.assign(pixels_.size(), 0.0);
+  }
+  const std::vector<uint32_t>& pixels() const { return pixels_; }
+
+  void add(int seed, const WaveOutput& out) {
+    for (const FilmSample& f : out.samples) {
+      const double v = double(average(f.L)) * (f.negative ? -1.0 : 1.0);
+      const int g = grid_index(int(f.pixel % uint32_t(width_)), int(f.pixel / uint32_t(width_)));
+      if (g < 0 || !std::isfinite(v)) continue;  // (as the film drops it)
+      camera_[size_t(g)][size_t(seed)] += v;
+      value_[size_t(g)] += v;
+      camera_square_[size_t(g)] += v * v;  // (one camera sample a pixel a pass)
+    }
+    for (const Splat& s : out.splats) {
+      const double v = double(average(s.L));
+      const int g = cell_index(int(std::floor(s.p_raster.x)), int(std::floor(s.p_raster.y)));
+      if (g < 0 || !std::isfinite(v)) continue;
+      value_[size_t(g)] += splat_scale_ * v;
+      splat_square_[size_t(g)] += splat_scale_ * v * v;
+    }
+  }
+
+  // relMSE per camera sample, as EyeAloneMoments::relative_error: a
+  // pixel's variance over its value squared plus the image's mean
+  // squared, averaged over the grid.
+  double relative_error(uint32_t passes) const {
+    const double n = double(passes), pixels = double(pixels_.size());
+    double image = 0.0;
+    for (const double v : value_) image += v / (2.0 * n);
+    image /= pixels;
+    if (!(image > 0.0) || !std::isfinite(image)) return 0.0;
+    double e = 0.0;
+    for (size_t g = 0; g < pixels_.size(); ++g) {
+      const double mean = value_[g] / (2.0 * n), d = (camera_[g][0] - camera_[g][1]) / n;
+      const double variance = 0.5 * d * d * n + splat_square_[g] / (2.0 * n);  // (of one pass's estimate)
+      if (std::isfinite(variance)) e += variance / (mean * mean + image * image);
+    }
+    return e / pixels;
+  }
+
+  // Per pixel: the mean of a pass's estimate and the variance of that
+  // mean over the pilot's passes (from the passes' spread).
+  GridMeans means(uint32_t passes) const {
+    const double n = 2.0 * double(passes);
+    GridMeans m;
+    m.samples = n;
+    for (size_t g = 0; g < pixels_.size(); ++g) {
+      const double sum = camera_[g][0] + camera_[g][1];
+      const double spread = std::max(0.0, camera_square_[g] - sum * sum / n) / (n - 1.0);
+      m.mean.push_back(value_[g] / n);
+      m.variance.push_back((spread + splat_square_[g] / n) / n);
+    }
+    return m;
+  }
+
+ private:
+  int grid_index(int x, int y) const {
+    const int half = stride_ / 2;
+    if (x < half || y < half || x >= width_ || y >= height_ || (x - half) % stride_ != 0 || (y - half) % stride_ != 0)
+      return -1;
+    return (y - half) / stride_ * columns_ + (x - half) / stride_;
+  }
+  int cell_index(int x, int y) const {
+    if (x < 0 || y < 0 || x >= width_ || y >= height_) return -1;
+    const int rows = int(pixels_.size()) / columns_;
+    return std::min(y / stride_, rows - 1) * columns_ + std::min(x / stride_, columns_ - 1);
+  }
+  int width_, height_, stride_, columns_;
+  double splat_scale_;
+  std::vector<uint32_t> pixels_;
+  std::vector<std::array<double, 2>> camera_;
+  std::vector<double> camera_square_;
+  std::vector<double> value_, splat_square_;
+};
+
+// A wave of the render's size: the grid's pixels first, then the image's
+// others in tile order (they trace light subpaths only).
+std::vector<uint32_t> wave_pixels(const std::vector<uint32_t>& grid, int width, int height, uint32_t wave_paths) {
+  std::vector<uint8_t> on_grid(size_t(width) * size_t(height), 0);
+  for (const uint32_t p : grid) on_grid[p] = 1;
+  std::vector<uint32_t> pixels = grid;
+  for (const uint32_t p : tile_order(width, height)) {
+    if (pixels.size() >= wave_paths) break;
+    if (!on_grid[p]) pixels.push_back(p);
+  }
+  return pixels;
+}
+
+}  // namespace
+
+double missed_light_error(const GridMeans& vcm, const GridMeans& bdpt) {
+  const size_t n = std::min(vcm.mean.size(), bdpt.mean.size());
+  if (n == 0) return 0.0;
+  double image = 0.0;
+  for (size_t g = 0; g < n; ++g) image += vcm.mean[g] / double(n);
+  if (!(image > 0.0) || !std::isfinite(image)) return 0.0;
+  double e = 0.0;
+  for (size_t g = 0; g < n; ++g) {
+    const double missed = vcm.mean[g] - bdpt.mean[g] - kMissedLightZ * std::sqrt(vcm.variance[g] + bdpt.variance[g]);
+    if (missed > 0.0 && std::isfinite(missed))
+      e += missed * missed * bdpt.samples / (vcm.mean[g] * vcm.mean[g] + image * image);
+  }
+  return e / double(n);
+}
+
+bool merges_pay(const MergeEstimate& e) {
+  const double vcm = e.vcm_error * e.vcm_cost, bdpt = e.bdpt_error * e.bdpt_cost;
+  if (!(vcm > 0.0) || !std::isfinite(vcm) || !(bdpt > 0.0) || !std::isfinite(bdpt)) return true;  // (nothing measured)
+  return bdpt >= kMergesClearGain * vcm;
+}
+
+bool worth_a_merge_pilot(const BdptSettings& vcm, uint32_t wave_paths) {
+  const double width = vcm.full_width > 0 ? vcm.full_width : vcm.width;
+  const double height = vcm.full_height > 0 ? vcm.full_height : vcm.height;
+  const double pilot = 2.0 * kMergePilotPasses * double(wave_paths);
+  return vcm.planned_spp == 0 || double(vcm.planned_spp) * width * height >= 16.0 * pilot;
+}
+
+bool estimate_vcm(const Scene& scene, const LightSampler& light_sampler, const BdptSettings& vcm, uint32_t wave_paths,
+                  RayBackend backend, double time_budget, MergeEstimate& e, GridMeans& means) {
+  const int width = vcm.full_width > 0 ? vcm.full_width : vcm.width;
+  const int height = vcm.full_height > 0 ? vcm.full_height : vcm.height;
+  const int stride = grid_pilot_stride(width, height);
+  // The render's pass has a light subpath per pixel, the pilot's
+  // wave_paths: a splat in a cell of stride^2 pixels counts times this.
+  const double cell = double(width) * double(height) / double(VcmMoments(width, height, stride, 1.0).pixels().size());
+  VcmMoments moments(width, height, stride, double(width) * double(height) / (double(wave_paths) * cell));
+  if (moments.pixels().size() > wave_paths) return false;  // (an image too small to tell)
+  const std::vector<uint32_t> pixels = wave_pixels(moments.pixels(), width, height, wave_paths);
+  std::vector<uint8_t> on_grid(size_t(width) * size_t(height), 0);
+  for (const uint32_t p : moments.pixels()) on_grid[p] = 1;
+  // Passes from the middle of a render of the planned samples (under a
+  // time budget, of 128): the merging radius shrinks pass by pass.
+  const uint32_t first = std::max(1u, (vcm.planned_spp > 0 ? vcm.planned_spp : 128u) / 2);
+  BdptSettings pilot = pilot_settings(vcm, width, height, 0);
+  std::vector<WaveOutput> outputs(kMergePilotPasses);
+  WaveStats stats;
+  for (int seed = 0; seed < 2; ++seed) {
+    pilot.seed = hash_key(vcm.seed, 0x6d657267ULL, uint64_t(seed));  // (two seeds of their own)
+    const Bdpt tracer(scene, light_sampler, pilot);
+    using State = decltype(tracer.make_wave_state(0, RayStream(scene.accel->handle(), backend, nullptr)));
+    tbb::enumerable_thread_specific<State> states([&] {
+      State s = tracer.make_wave_state(uint32_t(pixels.size()), RayStream(scene.accel->handle(), backend, nullptr));
+      s->stream.set_scene(scene.accel->instance_base(), &scene.shapes);
+      return s;
+    });
+    auto trace = [&](uint32_t j) {
+      WaveDesc wave{pixels.data(), uint32_t(pixels.size()), first + j, 1u};
+      wave.eye_pixels = on_grid.data();
+      outputs[j].clear();
+      tracer.trace(wave, *states.local(), outputs[j]);
+    };
+    uint32_t from = 0;
+    if (seed == 0 && time_budget > 0.0) {  // (a pilot that would take more than a sixteenth of the budget does not run)
+      const auto start = std::chrono::steady_clock::now();
+      trace(from++);
+      const double wave_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const double threads = double(std::max(1, tbb::this_task_arena::max_concurrency()));
+      if (16.0 * 2.0 * kMergePilotPasses * wave_seconds / threads > time_budget) return false;
+    }
+    tbb::parallel_for(from, kMergePilotPasses, trace);
+    for (const WaveOutput& out : outputs) moments.add(seed, out);  // (in pass order)
+    for (const State& s : states) stats += s->stats;
+  }
+  e.vcm_error = moments.relative_error(kMergePilotPasses);
+  means = moments.means(kMergePilotPasses);
+  // Rays per camera sample, as the grid pilot counts bdpt's at q = 1 (its
+  // eye subpath's, its connections', its light subpath's, and about two
+  // for the work that casts none and s = 1, t = 1), times vcm's factor,
+  // and the merges'.
+  const double samples = 2.0 * kMergePilotPasses * double(moments.pixels().size());
+  const double light_paths = 2.0 * kMergePilotPasses * double(pixels.size());
+  const size_t escaped = size_t(PathEnd::Escaped);
+  const double eye = double(stats.eye_vertices + stats.eye_ends[escaped] + stats.light_samples +
+                            stats.light_connections - stats.camera_connections);
+  const double light = double(stats.light_vertices + stats.light_ends[escaped] + stats.camera_connections);
+  e.merges = double(stats.merges) / samples;
+  e.vcm_cost = kVcmRayFactor * (eye / samples + 2.0 + light / light_paths) + kMergeRays * e.merges;
+  return true;
+}
+
+uint32_t merging_wave_paths(uint32_t pixels, int wave_size) {
+  const uint32_t most = std::max<uint32_t>(1, uint32_t(wave_size));
+  const uint32_t waves = (pixels + most - 1) / most;
+  return std::max<uint32_t>(1, (pixels + waves - 1) / waves);
+}
+
+MergingChoice choose_merging(const Scene& scene, const LightSampler& light_sampler, const RenderOptions& opt,
+                             const ImageRegion& region, uint32_t planned_spp) {
+  MergingChoice c;
+  if (opt.integrator != Integrator::Vcm || !opt.merging_pilot || opt.strategies) return c;
+  // A scene that asks for photon mapping (an "sppm" Integrator, whose
+  // photons per iteration are known) asked for merges.
+  if (scene.settings.photons_per_iteration != 0) return c;
+  // A resumed render goes on as its checkpoint was made, with merges or as
+  // bdpt, whatever a pilot would choose now (under a time budget whether
+  // the pilot runs depends on time; a larger --spp starts it elsewhere).
+  if (opt.resume && opt.resume_reads) {
+    const std::vector<std::string> pieces = checkpoint_pieces(opt.checkpoint_path);
+    if (!pieces.empty()) {
+      c.merge = read_checkpoint_fingerprint(pieces[0]).find("\nintegrator=bdpt\n") == std::string::npos;
+      return c;
+    }
+  }
+  const BdptSettings vcm = bdpt_settings(scene, opt, region, planned_spp);
+  const uint32_t wave_paths = merging_wave_paths(uint32_t(region.width) * uint32_t(region.height), opt.wave_size);
+  if (vcm.unit_weights || !worth_a_merge_pilot(vcm, wave_paths)) return c;
+  MergeEstimate e;
+  GridMeans vcm_means;
+  if (!estimate_vcm(scene, light_sampler, vcm, wave_paths, opt.ray_backend, opt.time_limit_seconds, e, vcm_means))
+    return c;
+  // bdpt as it would render: its rate and choice of light, from its own
+  // pilot, and its error and cost on the grid at that rate.
+  RenderOptions as_bdpt = opt;
+  as_bdpt.integrator = Integrator::Bdpt;
+  BdptSettings bdpt = bdpt_settings(scene, as_bdpt, region, planned_spp);
+  const PathTracerSettings eye_alone = path_settings(scene, as_bdpt, region, planned_spp);
+  float q = as_bdpt.light_subpath_rate;
+  std::optional<EyeAloneEstimate> grid;
+  if (q == kLightSubpathsAuto) {
+    const bool alone = may_render_eye_subpaths_alone(scene, as_bdpt) && worth_a_grid_pilot(bdpt);
+    c.bdpt = choose_light_subpath_rate(scene, light_sampler, bdpt, opt.ray_backend, alone ? &eye_alone : nullptr,
+                                       opt.time_limit_seconds, opt.light_choice == LightChoiceKind::Auto);
+    q = c.bdpt->rate;
+    if (q > 0.f) bdpt.light_choice = c.bdpt->light_choice;
+    grid = c.bdpt->eye_alone;
+  }
+  if (!grid)
+    grid = estimate_eye_subpaths_alone(scene, light_sampler, bdpt, q > 0.f ? q : 1.f, eye_alone, opt.ray_backend,
+                                       q == 0.f);
+  e.missed = missed_light_error(vcm_means, grid->bdpt_means);
+  e.bdpt_error = (q == 0.f ? grid->alone_error : grid->bdpt_error) + e.missed;
+  e.bdpt_cost = q == 0.f ? grid->alone_cost : grid->bdpt_cost;
+  c.estimate = e;
+  c.merge = merges_pay(e);
+  return c;
+}
+
+RenderOptions rendered_as(const RenderOptions& asked, const MergingChoice& choice, const Scene& scene) {
+  RenderOptions o = asked;
+  if (choice.merge) return o;
+  o.integrator = Integrator::Bdpt;
+  // (the waves bdpt's own default, unless they were asked for)
+  const int64_t photons = scene.settings.photons_per_iteration;
+  if (o.wave_size == default_wave_size(Integrator::Vcm, photons))
+    o.wave_size = default_wave_size(Integrator::Bdpt, photons);
+  return o;
+}
+
+}  // namespace lantern
