@@ -239,10 +239,11 @@ struct RenderStats {
   // vcm with --merging auto: whether its pilot kept merges (1) or had it
   // render as bdpt (0), and its estimates for vcm and for bdpt: relMSE
   // per camera sample and rays per camera sample (-1: no pilot ran); of
-  // bdpt's error, the part from light its pilot missed.
+  // bdpt's error, the part from light its pilot missed; the pilots' wall
+  // seconds (bdpt's included).
   int merging_pilot = -1;
   std::array<double, 2> merging_error{}, merging_cost{};
-  double merging_missed = 0.0;
+  double merging_missed = 0.0, merging_seconds = 0.0;
   float vcm_last_radius = 0.f;  // vcm: the merging radius of the last pass traced
   uint32_t vcm_wave_paths = 0;  // vcm: each wave's light subpaths, which its eye vertices merge with
   uint32_t vcm_last_first_sample = 0;  // vcm: the first sample index of that pass

@@ -258,8 +258,10 @@ void report(const std::string& out, const RenderOptions& o, const RenderResult& 
               o.target_error > 0 ? (" (target " + std::to_string(o.target_error) + ")").c_str() : "");
   if (!s.split_error.empty())
     logging::info("split: %u paths per camera sample, the pilot's choice (--split auto)", s.split);
-  if (s.merging_pilot == 0)
-    logging::info("vcm: merges do not pay here, rendered as bdpt (the pilot's choice, --merging auto)");
+  if (s.merging_pilot >= 0)
+    logging::info(s.merging_pilot == 0
+                      ? "vcm: merges do not pay here, rendered as bdpt (the pilot's choice, --merging auto)"
+                      : "vcm: merges pay here (the pilot's choice, --merging auto)");
   if (!s.light_subpath_error.empty())
     logging::info("light subpaths: %g per camera sample, the pilot's choice (--light-subpaths auto)%s",
                   double(s.light_subpath_rate),

@@ -125,7 +125,8 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
                      {{"candidates", {"vcm", "bdpt"}},
                       {"relmse_per_sample", s.merging_error},
                       {"rays_per_sample", s.merging_cost},
-                      {"bdpt_missed_light", s.merging_missed}}}};
+                      {"bdpt_missed_light", s.merging_missed},
+                      {"seconds", s.merging_seconds}}}};
   if (s.split > 0) {
     j["split"] = {{"paths_per_camera_sample", s.split}};
     if (!s.split_error.empty())

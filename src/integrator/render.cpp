@@ -419,8 +419,9 @@ bool RenderSession::wait_for(double seconds) {
 }
 
 // --stats: the merge pilot's estimates (merge_pilot.h).
-static void report_merging(const MergeEstimate& e, bool merge, RenderStats& stats) {
+static void report_merging(const MergeEstimate& e, bool merge, double seconds, RenderStats& stats) {
   stats.merging_pilot = merge ? 1 : 0;
+  stats.merging_seconds = seconds;
   stats.merging_error = {e.vcm_error, e.bdpt_error};
   stats.merging_cost = {e.vcm_cost, e.bdpt_cost};
   stats.merging_missed = e.missed;
@@ -474,6 +475,7 @@ RenderResult RenderSession::render_all() {
   // (merge_pilot.h); its pilot's time counts in a time budget.
   const Clock::time_point pilots_start = Clock::now();
   const MergingChoice merging = choose_merging(scene, light_sampler, asked, s.region, planned_spp);
+  const double merging_seconds = std::chrono::duration<double>(Clock::now() - pilots_start).count();
   const RenderOptions chosen = rendered_as(asked, merging, scene);
   const RenderOptions& opt = chosen;
   std::optional<StrategyFilm> strategy_film;
@@ -535,7 +537,7 @@ RenderResult RenderSession::render_all() {
       if (uses_light_subpath_rate(opt.integrator))
         set_light_subpath_rate(scene, light_sampler, opt, eye_alone, bs, res.stats,
                                merging.bdpt ? &*merging.bdpt : nullptr);
-      if (merging.estimate) report_merging(*merging.estimate, merging.merge, res.stats);
+      if (merging.estimate) report_merging(*merging.estimate, merging.merge, merging_seconds, res.stats);
       // (no light subpaths: the path tracer, eye_subpaths_alone.h, whose
       // camera samples may split as its own do)
       if (bs.light_subpath_rate == 0.f) {
