@@ -4,11 +4,11 @@ _lantern() {
   local cur prev words cword
   _init_completion || return
   local subcommands="render view compare merge info"
-  local render_opts="-o --output --spp --time --target-error --adaptive --integrator --vcm-radius --vcm-alpha --roulette --light-subpaths --mis --guide
+  local render_opts="-o --output --spp --time --target-error --adaptive --integrator --vcm-radius --vcm-alpha --roulette --light-subpaths --merging --mis --guide
     --spectral --maxdepth --threads --seed --sampler --light-sampler --resolution --cropwindow --pixelbounds --pixel --rays --wave-size
     --progress-interval --write-partial-images --log-level --log-file --stats --dump-rays --strategies --checkpoint --checkpoint-file --resume --keep-checkpoint --texture-cache --texture-dir --trace
     --trace-waves --part --display-server -q --quiet --help"
-  local view_opts="--spp --time --target-error --adaptive --integrator --vcm-radius --vcm-alpha --roulette --light-subpaths --mis --guide --spectral
+  local view_opts="--spp --time --target-error --adaptive --integrator --vcm-radius --vcm-alpha --roulette --light-subpaths --merging --mis --guide --spectral
     --maxdepth --threads --seed --sampler --light-sampler --resolution --cropwindow --pixelbounds --pixel --rays --wave-size --screenshot --exposure
     --texture-cache --texture-dir --help"
   local sub=""
@@ -21,6 +21,7 @@ _lantern() {
     --sampler) COMPREPLY=($(compgen -W "zsobol paddedsobol sobol halton stratified independent" -- "$cur")); return ;;
     --light-sampler) COMPREPLY=($(compgen -W "bvh power uniform" -- "$cur")); return ;;
     --mis) COMPREPLY=($(compgen -W "power balance" -- "$cur")); return ;;
+    --merging) COMPREPLY=($(compgen -W "auto on" -- "$cur")); return ;;
     --rays) COMPREPLY=($(compgen -W "stream stream-1m single packet16" -- "$cur")); return ;;
     --log-level) COMPREPLY=($(compgen -W "error warning info verbose" -- "$cur")); return ;;
     -o | --output | --stats | --trace | --dump-rays | --checkpoint-file | --error-image | --screenshot | --log-file)

@@ -148,6 +148,9 @@ expect_run(NAME split-header EXIT 0 MATCH "lantern:split 4" ARGS info ${OUT}/spl
 # the header says what was asked for.
 expect_run(NAME bad-light-subpaths EXIT 2 MATCH "expected auto, 0 or a number from 0.01 to 1" ARGS render
            ${SRC}/scenes/cornell-box.pbrt --integrator bdpt --light-subpaths 0.005)
+# vcm's merge pilot: auto or on, anything else a usage error.
+expect_run(NAME bad-merging EXIT 2 MATCH "off not in \\{auto,on\\}" ARGS render ${SRC}/scenes/cornell-box.pbrt
+           --integrator vcm --merging off)
 # 0, the eye subpaths alone: the path tracer renders them, and the header
 # says so; refused, with the reason, where a spot light's light needs light
 # subpaths.

@@ -209,6 +209,8 @@ def test_bad_input_raises_clear_errors(tmp_path, cornell_box):
         lantern.render(cornell_box, spp=1, integrator="bdpt", light_subpaths=True)
     with pytest.raises(ValueError, match="light choice"):
         lantern.render(cornell_box, spp=1, integrator="bdpt", light_choice="bvh")
+    with pytest.raises(ValueError, match="merging"):
+        lantern.render(cornell_box, spp=1, integrator="vcm", merging="off")
     for bad_split in (3, 4.0, "four", True, 32):
         with pytest.raises(ValueError, match="split"):
             lantern.render(cornell_box, spp=1, split=bad_split)
@@ -226,6 +228,16 @@ def test_light_choice(source_dir):
     given = lantern.render(prism, spp=1, resolution=(48, 36), integrator="bdpt", light_choice="power",
                            collect_stats=True)
     assert "light_choice" not in given.stats["light_subpaths"]
+
+
+def test_merging(cornell_box):
+    # vcm merges with merging="on"; with "auto" too where the render is too
+    # small for the merge pilot, which then reports nothing.
+    for merging in ("on", "auto"):
+        r = lantern.render(cornell_box, spp=4, resolution=(16, 16), integrator="vcm", merging=merging,
+                           collect_stats=True)
+        assert r.stats["vcm"]["merges"] > 0
+        assert "merging" not in r.stats
 
 
 def test_split_camera_samples(cornell_box):
