@@ -60,13 +60,30 @@ double eye_alone_density_ratio(const StrategyRecord& r) {
   return (1.0 + std::pow(kept, 1.5)) / ((1.0 + kept) * (1.0 + kept));
 }
 
-EyeAloneMoments::EyeAloneMoments(int width, int height, int stride, uint32_t spp, float q, float mis_beta, bool stratified)
-    : width_(width), height_(height), stride_(stride), spp_(spp), q_(q), beta_(mis_beta), stratified_(stratified) {
+PilotGrid::PilotGrid(int width, int height, int stride) : width(width), height(height), stride(stride) {
   const int half = stride / 2;
-  columns_ = (width - half + stride - 1) / stride;
+  columns = (width - half + stride - 1) / stride;
   for (int y = half; y < height; y += stride)
-    for (int x = half; x < width; x += stride) pixels_.push_back(uint32_t(y) * uint32_t(width) + uint32_t(x));
-  const size_t n = pixels_.size();
+    for (int x = half; x < width; x += stride) pixels.push_back(uint32_t(y) * uint32_t(width) + uint32_t(x));
+}
+
+int PilotGrid::grid_index(int x, int y) const {
+  const int half = stride / 2;
+  if (x < half || y < half || x >= width || y >= height || (x - half) % stride != 0 || (y - half) % stride != 0)
+    return -1;
+  return (y - half) / stride * columns + (x - half) / stride;
+}
+
+int PilotGrid::cell_index(int x, int y) const {
+  if (x < 0 || y < 0 || x >= width || y >= height) return -1;
+  const int rows = int(pixels.size()) / columns;
+  return std::min(y / stride, rows - 1) * columns + std::min(x / stride, columns - 1);
+}
+
+EyeAloneMoments::EyeAloneMoments(int width, int height, int stride, uint32_t spp, float q, float mis_beta,
+                                 bool stratified)
+    : grid_(width, height, stride), spp_(spp), q_(q), beta_(mis_beta), stratified_(stratified) {
+  const size_t n = grid_.pixels.size();
   bdpt_.assign(n, {0.0, 0.0});
   alone_.assign(n, {0.0, 0.0});
   light_.assign(n, {0.0, 0.0});
@@ -77,25 +94,13 @@ EyeAloneMoments::EyeAloneMoments(int width, int height, int stride, uint32_t spp
   sample_square_.assign(n, 0.0);
 }
 
-int EyeAloneMoments::grid_index(int x, int y) const {
-  const int half = stride_ / 2;
-  if (x < half || y < half || x >= width_ || y >= height_ || (x - half) % stride_ != 0 || (y - half) % stride_ != 0)
-    return -1;
-  return (y - half) / stride_ * columns_ + (x - half) / stride_;
-}
-
-int EyeAloneMoments::cell_index(int x, int y) const {
-  if (x < 0 || y < 0 || x >= width_ || y >= height_) return -1;
-  const int rows = int(pixels_.size()) / columns_;
-  return std::min(y / stride_, rows - 1) * columns_ + std::min(x / stride_, columns_ - 1);
-}
-
 void EyeAloneMoments::add_bdpt(int seed, size_t first, const WaveDesc& wave, const std::vector<StrategyRecord>& records) {
   // A pixel of the grid stands for its cell of stride x stride pixels, and
   // takes the splats that land in it (the second moment a pixel of the
   // render receives from its light subpaths: the pilot traces one for each
   // of the cells' pixels' samples; `area` is the image over the cells).
-  const double area = double(width_) * double(height_) / (double(pixels_.size()) * stride_ * stride_);
+  const double area =
+      double(grid_.width) * double(grid_.height) / (double(grid_.pixels.size()) * grid_.stride * grid_.stride);
   std::vector<double> once(wave.size(), 0.0), with_light(wave.size(), 0.0), at_one(wave.size(), 0.0);
   for (const StrategyRecord& r : records) {
     const double u = double(average(r.unweighted)), weighted = double(average(r.weighted));
@@ -103,7 +108,7 @@ void EyeAloneMoments::add_bdpt(int seed, size_t first, const WaveDesc& wave, con
     const bool needs_light_subpath = r.s >= 2;
     const double v = double(weight_at_rate(r.weight, r.rescaled, needs_light_subpath, q_, beta_)) * u;
     if (r.t == 1) {
-      const int g = cell_index(int(std::floor(r.p_raster.x)), int(std::floor(r.p_raster.y)));
+      const int g = grid_.cell_index(int(std::floor(r.p_raster.x)), int(std::floor(r.p_raster.y)));
       if (g >= 0) {
         value_[size_t(g)] += area * weighted;
         splat_square_[size_t(g)] += area * (needs_light_subpath ? v * v / double(q_) : v * v);
@@ -127,20 +132,20 @@ void EyeAloneMoments::add_bdpt(int seed, size_t first, const WaveDesc& wave, con
 void EyeAloneMoments::add_alone(int seed, const std::vector<FilmSample>& samples) {
   for (const FilmSample& f : samples) {
     const double v = double(average(f.L)) * (f.negative ? -1.0 : 1.0);
-    const int g = grid_index(int(f.pixel % uint32_t(width_)), int(f.pixel / uint32_t(width_)));
+    const int g = grid_.grid_index(f.pixel);
     if (g >= 0 && std::isfinite(v)) alone_[size_t(g)][size_t(seed)] += v;  // (as the film drops it)
   }
 }
 
 std::array<double, 2> EyeAloneMoments::relative_error() const {
-  const double n = double(spp_), pixels = double(pixels_.size()), q = double(q_);
+  const double n = double(spp_), pixels = double(grid_.pixels.size()), q = double(q_);
   double image = 0.0;
   for (const double v : value_) image += v / (2.0 * n);
   image /= pixels;
   std::array<double, 2> e{};
   if (!(image > 0.0) || !std::isfinite(image)) return e;  // a black image: nothing to choose by
   const auto pair = [n](const std::array<double, 2>& s) { return 0.5 * (s[0] - s[1]) * (s[0] - s[1]) / (n * n); };
-  for (size_t g = 0; g < pixels_.size(); ++g) {
+  for (size_t g = 0; g < grid_.pixels.size(); ++g) {
     const double mean = value_[g] / (2.0 * n), scale = 1.0 / (mean * mean + image * image);
     // The variance of a pixel's mean of n samples: half the squared
     // difference of the two seeds' means; bdpt's adds its coin (the light
@@ -161,7 +166,7 @@ GridMeans EyeAloneMoments::bdpt_means() const {
   const double n = 2.0 * double(spp_);
   GridMeans m;
   m.samples = n;
-  for (size_t g = 0; g < pixels_.size(); ++g) {
+  for (size_t g = 0; g < grid_.pixels.size(); ++g) {
     const double spread = std::max(0.0, sample_square_[g] - sample_sum_[g] * sample_sum_[g] / n) / (n - 1.0);
     m.mean.push_back(value_[g] / n);
     m.variance.push_back((spread + splat_square_[g] / n) / n);

@@ -70,6 +70,20 @@ float eye_alone_weight(const StrategyRecord& r, float mis_beta);
 // few as a pilot's, would mostly miss it.
 double eye_alone_density_ratio(const StrategyRecord& r);
 
+// The grid pilot's pixels: every stride-th of a width x height image in x
+// and y, from stride / 2, each standing for its cell of stride x stride
+// pixels (the last row and column of cells take what the image has left).
+struct PilotGrid {
+  PilotGrid(int width, int height, int stride);
+  int grid_index(int x, int y) const;  // -1: not on the grid
+  int grid_index(uint32_t pixel) const {
+    return grid_index(int(pixel % uint32_t(width)), int(pixel / uint32_t(width)));
+  }
+  int cell_index(int x, int y) const;  // the grid pixel whose cell holds pixel (x, y); -1: outside
+  int width, height, stride, columns;
+  std::vector<uint32_t> pixels;
+};
+
 // Per pixel of a grid pilot: an estimator's mean and the variance of that
 // mean (the merge pilot compares bdpt's with vcm's: merge_pilot.h).
 struct GridMeans {
@@ -87,7 +101,7 @@ class EyeAloneMoments {
   // grid: the pilot's pixels, every stride-th of a width x height image.
   // stratified: as RateMoments.
   EyeAloneMoments(int width, int height, int stride, uint32_t spp, float q, float mis_beta, bool stratified);
-  const std::vector<uint32_t>& pixels() const { return pixels_; }
+  const std::vector<uint32_t>& pixels() const { return grid_.pixels; }
   // bdpt's records of a wave at rate 1 (seed 0 or 1; first: the index in
   // pixels() of the wave's first pixel), the path tracer's samples.
   void add_bdpt(int seed, size_t first, const WaveDesc& wave, const std::vector<StrategyRecord>& records);
@@ -101,13 +115,10 @@ class EyeAloneMoments {
   GridMeans bdpt_means() const;
 
  private:
-  int grid_index(int x, int y) const;  // -1: not on the grid
-  int cell_index(int x, int y) const;  // the grid pixel whose cell holds pixel (x, y); -1: outside
-  int width_, height_, stride_, columns_;
+  PilotGrid grid_;
   uint32_t spp_;
   float q_, beta_;
   bool stratified_;
-  std::vector<uint32_t> pixels_;
   // per grid pixel: per seed, the sums of bdpt's samples, of the eye
   // subpaths' alone and of the light subpath's share; over both seeds, the
   // light subpath's share squared (the coin's), the pixel's value at q = 1

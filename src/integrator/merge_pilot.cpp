@@ -30,23 +30,18 @@ class VcmMoments {
   // splat_scale: what a splat landing in a cell counts for in one pixel of
   // the render (the render's light subpaths per pass over the pilot's,
   // over the pixels of a cell).
-  VcmMoments(int width, int height, int stride, double splat_scale)
-      : width_(width), height_(height), stride_(stride), splat_scale_(splat_scale) {
-    const int half = stride / 2;
-    columns_ = (width - half + stride - 1) / stride;
-    for (int y = half; y < height; y += stride)
-      for (int x = half; x < width; x += stride) pixels_.push_back(uint32_t(y) * uint32_t(width) + uint32_t(x));
-    camera_.assign(pixels_.size(), {0.0, 0.0});
-    camera_square_.assign(pixels_.size(), 0.0);
-    value_.assign(pixels_.size(), 0.0);
-    splat_square_.assign(pixels_.size(), 0.0);
+  VcmMoments(const PilotGrid& grid, double splat_scale) : grid_(grid), splat_scale_(splat_scale) {
+    const size_t n = grid.pixels.size();
+    camera_.assign(n, {0.0, 0.0});
+    camera_square_.assign(n, 0.0);
+    value_.assign(n, 0.0);
+    splat_square_.assign(n, 0.0);
   }
-  const std::vector<uint32_t>& pixels() const { return pixels_; }
 
   void add(int seed, const WaveOutput& out) {
     for (const FilmSample& f : out.samples) {
       const double v = double(average(f.L)) * (f.negative ? -1.0 : 1.0);
-      const int g = grid_index(int(f.pixel % uint32_t(width_)), int(f.pixel / uint32_t(width_)));
+      const int g = grid_.grid_index(f.pixel);
       if (g < 0 || !std::isfinite(v)) continue;  // (as the film drops it)
       camera_[size_t(g)][size_t(seed)] += v;
       value_[size_t(g)] += v;
@@ -54,7 +49,7 @@ class VcmMoments {
     }
     for (const Splat& s : out.splats) {
       const double v = double(average(s.L));
-      const int g = cell_index(int(std::floor(s.p_raster.x)), int(std::floor(s.p_raster.y)));
+      const int g = grid_.cell_index(int(std::floor(s.p_raster.x)), int(std::floor(s.p_raster.y)));
       if (g < 0 || !std::isfinite(v)) continue;
       value_[size_t(g)] += splat_scale_ * v;
       splat_square_[size_t(g)] += splat_scale_ * v * v;
@@ -65,13 +60,13 @@ class VcmMoments {
   // pixel's variance over its value squared plus the image's mean
   // squared, averaged over the grid.
   double relative_error(uint32_t passes) const {
-    const double n = double(passes), pixels = double(pixels_.size());
+    const double n = double(passes), pixels = double(value_.size());
     double image = 0.0;
     for (const double v : value_) image += v / (2.0 * n);
     image /= pixels;
     if (!(image > 0.0) || !std::isfinite(image)) return 0.0;
     double e = 0.0;
-    for (size_t g = 0; g < pixels_.size(); ++g) {
+    for (size_t g = 0; g < value_.size(); ++g) {
       const double mean = value_[g] / (2.0 * n), d = (camera_[g][0] - camera_[g][1]) / n;
       const double variance = 0.5 * d * d * n + splat_square_[g] / (2.0 * n);  // (of one pass's estimate)
       if (std::isfinite(variance)) e += variance / (mean * mean + image * image);
@@ -85,7 +80,7 @@ class VcmMoments {
     const double n = 2.0 * double(passes);
     GridMeans m;
     m.samples = n;
-    for (size_t g = 0; g < pixels_.size(); ++g) {
+    for (size_t g = 0; g < value_.size(); ++g) {
       const double sum = camera_[g][0] + camera_[g][1];
       const double spread = std::max(0.0, camera_square_[g] - sum * sum / n) / (n - 1.0);
       m.mean.push_back(value_[g] / n);
@@ -95,32 +90,18 @@ class VcmMoments {
   }
 
  private:
-  int grid_index(int x, int y) const {
-    const int half = stride_ / 2;
-    if (x < half || y < half || x >= width_ || y >= height_ || (x - half) % stride_ != 0 || (y - half) % stride_ != 0)
-      return -1;
-    return (y - half) / stride_ * columns_ + (x - half) / stride_;
-  }
-  int cell_index(int x, int y) const {
-    if (x < 0 || y < 0 || x >= width_ || y >= height_) return -1;
-    const int rows = int(pixels_.size()) / columns_;
-    return std::min(y / stride_, rows - 1) * columns_ + std::min(x / stride_, columns_ - 1);
-  }
-  int width_, height_, stride_, columns_;
+  const PilotGrid& grid_;
   double splat_scale_;
-  std::vector<uint32_t> pixels_;
   std::vector<std::array<double, 2>> camera_;
-  std::vector<double> camera_square_;
-  std::vector<double> value_, splat_square_;
+  std::vector<double> camera_square_, value_, splat_square_;
 };
 
-// A wave of the render's size: the grid's pixels first, then the image's
-// others in tile order (they trace light subpaths only).
-std::vector<uint32_t> wave_pixels(const std::vector<uint32_t>& grid, int width, int height, uint32_t wave_paths) {
-  std::vector<uint8_t> on_grid(size_t(width) * size_t(height), 0);
-  for (const uint32_t p : grid) on_grid[p] = 1;
-  std::vector<uint32_t> pixels = grid;
-  for (const uint32_t p : tile_order(width, height)) {
+// A wave of the render's size: the grid's pixels first (on_grid: a byte a
+// pixel), then the image's others in tile order (they trace light
+// subpaths only).
+std::vector<uint32_t> wave_pixels(const PilotGrid& grid, const std::vector<uint8_t>& on_grid, uint32_t wave_paths) {
+  std::vector<uint32_t> pixels = grid.pixels;
+  for (const uint32_t p : tile_order(grid.width, grid.height)) {
     if (pixels.size() >= wave_paths) break;
     if (!on_grid[p]) pixels.push_back(p);
   }
@@ -161,15 +142,15 @@ bool estimate_vcm(const Scene& scene, const LightSampler& light_sampler, const B
                   RayBackend backend, double time_budget, MergeEstimate& e, GridMeans& means) {
   const int width = vcm.full_width > 0 ? vcm.full_width : vcm.width;
   const int height = vcm.full_height > 0 ? vcm.full_height : vcm.height;
-  const int stride = grid_pilot_stride(width, height);
+  const PilotGrid grid(width, height, grid_pilot_stride(width, height));
+  if (grid.pixels.size() > wave_paths) return false;  // (an image too small to tell)
   // The render's pass has a light subpath per pixel, the pilot's
-  // wave_paths: a splat in a cell of stride^2 pixels counts times this.
-  const double cell = double(width) * double(height) / double(VcmMoments(width, height, stride, 1.0).pixels().size());
-  VcmMoments moments(width, height, stride, double(width) * double(height) / (double(wave_paths) * cell));
-  if (moments.pixels().size() > wave_paths) return false;  // (an image too small to tell)
-  const std::vector<uint32_t> pixels = wave_pixels(moments.pixels(), width, height, wave_paths);
+  // wave_paths: a splat in a cell of the grid counts times this.
+  const double cell = double(width) * double(height) / double(grid.pixels.size());
+  VcmMoments moments(grid, double(width) * double(height) / (double(wave_paths) * cell));
   std::vector<uint8_t> on_grid(size_t(width) * size_t(height), 0);
-  for (const uint32_t p : moments.pixels()) on_grid[p] = 1;
+  for (const uint32_t p : grid.pixels) on_grid[p] = 1;
+  const std::vector<uint32_t> pixels = wave_pixels(grid, on_grid, wave_paths);
   // Passes from the middle of a render of the planned samples (under a
   // time budget, of 128): the merging radius shrinks pass by pass.
   const uint32_t first = std::max(1u, (vcm.planned_spp > 0 ? vcm.planned_spp : 128u) / 2);
@@ -209,7 +190,7 @@ bool estimate_vcm(const Scene& scene, const LightSampler& light_sampler, const B
   // eye subpath's, its connections', its light subpath's, and about two
   // for the work that casts none and s = 1, t = 1), times vcm's factor,
   // and the merges'.
-  const double samples = 2.0 * kMergePilotPasses * double(moments.pixels().size());
+  const double samples = 2.0 * kMergePilotPasses * double(grid.pixels.size());
   const double light_paths = 2.0 * kMergePilotPasses * double(pixels.size());
   const size_t escaped = size_t(PathEnd::Escaped);
   const double eye = double(stats.eye_vertices + stats.eye_ends[escaped] + stats.light_samples +
