@@ -200,3 +200,32 @@ TEST(MergePilot, AResumeGoesOnAsItsCheckpointWasMade) {
   }
   std::remove(checkpoint.c_str());
 }
+
+// Processes that render one image choose alike: under a time budget, MPI's
+// ranks and --part's parts keep merges with no pilot (whether it fits
+// depends on each one's clock); under a sample budget MPI's ranks run the
+// pilot even when resuming, since only one of them reads the checkpoint.
+// A vcm render that becomes bdpt takes bdpt's own rate pilot, whatever
+// rate was given.
+TEST(MergePilot, ProcessesOfOneImageChooseAlike) {
+  const auto scene = shipped_scene("cornell-box.pbrt");
+  RenderOptions timed = vcm_options(*scene, 96, 96, 0);
+  timed.time_limit_seconds = 30.0;
+  timed.share_count = 2;
+  EXPECT_FALSE(pilot(*scene, timed).estimate.has_value());
+  timed.share_count = 1;
+  timed.checkpoint_rank = 1;
+  EXPECT_FALSE(pilot(*scene, timed).estimate.has_value());
+  RenderOptions rank = vcm_options(*scene, 96, 96, 256);
+  rank.checkpoint_rank = 1;
+  rank.resume = true;
+  rank.resume_reads = false;
+  rank.checkpoint_path = (std::filesystem::temp_directory_path() / "lantern_merge_pilot_no_such.ckpt").string();
+  const MergingChoice c = pilot(*scene, rank);
+  EXPECT_TRUE(c.estimate.has_value());
+  EXPECT_FALSE(c.from_checkpoint);
+  RenderOptions given = rank;
+  given.light_subpath_rate = 0.5f;
+  EXPECT_EQ(rendered_as(given, c, *scene).light_subpath_rate, c.merge ? 0.5f : kLightSubpathsAuto);
+  EXPECT_FALSE(c.merge);
+}

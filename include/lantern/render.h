@@ -237,11 +237,13 @@ struct RenderStats {
   std::vector<double> split_error;
   double split_camera_share = 0.0;
   // vcm with --merging auto: whether its pilot kept merges (1) or had it
-  // render as bdpt (0), and its estimates for vcm and for bdpt: relMSE
-  // per camera sample and rays per camera sample (-1: no pilot ran); of
-  // bdpt's error, the part from light its pilot missed; the pilots' wall
-  // seconds (bdpt's included).
+  // render as bdpt (0), or its checkpoint did (from_checkpoint), and the
+  // pilot's estimates for vcm and for bdpt: relMSE per camera sample and
+  // rays per camera sample (-1: no choice made); of bdpt's error, the
+  // part from light its pilot missed; the pilots' wall seconds (bdpt's
+  // included).
   int merging_pilot = -1;
+  bool merging_from_checkpoint = false;
   std::array<double, 2> merging_error{}, merging_cost{};
   double merging_missed = 0.0, merging_seconds = 0.0;
   float vcm_last_radius = 0.f;  // vcm: the merging radius of the last pass traced

@@ -259,9 +259,9 @@ void report(const std::string& out, const RenderOptions& o, const RenderResult& 
   if (!s.split_error.empty())
     logging::info("split: %u paths per camera sample, the pilot's choice (--split auto)", s.split);
   if (s.merging_pilot >= 0)
-    logging::info(s.merging_pilot == 0
-                      ? "vcm: merges do not pay here, rendered as bdpt (the pilot's choice, --merging auto)"
-                      : "vcm: merges pay here (the pilot's choice, --merging auto)");
+    logging::info("vcm: %s (%s, --merging auto)",
+                  s.merging_pilot == 0 ? "rendered as bdpt, without merges" : "merges kept",
+                  s.merging_from_checkpoint ? "as its checkpoint was made" : "the pilot's choice");
   if (!s.light_subpath_error.empty())
     logging::info("light subpaths: %g per camera sample, the pilot's choice (--light-subpaths auto)%s",
                   double(s.light_subpath_rate),

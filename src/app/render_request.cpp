@@ -149,6 +149,8 @@ ImageMetadata render_metadata(const Scene& scene, const std::string& scene_path,
   add_render_settings(md, o);
   if (r.stats.light_subpath_rate >= 0.f)  // bdpt: the rate used (the pilot's choice under auto)
     md.emplace_back("lantern:light_subpath_rate", exact_text(r.stats.light_subpath_rate));
+  if (r.stats.merging_pilot >= 0)  // vcm: merged, or rendered as bdpt (its waves then bdpt's default)
+    md.emplace_back("lantern:merging", r.stats.merging_pilot == 1 ? "merges" : "rendered as bdpt");
   add_provenance(md, provenance);
   if (const ImageRegion region = image_region(scene, o); region.cropped())
     // A crop (Film "cropwindow", "pixelbounds"): where it lies in the whole

@@ -119,14 +119,15 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
                 {"first_radius", s.vcm_radius},
                 {"last_radius", s.vcm_last_radius},
                 {"grid_build_seconds", s.vcm_grid_seconds}};
-  if (s.merging_pilot >= 0)
-    j["merging"] = {{"merges", s.merging_pilot == 1},
-                    {"pilot",
-                     {{"candidates", {"vcm", "bdpt"}},
-                      {"relmse_per_sample", s.merging_error},
-                      {"rays_per_sample", s.merging_cost},
-                      {"bdpt_missed_light", s.merging_missed},
-                      {"seconds", s.merging_seconds}}}};
+  if (s.merging_pilot >= 0) {
+    j["merging"] = {{"merges", s.merging_pilot == 1}, {"from_checkpoint", s.merging_from_checkpoint}};
+    if (!s.merging_from_checkpoint)
+      j["merging"]["pilot"] = {{"candidates", {"vcm", "bdpt"}},
+                               {"relmse_per_sample", s.merging_error},
+                               {"rays_per_sample", s.merging_cost},
+                               {"bdpt_missed_light", s.merging_missed},
+                               {"seconds", s.merging_seconds}};
+  }
   if (s.split > 0) {
     j["split"] = {{"paths_per_camera_sample", s.split}};
     if (!s.split_error.empty())

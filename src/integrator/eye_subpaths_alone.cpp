@@ -167,9 +167,8 @@ GridMeans EyeAloneMoments::bdpt_means() const {
   GridMeans m;
   m.samples = n;
   for (size_t g = 0; g < grid_.pixels.size(); ++g) {
-    const double spread = std::max(0.0, sample_square_[g] - sample_sum_[g] * sample_sum_[g] / n) / (n - 1.0);
     m.mean.push_back(value_[g] / n);
-    m.variance.push_back((spread + splat_square_[g] / n) / n);
+    m.variance.push_back(grid_mean_variance(sample_sum_[g], sample_square_[g], n, splat_square_[g]));
   }
   return m;
 }

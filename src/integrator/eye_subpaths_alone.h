@@ -23,6 +23,7 @@
 // where the two pilots agree (eye_subpaths_alone_pay).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <string>
@@ -90,6 +91,13 @@ struct GridMeans {
   std::vector<double> mean, variance;
   double samples = 0.0;  // camera samples per pixel
 };
+// The variance of a pixel's mean of n samples, from their sum and the sum
+// of their squares (the samples' spread: a stratified sampler's mean has
+// less), plus its splats' second moment summed over the n.
+inline double grid_mean_variance(double sum, double square, double n, double splat_square) {
+  const double spread = std::max(0.0, square - sum * sum / n) / (n - 1.0);
+  return (spread + splat_square / n) / n;
+}
 
 // The pilot's sums: per pixel of the grid and seed, the mean of bdpt at
 // rate q (its camera samples, the light subpath's share weighted for q but

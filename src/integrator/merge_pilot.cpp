@@ -1,8 +1,8 @@
 #include "integrator/merge_pilot.h"
 
 #include <tbb/enumerable_thread_specific.h>
+#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <array>
@@ -81,10 +81,8 @@ class VcmMoments {
     GridMeans m;
     m.samples = n;
     for (size_t g = 0; g < value_.size(); ++g) {
-      const double sum = camera_[g][0] + camera_[g][1];
-      const double spread = std::max(0.0, camera_square_[g] - sum * sum / n) / (n - 1.0);
       m.mean.push_back(value_[g] / n);
-      m.variance.push_back((spread + splat_square_[g] / n) / n);
+      m.variance.push_back(grid_mean_variance(camera_[g][0] + camera_[g][1], camera_square_[g], n, splat_square_[g]));
     }
     return m;
   }
@@ -132,10 +130,10 @@ bool merges_pay(const MergeEstimate& e) {
 }
 
 bool worth_a_merge_pilot(const BdptSettings& vcm, uint32_t wave_paths) {
-  const double width = vcm.full_width > 0 ? vcm.full_width : vcm.width;
-  const double height = vcm.full_height > 0 ? vcm.full_height : vcm.height;
+  // (the film's pixels: a crop window's render is that part; every part of
+  // a render shares its film's size, and so the answer)
   const double pilot = 2.0 * kMergePilotPasses * double(wave_paths);
-  return vcm.planned_spp == 0 || double(vcm.planned_spp) * width * height >= 16.0 * pilot;
+  return vcm.planned_spp == 0 || double(vcm.planned_spp) * double(vcm.width) * double(vcm.height) >= 16.0 * pilot;
 }
 
 bool estimate_vcm(const Scene& scene, const LightSampler& light_sampler, const BdptSettings& vcm, uint32_t wave_paths,
@@ -156,6 +154,7 @@ bool estimate_vcm(const Scene& scene, const LightSampler& light_sampler, const B
   const uint32_t first = std::max(1u, (vcm.planned_spp > 0 ? vcm.planned_spp : 128u) / 2);
   BdptSettings pilot = pilot_settings(vcm, width, height, 0);
   std::vector<WaveOutput> outputs(kMergePilotPasses);
+  const auto start = std::chrono::steady_clock::now();
   WaveStats stats;
   for (int seed = 0; seed < 2; ++seed) {
     pilot.seed = hash_key(vcm.seed, 0x6d657267ULL, uint64_t(seed));  // (two seeds of their own)
@@ -174,11 +173,11 @@ bool estimate_vcm(const Scene& scene, const LightSampler& light_sampler, const B
     };
     uint32_t from = 0;
     if (seed == 0 && time_budget > 0.0) {  // (a pilot that would take more than a sixteenth of the budget does not run)
-      const auto start = std::chrono::steady_clock::now();
       trace(from++);
       const double wave_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      const double threads = double(std::max(1, tbb::this_task_arena::max_concurrency()));
-      if (16.0 * 2.0 * kMergePilotPasses * wave_seconds / threads > time_budget) return false;
+      const double threads = double(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+      const double waves_at_once = std::max(1.0, std::min(threads, double(kMergePilotPasses)));
+      if (16.0 * wave_seconds * (1.0 + (2.0 * kMergePilotPasses - 1.0) / waves_at_once) > time_budget) return false;
     }
     tbb::parallel_for(from, kMergePilotPasses, trace);
     for (const WaveOutput& out : outputs) moments.add(seed, out);  // (in pass order)
@@ -198,13 +197,9 @@ bool estimate_vcm(const Scene& scene, const LightSampler& light_sampler, const B
   const double light = double(stats.light_vertices + stats.light_ends[escaped] + stats.camera_connections);
   e.merges = double(stats.merges) / samples;
   e.vcm_cost = kVcmRayFactor * (eye / samples + 2.0 + light / light_paths) + kMergeRays * e.merges;
+  e.seconds_per_path =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / (samples + light_paths);
   return true;
-}
-
-uint32_t merging_wave_paths(uint32_t pixels, int wave_size) {
-  const uint32_t most = std::max<uint32_t>(1, uint32_t(wave_size));
-  const uint32_t waves = (pixels + most - 1) / most;
-  return std::max<uint32_t>(1, (pixels + waves - 1) / waves);
 }
 
 MergingChoice choose_merging(const Scene& scene, const LightSampler& light_sampler, const RenderOptions& opt,
@@ -214,13 +209,21 @@ MergingChoice choose_merging(const Scene& scene, const LightSampler& light_sampl
   // A scene that asks for photon mapping (an "sppm" Integrator, whose
   // photons per iteration are known) asked for merges.
   if (scene.settings.photons_per_iteration != 0) return c;
+  // Processes that render one image (MPI's ranks, --part's parts) choose
+  // alike from the pilot's sums, but not from their clocks: under a time
+  // budget, whether the pilot fits depends on time, so they merge.
+  const bool mpi = opt.checkpoint_rank >= 0, timed = opt.time_limit_seconds > 0;
+  if (timed && (mpi || opt.share_count > 1 || opt.time_limit_seconds < kMergePilotLeastBudget)) return c;
   // A resumed render goes on as its checkpoint was made, with merges or as
-  // bdpt, whatever a pilot would choose now (under a time budget whether
-  // the pilot runs depends on time; a larger --spp starts it elsewhere).
-  if (opt.resume && opt.resume_reads) {
+  // bdpt, whatever a pilot would choose now (a larger --spp starts it
+  // elsewhere; a time budget's may not fit). Under MPI only one rank reads
+  // the checkpoint, so the ranks run the pilot, and a checkpoint of the
+  // other choice is refused, as any other difference is.
+  if (opt.resume && !mpi) {
     const std::vector<std::string> pieces = checkpoint_pieces(opt.checkpoint_path);
     if (!pieces.empty()) {
       c.merge = read_checkpoint_fingerprint(pieces[0]).find("\nintegrator=bdpt\n") == std::string::npos;
+      c.from_checkpoint = true;
       return c;
     }
   }
@@ -232,24 +235,24 @@ MergingChoice choose_merging(const Scene& scene, const LightSampler& light_sampl
   if (!estimate_vcm(scene, light_sampler, vcm, wave_paths, opt.ray_backend, opt.time_limit_seconds, e, vcm_means))
     return c;
   // bdpt as it would render: its rate and choice of light, from its own
-  // pilot, and its error and cost on the grid at that rate.
-  RenderOptions as_bdpt = opt;
-  as_bdpt.integrator = Integrator::Bdpt;
+  // pilot, and its error and cost on the grid at that rate (the grid
+  // pilot's bdpt half if the rate pilot did not run it: about as many
+  // camera and light paths as half the grid pilot's samples).
+  MergingChoice no_merges;
+  no_merges.merge = false;
+  const RenderOptions as_bdpt = rendered_as(opt, no_merges, scene);
   BdptSettings bdpt = bdpt_settings(scene, as_bdpt, region, planned_spp);
   const PathTracerSettings eye_alone = path_settings(scene, as_bdpt, region, planned_spp);
-  float q = as_bdpt.light_subpath_rate;
-  std::optional<EyeAloneEstimate> grid;
-  if (q == kLightSubpathsAuto) {
-    const bool alone = may_render_eye_subpaths_alone(scene, as_bdpt) && worth_a_grid_pilot(bdpt);
-    c.bdpt = choose_light_subpath_rate(scene, light_sampler, bdpt, opt.ray_backend, alone ? &eye_alone : nullptr,
-                                       opt.time_limit_seconds, opt.light_choice == LightChoiceKind::Auto);
-    q = c.bdpt->rate;
-    if (q > 0.f) bdpt.light_choice = c.bdpt->light_choice;
-    grid = c.bdpt->eye_alone;
+  const bool alone = may_render_eye_subpaths_alone(scene, as_bdpt) && worth_a_grid_pilot(bdpt);
+  c.bdpt = choose_light_subpath_rate(scene, light_sampler, bdpt, opt.ray_backend, alone ? &eye_alone : nullptr,
+                                     opt.time_limit_seconds, opt.light_choice == LightChoiceKind::Auto);
+  const float q = c.bdpt->rate;
+  if (q > 0.f) bdpt.light_choice = c.bdpt->light_choice;
+  std::optional<EyeAloneEstimate> grid = c.bdpt->eye_alone;
+  if (!grid) {
+    if (timed && 16.0 * e.seconds_per_path * grid_pilot_samples() > opt.time_limit_seconds) return MergingChoice{};
+    grid = estimate_eye_subpaths_alone(scene, light_sampler, bdpt, q, eye_alone, opt.ray_backend, false);
   }
-  if (!grid)
-    grid = estimate_eye_subpaths_alone(scene, light_sampler, bdpt, q > 0.f ? q : 1.f, eye_alone, opt.ray_backend,
-                                       q == 0.f);
   e.missed = missed_light_error(vcm_means, grid->bdpt_means);
   e.bdpt_error = (q == 0.f ? grid->alone_error : grid->bdpt_error) + e.missed;
   e.bdpt_cost = q == 0.f ? grid->alone_cost : grid->bdpt_cost;
@@ -262,11 +265,23 @@ RenderOptions rendered_as(const RenderOptions& asked, const MergingChoice& choic
   RenderOptions o = asked;
   if (choice.merge) return o;
   o.integrator = Integrator::Bdpt;
+  o.light_subpath_rate = kLightSubpathsAuto;  // (bdpt's pilot chooses it: vcm has none to give)
   // (the waves bdpt's own default, unless they were asked for)
   const int64_t photons = scene.settings.photons_per_iteration;
   if (o.wave_size == default_wave_size(Integrator::Vcm, photons))
     o.wave_size = default_wave_size(Integrator::Bdpt, photons);
   return o;
+}
+
+void report_merging(const MergingChoice& c, double seconds, RenderStats& stats) {
+  if (!c.estimate && !c.from_checkpoint) return;
+  stats.merging_pilot = c.merge ? 1 : 0;
+  stats.merging_from_checkpoint = c.from_checkpoint;
+  stats.merging_seconds = seconds;
+  if (!c.estimate) return;
+  stats.merging_error = {c.estimate->vcm_error, c.estimate->bdpt_error};
+  stats.merging_cost = {c.estimate->vcm_cost, c.estimate->bdpt_cost};
+  stats.merging_missed = c.estimate->missed;
 }
 
 }  // namespace lantern

@@ -20,9 +20,8 @@
 //
 // The estimates are sums in a fixed order over a pilot of the whole image
 // at seeds of its own, so every part, rank and thread count makes the
-// same choice (under a time budget, whether the pilot runs at all depends
-// on time: choose_merging). A resumed render goes on as its checkpoint
-// was made. A scene that asks for photon mapping keeps its merges.
+// same choice (for a time budget, see choose_merging). A scene that asks
+// for photon mapping keeps its merges.
 #pragma once
 
 #include <cstdint>
@@ -46,6 +45,9 @@ struct MergeEstimate {
   double bdpt_error = 0.0, bdpt_cost = 0.0;  // bdpt as it would render
   double merges = 0.0;                       // per camera sample of the vcm pilot
   double missed = 0.0;                       // of bdpt_error, missed_light_error's
+  // The vcm pilot's wall seconds per path it traced (camera and light):
+  // for a time budget's check of the pilots' time only.
+  double seconds_per_path = 0.0;
 };
 
 // What bdpt's error lacks where its pilot missed light that vcm's found:
@@ -73,9 +75,12 @@ inline constexpr double kVcmRayFactor = 1.3, kMergeRays = 0.8;
 
 // The vcm pilot's passes per seed.
 inline constexpr uint32_t kMergePilotPasses = 8;
+inline constexpr double kMergePilotLeastBudget = 2.0;
 
-// Whether a vcm render is large enough for the pilot: its light subpaths
-// at least 16 times the pilot's (a time budget: see choose_merging).
+// Whether a vcm render is large enough for the pilot: its samples at
+// least 16 times the pilot's light subpaths (a time budget: see
+// choose_merging, and at least kMergePilotLeastBudget seconds, where the
+// pilot's first wave, which tells whether the rest fits, costs little).
 bool worth_a_merge_pilot(const BdptSettings& vcm, uint32_t wave_paths);
 
 // vcm's side of the estimate: `vcm` the render's settings, wave_paths the
@@ -84,28 +89,29 @@ bool worth_a_merge_pilot(const BdptSettings& vcm, uint32_t wave_paths);
 bool estimate_vcm(const Scene& scene, const LightSampler& light_sampler, const BdptSettings& vcm, uint32_t wave_paths,
                   RayBackend backend, double time_budget, MergeEstimate& e, GridMeans& means);
 
-// The paths of each wave of a pass of one sample per pixel (vcm, bpm, ppm):
-// at most wave_size, all waves of a pass the same size (a pass's last wave
-// would otherwise have fewer light vertices to merge with).
-uint32_t merging_wave_paths(uint32_t pixels, int wave_size);
-
 struct MergingChoice {
   bool merge = true;
   std::optional<MergeEstimate> estimate;  // when the pilot ran
   // bdpt's own pilot's choice (light_subpath_rate.h), which a render
   // without merges takes as it is
   std::optional<LightSubpathRateChoice> bdpt;
+  bool from_checkpoint = false;  // a resumed render's: as its checkpoint was made
 };
 
 // For a vcm render with RenderOptions::merging_pilot large enough to be
 // worth it, runs bdpt's pilots and vcm's, and says whether to merge.
-// Under a time budget the pilot is not run when it would take more than
-// a sixteenth of the budget at the time its first wave took: the one
-// choice that depends on time, as the grid pilot's (light_subpath_rate.h).
+// Under a time budget the pilots are not run when they would take more
+// than a sixteenth of the budget at the time the first wave took: the one
+// choice that depends on time, as the grid pilot's (light_subpath_rate.h);
+// so they are not run under a time budget where several processes render
+// one image (MPI, --part), which must choose alike. A resumed render (of
+// one process) goes on as its checkpoint was made.
 MergingChoice choose_merging(const Scene& scene, const LightSampler& light_sampler, const RenderOptions& opt,
                              const ImageRegion& region, uint32_t planned_spp);
 // The options a render runs with: the asked ones, or bdpt's if merges do
 // not pay (and bdpt's waves, unless --wave-size asked for others).
 RenderOptions rendered_as(const RenderOptions& asked, const MergingChoice& choice, const Scene& scene);
+// --stats: the choice, and the pilot's estimates; `seconds` the pilots'.
+void report_merging(const MergingChoice& choice, double seconds, RenderStats& stats);
 
 }  // namespace lantern

@@ -418,15 +418,6 @@ bool RenderSession::wait_for(double seconds) {
                                  [&] { return state_->finished; });
 }
 
-// --stats: the merge pilot's estimates (merge_pilot.h).
-static void report_merging(const MergeEstimate& e, bool merge, double seconds, RenderStats& stats) {
-  stats.merging_pilot = merge ? 1 : 0;
-  stats.merging_seconds = seconds;
-  stats.merging_error = {e.vcm_error, e.bdpt_error};
-  stats.merging_cost = {e.vcm_cost, e.bdpt_cost};
-  stats.merging_missed = e.missed;
-}
-
 // --stats: the fields guiding learnt (a tree the render does not sample,
 // the radiance field under --guide-light alone, is not counted).
 static void report_guiding(const GuidingField& guiding, RenderStats& stats) {
@@ -472,7 +463,7 @@ RenderResult RenderSession::render_all() {
   Film& film = s.film;
   const LightSampler light_sampler(scene.lights, scene.shapes, scene.textures, asked.light_sampler);
   // vcm whose merges do not pay renders as bdpt, in every respect
-  // (merge_pilot.h); its pilot's time counts in a time budget.
+  // (merge_pilot.h); its pilots' time counts in a time budget.
   const Clock::time_point pilots_start = Clock::now();
   const MergingChoice merging = choose_merging(scene, light_sampler, asked, s.region, planned_spp);
   const double merging_seconds = std::chrono::duration<double>(Clock::now() - pilots_start).count();
@@ -490,7 +481,7 @@ RenderResult RenderSession::render_all() {
   }();
   res.resumed_samples = film.total_samples();
   const double prior_seconds = info.elapsed_seconds;
-  s.start = pilots_start;
+  s.start = Clock::now() - std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(merging_seconds));
   s.done = res.resumed_samples;
   s.total = uint64_t(s.width) * uint64_t(s.height) * (opt.time_limit_seconds > 0 ? 1 : uint64_t(opt.spp));
   s.began = true;
@@ -537,7 +528,7 @@ RenderResult RenderSession::render_all() {
       if (uses_light_subpath_rate(opt.integrator))
         set_light_subpath_rate(scene, light_sampler, opt, eye_alone, bs, res.stats,
                                merging.bdpt ? &*merging.bdpt : nullptr);
-      if (merging.estimate) report_merging(*merging.estimate, merging.merge, merging_seconds, res.stats);
+      report_merging(merging, merging_seconds, res.stats);
       // (no light subpaths: the path tracer, eye_subpaths_alone.h, whose
       // camera samples may split as its own do)
       if (bs.light_subpath_rate == 0.f) {

@@ -292,4 +292,10 @@ PathTracerSettings path_settings(const Scene& scene, const RenderOptions& opt, c
   return ps;
 }
 
+uint32_t merging_wave_paths(uint32_t pixels, int wave_size) {
+  const uint32_t most = std::max<uint32_t>(1, uint32_t(wave_size));
+  const uint32_t waves = (pixels + most - 1) / most;
+  return std::max<uint32_t>(1, (pixels + waves - 1) / waves);
+}
+
 }  // namespace lantern

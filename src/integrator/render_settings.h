@@ -43,5 +43,9 @@ BdptSettings bdpt_settings(const Scene& scene, const RenderOptions& opt, const I
 uint32_t camera_sample_split(const Scene& scene, const RenderOptions& opt);
 PathTracerSettings path_settings(const Scene& scene, const RenderOptions& opt, const ImageRegion& region,
                                  uint32_t planned_spp);
+// The paths of each wave of a pass of one sample per pixel (vcm, bpm, ppm):
+// at most wave_size, all waves of a pass the same size (a pass's last wave
+// would otherwise have fewer light vertices to merge with).
+uint32_t merging_wave_paths(uint32_t pixels, int wave_size);
 
 }  // namespace lantern
