@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "film/checkpoint.h"
 #include "integrator/bdpt_wave.h"
 #include "integrator/pilot.h"
+#include "integrator/render_checkpoints.h"
 #include "math/rng.h"
 #include "scene/scene.h"
 
@@ -195,8 +195,8 @@ bool estimate_vcm(const Scene& scene, const LightSampler& light_sampler, const B
   const double eye = double(stats.eye_vertices + stats.eye_ends[escaped] + stats.light_samples +
                             stats.light_connections - stats.camera_connections);
   const double light = double(stats.light_vertices + stats.light_ends[escaped] + stats.camera_connections);
-  e.merges = double(stats.merges) / samples;
-  e.vcm_cost = kVcmRayFactor * (eye / samples + 2.0 + light / light_paths) + kMergeRays * e.merges;
+  e.vcm_cost =
+      kVcmRayFactor * (eye / samples + 2.0 + light / light_paths) + kMergeRays * double(stats.merges) / samples;
   e.seconds_per_path =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / (samples + light_paths);
   return true;
@@ -219,10 +219,9 @@ MergingChoice choose_merging(const Scene& scene, const LightSampler& light_sampl
   // elsewhere; a time budget's may not fit). Under MPI only one rank reads
   // the checkpoint, so the ranks run the pilot, and a checkpoint of the
   // other choice is refused, as any other difference is.
-  if (opt.resume && !mpi) {
-    const std::vector<std::string> pieces = checkpoint_pieces(opt.checkpoint_path);
-    if (!pieces.empty()) {
-      c.merge = read_checkpoint_fingerprint(pieces[0]).find("\nintegrator=bdpt\n") == std::string::npos;
+  if (!mpi) {
+    if (const std::string saved = resumed_fingerprint(opt); !saved.empty()) {
+      c.merge = fingerprint_value(saved, "integrator") != name(Integrator::Bdpt);
       c.from_checkpoint = true;
       return c;
     }

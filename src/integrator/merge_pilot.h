@@ -43,7 +43,6 @@ struct MergeEstimate {
   // relMSE per camera sample (as EyeAloneMoments) and its cost in rays
   double vcm_error = 0.0, vcm_cost = 0.0;
   double bdpt_error = 0.0, bdpt_cost = 0.0;  // bdpt as it would render
-  double merges = 0.0;                       // per camera sample of the vcm pilot
   double missed = 0.0;                       // of bdpt_error, missed_light_error's
   // The vcm pilot's wall seconds per path it traced (camera and light):
   // for a time budget's check of the pilots' time only.

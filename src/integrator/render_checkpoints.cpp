@@ -59,15 +59,24 @@ std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& regi
   return f;
 }
 
+std::string fingerprint_value(const std::string& f, const std::string& key) {
+  const std::string lines = "\n" + f, head = "\n" + key + "=";
+  const size_t at = lines.find(head);
+  if (at == std::string::npos) return "";
+  const size_t from = at + head.size(), end = lines.find('\n', from);
+  return lines.substr(from, end == std::string::npos ? std::string::npos : end - from);
+}
+
+std::string resumed_fingerprint(const RenderOptions& o) {
+  if (!o.resume) return "";
+  const std::vector<std::string> pieces = checkpoint_pieces(o.checkpoint_path);
+  return pieces.empty() ? "" : read_checkpoint_fingerprint(pieces[0]);
+}
+
 namespace {
 
 // A fingerprint's "budget=" line, and the fingerprint without it.
-std::string budget_line(const std::string& f) {
-  const size_t at = f.find("\nbudget=");
-  if (at == std::string::npos) return "";
-  const size_t end = f.find('\n', at + 1);
-  return f.substr(at + 8, end == std::string::npos ? std::string::npos : end - at - 8);
-}
+std::string budget_line(const std::string& f) { return fingerprint_value(f, "budget"); }
 std::string without_budget(const std::string& f) {
   const size_t at = f.find("\nbudget=");
   if (at == std::string::npos) return f;

@@ -17,6 +17,11 @@ namespace lantern {
 // film sums them in: a checkpoint continues only a render that agrees on
 // all of it. Thread count is not here: it changes neither.
 std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& region);
+// A fingerprint's value for `key` ("" when it has no such line).
+std::string fingerprint_value(const std::string& fingerprint, const std::string& key);
+// The fingerprint of the checkpoint a resumed render continues ("": not
+// resumed, or no checkpoint yet).
+std::string resumed_fingerprint(const RenderOptions& o);
 
 // Why a checkpoint made with fingerprint `saved` cannot be continued by a
 // render with fingerprint `now` and options `o` ("" when it can): they must
