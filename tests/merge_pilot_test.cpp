@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "integrator/render_settings.h"
 #include "lantern/render.h"
@@ -43,9 +44,9 @@ RenderOptions vcm_options(const Scene& scene, int width, int height, int spp) {
   return o;
 }
 
-MergingChoice pilot(const Scene& scene, const RenderOptions& o) {
+MergingChoice pilot(const Scene& scene, const RenderOptions& o, bool agreed = false) {
   const LightSampler light_sampler(scene.lights, scene.shapes, scene.textures, LightSamplerKind::Bvh);
-  return choose_merging(scene, light_sampler, o, image_region(scene, o), uint32_t(o.spp));
+  return choose_merging(scene, light_sampler, o, image_region(scene, o), uint32_t(o.spp), agreed);
 }
 
 double ratio(const MergeEstimate& e) { return e.bdpt_error * e.bdpt_cost / (e.vcm_error * e.vcm_cost); }
@@ -197,16 +198,35 @@ TEST(MergePilot, AResumeGoesOnAsItsCheckpointWasMade) {
     const MergingChoice c = pilot(*scene, o);
     EXPECT_EQ(c.merge, made_by == Integrator::Vcm);
     EXPECT_FALSE(c.estimate.has_value());
+    // MPI's ranks: rank 0 reads the checkpoint and goes on as it was made;
+    // another runs no pilot and takes rank 0's choice (RenderHooks::agree,
+    // here in one process: what rank 0 says, the other hears).
+    std::vector<std::string> said;
+    RenderHooks rank0, rank1;
+    rank0.agree = [&said](std::string& choice) { said.push_back(choice); };
+    rank1.agree = [&said, heard = size_t(0)](std::string& choice) mutable { choice = said.at(heard++); };
+    RenderOptions r0 = o, r1 = o;
+    r0.checkpoint_rank = 0;
+    r1.checkpoint_rank = 1;
+    r1.resume_reads = false;
+    MergingChoice c0 = pilot(*scene, r0, true), c1 = pilot(*scene, r1, true);
+    EXPECT_TRUE(c0.from_checkpoint);
+    EXPECT_FALSE(c1.estimate.has_value()) << "only the rank that reads the checkpoint decides";
+    agree_on(rank0, c0);
+    agree_on(rank1, c1);
+    EXPECT_EQ(c1.merge, made_by == Integrator::Vcm);
+    EXPECT_TRUE(c1.from_checkpoint);
   }
   std::remove(checkpoint.c_str());
 }
 
-// Processes that render one image choose alike: under a time budget, MPI's
-// ranks and --part's parts keep merges with no pilot (whether it fits
-// depends on each one's clock); under a sample budget MPI's ranks run the
-// pilot even when resuming, since only one of them reads the checkpoint.
-// A vcm render that becomes bdpt takes bdpt's own rate pilot, whatever
-// rate was given.
+// Processes that render one image choose alike: under a time budget,
+// --part's parts, and MPI's ranks not told rank 0's choice, keep merges
+// with no pilot (whether it fits depends on each one's clock); ranks that
+// agree (RenderHooks::agree) run it. Under a sample budget, ranks not
+// told the choice run the pilot even when resuming, since only one of them
+// reads the checkpoint. A vcm render that becomes bdpt takes bdpt's own
+// rate pilot, whatever rate was given.
 TEST(MergePilot, ProcessesOfOneImageChooseAlike) {
   const auto scene = shipped_scene("cornell-box.pbrt");
   RenderOptions timed = vcm_options(*scene, 96, 96, 0);
@@ -216,6 +236,7 @@ TEST(MergePilot, ProcessesOfOneImageChooseAlike) {
   timed.share_count = 1;
   timed.checkpoint_rank = 1;
   EXPECT_FALSE(pilot(*scene, timed).estimate.has_value());
+  EXPECT_TRUE(pilot(*scene, timed, true).estimate.has_value());
   RenderOptions rank = vcm_options(*scene, 96, 96, 256);
   rank.checkpoint_rank = 1;
   rank.resume = true;

@@ -185,6 +185,13 @@ struct RenderHooks {
   // Called once at the end, with the film, before the image is made from
   // it: the place to add other processes' films into it.
   std::function<void(Film&)> reduce_film;
+  // Processes that render one image (MPI's ranks) make one choice where a
+  // pilot or a checkpoint decides (vcm's merges, bdpt's light subpaths,
+  // the path tracer's split): the process that reads the checkpoint's.
+  // Every process calls it at the same points, in the same order, with its
+  // own choice's bytes, and finds that process's in them after. Unset:
+  // each process keeps its own.
+  std::function<void(std::string& choice)> agree;
 };
 
 struct RenderStats {

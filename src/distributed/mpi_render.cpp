@@ -74,6 +74,7 @@ MpiRender::MpiRender(const MpiSession& session, RenderOptions& o, RenderHooks& h
   h.next_ticket = [this] { return next_ticket(); };
   h.reduce_film = [this](Film& film) { reduce(film); };
   h.sync_checkpoint = [this](UnitSet& done, double& elapsed) { sync_checkpoint(done, elapsed); };
+  h.agree = [this](std::string& choice) { agree(choice); };
   o.checkpoint_rank = session_.rank();
   o.resume_reads = session_.rank() == 0;
 }
@@ -215,6 +216,17 @@ void MpiRender::sync_checkpoint(UnitSet& done, double& elapsed_seconds) {
     for (size_t i = 0; i + 1 < flat.size(); i += 2) runs.emplace_back(flat[i], flat[i + 1]);
     done = UnitSet::of(std::move(runs));
   }
+}
+
+// Rank 0 reads the checkpoint, and so makes the choices (RenderHooks::
+// agree). Called before any ticket, so the scheduler thread is not running
+// yet (MPI_THREAD_SERIALIZED).
+void MpiRender::agree(std::string& choice) {
+  uint64_t n = choice.size();
+  check(MPI_Bcast(&n, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD), "choice");
+  if (n > (uint64_t(1) << 30)) throw std::runtime_error("MPI: a choice of " + std::to_string(n) + " bytes");
+  choice.resize(size_t(n));
+  if (n > 0) check(MPI_Bcast(choice.data(), int(n), MPI_BYTE, 0, MPI_COMM_WORLD), "choice");
 }
 
 std::vector<MpiRender::RankReport> MpiRender::gather(const RenderStats& stats) const {

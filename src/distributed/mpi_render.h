@@ -43,7 +43,7 @@ class MpiSession {
 };
 
 // Installs the hooks (RenderHooks::next_ticket, reduce_film,
-// sync_checkpoint) that make one rank's render() its part of the whole;
+// sync_checkpoint, agree) that make one rank's render() its part of the whole;
 // lives across the render() call. With a checkpoint, rank r writes its own
 // piece (FILE.rank<r>) and rank 0 alone reads them all on --resume, then
 // tells the others which units are done.
@@ -78,6 +78,7 @@ class MpiRender {
   void finish_scheduling();
   void reduce(Film& film);
   void sync_checkpoint(UnitSet& done, double& elapsed_seconds);
+  void agree(std::string& choice);  // rank 0's, to every rank
 
   const MpiSession& session_;
   std::atomic<uint64_t> counter_{0};  // rank 0: the next ticket

@@ -6,6 +6,7 @@
 #include <limits>
 #include <memory>
 
+#include "integrator/agreement.h"
 #include "integrator/bdpt_wave.h"
 #include "integrator/eye_subpaths_alone.h"
 #include "integrator/light_choice_pilot.h"
@@ -368,14 +369,18 @@ float best_light_subpath_rate(const LightSubpathRateChoice& c, uint32_t spp) {
 
 void set_light_subpath_rate(const Scene& scene, const LightSampler& light_sampler, const RenderOptions& opt,
                             const PathTracerSettings& eye_alone, BdptSettings& bs, RenderStats& stats,
-                            const LightSubpathRateChoice* known) {
+                            const RenderHooks& hooks, const LightSubpathRateChoice* known) {
   // (Debug unit weights have no counts to rescale: rate 1.)
   if (opt.light_subpath_rate == kLightSubpathsAuto && !bs.unit_weights) {
     const bool alone = may_render_eye_subpaths_alone(scene, opt) && worth_a_grid_pilot(bs);
-    const LightSubpathRateChoice c =
+    LightSubpathRateChoice c =
         known ? *known
               : choose_light_subpath_rate(scene, light_sampler, bs, opt.ray_backend, alone ? &eye_alone : nullptr,
                                           opt.time_limit_seconds, opt.light_choice == LightChoiceKind::Auto);
+    // (whether the grid pilot fits a time budget depends on the process's
+    // clock: the processes of one image take one's choice)
+    agree_on(hooks, c.rate);
+    agree_on(hooks, c.light_choice);
     bs.light_subpath_rate = c.rate;
     if (c.rate > 0.f) bs.light_choice = c.light_choice;
     if (!c.light_choice_candidates.empty()) {

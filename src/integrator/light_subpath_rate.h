@@ -188,10 +188,11 @@ LightSubpathRateChoice choose_light_subpath_rate(const Scene& scene, const Light
 
 // bs's rate: the options', or under auto the pilot's choice (`known`:
 // already made, by vcm's merge pilot), which stats report with its
-// estimates. A rate of 0 asks for the path tracer with `eye_alone`'s
-// settings in bdpt's place.
+// estimates; the processes of one image take one's choice (`hooks`,
+// integrator/agreement.h). A rate of 0 asks for the path tracer with
+// `eye_alone`'s settings in bdpt's place.
 void set_light_subpath_rate(const Scene& scene, const LightSampler& light_sampler, const RenderOptions& opt,
                             const PathTracerSettings& eye_alone, BdptSettings& bs, RenderStats& stats,
-                            const LightSubpathRateChoice* known = nullptr);
+                            const RenderHooks& hooks, const LightSubpathRateChoice* known = nullptr);
 
 }  // namespace lantern

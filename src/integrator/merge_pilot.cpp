@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "integrator/agreement.h"
 #include "integrator/bdpt_wave.h"
 #include "integrator/pilot.h"
 #include "integrator/render_checkpoints.h"
@@ -203,23 +204,26 @@ bool estimate_vcm(const Scene& scene, const LightSampler& light_sampler, const B
 }
 
 MergingChoice choose_merging(const Scene& scene, const LightSampler& light_sampler, const RenderOptions& opt,
-                             const ImageRegion& region, uint32_t planned_spp) {
+                             const ImageRegion& region, uint32_t planned_spp, bool agreed) {
   MergingChoice c;
   if (opt.integrator != Integrator::Vcm || !opt.merging_pilot || opt.strategies) return c;
   // A scene that asks for photon mapping (an "sppm" Integrator, whose
   // photons per iteration are known) asked for merges.
   if (scene.settings.photons_per_iteration != 0) return c;
-  // Processes that render one image (MPI's ranks, --part's parts) choose
-  // alike from the pilot's sums, but not from their clocks: under a time
-  // budget, whether the pilot fits depends on time, so they merge.
+  // Processes that render one image choose alike from the pilot's sums,
+  // but not from their clocks: under a time budget, whether the pilot fits
+  // depends on time, so they merge unless they agree on one's choice.
   const bool mpi = opt.checkpoint_rank >= 0, timed = opt.time_limit_seconds > 0;
-  if (timed && (mpi || opt.share_count > 1 || opt.time_limit_seconds < kMergePilotLeastBudget)) return c;
+  const bool shared = (mpi && !agreed) || opt.share_count > 1;
+  if (timed && (shared || opt.time_limit_seconds < kMergePilotLeastBudget)) return c;
   // A resumed render goes on as its checkpoint was made, with merges or as
   // bdpt, whatever a pilot would choose now (a larger --spp starts it
-  // elsewhere; a time budget's may not fit). Under MPI only one rank reads
-  // the checkpoint, so the ranks run the pilot, and a checkpoint of the
-  // other choice is refused, as any other difference is.
-  if (!mpi) {
+  // elsewhere; a time budget's may not fit). Under MPI one rank reads the
+  // checkpoint: the others take its choice (agreed), or, not told it, run
+  // the pilot, and a checkpoint of the other choice is refused, as any
+  // other difference is.
+  if (opt.resume && mpi && agreed && !opt.resume_reads) return c;
+  if (opt.resume_reads && (!mpi || agreed)) {
     if (const std::string saved = resumed_fingerprint(opt); !saved.empty()) {
       c.merge = fingerprint_value(saved, "integrator") != name(Integrator::Bdpt);
       c.from_checkpoint = true;
@@ -270,6 +274,15 @@ RenderOptions rendered_as(const RenderOptions& asked, const MergingChoice& choic
   if (o.wave_size == default_wave_size(Integrator::Vcm, photons))
     o.wave_size = default_wave_size(Integrator::Bdpt, photons);
   return o;
+}
+
+void agree_on(const RenderHooks& hooks, MergingChoice& choice) {
+  const MergingChoice mine = choice;
+  agree_on(hooks, choice.merge);
+  agree_on(hooks, choice.from_checkpoint);
+  if (choice.merge == mine.merge) return;
+  choice.estimate.reset();
+  choice.bdpt.reset();
 }
 
 void report_merging(const MergingChoice& c, double seconds, RenderStats& stats) {

@@ -101,12 +101,18 @@ struct MergingChoice {
 // worth it, runs bdpt's pilots and vcm's, and says whether to merge.
 // Under a time budget the pilots are not run when they would take more
 // than a sixteenth of the budget at the time the first wave took: the one
-// choice that depends on time, as the grid pilot's (light_subpath_rate.h);
-// so they are not run under a time budget where several processes render
-// one image (MPI, --part), which must choose alike. A resumed render (of
-// one process) goes on as its checkpoint was made.
+// choice that depends on time, as the grid pilot's (light_subpath_rate.h).
+// Processes that render one image must choose alike: MPI's ranks take the
+// choice of the one that reads the checkpoint (`agreed`: RenderHooks::
+// agree is set, agree_on below), which goes on as the checkpoint was made
+// when it resumes one; --part's parts cannot, so under a time budget they
+// run no pilot and merge.
 MergingChoice choose_merging(const Scene& scene, const LightSampler& light_sampler, const RenderOptions& opt,
-                             const ImageRegion& region, uint32_t planned_spp);
+                             const ImageRegion& region, uint32_t planned_spp, bool agreed = false);
+// The choice of the process that reads the checkpoint, where hooks.agree
+// says it (a collective call: every process makes it); this process's
+// estimates are dropped where it chose otherwise.
+void agree_on(const RenderHooks& hooks, MergingChoice& choice);
 // The options a render runs with: the asked ones, or bdpt's if merges do
 // not pay (and bdpt's waves, unless --wave-size asked for others).
 RenderOptions rendered_as(const RenderOptions& asked, const MergingChoice& choice, const Scene& scene);

@@ -465,7 +465,8 @@ RenderResult RenderSession::render_all() {
   // vcm whose merges do not pay renders as bdpt, in every respect
   // (merge_pilot.h); its pilots' time counts in a time budget.
   const Clock::time_point pilots_start = Clock::now();
-  const MergingChoice merging = choose_merging(scene, light_sampler, asked, s.region, planned_spp);
+  MergingChoice merging = choose_merging(scene, light_sampler, asked, s.region, planned_spp, bool(s.hooks.agree));
+  agree_on(s.hooks, merging);
   const double merging_seconds = std::chrono::duration<double>(Clock::now() - pilots_start).count();
   const RenderOptions chosen = rendered_as(asked, merging, scene);
   const RenderOptions& opt = chosen;
@@ -526,13 +527,13 @@ RenderResult RenderSession::render_all() {
         res.stats.vcm_wave_paths = merging_wave_paths(uint32_t(film.width() * film.height()), opt.wave_size);
       PathTracerSettings eye_alone = path_settings(scene, opt, s.region, planned_spp);
       if (uses_light_subpath_rate(opt.integrator))
-        set_light_subpath_rate(scene, light_sampler, opt, eye_alone, bs, res.stats,
+        set_light_subpath_rate(scene, light_sampler, opt, eye_alone, bs, res.stats, s.hooks,
                                merging.bdpt ? &*merging.bdpt : nullptr);
       report_merging(merging, merging_seconds, res.stats);
       // (no light subpaths: the path tracer, eye_subpaths_alone.h, whose
       // camera samples may split as its own do)
       if (bs.light_subpath_rate == 0.f) {
-        if (eye_alone.split == kSplitAuto) set_split(scene, light_sampler, opt, eye_alone, res.stats);
+        if (eye_alone.split == kSplitAuto) set_split(scene, light_sampler, opt, eye_alone, res.stats, s.hooks);
         res.stats.split = cx.split = eye_alone.split;
         stopped = run(PathTracer(scene, light_sampler, eye_alone));
       } else {
@@ -543,7 +544,7 @@ RenderResult RenderSession::render_all() {
             bs.vcm_radius * std::pow(float(res.stats.vcm_last_first_sample + 1), 0.5f * (bs.vcm_alpha - 1.f));
     } else {
       PathTracerSettings ps = path_settings(scene, opt, s.region, planned_spp);
-      if (ps.split == kSplitAuto) set_split(scene, light_sampler, opt, ps, res.stats);
+      if (ps.split == kSplitAuto) set_split(scene, light_sampler, opt, ps, res.stats, s.hooks);
       res.stats.split = cx.split = ps.split;
       stopped = run(PathTracer(scene, light_sampler, ps));
     }

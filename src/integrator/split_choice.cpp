@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "integrator/agreement.h"
 #include "integrator/path_wave.h"
 #include "integrator/pilot.h"
 #include "scene/scene.h"
@@ -99,14 +100,16 @@ SplitChoice choose_split(const Scene& scene, const LightSampler& light_sampler, 
 }
 
 void set_split(const Scene& scene, const LightSampler& light_sampler, const RenderOptions& opt,
-               PathTracerSettings& render, RenderStats& stats) {
+               PathTracerSettings& render, RenderStats& stats, const RenderHooks& hooks) {
   render.split = 1;
-  if (!worth_a_split_pilot(render, opt.time_limit_seconds)) return;
-  const SplitChoice c = choose_split(scene, light_sampler, render, opt.ray_backend);
-  render.split = c.split;
-  stats.split_candidates.assign(kSplitCandidates.begin(), kSplitCandidates.end());
-  stats.split_error.assign(c.error.begin(), c.error.end());
-  stats.split_camera_share = c.camera_share;
+  if (worth_a_split_pilot(render, opt.time_limit_seconds)) {
+    const SplitChoice c = choose_split(scene, light_sampler, render, opt.ray_backend);
+    render.split = c.split;
+    stats.split_candidates.assign(kSplitCandidates.begin(), kSplitCandidates.end());
+    stats.split_error.assign(c.error.begin(), c.error.end());
+    stats.split_camera_share = c.camera_share;
+  }
+  agree_on(hooks, render.split);  // (whether the pilot fits a time budget depends on the process's clock)
 }
 
 }  // namespace lantern

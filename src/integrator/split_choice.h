@@ -60,9 +60,10 @@ SplitChoice choose_split(const Scene& scene, const LightSampler& light_sampler, 
                          RayBackend backend);
 
 // kSplitAuto in `render`: the pilot's choice, or 1 for a render too small to
-// be worth the pilot; the pilot's estimates into `stats`.
+// be worth the pilot; the pilot's estimates into `stats`. The processes of
+// one image take one's choice (`hooks`, integrator/agreement.h).
 void set_split(const Scene& scene, const LightSampler& light_sampler, const RenderOptions& opt,
-               PathTracerSettings& render, RenderStats& stats);
+               PathTracerSettings& render, RenderStats& stats, const RenderHooks& hooks);
 
 // Whether a render is worth the pilot (about 520,000 paths): 16 times as
 // many paths, or a time budget of 8 seconds or more (the pilot takes
