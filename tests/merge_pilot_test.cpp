@@ -139,9 +139,13 @@ TEST(MergePilot, MissedLightIsAVarianceOfItsOwn) {
 // The pilot's error of a vcm camera sample against the one measured from
 // pairs of renders of different seeds (half their squared difference, over
 // the pixel's value squared plus the image's mean squared, as the pilot
-// weighs it), on the Cornell box and on the caustics under a glass ball.
+// weighs it, the value from the other pairs' renders), on the Cornell box,
+// the caustics under a glass ball and the door ajar. On the door a
+// pixel's own mean squared, in place of its seeds' product, left the
+// estimate at 0.75 of the measured error (checked), and the pilot kept
+// merges there where bdpt pays (docs/vcm.md, "Merges that pay").
 TEST(MergePilot, EstimateFollowsTheMeasuredError) {
-  for (const char* name : {"cornell-box.pbrt", "caustics.pbrt"}) {
+  for (const char* name : {"cornell-box.pbrt", "caustics.pbrt", "door-ajar.pbrt"}) {
     const auto scene = shipped_scene(name);
     RenderOptions o = vcm_options(*scene, 64, 48, 16);
     o.sampler.type = SamplerKind::Independent;
@@ -154,27 +158,38 @@ TEST(MergePilot, EstimateFollowsTheMeasuredError) {
     ASSERT_TRUE(estimate_vcm(*scene, light_sampler, bdpt_settings(*scene, o, region, 16), wave_paths,
                              RayBackend::StreamNp, 0.0, e, means));
     const int pairs = LANTERN_ASAN ? 2 : 6;
+    std::vector<Image> images;
+    for (int k = 0; k < 2 * pairs; ++k) {
+      o.seed = uint64_t(k + 1);
+      images.push_back(render(*scene, o).image);
+    }
+    // A pixel's value, which its variance is over, from the other pairs'
+    // renders (a render's error is measured against a reference's, which
+    // its own samples do not move).
+    const size_t pixels = images[0].rgb.size() / 3;
+    auto value = [&](size_t p, int k) {
+      return (images[k].rgb[3 * p] + images[k].rgb[3 * p + 1] + images[k].rgb[3 * p + 2]) / 3.0;
+    };
     double measured = 0.0;
     for (int k = 0; k < pairs; ++k) {
-      o.seed = uint64_t(2 * k + 1);
-      const Image a = render(*scene, o).image;
-      o.seed = uint64_t(2 * k + 2);
-      const Image b = render(*scene, o).image;
-      const size_t pixels = a.rgb.size() / 3;
+      std::vector<double> others(pixels, 0.0);
       double image = 0.0;
-      for (size_t i = 0; i < a.rgb.size(); ++i) image += 0.5 * double(a.rgb[i] + b.rgb[i]) / double(a.rgb.size());
+      for (size_t p = 0; p < pixels; ++p) {
+        for (int j = 0; j < 2 * pairs; ++j)
+          if (j / 2 != k) others[p] += value(p, j) / double(2 * pairs - 2);
+        image += others[p] / double(pixels);
+      }
       double sum = 0.0;
       for (size_t p = 0; p < pixels; ++p) {
-        const double va = (a.rgb[3 * p] + a.rgb[3 * p + 1] + a.rgb[3 * p + 2]) / 3.0;
-        const double vb = (b.rgb[3 * p] + b.rgb[3 * p + 1] + b.rgb[3 * p + 2]) / 3.0;
-        const double m = 0.5 * (va + vb);
-        sum += 0.5 * (va - vb) * (va - vb) / (m * m + image * image);
+        const double d = value(p, 2 * k) - value(p, 2 * k + 1);
+        sum += 0.5 * d * d / (others[p] * others[p] + image * image);
       }
       measured += sum / double(pixels) * o.spp / pairs;
     }
     std::printf("%s: vcm's relMSE per camera sample, estimated %.4f, measured %.4f\n", name, e.vcm_error, measured);
     EXPECT_LT(e.vcm_error, 1.5 * measured) << name;
     EXPECT_GT(e.vcm_error, measured / 1.5) << name;
+    if (!LANTERN_ASAN && std::string(name) == "door-ajar.pbrt") EXPECT_GT(e.vcm_error, 0.8 * measured) << name;
   }
 }
 

@@ -11,15 +11,7 @@ namespace lantern {
 
 namespace {
 
-// The pixel's mean squared, which the relative error divides by: the
-// product of its halves, each independent of the other, so that a rare
-// bright sample in one half raises the numerator (A - B)^2 without raising
-// this as much as it raises I^2 (E[A B] = E[A] E[B], the mean squared,
-// where I^2 correlates with the numerator); not below (0.7 I)^2, where a
-// half that found nothing would make it 0.
-double mean_squared(const Film::Halves& h) {
-  return std::max(h.even * h.odd, kHalvesFloor * kHalvesFloor * h.value * h.value);
-}
+double mean_squared(const Film::Halves& h) { return halves_mean_squared(h.even, h.odd, h.value); }
 
 }  // namespace
 

@@ -55,6 +55,7 @@
 // ends after it (lambda recorded as infinity).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <mutex>
@@ -77,6 +78,16 @@ inline constexpr double kAdaptiveRateQuantile = 0.95;
 // Cornell box's estimate 2.1 times its measured error, 1 (the value
 // squared) the lamp street's 0.42 times.
 inline constexpr double kHalvesFloor = 0.7;
+// A pixel's mean squared, which a relative error divides by, from the
+// means of two independent halves of its samples, a and b, and of all of
+// them, value: a times b (E[a b] = E[a] E[b], the mean squared), so that a
+// rare bright sample in one half raises the squared difference (a - b)^2
+// without raising this as much as it raises value^2, which correlates
+// with it; not below (kHalvesFloor value)^2, where a half that found
+// nothing would make it 0.
+inline double halves_mean_squared(double a, double b, double value) {
+  return std::max(a * b, kHalvesFloor * kHalvesFloor * value * value);
+}
 
 // What a block's error is measured in when blocks are chosen: its
 // variance estimate (A - B)^2 / 4 over I^2 + 0.01 (Relative: relMSE's, what
