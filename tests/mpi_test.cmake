@@ -87,23 +87,36 @@ foreach(ranks 3 0)
 endforeach()
 
 # The ranks make one choice, rank 0's, which reads the checkpoint: a vcm
-# render resumed from a checkpoint its merges made goes on merging, where
-# the merge pilot of a fresh render of this size has it render as bdpt;
-# on two ranks as on one process, bit for bit. (Ranks that each ran the
-# pilot chose bdpt, and the checkpoint was refused.)
-set(vc render ${SRC}/scenes/cornell-box.pbrt --integrator vcm --resolution 40 30 --sampler independent --quiet
-       --checkpoint 100 --checkpoint-file ${OUT}/mpi-vcm.ckpt)
-file(REMOVE ${OUT}/mpi-vcm.ckpt)
-execute_process(COMMAND ${LANTERN} ${vc} --spp 4 --keep-checkpoint -o ${OUT}/mpi-vcm.exr RESULT_VARIABLE rc TIMEOUT 120)
-file(COPY ${OUT}/mpi-vcm.ckpt DESTINATION ${OUT}/mpi-saved)
-execute_process(COMMAND ${LANTERN} ${vc} --spp 256 --resume -o ${OUT}/mpi-vcm-one.exr RESULT_VARIABLE rc1 TIMEOUT 120)
-file(COPY ${OUT}/mpi-saved/mpi-vcm.ckpt DESTINATION ${OUT})
-execute_process(COMMAND ${mpirun} -np 2 ${LANTERN} ${vc} --spp 256 --resume -o ${OUT}/mpi-vcm-ranks.exr
-                RESULT_VARIABLE rc2 OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
-execute_process(COMMAND ${LANTERN} compare ${OUT}/mpi-vcm-ranks.exr ${OUT}/mpi-vcm-one.exr OUTPUT_VARIABLE cmp)
-if(NOT rc EQUAL 0 OR NOT rc1 EQUAL 0 OR NOT rc2 EQUAL 0 OR NOT cmp MATCHES "^mse 0\n")
-  message(FATAL_ERROR "vcm resumed on two ranks: exits ${rc} ${rc1} ${rc2}, against one process:\n${cmp}${out}${err}")
+# render resumed from a checkpoint goes on as it was made, with merges or
+# as bdpt, where the merge pilot of a fresh render of this size chooses
+# bdpt; on two ranks as on one process, bit for bit. (Ranks that each ran
+# the pilot chose bdpt, and a checkpoint of merges was refused; ranks that
+# read no checkpoint and were not told rank 0's choice would merge where
+# it was made as bdpt.)
+set(vc render ${SRC}/scenes/cornell-box.pbrt --resolution 40 30 --sampler independent --quiet --checkpoint 100
+       --checkpoint-file ${OUT}/mpi-vcm.ckpt)
+execute_process(COMMAND ${LANTERN} ${vc} --integrator vcm --spp 256 -o ${OUT}/mpi-vcm-fresh.exr
+                        --stats ${OUT}/mpi-vcm-fresh.json RESULT_VARIABLE rc TIMEOUT 120)
+file(READ ${OUT}/mpi-vcm-fresh.json fresh)
+string(JSON fresh_merges ERROR_VARIABLE no_pilot GET "${fresh}" merging merges)
+if(NOT rc EQUAL 0 OR NOT fresh_merges STREQUAL "OFF")
+  message(FATAL_ERROR "the fresh vcm render's pilot: exit ${rc}, merges ${fresh_merges} ${no_pilot}")
 endif()
+foreach(made_by vcm bdpt)
+  file(REMOVE ${OUT}/mpi-vcm.ckpt)
+  execute_process(COMMAND ${LANTERN} ${vc} --integrator ${made_by} --spp 16 --keep-checkpoint -o ${OUT}/mpi-vcm.exr
+                  RESULT_VARIABLE rc TIMEOUT 120)
+  file(COPY ${OUT}/mpi-vcm.ckpt DESTINATION ${OUT}/mpi-saved)
+  execute_process(COMMAND ${LANTERN} ${vc} --integrator vcm --spp 256 --resume -o ${OUT}/mpi-vcm-one.exr
+                  RESULT_VARIABLE rc1 TIMEOUT 120)
+  file(COPY ${OUT}/mpi-saved/mpi-vcm.ckpt DESTINATION ${OUT})
+  execute_process(COMMAND ${mpirun} -np 2 ${LANTERN} ${vc} --integrator vcm --spp 256 --resume -o ${OUT}/mpi-vcm-ranks.exr
+                  RESULT_VARIABLE rc2 OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
+  execute_process(COMMAND ${LANTERN} compare ${OUT}/mpi-vcm-ranks.exr ${OUT}/mpi-vcm-one.exr OUTPUT_VARIABLE cmp)
+  if(NOT rc EQUAL 0 OR NOT rc1 EQUAL 0 OR NOT rc2 EQUAL 0 OR NOT cmp MATCHES "^mse 0\n")
+    message(FATAL_ERROR "vcm resumed on two ranks from ${made_by}'s checkpoint: exits ${rc} ${rc1} ${rc2}, against one process:\n${cmp}${out}${err}")
+  endif()
+endforeach()
 
 # What is not supported across ranks yet is refused by name.
 execute_process(COMMAND ${mpirun} -np 2 ${LANTERN} ${base} --part 1/2 -o ${OUT}/x.film

@@ -109,7 +109,9 @@ void set_split(const Scene& scene, const LightSampler& light_sampler, const Rend
     stats.split_error.assign(c.error.begin(), c.error.end());
     stats.split_camera_share = c.camera_share;
   }
-  agree_on(hooks, render.split);  // (whether the pilot fits a time budget depends on the process's clock)
+  // (every process makes the same choice from the pilot, but the processes
+  // of one image make the same calls to agree, whatever they render)
+  agree_on(hooks, render.split);
 }
 
 }  // namespace lantern
