@@ -10,6 +10,7 @@
 
 #include "expect_error.h"
 #include "film/film.h"
+#include "integrator/render_settings.h"
 #include "lantern/render.h"
 #include "lantern/scene.h"
 #include "stat_compare.h"
@@ -51,6 +52,23 @@ TEST(FilmCrop, TheCropIsTheWholeImagesPart) {
     const RegionStats a = stats(*crop, integrator, in_crop), b = stats(*whole, integrator, in_whole);
     expect_means_agree(a, b, 0.01, integrator);
   }
+}
+
+// A crop window's pixels are pbrt-v4's, whose products of resolution and
+// window are floats: 480 x 270 cropped to x 0.1-0.45, y 0.65-1 is pixels
+// 48-216 by 176-270 in pbrt-v4 (its image 168 x 94, measured); in doubles
+// 480 * 0.1f is 48.0000007, and the crop began a pixel later.
+TEST(FilmCrop, TheCropsPixelsArePbrtV4s) {
+  auto scene = load_scene_from_string(scene_with(""), "whole.pbrt", {});
+  RenderOptions o;
+  o.width = 480;
+  o.height = 270;
+  o.crop_window = {0.1f, 0.45f, 0.65f, 1.f};
+  const ImageRegion r = image_region(*scene, o);
+  EXPECT_EQ(r.x0, 48);
+  EXPECT_EQ(r.width, 168);
+  EXPECT_EQ(r.y0, 176);
+  EXPECT_EQ(r.height, 94);
 }
 
 // Adaptive sampling's view of a cropped pixel (Film::halves) is what the

@@ -175,9 +175,12 @@ ImageRegion image_region(const Scene& scene, const RenderOptions& opt) {
     x[0] = std::clamp(pb[0], 0, r.full_width), x[1] = std::clamp(pb[1], 0, r.full_width);
     y[0] = std::clamp(pb[2], 0, r.full_height), y[1] = std::clamp(pb[3], 0, r.full_height);
   } else {
+    // In floats, as pbrt-v4 multiplies them: 480 * 0.1f is 48 in a float
+    // and 48.0000007 in a double, whose ceiling would start the crop a
+    // pixel later than pbrt-v4's.
     for (int k = 0; k < 2; ++k) {
-      x[k] = int(std::ceil(double(r.full_width) * double(cw[size_t(k)])));
-      y[k] = int(std::ceil(double(r.full_height) * double(cw[size_t(2 + k)])));
+      x[k] = int(std::ceil(float(r.full_width) * cw[size_t(k)]));
+      y[k] = int(std::ceil(float(r.full_height) * cw[size_t(2 + k)]));
     }
   }
   if (x[1] <= x[0] || y[1] <= y[0])
