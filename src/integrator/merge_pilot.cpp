@@ -36,8 +36,7 @@ class VcmMoments {
     const size_t n = grid.pixels.size();
     camera_.assign(n, {0.0, 0.0});
     camera_square_.assign(n, 0.0);
-    value_.assign(n, 0.0);
-    seed_value_.assign(n, {0.0, 0.0});
+    value_.assign(n, {0.0, 0.0});
     splat_square_.assign(n, 0.0);
   }
 
@@ -47,16 +46,14 @@ class VcmMoments {
       const int g = grid_.grid_index(f.pixel);
       if (g < 0 || !std::isfinite(v)) continue;  // (as the film drops it)
       camera_[size_t(g)][size_t(seed)] += v;
-      value_[size_t(g)] += v;
-      seed_value_[size_t(g)][size_t(seed)] += v;
+      value_[size_t(g)][size_t(seed)] += v;
       camera_square_[size_t(g)] += v * v;  // (one camera sample a pixel a pass)
     }
     for (const Splat& s : out.splats) {
       const double v = double(average(s.L));
       const int g = grid_.cell_index(int(std::floor(s.p_raster.x)), int(std::floor(s.p_raster.y)));
       if (g < 0 || !std::isfinite(v)) continue;
-      value_[size_t(g)] += splat_scale_ * v;
-      seed_value_[size_t(g)][size_t(seed)] += splat_scale_ * v;
+      value_[size_t(g)][size_t(seed)] += splat_scale_ * v;
       splat_square_[size_t(g)] += splat_scale_ * v * v;
     }
   }
@@ -72,14 +69,14 @@ class VcmMoments {
   double relative_error(uint32_t passes) const {
     const double n = double(passes), pixels = double(value_.size());
     double image = 0.0;
-    for (const double v : value_) image += v / (2.0 * n);
+    for (const auto& v : value_) image += (v[0] + v[1]) / (2.0 * n);
     image /= pixels;
     if (!(image > 0.0) || !std::isfinite(image)) return 0.0;
     double e = 0.0;
     for (size_t g = 0; g < value_.size(); ++g) {
-      const double mean = value_[g] / (2.0 * n), d = (camera_[g][0] - camera_[g][1]) / n;
+      const double mean = (value_[g][0] + value_[g][1]) / (2.0 * n), d = (camera_[g][0] - camera_[g][1]) / n;
       const double variance = 0.5 * d * d * n + splat_square_[g] / (2.0 * n);  // (of one pass's estimate)
-      const double squared = halves_mean_squared(seed_value_[g][0] / n, seed_value_[g][1] / n, mean);
+      const double squared = halves_mean_squared(value_[g][0] / n, value_[g][1] / n, mean);
       if (std::isfinite(variance)) e += variance / (squared + image * image);
     }
     return e / pixels;
@@ -92,7 +89,7 @@ class VcmMoments {
     GridMeans m;
     m.samples = n;
     for (size_t g = 0; g < value_.size(); ++g) {
-      m.mean.push_back(value_[g] / n);
+      m.mean.push_back((value_[g][0] + value_[g][1]) / n);
       m.variance.push_back(grid_mean_variance(camera_[g][0] + camera_[g][1], camera_square_[g], n, splat_square_[g]));
     }
     return m;
@@ -101,8 +98,8 @@ class VcmMoments {
  private:
   const PilotGrid& grid_;
   double splat_scale_;
-  std::vector<std::array<double, 2>> camera_, seed_value_;
-  std::vector<double> camera_square_, value_, splat_square_;
+  std::vector<std::array<double, 2>> camera_, value_;
+  std::vector<double> camera_square_, splat_square_;
 };
 
 // A wave of the render's size: the grid's pixels first (on_grid: a byte a
