@@ -11,9 +11,10 @@
 #include <iterator>
 #include <random>
 
-#include "guided_rooms.h"
 #include "film/checkpoint.h"
 #include "film/film.h"
+#include "guided_rooms.h"
+#include "guiding/scatter_field.h"
 #include "guiding/sd_tree.h"
 #include "integrator/guiding_field.h"
 #include "lantern/error.h"
@@ -73,12 +74,14 @@ TEST(Guiding, ResumesWithTheFieldItLearnt) {
   std::remove(o.checkpoint_path.c_str());
 }
 
-// A guided checkpoint of format 4 (eye subpaths only, before the flags that
-// say which subpaths a field guides) resumes as the straight render: made
-// here from a format-5 file stopped inside the learning iterations, by
-// dropping those two bytes. bdpt's, whose fingerprint is the one format-4
-// files have. Refused, or resumed without the field, it fails.
-TEST(Guiding, ResumesAFormatFourCheckpoint) {
+// Guided checkpoints of formats 4 (eye subpaths only, before the flags that
+// say which subpaths a field guides) and 5 (before guided distances)
+// resume as the straight render: made here from a format-6 file stopped
+// inside the learning iterations, by dropping the scattered radiance
+// field's bytes (and for 4 the two flags). The room has no medium, so its
+// field learnt nothing. bdpt's, whose fingerprint is the one format-4 files
+// have. Refused, or resumed without the field, it fails.
+TEST(Guiding, ResumesFormatFourAndFiveCheckpoints) {
   const auto scene = guided_room();
   RenderOptions o = guided_options(true);
   o.integrator = Integrator::Bdpt;
@@ -101,31 +104,43 @@ TEST(Guiding, ResumesAFormatFourCheckpoint) {
     std::ifstream in(o.checkpoint_path, std::ios::binary);
     bytes.assign(std::istreambuf_iterator<char>(in), {});
   }
-  // ... u64 n, n bytes of field ending in the flags 1 (eye) and 0 (light), u64 hash.
+  // An empty scattered radiance field's bytes (their length does not
+  // depend on the bounds).
+  StringWriter empty;
+  ScatterField(Vec3(0.f), Vec3(1.f)).write_state(empty);
+  const size_t scattered = empty.bytes.size();
+  // ... u64 n, n bytes of field ending in the flags 1 (eye) and 0 (light)
+  // and the scattered radiance field, u64 hash.
   ASSERT_GT(bytes.size(), n + 16);
-  std::string body = bytes.substr(0, bytes.size() - 8);
-  ASSERT_EQ(body.substr(body.size() - 2), std::string("\x01\x00", 2));
+  const std::string body6 = bytes.substr(0, bytes.size() - 8);
+  ASSERT_EQ(body6.substr(body6.size() - scattered - 2, 2), std::string("\x01\x00", 2));
   uint64_t stored = 0;
-  std::memcpy(&stored, body.data() + body.size() - n - 8, 8);
+  std::memcpy(&stored, body6.data() + body6.size() - n - 8, 8);
   ASSERT_EQ(stored, n);
-  body.resize(body.size() - 2);
-  const uint64_t shorter = n - 2;
-  std::memcpy(body.data() + body.size() - shorter - 8, &shorter, 8);
-  const uint32_t format = 4;
-  std::memcpy(body.data() + 8, &format, 4);
-  Fnv1a hash;
-  hash.add(body.data(), body.size());
-  {
-    std::ofstream out(o.checkpoint_path, std::ios::binary | std::ios::trunc);
-    out.write(body.data(), std::streamsize(body.size()));
-    out.write(reinterpret_cast<const char*>(&hash.h), 8);
-  }
-  o.resume = true;
   o.checkpoint_seconds = 0;
-  const RenderResult resumed = render(*scene, o);
-  EXPECT_FALSE(resumed.interrupted);
-  EXPECT_EQ(0, std::memcmp(resumed.image.rgb.data(), straight.image.rgb.data(), straight.image.rgb.size() * sizeof(float)));
-  std::remove(o.checkpoint_path.c_str());
+  const std::string path = o.checkpoint_path;
+  for (const uint32_t format : {5u, 4u}) {
+    std::string body = body6;
+    const size_t dropped = scattered + (format == 4 ? 2 : 0);
+    body.resize(body.size() - dropped);
+    const uint64_t shorter = n - dropped;
+    std::memcpy(body.data() + body.size() - shorter - 8, &shorter, 8);
+    std::memcpy(body.data() + 8, &format, 4);
+    Fnv1a hash;
+    hash.add(body.data(), body.size());
+    {
+      std::ofstream out(path, std::ios::binary | std::ios::trunc);
+      out.write(body.data(), std::streamsize(body.size()));
+      out.write(reinterpret_cast<const char*>(&hash.h), 8);
+    }
+    o.resume = true;
+    const RenderResult resumed = render(*scene, o);
+    EXPECT_FALSE(resumed.interrupted) << "format " << format;
+    EXPECT_EQ(
+        0, std::memcmp(resumed.image.rgb.data(), straight.image.rgb.data(), straight.image.rgb.size() * sizeof(float)))
+        << "format " << format;
+  }
+  std::remove(path.c_str());
 }
 
 // The field's bytes in a checkpoint: a learnt field comes back bit for bit,

@@ -207,9 +207,12 @@ struct RenderStats {
   double estimated_relmse = -1.0;
   // With path guiding: the field's learning iterations completed, its
   // spatial leaves, directional nodes (sampled and learning) and bytes, and
-  // the leaves whose paths in a medium sample a distribution learnt there.
+  // the leaves whose paths in a medium sample a distribution learnt there;
+  // the leaves of the field that guides distances in media, and those of
+  // them that learnt some scattered radiance (the path tracer's).
   uint32_t guiding_iterations = 0;
   size_t guiding_leaves = 0, guiding_nodes = 0, guiding_bytes = 0, guiding_medium_leaves = 0;
+  size_t guiding_distance_leaves = 0, guiding_distance_lit_leaves = 0;
   size_t guiding_light_leaves = 0;  // the importance field's (--guide-light)
 
   // Subpath vertices on surfaces, and why subpaths ended (escaped, absorbed,

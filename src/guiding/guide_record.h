@@ -21,4 +21,9 @@ struct GuideRecord {
   uint8_t bin;  // that normal's bin (SDTree::normal_bin)
 };
 
+// The bin of a record of guided distances: the radiance a medium vertex
+// scattered (energy), for the leaf of the scattered radiance field
+// (guiding/scatter_field.h); no direction.
+inline constexpr uint8_t kScatteredRecord = 255;
+
 }  // namespace lantern

@@ -5,6 +5,12 @@
 // path had gathered by the end of its bounce. When the paths end, the radiance gathered after a vertex over
 // the throughput after it is an estimate of the radiance that arrived
 // along its direction (componentwise: both carry the same wavelengths).
+//
+// For guided distances (integrator/guided_distance.h), each vertex that
+// scatters in a medium also leaves its position, the throughput it
+// arrived with and the radiance its path had gathered before it: the
+// radiance gathered from there on, over that throughput, is what it
+// scattered back along its path per unit sigma_s.
 #pragma once
 
 #include <cstdint>
@@ -12,6 +18,7 @@
 
 #include "accel/ray_batch.h"
 #include "guiding/guide_record.h"
+#include "guiding/scatter_field.h"
 #include "guiding/sd_tree.h"
 #include "math/rng.h"
 #include "math/spectrum.h"
@@ -26,11 +33,22 @@ struct GuideVertices {
   std::vector<float> pdf, fcos, bsdf_pdf, guide_pdf;  // fcos: f |cos| of the direction (averaged over wavelengths)
   std::vector<Spectrum> beta, L;
   size_t bounce_start = 0;  // the first vertex of the current bounce
+  struct Scattered {
+    std::vector<uint32_t> slot;
+    std::vector<Vec3> p;
+    std::vector<Spectrum> beta, L;
+  } scattered;
 
   void clear() {
     slot.clear(), leaf.clear(), p.clear(), w.clear(), bin.clear(), pdf.clear(), fcos.clear(), bsdf_pdf.clear(),
         guide_pdf.clear(), beta.clear(), L.clear();
+    scattered.slot.clear(), scattered.p.clear(), scattered.beta.clear(), scattered.L.clear();
     bounce_start = 0;
+  }
+  // A vertex in a medium, before anything it scatters is added to path_L.
+  void push_scattered(uint32_t s, const Vec3& position, const Spectrum& throughput, const Spectrum& path_L) {
+    scattered.slot.push_back(s), scattered.p.push_back(position);
+    scattered.beta.push_back(throughput), scattered.L.push_back(path_L);
   }
   size_t size() const { return slot.size(); }
   void push(uint32_t s, uint32_t spatial_leaf, const Vec3& position, uint32_t normal_bin, Vec2 dir, float density,
@@ -51,31 +69,46 @@ struct GuideVertices {
   // the leaf of a point drawn uniformly from a box of its own leaf's size
   // around the vertex (Müller 2019, the stochastic spatial box filter):
   // neighbouring leaves share what their edges see, and each leaf learns
-  // from more records. key names the wave (random numbers by record).
+  // from more records. key names the wave (random numbers by record). The
+  // medium vertices' records go to `field`'s leaves, by its own leaves' box.
   void make_records(const std::vector<Spectrum>& path_L, const SDTree& tree, uint64_t key,
-                    std::vector<GuideRecord>& out) const {
+                    std::vector<GuideRecord>& out, const ScatterField* field = nullptr) const {
     for (size_t v = 0; v < size(); ++v) {
-      const Spectrum after = path_L[slot[v]] - L[v];
-      float sum = 0.f;
-      int n = 0;
-      for (int c = 0; c < kSpectrumSamples; ++c)
-        if (beta[v][c] > 0.f) sum += after[c] / beta[v][c], ++n;
-      const float Li = n > 0 ? max_num(sum / float(n), 0.f) : 0.f;
+      const float Li = per_throughput(path_L[slot[v]] - L[v], beta[v]);
       const float energy = Li / pdf[v];
       if (!std::isfinite(energy)) continue;
       RandomStream r = RandomStream::make(key, v, 0x6775696465ULL);
-      const Vec3 jittered = p[v] + tree.leaf(leaf[v]).size * (Vec3(r.get1d(), r.get1d(), r.get1d()) - 0.5f);
-      const uint32_t into = tree.leaf_of(jittered);
+      const uint32_t into = tree.leaf_of(p[v] + tree.leaf(leaf[v]).size * jitter(r));
       const uint32_t cell = tree.leaf(into).learning[bin[v]].cell_of(w[v]);
       const float estimate = fcos[v] * Li, second = estimate * estimate / pdf[v];
       // (a second moment too large for a float says nothing of α: left out)
       out.push_back({into, cell, energy, second, bsdf_pdf[v], std::isfinite(second) ? guide_pdf[v] : -1.f, bin[v]});
     }
+    for (size_t v = 0; field && v < scattered.slot.size(); ++v) {
+      const float S = per_throughput(path_L[scattered.slot[v]] - scattered.L[v], scattered.beta[v]);
+      if (!std::isfinite(S)) continue;
+      RandomStream r = RandomStream::make(key, v, 0x7363617474ULL);
+      const Vec3 x = scattered.p[v];
+      out.push_back(
+          {field->leaf_of(x + field->size(field->leaf_of(x)) * jitter(r)), 0, S, 0.f, 0.f, -1.f, kScatteredRecord});
+    }
   }
+  // What a path gathered, componentwise over the throughput it carried
+  // (the channels it carried any of), averaged.
+  static float per_throughput(const Spectrum& gathered, const Spectrum& throughput) {
+    float sum = 0.f;
+    int n = 0;
+    for (int c = 0; c < kSpectrumSamples; ++c)
+      if (throughput[c] > 0.f) sum += gathered[c] / throughput[c], ++n;
+    return n > 0 ? max_num(sum / float(n), 0.f) : 0.f;
+  }
+  // A point of the box [-1/2, 1/2]^3.
+  static Vec3 jitter(RandomStream& r) { return Vec3(r.get1d(), r.get1d(), r.get1d()) - 0.5f; }
   size_t memory_bytes() const {
-    return vector_bytes(slot) + vector_bytes(leaf) + vector_bytes(p) + vector_bytes(w) + vector_bytes(bin) +
-           vector_bytes(pdf) + vector_bytes(fcos) + vector_bytes(bsdf_pdf) + vector_bytes(guide_pdf) +
-           vector_bytes(beta) + vector_bytes(L);
+    return vector_bytes(scattered.slot) + vector_bytes(scattered.p) + vector_bytes(scattered.beta) +
+           vector_bytes(scattered.L) + vector_bytes(slot) + vector_bytes(leaf) + vector_bytes(p) + vector_bytes(w) +
+           vector_bytes(bin) + vector_bytes(pdf) + vector_bytes(fcos) + vector_bytes(bsdf_pdf) +
+           vector_bytes(guide_pdf) + vector_bytes(beta) + vector_bytes(L);
   }
 };
 

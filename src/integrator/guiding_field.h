@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "guiding/scatter_field.h"
 #include "guiding/sd_tree.h"
 #include "integrator/guided_scatter.h"
 
@@ -30,7 +31,12 @@ class GuidingField {
   // sample the radiance field; light_subpaths: the light subpaths of bdpt and vcm the
   // importance field.
   GuidingField(Vec3 lo, Vec3 hi, uint64_t passes, bool eye_subpaths = true, bool light_subpaths = false)
-      : tree_(lo, hi), importance_(lo, hi), passes_(passes), eye_subpaths_(eye_subpaths), light_subpaths_(light_subpaths) {}
+      : tree_(lo, hi),
+        importance_(lo, hi),
+        scattered_(lo, hi),
+        passes_(passes),
+        eye_subpaths_(eye_subpaths),
+        light_subpaths_(light_subpaths) {}
 
   const SDTree& tree() const { return tree_; }
   // The importance field the light subpaths learn and sample (where
@@ -39,6 +45,10 @@ class GuidingField {
   bool guides_light_subpaths() const { return light_subpaths_; }
   bool guides_eye_subpaths() const { return eye_subpaths_; }
   const SDTree& importance_tree() const { return importance_; }
+  // What guides where the path tracer's rays scatter in homogeneous media
+  // (integrator/guided_distance.h), once it has learnt; else null.
+  const ScatterField* distance_field() const { return scattered_.trained() ? &scattered_ : nullptr; }
+  const ScatterField& scatter_field() const { return scattered_; }
   // Where a surface vertex at p with shading normal ns, reached from
   // direction wo (towards where the path came from), finds the field: its
   // leaf, the bin of the normal turned to the side the path came from, and
@@ -88,11 +98,16 @@ class GuidingField {
   uint32_t iteration() const { return iteration_; }
 
   void deposit(const std::vector<GuideRecord>& records, const std::vector<GuideRecord>& light_records = {}) {
-    for (const GuideRecord& r : records) tree_.add(r);
+    for (const GuideRecord& r : records) {
+      if (r.bin == kScatteredRecord)
+        scattered_.add(r.leaf, r.energy);
+      else
+        tree_.add(r);
+    }
     for (const GuideRecord& r : light_records) importance_.add(r);
   }
   void end_iteration() {
-    if (eye_subpaths_) tree_.update(iteration_);
+    if (eye_subpaths_) tree_.update(iteration_), scattered_.update(iteration_);
     if (light_subpaths_) importance_.update(iteration_);
     if (iteration_ < 62) ++iteration_;
   }
@@ -108,6 +123,7 @@ class GuidingField {
     out.put(uint8_t(eye_subpaths_));
     out.put(uint8_t(light_subpaths_));
     if (light_subpaths_) importance_.write_state(out);
+    scattered_.write_state(out);
     return std::move(out.bytes);
   }
   void restore(const std::string& bytes) {
@@ -122,6 +138,7 @@ class GuidingField {
       throw std::runtime_error(light_subpaths_ ? "its light subpaths were not guided (--guide-light)"
                                                : "its light subpaths were guided (--guide-light)");
     if (light_subpaths_) importance_.read_state(in);
+    if (in.left() != 0) scattered_.read_state(in);  // (a field saved before guided distances has none)
     if (in.left() != 0) throw std::runtime_error("the guiding field has trailing bytes");
     iteration_ = iteration;
     done_ = done;
@@ -139,6 +156,7 @@ class GuidingField {
   }
 
   SDTree tree_, importance_;
+  ScatterField scattered_;  // guided distances: the path tracer's medium vertices learn it
   uint64_t passes_;
   bool eye_subpaths_, light_subpaths_;
   uint32_t iteration_ = 0;

@@ -53,19 +53,52 @@ RandomStream stretch_stream(const Vec3& o, const Vec3& d, float u, uint32_t roun
   return RandomStream{mix64(k ^ (bits(d.y) | bits(d.z) << 32)), 0};
 }
 
+// The density a guided scattering point was drawn with, from free flight's
+// p_ff: share * p_ff + guided (integrator/guided_distance.h).
+struct GuidedDensity {
+  float share = 1.f, guided = 0.f;
+};
+
+// Ray i scatters in this stretch of a homogeneous medium m, of length len,
+// at *s_hit by free flight, after optical depth `before`. With what the
+// field learnt along it, the point is drawn again from the guided mixture:
+// *s_hit and *depth (the depth up to it) follow, and the density is
+// returned. u: the segment's number, for the stretch's own.
+GuidedDensity guide_scatter_point(const Scene& sc, const ScatterField& field, DistanceGuide& guide, MediumHandle m,
+                                  const Vec3& o, const Vec3& dir, float len, const Spectrum& before,
+                                  const SampledWavelengths& l, float u, uint32_t round, float* s_hit, Spectrum* depth) {
+  Spectrum sigma_a, sigma_s;
+  sc.media.coefficients_at(m, o, l, &sigma_a, &sigma_s);
+  const Spectrum sigma_t = sigma_a + sigma_s;
+  if (!guide.build(field, o, dir, len, average(sigma_t))) return {};
+  RandomStream rng = stretch_stream(o, dir, u, round);
+  constexpr float a = DistanceGuide::kFreeFlightShare;
+  const float u_technique = rng.get1d(), u_point = rng.get1d();
+  const float t = u_technique < a ? *s_hit : guide.sample(u_point);
+  // P: the probability that free flight scatters in this stretch
+  float P = 0.f;
+  for (int c = 0; c < kSpectrumSamples; ++c)
+    P += std::exp(-before[c]) * (std::isfinite(len) ? -std::expm1(-sigma_t[c] * len) : (sigma_t[c] > 0.f ? 1.f : 0.f));
+  P /= float(kSpectrumSamples);
+  *s_hit = t;
+  *depth = before + sigma_t * t;
+  return {a, (1.f - a) * P * guide.pdf(t)};
+}
+
 // A segment's end: `depth` is the optical depth of the media with closed
 // forms, `tracked` the weight and `tracked_depth` the proxy depth of the
 // tracked ones. At a scattering point (sigma_t > 0) found by the closed
 // forms, sigma_s completes the weight; one found by tracking has it in
-// `tracked` already.
+// `tracked` already. A guided point's density is `guided`'s mixture.
 void end_segment(SegmentEnds& out, uint32_t i, MediumHandle m, const Spectrum& depth, const Spectrum& tracked,
-                 const Spectrum& tracked_depth, const Spectrum& sigma_a, const Spectrum& sigma_s, bool scatters, bool by_tracking,
-                 const Spectrum& Le = Spectrum(0.f)) {
+                 const Spectrum& tracked_depth, const Spectrum& sigma_a, const Spectrum& sigma_s, bool scatters,
+                 bool by_tracking, const Spectrum& Le = Spectrum(0.f), GuidedDensity guided = {}) {
   const Spectrum T = transmittance(depth), sigma_x = sigma_a + sigma_s;
   const Spectrum T_mis = is_black(tracked_depth) ? T : transmittance(depth + tracked_depth);
   const bool closed_form_scatter = scatters && !by_tracking;
   // the density of what the closed forms sampled: scattering, or passing
-  const float p = mixture_density(closed_form_scatter ? sigma_x : Spectrum(0.f), T);
+  const float p_ff = mixture_density(closed_form_scatter ? sigma_x : Spectrum(0.f), T);
+  const float p = closed_form_scatter ? guided.share * p_ff + guided.guided : p_ff;
   out.weight[i] = p > 0.f ? tracked * (closed_form_scatter ? T * sigma_s : T) / p : Spectrum(0.f);
   out.T[i] = T_mis;
   out.fwd_density[i] = mixture_density(sigma_x, T_mis);
@@ -79,7 +112,8 @@ void end_segment(SegmentEnds& out, uint32_t i, MediumHandle m, const Spectrum& d
 
 void find_segment_ends(const Scene& sc, RayStream& stream, RayKind kind, RayBatch& rays,
                        const std::vector<MediumHandle>& medium, const std::vector<float>& u,
-                       const std::vector<SampledWavelengths>& lambda, SegmentEnds& out, CrossingScratch& s) {
+                       const std::vector<SampledWavelengths>& lambda, SegmentEnds& out, CrossingScratch& s,
+                       const ScatterField* distance_guide) {
   const uint32_t n = rays.count;
   if (out.end.size() < n) out.resize(rays.capacity());
   const bool emissive = sc.media.any_emissive();
@@ -122,6 +156,7 @@ void find_segment_ends(const Scene& sc, RayStream& stream, RayKind kind, RayBatc
         const Vec3 o = rays.origin(i), dir = d / d_len;
         float s_hit = kInfinity;
         Spectrum sigma_a, sigma_s;
+        GuidedDensity guided;
         const bool by_tracking = sc.media.tracked(m);
         if (by_tracking) {
           RandomStream rng = stretch_stream(o, dir, u[i], uint32_t(round));
@@ -132,9 +167,13 @@ void find_segment_ends(const Scene& sc, RayStream& stream, RayKind kind, RayBatc
           s.tracked_depth[i] += sc.media.optical_depth(m, o, dir, 0.f, tr.real() ? tr.t : len, 0, -1.f, lambda[i], &unused);
           if (tr.saturated) s.tau[i] = kInfinity, depth = Spectrum(kInfinity);  // ends absorbed below
         } else {
+          const Spectrum before = depth;
           const Spectrum stretch =
               sc.media.optical_depth(m, o, dir, 0.f, len, s.channel[i], s.tau[i], lambda[i], &s_hit);
           depth += stretch;
+          if (s_hit < kInfinity && distance_guide && m.kind() == MediumKind::Homogeneous)
+            guided = guide_scatter_point(sc, *distance_guide, s.distance_guide, m, o, dir, len, before, lambda[i], u[i],
+                                         uint32_t(round), &s_hit, &depth);
           if (s_hit < kInfinity) sc.media.coefficients_at(m, o + dir * s_hit, lambda[i], &sigma_a, &sigma_s);
           else s.tau[i] -= stretch[s.channel[i]];
         }
@@ -142,7 +181,8 @@ void find_segment_ends(const Scene& sc, RayStream& stream, RayKind kind, RayBatc
           out.end[i] = SegmentEnd::Scatter;
           out.p[i] = o + dir * s_hit;
           const Spectrum Le = emissive && !by_tracking ? sc.media.Le(m, out.p[i], lambda[i]) : Spectrum(0.f);
-          end_segment(out, i, m, depth, s.tracked_weight[i], s.tracked_depth[i], sigma_a, sigma_s, true, by_tracking, Le);
+          end_segment(out, i, m, depth, s.tracked_weight[i], s.tracked_depth[i], sigma_a, sigma_s, true, by_tracking,
+                      Le, guided);
           continue;
         }
       }

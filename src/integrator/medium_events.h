@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "accel/ray_stream.h"
+#include "integrator/guided_distance.h"
 #include "scene/scene.h"
 
 namespace lantern {
@@ -73,6 +74,7 @@ struct CrossingScratch {
   // Tracked media (scenes with them only): the weights so far, and the
   // proxy's depth so far.
   std::vector<Spectrum> tracked_weight, tracked_depth;
+  DistanceGuide distance_guide;  // guided distances (integrator/guided_distance.h)
   size_t memory_bytes() const {
     return rays.memory_bytes() + continued.memory_bytes() + vector_bytes(owner) + vector_bytes(next) + vector_bytes(medium) + vector_bytes(tau) +
            vector_bytes(channel) + vector_bytes(depth) + vector_bytes(tracked_weight) + vector_bytes(tracked_depth);
@@ -83,10 +85,13 @@ struct CrossingScratch {
 // medium[i], sampling its distance with the uniform number u[i], its
 // coefficients at its sample's wavelengths lambda[i]. Rays that end on a
 // surface keep that hit in `rays` (their origin moved to the last boundary
-// crossed, their direction unchanged).
+// crossed, their direction unchanged). With a scattered radiance field,
+// the points where rays scatter in homogeneous media are guided by what it
+// learnt (integrator/guided_distance.h); fwd_density stays free flight's.
 void find_segment_ends(const Scene& scene, RayStream& stream, RayKind kind, RayBatch& rays,
                        const std::vector<MediumHandle>& medium, const std::vector<float>& u,
-                       const std::vector<SampledWavelengths>& lambda, SegmentEnds& out, CrossingScratch& scratch);
+                       const std::vector<SampledWavelengths>& lambda, SegmentEnds& out, CrossingScratch& scratch,
+                       const ScatterField* distance_guide = nullptr);
 
 // The transmittance of each shadow ray of `rays` (origin, direction and
 // t_max set, not yet traced) that starts in medium[i]: zero when a surface

@@ -20,7 +20,8 @@ void PathTracer::segment_stage(PathWave& w, RayKind kind) const {
     w.ray_lambda[i] = w.lambda[slot];
     w.u_distance[i] = w.sampler[slot].get1d(dims::distance(base, w.bounce(), false));
   }
-  find_segment_ends(scene_, w.stream, kind, w.rays, w.ray_medium, w.u_distance, w.ray_lambda, w.ends, w.crossing);
+  find_segment_ends(scene_, w.stream, kind, w.rays, w.ray_medium, w.u_distance, w.ray_lambda, w.ends, w.crossing,
+                    guiding_ ? guiding_->distance_field() : nullptr);
 }
 
 // The third number of a point sampled on a volume light from the current
@@ -64,6 +65,7 @@ void PathTracer::medium_scatter_stage(PathWave& w) const {
     const MediumHandle m = w.ends.medium[i];
     const HenyeyGreenstein phase{sc.media.g(m)};
     ++w.stats.eye_vertices;
+    if (guiding_ && guiding_->learning()) w.guide.push_scattered(slot, p, w.beta[slot], w.L[slot]);
     path_next_event(sc, light_sampler_, w, slot, MediumVertex{phase, p, wo, m, w.ends.sigma_t[i]},
                     LazyNumber(s, dim + dims::kEyeLightSelect), s.get2d(dim + dims::kEyeLightPosition),
                     volume_number(w, slot), settings_.maxdepth);

@@ -348,7 +348,8 @@ void PathTracer::trace(const WaveDesc& wave, PathWave& w, WaveOutput& out) const
   }
   if (learning) {
     StageTimer t(st, Stage::Accumulate);
-    w.guide.make_records(w.L, guiding_->tree(), hash_key(settings_.seed, wave.pixels[0], wave.first_sample), out.guide);
+    w.guide.make_records(w.L, guiding_->tree(), hash_key(settings_.seed, wave.pixels[0], wave.first_sample), out.guide,
+                         &guiding_->scatter_field());
   }
   for (uint32_t slot = 0; slot < wave.size(); ++slot) {
     // A split camera sample's paths go to the same half of the film's

@@ -432,6 +432,11 @@ static void report_guiding(const GuidingField& guiding, RenderStats& stats) {
   };
   if (guiding.guides_eye_subpaths()) stats.guiding_leaves = count(guiding.tree());
   if (guiding.guides_light_subpaths()) stats.guiding_light_leaves = count(guiding.importance_tree());
+  if (guiding.scatter_field().trained()) {
+    stats.guiding_distance_leaves = guiding.scatter_field().leaf_count();
+    stats.guiding_distance_lit_leaves = guiding.scatter_field().lit_leaves();
+    stats.guiding_bytes += guiding.scatter_field().memory_bytes();
+  }
 }
 
 RenderResult RenderSession::wait() {

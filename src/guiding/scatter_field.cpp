@@ -1,0 +1,135 @@
+#include "guiding/scatter_field.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace lantern {
+
+ScatterField::ScatterField(Vec3 lo, Vec3 hi) {
+  // The directional field's cube (guiding/sd_tree.cpp): a little larger
+  // than the bounds, so that points on them fall inside.
+  const Vec3 size = glm::max(hi - lo, Vec3(0.f));
+  extent_ = std::max(max_component(size), 1e-3f) * 1.01f;
+  lo_ = 0.5f * (lo + hi) - Vec3(0.5f * extent_);
+  nodes_.push_back(Node{});
+  leaves_.push_back(Leaf{Vec3(extent_)});
+}
+
+uint32_t ScatterField::leaf_of(const Vec3& p) const {
+  Vec3 q = glm::clamp((p - lo_) / extent_, 0.f, 1.f);
+  if (!(q.x == q.x) || !(q.y == q.y) || !(q.z == q.z)) q = Vec3(0.5f);  // a NaN position: any leaf will do
+  uint32_t n = 0;
+  for (;;) {
+    const Node& node = nodes_[n];
+    if (node.child[0] == 0) return node.leaf;
+    float& c = q[node.axis];
+    const bool upper = c >= 0.5f;
+    c = upper ? 2.f * c - 1.f : 2.f * c;
+    n = node.child[upper ? 1 : 0];
+  }
+}
+
+void ScatterField::split(uint32_t n, uint64_t limit) {
+  const uint32_t first = nodes_[n].leaf;
+  if (leaves_[first].records <= limit) return;
+  const uint8_t axis = nodes_[n].axis;
+  leaves_[first].records /= 2;  // the records assumed halved between the halves
+  leaves_[first].size[axis] *= 0.5f;
+  const uint32_t second = uint32_t(leaves_.size());
+  leaves_.push_back(leaves_[first]);
+  const uint32_t a = uint32_t(nodes_.size());
+  const uint8_t next_axis = uint8_t((axis + 1) % 3);
+  nodes_.push_back(Node{{0, 0}, first, next_axis});
+  nodes_.push_back(Node{{0, 0}, second, next_axis});
+  nodes_[n].child[0] = a;
+  nodes_[n].child[1] = a + 1;
+  split(a, limit);
+  split(a + 1, limit);
+}
+
+void ScatterField::update(uint32_t iteration) {
+  for (Leaf& l : leaves_) {
+    if (l.records > 0) l.level = float(l.sum / double(l.records));
+    trained_ = trained_ || l.level > 0.f;
+  }
+  const uint64_t limit = uint64_t(kSplit * std::sqrt(std::ldexp(1.0, int(std::min(iteration, 60u)))));
+  const size_t count = nodes_.size();  // the nodes before this update
+  for (uint32_t n = 0; n < count; ++n)
+    if (nodes_[n].child[0] == 0) split(n, limit);
+  for (Leaf& l : leaves_) l.sum = 0.0, l.records = 0;
+}
+
+void ScatterField::write_state(StateWriter& out) const {
+  out.put(lo_);
+  out.put(extent_);
+  out.put(uint8_t(trained_));
+  out.put(uint64_t(nodes_.size()));
+  for (const Node& n : nodes_) {
+    out.write(n.child, sizeof n.child);
+    out.put(n.leaf);
+    out.put(n.axis);
+  }
+  out.put(uint64_t(leaves_.size()));
+  for (const Leaf& l : leaves_) {
+    out.put(l.size);
+    out.put(l.level);
+    out.put(l.sum);
+    out.put(l.records);
+  }
+}
+
+void ScatterField::read_state(StateReader& in) {
+  const Vec3 lo = in.get<Vec3>();
+  const float extent = in.get<float>();
+  if (lo != lo_ || extent != extent_) throw std::runtime_error("the guided distances were learnt in other bounds");
+  const bool trained = in.get<uint8_t>() != 0;
+  // Each node takes 13 bytes and each leaf 32: counts beyond what is left are damage.
+  const uint64_t node_count = in.get<uint64_t>();
+  if (node_count == 0 || node_count > in.left() / 13)
+    throw std::runtime_error("a scattered radiance tree of " + std::to_string(node_count) + " nodes");
+  std::vector<Node> nodes(node_count);
+  for (Node& n : nodes) {
+    in.read(n.child, sizeof n.child);
+    n.leaf = in.get<uint32_t>();
+    n.axis = in.get<uint8_t>();
+  }
+  const uint64_t leaf_count = in.get<uint64_t>();
+  if (leaf_count == 0 || leaf_count > in.left() / 32)
+    throw std::runtime_error("a scattered radiance tree of " + std::to_string(leaf_count) + " leaves");
+  // A tree: every node but the root the child of one node, after it, at
+  // most kMaxDepth deep (every walk from the root ends soon); leaves in the
+  // list, each once.
+  constexpr int kMaxDepth = 192;  // (a float's extent halves 24 times per axis at most: 72 levels)
+  std::vector<uint8_t> parents(nodes.size(), 0), depth(nodes.size(), 0), leaf_used(leaf_count, 0);
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    const Node& n = nodes[i];
+    const bool leaf = n.child[0] == 0 && n.child[1] == 0;
+    const bool inner = n.child[0] > i && n.child[1] > i && n.child[0] < node_count && n.child[1] < node_count &&
+                       n.child[0] != n.child[1] && depth[i] < kMaxDepth;
+    if ((!leaf && !inner) || n.axis > 2 || (leaf && (n.leaf >= leaf_count || leaf_used[n.leaf]++ > 0)))
+      throw std::runtime_error("a scattered radiance tree whose node " + std::to_string(i) + " cannot be");
+    if (inner)
+      for (uint32_t c : n.child) {
+        if (parents[c]++ > 0)
+          throw std::runtime_error("a scattered radiance tree whose node " + std::to_string(c) + " has two parents");
+        depth[c] = uint8_t(depth[i] + 1);
+      }
+  }
+  std::vector<Leaf> leaves(leaf_count);
+  for (Leaf& l : leaves) {
+    l.size = in.get<Vec3>();
+    l.level = in.get<float>();
+    l.sum = in.get<double>();
+    l.records = in.get<uint64_t>();
+    const bool fine = l.size.x > 0.f && l.size.y > 0.f && l.size.z > 0.f &&
+                      std::isfinite(l.size.x + l.size.y + l.size.z) && l.level >= 0.f && std::isfinite(l.level) &&
+                      l.sum >= 0.0 && std::isfinite(l.sum) && l.records < (uint64_t(1) << 40);
+    if (!fine) throw std::runtime_error("a scattered radiance leaf whose size, mean or records cannot be");
+  }
+  nodes_ = std::move(nodes);
+  leaves_ = std::move(leaves);
+  trained_ = trained;
+}
+
+}  // namespace lantern
