@@ -40,8 +40,8 @@ void ScatterField::split(uint32_t n, uint64_t limit) {
   leaves_.push_back(leaves_[first]);
   const uint32_t a = uint32_t(nodes_.size());
   const uint8_t next_axis = uint8_t((axis + 1) % 3);
-  nodes_.push_back(Node{{0, 0}, first, next_axis});
-  nodes_.push_back(Node{{0, 0}, second, next_axis});
+  nodes_.push_back(Node{{0, 0}, first, next_axis, 0.f});
+  nodes_.push_back(Node{{0, 0}, second, next_axis, 0.f});
   nodes_[n].child[0] = a;
   nodes_[n].child[1] = a + 1;
   split(a, limit);
@@ -57,7 +57,28 @@ void ScatterField::update(uint32_t iteration) {
   const size_t count = nodes_.size();  // the nodes before this update
   for (uint32_t n = 0; n < count; ++n)
     if (nodes_[n].child[0] == 0) split(n, limit);
+  derive_splits();
   for (Leaf& l : leaves_) l.sum = 0.0, l.records = 0;
+}
+
+void ScatterField::derive_splits() {
+  struct Box {
+    uint32_t node;
+    Vec3 lo, hi;
+  };
+  std::vector<Box> stack{{0, Vec3(0.f), Vec3(1.f)}};
+  while (!stack.empty()) {
+    const Box b = stack.back();
+    stack.pop_back();
+    Node& node = nodes_[b.node];
+    if (node.child[0] == 0) continue;
+    const int a = node.axis;
+    node.split = 0.5f * (b.lo[a] + b.hi[a]);  // (halves of halves: exact in a float)
+    Box lower{node.child[0], b.lo, b.hi}, upper{node.child[1], b.lo, b.hi};
+    lower.hi[a] = upper.lo[a] = node.split;
+    stack.push_back(lower);
+    stack.push_back(upper);
+  }
 }
 
 void ScatterField::write_state(StateWriter& out) const {
@@ -130,6 +151,7 @@ void ScatterField::read_state(StateReader& in) {
   nodes_ = std::move(nodes);
   leaves_ = std::move(leaves);
   trained_ = trained;
+  derive_splits();
 }
 
 }  // namespace lantern

@@ -71,7 +71,8 @@ class ScatterField {
   struct Node {
     uint32_t child[2] = {0, 0};  // 0: a leaf
     uint32_t leaf = 0;
-    uint8_t axis = 0;  // the axis its children split
+    uint8_t axis = 0;   // the axis its children split
+    float split = 0.f;  // where, in the cube's units (derived: derive_splits)
   };
   struct Leaf {
     Vec3 size{0.f};
@@ -80,8 +81,10 @@ class ScatterField {
     uint64_t records = 0;  // this iteration's
   };
   void split(uint32_t node, uint64_t limit);
+  // Each inner node's split: the middle of its box along its axis.
+  void derive_splits();
   template <class Visit>
-  void visit_node(uint32_t n, Vec3 lo, Vec3 hi, const Vec3& o, const Vec3& d, float ta, float tb, Visit& visit) const;
+  void visit_node(uint32_t n, const Vec3& o, const Vec3& d, const Vec3& inv_d, float ta, float tb, Visit& visit) const;
 
   Vec3 lo_;
   float extent_;  // of the cube the tree divides
@@ -105,11 +108,11 @@ void ScatterField::leaves_along(const Vec3& o, const Vec3& d, float t0, float t1
     ta = std::max(ta, near), tb = std::min(tb, far);
   }
   if (!(ta < tb)) return;
-  visit_node(0, Vec3(0.f), Vec3(1.f), q, dq, ta, tb, visit);
+  visit_node(0, q, dq, 1.f / dq, ta, tb, visit);
 }
 
 template <class Visit>
-void ScatterField::visit_node(uint32_t n, Vec3 lo, Vec3 hi, const Vec3& o, const Vec3& d, float ta, float tb,
+void ScatterField::visit_node(uint32_t n, const Vec3& o, const Vec3& d, const Vec3& inv_d, float ta, float tb,
                               Visit& visit) const {
   for (;;) {
     const Node& node = nodes_[n];
@@ -118,21 +121,18 @@ void ScatterField::visit_node(uint32_t n, Vec3 lo, Vec3 hi, const Vec3& o, const
       return;
     }
     const int a = node.axis;
-    const float mid = 0.5f * (lo[a] + hi[a]);
     const float at = o[a] + ta * d[a];
     // the child the stretch starts in (on the plane: the one it heads into)
-    const bool upper_first = at > mid || (at == mid && d[a] >= 0.f);
-    Vec3 near_lo = lo, near_hi = hi, far_lo = lo, far_hi = hi;
-    (upper_first ? near_lo : near_hi)[a] = mid;
-    (upper_first ? far_hi : far_lo)[a] = mid;
+    const bool upper_first = at > node.split || (at == node.split && d[a] >= 0.f);
     const uint32_t near = node.child[upper_first ? 1 : 0], far = node.child[upper_first ? 0 : 1];
-    const float t_mid = d[a] != 0.f ? (mid - o[a]) / d[a] : -kInfinity;
+    // (parallel to the plane: infinite or not a number, never inside)
+    const float t_mid = (node.split - o[a]) * inv_d[a];
     if (!(t_mid > ta && t_mid < tb)) {  // the plane is not crossed within the stretch
-      n = near, lo = near_lo, hi = near_hi;
+      n = near;
       continue;
     }
-    visit_node(near, near_lo, near_hi, o, d, ta, t_mid, visit);
-    n = far, lo = far_lo, hi = far_hi, ta = t_mid;
+    visit_node(near, o, d, inv_d, ta, t_mid, visit);
+    n = far, ta = t_mid;
   }
 }
 
