@@ -50,7 +50,8 @@ void ScatterField::split(uint32_t n, uint64_t limit) {
 
 void ScatterField::update(uint32_t iteration) {
   for (Leaf& l : leaves_) {
-    if (l.records > 0) l.level = float(l.sum / double(l.records));
+    const float mean = l.records > 0 ? float(l.sum / double(l.records)) : -1.f;
+    if (mean >= 0.f && std::isfinite(mean)) l.level = mean;
     trained_ = trained_ || l.level > 0.f;
   }
   const uint64_t limit = uint64_t(kSplit * std::sqrt(std::ldexp(1.0, int(std::min(iteration, 60u)))));
