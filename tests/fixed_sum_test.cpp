@@ -1,6 +1,8 @@
 // The film's fixed-point sums and unit sets: exact conversion, sums that do
 // not depend on the order of their terms, and the set algebra that parts
 // and checkpoints rely on.
+#include "math/fixed_sum.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,7 +10,6 @@
 #include <random>
 #include <vector>
 
-#include "film/fixed_sum.h"
 #include "film/unit_set.h"
 
 namespace lantern {

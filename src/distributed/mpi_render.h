@@ -4,7 +4,7 @@
 // out the render's units (one wave of one pass each) one at a time, from a
 // scheduler thread, to whichever rank asks next, so that unequal machines
 // finish together. At the end the ranks' films are added at rank 0 with
-// MPI_Reduce. The films' sums are fixed-point integers (film/fixed_sum.h),
+// MPI_Reduce. The films' sums are fixed-point integers (math/fixed_sum.h),
 // so the image is bit-identical to a single-process render of the same
 // settings, whatever the number of ranks, threads or the order units
 // finished in (docs/distributed.md).

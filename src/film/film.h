@@ -3,7 +3,7 @@
 // are spread over the pixels whose filter covers that point.
 //
 // Waves write into a WaveOutput of their own and the renderer merges them
-// into the film. The sums are fixed-point (film/fixed_sum.h), so they do not
+// into the film. The sums are fixed-point (math/fixed_sum.h), so they do not
 // depend on the order of the terms: films of any pieces of a render, added,
 // equal the film of the whole render bit for bit.
 #pragma once
@@ -17,11 +17,11 @@
 #include <vector>
 
 #include "color/sampled_wavelengths.h"
-#include "film/fixed_sum.h"
 #include "film/pixel_filter.h"
 #include "guiding/guide_record.h"
 #include "lantern/image.h"
 #include "math/common.h"
+#include "math/fixed_sum.h"
 #include "math/state_io.h"
 
 namespace lantern {

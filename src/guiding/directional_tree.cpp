@@ -29,13 +29,15 @@ bool choose_second(float a, float b, float& u) {
 
 }  // namespace
 
-DirectionalTree::DirectionalTree() : node_(1), energy_(4, 0.0) {}
+DirectionalTree::DirectionalTree() : node_(1), energy_(4) {}
 
 void DirectionalTree::normalise() {
   for (size_t n = 0; n < node_.size(); ++n) {
-    const double* e = &energy_[4 * n];
-    const double sum = e[0] + e[1] + e[2] + e[3];
-    for (uint32_t q = 0; q < 4; ++q) node_[n].probability[q] = sum > 0.0 ? float(e[q] / sum) : 0.f;
+    const FixedSum* e = &energy_[4 * n];
+    FixedSum all = e[0];
+    for (uint32_t q = 1; q < 4; ++q) all.add(e[q]);
+    const double sum = all.value();
+    for (uint32_t q = 0; q < 4; ++q) node_[n].probability[q] = sum > 0.0 ? float(e[q].value() / sum) : 0.f;
   }
 }
 
@@ -54,8 +56,11 @@ void DirectionalTree::sum_up() {
   // before its parent.
   for (size_t n = node_.size(); n-- > 0;)
     for (uint32_t q = 0; q < 4; ++q)
-      if (const uint32_t c = node_[n].child[q]; c != 0)
-        energy_[4 * n + q] = energy_[4 * c] + energy_[4 * c + 1] + energy_[4 * c + 2] + energy_[4 * c + 3];
+      if (const uint32_t c = node_[n].child[q]; c != 0) {
+        FixedSum all = energy_[4 * c];
+        for (uint32_t k = 1; k < 4; ++k) all.add(energy_[4 * c + k]);
+        energy_[4 * n + q] = all;
+      }
   normalise();
 }
 
@@ -103,7 +108,7 @@ DirectionalTree DirectionalTree::refined(double threshold) const {
   const double all = total();
   if (!(all > 0.0)) {
     out.node_ = node_;
-    out.energy_.assign(energy_.size(), 0.0);
+    out.energy_.assign(energy_.size(), FixedSum());
     out.normalise();
     return out;
   }
@@ -116,7 +121,8 @@ DirectionalTree DirectionalTree::refined(double threshold) const {
     int depth;
     std::array<double, 4> energy;
   };
-  std::vector<Entry> stack{{0, 0, false, 1, {energy_[0], energy_[1], energy_[2], energy_[3]}}};
+  std::vector<Entry> stack{
+      {0, 0, false, 1, {energy_[0].value(), energy_[1].value(), energy_[2].value(), energy_[3].value()}}};
   while (!stack.empty()) {
     const Entry e = stack.back();
     stack.pop_back();
@@ -125,10 +131,10 @@ DirectionalTree DirectionalTree::refined(double threshold) const {
       const uint32_t c = uint32_t(out.node_.size());
       out.node_[e.node].child[q] = c;
       out.node_.emplace_back();
-      out.energy_.insert(out.energy_.end(), 4, 0.0);
+      out.energy_.insert(out.energy_.end(), 4, FixedSum());
       const uint32_t old = e.inside ? 0u : node_[e.old].child[q];
       Entry next{c, old, e.inside || old == 0, e.depth + 1, {}};
-      for (uint32_t k = 0; k < 4; ++k) next.energy[k] = next.inside ? e.energy[q] * 0.25 : energy_[4 * old + k];
+      for (uint32_t k = 0; k < 4; ++k) next.energy[k] = next.inside ? e.energy[q] * 0.25 : energy_[4 * old + k].value();
       stack.push_back(next);
     }
   }
@@ -156,7 +162,7 @@ void DirectionalTree::write_state(StateWriter& out) const {
 void DirectionalTree::read_state(StateReader& in) {
   constexpr uint64_t kMostNodes = uint64_t(1) << 28;
   std::vector<Node> node = in.get_vector<Node>(kMostNodes);
-  std::vector<double> energy = in.get_vector<double>(4 * kMostNodes);
+  std::vector<FixedSum> energy = in.get_vector<FixedSum>(4 * kMostNodes);
   if (node.empty() || energy.size() != 4 * node.size())
     throw std::runtime_error("a directional tree of " + std::to_string(node.size()) + " nodes and " +
                              std::to_string(energy.size()) + " sums");
@@ -173,8 +179,8 @@ void DirectionalTree::read_state(StateReader& in) {
     }
   for (size_t n = 1; n < node.size(); ++n)
     if (parents[n] != 1) throw std::runtime_error("a directional tree whose node " + std::to_string(n) + " has no parent");
-  for (double e : energy)
-    if (!(e >= 0.0 && e < std::numeric_limits<double>::infinity())) throw std::runtime_error("a directional tree's energy is " + std::to_string(e));
+  for (const FixedSum& e : energy)
+    if (!e.sane_total()) throw std::runtime_error("a directional tree's energy is " + std::to_string(e.value()));
   for (const Node& n : node)
     for (float p : n.probability)
       if (!(p >= 0.f && p <= 1.f)) throw std::runtime_error("a directional tree's share is " + std::to_string(p));

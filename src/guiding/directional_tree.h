@@ -9,7 +9,10 @@
 // One tree plays two roles across an iteration of learning: the previous
 // iteration's tree, whose energies are fixed, is sampled; a tree refined
 // from it, with zero energies, collects this iteration's estimates
-// (cell_of, then add).
+// (cell_of, then add). The energies are fixed-point sums (math/fixed_sum.h):
+// the tree learnt from a set of estimates does not depend on the order
+// they were added in, so processes that each add a share of them and then
+// add up their sums (energies) learn the tree one process learns.
 #pragma once
 
 #include <array>
@@ -17,6 +20,7 @@
 #include <vector>
 
 #include "math/common.h"
+#include "math/fixed_sum.h"
 #include "math/state_io.h"
 
 namespace lantern {
@@ -30,12 +34,19 @@ class DirectionalTree {
   // The leaf quadrant (node * 4 + quadrant) that point p of the square
   // falls in.
   uint32_t cell_of(Vec2 p) const;
-  void add(uint32_t cell, double energy) { energy_[cell] += energy; }
+  // (An energy too large for the sums, 4.6e18 or more, is left out.)
+  void add(uint32_t cell, float energy) {
+    if (FixedSum::addable(energy)) energy_[cell].add(energy);
+  }
   // Sums every inner quadrant's energy from its child, after the adds, and
   // readies the tree to be sampled.
   void sum_up();
 
-  double total() const { return energy_[0] + energy_[1] + energy_[2] + energy_[3]; }
+  double total() const {
+    FixedSum all = energy_[0];
+    for (int q = 1; q < 4; ++q) all.add(energy_[size_t(q)]);
+    return all.value();
+  }
   // A point of the square drawn proportionally to the energy (total() > 0)
   // and its density over the square.
   Vec2 sample(Vec2 u, float* pdf) const;
@@ -57,7 +68,9 @@ class DirectionalTree {
 
   size_t node_count() const { return node_.size(); }
   int depth() const;
-  size_t memory_bytes() const { return node_.capacity() * sizeof(Node) + energy_.capacity() * sizeof(double); }
+  size_t memory_bytes() const { return node_.capacity() * sizeof(Node) + energy_.capacity() * sizeof(FixedSum); }
+  // The energies, 4 per node, for adding up what processes learnt.
+  std::vector<FixedSum>& energies() { return energy_; }
 
  private:
   // What sampling and densities read, together in 32 bytes: the children
@@ -68,7 +81,7 @@ class DirectionalTree {
     std::array<float, 4> probability{0.f, 0.f, 0.f, 0.f};
   };
   std::vector<Node> node_;      // node 0 is the root; children come after their parent
-  std::vector<double> energy_;  // 4 per node
+  std::vector<FixedSum> energy_;  // 4 per node
   void normalise();
 };
 

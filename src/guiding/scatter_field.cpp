@@ -50,7 +50,7 @@ void ScatterField::split(uint32_t n, uint64_t limit) {
 
 void ScatterField::update(uint32_t iteration) {
   for (Leaf& l : leaves_) {
-    const float mean = l.records > 0 ? float(l.sum / double(l.records)) : -1.f;
+    const float mean = l.records > 0 ? float(l.sum.value() / double(l.records)) : -1.f;
     if (mean >= 0.f && std::isfinite(mean)) l.level = mean;
     trained_ = trained_ || l.level > 0.f;
   }
@@ -59,7 +59,7 @@ void ScatterField::update(uint32_t iteration) {
   for (uint32_t n = 0; n < count; ++n)
     if (nodes_[n].child[0] == 0) split(n, limit);
   derive_splits();
-  for (Leaf& l : leaves_) l.sum = 0.0, l.records = 0;
+  for (Leaf& l : leaves_) l.sum = FixedSum(), l.records = 0;
 }
 
 void ScatterField::derive_splits() {
@@ -106,7 +106,7 @@ void ScatterField::read_state(StateReader& in) {
   const float extent = in.get<float>();
   if (lo != lo_ || extent != extent_) throw std::runtime_error("the guided distances were learnt in other bounds");
   const bool trained = in.get<uint8_t>() != 0;
-  // Each node takes 13 bytes and each leaf 32: counts beyond what is left are damage.
+  // Each node takes 13 bytes and each leaf 40: counts beyond what is left are damage.
   const uint64_t node_count = in.get<uint64_t>();
   if (node_count == 0 || node_count > in.left() / 13)
     throw std::runtime_error("a scattered radiance tree of " + std::to_string(node_count) + " nodes");
@@ -117,7 +117,7 @@ void ScatterField::read_state(StateReader& in) {
     n.axis = in.get<uint8_t>();
   }
   const uint64_t leaf_count = in.get<uint64_t>();
-  if (leaf_count == 0 || leaf_count > in.left() / 32)
+  if (leaf_count == 0 || leaf_count > in.left() / 40)
     throw std::runtime_error("a scattered radiance tree of " + std::to_string(leaf_count) + " leaves");
   // A tree: every node but the root the child of one node, after it, at
   // most kMaxDepth deep (every walk from the root ends soon); leaves in the
@@ -142,11 +142,11 @@ void ScatterField::read_state(StateReader& in) {
   for (Leaf& l : leaves) {
     l.size = in.get<Vec3>();
     l.level = in.get<float>();
-    l.sum = in.get<double>();
+    l.sum = in.get<FixedSum>();
     l.records = in.get<uint64_t>();
     const bool fine = l.size.x > 0.f && l.size.y > 0.f && l.size.z > 0.f &&
                       std::isfinite(l.size.x + l.size.y + l.size.z) && l.level >= 0.f && std::isfinite(l.level) &&
-                      l.sum >= 0.0 && std::isfinite(l.sum) && l.records < (uint64_t(1) << 40);
+                      l.sum.sane_total() && l.records < (uint64_t(1) << 40);
     if (!fine) throw std::runtime_error("a scattered radiance leaf whose size, mean or records cannot be");
   }
   nodes_ = std::move(nodes);

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "math/common.h"
+#include "math/fixed_sum.h"
 #include "math/state_io.h"
 
 namespace lantern {
@@ -44,8 +45,11 @@ class ScatterField {
     return size_t(std::count_if(leaves_.begin(), leaves_.end(), [](const Leaf& l) { return l.level > 0.f; }));
   }
 
+  // (Sums in fixed point, as the directional trees': the field learnt from
+  // a set of records does not depend on their order. A value beyond the
+  // sums' range counts as their largest.)
   void add(uint32_t leaf, float value) {
-    leaves_[leaf].sum += double(value);
+    leaves_[leaf].sum.add(std::min(value, 1e18f));
     ++leaves_[leaf].records;
   }
   // Ends iteration k (0 first): each leaf's records' mean is what it
@@ -53,6 +57,17 @@ class ScatterField {
   // leaves with many records split.
   void update(uint32_t iteration);
   bool trained() const { return trained_; }
+  // Calls f(FixedSum&) on each of this iteration's sums (each leaf's sum and
+  // records, as a count), in a fixed order (SDTree::visit_learnt).
+  template <class F>
+  void visit_learnt(F&& f) {
+    for (Leaf& l : leaves_) {
+      f(l.sum);
+      FixedSum c = FixedSum::of_count(l.records);
+      f(c);
+      l.records = c.count();
+    }
+  }
 
   // The leaves the segment o + t d, t in [t0, t1], crosses inside the
   // field's cube, in order along it: visit(t_enter, t_exit, leaf) for each
@@ -77,7 +92,7 @@ class ScatterField {
   struct Leaf {
     Vec3 size{0.f};
     float level = 0.f;
-    double sum = 0.0;
+    FixedSum sum;
     uint64_t records = 0;  // this iteration's
   };
   void split(uint32_t node, uint64_t limit);

@@ -57,9 +57,12 @@ void SDTree::choose_alphas(Leaf& l) {
   for (uint32_t b = 0; b < kBins; ++b) {
     if (l.moment_records[b] >= kAlphaMinRecords) {
       const auto& m = l.moment[b];
-      l.alpha[b] = kAlphas[size_t(std::min_element(m.begin(), m.end()) - m.begin())];
+      size_t least = 0;
+      for (size_t c = 1; c < m.size(); ++c)
+        if (m[c].value() < m[least].value()) least = c;
+      l.alpha[b] = kAlphas[least];
     }
-    l.moment[b].fill(0.0);
+    l.moment[b].fill(FixedSum());
     l.moment_records[b] = 0;
   }
 }
@@ -130,11 +133,11 @@ void SDTree::read_state(StateReader& in) {
     n.leaf = in.get<uint32_t>();
     n.axis = in.get<uint8_t>();
   }
-  // A leaf takes at least 14 trees of one node (80 bytes each) and 412
+  // A leaf takes at least 14 trees of one node (112 bytes each) and 748
   // bytes of counts, size, shares and moments: more leaves than the bytes
   // left could hold are damage.
   const uint64_t leaf_count = in.get<uint64_t>();
-  if (leaf_count == 0 || leaf_count > in.left() / 1532)
+  if (leaf_count == 0 || leaf_count > in.left() / 2316)
     throw std::runtime_error("a guiding tree of " + std::to_string(leaf_count) + " leaves");
   // A tree: every node but the root the child of one node, after it, at
   // most kMaxDepth deep (every walk from the root ends soon); leaves in
@@ -169,7 +172,10 @@ void SDTree::read_state(StateReader& in) {
     // split a leaf into more than memory holds.)
     const bool fine = l.records < (uint64_t(1) << 40) && l.size.x > 0.f && l.size.y > 0.f && l.size.z > 0.f &&
                       std::isfinite(l.size.x + l.size.y + l.size.z) &&
-                      std::all_of(l.alpha.begin(), l.alpha.end(), [](float a) { return a >= 0.f && a <= 1.f; });
+                      std::all_of(l.alpha.begin(), l.alpha.end(), [](float a) { return a >= 0.f && a <= 1.f; }) &&
+                      std::all_of(l.moment.begin(), l.moment.end(), [](const auto& m) {
+                        return std::all_of(m.begin(), m.end(), [](const FixedSum& x) { return x.sane_total(); });
+                      });
     if (!fine) throw std::runtime_error("a guiding leaf with " + std::to_string(l.records) + " records, or a size or share that cannot be");
   }
   nodes_ = std::move(nodes);

@@ -36,11 +36,13 @@
 
 #include <array>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "guiding/directional_tree.h"
 #include "guiding/guide_record.h"
 #include "math/common.h"
+#include "math/fixed_sum.h"
 
 namespace lantern {
 
@@ -64,6 +66,7 @@ class SDTree {
   static constexpr std::array<float, 6> kAlphas = {0.15f, 0.3f, 0.5f, 0.7f, 0.85f, 0.95f};
   static constexpr float kFirstAlpha = 0.5f;         // until the records say otherwise (the paper's)
   static constexpr uint32_t kAlphaMinRecords = 256;  // guided records a choice needs
+  static constexpr double kLargestMoment = 1e18;     // below FixedSum::kMaxTerm
 
   struct Leaf {
     std::array<DirectionalTree, kBins> sampled, learning;
@@ -72,7 +75,8 @@ class SDTree {
     std::array<float, kBins> alpha;
     // This iteration's second moments per candidate, and the records they
     // came from.
-    std::array<std::array<double, kAlphas.size()>, kBins> moment{};
+    // (Fixed-point, as the directional trees' energies: DirectionalTree.)
+    std::array<std::array<FixedSum, kAlphas.size()>, kBins> moment{};
     std::array<uint32_t, kBins> moment_records{};
     Leaf() { alpha.fill(kFirstAlpha); }
   };
@@ -94,11 +98,33 @@ class SDTree {
     ++l.moment_records[r.bin];
     for (size_t c = 0; c < kAlphas.size(); ++c) {
       const float p = kAlphas[c] * r.bsdf_pdf + (1.f - kAlphas[c]) * r.guide_pdf;
-      if (p > 0.f) l.moment[r.bin][c] += double(r.second) / double(p);
+      // (a moment beyond the sums' range counts as their largest)
+      if (p > 0.f) l.moment[r.bin][c].add(float(std::min(double(r.second) / double(p), kLargestMoment)));
     }
   }
   // Ends iteration k (0 first): what was learnt is sampled from now on.
   void update(uint32_t iteration);
+  // Calls f(FixedSum&) on each of this iteration's sums, in a fixed order:
+  // the learning trees' energies, the records (as counts), the moments and
+  // their records. Trees whose fields are the same (processes that learnt
+  // alike until this iteration) have the same sums in the same order, so
+  // processes can add theirs up (GuidingField::learnt_sums).
+  template <class F>
+  void visit_learnt(F&& f) {
+    auto count = [&f](auto& n) {
+      FixedSum c = FixedSum::of_count(uint64_t(n));
+      f(c);
+      n = static_cast<std::remove_reference_t<decltype(n)>>(c.count());
+    };
+    for (Leaf& l : leaves_) {
+      for (DirectionalTree& d : l.learning)
+        for (FixedSum& e : d.energies()) f(e);
+      count(l.records);
+      for (auto& m : l.moment)
+        for (FixedSum& x : m) f(x);
+      for (uint32_t& n : l.moment_records) count(n);
+    }
+  }
 
   // Whether any leaf has a distribution to sample.
   bool trained() const { return trained_; }

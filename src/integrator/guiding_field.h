@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -112,6 +113,36 @@ class GuidingField {
     if (iteration_ < 62) ++iteration_;
   }
 
+  // What this iteration learnt so far, as its sums: 16-byte integers
+  // (FixedSum::raw) that add up elementwise, modulo 2^128, across
+  // processes that learnt alike until this iteration and each rendered a
+  // share of it (MPI's ranks: RenderHooks::share_learnt). The totals, put
+  // back with take_learnt_sums, are the sums one process that rendered
+  // every share would have, bit for bit.
+  std::string learnt_sums() {
+    std::string bytes;
+    visit_learnt([&bytes](FixedSum& s) {
+      const FixedSum::Raw r = s.raw();
+      bytes.append(reinterpret_cast<const char*>(&r), sizeof r);
+    });
+    return bytes;
+  }
+  void take_learnt_sums(const std::string& bytes) {
+    size_t at = 0;
+    visit_learnt([&](FixedSum&) { at += sizeof(FixedSum::Raw); });
+    if (at != bytes.size())
+      throw std::runtime_error("another process's guiding field has " + std::to_string(bytes.size()) +
+                               " bytes of sums, this one " + std::to_string(at));
+    at = 0;
+    visit_learnt([&](FixedSum& s) {
+      FixedSum::Raw r;
+      std::memcpy(&r, bytes.data() + at, sizeof r);
+      at += sizeof r;
+      s = FixedSum();
+      s.add_raw(r);
+    });
+  }
+
   // The field, its iteration and whether it still learns, as bytes for a
   // checkpoint; restore takes them back into a field made for the same
   // render, and throws std::runtime_error for bytes it cannot take.
@@ -145,6 +176,12 @@ class GuidingField {
   }
 
  private:
+  template <class F>
+  void visit_learnt(F&& f) {
+    if (eye_subpaths_) tree_.visit_learnt(f);
+    if (light_subpaths_) importance_.visit_learnt(f);
+    scattered_.visit_learnt(f);
+  }
   bool pays(uint64_t passes) const { return iteration_end() + iteration_length() <= passes; }
   // The distribution a tree's leaf holds for a normal's bin, if any (none
   // before the first iteration ends, or where no energy came).

@@ -33,7 +33,7 @@ class FixedSum {
   static Raw to_fixed(float x) {
     const uint32_t bits = std::bit_cast<uint32_t>(x);
     const int exponent = int((bits >> 23) & 0xFFu);
-    if (exponent == 0) return 0;  // zero and denormals (below 2^-126)
+    if (exponent == 0) return 0;                                     // zero and denormals (below 2^-126)
     if (exponent > 188) return (bits >> 31) ? -kLargest : kLargest;  // 2^62 and up, Inf, NaN
     const Raw mantissa = Raw((bits & 0x7FFFFFu) | 0x800000u);
     // x = mantissa * 2^(exponent - 150); shifted into 64 fractional bits.
@@ -55,6 +55,18 @@ class FixedSum {
   }
 
   Raw raw() const { return Raw(raw_); }
+  // A count as a sum (its value n), and back: counts add up across
+  // processes with the sums they counted.
+  static FixedSum of_count(uint64_t n) {
+    FixedSum s;
+    s.raw_ = Bits(n) << kFractionBits;
+    return s;
+  }
+  uint64_t count() const { return uint64_t(raw_ >> kFractionBits); }
+  // Whether this can be a sum of terms that are not negative: its value
+  // at least zero and below 2^63, the range it is right in (what a
+  // checkpoint's bytes must be).
+  bool sane_total() const { return raw() >= 0; }
 
  private:
   using Bits = unsigned __int128;
