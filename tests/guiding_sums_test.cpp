@@ -54,10 +54,12 @@ std::string add(const std::string& a, const std::string& b) {
   EXPECT_EQ(a.size(), b.size());
   std::string out = a;
   for (size_t at = 0; at + 16 <= a.size(); at += 16) {
-    unsigned __int128 x, y;
+    FixedSum::Raw x, y;
     std::memcpy(&x, a.data() + at, 16);
     std::memcpy(&y, b.data() + at, 16);
-    x += y;
+    FixedSum sum = FixedSum::of_raw(x);
+    sum.add_saturating(FixedSum::of_raw(y));
+    x = sum.raw();
     std::memcpy(out.data() + at, &x, 16);
   }
   return out;

@@ -192,6 +192,16 @@ struct RenderHooks {
   // own choice's bytes, and finds that process's in them after. Unset:
   // each process keeps its own.
   std::function<void(std::string& choice)> agree;
+  // Processes that render one guided image (MPI's ranks) learn one field:
+  // at the end of each of its learning iterations, and where one of them
+  // stops inside one (an interrupt, a time budget), every process calls
+  // this once with what it learnt in the iteration (`sums`: 16-byte
+  // integers, FixedSum's, to be added elementwise across processes with
+  // FixedSum::add_saturating),
+  // whether it stops, and the passes its pace predicts for a time budget
+  // (0: none). It returns with `sums` the processes' total, `passes` the
+  // first process's, and whether any of them stops.
+  std::function<bool(std::string& sums, bool stop, uint64_t& passes)> share_learnt;
 };
 
 struct RenderStats {

@@ -5,16 +5,18 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
+#include <cstring>
 #include <stdexcept>
 
 #include "film/film.h"
 #include "film/unit_set.h"
+#include "math/fixed_sum.h"
 
 namespace lantern {
 
 namespace {
 
-constexpr int kClaimTag = 1, kTicketTag = 2, kDoneTag = 3;
+constexpr int kClaimTag = 1, kTicketTag = 2, kDoneTag = 3, kLearntTag = 4, kLearntBytesTag = 5, kLearntTotalTag = 6;
 // Tickets go out in runs of this many consecutive ones: a quarter of the
 // round trips, and at the end at most a few waves of imbalance.
 constexpr uint64_t kBatch = 4;
@@ -30,6 +32,19 @@ extern "C" void add_fixed_sums(void* in, void* inout, int* len, MPI_Datatype*) {
 
 void check(int code, const char* what) {
   if (code != MPI_SUCCESS) throw std::runtime_error(std::string("MPI: ") + what + " failed");
+}
+
+// Bytes of any length to one rank, and from it, in runs MPI's int counts hold.
+constexpr size_t kRun = size_t(1) << 30;
+void send_bytes(const std::string& b, int to, int tag) {
+  for (size_t at = 0; at < b.size(); at += kRun)
+    check(MPI_Send(b.data() + at, int(std::min(kRun, b.size() - at)), MPI_BYTE, to, tag, MPI_COMM_WORLD), "send");
+}
+void receive_bytes(std::string& b, size_t n, int from, int tag) {
+  b.resize(n);
+  for (size_t at = 0; at < n; at += kRun)
+    check(MPI_Recv(b.data() + at, int(std::min(kRun, n - at)), MPI_BYTE, from, tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
+          "receive");
 }
 
 // MPI_Reduce to rank 0 in chunks (MPI counts are ints), in place at the root.
@@ -75,6 +90,8 @@ MpiRender::MpiRender(const MpiSession& session, RenderOptions& o, RenderHooks& h
   h.reduce_film = [this](Film& film) { reduce(film); };
   h.sync_checkpoint = [this](UnitSet& done, double& elapsed) { sync_checkpoint(done, elapsed); };
   h.agree = [this](std::string& choice) { agree(choice); };
+  h.share_learnt = [this](std::string& sums, bool stop, uint64_t& passes) { return share_learnt(sums, stop, passes); };
+  if (session_.rank() == 0) learnt_.resize(size_t(session_.size()));
   o.checkpoint_rank = session_.rank();
   o.resume_reads = session_.rank() == 0;
 }
@@ -132,7 +149,14 @@ void MpiRender::serve() {
     MPI_Status status;
     MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status);
     if (!flag) {
+      finish_sharing_if_complete();
       std::this_thread::sleep_for(std::chrono::microseconds(250));
+      continue;
+    }
+    if (status.MPI_TAG == kLearntTag) {
+      uint64_t header[3];
+      MPI_Recv(header, 3, MPI_UINT64_T, status.MPI_SOURCE, kLearntTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      receive_learnt(status.MPI_SOURCE, header);
       continue;
     }
     uint64_t samples = 0;
@@ -216,6 +240,81 @@ void MpiRender::sync_checkpoint(UnitSet& done, double& elapsed_seconds) {
     for (size_t i = 0; i + 1 < flat.size(); i += 2) runs.emplace_back(flat[i], flat[i + 1]);
     done = UnitSet::of(std::move(runs));
   }
+}
+
+// A guiding iteration's end: every rank sends rank 0 its sums, whether it
+// stops and its predicted passes (a header of three numbers, then the
+// bytes); rank 0's scheduler thread adds them up (as 128-bit integers, in
+// any order: the totals are exact) and sends every rank the totals, the
+// stop of any and rank 0's passes. Point to point, so that rank 0's
+// scheduler goes on answering claims for the iteration's last units
+// meanwhile, and its main thread, which waits, calls no MPI
+// (MPI_THREAD_SERIALIZED).
+bool MpiRender::share_learnt(std::string& sums, bool stop, uint64_t& passes) {
+  if (session_.rank() == 0) {
+    start_scheduler();
+    std::unique_lock<std::mutex> lock(learnt_mutex_);
+    learnt_[0] = {std::move(sums), stop, true, passes};
+    learnt_ready_.wait(lock, [this] { return learnt_done_; });
+    learnt_done_ = false;
+    Learnt& total = learnt_[0];
+    sums = std::move(total.sums);
+    passes = total.passes;
+    total.in = false;
+    return total.stop;
+  }
+  const uint64_t header[3] = {uint64_t(stop), passes, sums.size()};
+  check(MPI_Send(header, 3, MPI_UINT64_T, 0, kLearntTag, MPI_COMM_WORLD), "learnt");
+  send_bytes(sums, 0, kLearntBytesTag);
+  uint64_t total[3];
+  check(MPI_Recv(total, 3, MPI_UINT64_T, 0, kLearntTotalTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE), "learnt");
+  if (total[2] != sums.size())
+    throw std::runtime_error("MPI: rank 0's guiding field has " + std::to_string(total[2]) +
+                             " bytes of sums, this one " + std::to_string(sums.size()));
+  receive_bytes(sums, size_t(total[2]), 0, kLearntTotalTag);
+  passes = total[1];
+  return total[0] != 0;
+}
+
+void MpiRender::receive_learnt(int source, const uint64_t header[3]) {
+  std::string bytes;
+  receive_bytes(bytes, size_t(header[2]), source, kLearntBytesTag);
+  {
+    std::lock_guard<std::mutex> lock(learnt_mutex_);
+    learnt_[size_t(source)] = {std::move(bytes), header[0] != 0, true, header[1]};
+  }
+  finish_sharing_if_complete();
+}
+
+void MpiRender::finish_sharing_if_complete() {
+  std::unique_lock<std::mutex> lock(learnt_mutex_);
+  if (learnt_.empty() || learnt_done_ ||
+      !std::all_of(learnt_.begin(), learnt_.end(), [](const Learnt& l) { return l.in; }))
+    return;
+  Learnt& total = learnt_[0];
+  for (size_t r = 1; r < learnt_.size(); ++r) {
+    Learnt& l = learnt_[r];
+    // (a rank whose field differs in shape cannot be added: the render fails on every rank)
+    const bool fits = l.sums.size() == total.sums.size();
+    for (size_t at = 0; fits && at + 16 <= total.sums.size(); at += 16) {
+      FixedSum::Raw a, b;
+      std::memcpy(&a, total.sums.data() + at, 16);
+      std::memcpy(&b, l.sums.data() + at, 16);
+      FixedSum sum = FixedSum::of_raw(a);
+      sum.add_saturating(FixedSum::of_raw(b));  // (the guiding field's sums saturate: math/fixed_sum.h)
+      a = sum.raw();
+      std::memcpy(total.sums.data() + at, &a, 16);
+    }
+    total.stop = total.stop || l.stop;
+    l.in = false;
+  }
+  const uint64_t header[3] = {uint64_t(total.stop), total.passes, total.sums.size()};
+  for (int r = 1; r < session_.size(); ++r) {
+    MPI_Send(header, 3, MPI_UINT64_T, r, kLearntTotalTag, MPI_COMM_WORLD);
+    send_bytes(total.sums, r, kLearntTotalTag);
+  }
+  learnt_done_ = true;
+  learnt_ready_.notify_all();
 }
 
 // Rank 0 reads the checkpoint, and so makes the choices (RenderHooks::

@@ -10,13 +10,15 @@
 // finished in (docs/distributed.md).
 #pragma once
 
+#include <mpi.h>
+
 #include <atomic>
+#include <condition_variable>
 #include <cstdint>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
-
-#include <mpi.h>
 
 #include "lantern/render.h"
 
@@ -79,6 +81,12 @@ class MpiRender {
   void reduce(Film& film);
   void sync_checkpoint(UnitSet& done, double& elapsed_seconds);
   void agree(std::string& choice);  // rank 0's, to every rank
+  bool share_learnt(std::string& sums, bool stop, uint64_t& passes);  // RenderHooks::share_learnt
+  // Rank 0's scheduler thread: a rank's learnt sums arrived from `source`
+  // (its header already received); once every rank's are in, the totals
+  // go back to each.
+  void receive_learnt(int source, const uint64_t header[3]);
+  void finish_sharing_if_complete();
 
   const MpiSession& session_;
   std::atomic<uint64_t> counter_{0};  // rank 0: the next ticket
@@ -93,6 +101,19 @@ class MpiRender {
   std::atomic<bool> stop_serving_{false};
   bool finished_ = false;
   RankReport report_;
+  // What the ranks learnt in a guiding iteration, gathered at rank 0 by its
+  // scheduler thread (the only one that calls MPI there once it runs):
+  // each rank's sums, stop and passes; rank 0's main thread waits for the
+  // totals.
+  struct Learnt {
+    std::string sums;
+    bool stop = false, in = false;
+    uint64_t passes = 0;
+  };
+  std::mutex learnt_mutex_;
+  std::condition_variable learnt_ready_;
+  std::vector<Learnt> learnt_;  // rank 0: per rank
+  bool learnt_done_ = false;    // rank 0: learnt_[0] holds the totals
 };
 
 }  // namespace lantern

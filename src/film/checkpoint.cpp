@@ -20,12 +20,11 @@ namespace {
 constexpr char kMagic[8] = {'L', 'N', 'T', 'N', 'C', 'K', 'P', 'T'};
 // 2: fixed-point sums, unit sets; 3: and what the integrator learnt; 4:
 // the same, a guiding field with distributions for media too; 5: and which
-// subpaths it guides, with the light subpaths' importance field; 6: and
-// what guided distances learnt. A render that learns nothing writes 2,
-// which every version since reads; 4 is read as the 5 of a field that
-// guides eye subpaths only, and 5 as a 6 whose distances learnt nothing yet.
-constexpr uint32_t kVersion = 2, kLearntVersion = 6, kSurfaceGuidedVersion = 3, kEyeGuidedVersion = 4,
-                   kUndistancedVersion = 5;
+// subpaths it guides, with the light subpaths' importance field; 6: its
+// sums in fixed point, and what guided distances learnt. A render that
+// learns nothing writes 2, which every version since reads; the guiding
+// fields of 3 to 5 are refused (their sums were doubles).
+constexpr uint32_t kVersion = 2, kLearntVersion = 6, kFirstGuidedVersion = 3;
 
 class HashingWriter final : public StateWriter {
  public:
@@ -127,15 +126,14 @@ std::string read_header(HashingReader& r, const std::string& path, uint32_t* ver
   r.read(magic, sizeof magic);
   if (std::memcmp(magic, kMagic, sizeof kMagic) != 0) throw InputError({path, 0, 0}, "not a Lantern checkpoint or part file");
   const uint32_t v = r.get<uint32_t>();
-  if (v == kSurfaceGuidedVersion)
-    throw InputError({path, 0, 0}, "file format version 3 is a guided render's from an earlier Lantern version, whose "
-                                   "guiding field this version cannot continue (its field has distributions for media "
-                                   "too); resume it with the version that wrote it");
-  if (v != kVersion && v != kLearntVersion && v != kEyeGuidedVersion && v != kUndistancedVersion)
+  if (v >= kFirstGuidedVersion && v < kLearntVersion)
+    throw InputError({path, 0, 0}, "file format version " + std::to_string(v) +
+                                       " is a guided render's from an earlier Lantern version, whose guiding field "
+                                       "this version cannot continue (its field's sums are now fixed-point, and it "
+                                       "learns distances in media too); resume it with the version that wrote it");
+  if (v != kVersion && v != kLearntVersion)
     throw InputError({path, 0, 0}, "file format version " + std::to_string(v) + " is not " + std::to_string(kVersion) +
-                                       ", " + std::to_string(kEyeGuidedVersion) + ", " +
-                                       std::to_string(kUndistancedVersion) + " or " + std::to_string(kLearntVersion) +
-                                       " (made by another Lantern version)");
+                                       " or " + std::to_string(kLearntVersion) + " (made by another Lantern version)");
   if (version) *version = v;
   const uint32_t n = r.get<uint32_t>();
   if (n > (1u << 20)) throw InputError({path, 0, 0}, "file is damaged (fingerprint length)");
@@ -177,7 +175,7 @@ CheckpointInfo read_file(const std::string& path, const std::string* expected, F
     throw InputError({path, 0, 0}, "file is damaged (unit list)");
   info.done = UnitSet::of(std::move(intervals));
   film.read_state(r);
-  if (version == kLearntVersion || version == kEyeGuidedVersion || version == kUndistancedVersion) {
+  if (version == kLearntVersion) {
     // No longer than what is left of the file.
     std::error_code ec;
     const uint64_t size = std::filesystem::file_size(path, ec);
@@ -187,11 +185,6 @@ CheckpointInfo read_file(const std::string& path, const std::string* expected, F
     if (n > left) throw InputError({path, 0, 0}, "file is damaged (the learnt state's length)");
     info.learnt.resize(size_t(n));
     r.read(info.learnt.data(), size_t(n));
-    // Version 4's field guided eye subpaths only and did not say so: the
-    // flags version 5 stores after the radiance field (GuidingField::save).
-    if (version == kEyeGuidedVersion) info.learnt += std::string("\x01\x00", 2);
-    // Versions 4 and 5 did not guide distances: GuidingField::restore reads
-    // a field without their section as one that learnt none yet.
   }
   uint64_t computed = r.hash.h, stored = 0;
   if (!in.read(reinterpret_cast<char*>(&stored), sizeof stored)) throw InputError({path, 0, 0}, "file is truncated");

@@ -35,7 +35,7 @@ void DirectionalTree::normalise() {
   for (size_t n = 0; n < node_.size(); ++n) {
     const FixedSum* e = &energy_[4 * n];
     FixedSum all = e[0];
-    for (uint32_t q = 1; q < 4; ++q) all.add(e[q]);
+    for (uint32_t q = 1; q < 4; ++q) all.add_saturating(e[q]);
     const double sum = all.value();
     for (uint32_t q = 0; q < 4; ++q) node_[n].probability[q] = sum > 0.0 ? float(e[q].value() / sum) : 0.f;
   }
@@ -58,7 +58,7 @@ void DirectionalTree::sum_up() {
     for (uint32_t q = 0; q < 4; ++q)
       if (const uint32_t c = node_[n].child[q]; c != 0) {
         FixedSum all = energy_[4 * c];
-        for (uint32_t k = 1; k < 4; ++k) all.add(energy_[4 * c + k]);
+        for (uint32_t k = 1; k < 4; ++k) all.add_saturating(energy_[4 * c + k]);
         energy_[4 * n + q] = all;
       }
   normalise();

@@ -34,17 +34,15 @@ class DirectionalTree {
   // The leaf quadrant (node * 4 + quadrant) that point p of the square
   // falls in.
   uint32_t cell_of(Vec2 p) const;
-  // (An energy too large for the sums, 4.6e18 or more, is left out.)
-  void add(uint32_t cell, float energy) {
-    if (FixedSum::addable(energy)) energy_[cell].add(energy);
-  }
+  // (Sums past 2^63 stay there: FixedSum::add_saturating.)
+  void add(uint32_t cell, float energy) { energy_[cell].add_saturating(energy); }
   // Sums every inner quadrant's energy from its child, after the adds, and
   // readies the tree to be sampled.
   void sum_up();
 
   double total() const {
     FixedSum all = energy_[0];
-    for (int q = 1; q < 4; ++q) all.add(energy_[size_t(q)]);
+    for (int q = 1; q < 4; ++q) all.add_saturating(energy_[size_t(q)]);
     return all.value();
   }
   // A point of the square drawn proportionally to the energy (total() > 0)

@@ -32,8 +32,10 @@ uint32_t ScatterField::leaf_of(const Vec3& p) const {
 
 void ScatterField::split(uint32_t n, uint64_t limit) {
   const uint32_t first = nodes_[n].leaf;
-  if (leaves_[first].records <= limit) return;
   const uint8_t axis = nodes_[n].axis;
+  if (leaves_[first].records <= limit || leaves_.size() >= kMostLeaves ||
+      leaves_[first].size[axis] < extent_ * 0x1p-20f)
+    return;
   leaves_[first].records /= 2;  // the records assumed halved between the halves
   leaves_[first].size[axis] *= 0.5f;
   const uint32_t second = uint32_t(leaves_.size());

@@ -11,8 +11,9 @@
 // around it. Here a leaf holds one mean and splits by the records of medium
 // vertices alone, which every path that scatters leaves: a leaf with more
 // than kSplit * sqrt(2^k) records in iteration k is split in two (the
-// halves starting from its mean), as practical path guiding splits its
-// spatial tree (Müller, Gross and Novák 2017, sec. 3.3).
+// halves starting from its mean, each assumed to hold half the records,
+// and split again while that is more), as practical path guiding splits
+// its spatial tree (Müller, Gross and Novák 2017, sec. 3.3).
 //
 // Records are added in wave order by the renderer's serial stage, so the
 // field, like the directional one, depends on the seed and not on threads.
@@ -31,6 +32,11 @@ namespace lantern {
 class ScatterField {
  public:
   static constexpr double kSplit = 1600.0;
+  // A tree no larger than this many leaves, none narrower than the cube's
+  // extent over 2^20 along an axis (so no deeper than 60 levels): a count
+  // of records, as a damaged checkpoint may hold, cannot split it into
+  // more than memory holds.
+  static constexpr size_t kMostLeaves = size_t(1) << 22;
 
   ScatterField(Vec3 lo, Vec3 hi);
 
@@ -46,10 +52,9 @@ class ScatterField {
   }
 
   // (Sums in fixed point, as the directional trees': the field learnt from
-  // a set of records does not depend on their order. A value beyond the
-  // sums' range counts as their largest.)
+  // a set of records does not depend on their order.)
   void add(uint32_t leaf, float value) {
-    leaves_[leaf].sum.add(std::min(value, 1e18f));
+    leaves_[leaf].sum.add_saturating(value);
     ++leaves_[leaf].records;
   }
   // Ends iteration k (0 first): each leaf's records' mean is what it
@@ -136,16 +141,17 @@ void ScatterField::visit_node(uint32_t n, const Vec3& o, const Vec3& d, const Ve
       return;
     }
     const int a = node.axis;
-    const float at = o[a] + ta * d[a];
-    // the child the stretch starts in (on the plane: the one it heads into)
-    const bool upper_first = at > node.split || (at == node.split && d[a] >= 0.f);
-    const uint32_t near = node.child[upper_first ? 1 : 0], far = node.child[upper_first ? 0 : 1];
     // (parallel to the plane: infinite or not a number, never inside)
     const float t_mid = (node.split - o[a]) * inv_d[a];
-    if (!(t_mid > ta && t_mid < tb)) {  // the plane is not crossed within the stretch
-      n = near;
+    if (d[a] == 0.f || !(t_mid > ta && t_mid < tb)) {  // the plane is not crossed within the stretch
+      // The side the whole stretch lies on: where the ray heads once past
+      // the plane, where it comes from before it (leaf_of's on the plane).
+      const bool upper = d[a] == 0.f ? o[a] >= node.split : (t_mid <= ta) == (d[a] > 0.f);
+      n = node.child[upper ? 1 : 0];
       continue;
     }
+    // It crosses: the side it comes from first.
+    const uint32_t near = node.child[d[a] > 0.f ? 0 : 1], far = node.child[d[a] > 0.f ? 1 : 0];
     visit_node(near, o, d, inv_d, ta, t_mid, visit);
     n = far, ta = t_mid;
   }

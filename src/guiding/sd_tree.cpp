@@ -33,7 +33,8 @@ uint32_t SDTree::leaf_of(const Vec3& p) const {
 }
 
 void SDTree::split(uint32_t n, uint32_t axis, uint64_t limit) {
-  if (leaves_[nodes_[n].leaf].records <= limit) return;
+  const Leaf& l = leaves_[nodes_[n].leaf];
+  if (l.records <= limit || leaves_.size() >= kMostLeaves || l.size[int(axis)] < extent_ * 0x1p-20f) return;
   const uint32_t first = nodes_[n].leaf;
   leaves_[first].records /= 2;  // the records assumed halved between the halves
   leaves_[first].size[int(axis)] *= 0.5f;

@@ -66,7 +66,11 @@ class SDTree {
   static constexpr std::array<float, 6> kAlphas = {0.15f, 0.3f, 0.5f, 0.7f, 0.85f, 0.95f};
   static constexpr float kFirstAlpha = 0.5f;         // until the records say otherwise (the paper's)
   static constexpr uint32_t kAlphaMinRecords = 256;  // guided records a choice needs
-  static constexpr double kLargestMoment = 1e18;     // below FixedSum::kMaxTerm
+  // A tree no larger than this many leaves (a few KB each), none narrower
+  // than the cube's extent over 2^20 along an axis: a count of records, as
+  // a damaged checkpoint may hold, cannot split it into more than memory
+  // holds.
+  static constexpr size_t kMostLeaves = size_t(1) << 18;
 
   struct Leaf {
     std::array<DirectionalTree, kBins> sampled, learning;
@@ -98,8 +102,7 @@ class SDTree {
     ++l.moment_records[r.bin];
     for (size_t c = 0; c < kAlphas.size(); ++c) {
       const float p = kAlphas[c] * r.bsdf_pdf + (1.f - kAlphas[c]) * r.guide_pdf;
-      // (a moment beyond the sums' range counts as their largest)
-      if (p > 0.f) l.moment[r.bin][c].add(float(std::min(double(r.second) / double(p), kLargestMoment)));
+      if (p > 0.f) l.moment[r.bin][c].add_saturating(float(double(r.second) / double(p)));
     }
   }
   // Ends iteration k (0 first): what was learnt is sampled from now on.

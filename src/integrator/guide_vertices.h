@@ -86,7 +86,7 @@ struct GuideVertices {
     }
     for (size_t v = 0; field && v < scattered.slot.size(); ++v) {
       const float S = per_throughput(path_L[scattered.slot[v]] - scattered.L[v], scattered.beta[v]);
-      if (!std::isfinite(S)) continue;
+      if (!std::isfinite(S) || is_black(scattered.beta[v])) continue;  // (nothing carried: says nothing)
       RandomStream r = RandomStream::make(key, v, 0x7363617474ULL);
       const Vec3 x = scattered.p[v];
       out.push_back(

@@ -5,7 +5,7 @@
 // (density sigma_t T(t)), not where light is: in thin fog lit by a beam,
 // most fall in the dark. The guiding field learns, per spatial leaf, the
 // radiance its medium vertices scattered back along their paths per unit
-// sigma_s (guiding/sd_tree.h, next-event estimation's share included), and
+// sigma_s (guiding/scatter_field.h, next-event estimation's share included), and
 // along a stretch of homogeneous medium this draws t from the product of
 // a transmittance and that radiance, piecewise over the leaves the stretch
 // crosses:
@@ -42,42 +42,44 @@ class DistanceGuide {
   // (len may be infinite), with extinction sigma. False where nothing was
   // learnt along it: free flight alone.
   bool build(const ScatterField& field, const Vec3& o, const Vec3& d, float len, float sigma) {
-    bound_.clear(), level_.clear(), cdf_.assign(1, 0.f);
+    bound_.clear(), span_.clear(), cdf_.assign(1, 0.0);
     sigma_ = std::max(sigma, 0.f);
-    float decay = 1.f;  // exp(-sigma (ta - bound_[0])), carried from interval to interval
+    double decay = 1.0;  // exp(-sigma (ta - bound_[0])), carried from interval to interval
+    bool finite = true;
     field.leaves_along(o, d, 0.f, len, [&](float ta, float tb, uint32_t leaf) {
       if (bound_.empty()) bound_.push_back(ta);
       const float x = -sigma_ * (tb - ta), fall = std::expm1(x);  // exp(x) - 1
-      const float level = field.level(leaf) * decay;
-      const float mass = level * (flat(tb - ta) ? tb - ta : -fall / sigma_);
-      decay *= 1.f + fall;
+      const float span = flat(tb - ta) ? tb - ta : -fall / sigma_;  // the integral of exp(-sigma s) over it
+      const double mass = double(field.level(leaf)) * decay * double(span);
+      finite = finite && std::isfinite(mass);
+      decay *= 1.0 + double(fall);
       bound_.push_back(tb);
-      level_.push_back(level);
-      cdf_.push_back(cdf_.back() + (std::isfinite(mass) ? mass : 0.f));
+      span_.push_back(span);
+      cdf_.push_back(cdf_.back() + mass);
     });
-    return !level_.empty() && cdf_.back() > 0.f && std::isfinite(cdf_.back());
+    return !span_.empty() && finite && cdf_.back() > 0.0 && std::isfinite(cdf_.back());
   }
 
   // A distance drawn from g with the uniform number u (build returned true).
   float sample(float u) const {
-    const float x = u * cdf_.back();
+    const double x = double(u) * cdf_.back();
     size_t i = size_t(std::upper_bound(cdf_.begin(), cdf_.end(), x) - cdf_.begin());
-    i = std::min(std::max(i, size_t(1)), level_.size()) - 1;
+    i = std::min(std::max(i, size_t(1)), span_.size()) - 1;
     while (i > 0 && !(cdf_[i + 1] > cdf_[i])) --i;  // (u at the top: the last interval with mass)
-    const float mass = cdf_[i + 1] - cdf_[i];
-    const float v = std::clamp((x - cdf_[i]) / mass, 0.f, 0x1.fffffep-1f);
+    const float v = std::clamp(float((x - cdf_[i]) / (cdf_[i + 1] - cdf_[i])), 0.f, 0x1.fffffep-1f);
     const float width = bound_[i + 1] - bound_[i];
     const float offset = flat(width) ? v * width : -std::log1p(v * std::expm1(-sigma_ * width)) / sigma_;
     return std::clamp(bound_[i] + offset, bound_[i], std::nextafter(bound_[i + 1], bound_[i]));
   }
 
-  // g's density at t (per unit length).
+  // g's density at t (per unit length): its interval's share of the mass,
+  // spread within it as sample spreads it.
   float pdf(float t) const {
-    if (level_.empty() || !(t >= bound_.front() && t < bound_.back())) return 0.f;
+    if (span_.empty() || !(t >= bound_.front() && t < bound_.back())) return 0.f;
     const size_t i =
-        std::min(size_t(std::upper_bound(bound_.begin(), bound_.end(), t) - bound_.begin()) - 1, level_.size() - 1);
-    const float fall = flat(bound_[i + 1] - bound_[i]) ? 1.f : std::exp(-sigma_ * (t - bound_[i]));
-    return level_[i] * fall / cdf_.back();
+        std::min(size_t(std::upper_bound(bound_.begin(), bound_.end(), t) - bound_.begin()) - 1, span_.size() - 1);
+    const float within = flat(bound_[i + 1] - bound_[i]) ? 1.f : std::exp(-sigma_ * (t - bound_[i]));
+    return float((cdf_[i + 1] - cdf_[i]) / cdf_.back()) * within / span_[i];
   }
 
  private:
@@ -85,8 +87,8 @@ class DistanceGuide {
   bool flat(float width) const { return sigma_ * width < 1e-5f; }
 
   std::vector<float> bound_;  // the intervals' ends: interval i is [bound_[i], bound_[i + 1])
-  std::vector<float> level_;  // S of each interval's leaf times exp(-sigma (its start - bound_[0]))
-  std::vector<float> cdf_;    // the intervals' masses, summed up to each bound
+  std::vector<float> span_;   // the integral of exp(-sigma (t - its start)) over each
+  std::vector<double> cdf_;   // the intervals' masses, summed up to each bound
   float sigma_ = 0.f;
 };
 

@@ -114,7 +114,7 @@ class GuidingField {
   }
 
   // What this iteration learnt so far, as its sums: 16-byte integers
-  // (FixedSum::raw) that add up elementwise, modulo 2^128, across
+  // (FixedSum::raw) that add up elementwise (FixedSum::add_saturating) across
   // processes that learnt alike until this iteration and each rendered a
   // share of it (MPI's ranks: RenderHooks::share_learnt). The totals, put
   // back with take_learnt_sums, are the sums one process that rendered
@@ -138,8 +138,7 @@ class GuidingField {
       FixedSum::Raw r;
       std::memcpy(&r, bytes.data() + at, sizeof r);
       at += sizeof r;
-      s = FixedSum();
-      s.add_raw(r);
+      s = FixedSum::of_raw(r);
     });
   }
 
@@ -169,7 +168,7 @@ class GuidingField {
       throw std::runtime_error(light_subpaths_ ? "its light subpaths were not guided (--guide-light)"
                                                : "its light subpaths were guided (--guide-light)");
     if (light_subpaths_) importance_.read_state(in);
-    if (in.left() != 0) scattered_.read_state(in);  // (a field saved before guided distances has none)
+    scattered_.read_state(in);
     if (in.left() != 0) throw std::runtime_error("the guiding field has trailing bytes");
     iteration_ = iteration;
     done_ = done;

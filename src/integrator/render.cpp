@@ -289,12 +289,28 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
               merged.insert(unit);
               checkpoints.maybe_write(film);
             }));
-    if (stop || first >= total_spp || first < segment_end) break;
+    bool ends = stop || first >= total_spp || first < segment_end;
+    // the passes this pace reaches: is the next iteration worth learning?
+    uint64_t passes = timed && checkpoints.elapsed() > 0
+                          ? uint64_t(double(first / pass_spp) * opt.time_limit_seconds / checkpoints.elapsed())
+                          : 0;
+    if (hooks.share_learnt && cx.guiding && cx.guiding->learning()) {
+      // Every process comes here once per iteration, also one that stops
+      // inside it, and they learn the field of all their units together.
+      std::string sums = cx.guiding->learnt_sums();
+      const bool all_stop = hooks.share_learnt(sums, ends, passes);
+      if (all_stop) {
+        stop = stop || !ends;  // (another process stopped: this one stops with it)
+        break;
+      }
+      cx.guiding->take_learnt_sums(sums);
+      ends = false;
+    }
+    if (ends) break;
     if (merged_pass_first != kNoPass) pass_done(merged_pass_first);
     merged_pass_first = kNoPass;
     cx.guiding->end_iteration();
-    if (timed && checkpoints.elapsed() > 0)  // the passes this pace reaches: is the next iteration worth learning?
-      cx.guiding->expect_passes(uint64_t(double(first / pass_spp) * opt.time_limit_seconds / checkpoints.elapsed()));
+    if (passes > 0) cx.guiding->expect_passes(passes);
   }
   // The last pass merged is complete unless the render stopped inside it.
   if (merged_pass_first != kNoPass && !stop) pass_done(merged_pass_first);

@@ -13,6 +13,7 @@
 // below 2^63, which takes over 2^64 terms of the largest size.
 #pragma once
 
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <cstring>
@@ -43,6 +44,20 @@ class FixedSum {
   }
 
   void add(float x) { add_raw(to_fixed(x)); }
+  // For sums of terms that are not negative (guiding/directional_tree.h):
+  // past the largest value (2^63) the sum stays there. Partial sums of such
+  // terms only grow, so the result, min(the true sum, 2^63), is still the
+  // same in any order. A term beyond kMaxTerm counts as kMaxTerm.
+  void add_saturating(float x) { add_saturating(of_raw(to_fixed(std::min(x, kMaxTerm)))); }
+  void add_saturating(const FixedSum& other) {
+    const Bits sum = raw_ + other.raw_;
+    raw_ = Raw(sum) < 0 ? Bits(kMost) : sum;
+  }
+  static FixedSum of_raw(Raw r) {
+    FixedSum s;
+    s.raw_ = Bits(r);
+    return s;
+  }
   void add(const FixedSum& other) { raw_ += other.raw_; }
   void add_raw(Raw v) { raw_ += Bits(v); }  // modulo 2^128
 
@@ -71,6 +86,7 @@ class FixedSum {
  private:
   using Bits = unsigned __int128;
   static constexpr Raw kLargest = Raw(1) << 126;
+  static constexpr Raw kMost = Raw(~(Bits(1) << 127));  // 2^127 - 1
 
   Bits raw_ = 0;
 };
