@@ -162,13 +162,13 @@ namespace {
 // next-event estimation reaches from there alone.
 std::shared_ptr<Scene> beam_room() {
   return load_scene_from_string(R"(
+MakeNamedMedium "fog" "string type" [ "homogeneous" ]
+  "rgb sigma_a" [ 0.05 0.1 0.02 ] "rgb sigma_s" [ 0.3 0.2 0.4 ] "float g" [ 0.3 ]
 MediumInterface "" "fog"
 LookAt 0 1 -2.6  0 1 0  0 1 0
 Camera "perspective" "float fov" [ 70 ]
 Film "rgb" "integer xresolution" [ 48 ] "integer yresolution" [ 48 ]
 WorldBegin
-MakeNamedMedium "fog" "string type" [ "homogeneous" ]
-  "rgb sigma_a" [ 0.05 0.1 0.02 ] "rgb sigma_s" [ 0.3 0.2 0.4 ] "float g" [ 0.3 ]
 LightSource "spot" "point3 from" [ -1.8 1.9 0 ] "point3 to" [ 1 0 1 ] "float coneangle" [ 8 ] "float conedeltaangle" [ 2 ]
   "rgb I" [ 60 60 60 ]
 Material "diffuse" "rgb reflectance" [ 0.6 0.5 0.4 ]

@@ -47,6 +47,51 @@ foreach(integrator ${integrators})
   endforeach()
 endforeach()
 
+# Guided renders: the ranks add up what each learnt at the end of every
+# iteration of the field (RenderHooks::share_learnt), and the field's sums
+# are fixed-point, so every rank learns the field one process learns: the
+# same image, bit for bit, for guided directions, light subpaths and
+# distances in fog. An explicit checkpoint is refused (its pieces could not
+# be put back together).
+set(guided "path --guide@2x1" "path --guide@3x1" "bdpt --guide-light@2x2" "vcm --guide --guide-light@2x1")
+set(fog_guided "2x1")
+if(DEFINED ENV{ASAN_OPTIONS})
+  set(guided "path --guide@2x1")
+  set(fog_guided "")
+endif()
+set(guided_cases)
+foreach(g IN LISTS guided)
+  list(APPEND guided_cases "${SRC}/scenes/lantern.pbrt@${g}")
+endforeach()
+foreach(layout IN LISTS fog_guided)
+  list(APPEND guided_cases "${SRC}/perf/media/beam-in-fog.pbrt@path --guide@${layout}")
+endforeach()
+foreach(case IN LISTS guided_cases)
+  string(REPLACE "@" ";" case "${case}")
+  list(GET case 0 scene)
+  list(GET case 1 integrator)
+  list(GET case 2 layout)
+  separate_arguments(integrator)
+  string(REPLACE "x" ";" layout ${layout})
+  list(GET layout 0 ranks)
+  list(GET layout 1 threads)
+  set(g render ${scene} --spp 24 --resolution 40 30 --quiet --integrator ${integrator})
+  execute_process(COMMAND ${LANTERN} ${g} -o ${OUT}/mpi-guided-single.exr RESULT_VARIABLE rc ERROR_VARIABLE err TIMEOUT 120)
+  file(REMOVE ${OUT}/mpi-guided-ranks.exr)
+  execute_process(COMMAND ${mpirun} -np ${ranks} ${LANTERN} ${g} --threads ${threads} -o ${OUT}/mpi-guided-ranks.exr
+                  RESULT_VARIABLE rc2 OUTPUT_VARIABLE out ERROR_VARIABLE err2 TIMEOUT 120)
+  execute_process(COMMAND ${LANTERN} compare ${OUT}/mpi-guided-ranks.exr ${OUT}/mpi-guided-single.exr OUTPUT_VARIABLE cmp)
+  if(NOT rc EQUAL 0 OR NOT rc2 EQUAL 0 OR NOT cmp MATCHES "^mse 0\n")
+    message(FATAL_ERROR "guided ${scene} ${integrator} on ${ranks} ranks of ${threads} threads: exit ${rc}, ${rc2}, against one process:\n${cmp}${err}${out}${err2}")
+  endif()
+endforeach()
+execute_process(COMMAND ${mpirun} -np 2 ${LANTERN} render ${SRC}/scenes/lantern.pbrt --spp 8 --resolution 20 15 --quiet
+                        --integrator path --guide --checkpoint 5 -o ${OUT}/mpi-guided-ck.exr
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 60)
+if(rc EQUAL 0 OR NOT "${out}${err}" MATCHES "under MPI cannot checkpoint yet")
+  message(FATAL_ERROR "guided MPI render with --checkpoint: exit ${rc}\n${out}${err}")
+endif()
+
 # A scene only rank 0 cannot read would leave the others waiting: the job
 # must end with the error and a non-zero status instead.
 execute_process(COMMAND ${mpirun} -np 2 ${LANTERN} render ${OUT}/no-such-scene.pbrt -o ${OUT}/x.exr

@@ -134,7 +134,7 @@ void check_options(const Scene& scene, const RenderOptions& opt) {
       throw std::invalid_argument("path guiding (--guide) works with path, bdpt and vcm, not with " +
                                   std::string(name(opt.integrator)));
     if (opt.share_count > 1)
-      throw std::invalid_argument("path guiding (--guide) needs the whole render in one process: not with --part or MPI");
+      throw std::invalid_argument("path guiding (--guide) needs every unit's records: not with --part");
   }
   // Light subpaths learn from what the strategies that use their vertices
   // bring: bdpt's and vcm's connections, light tracing and merges.
@@ -142,8 +142,7 @@ void check_options(const Scene& scene, const RenderOptions& opt) {
     throw std::invalid_argument(std::string("guided light subpaths (--guide-light) work with bdpt and vcm, not with ") +
                                 name(opt.integrator));
   if (opt.guide_light_subpaths && opt.share_count > 1)
-    throw std::invalid_argument("guided light subpaths (--guide-light) need the whole render in one process: not with "
-                                "--part or MPI");
+    throw std::invalid_argument("guided light subpaths (--guide-light) need every unit's records: not with --part");
   if (opt.integrator == Integrator::Mlt) {
     // A chain's state (its numbers and current sample) lives outside the
     // film: a checkpoint, a part or a rank could not carry it on.
@@ -260,10 +259,18 @@ void check_processes(const RenderOptions& opt, const RenderHooks& hooks) {
     throw std::invalid_argument("Film \"gbuffer\" needs the whole render in one process: not with --part or MPI");
   if (opt.spectral_buckets > 0 && (opt.share_count > 1 || hooks.next_ticket || hooks.reduce_film))
     throw std::invalid_argument("Film \"spectral\" needs the whole render in one process: not with --part or MPI");
-  // MPI hands out units by tickets: each rank would learn another field.
-  if (opt.any_guiding() && hooks.next_ticket)
+  // MPI hands out units by tickets: the ranks learn one field by sharing
+  // their sums at the end of each iteration (RenderHooks::share_learnt).
+  // Each rank's checkpoint piece would hold its own share of an iteration,
+  // written when its clock says, so the pieces could not be put back
+  // together into the field.
+  if (opt.any_guiding() && hooks.next_ticket && !hooks.share_learnt)
     throw std::invalid_argument(
-        "path guiding (--guide, --guide-light) needs the whole render in one process: not with MPI");
+        "path guiding (--guide, --guide-light) under MPI needs its ranks to share what they learn");
+  if (opt.any_guiding() && hooks.next_ticket && !opt.checkpoint_path.empty())
+    throw std::invalid_argument(
+        "path guiding (--guide, --guide-light) under MPI cannot checkpoint yet: render without --checkpoint, or in one "
+        "process");
 }
 
 PathTracerSettings path_settings(const Scene& scene, const RenderOptions& opt, const ImageRegion& region,
