@@ -121,3 +121,30 @@ TEST(UnitSet, SharesPartitionTheUnits) {
 
 }  // namespace
 }  // namespace lantern
+
+// The guiding fields' sums: a saturating sum of positive terms is
+// min(the true sum, 2^63) in any order, also across the saturation; terms
+// that are not positive (NaN too) add nothing; counts come back.
+TEST(FixedSum, SaturatingSumsAreTheSameInAnyOrder) {
+  const std::vector<float> terms = {4e18f, 3e18f, 1.f, 2.5e18f, 0.25f, 1e30f, 7.f};
+  FixedSum forward, backward;
+  for (float t : terms) forward.add_saturating(t);
+  for (auto it = terms.rbegin(); it != terms.rend(); ++it) backward.add_saturating(*it);
+  EXPECT_EQ(forward.raw(), backward.raw());
+  EXPECT_TRUE(forward.sane_total());
+  EXPECT_NEAR(forward.value(), 0x1p63, 0x1p63 * 1e-12);  // saturated
+  // Two partial sums, saturated or not, add up to the same.
+  FixedSum a, b;
+  for (size_t i = 0; i < terms.size(); ++i) (i % 2 ? b : a).add_saturating(terms[i]);
+  a.add_saturating(b);
+  EXPECT_EQ(a.raw(), forward.raw());
+  // Below saturation, the exact sum.
+  FixedSum small;
+  for (float t : {1.5f, 0.25f, 3.f}) small.add_saturating(t);
+  EXPECT_EQ(small.value(), 4.75);
+  for (float t : {-1.f, 0.f, std::nanf(""), -std::numeric_limits<float>::infinity()}) small.add_saturating(t);
+  EXPECT_EQ(small.value(), 4.75) << "terms that are not positive add nothing";
+  EXPECT_EQ(FixedSum::of_count(123456789).count(), 123456789u);
+  EXPECT_EQ(FixedSum::of_count(123456789).value(), 123456789.0);
+  EXPECT_FALSE(FixedSum::of_raw(-1).sane_total());
+}

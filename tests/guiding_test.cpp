@@ -394,7 +394,7 @@ TEST(Guiding, RefusesWhatItCannotDo) {
   RenderHooks tickets;
   tickets.next_ticket = [] { return UINT64_MAX; };
   EXPECT_THROW(render(*scene, guided_options(true), tickets), std::invalid_argument);
-  tickets.share_learnt = [](std::string&, bool, uint64_t&) { return true; };
+  tickets.share_learnt = [](std::string&, uint8_t, uint64_t&) { return uint8_t(1); };
   o = guided_options(true);
   o.checkpoint_path = ::testing::TempDir() + "/lantern_guided_ranks.ckpt";
   EXPECT_THROW(render(*scene, o, tickets), std::invalid_argument);

@@ -195,13 +195,14 @@ struct RenderHooks {
   // Processes that render one guided image (MPI's ranks) learn one field:
   // at the end of each of its learning iterations, and where one of them
   // stops inside one (an interrupt, a time budget), every process calls
-  // this once with what it learnt in the iteration (`sums`: 16-byte
-  // integers, FixedSum's, to be added elementwise across processes with
-  // FixedSum::add_saturating),
-  // whether it stops, and the passes its pace predicts for a time budget
-  // (0: none). It returns with `sums` the processes' total, `passes` the
-  // first process's, and whether any of them stops.
-  std::function<bool(std::string& sums, bool stop, uint64_t& passes)> share_learnt;
+  // this once with what it learnt in the iteration (`sums`: 128-bit two's
+  // complement integers, little-endian, each to be added to the other
+  // processes' at the same place, saturating at 2^127 - 1), whether it
+  // stops (`stop`: 1, and 2 too if it was interrupted), and the passes its
+  // pace predicts for a time budget (0: none). It returns the bits of
+  // every process's `stop` or'ed, with `sums` the processes' totals and
+  // `passes` the first process's.
+  std::function<uint8_t(std::string& sums, uint8_t stop, uint64_t& passes)> share_learnt;
 };
 
 struct RenderStats {

@@ -90,7 +90,9 @@ MpiRender::MpiRender(const MpiSession& session, RenderOptions& o, RenderHooks& h
   h.reduce_film = [this](Film& film) { reduce(film); };
   h.sync_checkpoint = [this](UnitSet& done, double& elapsed) { sync_checkpoint(done, elapsed); };
   h.agree = [this](std::string& choice) { agree(choice); };
-  h.share_learnt = [this](std::string& sums, bool stop, uint64_t& passes) { return share_learnt(sums, stop, passes); };
+  h.share_learnt = [this](std::string& sums, uint8_t stop, uint64_t& passes) {
+    return share_learnt(sums, stop, passes);
+  };
   if (session_.rank() == 0) learnt_.resize(size_t(session_.size()));
   o.checkpoint_rank = session_.rank();
   o.resume_reads = session_.rank() == 0;
@@ -250,7 +252,7 @@ void MpiRender::sync_checkpoint(UnitSet& done, double& elapsed_seconds) {
 // scheduler goes on answering claims for the iteration's last units
 // meanwhile, and its main thread, which waits, calls no MPI
 // (MPI_THREAD_SERIALIZED).
-bool MpiRender::share_learnt(std::string& sums, bool stop, uint64_t& passes) {
+uint8_t MpiRender::share_learnt(std::string& sums, uint8_t stop, uint64_t& passes) {
   if (session_.rank() == 0) {
     start_scheduler();
     std::unique_lock<std::mutex> lock(learnt_mutex_);
@@ -273,7 +275,7 @@ bool MpiRender::share_learnt(std::string& sums, bool stop, uint64_t& passes) {
                              " bytes of sums, this one " + std::to_string(sums.size()));
   receive_bytes(sums, size_t(total[2]), 0, kLearntTotalTag);
   passes = total[1];
-  return total[0] != 0;
+  return uint8_t(total[0]);
 }
 
 void MpiRender::receive_learnt(int source, const uint64_t header[3]) {
@@ -281,7 +283,7 @@ void MpiRender::receive_learnt(int source, const uint64_t header[3]) {
   receive_bytes(bytes, size_t(header[2]), source, kLearntBytesTag);
   {
     std::lock_guard<std::mutex> lock(learnt_mutex_);
-    learnt_[size_t(source)] = {std::move(bytes), header[0] != 0, true, header[1]};
+    learnt_[size_t(source)] = {std::move(bytes), uint8_t(header[0]), true, header[1]};
   }
   finish_sharing_if_complete();
 }
@@ -305,12 +307,13 @@ void MpiRender::finish_sharing_if_complete() {
       a = sum.raw();
       std::memcpy(total.sums.data() + at, &a, 16);
     }
-    total.stop = total.stop || l.stop;
+    total.stop = uint8_t(total.stop | l.stop);
     l.in = false;
+    std::string().swap(l.sums);  // (added: freed until the next iteration)
   }
   const uint64_t header[3] = {uint64_t(total.stop), total.passes, total.sums.size()};
   for (int r = 1; r < session_.size(); ++r) {
-    MPI_Send(header, 3, MPI_UINT64_T, r, kLearntTotalTag, MPI_COMM_WORLD);
+    check(MPI_Send(header, 3, MPI_UINT64_T, r, kLearntTotalTag, MPI_COMM_WORLD), "learnt");
     send_bytes(total.sums, r, kLearntTotalTag);
   }
   learnt_done_ = true;

@@ -81,7 +81,7 @@ class MpiRender {
   void reduce(Film& film);
   void sync_checkpoint(UnitSet& done, double& elapsed_seconds);
   void agree(std::string& choice);  // rank 0's, to every rank
-  bool share_learnt(std::string& sums, bool stop, uint64_t& passes);  // RenderHooks::share_learnt
+  uint8_t share_learnt(std::string& sums, uint8_t stop, uint64_t& passes);  // RenderHooks::share_learnt
   // Rank 0's scheduler thread: a rank's learnt sums arrived from `source`
   // (its header already received); once every rank's are in, the totals
   // go back to each.
@@ -107,7 +107,8 @@ class MpiRender {
   // totals.
   struct Learnt {
     std::string sums;
-    bool stop = false, in = false;
+    uint8_t stop = 0;
+    bool in = false;
     uint64_t passes = 0;
   };
   std::mutex learnt_mutex_;

@@ -61,7 +61,9 @@ void SDTree::choose_alphas(Leaf& l) {
       size_t least = 0;
       for (size_t c = 1; c < m.size(); ++c)
         if (m[c].value() < m[least].value()) least = c;
-      l.alpha[b] = kAlphas[least];
+      // (all alike, as moments too small for the sums are, say nothing: α stays)
+      const bool alike = std::all_of(m.begin(), m.end(), [&](const FixedSum& x) { return x.raw() == m[0].raw(); });
+      if (!alike) l.alpha[b] = kAlphas[least];
     }
     l.moment[b].fill(FixedSum());
     l.moment_records[b] = 0;

@@ -33,6 +33,7 @@ struct PassContext {
   GuidingField* guiding;  // null: paths are not guided
   const std::atomic<bool>& cancelled;  // RenderSession::cancel
   uint32_t split = 1;                  // the path tracer's paths per camera sample (PathTracerSettings::split)
+  bool peer_interrupted = false;       // another process of the render was interrupted (RenderHooks::share_learnt)
   bool stop_requested() const { return cancelled.load() || (hooks.cancel && hooks.cancel->load()); }
 };
 

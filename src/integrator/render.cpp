@@ -298,9 +298,11 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
       // Every process comes here once per iteration, also one that stops
       // inside it, and they learn the field of all their units together.
       std::string sums = cx.guiding->learnt_sums();
-      const bool all_stop = hooks.share_learnt(sums, ends, passes);
-      if (all_stop) {
-        stop = stop || !ends;  // (another process stopped: this one stops with it)
+      const uint8_t mine = ends ? uint8_t(1 | (cx.stop_requested() ? 2 : 0)) : 0;
+      const uint8_t all = hooks.share_learnt(sums, mine, passes);
+      if (all & 1) {
+        stop = true;  // (also where another process stopped: this one stops with it)
+        cx.peer_interrupted = (all & 2) != 0;
         break;
       }
       cx.guiding->take_learnt_sums(sums);
@@ -570,7 +572,7 @@ RenderResult RenderSession::render_all() {
       stopped = run(PathTracer(scene, light_sampler, ps));
     }
     // A stop that came after the last unit left nothing undone.
-    interrupted = stopped && cx.stop_requested();
+    interrupted = stopped && (cx.stop_requested() || cx.peer_interrupted);
   }
   const bool keep_piece = interrupted || opt.keep_checkpoint;
   if (checkpoints.enabled() && keep_piece) checkpoints.write(film);

@@ -269,8 +269,8 @@ void check_processes(const RenderOptions& opt, const RenderHooks& hooks) {
         "path guiding (--guide, --guide-light) under MPI needs its ranks to share what they learn");
   if (opt.any_guiding() && hooks.next_ticket && !opt.checkpoint_path.empty())
     throw std::invalid_argument(
-        "path guiding (--guide, --guide-light) under MPI cannot checkpoint yet: render without --checkpoint, or in one "
-        "process");
+        "path guiding (--guide, --guide-light) under MPI cannot checkpoint yet: render without --checkpoint, "
+        "--resume or --keep-checkpoint, or in one process");
 }
 
 PathTracerSettings path_settings(const Scene& scene, const RenderOptions& opt, const ImageRegion& region,

@@ -48,7 +48,11 @@ class FixedSum {
   // past the largest value (2^63) the sum stays there. Partial sums of such
   // terms only grow, so the result, min(the true sum, 2^63), is still the
   // same in any order. A term beyond kMaxTerm counts as kMaxTerm.
-  void add_saturating(float x) { add_saturating(of_raw(to_fixed(std::min(x, kMaxTerm)))); }
+  // (Terms that are not positive, NaN too, add nothing: these sums hold
+  // none.)
+  void add_saturating(float x) {
+    if (x > 0.f) add_saturating(of_raw(to_fixed(std::min(x, kMaxTerm))));
+  }
   void add_saturating(const FixedSum& other) {
     const Bits sum = raw_ + other.raw_;
     raw_ = Raw(sum) < 0 ? Bits(kMost) : sum;
