@@ -21,6 +21,7 @@
 #include "guiding/scatter_field.h"
 #include "guiding/sd_tree.h"
 #include "integrator/guided_scatter.h"
+#include "lantern/render.h"
 
 namespace lantern {
 
@@ -111,6 +112,28 @@ class GuidingField {
     if (eye_subpaths_) tree_.update(iteration_), scattered_.update(iteration_);
     if (light_subpaths_) importance_.update(iteration_);
     if (iteration_ < 62) ++iteration_;
+  }
+
+  // --stats: the fields in use (a tree the render does not sample, the
+  // radiance field under --guide-light alone, is not counted).
+  void report(RenderStats& stats) const {
+    stats.guiding_iterations = iteration_;
+    auto count = [&](const SDTree& tree) {
+      for (const SDTree::Leaf& l : tree.leaves()) {
+        for (uint32_t b = 0; b < SDTree::kBins; ++b)
+          stats.guiding_nodes += l.sampled[b].node_count() + l.learning[b].node_count();
+        if (l.sampled[SDTree::kMediumBin].total() > 0.0) ++stats.guiding_medium_leaves;
+      }
+      stats.guiding_bytes += tree.memory_bytes();
+      return tree.leaves().size();
+    };
+    if (eye_subpaths_) stats.guiding_leaves = count(tree_);
+    if (light_subpaths_) stats.guiding_light_leaves = count(importance_);
+    if (scattered_.trained()) {
+      stats.guiding_distance_leaves = scattered_.leaf_count();
+      stats.guiding_distance_lit_leaves = scattered_.lit_leaves();
+      stats.guiding_bytes += scattered_.memory_bytes();
+    }
   }
 
   // What this iteration learnt so far, as its sums: 16-byte integers

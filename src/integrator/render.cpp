@@ -436,27 +436,6 @@ bool RenderSession::wait_for(double seconds) {
                                  [&] { return state_->finished; });
 }
 
-// --stats: the fields guiding learnt (a tree the render does not sample,
-// the radiance field under --guide-light alone, is not counted).
-static void report_guiding(const GuidingField& guiding, RenderStats& stats) {
-  stats.guiding_iterations = guiding.iteration();
-  auto count = [&](const SDTree& tree) {
-    for (const SDTree::Leaf& l : tree.leaves()) {
-      for (uint32_t b = 0; b < SDTree::kBins; ++b) stats.guiding_nodes += l.sampled[b].node_count() + l.learning[b].node_count();
-      if (l.sampled[SDTree::kMediumBin].total() > 0.0) ++stats.guiding_medium_leaves;
-    }
-    stats.guiding_bytes += tree.memory_bytes();
-    return tree.leaves().size();
-  };
-  if (guiding.guides_eye_subpaths()) stats.guiding_leaves = count(guiding.tree());
-  if (guiding.guides_light_subpaths()) stats.guiding_light_leaves = count(guiding.importance_tree());
-  if (guiding.scatter_field().trained()) {
-    stats.guiding_distance_leaves = guiding.scatter_field().leaf_count();
-    stats.guiding_distance_lit_leaves = guiding.scatter_field().lit_leaves();
-    stats.guiding_bytes += guiding.scatter_field().memory_bytes();
-  }
-}
-
 RenderResult RenderSession::wait() {
   if (!state_->thread.joinable()) throw std::logic_error("wait() needs a started render session");
   state_->thread.join();
@@ -602,7 +581,7 @@ RenderResult RenderSession::render_all() {
   res.interrupted = interrupted;
   finish_stats(scene, film, counters, light_sampler, res.stats);
   if (opt.integrator == Integrator::Mlt) res.stats.samples = res.stats.mlt_traced;  // (the film counts no camera samples)
-  if (guiding) report_guiding(*guiding, res.stats);
+  if (guiding) guiding->report(res.stats);
   res.stats.seconds = std::chrono::duration<double>(Clock::now() - s.start).count();
   res.total_render_seconds = prior_seconds + res.stats.seconds;
   return res;
