@@ -16,19 +16,7 @@ ScatterField::ScatterField(Vec3 lo, Vec3 hi) {
   leaves_.push_back(Leaf{Vec3(extent_)});
 }
 
-uint32_t ScatterField::leaf_of(const Vec3& p) const {
-  Vec3 q = glm::clamp((p - lo_) / extent_, 0.f, 1.f);
-  if (!(q.x == q.x) || !(q.y == q.y) || !(q.z == q.z)) q = Vec3(0.5f);  // a NaN position: any leaf will do
-  uint32_t n = 0;
-  for (;;) {
-    const Node& node = nodes_[n];
-    if (node.child[0] == 0) return node.leaf;
-    float& c = q[node.axis];
-    const bool upper = c >= 0.5f;
-    c = upper ? 2.f * c - 1.f : 2.f * c;
-    n = node.child[upper ? 1 : 0];
-  }
-}
+uint32_t ScatterField::leaf_of(const Vec3& p) const { return spatial_leaf_of(nodes_, lo_, extent_, p); }
 
 void ScatterField::split(uint32_t n, uint64_t limit) {
   const uint32_t first = nodes_[n].leaf;
@@ -42,8 +30,8 @@ void ScatterField::split(uint32_t n, uint64_t limit) {
   leaves_.push_back(leaves_[first]);
   const uint32_t a = uint32_t(nodes_.size());
   const uint8_t next_axis = uint8_t((axis + 1) % 3);
-  nodes_.push_back(Node{{0, 0}, first, next_axis, 0.f});
-  nodes_.push_back(Node{{0, 0}, second, next_axis, 0.f});
+  nodes_.push_back(Node{{0, 0}, first, next_axis});
+  nodes_.push_back(Node{{0, 0}, second, next_axis});
   nodes_[n].child[0] = a;
   nodes_[n].child[1] = a + 1;
   split(a, limit);
@@ -65,6 +53,7 @@ void ScatterField::update(uint32_t iteration) {
 }
 
 void ScatterField::derive_splits() {
+  split_.assign(nodes_.size(), 0.f);
   struct Box {
     uint32_t node;
     Vec3 lo, hi;
@@ -73,12 +62,12 @@ void ScatterField::derive_splits() {
   while (!stack.empty()) {
     const Box b = stack.back();
     stack.pop_back();
-    Node& node = nodes_[b.node];
+    const Node& node = nodes_[b.node];
     if (node.child[0] == 0) continue;
     const int a = node.axis;
-    node.split = 0.5f * (b.lo[a] + b.hi[a]);  // (halves of halves: exact in a float)
+    const float split = split_[b.node] = 0.5f * (b.lo[a] + b.hi[a]);  // (halves of halves: exact in a float)
     Box lower{node.child[0], b.lo, b.hi}, upper{node.child[1], b.lo, b.hi};
-    lower.hi[a] = upper.lo[a] = node.split;
+    lower.hi[a] = upper.lo[a] = split;
     stack.push_back(lower);
     stack.push_back(upper);
   }
@@ -88,12 +77,7 @@ void ScatterField::write_state(StateWriter& out) const {
   out.put(lo_);
   out.put(extent_);
   out.put(uint8_t(trained_));
-  out.put(uint64_t(nodes_.size()));
-  for (const Node& n : nodes_) {
-    out.write(n.child, sizeof n.child);
-    out.put(n.leaf);
-    out.put(n.axis);
-  }
+  write_spatial_nodes(out, nodes_);
   out.put(uint64_t(leaves_.size()));
   for (const Leaf& l : leaves_) {
     out.put(l.size);
@@ -108,38 +92,8 @@ void ScatterField::read_state(StateReader& in) {
   const float extent = in.get<float>();
   if (lo != lo_ || extent != extent_) throw std::runtime_error("the guided distances were learnt in other bounds");
   const bool trained = in.get<uint8_t>() != 0;
-  // Each node takes 13 bytes and each leaf 40: counts beyond what is left are damage.
-  const uint64_t node_count = in.get<uint64_t>();
-  if (node_count == 0 || node_count > in.left() / 13)
-    throw std::runtime_error("a scattered radiance tree of " + std::to_string(node_count) + " nodes");
-  std::vector<Node> nodes(node_count);
-  for (Node& n : nodes) {
-    in.read(n.child, sizeof n.child);
-    n.leaf = in.get<uint32_t>();
-    n.axis = in.get<uint8_t>();
-  }
-  const uint64_t leaf_count = in.get<uint64_t>();
-  if (leaf_count == 0 || leaf_count > in.left() / 40)
-    throw std::runtime_error("a scattered radiance tree of " + std::to_string(leaf_count) + " leaves");
-  // A tree: every node but the root the child of one node, after it, at
-  // most kMaxDepth deep (every walk from the root ends soon); leaves in the
-  // list, each once.
-  constexpr int kMaxDepth = 192;  // (a float's extent halves 24 times per axis at most: 72 levels)
-  std::vector<uint8_t> parents(nodes.size(), 0), depth(nodes.size(), 0), leaf_used(leaf_count, 0);
-  for (size_t i = 0; i < nodes.size(); ++i) {
-    const Node& n = nodes[i];
-    const bool leaf = n.child[0] == 0 && n.child[1] == 0;
-    const bool inner = n.child[0] > i && n.child[1] > i && n.child[0] < node_count && n.child[1] < node_count &&
-                       n.child[0] != n.child[1] && depth[i] < kMaxDepth;
-    if ((!leaf && !inner) || n.axis > 2 || (leaf && (n.leaf >= leaf_count || leaf_used[n.leaf]++ > 0)))
-      throw std::runtime_error("a scattered radiance tree whose node " + std::to_string(i) + " cannot be");
-    if (inner)
-      for (uint32_t c : n.child) {
-        if (parents[c]++ > 0)
-          throw std::runtime_error("a scattered radiance tree whose node " + std::to_string(c) + " has two parents");
-        depth[c] = uint8_t(depth[i] + 1);
-      }
-  }
+  uint64_t leaf_count = 0;
+  std::vector<Node> nodes = read_spatial_nodes(in, 40, &leaf_count, "a scattered radiance tree");
   std::vector<Leaf> leaves(leaf_count);
   for (Leaf& l : leaves) {
     l.size = in.get<Vec3>();

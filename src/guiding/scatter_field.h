@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "guiding/spatial_nodes.h"
 #include "math/common.h"
 #include "math/fixed_sum.h"
 #include "math/state_io.h"
@@ -80,7 +81,9 @@ class ScatterField {
   template <class Visit>
   void leaves_along(const Vec3& o, const Vec3& d, float t0, float t1, Visit&& visit) const;
 
-  size_t memory_bytes() const { return nodes_.capacity() * sizeof(Node) + leaves_.capacity() * sizeof(Leaf); }
+  size_t memory_bytes() const {
+    return nodes_.capacity() * sizeof(Node) + split_.capacity() * sizeof(float) + leaves_.capacity() * sizeof(Leaf);
+  }
   // The field as it is, for a checkpoint; read_state restores it bit for
   // bit into a field made for the same bounds, and throws
   // std::runtime_error for one made for others or bytes that cannot be.
@@ -88,12 +91,7 @@ class ScatterField {
   void read_state(StateReader& in);
 
  private:
-  struct Node {
-    uint32_t child[2] = {0, 0};  // 0: a leaf
-    uint32_t leaf = 0;
-    uint8_t axis = 0;   // the axis its children split
-    float split = 0.f;  // where, in the cube's units (derived: derive_splits)
-  };
+  using Node = SpatialNode;
   struct Leaf {
     Vec3 size{0.f};
     float level = 0.f;
@@ -109,6 +107,7 @@ class ScatterField {
   Vec3 lo_;
   float extent_;  // of the cube the tree divides
   std::vector<Node> nodes_;
+  std::vector<float> split_;  // each inner node's plane, in the cube's units (derive_splits)
   std::vector<Leaf> leaves_;
   bool trained_ = false;
 };
@@ -142,11 +141,12 @@ void ScatterField::visit_node(uint32_t n, const Vec3& o, const Vec3& d, const Ve
     }
     const int a = node.axis;
     // (parallel to the plane: infinite or not a number, never inside)
-    const float t_mid = (node.split - o[a]) * inv_d[a];
+    const float split = split_[n];
+    const float t_mid = (split - o[a]) * inv_d[a];
     if (d[a] == 0.f || !(t_mid > ta && t_mid < tb)) {  // the plane is not crossed within the stretch
       // The side the whole stretch lies on: where the ray heads once past
       // the plane, where it comes from before it (leaf_of's on the plane).
-      const bool upper = d[a] == 0.f ? o[a] >= node.split : (t_mid <= ta) == (d[a] > 0.f);
+      const bool upper = d[a] == 0.f ? o[a] >= split : (t_mid <= ta) == (d[a] > 0.f);
       n = node.child[upper ? 1 : 0];
       continue;
     }

@@ -18,19 +18,7 @@ SDTree::SDTree(Vec3 lo, Vec3 hi, GuidingSettings settings) : settings_(settings)
   leaves_[0].size = Vec3(extent_);
 }
 
-uint32_t SDTree::leaf_of(const Vec3& p) const {
-  Vec3 q = glm::clamp((p - lo_) / extent_, 0.f, 1.f);
-  if (!(q.x == q.x) || !(q.y == q.y) || !(q.z == q.z)) q = Vec3(0.5f);  // a NaN position: any leaf will do
-  uint32_t n = 0;
-  for (;;) {
-    const Node& node = nodes_[n];
-    if (node.child[0] == 0) return node.leaf;
-    float& c = q[node.axis];
-    const bool upper = c >= 0.5f;
-    c = upper ? 2.f * c - 1.f : 2.f * c;
-    n = node.child[upper ? 1 : 0];
-  }
-}
+uint32_t SDTree::leaf_of(const Vec3& p) const { return spatial_leaf_of(nodes_, lo_, extent_, p); }
 
 void SDTree::split(uint32_t n, uint32_t axis, uint64_t limit) {
   const Leaf& l = leaves_[nodes_[n].leaf];
@@ -102,12 +90,7 @@ void SDTree::write_state(StateWriter& out) const {
   out.put(lo_);
   out.put(extent_);
   out.put(uint8_t(trained_));
-  out.put(uint64_t(nodes_.size()));
-  for (const Node& n : nodes_) {
-    out.write(n.child, sizeof n.child);
-    out.put(n.leaf);
-    out.put(n.axis);
-  }
+  write_spatial_nodes(out, nodes_);
   out.put(uint64_t(leaves_.size()));
   for (const Leaf& l : leaves_) {
     for (uint32_t b = 0; b < kBins; ++b) {
@@ -127,39 +110,10 @@ void SDTree::read_state(StateReader& in) {
   const float extent = in.get<float>();
   if (lo != lo_ || extent != extent_) throw std::runtime_error("the guiding field was learnt in other bounds");
   const bool trained = in.get<uint8_t>() != 0;
-  // Each node and leaf takes some bytes: counts beyond what is left are damage.
-  const uint64_t node_count = in.get<uint64_t>();
-  if (node_count == 0 || node_count > in.left() / 13) throw std::runtime_error("a guiding tree of " + std::to_string(node_count) + " nodes");
-  std::vector<Node> nodes(node_count);
-  for (Node& n : nodes) {
-    in.read(n.child, sizeof n.child);
-    n.leaf = in.get<uint32_t>();
-    n.axis = in.get<uint8_t>();
-  }
   // A leaf takes at least 14 trees of one node (112 bytes each) and 748
-  // bytes of counts, size, shares and moments: more leaves than the bytes
-  // left could hold are damage.
-  const uint64_t leaf_count = in.get<uint64_t>();
-  if (leaf_count == 0 || leaf_count > in.left() / 2316)
-    throw std::runtime_error("a guiding tree of " + std::to_string(leaf_count) + " leaves");
-  // A tree: every node but the root the child of one node, after it, at
-  // most kMaxDepth deep (every walk from the root ends soon); leaves in
-  // the list.
-  constexpr int kMaxDepth = 192;  // (a float's extent halves 24 times per axis at most: 72 levels)
-  std::vector<uint8_t> parents(nodes.size(), 0), depth(nodes.size(), 0);
-  for (size_t i = 0; i < nodes.size(); ++i) {
-    const Node& n = nodes[i];
-    const bool leaf = n.child[0] == 0 && n.child[1] == 0;
-    const bool inner = n.child[0] > i && n.child[1] > i && n.child[0] < node_count && n.child[1] < node_count &&
-                       n.child[0] != n.child[1] && depth[i] < kMaxDepth;
-    if ((!leaf && !inner) || n.axis > 2 || (leaf && n.leaf >= leaf_count))
-      throw std::runtime_error("a guiding tree whose node " + std::to_string(i) + " cannot be");
-    if (inner)
-      for (uint32_t c : n.child) {
-        if (parents[c]++ > 0) throw std::runtime_error("a guiding tree whose node " + std::to_string(c) + " has two parents");
-        depth[c] = uint8_t(depth[i] + 1);
-      }
-  }
+  // bytes of counts, size, shares and moments.
+  uint64_t leaf_count = 0;
+  std::vector<Node> nodes = read_spatial_nodes(in, 2316, &leaf_count, "a guiding tree");
   std::vector<Leaf> leaves(leaf_count);
   for (Leaf& l : leaves) {
     for (uint32_t b = 0; b < kBins; ++b) {

@@ -41,6 +41,7 @@
 
 #include "guiding/directional_tree.h"
 #include "guiding/guide_record.h"
+#include "guiding/spatial_nodes.h"
 #include "math/common.h"
 #include "math/fixed_sum.h"
 
@@ -84,11 +85,7 @@ class SDTree {
     std::array<uint32_t, kBins> moment_records{};
     Leaf() { alpha.fill(kFirstAlpha); }
   };
-  struct Node {
-    uint32_t child[2] = {0, 0};  // 0: a leaf
-    uint32_t leaf = 0;           // a leaf's index in leaves()
-    uint8_t axis = 0;
-  };
+  using Node = SpatialNode;
 
   SDTree(Vec3 lo, Vec3 hi, GuidingSettings settings = {});
 

@@ -1,0 +1,35 @@
+// The spatial binary trees of path guiding (guiding/sd_tree.h,
+// guiding/scatter_field.h): a cube divided in the middle along x, y and z
+// in turn. Nodes sit in a list, children after their parent; a leaf names
+// its entry in the tree's own list of leaves, which holds what it learns.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "math/common.h"
+#include "math/state_io.h"
+
+namespace lantern {
+
+struct SpatialNode {
+  uint32_t child[2] = {0, 0};  // 0: a leaf
+  uint32_t leaf = 0;           // a leaf's index in the tree's leaves
+  uint8_t axis = 0;            // the axis its children split
+};
+
+// The leaf of the tree over the cube (lo, extent) that p falls in (a point
+// on a split plane: the upper side's; outside the cube: the nearest leaf).
+uint32_t spatial_leaf_of(const std::vector<SpatialNode>& nodes, const Vec3& lo, float extent, const Vec3& p);
+
+void write_spatial_nodes(StateWriter& out, const std::vector<SpatialNode>& nodes);
+// What write_spatial_nodes wrote, and the count of leaves after it. Throws
+// std::runtime_error, naming `what`, for counts beyond what the bytes left
+// hold (a leaf takes at least leaf_bytes) or a list that is not a tree: a
+// node with no parent or two, a child before its parent, deeper than 192
+// levels, a leaf outside the leaves or named twice.
+std::vector<SpatialNode> read_spatial_nodes(StateReader& in, uint64_t leaf_bytes, uint64_t* leaf_count,
+                                            const std::string& what);
+
+}  // namespace lantern
