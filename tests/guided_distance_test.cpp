@@ -11,6 +11,7 @@
 #include <random>
 
 #include "bsdf_checks.h"
+#include "guided_rooms.h"
 #include "guiding/scatter_field.h"
 #include "lantern/render.h"
 #include "lantern/scene.h"
@@ -201,11 +202,9 @@ AttributeEnd
                                 "beam-room.pbrt");
 }
 
+// The guiding tests' options (path, 64 spp), four bounces.
 RenderOptions beam_options(bool guiding) {
-  RenderOptions o;
-  o.integrator = Integrator::Path;
-  o.guiding = guiding;
-  o.spp = 64;
+  RenderOptions o = guiding_test::guided_options(guiding);
   o.maxdepth = 4;
   return o;
 }

@@ -7,22 +7,18 @@
 namespace lantern {
 
 ScatterField::ScatterField(Vec3 lo, Vec3 hi) {
-  // The directional field's cube (guiding/sd_tree.cpp): a little larger
-  // than the bounds, so that points on them fall inside.
-  const Vec3 size = glm::max(hi - lo, Vec3(0.f));
-  extent_ = std::max(max_component(size), 1e-3f) * 1.01f;
-  lo_ = 0.5f * (lo + hi) - Vec3(0.5f * extent_);
+  cube_ = SpatialCube::around(lo, hi);
   nodes_.push_back(Node{});
-  leaves_.push_back(Leaf{Vec3(extent_)});
+  leaves_.push_back(Leaf{Vec3(cube_.extent)});
 }
 
-uint32_t ScatterField::leaf_of(const Vec3& p) const { return spatial_leaf_of(nodes_, lo_, extent_, p); }
+uint32_t ScatterField::leaf_of(const Vec3& p) const { return spatial_leaf_of(nodes_, cube_, p); }
 
 void ScatterField::split(uint32_t n, uint64_t limit) {
   const uint32_t first = nodes_[n].leaf;
   const uint8_t axis = nodes_[n].axis;
   if (leaves_[first].records <= limit || leaves_.size() >= kMostLeaves ||
-      leaves_[first].size[axis] < extent_ * 0x1p-20f)
+      leaves_[first].size[axis] < cube_.extent * 0x1p-20f)
     return;
   leaves_[first].records /= 2;  // the records assumed halved between the halves
   leaves_[first].size[axis] *= 0.5f;
@@ -74,8 +70,7 @@ void ScatterField::derive_splits() {
 }
 
 void ScatterField::write_state(StateWriter& out) const {
-  out.put(lo_);
-  out.put(extent_);
+  cube_.write(out);
   out.put(uint8_t(trained_));
   write_spatial_nodes(out, nodes_);
   out.put(uint64_t(leaves_.size()));
@@ -88,9 +83,7 @@ void ScatterField::write_state(StateWriter& out) const {
 }
 
 void ScatterField::read_state(StateReader& in) {
-  const Vec3 lo = in.get<Vec3>();
-  const float extent = in.get<float>();
-  if (lo != lo_ || extent != extent_) throw std::runtime_error("the guided distances were learnt in other bounds");
+  cube_.check(in, "the scattered radiance field");
   const bool trained = in.get<uint8_t>() != 0;
   uint64_t leaf_count = 0;
   std::vector<Node> nodes = read_spatial_nodes(in, 40, &leaf_count, "a scattered radiance tree");

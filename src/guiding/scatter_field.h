@@ -104,8 +104,7 @@ class ScatterField {
   template <class Visit>
   void visit_node(uint32_t n, const Vec3& o, const Vec3& d, const Vec3& inv_d, float ta, float tb, Visit& visit) const;
 
-  Vec3 lo_;
-  float extent_;  // of the cube the tree divides
+  SpatialCube cube_;  // the cube the tree divides
   std::vector<Node> nodes_;
   std::vector<float> split_;  // each inner node's plane, in the cube's units (derive_splits)
   std::vector<Leaf> leaves_;
@@ -115,7 +114,7 @@ class ScatterField {
 template <class Visit>
 void ScatterField::leaves_along(const Vec3& o, const Vec3& d, float t0, float t1, Visit&& visit) const {
   // In the cube's own units, [0, 1]^3: clip to it (slabs), then descend.
-  const Vec3 q = (o - lo_) / extent_, dq = d / extent_;
+  const Vec3 q = (o - cube_.lo) / cube_.extent, dq = d / cube_.extent;
   float ta = t0, tb = t1;
   for (int a = 0; a < 3; ++a) {
     if (dq[a] == 0.f) {

@@ -8,21 +8,17 @@
 namespace lantern {
 
 SDTree::SDTree(Vec3 lo, Vec3 hi, GuidingSettings settings) : settings_(settings) {
-  // A cube a little larger than the bounds, so that every split halves all
-  // three extents in turn and points on the bounds fall inside.
-  const Vec3 size = glm::max(hi - lo, Vec3(0.f));
-  extent_ = std::max(max_component(size), 1e-3f) * 1.01f;
-  lo_ = 0.5f * (lo + hi) - Vec3(0.5f * extent_);
+  cube_ = SpatialCube::around(lo, hi);
   nodes_.push_back(Node{});
   leaves_.push_back(Leaf{});
-  leaves_[0].size = Vec3(extent_);
+  leaves_[0].size = Vec3(cube_.extent);
 }
 
-uint32_t SDTree::leaf_of(const Vec3& p) const { return spatial_leaf_of(nodes_, lo_, extent_, p); }
+uint32_t SDTree::leaf_of(const Vec3& p) const { return spatial_leaf_of(nodes_, cube_, p); }
 
 void SDTree::split(uint32_t n, uint32_t axis, uint64_t limit) {
   const Leaf& l = leaves_[nodes_[n].leaf];
-  if (l.records <= limit || leaves_.size() >= kMostLeaves || l.size[int(axis)] < extent_ * 0x1p-20f) return;
+  if (l.records <= limit || leaves_.size() >= kMostLeaves || l.size[int(axis)] < cube_.extent * 0x1p-20f) return;
   const uint32_t first = nodes_[n].leaf;
   leaves_[first].records /= 2;  // the records assumed halved between the halves
   leaves_[first].size[int(axis)] *= 0.5f;
@@ -87,8 +83,7 @@ size_t SDTree::memory_bytes() const {
 }
 
 void SDTree::write_state(StateWriter& out) const {
-  out.put(lo_);
-  out.put(extent_);
+  cube_.write(out);
   out.put(uint8_t(trained_));
   write_spatial_nodes(out, nodes_);
   out.put(uint64_t(leaves_.size()));
@@ -106,9 +101,7 @@ void SDTree::write_state(StateWriter& out) const {
 }
 
 void SDTree::read_state(StateReader& in) {
-  const Vec3 lo = in.get<Vec3>();
-  const float extent = in.get<float>();
-  if (lo != lo_ || extent != extent_) throw std::runtime_error("the guiding field was learnt in other bounds");
+  cube_.check(in, "the guiding field");
   const bool trained = in.get<uint8_t>() != 0;
   // A leaf takes at least 14 trees of one node (112 bytes each) and 748
   // bytes of counts, size, shares and moments.

@@ -142,8 +142,7 @@ class SDTree {
   void split(uint32_t node, uint32_t depth_axis, uint64_t limit);
   static void choose_alphas(Leaf& l);
 
-  Vec3 lo_;
-  float extent_;  // of the cube the tree divides
+  SpatialCube cube_;  // the cube the tree divides
   GuidingSettings settings_;
   std::vector<Node> nodes_;
   std::vector<Leaf> leaves_;

@@ -4,8 +4,8 @@
 
 namespace lantern {
 
-uint32_t spatial_leaf_of(const std::vector<SpatialNode>& nodes, const Vec3& lo, float extent, const Vec3& p) {
-  Vec3 q = glm::clamp((p - lo) / extent, 0.f, 1.f);
+uint32_t spatial_leaf_of(const std::vector<SpatialNode>& nodes, const SpatialCube& cube, const Vec3& p) {
+  Vec3 q = glm::clamp((p - cube.lo) / cube.extent, 0.f, 1.f);
   if (!(q.x == q.x) || !(q.y == q.y) || !(q.z == q.z)) q = Vec3(0.5f);  // a NaN position: any leaf will do
   uint32_t n = 0;
   for (;;) {

@@ -4,7 +4,9 @@
 // its entry in the tree's own list of leaves, which holds what it learns.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -13,15 +15,41 @@
 
 namespace lantern {
 
+// The cube a tree divides: a little larger than the scene's bounds, so
+// that every split halves all three extents in turn and points on the
+// bounds fall inside.
+struct SpatialCube {
+  Vec3 lo{0.f};
+  float extent = 1.f;
+  static SpatialCube around(const Vec3& lo, const Vec3& hi) {
+    const Vec3 size = glm::max(hi - lo, Vec3(0.f));
+    SpatialCube c;
+    c.extent = std::max(max_component(size), 1e-3f) * 1.01f;
+    c.lo = 0.5f * (lo + hi) - Vec3(0.5f * c.extent);
+    return c;
+  }
+  void write(StateWriter& out) const {
+    out.put(lo);
+    out.put(extent);
+  }
+  // Throws std::runtime_error, saying `what` was learnt in other bounds,
+  // for another cube's bytes.
+  void check(StateReader& in, const std::string& what) const {
+    const Vec3 l = in.get<Vec3>();
+    const float e = in.get<float>();
+    if (l != lo || e != extent) throw std::runtime_error(what + " was learnt in other bounds");
+  }
+};
+
 struct SpatialNode {
   uint32_t child[2] = {0, 0};  // 0: a leaf
   uint32_t leaf = 0;           // a leaf's index in the tree's leaves
   uint8_t axis = 0;            // the axis its children split
 };
 
-// The leaf of the tree over the cube (lo, extent) that p falls in (a point
+// The leaf of the tree over `cube` that p falls in (a point
 // on a split plane: the upper side's; outside the cube: the nearest leaf).
-uint32_t spatial_leaf_of(const std::vector<SpatialNode>& nodes, const Vec3& lo, float extent, const Vec3& p);
+uint32_t spatial_leaf_of(const std::vector<SpatialNode>& nodes, const SpatialCube& cube, const Vec3& p);
 
 void write_spatial_nodes(StateWriter& out, const std::vector<SpatialNode>& nodes);
 // What write_spatial_nodes wrote, and the count of leaves after it. Throws
