@@ -14,26 +14,6 @@ ScatterField::ScatterField(Vec3 lo, Vec3 hi) {
 
 uint32_t ScatterField::leaf_of(const Vec3& p) const { return spatial_leaf_of(nodes_, cube_, p); }
 
-void ScatterField::split(uint32_t n, uint64_t limit) {
-  const uint32_t first = nodes_[n].leaf;
-  const uint8_t axis = nodes_[n].axis;
-  if (leaves_[first].records <= limit || leaves_.size() >= kMostLeaves ||
-      leaves_[first].size[axis] < cube_.extent * 0x1p-20f)
-    return;
-  leaves_[first].records /= 2;  // the records assumed halved between the halves
-  leaves_[first].size[axis] *= 0.5f;
-  const uint32_t second = uint32_t(leaves_.size());
-  leaves_.push_back(leaves_[first]);
-  const uint32_t a = uint32_t(nodes_.size());
-  const uint8_t next_axis = uint8_t((axis + 1) % 3);
-  nodes_.push_back(Node{{0, 0}, first, next_axis});
-  nodes_.push_back(Node{{0, 0}, second, next_axis});
-  nodes_[n].child[0] = a;
-  nodes_[n].child[1] = a + 1;
-  split(a, limit);
-  split(a + 1, limit);
-}
-
 void ScatterField::update(uint32_t iteration) {
   for (Leaf& l : leaves_) {
     const float mean = l.records > 0 ? float(l.sum.value() / double(l.records)) : -1.f;
@@ -43,7 +23,7 @@ void ScatterField::update(uint32_t iteration) {
   const uint64_t limit = uint64_t(kSplit * std::sqrt(std::ldexp(1.0, int(std::min(iteration, 60u)))));
   const size_t count = nodes_.size();  // the nodes before this update
   for (uint32_t n = 0; n < count; ++n)
-    if (nodes_[n].child[0] == 0) split(n, limit);
+    if (nodes_[n].child[0] == 0) split_spatial_leaf(nodes_, leaves_, n, limit, cube_, kMostLeaves);
   derive_splits();
   for (Leaf& l : leaves_) l.sum = FixedSum(), l.records = 0;
 }

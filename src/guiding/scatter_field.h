@@ -33,10 +33,7 @@ namespace lantern {
 class ScatterField {
  public:
   static constexpr double kSplit = 1600.0;
-  // A tree no larger than this many leaves, none narrower than the cube's
-  // extent over 2^20 along an axis (so no deeper than 60 levels): a count
-  // of records, as a damaged checkpoint may hold, cannot split it into
-  // more than memory holds.
+  // A tree no larger than this many leaves (split_spatial_leaf).
   static constexpr size_t kMostLeaves = size_t(1) << 22;
 
   ScatterField(Vec3 lo, Vec3 hi);
@@ -98,7 +95,6 @@ class ScatterField {
     FixedSum sum;
     uint64_t records = 0;  // this iteration's
   };
-  void split(uint32_t node, uint64_t limit);
   // Each inner node's split: the middle of its box along its axis.
   void derive_splits();
   template <class Visit>

@@ -16,28 +16,6 @@ SDTree::SDTree(Vec3 lo, Vec3 hi, GuidingSettings settings) : settings_(settings)
 
 uint32_t SDTree::leaf_of(const Vec3& p) const { return spatial_leaf_of(nodes_, cube_, p); }
 
-void SDTree::split(uint32_t n, uint32_t axis, uint64_t limit) {
-  const Leaf& l = leaves_[nodes_[n].leaf];
-  if (l.records <= limit || leaves_.size() >= kMostLeaves || l.size[int(axis)] < cube_.extent * 0x1p-20f) return;
-  const uint32_t first = nodes_[n].leaf;
-  leaves_[first].records /= 2;  // the records assumed halved between the halves
-  leaves_[first].size[int(axis)] *= 0.5f;
-  const uint32_t second = uint32_t(leaves_.size());
-  leaves_.push_back(leaves_[first]);
-  const uint32_t a = uint32_t(nodes_.size());
-  const uint8_t next_axis = uint8_t((axis + 1) % 3);
-  Node lower, upper;
-  lower.leaf = first;
-  upper.leaf = second;
-  lower.axis = upper.axis = next_axis;
-  nodes_.push_back(lower);
-  nodes_.push_back(upper);
-  nodes_[n].child[0] = a;
-  nodes_[n].child[1] = a + 1;
-  split(a, next_axis, limit);
-  split(a + 1, next_axis, limit);
-}
-
 void SDTree::choose_alphas(Leaf& l) {
   for (uint32_t b = 0; b < kBins; ++b) {
     if (l.moment_records[b] >= kAlphaMinRecords) {
@@ -63,7 +41,7 @@ void SDTree::update(uint32_t iteration) {
       uint64_t(settings_.spatial_threshold * std::sqrt(std::ldexp(1.0, int(std::min(iteration, 60u)))));
   const size_t count = nodes_.size();  // the leaves before this update
   for (uint32_t n = 0; n < count; ++n)
-    if (nodes_[n].child[0] == 0) split(n, nodes_[n].axis, limit);
+    if (nodes_[n].child[0] == 0) split_spatial_leaf(nodes_, leaves_, n, limit, cube_, kMostLeaves);
   trained_ = false;
   for (Leaf& l : leaves_) {
     for (uint32_t b = 0; b < kBins; ++b) {

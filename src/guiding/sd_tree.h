@@ -67,10 +67,8 @@ class SDTree {
   static constexpr std::array<float, 6> kAlphas = {0.15f, 0.3f, 0.5f, 0.7f, 0.85f, 0.95f};
   static constexpr float kFirstAlpha = 0.5f;         // until the records say otherwise (the paper's)
   static constexpr uint32_t kAlphaMinRecords = 256;  // guided records a choice needs
-  // A tree no larger than this many leaves (a few KB each), none narrower
-  // than the cube's extent over 2^20 along an axis: a count of records, as
-  // a damaged checkpoint may hold, cannot split it into more than memory
-  // holds.
+  // A tree no larger than this many leaves, of a few KB each
+  // (split_spatial_leaf).
   static constexpr size_t kMostLeaves = size_t(1) << 18;
 
   struct Leaf {
@@ -139,7 +137,6 @@ class SDTree {
   void read_state(StateReader& in);
 
  private:
-  void split(uint32_t node, uint32_t depth_axis, uint64_t limit);
   static void choose_alphas(Leaf& l);
 
   SpatialCube cube_;  // the cube the tree divides

@@ -51,6 +51,36 @@ struct SpatialNode {
 // on a split plane: the upper side's; outside the cube: the nearest leaf).
 uint32_t spatial_leaf_of(const std::vector<SpatialNode>& nodes, const SpatialCube& cube, const Vec3& p);
 
+// Splits the leaf of node n in the middle along its node's axis while it
+// holds more than `limit` records (Müller, Gross and Novák 2017, sec. 3.3):
+// its halves start as copies of it, each assumed to hold half its records,
+// and are split in turn along the next axis. A tree stops growing at
+// `most_leaves` leaves, and no leaf grows narrower than the cube's extent
+// over 2^20 along an axis: a count of records, as a damaged checkpoint may
+// hold, cannot split it into more than memory holds. Leaf has `records`
+// and `size` (its box's extents).
+template <class Leaf>
+void split_spatial_leaf(std::vector<SpatialNode>& nodes, std::vector<Leaf>& leaves, uint32_t n, uint64_t limit,
+                        const SpatialCube& cube, size_t most_leaves) {
+  const uint32_t first = nodes[n].leaf;
+  const uint8_t axis = nodes[n].axis;
+  if (leaves[first].records <= limit || leaves.size() >= most_leaves ||
+      leaves[first].size[axis] < cube.extent * 0x1p-20f)
+    return;
+  leaves[first].records /= 2;
+  leaves[first].size[axis] *= 0.5f;
+  const uint32_t second = uint32_t(leaves.size());
+  leaves.push_back(leaves[first]);
+  const uint32_t a = uint32_t(nodes.size());
+  const uint8_t next_axis = uint8_t((axis + 1) % 3);
+  nodes.push_back(SpatialNode{{0, 0}, first, next_axis});
+  nodes.push_back(SpatialNode{{0, 0}, second, next_axis});
+  nodes[n].child[0] = a;
+  nodes[n].child[1] = a + 1;
+  split_spatial_leaf(nodes, leaves, a, limit, cube, most_leaves);
+  split_spatial_leaf(nodes, leaves, a + 1, limit, cube, most_leaves);
+}
+
 void write_spatial_nodes(StateWriter& out, const std::vector<SpatialNode>& nodes);
 // What write_spatial_nodes wrote, and the count of leaves after it. Throws
 // std::runtime_error, naming `what`, for counts beyond what the bytes left
