@@ -51,8 +51,11 @@ Grid make_grid() {
   return g;
 }
 
+// (A file per test: ctest runs the tests of this file side by side.)
 std::string write_ply(const Grid& g) {
-  const auto path = std::filesystem::temp_directory_path() / "lantern-quad-mesh.ply";
+  const auto path =
+      std::filesystem::temp_directory_path() /
+      ("lantern-quad-mesh-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + ".ply");
   std::ofstream f(path);
   f << "ply\nformat ascii 1.0\nelement vertex " << g.p.size()
     << "\nproperty float x\nproperty float y\nproperty float z\nproperty float u\nproperty float v\nelement face "
