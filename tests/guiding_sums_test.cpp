@@ -53,17 +53,35 @@ Records make_records(GuidingField& f, uint32_t seed, int n) {
 std::string add(const std::string& a, const std::string& b) {
   EXPECT_EQ(a.size(), b.size());
   std::string out = a;
-  for (size_t at = 0; at + 16 <= a.size(); at += 16) {
-    FixedSum::Raw x, y;
-    std::memcpy(&x, a.data() + at, 16);
-    std::memcpy(&y, b.data() + at, 16);
-    FixedSum sum = FixedSum::of_raw(x);
-    sum.add_saturating(FixedSum::of_raw(y));
-    x = sum.raw();
-    std::memcpy(out.data() + at, &x, 16);
-  }
+  add_saturating_sums(out, b);
   return out;
 }
+
+// Two processes that learn one field, each from every other record, as
+// MPI's ranks do (their sums added at each iteration's end).
+struct TwoRanks {
+  GuidingField whole, first, second;
+  TwoRanks() : whole(Vec3(-1.f), Vec3(2.f), 64, true, true), first(whole), second(whole) {}
+  // Deposits an iteration's records, or its first `share` of them.
+  Records deposit(uint32_t seed, double share = 1.0) {
+    Records all = make_records(whole, seed, 40000);
+    all.eye.resize(size_t(double(all.eye.size()) * share));
+    all.light.resize(size_t(double(all.light.size()) * share));
+    whole.deposit(all.eye, all.light);
+    Records a, b;
+    for (size_t i = 0; i < all.eye.size(); ++i) (i % 2 ? b : a).eye.push_back(all.eye[i]);
+    for (size_t i = 0; i < all.light.size(); ++i) (i % 2 ? b : a).light.push_back(all.light[i]);
+    first.deposit(a.eye, a.light);
+    second.deposit(b.eye, b.light);
+    return all;
+  }
+  void end_iteration() {
+    const std::string total = add(first.learnt_sums(), second.learnt_sums());
+    first.take_learnt_sums(total);
+    second.take_learnt_sums(total);
+    whole.end_iteration(), first.end_iteration(), second.end_iteration();
+  }
+};
 
 }  // namespace
 
@@ -96,4 +114,66 @@ TEST(GuidingSums, SharesAddUpToTheWholeInAnyOrder) {
   // Sums of another field's shape are refused.
   GuidingField other(lo, hi, 64, true, false);
   EXPECT_THROW(other.take_learnt_sums(whole.learnt_sums()), std::runtime_error);
+}
+
+// MPI ranks' checkpoint pieces each hold the field the ranks shared and
+// their own sums since: joined, they are the field of one process that
+// rendered both ranks' units, whether both pieces are of one iteration
+// (saved inside it) or one is of the iteration before (saved at its end,
+// before the ranks shared their sums).
+TEST(GuidingSums, CheckpointPiecesOfRanksJoinIntoTheWhole) {
+  TwoRanks r;
+  r.deposit(11);
+  r.end_iteration();
+  r.deposit(12, 0.5);  // inside iteration 1
+  const GuidingField fresh(Vec3(-1.f), Vec3(2.f), 64, true, true);
+  GuidingField joined = fresh;
+  joined.restore_joined({r.first.save(), r.second.save()});
+  EXPECT_EQ(joined.save(), r.whole.save()) << "both pieces inside iteration 1";
+
+  // The end of iteration 1: the second rank saved its piece, then the
+  // first rank had its piece of iteration 2 saved after the exchange.
+  TwoRanks s;
+  s.deposit(11);
+  s.end_iteration();
+  s.deposit(12);
+  const std::string second_at_end = s.second.save();
+  s.end_iteration();
+  s.deposit(13, 0.5);  // (the second rank's records of it are in no piece: not in the whole)
+  GuidingField whole = fresh;
+  {
+    TwoRanks t;  // the whole, without the second rank's records of iteration 2
+    t.deposit(11);
+    t.end_iteration();
+    t.deposit(12);
+    t.end_iteration();
+    Records all = make_records(t.whole, 13, 40000);
+    all.eye.resize(all.eye.size() / 2), all.light.resize(all.light.size() / 2);
+    Records mine;
+    for (size_t i = 0; i < all.eye.size(); i += 2) mine.eye.push_back(all.eye[i]);
+    for (size_t i = 0; i < all.light.size(); i += 2) mine.light.push_back(all.light[i]);
+    t.whole.deposit(mine.eye, mine.light);
+    whole = t.whole;
+  }
+  joined = fresh;
+  joined.restore_joined({second_at_end, s.first.save()});
+  EXPECT_EQ(joined.save(), whole.save()) << "one piece at the end of iteration 1, one inside iteration 2";
+  joined = fresh;
+  joined.restore_joined({s.first.save(), second_at_end});
+  EXPECT_EQ(joined.save(), whole.save()) << "in the other order";
+
+  // Pieces two iterations apart, or of one iteration with different
+  // fields, cannot be joined.
+  TwoRanks u;
+  u.deposit(11);
+  const std::string early = u.first.save();
+  u.end_iteration();
+  u.deposit(12);
+  u.end_iteration();
+  joined = fresh;
+  EXPECT_THROW(joined.restore_joined({early, u.first.save()}), std::runtime_error);
+  TwoRanks v;
+  v.deposit(21);
+  v.end_iteration();
+  EXPECT_THROW(joined.restore_joined({r.first.save(), v.first.save()}), std::runtime_error);
 }

@@ -389,13 +389,9 @@ TEST(Guiding, RefusesWhatItCannotDo) {
   o.share_count = 2;
   o.film_path = "/tmp/never-written.film";
   EXPECT_THROW(render(*scene, o), std::invalid_argument);
-  // MPI's ranks take units by tickets: they must share what they learn,
-  // and cannot checkpoint (tests/mpi_test.cmake renders with them).
+  // MPI's ranks take units by tickets: they must share what they learn
+  // (tests/mpi_test.cmake renders with them).
   RenderHooks tickets;
   tickets.next_ticket = [] { return UINT64_MAX; };
   EXPECT_THROW(render(*scene, guided_options(true), tickets), std::invalid_argument);
-  tickets.share_learnt = [](std::string&, uint8_t, uint64_t&) { return uint8_t(1); };
-  o = guided_options(true);
-  o.checkpoint_path = ::testing::TempDir() + "/lantern_guided_ranks.ckpt";
-  EXPECT_THROW(render(*scene, o, tickets), std::invalid_argument);
 }

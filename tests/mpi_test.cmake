@@ -51,8 +51,7 @@ endforeach()
 # iteration of the field (RenderHooks::share_learnt), and the field's sums
 # are fixed-point, so every rank learns the field one process learns: the
 # same image, bit for bit, for guided directions, light subpaths and
-# distances in fog. An explicit checkpoint is refused (its pieces could not
-# be put back together).
+# distances in fog.
 set(guided "path --guide@2x1" "path --guide@3x1" "bdpt --guide-light@2x2" "vcm --guide --guide-light@2x1")
 set(fog_guided "2x1")
 if(DEFINED ENV{ASAN_OPTIONS})
@@ -93,12 +92,6 @@ execute_process(COMMAND ${mpirun} -np 2 ${LANTERN} render ${SRC}/scenes/lantern.
 if(NOT rc EQUAL 0 OR NOT EXISTS ${OUT}/mpi-guided-timed.exr)
   message(FATAL_ERROR "guided MPI render with --time: exit ${rc}\n${out}${err}")
 endif()
-execute_process(COMMAND ${mpirun} -np 2 ${LANTERN} render ${SRC}/scenes/lantern.pbrt --spp 8 --resolution 20 15 --quiet
-                        --integrator path --guide --checkpoint 5 -o ${OUT}/mpi-guided-ck.exr
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 60)
-if(rc EQUAL 0 OR NOT "${out}${err}" MATCHES "under MPI cannot checkpoint yet")
-  message(FATAL_ERROR "guided MPI render with --checkpoint: exit ${rc}\n${out}${err}")
-endif()
 
 # A scene only rank 0 cannot read would leave the others waiting: the job
 # must end with the error and a non-zero status instead.
@@ -109,35 +102,43 @@ if(rc EQUAL 0 OR NOT "${out}${err}" MATCHES "cannot open scene file" OR NOT "${o
 endif()
 # A rank killed mid-render: the job ends in bounded time with checkpoint
 # pieces of both ranks, and --resume on another number of ranks (and on one
-# process) completes to the image of a straight render, bit for bit.
-set(ck render ${SRC}/scenes/lantern.pbrt --integrator bdpt ${ck_size} --quiet)
-string(JOIN " " ck_line ${ck})
+# process) completes to the image of a straight render, bit for bit. Also
+# for a guided render, whose pieces each hold the field the ranks shared
+# and their own sums since (GuidingField::restore_joined): the kill lands
+# while the field learns (the first pieces are saved 0.05 s in, the field
+# learns for about half the passes).
 string(JOIN " " mpirun_line ${mpirun})
-execute_process(COMMAND ${LANTERN} ${ck} -o ${OUT}/mpi-straight.exr RESULT_VARIABLE rc TIMEOUT 300)
-file(GLOB old ${OUT}/mpi-killed.exr*)
-if(old)
-  file(REMOVE ${old})
-endif()
-execute_process(COMMAND sh -c "touch ${OUT}/mpi-marker; ${mpirun_line} -np 2 ${LANTERN} ${ck_line} --threads 1 -o ${OUT}/mpi-killed.exr --checkpoint 0.05 & job=$!; i=0; while [ $i -lt 1200 ] && [ -z \"$(find ${OUT} -name 'mpi-killed.exr.ckpt.rank1' -newer ${OUT}/mpi-marker 2>/dev/null)\" ]; do sleep 0.05; i=$((i+1)); done; victim=$(pgrep -P $job | tail -1); kill -KILL $victim; wait $job"
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
-if(rc EQUAL 0 OR NOT EXISTS ${OUT}/mpi-killed.exr.ckpt.rank0 OR NOT EXISTS ${OUT}/mpi-killed.exr.ckpt.rank1)
-  message(FATAL_ERROR "killed rank: exit ${rc}, pieces:\n${out}${err}")
-endif()
-file(COPY ${OUT}/mpi-killed.exr.ckpt.rank0 ${OUT}/mpi-killed.exr.ckpt.rank1 DESTINATION ${OUT}/mpi-saved)
-foreach(ranks 3 0)
-  set(launch ${LANTERN})
-  if(ranks GREATER 0)
-    set(launch ${mpirun} -np ${ranks} ${LANTERN})
+function(killed_rank name)
+  set(ck render ${SRC}/scenes/lantern.pbrt ${ARGN} ${ck_size} --quiet)
+  string(JOIN " " ck_line ${ck})
+  execute_process(COMMAND ${LANTERN} ${ck} -o ${OUT}/${name}-straight.exr RESULT_VARIABLE rc TIMEOUT 300)
+  file(GLOB old ${OUT}/${name}.exr*)
+  if(old)
+    file(REMOVE ${old})
   endif()
-  file(COPY ${OUT}/mpi-saved/mpi-killed.exr.ckpt.rank0 ${OUT}/mpi-saved/mpi-killed.exr.ckpt.rank1 DESTINATION ${OUT})
-  execute_process(COMMAND ${launch} ${ck} --threads 1 -o ${OUT}/mpi-killed.exr --checkpoint 0.05 --resume
-                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 300)
-  execute_process(COMMAND ${LANTERN} compare ${OUT}/mpi-killed.exr ${OUT}/mpi-straight.exr OUTPUT_VARIABLE cmp)
-  file(GLOB left ${OUT}/mpi-killed.exr.ckpt*)
-  if(NOT rc EQUAL 0 OR NOT cmp MATCHES "^mse 0\n" OR left)
-    message(FATAL_ERROR "resume after a killed rank on ${ranks} ranks (0: one process): exit ${rc}, pieces left: ${left}\n${cmp}${out}${err}")
+  execute_process(COMMAND sh -c "touch ${OUT}/mpi-marker; ${mpirun_line} -np 2 ${LANTERN} ${ck_line} --threads 1 -o ${OUT}/${name}.exr --checkpoint 0.05 & job=$!; i=0; while [ $i -lt 1200 ] && [ -z \"$(find ${OUT} -name '${name}.exr.ckpt.rank1' -newer ${OUT}/mpi-marker 2>/dev/null)\" ]; do sleep 0.05; i=$((i+1)); done; victim=$(pgrep -P $job | tail -1); kill -KILL $victim; wait $job"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
+  if(rc EQUAL 0 OR NOT EXISTS ${OUT}/${name}.exr.ckpt.rank0 OR NOT EXISTS ${OUT}/${name}.exr.ckpt.rank1)
+    message(FATAL_ERROR "${name}: killed rank: exit ${rc}, pieces:\n${out}${err}")
   endif()
-endforeach()
+  file(COPY ${OUT}/${name}.exr.ckpt.rank0 ${OUT}/${name}.exr.ckpt.rank1 DESTINATION ${OUT}/${name}-saved)
+  foreach(ranks 3 0)
+    set(launch ${LANTERN})
+    if(ranks GREATER 0)
+      set(launch ${mpirun} -np ${ranks} ${LANTERN})
+    endif()
+    file(COPY ${OUT}/${name}-saved/${name}.exr.ckpt.rank0 ${OUT}/${name}-saved/${name}.exr.ckpt.rank1 DESTINATION ${OUT})
+    execute_process(COMMAND ${launch} ${ck} --threads 1 -o ${OUT}/${name}.exr --checkpoint 0.05 --resume
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 300)
+    execute_process(COMMAND ${LANTERN} compare ${OUT}/${name}.exr ${OUT}/${name}-straight.exr OUTPUT_VARIABLE cmp)
+    file(GLOB left ${OUT}/${name}.exr.ckpt*)
+    if(NOT rc EQUAL 0 OR NOT cmp MATCHES "^mse 0\n" OR left)
+      message(FATAL_ERROR "${name}: resume after a killed rank on ${ranks} ranks (0: one process): exit ${rc}, pieces left: ${left}\n${cmp}${out}${err}")
+    endif()
+  endforeach()
+endfunction()
+killed_rank(mpi-killed --integrator bdpt)
+killed_rank(mpi-killed-guided --integrator path --guide)
 
 # The ranks make one choice, rank 0's, which reads the checkpoint: a vcm
 # render resumed from a checkpoint goes on as it was made, with merges or

@@ -170,10 +170,11 @@ struct RenderHooks {
   // called from here shows exactly that pass.
   std::function<void(uint32_t spp)> pass_done;
   std::function<void()> checkpoint_written;  // after each checkpoint (from the merging thread)
-  // The other processes of a checkpointed render learn the units done
-  // (RenderOptions::resume_reads) from this, which every process calls
-  // once before rendering.
-  std::function<void(UnitSet& done, double& elapsed_seconds)> sync_checkpoint;
+  // The other processes of a checkpointed render learn the units done,
+  // the time spent and what the units learnt (a guiding field's bytes)
+  // from the process that read the checkpoint (RenderOptions::resume_reads)
+  // through this, which every process calls once before rendering.
+  std::function<void(UnitSet& done, double& elapsed_seconds, std::string& learnt)> sync_checkpoint;
   // Work handed out by another party. The units this render wants (of its
   // share, not yet in the film) form a sequence in increasing unit order;
   // next_ticket, called serially before each unit, returns the position in

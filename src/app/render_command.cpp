@@ -314,13 +314,10 @@ RenderOptions options_for(const RenderArgs& a, const Scene& scene, const std::st
   // Across ranks always: a job ended from outside (a batch system's time
   // limit, a rank lost, Ctrl-C) leaves every surviving rank's work in its
   // piece of the checkpoint, for --resume; a job that completes leaves none.
-  // Not for guided renders, whose pieces could not be put back together
-  // (integrator/render_settings.cpp). The scene's fingerprint goes into
-  // checkpoints and parts alike, so that neither is resumed or merged with
-  // another scene's.
+  // The scene's fingerprint goes into checkpoints and parts alike, so that
+  // neither is resumed or merged with another scene's.
   o.checkpoint_key = scene_key(a.scene, scene_info(scene));
-  const bool guided_ranks = ranks.count > 1 && o.any_guiding();
-  if (a.checkpoint > 0 || a.resume || a.keep_checkpoint || (ranks.count > 1 && !guided_ranks)) {
+  if (a.checkpoint > 0 || a.resume || a.keep_checkpoint || ranks.count > 1) {
     o.checkpoint_path = a.checkpoint_file.empty() ? out + ".ckpt" : a.checkpoint_file;
     o.checkpoint_seconds = a.checkpoint;
     o.resume = a.resume;

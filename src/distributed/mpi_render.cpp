@@ -88,7 +88,9 @@ MpiRender::MpiRender(const MpiSession& session, RenderOptions& o, RenderHooks& h
   if (session_.size() == 1) return;  // one rank: a plain render
   h.next_ticket = [this] { return next_ticket(); };
   h.reduce_film = [this](Film& film) { reduce(film); };
-  h.sync_checkpoint = [this](UnitSet& done, double& elapsed) { sync_checkpoint(done, elapsed); };
+  h.sync_checkpoint = [this](UnitSet& done, double& elapsed, std::string& learnt) {
+    sync_checkpoint(done, elapsed, learnt);
+  };
   h.agree = [this](std::string& choice) { agree(choice); };
   h.share_learnt = [this](std::string& sums, uint8_t stop, uint64_t& passes) {
     return share_learnt(sums, stop, passes);
@@ -222,9 +224,9 @@ uint64_t MpiRender::remote_samples() const {
   return sum;
 }
 
-// Rank 0's units done and time spent, to every rank (and a barrier: rank 0
-// has saved and tidied the checkpoint's pieces by now).
-void MpiRender::sync_checkpoint(UnitSet& done, double& elapsed_seconds) {
+// Rank 0's units done, time spent and what they learnt, to every rank (and
+// a barrier: rank 0 has saved and tidied the checkpoint's pieces by now).
+void MpiRender::sync_checkpoint(UnitSet& done, double& elapsed_seconds, std::string& learnt) {
   std::vector<uint64_t> flat;
   for (const auto& [first, end] : done.intervals()) {
     flat.push_back(first);
@@ -237,6 +239,13 @@ void MpiRender::sync_checkpoint(UnitSet& done, double& elapsed_seconds) {
     check(MPI_Bcast(flat.data() + at, int(std::min<size_t>(n - at, size_t(1) << 28)), MPI_UINT64_T, 0, MPI_COMM_WORLD),
           "units done");
   check(MPI_Bcast(&elapsed_seconds, 1, MPI_DOUBLE, 0, MPI_COMM_WORLD), "time spent");
+  uint64_t bytes = learnt.size();
+  check(MPI_Bcast(&bytes, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD), "what was learnt");
+  learnt.resize(size_t(bytes));
+  for (size_t at = 0; at < bytes; at += size_t(1) << 30)
+    check(
+        MPI_Bcast(learnt.data() + at, int(std::min<size_t>(bytes - at, size_t(1) << 30)), MPI_BYTE, 0, MPI_COMM_WORLD),
+        "what was learnt");
   if (session_.rank() != 0) {
     std::vector<UnitSet::Interval> runs;
     for (size_t i = 0; i + 1 < flat.size(); i += 2) runs.emplace_back(flat[i], flat[i + 1]);
@@ -297,16 +306,7 @@ void MpiRender::finish_sharing_if_complete() {
   for (size_t r = 1; r < learnt_.size(); ++r) {
     Learnt& l = learnt_[r];
     // (a rank whose field differs in shape cannot be added: the render fails on every rank)
-    const bool fits = l.sums.size() == total.sums.size();
-    for (size_t at = 0; fits && at + 16 <= total.sums.size(); at += 16) {
-      FixedSum::Raw a, b;
-      std::memcpy(&a, total.sums.data() + at, 16);
-      std::memcpy(&b, l.sums.data() + at, 16);
-      FixedSum sum = FixedSum::of_raw(a);
-      sum.add_saturating(FixedSum::of_raw(b));  // (the guiding field's sums saturate: math/fixed_sum.h)
-      a = sum.raw();
-      std::memcpy(total.sums.data() + at, &a, 16);
-    }
+    if (l.sums.size() == total.sums.size()) add_saturating_sums(total.sums, l.sums);
     total.stop = uint8_t(total.stop | l.stop);
     l.in = false;
     std::string().swap(l.sums);  // (added: freed until the next iteration)

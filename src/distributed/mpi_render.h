@@ -79,7 +79,7 @@ class MpiRender {
   void start_scheduler();
   void finish_scheduling();
   void reduce(Film& film);
-  void sync_checkpoint(UnitSet& done, double& elapsed_seconds);
+  void sync_checkpoint(UnitSet& done, double& elapsed_seconds, std::string& learnt);
   void agree(std::string& choice);  // rank 0's, to every rank
   uint8_t share_learnt(std::string& sums, uint8_t stop, uint64_t& passes);  // RenderHooks::share_learnt
   // Rank 0's scheduler thread: a rank's learnt sums arrived from `source`

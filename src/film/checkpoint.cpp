@@ -226,7 +226,7 @@ std::vector<std::string> checkpoint_pieces(const std::string& path) {
 }
 
 CheckpointInfo read_checkpoint_pieces(const std::string& path, const std::string& expected, Film& film,
-                                      std::vector<std::string>& pieces) {
+                                      std::vector<std::string>& pieces, const JoinLearnt& join_learnt) {
   pieces = checkpoint_pieces(path);
   if (pieces.empty()) throw InputError({path, 0, 0}, "cannot open checkpoint (nothing to resume)");
   // Two readings, so that memory holds two films, not one per piece: the
@@ -237,6 +237,7 @@ CheckpointInfo read_checkpoint_pieces(const std::string& path, const std::string
     infos.push_back(read_checkpoint(piece, expected, scratch));
   }
   CheckpointInfo all;
+  std::vector<std::string> learnt;  // of the pieces joined
   bool first = true;
   for (size_t i = 0; i < infos.size(); ++i) {
     bool absorbed = false;
@@ -253,10 +254,13 @@ CheckpointInfo read_checkpoint_pieces(const std::string& path, const std::string
     }
     if (absorbed) continue;
     // (A learnt state belongs to the units of one process: pieces of
-    // several cannot be joined into one.)
-    if (!first && (!all.learnt.empty() || !infos[i].learnt.empty()))
+    // several are joined by the integrator, which knows what they hold.)
+    if (!first && (!all.learnt.empty() || !infos[i].learnt.empty()) && !join_learnt)
       throw InputError({pieces[i], 0, 0}, "holds what its render learnt (a guiding field), as does another piece: "
                                           "pieces of a render that learns cannot be joined");
+    if (!first && all.learnt.empty() != infos[i].learnt.empty())
+      throw InputError({pieces[i], 0, 0}, "holds what its render learnt and another piece does not");
+    learnt.push_back(infos[i].learnt);
     if (first) {
       all = infos[i];
       first = false;
@@ -269,6 +273,13 @@ CheckpointInfo read_checkpoint_pieces(const std::string& path, const std::string
     Film sums(0, 0, PixelFilter{});
     read_checkpoint(pieces[i], expected, sums);
     film.add(sums);
+  }
+  if (learnt.size() > 1 && !all.learnt.empty()) {
+    try {
+      all.learnt = join_learnt(learnt);
+    } catch (const std::runtime_error& e) {
+      throw InputError({path, 0, 0}, std::string("the checkpoint's pieces cannot be joined: ") + e.what());
+    }
   }
   return all;
 }

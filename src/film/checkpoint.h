@@ -19,6 +19,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -46,6 +47,8 @@ void write_checkpoint(const std::string& path, const CheckpointInfo& info, const
 // the first setting that differs.
 CheckpointInfo read_checkpoint(const std::string& path, const std::string& expected_fingerprint, Film& film);
 
+// The files of a checkpoint's pieces that exist: path, then path.rank*.
+std::vector<std::string> checkpoint_pieces(const std::string& path);
 // A checkpoint may be in pieces: FILE (one process) and FILE.rank<r> (one
 // per MPI rank). Reads every piece of `path` into `film` (sized for the
 // render) and returns their union: the units of all, the sums of all, the
@@ -53,10 +56,13 @@ CheckpointInfo read_checkpoint(const std::string& path, const std::string& expec
 // absorbed by it (a resumed rank 0 takes in all pieces and saves them first)
 // and is skipped; pieces that share only some units are refused, naming
 // both. `pieces` receives every file read, skipped ones too.
-// The files of a checkpoint's pieces that exist: path, then path.rank*.
-std::vector<std::string> checkpoint_pieces(const std::string& path);
+// Pieces that each hold what their process learnt are joined by
+// `join_learnt` (the integrator's: GuidingField::restore_joined), which
+// throws std::runtime_error for states that do not fit together; without
+// it such pieces are refused.
+using JoinLearnt = std::function<std::string(const std::vector<std::string>& learnt)>;
 CheckpointInfo read_checkpoint_pieces(const std::string& path, const std::string& expected_fingerprint, Film& film,
-                                      std::vector<std::string>& pieces);
+                                      std::vector<std::string>& pieces, const JoinLearnt& join_learnt = {});
 
 // The first key=value line where two fingerprints differ: that line of
 // each ("(nothing)" where one has no more lines); two empty strings when

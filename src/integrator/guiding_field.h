@@ -12,6 +12,7 @@
 // the image depend on the seed alone, not on the thread count.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
@@ -163,6 +164,57 @@ class GuidingField {
       at += sizeof r;
       s = FixedSum::of_raw(r);
     });
+  }
+
+  // Forgets what this iteration learnt so far (a process that joins a
+  // resumed render whose sums another process holds).
+  void clear_learnt_sums() {
+    visit_learnt([](FixedSum& s) { s = FixedSum(); });
+  }
+
+  // The field of a render whose processes each saved their own piece (MPI
+  // ranks' checkpoint pieces, each save()d by its rank's clock), restored
+  // as one process that rendered every piece's units would hold it. Every
+  // piece holds the field the processes shared at the start of its
+  // iteration and its own sums since. A process saves its piece at the
+  // end of every iteration before it shares its sums (render.cpp), so no
+  // process starts iteration k + 1 before every piece is of iteration k at
+  // least: pieces are of the newest iteration, or of the one before saved
+  // at its end, whose sums the newer pieces' field holds. So the newest
+  // pieces' shared field and their sums added up are the whole.
+  void restore_joined(const std::vector<std::string>& pieces) {
+    if (pieces.size() == 1) return restore(pieces[0]);
+    const GuidingField empty = *this;
+    std::vector<uint32_t> iterations;
+    uint32_t newest = 0;
+    for (const std::string& piece : pieces) {
+      StringReader in(piece);
+      iterations.push_back(in.get<uint32_t>());
+      newest = std::max(newest, iterations.back());
+    }
+    std::string total, shared;
+    const std::string* first = nullptr;
+    for (size_t i = 0; i < pieces.size(); ++i) {
+      if (iterations[i] + 1 < newest)
+        throw std::runtime_error("its pieces were saved in iterations " + std::to_string(iterations[i]) + " and " +
+                                 std::to_string(newest) + " of the guiding field, more than one apart");
+      if (iterations[i] != newest) continue;
+      GuidingField f = empty;
+      f.restore(pieces[i]);
+      std::string sums = f.learnt_sums();
+      f.clear_learnt_sums();
+      std::string start = f.save();
+      if (!first) {
+        first = &pieces[i], total = std::move(sums), shared = std::move(start);
+      } else {
+        if (start != shared)
+          throw std::runtime_error("two of its pieces hold different guiding fields of iteration " +
+                                   std::to_string(newest));
+        add_saturating_sums(total, sums);
+      }
+    }
+    restore(*first);
+    take_learnt_sums(total);
   }
 
   // The field, its iteration and whether it still learns, as bytes for a

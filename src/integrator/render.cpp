@@ -297,6 +297,9 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
     if (hooks.share_learnt && cx.guiding && cx.guiding->learning()) {
       // Every process comes here once per iteration, also one that stops
       // inside it, and they learn the field of all their units together.
+      // Each saves its piece first where its clock saves pieces, so that
+      // no piece is two iterations behind another (restore_joined).
+      if (checkpoints.enabled() && opt.checkpoint_seconds > 0) checkpoints.write(film);
       std::string sums = cx.guiding->learnt_sums();
       const uint8_t mine = ends ? uint8_t(1 | (cx.stop_requested() ? 2 : 0)) : 0;
       const uint8_t all = hooks.share_learnt(sums, mine, passes);
@@ -480,7 +483,8 @@ RenderResult RenderSession::render_all() {
   if (!opt.dump_rays.empty()) dump = std::make_unique<RayDump>(opt.dump_rays);
   CheckpointInfo info = [&] {
     std::lock_guard<std::mutex> lock(s.film_mutex);
-    return start_checkpointing(opt, s.hooks, sequence_fingerprint(opt, s.region), film);
+    return start_checkpointing(opt, s.hooks, sequence_fingerprint(opt, s.region), film,
+                               guiding_field_joiner(scene.bounds_lo, scene.bounds_hi, opt));
   }();
   res.resumed_samples = film.total_samples();
   const double prior_seconds = info.elapsed_seconds;
@@ -493,20 +497,8 @@ RenderResult RenderSession::render_all() {
   StrategyFilm* strategies = strategy_film ? &*strategy_film : nullptr;
   std::optional<GuidingField> guiding;
   if (opt.any_guiding()) {
-    guiding.emplace(scene.bounds_lo, scene.bounds_hi, opt.time_limit_seconds > 0 ? 0 : uint64_t(opt.spp), opt.guiding,
-                    opt.guide_light_subpaths);
-    // A resumed render goes on with the field its units learnt.
-    if (!checkpoints.done().empty()) {
-      try {
-        if (checkpoints.learnt().empty()) throw std::runtime_error("it holds no guiding field");
-        guiding->restore(checkpoints.learnt());
-      } catch (const std::bad_alloc&) {
-        throw InputError({opt.checkpoint_path, 0, 0}, "checkpoint cannot be resumed with guiding: its guiding field is "
-                                                      "larger than memory holds");
-      } catch (const std::runtime_error& e) {
-        throw InputError({opt.checkpoint_path, 0, 0}, std::string("checkpoint cannot be resumed with guiding: ") + e.what());
-      }
-    }
+    guiding.emplace(new_guiding_field(scene.bounds_lo, scene.bounds_hi, opt));
+    resume_guiding(*guiding, checkpoints, opt);
     checkpoints.learns([&guiding] { return guiding->save(); });
   }
   PassContext cx{scene, opt, s.hooks, counters, film, s.film_mutex, strategies, s.done, res.stats, dump.get(),

@@ -1,6 +1,8 @@
 #include "integrator/render_checkpoints.h"
 
 #include <filesystem>
+#include <new>
+#include <stdexcept>
 #include <vector>
 
 #include "lantern/error.h"
@@ -122,7 +124,7 @@ std::string extension_refusal(const std::string& saved, const std::string& now, 
 }
 
 CheckpointInfo start_checkpointing(const RenderOptions& opt, const RenderHooks& hooks, const std::string& fingerprint,
-                                   Film& film) {
+                                   Film& film, const JoinLearnt& join_learnt) {
   CheckpointInfo info;
   info.fingerprint = fingerprint;
   info.share = UnitShare{opt.share_index, opt.share_count};
@@ -143,7 +145,7 @@ CheckpointInfo start_checkpointing(const RenderOptions& opt, const RenderHooks& 
         expected = saved;
       }
     }
-    info = read_checkpoint_pieces(opt.checkpoint_path, expected, film, pieces);
+    info = read_checkpoint_pieces(opt.checkpoint_path, expected, film, pieces, join_learnt);
     info.fingerprint = fingerprint;  // what this render's own checkpoints say
     if (info.share.index != opt.share_index || info.share.count != opt.share_count)
       throw InputError({opt.checkpoint_path, 0, 0},
@@ -165,7 +167,8 @@ CheckpointInfo start_checkpointing(const RenderOptions& opt, const RenderHooks& 
     std::error_code ec;
     for (const std::string& piece : checkpoint_pieces(opt.checkpoint_path)) std::filesystem::remove(piece, ec);
   }
-  if (hooks.sync_checkpoint && !opt.checkpoint_path.empty()) hooks.sync_checkpoint(info.done, info.elapsed_seconds);
+  if (hooks.sync_checkpoint && !opt.checkpoint_path.empty())
+    hooks.sync_checkpoint(info.done, info.elapsed_seconds, info.learnt);
   return info;
 }
 
@@ -179,6 +182,34 @@ void Checkpointer::write_to(const std::string& path, const Film& film) {
   write_checkpoint(path, info_, film);
   last_ = Clock::now();
   if (hooks_.checkpoint_written && path == own_path()) hooks_.checkpoint_written();
+}
+
+GuidingField new_guiding_field(Vec3 lo, Vec3 hi, const RenderOptions& o) {
+  return GuidingField(lo, hi, o.time_limit_seconds > 0 ? 0 : uint64_t(o.spp), o.guiding, o.guide_light_subpaths);
+}
+
+JoinLearnt guiding_field_joiner(Vec3 lo, Vec3 hi, const RenderOptions& o) {
+  if (!o.any_guiding()) return {};
+  return [lo, hi, &o](const std::vector<std::string>& pieces) {
+    GuidingField joined = new_guiding_field(lo, hi, o);
+    joined.restore_joined(pieces);
+    return joined.save();
+  };
+}
+
+void resume_guiding(GuidingField& field, const Checkpointer& checkpoints, const RenderOptions& o) {
+  if (checkpoints.done().empty()) return;
+  try {
+    if (checkpoints.learnt().empty()) throw std::runtime_error("it holds no guiding field");
+    field.restore(checkpoints.learnt());
+    if (!o.resume_reads) field.clear_learnt_sums();
+  } catch (const std::bad_alloc&) {
+    throw InputError({o.checkpoint_path, 0, 0},
+                     "checkpoint cannot be resumed with guiding: its guiding field is "
+                     "larger than memory holds");
+  } catch (const std::runtime_error& e) {
+    throw InputError({o.checkpoint_path, 0, 0}, std::string("checkpoint cannot be resumed with guiding: ") + e.what());
+  }
 }
 
 }  // namespace lantern

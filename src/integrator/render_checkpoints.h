@@ -8,6 +8,7 @@
 #include <string>
 
 #include "film/checkpoint.h"
+#include "integrator/guiding_field.h"
 #include "integrator/render_settings.h"
 #include "lantern/render.h"
 
@@ -36,9 +37,10 @@ std::string own_checkpoint_piece(const RenderOptions& o);
 
 // The units already in the film when this run starts: none, or those of
 // the checkpoint's pieces (read here, or passed on by the process that
-// read them, through hooks.sync_checkpoint), and the time they took.
+// read them, through hooks.sync_checkpoint), the time they took and what
+// they learnt (pieces that each learnt joined by `join_learnt`).
 CheckpointInfo start_checkpointing(const RenderOptions& opt, const RenderHooks& hooks, const std::string& fingerprint,
-                                   Film& film);
+                                   Film& film, const JoinLearnt& join_learnt = {});
 
 // Writes checkpoints from the merge stage: the one place that sees the film
 // between two waves.
@@ -52,6 +54,7 @@ class Checkpointer {
   std::string own_path() const { return own_checkpoint_piece(opt_); }
   double elapsed() const { return prior_seconds_ + std::chrono::duration<double>(Clock::now() - start_).count(); }
   UnitSet& done() { return info_.done; }
+  const UnitSet& done() const { return info_.done; }
   void set_units(uint64_t passes, uint32_t waves) {
     info_.passes = passes;
     info_.waves = waves;
@@ -77,5 +80,18 @@ class Checkpointer {
   Clock::time_point start_, last_;
   double prior_seconds_;
 };
+
+// A guided render's field, on the schedule its budget plans.
+GuidingField new_guiding_field(Vec3 lo, Vec3 hi, const RenderOptions& o);
+// For start_checkpointing: joins the pieces of a guided render's field that
+// MPI's ranks each saved (GuidingField::restore_joined); none for renders
+// that do not guide.
+JoinLearnt guiding_field_joiner(Vec3 lo, Vec3 hi, const RenderOptions& o);
+// A resumed guided render goes on with the field its units learnt. Of
+// processes that share their sums (MPI's ranks), the one that read the
+// checkpoint keeps the sums it holds and the others start from the shared
+// field alone, so that the next exchange counts them once. Throws
+// InputError for a checkpoint whose field cannot be taken.
+void resume_guiding(GuidingField& field, const Checkpointer& checkpoints, const RenderOptions& o);
 
 }  // namespace lantern

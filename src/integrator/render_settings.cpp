@@ -261,16 +261,9 @@ void check_processes(const RenderOptions& opt, const RenderHooks& hooks) {
     throw std::invalid_argument("Film \"spectral\" needs the whole render in one process: not with --part or MPI");
   // MPI hands out units by tickets: the ranks learn one field by sharing
   // their sums at the end of each iteration (RenderHooks::share_learnt).
-  // Each rank's checkpoint piece would hold its own share of an iteration,
-  // written when its clock says, so the pieces could not be put back
-  // together into the field.
   if (opt.any_guiding() && hooks.next_ticket && !hooks.share_learnt)
     throw std::invalid_argument(
         "path guiding (--guide, --guide-light) under MPI needs its ranks to share what they learn");
-  if (opt.any_guiding() && hooks.next_ticket && !opt.checkpoint_path.empty())
-    throw std::invalid_argument(
-        "path guiding (--guide, --guide-light) under MPI cannot checkpoint yet: render without --checkpoint, "
-        "--resume or --keep-checkpoint, or in one process");
 }
 
 PathTracerSettings path_settings(const Scene& scene, const RenderOptions& opt, const ImageRegion& region,

@@ -17,6 +17,7 @@
 #include <bit>
 #include <cstdint>
 #include <cstring>
+#include <string>
 
 namespace lantern {
 
@@ -94,5 +95,22 @@ class FixedSum {
 
   Bits raw_ = 0;
 };
+
+// Sums kept as bytes, 16 per sum (FixedSum::raw, little-endian), as
+// processes exchange them: adds `more`'s to `total`'s place by place,
+// saturating (the guiding field's sums: none is negative). Both must hold
+// the same number of sums.
+inline void add_saturating_sums(std::string& total, const std::string& more) {
+  for (size_t at = 0; at + sizeof(FixedSum::Raw) <= total.size() && at + sizeof(FixedSum::Raw) <= more.size();
+       at += sizeof(FixedSum::Raw)) {
+    FixedSum::Raw a, b;
+    std::memcpy(&a, total.data() + at, sizeof a);
+    std::memcpy(&b, more.data() + at, sizeof b);
+    FixedSum sum = FixedSum::of_raw(a);
+    sum.add_saturating(FixedSum::of_raw(b));
+    a = sum.raw();
+    std::memcpy(total.data() + at, &a, sizeof a);
+  }
+}
 
 }  // namespace lantern
