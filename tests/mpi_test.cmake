@@ -102,43 +102,60 @@ if(rc EQUAL 0 OR NOT "${out}${err}" MATCHES "cannot open scene file" OR NOT "${o
 endif()
 # A rank killed mid-render: the job ends in bounded time with checkpoint
 # pieces of both ranks, and --resume on another number of ranks (and on one
-# process) completes to the image of a straight render, bit for bit. Also
-# for a guided render, whose pieces each hold the field the ranks shared
-# and their own sums since (GuidingField::restore_joined): the kill lands
-# while the field learns (the first pieces are saved 0.05 s in, the field
-# learns for about half the passes).
+# process) completes to the image of a straight render, bit for bit; so
+# does a resumed run on 2 ranks killed again, then resumed on one process
+# (each rank's pieces list only the units its film holds). Also for a
+# guided render, whose pieces each hold the field the ranks shared and
+# their own sums since (GuidingField::restore_joined), with --checkpoint
+# (the first pieces are saved 0.05 s in, while the field learns) and
+# without: then the ranks save their pieces only at the end of each
+# iteration of the field, before they share their sums, and the kill comes
+# after the first of those.
 string(JOIN " " mpirun_line ${mpirun})
-function(killed_rank name)
+function(killed_rank name every)
   set(ck render ${SRC}/scenes/lantern.pbrt ${ARGN} ${ck_size} --quiet)
   string(JOIN " " ck_line ${ck})
+  if(every)
+    set(every --checkpoint ${every})
+  endif()
+  string(JOIN " " every_line ${every})
   execute_process(COMMAND ${LANTERN} ${ck} -o ${OUT}/${name}-straight.exr RESULT_VARIABLE rc TIMEOUT 300)
+  # Starts a run on 2 ranks (`extra`: --resume or nothing) and kills a rank
+  # once rank 1 has saved a piece.
+  macro(kill_a_rank extra)
+    execute_process(COMMAND sh -c "touch ${OUT}/mpi-marker; ${mpirun_line} -np 2 ${LANTERN} ${ck_line} --threads 1 -o ${OUT}/${name}.exr ${every_line} ${extra} & job=$!; i=0; while [ $i -lt 1200 ] && [ -z \"$(find ${OUT} -name '${name}.exr.ckpt.rank1' -newer ${OUT}/mpi-marker 2>/dev/null)\" ]; do sleep 0.05; i=$((i+1)); done; victim=$(pgrep -P $job | tail -1); kill -KILL $victim; wait $job"
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
+    if(rc EQUAL 0 OR NOT EXISTS ${OUT}/${name}.exr.ckpt.rank0 OR NOT EXISTS ${OUT}/${name}.exr.ckpt.rank1)
+      message(FATAL_ERROR "${name}: killed rank (${extra}): exit ${rc}, pieces:\n${out}${err}")
+    endif()
+  endmacro()
   file(GLOB old ${OUT}/${name}.exr*)
   if(old)
     file(REMOVE ${old})
   endif()
-  execute_process(COMMAND sh -c "touch ${OUT}/mpi-marker; ${mpirun_line} -np 2 ${LANTERN} ${ck_line} --threads 1 -o ${OUT}/${name}.exr --checkpoint 0.05 & job=$!; i=0; while [ $i -lt 1200 ] && [ -z \"$(find ${OUT} -name '${name}.exr.ckpt.rank1' -newer ${OUT}/mpi-marker 2>/dev/null)\" ]; do sleep 0.05; i=$((i+1)); done; victim=$(pgrep -P $job | tail -1); kill -KILL $victim; wait $job"
-                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
-  if(rc EQUAL 0 OR NOT EXISTS ${OUT}/${name}.exr.ckpt.rank0 OR NOT EXISTS ${OUT}/${name}.exr.ckpt.rank1)
-    message(FATAL_ERROR "${name}: killed rank: exit ${rc}, pieces:\n${out}${err}")
-  endif()
+  kill_a_rank("")
   file(COPY ${OUT}/${name}.exr.ckpt.rank0 ${OUT}/${name}.exr.ckpt.rank1 DESTINATION ${OUT}/${name}-saved)
-  foreach(ranks 3 0)
+  foreach(ranks 3 0 again)
     set(launch ${LANTERN})
     if(ranks GREATER 0)
       set(launch ${mpirun} -np ${ranks} ${LANTERN})
     endif()
     file(COPY ${OUT}/${name}-saved/${name}.exr.ckpt.rank0 ${OUT}/${name}-saved/${name}.exr.ckpt.rank1 DESTINATION ${OUT})
-    execute_process(COMMAND ${launch} ${ck} --threads 1 -o ${OUT}/${name}.exr --checkpoint 0.05 --resume
+    if(ranks STREQUAL "again")
+      kill_a_rank("--resume")
+    endif()
+    execute_process(COMMAND ${launch} ${ck} --threads 1 -o ${OUT}/${name}.exr ${every} --resume
                     RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 300)
     execute_process(COMMAND ${LANTERN} compare ${OUT}/${name}.exr ${OUT}/${name}-straight.exr OUTPUT_VARIABLE cmp)
     file(GLOB left ${OUT}/${name}.exr.ckpt*)
     if(NOT rc EQUAL 0 OR NOT cmp MATCHES "^mse 0\n" OR left)
-      message(FATAL_ERROR "${name}: resume after a killed rank on ${ranks} ranks (0: one process): exit ${rc}, pieces left: ${left}\n${cmp}${out}${err}")
+      message(FATAL_ERROR "${name}: resume after a killed rank on ${ranks} ranks (0: one process; again: one process after a resumed run on 2 ranks was killed too): exit ${rc}, pieces left: ${left}\n${cmp}${out}${err}")
     endif()
   endforeach()
 endfunction()
-killed_rank(mpi-killed --integrator bdpt)
-killed_rank(mpi-killed-guided --integrator path --guide)
+killed_rank(mpi-killed 0.05 --integrator bdpt)
+killed_rank(mpi-killed-guided 0.05 --integrator path --guide)
+killed_rank(mpi-killed-guided-ends "" --integrator path --guide)
 
 # The ranks make one choice, rank 0's, which reads the checkpoint: a vcm
 # render resumed from a checkpoint goes on as it was made, with merges or

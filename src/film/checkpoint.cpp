@@ -255,12 +255,12 @@ CheckpointInfo read_checkpoint_pieces(const std::string& path, const std::string
     if (absorbed) continue;
     // (A learnt state belongs to the units of one process: pieces of
     // several are joined by the integrator, which knows what they hold.)
-    if (!first && (!all.learnt.empty() || !infos[i].learnt.empty()) && !join_learnt)
+    if (!first && (!learnt[0].empty() || !infos[i].learnt.empty()) && !join_learnt)
       throw InputError({pieces[i], 0, 0}, "holds what its render learnt (a guiding field), as does another piece: "
                                           "pieces of a render that learns cannot be joined");
-    if (!first && all.learnt.empty() != infos[i].learnt.empty())
+    if (!first && learnt[0].empty() != infos[i].learnt.empty())
       throw InputError({pieces[i], 0, 0}, "holds what its render learnt and another piece does not");
-    learnt.push_back(infos[i].learnt);
+    learnt.push_back(std::move(infos[i].learnt));
     if (first) {
       all = infos[i];
       first = false;
@@ -274,7 +274,9 @@ CheckpointInfo read_checkpoint_pieces(const std::string& path, const std::string
     read_checkpoint(pieces[i], expected, sums);
     film.add(sums);
   }
-  if (learnt.size() > 1 && !all.learnt.empty()) {
+  if (learnt.size() == 1) {
+    all.learnt = std::move(learnt[0]);
+  } else if (learnt.size() > 1 && !learnt[0].empty()) {
     try {
       all.learnt = join_learnt(learnt);
     } catch (const std::runtime_error& e) {

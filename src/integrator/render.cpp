@@ -133,12 +133,14 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
   // Units: waves numbered through the whole render (passes one after
   // another). This run renders those of its share that the film lacks.
   auto unit_of = [&](uint32_t first, uint32_t wi) { return uint64_t(first / pass_spp) * waves + wi; };
-  // The units of the film when this run began: the serial merge stage adds
-  // to the live set while the input stage, on another thread, reads this
-  // copy (units of this run are never offered twice: the walk only moves on).
+  // The units done when this run began (of every process: the others'
+  // too, for MPI's ranks that did not read the checkpoint): the serial
+  // merge stage adds to this process's live set while the input stage, on
+  // another thread, reads that separate one (units of this run are never
+  // offered twice: the walk only moves on).
   const UnitShare share{opt.share_index, opt.share_count};
   UnitSet& merged = checkpoints.done();
-  const UnitSet done_before = merged;
+  const UnitSet& done_before = checkpoints.done_before();
   auto wanted = [&](uint32_t first, uint32_t wi) {
     return share.holds(first / pass_spp, wi) && !done_before.contains(unit_of(first, wi));
   };
@@ -297,9 +299,11 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
     if (hooks.share_learnt && cx.guiding && cx.guiding->learning()) {
       // Every process comes here once per iteration, also one that stops
       // inside it, and they learn the field of all their units together.
-      // Each saves its piece first where its clock saves pieces, so that
-      // no piece is two iterations behind another (restore_joined).
-      if (checkpoints.enabled() && opt.checkpoint_seconds > 0) checkpoints.write(film);
+      // Each saves its piece first, so that no piece is two iterations
+      // behind another and none lacks units whose sums the field holds
+      // (GuidingField::restore_joined): a rank lost later leaves its
+      // learnt units in its piece.
+      if (checkpoints.enabled()) checkpoints.write(film);
       std::string sums = cx.guiding->learnt_sums();
       const uint8_t mine = ends ? uint8_t(1 | (cx.stop_requested() ? 2 : 0)) : 0;
       const uint8_t all = hooks.share_learnt(sums, mine, passes);

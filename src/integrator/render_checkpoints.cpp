@@ -198,7 +198,7 @@ JoinLearnt guiding_field_joiner(Vec3 lo, Vec3 hi, const RenderOptions& o) {
 }
 
 void resume_guiding(GuidingField& field, const Checkpointer& checkpoints, const RenderOptions& o) {
-  if (checkpoints.done().empty()) return;
+  if (checkpoints.done_before().empty()) return;
   try {
     if (checkpoints.learnt().empty()) throw std::runtime_error("it holds no guiding field");
     field.restore(checkpoints.learnt());

@@ -47,14 +47,27 @@ CheckpointInfo start_checkpointing(const RenderOptions& opt, const RenderHooks& 
 class Checkpointer {
  public:
   using Clock = std::chrono::steady_clock;
+  // A process that did not read the checkpoint (an MPI rank but the
+  // first) was told the units done, but its film holds none of them: its
+  // pieces list only the units it renders, so that they fit together with
+  // the reading process's pieces on the next resume.
   Checkpointer(const RenderOptions& o, const RenderHooks& hooks, CheckpointInfo info, Clock::time_point start)
-      : opt_(o), hooks_(hooks), info_(std::move(info)), start_(start), last_(start),
-        prior_seconds_(info_.elapsed_seconds) {}
+      : opt_(o),
+        hooks_(hooks),
+        info_(std::move(info)),
+        before_(info_.done),
+        start_(start),
+        last_(start),
+        prior_seconds_(info_.elapsed_seconds) {
+    if (!o.resume_reads) info_.done = UnitSet{};
+  }
   bool enabled() const { return !opt_.checkpoint_path.empty(); }
   std::string own_path() const { return own_checkpoint_piece(opt_); }
   double elapsed() const { return prior_seconds_ + std::chrono::duration<double>(Clock::now() - start_).count(); }
+  // The units in this process's film, and those of every process when
+  // this run began (which it does not render again).
   UnitSet& done() { return info_.done; }
-  const UnitSet& done() const { return info_.done; }
+  const UnitSet& done_before() const { return before_; }
   void set_units(uint64_t passes, uint32_t waves) {
     info_.passes = passes;
     info_.waves = waves;
@@ -76,6 +89,7 @@ class Checkpointer {
   const RenderOptions& opt_;
   const RenderHooks& hooks_;
   CheckpointInfo info_;
+  const UnitSet before_;
   std::function<std::string()> learnt_;
   Clock::time_point start_, last_;
   double prior_seconds_;

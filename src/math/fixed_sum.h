@@ -17,6 +17,7 @@
 #include <bit>
 #include <cstdint>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 
 namespace lantern {
@@ -99,10 +100,12 @@ class FixedSum {
 // Sums kept as bytes, 16 per sum (FixedSum::raw, little-endian), as
 // processes exchange them: adds `more`'s to `total`'s place by place,
 // saturating (the guiding field's sums: none is negative). Both must hold
-// the same number of sums.
+// the same number of sums (std::invalid_argument otherwise).
 inline void add_saturating_sums(std::string& total, const std::string& more) {
-  for (size_t at = 0; at + sizeof(FixedSum::Raw) <= total.size() && at + sizeof(FixedSum::Raw) <= more.size();
-       at += sizeof(FixedSum::Raw)) {
+  if (total.size() != more.size())
+    throw std::invalid_argument("sums of " + std::to_string(more.size()) + " bytes added to sums of " +
+                                std::to_string(total.size()));
+  for (size_t at = 0; at + sizeof(FixedSum::Raw) <= total.size(); at += sizeof(FixedSum::Raw)) {
     FixedSum::Raw a, b;
     std::memcpy(&a, total.data() + at, sizeof a);
     std::memcpy(&b, more.data() + at, sizeof b);
