@@ -233,6 +233,27 @@ Shape "bilinearmesh" "point3 P" [0 0 0 1 0 0 0 1 0 1 1 0] "integer indices" [0 1
     }
 }
 
+// A hit on a triangle that lies in a plane z = c (or x, y) is exactly on
+// that plane, whatever its barycentrics: a 3D checkerboard whose boundary
+// is the plane would otherwise flip between its two sides from pixel to
+// pixel with the rounding of the barycentrics (the quad at z = 0 of
+// tests/conformance/textures.pbrt, 10 units from the camera, whose space
+// the hit is reconstructed in). Vertices far from the origin, barycentrics
+// whose sum rounds away from 1.
+TEST(Texture, HitsOnAnAxisAlignedTriangleStayOnItsPlane) {
+  auto s = load_texture_scene(R"(WorldBegin
+Shape "trianglemesh" "point3 P" [-12.5 3.1 -10  7.3 3.1 -10  0.7 9.9 -10] "integer indices" [0 1 2]
+)");
+  const TriangleMesh& tri = s->shapes.meshes[0];
+  RandomStream rng = RandomStream::make(5, 0, 0);
+  for (int i = 0; i < 100000; ++i) {
+    float b1 = rng.get1d(), b2 = rng.get1d();
+    if (b1 + b2 > 1.f) b1 = 1.f - b1, b2 = 1.f - b2;
+    const SurfacePoint sp = triangle_point(tri, 0, b1, b2);
+    ASSERT_EQ(sp.p.z, -10.f) << "barycentrics " << b1 << ", " << b2;
+  }
+}
+
 void expect_texture_error(const std::string& text, std::initializer_list<const char*> fragments) {
   expect_load_error(text, "t.pbrt", fragments);
 }
