@@ -8,6 +8,7 @@
 #include <cstring>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "guiding/guide_record.h"
@@ -57,6 +58,14 @@ std::string add(const std::string& a, const std::string& b) {
   return out;
 }
 
+// The records of even and of odd index.
+std::pair<Records, Records> every_other(const Records& all) {
+  Records a, b;
+  for (size_t i = 0; i < all.eye.size(); ++i) (i % 2 ? b : a).eye.push_back(all.eye[i]);
+  for (size_t i = 0; i < all.light.size(); ++i) (i % 2 ? b : a).light.push_back(all.light[i]);
+  return {a, b};
+}
+
 // Two processes that learn one field, each from every other record, as
 // MPI's ranks do (their sums added at each iteration's end).
 struct TwoRanks {
@@ -68,9 +77,7 @@ struct TwoRanks {
     all.eye.resize(size_t(double(all.eye.size()) * share));
     all.light.resize(size_t(double(all.light.size()) * share));
     whole.deposit(all.eye, all.light);
-    Records a, b;
-    for (size_t i = 0; i < all.eye.size(); ++i) (i % 2 ? b : a).eye.push_back(all.eye[i]);
-    for (size_t i = 0; i < all.light.size(); ++i) (i % 2 ? b : a).light.push_back(all.light[i]);
+    const auto [a, b] = every_other(all);
     first.deposit(a.eye, a.light);
     second.deposit(b.eye, b.light);
     return all;
@@ -95,9 +102,7 @@ TEST(GuidingSums, SharesAddUpToTheWholeInAnyOrder) {
     const Records all = make_records(whole, 7 + iteration, 40000);
     Records reversed{{all.eye.rbegin(), all.eye.rend()}, {all.light.rbegin(), all.light.rend()}};
     whole.deposit(reversed.eye, reversed.light);
-    Records a, b;
-    for (size_t i = 0; i < all.eye.size(); ++i) (i % 2 ? b : a).eye.push_back(all.eye[i]);
-    for (size_t i = 0; i < all.light.size(); ++i) (i % 2 ? b : a).light.push_back(all.light[i]);
+    const auto [a, b] = every_other(all);
     first.deposit(a.eye, a.light);
     second.deposit(b.eye, b.light);
     const std::string total = add(first.learnt_sums(), second.learnt_sums());
@@ -149,9 +154,7 @@ TEST(GuidingSums, CheckpointPiecesOfRanksJoinIntoTheWhole) {
     t.end_iteration();
     Records all = make_records(t.whole, 13, 40000);
     all.eye.resize(all.eye.size() / 2), all.light.resize(all.light.size() / 2);
-    Records mine;
-    for (size_t i = 0; i < all.eye.size(); i += 2) mine.eye.push_back(all.eye[i]);
-    for (size_t i = 0; i < all.light.size(); i += 2) mine.light.push_back(all.light[i]);
+    const Records mine = every_other(all).first;
     t.whole.deposit(mine.eye, mine.light);
     whole = t.whole;
   }
