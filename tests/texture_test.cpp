@@ -6,13 +6,14 @@
 #include <filesystem>
 
 #include "expect_error.h"
-#include "stat_compare.h"
+#include "geometry/bilinear_patch.h"
+#include "geometry/surface.h"
 #include "lantern/image.h"
 #include "lantern/render.h"
 #include "material/bsdf_kernel.h"
 #include "math/rng.h"
 #include "scene/scene.h"
-#include "geometry/surface.h"
+#include "stat_compare.h"
 #include "texture/noise.h"
 
 namespace lantern {
@@ -233,25 +234,35 @@ Shape "bilinearmesh" "point3 P" [0 0 0 1 0 0 0 1 0 1 1 0] "integer indices" [0 1
     }
 }
 
-// A hit on a triangle that lies in a plane z = c (or x, y) is exactly on
-// that plane, whatever its barycentrics: a 3D checkerboard whose boundary
-// is the plane would otherwise flip between its two sides from pixel to
-// pixel with the rounding of the barycentrics (the quad at z = 0 of
-// tests/conformance/textures.pbrt, 10 units from the camera, whose space
-// the hit is reconstructed in). Vertices far from the origin, barycentrics
-// whose sum rounds away from 1.
+// A hit on a triangle or a bilinear patch that lies in a plane z = c is
+// exactly on that plane, whatever its barycentrics or (u, v): a 3D
+// checkerboard whose boundary is the plane would otherwise flip between
+// its two sides from pixel to pixel with the rounding of the barycentrics
+// (the quad at z = 0 of tests/conformance/textures.pbrt, 10 units from the
+// camera, whose space the hit is reconstructed in). And a triangle's
+// vertices and a patch's corners come out exactly.
 TEST(Texture, HitsOnAnAxisAlignedTriangleStayOnItsPlane) {
   auto s = load_texture_scene(R"(WorldBegin
 Shape "trianglemesh" "point3 P" [-12.5 3.1 -10  7.3 3.1 -10  0.7 9.9 -10] "integer indices" [0 1 2]
+Shape "bilinearmesh" "point3 P" [-12.5 3.1 -10  7.3 3.3 -10  0.7 9.9 -10  5.9 11.7 -10] "integer indices" [0 1 2 3]
 )");
   const TriangleMesh& tri = s->shapes.meshes[0];
+  ASSERT_EQ(s->shapes.patches.size(), 1u) << "(a patch that is not a parallelogram stays a patch)";
+  const BilinearPatchSet& patch = s->shapes.patches[0];
   RandomStream rng = RandomStream::make(5, 0, 0);
   for (int i = 0; i < 100000; ++i) {
-    float b1 = rng.get1d(), b2 = rng.get1d();
+    // (square roots: numbers of every exponent and full mantissas, as an
+    // intersection's quotients are; multiples of 2^-24 round kindly)
+    float b1 = std::sqrt(rng.get1d()), b2 = std::sqrt(rng.get1d());
+    ASSERT_EQ(bilinear_point(patch, 0, Vec2(b1, b2)).p.z, -10.f) << "u, v " << b1 << ", " << b2;
     if (b1 + b2 > 1.f) b1 = 1.f - b1, b2 = 1.f - b2;
-    const SurfacePoint sp = triangle_point(tri, 0, b1, b2);
-    ASSERT_EQ(sp.p.z, -10.f) << "barycentrics " << b1 << ", " << b2;
+    ASSERT_EQ(triangle_point(tri, 0, b1, b2).p.z, -10.f) << "barycentrics " << b1 << ", " << b2;
   }
+  EXPECT_EQ(triangle_point(tri, 0, 0.f, 0.f).p, Vec3(-12.5f, 3.1f, -10.f));
+  EXPECT_EQ(triangle_point(tri, 0, 1.f, 0.f).p, Vec3(7.3f, 3.1f, -10.f));
+  EXPECT_EQ(triangle_point(tri, 0, 0.f, 1.f).p, Vec3(0.7f, 9.9f, -10.f));
+  EXPECT_EQ(bilinear_point(patch, 0, Vec2(1.f, 0.f)).p, Vec3(7.3f, 3.3f, -10.f));
+  EXPECT_EQ(bilinear_point(patch, 0, Vec2(1.f, 1.f)).p, Vec3(5.9f, 11.7f, -10.f));
 }
 
 void expect_texture_error(const std::string& text, std::initializer_list<const char*> fragments) {

@@ -125,7 +125,9 @@ struct RenderOptions {
   // Checkpoints. With checkpoint_path set, the film's sums and the position
   // in the sample sequence are written there (atomically) every
   // checkpoint_seconds (0: never periodically) and when the render is
-  // cancelled; a render that completes deletes the file. With resume, the
+  // cancelled (and, for a guided render whose processes share what they
+  // learn, at the end of each learning iteration); a render that completes
+  // deletes the file. With resume, the
   // render first restores that file and continues where it stopped: the
   // result equals, bit for bit, a render that ran straight through. A time
   // budget counts the time of every run. Not with strategies.

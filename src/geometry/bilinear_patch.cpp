@@ -107,11 +107,18 @@ Vec3 bilinear_normal(const BilinearPatchSet& s, uint32_t i, Vec2 uv) {
   return oriented_normal(s, patch_corners(s, i), uv, ns);
 }
 
+// a + t (b - a) from the nearer end: a coordinate a and b share comes out
+// exactly (a flat patch in a plane z = c stays on it, as triangle_point's
+// points do), and so do the ends themselves.
+static Vec3 lerp_from_nearer(const Vec3& a, const Vec3& b, float t) {
+  return t <= 0.5f ? a + t * (b - a) : b + (1.f - t) * (a - b);
+}
+
 SurfacePoint bilinear_point(const BilinearPatchSet& s, uint32_t i, Vec2 uv) {
   const PatchCorners c = patch_corners(s, i);
   const glm::uvec4 v = s.patches[i];
   SurfacePoint sp;
-  sp.p = glm::mix(glm::mix(c.p00, c.p10, uv.x), glm::mix(c.p01, c.p11, uv.x), uv.y);
+  sp.p = lerp_from_nearer(lerp_from_nearer(c.p00, c.p10, uv.x), lerp_from_nearer(c.p01, c.p11, uv.x), uv.y);
   const Vec3 ns = s.normals.empty() ? Vec3(0.f) : bilerp(s.normals, v, uv);
   sp.ng = oriented_normal(s, c, uv, ns);
   const float l2 = glm::dot(ns, ns);

@@ -23,12 +23,18 @@ inline SurfacePoint triangle_point(const TriangleMesh& m, uint32_t prim, float b
   const Vec3 &p0 = m.positions[t.x], &p1 = m.positions[t.y], &p2 = m.positions[t.z];
   float b0 = 1.f - b1 - b2;
   SurfacePoint sp;
-  // From p0 along the edges: where the vertices share a coordinate (a
-  // triangle in a plane z = c) the point has it exactly, whatever the
-  // barycentrics' rounding (b0 + b1 + b2 need not be 1 in floats), so a
-  // 3D texture whose boundary is that plane does not flip side from hit
-  // to hit (tests/texture_test.cpp).
-  sp.p = p0 + b1 * (p1 - p0) + b2 * (p2 - p0);
+  // From the vertex of the largest barycentric along the edges: where the
+  // vertices share a coordinate (a triangle in a plane z = c) the point has
+  // it exactly, whatever the barycentrics' rounding (b0 + b1 + b2 need not
+  // be 1 in floats), so a 3D texture whose boundary is that plane does not
+  // flip side from hit to hit (tests/texture_test.cpp); and a vertex, or a
+  // point of an edge, depends on that vertex or edge alone.
+  if (b0 >= b1 && b0 >= b2)
+    sp.p = p0 + b1 * (p1 - p0) + b2 * (p2 - p0);
+  else if (b1 >= b2)
+    sp.p = p1 + b0 * (p0 - p1) + b2 * (p2 - p1);
+  else
+    sp.p = p2 + b0 * (p0 - p2) + b1 * (p1 - p2);
   Vec3 n = glm::cross(p1 - p0, p2 - p0);
   float len = glm::length(n);
   n = len > 0.f ? n / len : Vec3(0, 0, 1);

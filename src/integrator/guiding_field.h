@@ -173,7 +173,7 @@ class GuidingField {
   }
 
   // The field of a render whose processes each saved their own piece (MPI
-  // ranks' checkpoint pieces, each save()d by its rank's clock), restored
+  // ranks' checkpoint pieces, each save()d by its rank), restored
   // as one process that rendered every piece's units would hold it. Every
   // piece holds the field the processes shared at the start of its
   // iteration and its own sums since. A process saves its piece at the

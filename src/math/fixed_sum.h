@@ -100,11 +100,11 @@ class FixedSum {
 // Sums kept as bytes, 16 per sum (FixedSum::raw, little-endian), as
 // processes exchange them: adds `more`'s to `total`'s place by place,
 // saturating (the guiding field's sums: none is negative). Both must hold
-// the same number of sums (std::invalid_argument otherwise).
+// the same number of sums (std::runtime_error otherwise).
 inline void add_saturating_sums(std::string& total, const std::string& more) {
   if (total.size() != more.size())
-    throw std::invalid_argument("sums of " + std::to_string(more.size()) + " bytes added to sums of " +
-                                std::to_string(total.size()));
+    throw std::runtime_error("sums of " + std::to_string(more.size()) + " bytes added to sums of " +
+                             std::to_string(total.size()));
   for (size_t at = 0; at + sizeof(FixedSum::Raw) <= total.size(); at += sizeof(FixedSum::Raw)) {
     FixedSum::Raw a, b;
     std::memcpy(&a, total.data() + at, sizeof a);
