@@ -50,7 +50,11 @@ TEST(Roulette, SurvivalFollowsTheScaledThroughput) {
 // rough conductor and coated walls) and in a fog: region means over
 // independent renders agree within 4.5 standard errors with pbrt-v4's rule
 // (scale 1). Not dividing the survivors' throughput by their probability
-// puts them 10 to 36 standard errors off, with 8 renders a side (checked).
+// puts them 10 to 36 standard errors off, with 8 renders a side of 64
+// samples (checked); at the 32 here, about 7 to 25 (z goes with the square
+// root of the samples).
+// Scale 2, the default, is not among them: every other test of the path
+// tracer's image runs it, against bdpt, light tracing and pbrt-v4.
 TEST(Roulette, PathConvergesToTheSameImageAtEveryScale) {
   if (LANTERN_ASAN) GTEST_SKIP() << "statistics only: the Release suite runs it";
   std::vector<Region> regions;
@@ -59,9 +63,10 @@ TEST(Roulette, PathConvergesToTheSameImageAtEveryScale) {
   for (const auto& scene : {guided_room(), foggy_skylit_room()}) {
     RenderOptions o = guided_options(false);
     o.maxdepth = 12;
+    o.spp = 32;
     o.roulette_scale = 1.f;
     const RegionStats pbrt = stats_of(render_runs(*scene, o, 8, 300), regions);
-    for (const float scale : {0.5f, 2.f, 8.f}) {
+    for (const float scale : {0.5f, 8.f}) {
       o.roulette_scale = scale;
       const RegionStats scaled = stats_of(render_runs(*scene, o, 8, 400), regions);
       max_z(pbrt, scaled);
