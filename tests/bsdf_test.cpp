@@ -3,12 +3,14 @@
 // relation f(wo, wi) in radiance mode equals f(wi, wo) in importance mode.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <complex>
 #include <functional>
 #include <string>
 
+#include "bsdf_checks.h"
 #include "material/bsdf_kernel.h"
 #include "material/fresnel.h"
-#include "bsdf_checks.h"
 #include "math/rng.h"
 #include "sanitizer.h"
 
@@ -141,6 +143,32 @@ TEST(Fresnel, DielectricLimits) {
   EXPECT_FLOAT_EQ(fr_dielectric(0.1f, 1.f / 1.5f), 1.f);  // total internal reflection
   EXPECT_NEAR(fr_dielectric(0.7f, 1.f), 0.f, 1e-7f);
   EXPECT_NEAR(fr_complex(1.f, 1.5f, 0.f), 0.04f, 1e-4f);
+}
+
+// The conductor's reflectance, written without complex division, against
+// the textbook formula in double-precision std::complex: metals, a
+// dielectric (k = 0, with total internal reflection below eta = 1), near
+// index 1, and grazing and normal incidence. Taking the square root's
+// other branch, or dropping the conjugate in sin^2 t, fails (checked).
+TEST(Fresnel, ConductorMatchesTheComplexFormula) {
+  using C = std::complex<double>;
+  auto reference = [](double cos_i, double eta, double k) {
+    const C e(eta, k);
+    const C sin2_t = (1.0 - cos_i * cos_i) / (e * e), cos_t = std::sqrt(1.0 - sin2_t);
+    const C r_parl = (e * cos_i - cos_t) / (e * cos_i + cos_t), r_perp = (cos_i - e * cos_t) / (cos_i + e * cos_t);
+    return 0.5 * (std::norm(r_parl) + std::norm(r_perp));
+  };
+  for (const float eta : {0.05f, 0.2f, 0.5f, 0.9f, 1.f, 1.1f, 1.5f, 3.f, 10.f})
+    for (const float k : {0.f, 0.01f, 0.5f, 2.f, 5.f, 10.f})
+      for (int i = 0; i <= 64; ++i) {
+        const float cos_i = float(i) / 64.f;
+        if (cos_i == 0.f && eta == 1.f && k == 0.f) continue;  // 0 / 0 in the formula
+        const double want = reference(cos_i, eta, k);
+        EXPECT_NEAR(fr_complex(cos_i, eta, k), want, 2e-6 + 2e-5 * want) << cos_i << " " << eta << " " << k;
+      }
+  EXPECT_EQ(fr_complex(0.f, 1.f, 0.f), 1.f);  // the grazing limit
+  EXPECT_EQ(fr_complex(0.5f, 0.f, 0.f), 1.f);
+  EXPECT_TRUE(std::isfinite(fr_complex(1e-20f, 1e-20f, 0.f)));
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // Fresnel reflectance for dielectric and conducting interfaces.
 #pragma once
 
-#include <complex>
+#include <cmath>
 
 #include "math/common.h"
 
@@ -24,17 +24,53 @@ inline float fr_dielectric(float cos_i, float eta) {
   return 0.5f * (r_parl * r_parl + r_perp * r_perp);
 }
 
-// Reflectance of a conductor with complex index eta + i k.
+// The principal square root of x + i y (real part >= 0, the imaginary part
+// taking y's sign), from the half-angle identities; the root of the larger
+// of r + x and r - x is taken, so neither cancels.
+inline void complex_sqrt(float x, float y, float* re, float* im) {
+  const float r = std::sqrt(x * x + y * y);
+  if (r == 0.f) {
+    *re = *im = 0.f;
+    return;
+  }
+  const float t = std::sqrt(0.5f * (r + std::fabs(x)));
+  if (x >= 0.f) {
+    *re = t;
+    *im = y / (2.f * t);
+  } else {
+    *re = std::fabs(y) / (2.f * t);
+    *im = std::copysign(t, y);
+  }
+}
+
+// Reflectance of a conductor with complex index e = eta + i k (pbrt-v4,
+// section 9.4.2, FrComplex): with sin^2 t = sin^2 i / e^2 and cos t =
+// sqrt(1 - sin^2 t), r_parallel = (e cos i - cos t) / (e cos i + cos t) and
+// r_perpendicular = (cos i - e cos t) / (cos i + e cos t). Only |r|^2 is
+// needed, and |a / b|^2 = |a|^2 / |b|^2: so no complex division, which
+// GCC leaves to a library call (libgcc's __divsc3, with its overflow and
+// NaN cases), and the square root written out rather than csqrtf.
 inline float fr_complex(float cos_i, float eta, float k) {
-  using C = std::complex<float>;
   cos_i = glm::clamp(cos_i, 0.f, 1.f);
-  C e(eta, k);
-  float sin2_i = 1.f - cos_i * cos_i;
-  C sin2_t = sin2_i / (e * e);
-  C cos_t = std::sqrt(C(1.f) - sin2_t);
-  C r_parl = (e * cos_i - cos_t) / (e * cos_i + cos_t);
-  C r_perp = (cos_i - e * cos_t) / (cos_i + e * cos_t);
-  return 0.5f * (std::norm(r_parl) + std::norm(r_perp));
+  const float sin2_i = 1.f - cos_i * cos_i;
+  // sin^2 t = sin^2 i conj(e^2) / |e^2|^2, with e^2 = (eta^2 - k^2) + i 2 eta k.
+  const float e2_re = eta * eta - k * k, e2_im = 2.f * eta * k;
+  const float e2_norm = e2_re * e2_re + e2_im * e2_im;
+  if (!(e2_norm > 0.f)) return 1.f;  // e = 0: both ratios have modulus 1
+  const float s = sin2_i / e2_norm;
+  float ct_re, ct_im;
+  complex_sqrt(1.f - s * e2_re, s * e2_im, &ct_re, &ct_im);
+  const float ec_re = eta * cos_i, ec_im = k * cos_i;                              // e cos i
+  const float ect_re = eta * ct_re - k * ct_im, ect_im = eta * ct_im + k * ct_re;  // e cos t
+  // A ratio of squared moduli; where both vanish (grazing, on an index of
+  // 1) the interface reflects everything, as the limit does.
+  auto ratio = [](float a_re, float a_im, float b_re, float b_im) {
+    const float b = b_re * b_re + b_im * b_im;
+    return b > 0.f ? (a_re * a_re + a_im * a_im) / b : 1.f;
+  };
+  const float r_parl = ratio(ec_re - ct_re, ec_im - ct_im, ec_re + ct_re, ec_im + ct_im);
+  const float r_perp = ratio(cos_i - ect_re, -ect_im, cos_i + ect_re, ect_im);
+  return 0.5f * (r_parl + r_perp);
 }
 
 inline Spectrum fr_complex(float cos_i, const Spectrum& eta, const Spectrum& k) {
