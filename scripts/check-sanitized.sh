@@ -50,7 +50,7 @@ export LANTERN_TEST_SPP_SCALE=0.25
 # thread is suppressed by library (scripts/lsan.supp). A failed test still
 # runs once more; a real failure fails both times.
 export LSAN_OPTIONS=use_tls=0:print_suppressions=0:suppressions=$(pwd)/scripts/lsan.supp
-# Not here, to keep CI within its time: the MPI job (Open MPI's libraries
+# Not here, to keep this suite short: the MPI job (Open MPI's libraries
 # are not instrumented, and the test checks how ranks coordinate), the
 # install (it copies files) and the command line's scripts (the command is
 # not built here; signals, checkpoints, parts, batch use): the Release suite

@@ -37,7 +37,7 @@ RenderOptions split_options(uint32_t split) {
 }
 
 // Region means over independent renders agree within 4.5 standard errors
-// with whole camera samples, at every count of paths per camera sample, in
+// with whole camera samples, at 2 and at 16 paths per camera sample, in
 // a closed room with a small light it sees (diffuse, rough conductor and
 // coated walls) and in the room under a sky seen through a hole. Without
 // the first hit's light given to every path of the camera sample, split 2
