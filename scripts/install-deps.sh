@@ -12,13 +12,15 @@ packages=(
   libboost-dev  # header only: Joe & Kuo's Sobol direction numbers (src/sampler/sobol_matrices.cpp)
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox  # perf/run-all.sh plots error against time
-  clang libclang-rt-14-dev  # scripts/check-sanitized.sh: sanitizers and libFuzzer
   libopenmpi-dev openmpi-bin  # rendering across machines (mpirun); a build without it renders on one
   libglfw3-dev libgl-dev  # lantern view's window (src/app/viewer.cpp)
   xvfb xauth xdotool libgl1-mesa-dri  # its test: a virtual display, keys sent to the window, OpenGL in software
   pybind11-dev python3-dev  # the Python module (docs/python.md)
   python3-numpy python3-pytest python3-matplotlib  # its arrays, its tests, the example study's plots
 )
+# scripts/check-sanitized.sh: sanitizers and libFuzzer. Not on a CI machine
+# (LANTERN_CI=1, set by .ci/run), which does not run that suite.
+[ "${LANTERN_CI:-}" = 1 ] || packages+=(clang libclang-rt-14-dev)
 
 missing=()
 for p in "${packages[@]}"; do

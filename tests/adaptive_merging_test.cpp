@@ -52,7 +52,7 @@ TEST(AdaptiveMerging, MeansMatchUniformVcm) {
   auto scene = shipped_scene("caustics.pbrt");
   const std::vector<Region> regions = {
       {0, 0, 16, 16}, {16, 0, 16, 16}, {0, 16, 16, 16}, {16, 16, 16, 16}, {8, 8, 16, 16}};
-  // Under the sanitizers, the code paths on fewer renders (CI's time),
+  // Under the sanitizers, the code paths on fewer renders (the sanitized suite's time),
   // too few for the comparison: standard errors of 2 degrees of freedom.
   const int runs = LANTERN_ASAN ? 3 : 8;
   const RegionStats uniform = stats_of(render_runs(*scene, small_vcm(256), runs, 1), regions);

@@ -189,14 +189,9 @@ endforeach()
 # SIGTERM, then SIGINT, each writing the image so far (its header giving the
 # true sample count) and a checkpoint; --resume then finishes the render,
 # which must equal a straight one exactly. Each signal is sent once the run
-# has written a checkpoint of its own, so a slow start (a sanitizer build, a
-# loaded machine) cannot make it arrive before the render began.
-# The sanitizer suite (LANTERN_TEST_SPP_SCALE) runs it on fewer samples:
-# its renders are slow enough there for the signals to arrive mid-render.
+# has written a checkpoint of its own, so a slow start (a loaded machine)
+# cannot make it arrive before the render began.
 set(ck_spp 1500)
-if(DEFINED ENV{LANTERN_TEST_SPP_SCALE})
-  set(ck_spp 400)
-endif()
 set(ck_args render ${SRC}/scenes/cornell-box.pbrt --integrator bdpt --spp ${ck_spp} --resolution 24 24 --quiet)
 string(JOIN " " ck_line ${ck_args})
 file(REMOVE ${OUT}/straight.exr ${OUT}/stopped.exr ${OUT}/stopped.exr.ckpt)

@@ -4,8 +4,8 @@
 # path's units are bdpt's without the splats; lt's splats are bdpt's t = 1
 # strategies, held here by bdpt; the parts test holds lt itself); a rank
 # that fails ends the job with its message and a non-zero exit, in bounded
-# time. (The Release suite's alone: the sanitized build makes the test
-# programs, not lantern.)
+# time. (The Release suite's alone: scripts/check-sanitized.sh leaves it
+# out.)
 set(ENV{OMPI_ALLOW_RUN_AS_ROOT} 1)
 set(ENV{OMPI_ALLOW_RUN_AS_ROOT_CONFIRM} 1)
 set(ENV{OMPI_MCA_btl} "self,vader")  # one machine: shared memory only

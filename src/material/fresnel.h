@@ -26,10 +26,12 @@ inline float fr_dielectric(float cos_i, float eta) {
 }
 
 // The principal square root a + i b of x + i y: a >= 0, and b has y's sign
-// (signed zeros included), as csqrtf gives it (C99 Annex G). With r = |x +
-// i y|, a^2 = (r + x) / 2 and b^2 = (r - x) / 2; the larger of the two
-// comes from r + |x|, which cannot cancel, and the smaller from y = 2ab
-// (W. Kahan, "Branch cuts for complex elementary functions", 1987).
+// (signed zeros included), the branch csqrtf takes (C99 Annex G). With r =
+// |x + i y|, a^2 = (r + x) / 2 and b^2 = (r - x) / 2; the larger of the
+// two comes from r + |x|, which cannot cancel, and the smaller from y = 2ab
+// (the idea of W. Kahan's "Branch cuts for complex elementary functions",
+// 1987, without its scaling: x^2 + y^2 must neither overflow nor underflow,
+// which fr_complex's range of indices ensures).
 inline void complex_sqrt(float x, float y, float* re, float* im) {
   const float r = std::sqrt(x * x + y * y);
   if (r == 0.f) {
@@ -65,18 +67,19 @@ inline float fr_complex(float cos_i, float eta, float k) {
   complex_sqrt(1.f - s * e2_re, s * e2_im, &ct_re, &ct_im);
   const float ec_re = eta * cos_i, ec_im = k * cos_i;                              // e cos i
   const float ect_re = eta * ct_re - k * ct_im, ect_im = eta * ct_im + k * ct_re;  // e cos t
-  // A ratio of squared moduli. Both vanish only at grazing incidence on an
-  // index of exactly 1, where the formula is 0 / 0: 1 there, the limit of
-  // indices near 1 at grazing incidence (the old complex division: NaN).
+  // A ratio of squared moduli. The denominator vanishes only at grazing
+  // incidence on an index of exactly 1 (or -1), where the formula is 0 / 0:
+  // 1 there, the limit of indices near 1 at grazing incidence (the old
+  // complex division: NaN).
   auto ratio = [](float a_re, float a_im, float b_re, float b_im) {
     const float b = b_re * b_re + b_im * b_im;
-    return b > 0.f ? (a_re * a_re + a_im * a_im) / b : 1.f;
+    return b == 0.f ? 1.f : (a_re * a_re + a_im * a_im) / b;
   };
   const float r_parl = ratio(ec_re - ct_re, ec_im - ct_im, ec_re + ct_re, ec_im + ct_im);
   const float r_perp = ratio(cos_i - ect_re, -ect_im, cos_i + ect_re, ect_im);
   // (Rounding leaves it up to 2.4e-7 above 1 for 40 in a million indices.)
   const float r = 0.5f * (r_parl + r_perp);
-  return r < 1.f ? r : 1.f;
+  return r > 1.f ? 1.f : r;
 }
 
 inline Spectrum fr_complex(float cos_i, const Spectrum& eta, const Spectrum& k) {
