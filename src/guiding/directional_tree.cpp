@@ -3,16 +3,20 @@
 #include <algorithm>
 #include <limits>
 
+#include "math/binary_digits.h"
+
 namespace lantern {
 
 namespace {
 
-// The quadrant of a node's square that p (in the node's own unit square)
-// lies in, x + 2y, and p moved into that quadrant's unit square.
-uint32_t quadrant(Vec2& p) {
-  const uint32_t x = p.x >= 0.5f ? 1u : 0u, y = p.y >= 0.5f ? 1u : 0u;
-  p = glm::clamp(2.f * p - Vec2(float(x), float(y)), 0.f, 1.f);
-  return x + 2u * y;
+// A node's quadrant, x + 2y, is the next binary digit of each coordinate
+// of the square (math/binary_digits.h; kMaxDepth is below 32): read, and
+// moved on by one.
+uint32_t next_quadrant(uint32_t& x, uint32_t& y) {
+  const uint32_t q = (x >> 31) | ((y >> 31) << 1);
+  x <<= 1;
+  y <<= 1;
+  return q;
 }
 
 // Chooses between two options of probabilities a and b (a + b > 0) with u,
@@ -42,9 +46,9 @@ void DirectionalTree::normalise() {
 }
 
 uint32_t DirectionalTree::cell_of(Vec2 p) const {
-  uint32_t n = 0;
+  uint32_t n = 0, x = binary_digits(p.x), y = binary_digits(p.y);
   for (;;) {
-    const uint32_t q = quadrant(p);
+    const uint32_t q = next_quadrant(x, y);
     const uint32_t c = node_[n].child[q];
     if (c == 0) return 4 * n + q;
     n = c;
@@ -91,11 +95,11 @@ Vec2 DirectionalTree::sample(Vec2 u, float* pdf) const {
 }
 
 float DirectionalTree::pdf(Vec2 p) const {
-  uint32_t n = 0;
+  uint32_t n = 0, x = binary_digits(p.x), y = binary_digits(p.y);
   float density = 1.f;
   for (;;) {
     const Node& node = node_[n];
-    const uint32_t q = quadrant(p);
+    const uint32_t q = next_quadrant(x, y);
     density *= 4.f * node.probability[q];
     const uint32_t c = node.child[q];
     if (c == 0 || density == 0.f) return density;

@@ -12,6 +12,15 @@ SDTree::SDTree(Vec3 lo, Vec3 hi, GuidingSettings settings) : settings_(settings)
   nodes_.push_back(Node{});
   leaves_.push_back(Leaf{});
   leaves_[0].size = Vec3(cube_.extent);
+  index_guide_shares();
+}
+
+void SDTree::index_guide_shares() {
+  guide_share_.assign(leaves_.size() * kBins, -1.f);
+  if (!trained_) return;
+  for (size_t i = 0; i < leaves_.size(); ++i)
+    for (uint32_t b = 0; b < kBins; ++b)
+      if (leaves_[i].sampled[b].total() > 0.0) guide_share_[i * kBins + b] = leaves_[i].alpha[b];
 }
 
 uint32_t SDTree::leaf_of(const Vec3& p) const { return spatial_leaf_of(nodes_, cube_, p); }
@@ -51,10 +60,12 @@ void SDTree::update(uint32_t iteration) {
     }
     l.records = 0;
   }
+  index_guide_shares();
 }
 
 size_t SDTree::memory_bytes() const {
-  size_t b = nodes_.capacity() * sizeof(Node) + leaves_.capacity() * sizeof(Leaf);
+  size_t b =
+      nodes_.capacity() * sizeof(Node) + leaves_.capacity() * sizeof(Leaf) + guide_share_.capacity() * sizeof(float);
   for (const Leaf& l : leaves_)
     for (uint32_t k = 0; k < kBins; ++k) b += l.sampled[k].memory_bytes() + l.learning[k].memory_bytes();
   return b;
@@ -109,6 +120,7 @@ void SDTree::read_state(StateReader& in) {
   nodes_ = std::move(nodes);
   leaves_ = std::move(leaves);
   trained_ = trained;
+  index_guide_shares();
 }
 
 }  // namespace lantern

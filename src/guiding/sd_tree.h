@@ -126,6 +126,10 @@ class SDTree {
 
   // Whether any leaf has a distribution to sample.
   bool trained() const { return trained_; }
+  // The BSDF's share α where a leaf's bin has a distribution to sample,
+  // else -1: what a vertex looks up, kept apart from the leaves (whose
+  // trees' sums it would read) and together, 7 floats a leaf.
+  float guide_share(uint32_t leaf, uint32_t normal_bin) const { return guide_share_[leaf * kBins + normal_bin]; }
 
   const std::vector<Leaf>& leaves() const { return leaves_; }
   size_t memory_bytes() const;
@@ -138,11 +142,13 @@ class SDTree {
 
  private:
   static void choose_alphas(Leaf& l);
+  void index_guide_shares();
 
   SpatialCube cube_;  // the cube the tree divides
   GuidingSettings settings_;
   std::vector<Node> nodes_;
   std::vector<Leaf> leaves_;
+  std::vector<float> guide_share_;  // kBins per leaf (guide_share)
   bool trained_ = false;
 };
 

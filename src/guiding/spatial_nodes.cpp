@@ -2,19 +2,30 @@
 
 #include <stdexcept>
 
+#include "math/binary_digits.h"
+
 namespace lantern {
 
+// The axes alternate x, y, z from the root (split_spatial_leaf; a read
+// tree is checked for it), so each level reads the next binary digit of
+// one coordinate: the half of the node's box p lies in. (A tree grown here
+// is at most 21 levels deep along an axis: split_spatial_leaf. Past 32, in
+// a tree read from bytes, the lower halves are taken.)
 uint32_t spatial_leaf_of(const std::vector<SpatialNode>& nodes, const SpatialCube& cube, const Vec3& p) {
   Vec3 q = glm::clamp((p - cube.lo) / cube.extent, 0.f, 1.f);
   if (!(q.x == q.x) || !(q.y == q.y) || !(q.z == q.z)) q = Vec3(0.5f);  // a NaN position: any leaf will do
-  uint32_t n = 0;
+  uint32_t x = binary_digits(q.x), y = binary_digits(q.y), z = binary_digits(q.z);
+  const SpatialNode* node = nodes.data();
   for (;;) {
-    const SpatialNode& node = nodes[n];
-    if (node.child[0] == 0) return node.leaf;
-    float& c = q[node.axis];
-    const bool upper = c >= 0.5f;
-    c = upper ? 2.f * c - 1.f : 2.f * c;
-    n = node.child[upper ? 1 : 0];
+    if (node->child[0] == 0) return node->leaf;
+    node = &nodes[node->child[x >> 31]];
+    x <<= 1;
+    if (node->child[0] == 0) return node->leaf;
+    node = &nodes[node->child[y >> 31]];
+    y <<= 1;
+    if (node->child[0] == 0) return node->leaf;
+    node = &nodes[node->child[z >> 31]];
+    z <<= 1;
   }
 }
 
@@ -52,7 +63,8 @@ std::vector<SpatialNode> read_spatial_nodes(StateReader& in, uint64_t leaf_bytes
     const bool leaf = n.child[0] == 0 && n.child[1] == 0;
     const bool inner = n.child[0] > i && n.child[1] > i && n.child[0] < node_count && n.child[1] < node_count &&
                        n.child[0] != n.child[1] && depth[i] < kMaxDepth;
-    if ((!leaf && !inner) || n.axis > 2 || (leaf && (n.leaf >= leaves || named[n.leaf]++ > 0)))
+    // (the axes alternate from x at the root: spatial_leaf_of reads them so)
+    if ((!leaf && !inner) || n.axis != depth[i] % 3 || (leaf && (n.leaf >= leaves || named[n.leaf]++ > 0)))
       throw std::runtime_error(what + " whose node " + std::to_string(i) + " cannot be");
     if (inner)
       for (uint32_t c : n.child) {

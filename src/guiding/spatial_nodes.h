@@ -1,7 +1,8 @@
 // The spatial binary trees of path guiding (guiding/sd_tree.h,
 // guiding/scatter_field.h): a cube divided in the middle along x, y and z
-// in turn. Nodes sit in a list, children after their parent; a leaf names
-// its entry in the tree's own list of leaves, which holds what it learns.
+// in turn (the root x, its children y, theirs z, ...). Nodes sit in a
+// list, children after their parent; a leaf names its entry in the tree's
+// own list of leaves, which holds what it learns.
 #pragma once
 
 #include <algorithm>
@@ -85,8 +86,9 @@ void write_spatial_nodes(StateWriter& out, const std::vector<SpatialNode>& nodes
 // What write_spatial_nodes wrote, and the count of leaves after it. Throws
 // std::runtime_error, naming `what`, for counts beyond what the bytes left
 // hold (a leaf takes at least leaf_bytes) or a list that is not a tree: a
-// node with no parent or two, a child before its parent, deeper than 192
-// levels, a leaf outside the leaves or named twice.
+// node with two parents, a child before its parent, deeper than 192
+// levels, axes that do not alternate x, y, z from the root, a leaf outside
+// the leaves or named twice.
 std::vector<SpatialNode> read_spatial_nodes(StateReader& in, uint64_t leaf_bytes, uint64_t* leaf_count,
                                             const std::string& what);
 

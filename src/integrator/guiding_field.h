@@ -260,10 +260,8 @@ class GuidingField {
   // The distribution a tree's leaf holds for a normal's bin, if any (none
   // before the first iteration ends, or where no energy came).
   static GuideAt at(const SDTree& tree, uint32_t leaf, uint32_t normal_bin) {
-    if (!tree.trained()) return {};
-    const SDTree::Leaf& l = tree.leaf(leaf);
-    const DirectionalTree& d = l.sampled[normal_bin];
-    return d.total() > 0.0 ? GuideAt{&d, l.alpha[normal_bin]} : GuideAt{};
+    const float alpha = tree.guide_share(leaf, normal_bin);
+    return alpha >= 0.f ? GuideAt{&tree.leaf(leaf).sampled[normal_bin], alpha} : GuideAt{};
   }
 
   SDTree tree_, importance_;
