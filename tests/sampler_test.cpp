@@ -2,14 +2,17 @@
 // stratification in elementary intervals, decorrelation between pixels and
 // between dimensions, and integration error that falls faster than
 // independent sampling's.
+#include "sampler/sampler.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <thread>
 #include <vector>
 
 #include "sampler/dimensions.h"
-#include "sampler/sampler.h"
+#include "sampler/zsobol.h"
 
 namespace lantern {
 namespace {
@@ -40,6 +43,35 @@ SamplerSpec spec_for(const char* kind, const char* randomization = "", int spp =
         return ::testing::AssertionFailure() << count[c] << " points in interval " << c << " of " << nx << "x" << ny;
   }
   return ::testing::AssertionSuccess();
+}
+
+// zsobol's shortcuts: dimension 1 from a table of reversed columns under
+// fastowen, and the index's bits reversed once per sample, must give the
+// values of the plain formulas (the scramble of the Sobol point, the
+// nested scramble of the index) for any index, seed and width.
+TEST(Sampler, ZSobolShortcutsGiveThePlainFormulasValues) {
+  std::mt19937_64 rng(7);
+  for (int i = 0; i < 200000; ++i) {
+    const uint64_t index = rng() >> (rng() % 64), h = rng();
+    const int bits = 1 + int(rng() % 64);
+    ASSERT_EQ(sobol_bits_dim1_reversed(index), reverse_bits32(sobol_bits_dim1(index)));
+    const Vec2 v = sobol_2d(index, Randomization::FastOwen, h);
+    const uint64_t h2 = mix64(h);
+    ASSERT_EQ(v.x, bits32_to_unit_float(fast_owen_scramble(sobol_bits_dim0(index), uint32_t(h2))));
+    ASSERT_EQ(v.y, bits32_to_unit_float(fast_owen_scramble(sobol_bits_dim1(index), uint32_t(h2 >> 32))));
+    ASSERT_EQ(zsobol_permuted_index(reverse_bits64(index), bits, h), nested_scramble_index(index, bits, h));
+  }
+  // PathSampler keeps the key reversed: its values are those of the key.
+  const SamplerSpec s = spec_for("zsobol");
+  for (uint32_t pixel : {0u, 77u, 3071u})
+    for (uint64_t sample : {0u, 5u, 63u}) {
+      const PathSampler p = PathSampler::make(s, pixel, sample);
+      const uint64_t key = (morton_2d(pixel % 64, pixel / 64) << s.log2_spp) | sample;
+      for (uint32_t d = 0; d < 12; ++d) {
+        const uint64_t hd = dimension_hash(p.salt, d);
+        EXPECT_EQ(p.get2d(d), sobol_2d(nested_scramble_index(key, s.index_bits, hd), s.randomize, hd));
+      }
+    }
 }
 
 TEST(Sampler, ValuesLieInTheUnitIntervalForEveryKindAndRandomization) {

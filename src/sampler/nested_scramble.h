@@ -17,15 +17,21 @@
 
 namespace lantern {
 
-inline uint64_t nested_scramble_index(uint64_t index, int bits, uint64_t seed) {
-  uint64_t x = reverse_bits64(index);
-  x += seed;
+// From the index's bits already reversed (reverse_bits64(index)): a
+// sampler that draws many dimensions of one index reverses it once
+// (PathSampler keeps zsobol's key so).
+inline uint64_t nested_scramble_reversed_index(uint64_t reversed_index, int bits, uint64_t seed) {
+  uint64_t x = reversed_index + seed;
   x ^= x * 0x9E3779B97F4A7C14ULL;
   x ^= x * 0xBF58476D1CE4E5B8ULL;
   x ^= x * 0x94D049BB133111EAULL;
   x ^= x * 0xD6E8FEB86659FD92ULL;
   x = reverse_bits64(x);
   return bits >= 64 ? x : x & ((uint64_t(1) << bits) - 1);
+}
+
+inline uint64_t nested_scramble_index(uint64_t index, int bits, uint64_t seed) {
+  return nested_scramble_reversed_index(reverse_bits64(index), bits, seed);
 }
 
 }  // namespace lantern

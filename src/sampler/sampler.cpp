@@ -95,8 +95,8 @@ PathSampler PathSampler::make(const SamplerSpec& s, uint32_t pixel, uint64_t sam
       p.key = hash_key(s.seed, pixel, sample_index);
       break;
     case SamplerKind::ZSobol:
-      p.key = s.pixel_bits > 0 ? pass_major_key(sample_index & block_mask, pixel, s.pixel_bits)
-                               : (morton_2d(x, y) << s.log2_spp) | (sample_index & block_mask);
+      p.key = reverse_bits64(s.pixel_bits > 0 ? pass_major_key(sample_index & block_mask, pixel, s.pixel_bits)
+                                              : (morton_2d(x, y) << s.log2_spp) | (sample_index & block_mask));
       p.salt = hash_combine(s.seed, sample_index >> s.log2_spp);
       break;
     case SamplerKind::PaddedSobol:

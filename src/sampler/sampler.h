@@ -63,7 +63,7 @@ const char* randomization_name(Randomization r);
 
 struct PathSampler {
   const SamplerSpec* spec = nullptr;
-  uint64_t key = 0;   // the kind's per-sample key: a hash, a global index, ...
+  uint64_t key = 0;   // the kind's per-sample key: a hash, a global index, zsobol's bits reversed, ...
   uint64_t salt = 0;  // per pixel (and round of blocks) randomisation seed
   uint32_t index = 0;  // sample index within the pixel's block
 
@@ -84,8 +84,12 @@ inline float sobol_1d(uint64_t i, Randomization r, uint64_t h) {
 }
 inline Vec2 sobol_2d(uint64_t i, Randomization r, uint64_t h) {
   const uint64_t h2 = mix64(h);
-  return Vec2(bits32_to_unit_float(scrambled_van_der_corput(i, r, uint32_t(h2))),
-              bits32_to_unit_float(scramble_bits(sobol_bits_dim1(i), r, uint32_t(h2 >> 32))));
+  // (fastowen reverses dimension 1's bits before its hash: the table of
+  // reversed columns gives them so)
+  const uint32_t y = r == Randomization::FastOwen
+                         ? reverse_bits32(laine_karras_hash(sobol_bits_dim1_reversed(i), uint32_t(h2 >> 32)))
+                         : scramble_bits(sobol_bits_dim1(i), r, uint32_t(h2 >> 32));
+  return Vec2(bits32_to_unit_float(scrambled_van_der_corput(i, r, uint32_t(h2))), bits32_to_unit_float(y));
 }
 
 inline float PathSampler::get1d(uint32_t d) const {

@@ -49,6 +49,7 @@ SobolByteTables build_bytes() {
       for (int bit = 0; bit < 8; ++bit)
         if ((byte >> bit) & 1 && b * 8 + bit < kSobolColumns) v ^= columns[b * 8 + bit];
       t.dim1[b][byte] = v;
+      t.dim1_reversed[b][byte] = reverse_bits32(v);
     }
   return t;
 }

@@ -32,6 +32,7 @@ inline uint32_t sobol_bits(uint64_t index, int dimension) {
 // tables: seven loads instead of a loop over 52 bits.
 struct SobolByteTables {
   uint32_t dim1[7][256];
+  uint32_t dim1_reversed[7][256];  // the same, each entry's bits reversed
 };
 extern const SobolByteTables kSobolBytes;
 
@@ -39,6 +40,12 @@ inline uint32_t sobol_bits_dim0(uint64_t index) { return reverse_bits32(uint32_t
 inline uint32_t sobol_bits_dim1(uint64_t index) {
   uint32_t v = 0;
   for (int b = 0; b < 7 && index != 0; ++b, index >>= 8) v ^= kSobolBytes.dim1[b][index & 0xFF];
+  return v;
+}
+// reverse_bits32(sobol_bits_dim1(index)): reversal commutes with xor.
+inline uint32_t sobol_bits_dim1_reversed(uint64_t index) {
+  uint32_t v = 0;
+  for (int b = 0; b < 7 && index != 0; ++b, index >>= 8) v ^= kSobolBytes.dim1_reversed[b][index & 0xFF];
   return v;
 }
 

@@ -20,9 +20,10 @@
 
 namespace lantern {
 
-// key = (Morton index << log2_spp) | sample index, index_bits wide.
-inline uint64_t zsobol_permuted_index(uint64_t key, int index_bits, uint64_t dim_hash) {
-  return nested_scramble_index(key, index_bits, dim_hash);
+// key = (Morton index << log2_spp) | sample index, index_bits wide, given
+// with its bits reversed (reverse_bits64(key): PathSampler::make).
+inline uint64_t zsobol_permuted_index(uint64_t reversed_key, int index_bits, uint64_t dim_hash) {
+  return nested_scramble_reversed_index(reversed_key, index_bits, dim_hash);
 }
 
 }  // namespace lantern
