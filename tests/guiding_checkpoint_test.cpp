@@ -74,7 +74,7 @@ TEST(Guiding, ResumesWithTheFieldItLearnt) {
 
 // The field's bytes in a checkpoint: a learnt field comes back bit for bit,
 // and bytes that cannot be a field (cut short, a count beyond them, a node
-// with two parents or none, another scene's bounds) are refused with an
+// with two parents, another scene's bounds) are refused with an
 // error, never a crash or a walk without end. (A damaged file fails its
 // checksum first; these are files whose checksum was made to fit.)
 TEST(Guiding, FieldBytesRoundTripAndBadOnesAreRefused) {

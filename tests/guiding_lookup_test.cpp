@@ -1,7 +1,11 @@
 // The guiding trees' look-ups read a point's binary digits from an integer
-// (math/binary_digits.h) where they used to halve it in float: the digits,
-// the spatial tree's leaves and the directional tree's cells must be the
-// ones halving finds, on split planes, bounds and outside them too.
+// (math/binary_digits.h) where they used to halve it in float: the digits
+// and the spatial tree's leaves must be the ones halving finds, on split
+// planes, bounds and outside them too; a directional tree's cell and
+// density must be constant over each cell, whose lower edges belong to it
+// and upper edges to the next. (That the quadrants are the ones its draws
+// land in, DirectionalTree.DensityIntegratesToOneAndMatchesItsSamples
+// holds: with x and y swapped it fails.)
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -167,12 +167,13 @@ TEST(LightChoice, LightTracingKeepsAQuadLightsPointsStratified) {
 TEST(LightChoice, LightTracingUnderATimeLimitKeepsTheImagesPointsStratified) {
   auto scene = load_scene_from_string(kQuadLight, "quad.pbrt");
   RenderOptions o = light_tracing_options();
-  // (0.4 s reaches about 1800 spp in an optimised build; a slower build or
-  // machine gets more time until it reaches the 16 a pass holds)
+  // 0.4 s reaches about 1800 spp in an optimised build; a slower build or
+  // machine gets up to 6.4 s (12.4 s in all) to come near that, and must
+  // reach at least the 16 a pass holds.
   RenderResult r;
   for (o.time_limit_seconds = 0.4; o.time_limit_seconds < 7.0; o.time_limit_seconds *= 2.0) {
     r = render(*scene, o);
-    if (r.stats.min_spp >= 16u) break;
+    if (r.stats.min_spp >= 256u) break;
   }
   ASSERT_GE(r.stats.min_spp, 16u);
   const PixelSpread s = inner_light_pixels(r.image);
