@@ -24,7 +24,7 @@ for s in $scenes; do
   for i in $integrators; do
     "$lantern" render "scenes/$s.pbrt" --integrator "$i" --time "$secs" --seed 7 --resolution $res \
       -o "$tmp/$s-$i.exr" 2> "$tmp/log"
-    summary=$(tail -n 1 "$tmp/log")
+    summary=$(grep ' spp (min)' "$tmp/log" | tail -n 1)  # (a pilot's message may follow it)
     sps=$(echo "$summary" | sed -n 's/.* \([0-9.]*\) Msamples\/s.*/\1/p')
     rps=$(echo "$summary" | sed -n 's/.* \([0-9.]*\) Mrays\/s.*/\1/p')
     err=$("$lantern" compare "$tmp/$s-$i.exr" "$ref" | sed -n 's/^relmse //p')

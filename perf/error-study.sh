@@ -33,7 +33,7 @@ for s in $scenes; do
       # shellcheck disable=SC2086 # flags holds zero or one word
       "$lantern" render "scenes/$s.pbrt" --integrator "$integrator" $flags --time "$t" --seed 7 --resolution $res \
         -o "$tmp/$s-$v.exr" 2> "$tmp/log" || { echo "| $s | $v | $t | (failed: $(tail -n 1 "$tmp/log")) | | | |"; continue; }
-      spp=$(tail -n 1 "$tmp/log" | sed -n 's/.*, \([0-9]*\) spp (min).*/\1/p')
+      spp=$(grep ' spp (min)' "$tmp/log" | tail -n 1 | sed -n 's/.*, \([0-9]*\) spp (min).*/\1/p')
       out=$("$lantern" compare "$tmp/$s-$v.exr" "$ref")
       err=$(echo "$out" | sed -n 's/^relmse //p')
       mse=$(echo "$out" | sed -n 's/^mse //p')

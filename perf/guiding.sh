@@ -22,7 +22,7 @@ for s in $scenes; do
     flag=""; [ "$g" = yes ] && flag="--guide"
     "$lantern" render "scenes/$s.pbrt" --integrator path $flag --time "$secs" --seed 7 --resolution $res \
       -o "$tmp/$s-$g.exr" 2> "$tmp/log"
-    spp=$(tail -n 1 "$tmp/log" | sed -n 's/.*, \([0-9]*\) spp (min).*/\1/p')
+    spp=$(grep ' spp (min)' "$tmp/log" | tail -n 1 | sed -n 's/.*, \([0-9]*\) spp (min).*/\1/p')
     out=$("$lantern" compare "$tmp/$s-$g.exr" "$ref")
     err=$(echo "$out" | sed -n 's/^relmse //p')
     mse=$(echo "$out" | sed -n 's/^mse //p')
