@@ -132,4 +132,14 @@ final_samples=$(sed -n 's/^lantern:samples //p' "$tmp/info")
 expect_code 2 "--write-partial-images with -o -" "$lantern" render "$box" $small --write-partial-images -o -
 expect_code 2 "--write-partial-images with --part" "$lantern" render "$box" $small --write-partial-images --part 1/2 \
   -o "$tmp/p.film"
+# --- A binary moved away from its image module: a clear error, each place
+# it looked in named once (in the main program the executable's folder
+# used to be named twice).
+mkdir "$tmp/alone"
+cp "$lantern" "$tmp/alone/lantern"
+expect_code 1 "a render without the image module" env -u LANTERN_IMAGEIO_MODULE "$tmp/alone/lantern" render "$box" $small \
+  -o "$tmp/alone.exr"
+grep -q "cannot load Lantern's image module" "$tmp/err" || fail "no clear error without the image module: $(cat "$tmp/err")"
+grep -q "$tmp/alone/liblantern_imageio.so: not found" "$tmp/err" || fail "the error does not name the binary's folder"
+[ -z "$(grep ': not found$' "$tmp/err" | sort | uniq -d)" ] || fail "the error names a place twice: $(cat "$tmp/err")"
 echo "batch cli test: passed"

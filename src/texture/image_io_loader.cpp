@@ -7,6 +7,7 @@
 #include <dlfcn.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -34,7 +35,9 @@ std::vector<std::string> own_dirs() {
   }
   std::error_code ec;
   const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) dirs.push_back(exe.parent_path().string());
+  // (in the main program both name the executable's folder: once is enough)
+  if (!ec && std::find(dirs.begin(), dirs.end(), exe.parent_path().string()) == dirs.end())
+    dirs.push_back(exe.parent_path().string());
   return dirs;
 }
 
