@@ -442,6 +442,23 @@ TEST(ExtremeGeometry, NonFiniteVerticesAreRejectedNamingTheShape) {
   EXPECT_NE(msg.find("vertex 1"), std::string::npos) << msg;
 }
 
+// An emitter whose vertices are finite but whose area is not (a vertex at
+// 3e38): it would send infinite power. Rejected at its shape's line.
+TEST(ExtremeGeometry, EmittersOfInfiniteAreaAreRejected) {
+  const std::string light = std::string(kFloorAndCamera) + "AreaLightSource \"diffuse\"\n";
+  std::string msg = extremes_load_error(
+      light + "Shape \"trianglemesh\" \"point3 P\" [ 0 1 0  1 1 0  1 3e38 1 ] \"integer indices\" [ 0 1 2 ]\n");
+  EXPECT_NE(msg.find("extremes.pbrt:6:1"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("area beyond single precision"), std::string::npos) << msg;
+  msg = extremes_load_error(light + "Shape \"sphere\" \"float radius\" [ 1e20 ]\n");
+  EXPECT_NE(msg.find("area beyond single precision"), std::string::npos) << msg;
+  EXPECT_EQ(extremes_load_error(std::string(kFloorAndCamera) +
+                                "Shape \"trianglemesh\" \"point3 P\" [ 0 1 0  1 1 0  1 3e38 1 ] "
+                                "\"integer indices\" [ 0 1 2 ]\n"),
+            "(loaded without error)")
+      << "a shape that does not emit has no power to overflow";
+}
+
 // Scenes whose image is black by construction: exactly 0 everywhere.
 TEST(ExtremeGeometry, BlackByConstruction) {
   const std::string room = "Shape \"trianglemesh\" \"point3 P\" [ -3 0 -3  3 0 -3  3 0 3  -3 0 3 ] \"integer indices\" [ 0 2 1 0 3 2 ]\n";

@@ -3,6 +3,8 @@
 // chooses it, the probabilities sum to one, a light gets probability zero
 // only where it cannot light the point, and renders with the BVH agree in
 // the mean with power sampling and with bdpt, with less variance.
+#include "light/light_bvh.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -221,6 +223,48 @@ TEST(LightSampler, BvhLowersTheVarianceOfNextEventEstimation) {
   std::printf("  relative variance of irradiance estimates: bvh %.3g, power %.3g, uniform %.3g\n", bvh, power, uniform);
   EXPECT_LT(bvh, 0.25 * power);
   EXPECT_LT(bvh, 0.25 * uniform);
+}
+
+// Lights spread to the ends of float's range: building the tree bins their
+// centroids, and n (c - lo) overflowed before it was divided by the extent
+// (a light's vertex at 3e38, found by mutating the Cornell box), giving a
+// bucket far outside the array. The tree must hold every light, and what it
+// reports must be probabilities: finite, summing to at most one, the one
+// sample() gives the one pmf() gives. (Bounds that wide bound nothing: the
+// lights near the point get no probability, and the BSDF's samples find
+// them. An emitter that reaches so far has no finite area, and the scene
+// refuses it: ExtremeGeometry.EmittersOfInfiniteAreaAreRejected.)
+TEST(LightBvh, LightsAtTheEndsOfFloatsRangeBuildAndSample) {
+  auto light_at = [](Vec3 lo, Vec3 hi) {
+    LightBounds b;
+    b.lo = lo, b.hi = hi, b.w = Vec3(0.f, -1.f, 0.f), b.phi = 1.f, b.cos_theta_o = 1.f, b.cos_theta_e = 0.f;
+    return b;
+  };
+  for (float far : {1e36f, 3e38f}) {
+    SCOPED_TRACE(far);
+    std::vector<LightBounds> bounds;
+    for (int i = 0; i < 6; ++i) bounds.push_back(light_at(Vec3(float(i), 5.f, 0.f), Vec3(float(i) + 0.5f, 5.f, 0.5f)));
+    bounds.push_back(light_at(Vec3(far, 5.f, 0.f), Vec3(far, 5.f, 1.f)));
+    bounds.push_back(light_at(Vec3(-far, 5.f, 0.f), Vec3(-far, 5.f, 1.f)));
+    bounds.push_back(light_at(Vec3(0.f, far, 0.f), Vec3(1.f, far, 1.f)));
+    std::vector<uint32_t> ids(bounds.size());
+    for (uint32_t i = 0; i < ids.size(); ++i) ids[i] = i;
+    const LightBvh bvh(bounds, ids, ids.size());
+    EXPECT_EQ(bvh.node_count(), 2 * bounds.size() - 1);
+    const Vec3 p(2.f, 0.f, 0.2f), n(0.f, 1.f, 0.f);
+    double total = 0.0;
+    for (uint32_t i = 0; i < ids.size(); ++i) {
+      const float pmf = bvh.pmf(p, n, i);
+      EXPECT_TRUE(std::isfinite(pmf) && pmf >= 0.f && pmf <= 1.f) << i << ": " << pmf;
+      total += pmf;
+    }
+    EXPECT_LE(total, 1.0 + 1e-5);
+    for (float u : {0.f, 0.3f, 0.7f, 0.999f}) {
+      uint32_t light = 0;
+      float pmf = 0.f;
+      if (bvh.sample(p, n, u, &light, &pmf)) EXPECT_FLOAT_EQ(pmf, bvh.pmf(p, n, light));
+    }
+  }
 }
 
 }  // namespace

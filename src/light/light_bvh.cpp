@@ -45,6 +45,14 @@ void union_cone(Vec3 wa, float cos_a, Vec3 wb, float cos_b, Vec3* w, float* cos_
 
 // Conty Estevez & Kulla's orientation measure M_Omega times the box's
 // surface area, power and a penalty for thin boxes: the split cost.
+// The bucket of centroid c among n over [lo, lo + extent]: the fraction
+// first, since n (c - lo) can overflow where the extent nears the largest
+// float (a light's vertex at 1e38), and never outside [0, n - 1].
+int bucket_index(float c, float lo, float extent, int n) {
+  const float t = float(n) * ((c - lo) / extent);
+  return t >= 0.f ? std::min(int(std::min(t, float(n - 1))), n - 1) : 0;
+}
+
 float split_cost(const LightBounds& b, int axis) {
   if (!(b.phi > 0.f)) return 0.f;
   const float to = acos_approx(b.cos_theta_o);
@@ -119,9 +127,7 @@ struct Builder {
       const float lo = centroids.lo[axis], extent = centroids.hi[axis] - centroids.lo[axis];
       if (!(extent > 0.f)) continue;
       LightBounds bucket[kBuckets];
-      auto bucket_of = [&](const Item& it) {
-        return std::min(int(float(kBuckets) * (it.bounds.centroid()[axis] - lo) / extent), kBuckets - 1);
-      };
+      auto bucket_of = [&](const Item& it) { return bucket_index(it.bounds.centroid()[axis], lo, extent, kBuckets); };
       for (size_t i = begin; i < end; ++i) {
         const int k = bucket_of(items[i]);
         bucket[k] = union_of(bucket[k], items[i].bounds);
@@ -140,7 +146,7 @@ struct Builder {
     if (best_axis < 0) return begin;
     const float lo = centroids.lo[best_axis], extent = centroids.hi[best_axis] - centroids.lo[best_axis];
     auto it = std::partition(items.begin() + long(begin), items.begin() + long(end), [&](const Item& t) {
-      return std::min(int(float(kBuckets) * (t.bounds.centroid()[best_axis] - lo) / extent), kBuckets - 1) <= best_bucket;
+      return bucket_index(t.bounds.centroid()[best_axis], lo, extent, kBuckets) <= best_bucket;
     });
     (void)all;
     return size_t(it - items.begin());

@@ -200,7 +200,10 @@ class SceneBuilder final : public pbrt::ParserTarget {
   void add_heightfield(const pbrt::ParamSet& ps, const GraphicsState& gs);     // builder_v3_shapes.cpp
   void add_nurbs(const pbrt::ParamSet& ps, const GraphicsState& gs);           // builder_v3_shapes.cpp
   void add_patch_set(BilinearPatchSet s, const GraphicsState& gs);           // builder_patches.cpp
-  void add_area_lights(uint32_t geometry, uint32_t primitives, const GraphicsState& gs);
+  // shape: the shape's directive, for errors that are the shape's (else the
+  // area light's are reported at the AreaLightSource).
+  void add_area_lights(uint32_t geometry, uint32_t primitives, const GraphicsState& gs,
+                       const pbrt::ParamSet* shape = nullptr);
   void add_ply_mesh(const std::string& path, const GraphicsState& gs, const pbrt::ParamSet& ps);
   void load_pending_meshes();
   void count_triangles();
