@@ -7,6 +7,7 @@
 #include <string>
 
 #include "lantern/error.h"
+#include "light/light_sampler.h"
 #include "medium/nanovdb_grid.h"
 #include "scene/builder.h"
 #include "scene/pbrt/parser.h"
@@ -27,6 +28,9 @@ void load_pbrt(const uint8_t* data, size_t size) {
   try {
     pbrt::parse_string(text, "fuzz.pbrt", kNowhere, builder, 1);
     builder.finish();
+    // What every render builds first from the scene: the light BVH (a
+    // light's vertex at 3e38 once overflowed its build's buckets).
+    LightSampler bvh(scene.lights, scene.shapes, scene.textures, LightSamplerKind::Bvh);
   } catch (const InputError&) {
   }
 }
