@@ -43,16 +43,16 @@ void union_cone(Vec3 wa, float cos_a, Vec3 wb, float cos_b, Vec3* w, float* cos_
   *cos_o = std::cos(to);
 }
 
-// Conty Estevez & Kulla's orientation measure M_Omega times the box's
-// surface area, power and a penalty for thin boxes: the split cost.
 // The bucket of centroid c among n over [lo, lo + extent]: the fraction
-// first, since n (c - lo) can overflow where the extent nears the largest
-// float (a light's vertex at 1e38), and never outside [0, n - 1].
+// first, since n (c - lo) overflows where the extent nears the largest
+// float (lights 6e37 apart), and never outside [0, n - 1] (NaN: 0).
 int bucket_index(float c, float lo, float extent, int n) {
   const float t = float(n) * ((c - lo) / extent);
-  return t >= 0.f ? std::min(int(std::min(t, float(n - 1))), n - 1) : 0;
+  return t >= 0.f ? int(std::min(t, float(n - 1))) : 0;
 }
 
+// Conty Estevez & Kulla's orientation measure M_Omega times the box's
+// surface area, power and a penalty for thin boxes: the split cost.
 float split_cost(const LightBounds& b, int axis) {
   if (!(b.phi > 0.f)) return 0.f;
   const float to = acos_approx(b.cos_theta_o);
