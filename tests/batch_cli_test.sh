@@ -7,7 +7,7 @@
 #   sh tests/batch_cli_test.sh LANTERN SOURCE_DIR
 set -eu
 lantern=$1 src=$2
-tmp=$(mktemp -d)
+tmp=$(cd "$(mktemp -d)" && pwd -P)  # (canonical: the module loader prints canonical paths)
 pid=
 trap '[ -n "$pid" ] && kill "$pid" 2>/dev/null; rm -rf "$tmp"' EXIT
 fail() { echo "batch cli test: $*" >&2; exit 1; }

@@ -443,7 +443,8 @@ TEST(ExtremeGeometry, NonFiniteVerticesAreRejectedNamingTheShape) {
 }
 
 // An emitter whose vertices are finite but whose area is not (a vertex at
-// 3e38): it would send infinite power. Rejected at its shape's line.
+// 3e38), or whose radiance times area is not: it would send infinite
+// power. Rejected at its shape's line.
 TEST(ExtremeGeometry, EmittersOfInfiniteAreaAreRejected) {
   const std::string light = std::string(kFloorAndCamera) + "AreaLightSource \"diffuse\"\n";
   std::string msg = extremes_load_error(
@@ -451,7 +452,12 @@ TEST(ExtremeGeometry, EmittersOfInfiniteAreaAreRejected) {
   EXPECT_NE(msg.find("extremes.pbrt:6:1"), std::string::npos) << msg;
   EXPECT_NE(msg.find("area beyond single precision"), std::string::npos) << msg;
   msg = extremes_load_error(light + "Shape \"sphere\" \"float radius\" [ 1e20 ]\n");
+  EXPECT_NE(msg.find("extremes.pbrt:6:1"), std::string::npos) << msg;
   EXPECT_NE(msg.find("area beyond single precision"), std::string::npos) << msg;
+  msg = extremes_load_error(
+      std::string(kFloorAndCamera) + "AreaLightSource \"diffuse\" \"rgb L\" [ 3e38 1 1 ]\n" +
+      "Shape \"trianglemesh\" \"point3 P\" [ 0 1 0  1 1 0  1 1 1 ] \"integer indices\" [ 0 1 2 ]\n");
+  EXPECT_NE(msg.find("power beyond single precision"), std::string::npos) << msg;
   EXPECT_EQ(extremes_load_error(std::string(kFloorAndCamera) +
                                 "Shape \"trianglemesh\" \"point3 P\" [ 0 1 0  1 1 0  1 3e38 1 ] "
                                 "\"integer indices\" [ 0 1 2 ]\n"),

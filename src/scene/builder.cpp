@@ -109,7 +109,7 @@ void SceneBuilder::add_mesh(TriangleMesh mesh, const GraphicsState& gs, const Pa
   s.meshes.push_back(std::move(mesh));
   s.geometries.push_back({ShapeKind::Mesh, uint32_t(s.meshes.size() - 1), gs.material ? *gs.material : default_material(), -1, -1, {}});
   note_geometry();
-  add_area_lights(uint32_t(s.geometries.size() - 1), prims, gs, &ps);
+  add_area_lights(uint32_t(s.geometries.size() - 1), prims, gs, ps);
 }
 
 // pbrt's "loopsubdiv": refined at load into a mesh with the limit
@@ -144,7 +144,7 @@ void SceneBuilder::add_ply_mesh(const std::string& path, const GraphicsState& gs
     PlyMesh ply = read_ply(path);
     if (std::optional<BilinearPatchSet> patches = ply_patches(ply)) {
       prepare_patches(*patches, Mat4(gs.render_from_object), gs.reverse_orientation, ps, path);
-      return add_patch_set(std::move(*patches), gs);
+      return add_patch_set(std::move(*patches), gs, ps);
     }
     return add_mesh(from_ply(std::move(ply)), gs, ps, path);
   }
@@ -279,7 +279,7 @@ void SceneBuilder::add_shape(const std::string& type, const ParamSet& ps, const 
 }
 
 void SceneBuilder::add_area_lights(uint32_t geometry, uint32_t primitives, const GraphicsState& gs,
-                                   const pbrt::ParamSet* shape) {
+                                   const pbrt::ParamSet& shape) {
   if (!gs.area_light) return;
   if (object_)
     gs.area_light->fail("area lights inside ObjectBegin/ObjectEnd are not supported (nor are they in pbrt-v4); "
@@ -312,15 +312,15 @@ void SceneBuilder::add_area_lights(uint32_t geometry, uint32_t primitives, const
                  : g.kind == ShapeKind::Quadric  ? scene_.shapes.quadrics[g.index].world_area
                  : g.kind == ShapeKind::Bilinear ? bilinear_area(patch_corners(scene_.shapes.patches[g.index], i))
                                                  : 4.f * kPi * sqr(scene_.shapes.spheres[g.index].radius);
-    // (an emitter of infinite area sends infinite power: no image to make)
-    if (!std::isfinite(area))
-      (shape ? *shape : ps)
-          .fail("primitive " + std::to_string(i) + " of " +
-                (shape ? "this emitting shape" : "the shape this light is on") +
-                " has an area beyond single precision (its vertices lie too far apart): it would send infinite power");
     RGB Li = L;
     const float k = (two_sided ? 2.f : 1.f) * area * kPi * image_luminance;
     if (by_power && k > 0.f) Li *= power / k;
+    // An emitter whose area or power is beyond single precision: the light
+    // sampler's sums and densities would be infinite, and the image too.
+    const std::string which = "primitive " + std::to_string(i) + " of this emitting shape";
+    if (!std::isfinite(area)) shape.fail(which + " has an area beyond single precision (sides of about 1e19 or more)");
+    if (!std::isfinite(k * max_component(Li)))
+      shape.fail(which + " sends a power beyond single precision (its radiance times its area)");
     scene_.lights.area.push_back({geometry, i, Li, two_sided, area, image, spectrum});
   }
   ps.warn_unused();

@@ -199,11 +199,9 @@ class SceneBuilder final : public pbrt::ParserTarget {
   void add_bilinear_mesh(const pbrt::ParamSet& ps, const GraphicsState& gs);  // builder_patches.cpp
   void add_heightfield(const pbrt::ParamSet& ps, const GraphicsState& gs);     // builder_v3_shapes.cpp
   void add_nurbs(const pbrt::ParamSet& ps, const GraphicsState& gs);           // builder_v3_shapes.cpp
-  void add_patch_set(BilinearPatchSet s, const GraphicsState& gs);           // builder_patches.cpp
-  // shape: the shape's directive, for errors that are the shape's (else the
-  // area light's are reported at the AreaLightSource).
-  void add_area_lights(uint32_t geometry, uint32_t primitives, const GraphicsState& gs,
-                       const pbrt::ParamSet* shape = nullptr);
+  void add_patch_set(BilinearPatchSet s, const GraphicsState& gs, const pbrt::ParamSet& ps);  // builder_patches.cpp
+  // shape: the shape's directive, where errors of its emitters are reported.
+  void add_area_lights(uint32_t geometry, uint32_t primitives, const GraphicsState& gs, const pbrt::ParamSet& shape);
   void add_ply_mesh(const std::string& path, const GraphicsState& gs, const pbrt::ParamSet& ps);
   void load_pending_meshes();
   void count_triangles();

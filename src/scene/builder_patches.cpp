@@ -83,17 +83,17 @@ void SceneBuilder::add_bilinear_mesh(const ParamSet& ps, const GraphicsState& gs
   s.uvs = std::move(uv);
   for (size_t i = 0; i < idx.size(); i += 4) s.patches.emplace_back(idx[i], idx[i + 1], idx[i + 2], idx[i + 3]);
   prepare_patches(s, Mat4(gs.render_from_object), gs.reverse_orientation, ps, "");
-  add_patch_set(std::move(s), gs);
+  add_patch_set(std::move(s), gs, ps);
 }
 
-void SceneBuilder::add_patch_set(BilinearPatchSet s, const GraphicsState& gs) {
+void SceneBuilder::add_patch_set(BilinearPatchSet s, const GraphicsState& gs, const ParamSet& ps) {
   const uint32_t count = uint32_t(s.patches.size());
   ShapePools& pools = scene_.shapes;
   pools.patches.push_back(std::move(s));
   pools.geometries.push_back(
       {ShapeKind::Bilinear, uint32_t(pools.patches.size() - 1), gs.material ? *gs.material : default_material(), -1, -1, {}});
   note_geometry();
-  add_area_lights(uint32_t(pools.geometries.size() - 1), count, gs);
+  add_area_lights(uint32_t(pools.geometries.size() - 1), count, gs, ps);
 }
 
 void prepare_patches(BilinearPatchSet& s, const Mat4& M, bool reverse_orientation, const ParamSet& ps,

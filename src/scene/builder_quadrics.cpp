@@ -49,7 +49,7 @@ void SceneBuilder::add_quadric(const std::string& type, const ParamSet& ps, cons
       p.spheres.push_back(s);
       p.geometries.push_back({ShapeKind::Sphere, uint32_t(p.spheres.size() - 1), gs.material ? *gs.material : default_material(), -1, -1, {}});
       note_geometry();
-      add_area_lights(uint32_t(p.geometries.size() - 1), 1, gs, &ps);
+      add_area_lights(uint32_t(p.geometries.size() - 1), 1, gs, ps);
       return;
     }
     q.kind = QuadricKind::Sphere;
@@ -79,7 +79,7 @@ void SceneBuilder::add_quadric(const std::string& type, const ParamSet& ps, cons
   p.quadrics.push_back(q);
   p.geometries.push_back({ShapeKind::Quadric, uint32_t(p.quadrics.size() - 1), gs.material ? *gs.material : default_material(), -1, -1, {}});
   note_geometry();
-  add_area_lights(uint32_t(p.geometries.size() - 1), 1, gs, &ps);
+  add_area_lights(uint32_t(p.geometries.size() - 1), 1, gs, ps);
 }
 
 }  // namespace lantern

@@ -50,9 +50,11 @@ def mutate(text):
 
 
 def finite_image(path):
-    out = subprocess.run([lantern, "compare", path, path], capture_output=True, text=True).stdout
-    m = re.search(r"nonfinite_pixels (\d+)", out)
-    return m is None or m.group(1) == "0"
+    """Whether the image reads and every pixel is finite (an image that
+    cannot be read after a render that said it wrote one fails too)."""
+    r = subprocess.run([lantern, "compare", path, path], capture_output=True, text=True)
+    m = re.search(r"nonfinite_pixels (\d+)", r.stdout)
+    return r.returncode == 0 and m is not None and m.group(1) == "0"
 
 
 start, runs, failures = time.time(), 0, 0
@@ -63,6 +65,8 @@ while time.time() - start < seconds:
     with open(mutant, "w") as f:
         f.write(text)
     image = os.path.join(work, "image.exr")
+    if os.path.exists(image):
+        os.remove(image)  # (so that a stale image is never checked)
     cmd = [lantern, "render", mutant, "--resolution", "12", "9", "--spp", "2", "-q", "--integrator"]
     cmd += rng.choice(integrators).split() + ["-o", image]
     try:  # (the shipped scenes read no other files)
