@@ -317,10 +317,12 @@ void SceneBuilder::add_area_lights(uint32_t geometry, uint32_t primitives, const
     if (by_power && k > 0.f) Li *= power / k;
     // An emitter whose area or power is beyond single precision: the light
     // sampler's sums and densities would be infinite, and the image too.
-    const std::string which = "primitive " + std::to_string(i) + " of this emitting shape";
-    if (!std::isfinite(area)) shape.fail(which + " has an area beyond single precision (sides of about 1e19 or more)");
+    if (!std::isfinite(area))
+      shape.fail("primitive " + std::to_string(i) +
+                 " of this emitting shape has an area beyond single precision (sides of about 1e19 or more)");
     if (!std::isfinite(k * max_component(Li)))
-      shape.fail(which + " sends a power beyond single precision (its radiance times its area)");
+      shape.fail("primitive " + std::to_string(i) +
+                 " of this emitting shape sends a power beyond single precision (its radiance times its area)");
     scene_.lights.area.push_back({geometry, i, Li, two_sided, area, image, spectrum});
   }
   ps.warn_unused();
