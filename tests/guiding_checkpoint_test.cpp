@@ -17,6 +17,7 @@
 #include "lantern/error.h"
 #include "lantern/render.h"
 #include "lantern/scene.h"
+#include "math/equal_area.h"
 #include "sanitizer.h"
 #include "stop_and_resume.h"
 
@@ -89,7 +90,8 @@ TEST(Guiding, FieldBytesRoundTripAndBadOnesAreRefused) {
       GuideRecord r{};
       r.leaf = field.tree().leaf_of(p);
       r.bin = uint8_t(i % SDTree::kBins);
-      r.cell = field.tree().leaf(r.leaf).learning[r.bin].cell_of(Vec2(0.1f + 0.3f * u(rng), u(rng)));
+      r.cell = field.tree().leaf(r.leaf).learning[r.bin].cell_of(
+          equal_area_square_to_sphere(Vec2(0.1f + 0.3f * u(rng), u(rng))));
       r.energy = 1.f + u(rng);
       r.second = r.energy, r.bsdf_pdf = 0.3f, r.guide_pdf = -1.f;
       records.push_back(r);
@@ -148,7 +150,8 @@ TEST(Guiding, BothFieldsBytesRoundTrip) {
       GuideRecord r{};
       r.leaf = tree.leaf_of(p);
       r.bin = uint8_t(i % SDTree::kBins);
-      r.cell = tree.leaf(r.leaf).learning[r.bin].cell_of(Vec2(u(rng), 0.2f + 0.5f * u(rng)));
+      r.cell =
+          tree.leaf(r.leaf).learning[r.bin].cell_of(equal_area_square_to_sphere(Vec2(u(rng), 0.2f + 0.5f * u(rng))));
       r.energy = 1.f + u(rng);
       r.second = r.energy, r.bsdf_pdf = 0.3f, r.guide_pdf = -1.f;
       out.push_back(r);

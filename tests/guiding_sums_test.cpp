@@ -13,6 +13,7 @@
 
 #include "guiding/guide_record.h"
 #include "integrator/guiding_field.h"
+#include "math/equal_area.h"
 
 using namespace lantern;
 
@@ -42,7 +43,8 @@ Records make_records(GuidingField& f, uint32_t seed, int n) {
       GuideRecord g{};
       g.leaf = tree->leaf_of(p);
       g.bin = uint8_t(i % SDTree::kBins);
-      g.cell = tree->leaf(g.leaf).learning[g.bin].cell_of(Vec2(0.1f + 0.3f * u(rng), u(rng)));
+      g.cell =
+          tree->leaf(g.leaf).learning[g.bin].cell_of(equal_area_square_to_sphere(Vec2(0.1f + 0.3f * u(rng), u(rng))));
       g.energy = energy;
       g.second = energy * energy, g.bsdf_pdf = 0.3f, g.guide_pdf = i % 3 == 0 ? -1.f : u(rng);
       (tree == &f.tree() ? r.eye : r.light).push_back(g);

@@ -192,7 +192,7 @@ TEST(SDTree, SplitsLeavesWithManyRecordsAndCopiesTheirDistribution) {
   const Vec3 a(0.2f, 0.5f, 0.5f), b(1.8f, 0.5f, 0.5f);
   EXPECT_EQ(tree.leaf_of(a), tree.leaf_of(b));
   const uint32_t leaf = tree.leaf_of(a);
-  const uint32_t cell = tree.leaf(leaf).learning[2].cell_of(Vec2(0.3f, 0.3f));
+  const uint32_t cell = tree.leaf(leaf).learning[2].cell_of(equal_area_square_to_sphere(Vec2(0.3f, 0.3f)));
   for (int i = 0; i < 1000; ++i) tree.add({leaf, cell, 1.f, 0.f, 0.f, -1.f, 2});
   tree.update(0);  // 1000 records over a limit of 100: split until each half holds at most 100
   EXPECT_TRUE(tree.trained());
@@ -219,8 +219,8 @@ namespace {
 // (chi-square over the 64 x 64 grid of the world's equal-area square).
 template <class BSDF>
 void expect_mixture_sound(const BSDF& bsdf, double albedo, const std::string& what) {
-  const DirectionalTree tree = lobed_tree(0.02);
-  ASSERT_LE(tree.depth(), 6);
+  const GuideDistribution tree(lobed_tree(0.02));
+  ASSERT_LE(tree.tree().depth(), 6);
   const GuideAt guide{&tree, 0.4f};
   const Frame frame = Frame::from_z(glm::normalize(Vec3(0.3f, 0.2f, 1.f)));
   const Vec3 wo = glm::normalize(Vec3(0.2f, -0.1f, 1.f));  // local
@@ -233,7 +233,7 @@ void expect_mixture_sound(const BSDF& bsdf, double albedo, const std::string& wh
     const Vec3 wi = frame.to_local(equal_area_square_to_sphere(p));
     // (the guide's directions where the BSDF is zero end the path: no sample)
     const bool reflects = bsdf.f(wo, wi, TransportMode::Radiance)[0] > 0.f;
-    return reflects ? guide.mix(bsdf.pdf(wo, wi, TransportMode::Radiance), tree.pdf(p) * kInv4Pi) : 0.f;
+    return reflects ? guide.mix(bsdf.pdf(wo, wi, TransportMode::Radiance), tree.tree().pdf(p) * kInv4Pi) : 0.f;
   }, what);
 }
 
@@ -272,8 +272,8 @@ TEST(GuidedScatter, DiffuseMixtureIsUnbiasedAndFollowsItsDensity) {
 // whose cells are equal in solid angle). Forward, backward and isotropic
 // scattering.
 TEST(GuidedScatter, PhaseMixtureIsUnbiasedAndFollowsItsDensity) {
-  const DirectionalTree tree = lobed_tree(0.02);
-  ASSERT_LE(tree.depth(), 6);
+  const GuideDistribution tree(lobed_tree(0.02));
+  ASSERT_LE(tree.tree().depth(), 6);
   const GuideAt guide{&tree, 0.3f};
   const Vec3 wo = glm::normalize(Vec3(0.4f, -0.3f, 0.8f));
   for (float g : {0.7f, -0.4f, 0.f}) {
@@ -289,9 +289,10 @@ TEST(GuidedScatter, PhaseMixtureIsUnbiasedAndFollowsItsDensity) {
     EXPECT_EQ(drawn, n) << "g " << g;
     EXPECT_EQ(pdf_off, 0) << "g " << g << ": the phase function's density is the one reported";
     EXPECT_NEAR(d.mean, 1.0, 4.0 * d.se + 1e-3) << "g " << g;
-    expect_directions_follow(d.observed, n, [&](Vec2 p) {
-      return guide.mix(phase.p(wo, equal_area_square_to_sphere(p)), tree.pdf(p) * kInv4Pi);
-    }, "g " + std::to_string(g));
+    expect_directions_follow(
+        d.observed, n,
+        [&](Vec2 p) { return guide.mix(phase.p(wo, equal_area_square_to_sphere(p)), tree.tree().pdf(p) * kInv4Pi); },
+        "g " + std::to_string(g));
   }
 }
 

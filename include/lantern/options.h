@@ -37,6 +37,8 @@ enum class Integrator : uint8_t {
   Mlt,
 };
 enum class MisHeuristic : uint8_t { Power, Balance };  // bdpt's: beta = 2 or 1
+// What guided paths learn directions with (docs/guiding.md).
+enum class GuideModel : uint8_t { Quadtree, Vmm };
 // pbrt-v4's samplers (docs/samplers.md).
 enum class SamplerKind : uint8_t { Independent, Stratified, Halton, Sobol, PaddedSobol, ZSobol };
 enum class LightSamplerKind : uint8_t { Bvh, Power, Uniform };  // next-event estimation's choice of light
@@ -68,6 +70,8 @@ inline constexpr std::array<Word<Integrator>, 9> kIntegrators{{{Integrator::Path
                                                                {Integrator::AmbientOcclusion, "ambientocclusion"},
                                                                {Integrator::Mlt, "mlt"}}};
 inline constexpr std::array<Word<MisHeuristic>, 2> kMis{{{MisHeuristic::Power, "power"}, {MisHeuristic::Balance, "balance"}}};
+inline constexpr std::array<Word<GuideModel>, 2> kGuideModels{
+    {{GuideModel::Quadtree, "quadtree"}, {GuideModel::Vmm, "vmm"}}};
 inline constexpr std::array<Word<SamplerKind>, 6> kSamplers{{{SamplerKind::ZSobol, "zsobol"},
                                                              {SamplerKind::PaddedSobol, "paddedsobol"},
                                                              {SamplerKind::Sobol, "sobol"},
@@ -103,6 +107,9 @@ const char* name(E e, const std::array<Word<E>, N>& words) {
 
 inline Integrator parse_integrator(std::string_view w) { return option_words::parse(w, option_words::kIntegrators, "integrator"); }
 inline MisHeuristic parse_mis(std::string_view w) { return option_words::parse(w, option_words::kMis, "MIS heuristic"); }
+inline GuideModel parse_guide_model(std::string_view w) {
+  return option_words::parse(w, option_words::kGuideModels, "guide distribution");
+}
 inline SamplerKind parse_sampler(std::string_view w) { return option_words::parse(w, option_words::kSamplers, "sampler"); }
 inline LightSamplerKind parse_light_sampler(std::string_view w) {
   return option_words::parse(w, option_words::kLightSamplers, "light sampler");
@@ -120,6 +127,7 @@ inline MemoryLayout parse_memory_layout(std::string_view w) {
 inline const char* name(MemoryLayout l) { return option_words::name(l, option_words::kMemoryLayouts); }
 inline const char* name(Integrator i) { return option_words::name(i, option_words::kIntegrators); }
 inline const char* name(MisHeuristic m) { return option_words::name(m, option_words::kMis); }
+inline const char* name(GuideModel g) { return option_words::name(g, option_words::kGuideModels); }
 inline const char* name(SamplerKind s) { return option_words::name(s, option_words::kSamplers); }
 inline const char* name(LightSamplerKind l) { return option_words::name(l, option_words::kLightSamplers); }
 inline const char* name(LightChoiceKind l) { return option_words::name(l, option_words::kLightChoices); }

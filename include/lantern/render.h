@@ -54,6 +54,10 @@ struct RenderOptions {
   // bdpt's and vcm's light subpaths learn where what leaves a surface reaches the
   // image, and sample it (docs/guiding.md); with or without `guiding`.
   bool guide_light_subpaths = false;
+  // What each guiding leaf learns directions with: the SD-tree's quadtree
+  // (Müller et al. 2017) or a mixture of von Mises-Fisher lobes fitted by
+  // EM (docs/guiding.md, "Lobes").
+  GuideModel guide_distribution = GuideModel::Quadtree;
   bool any_guiding() const { return guiding || guide_light_subpaths; }
   // The path tracer's Russian roulette: from the second bounce on a path
   // goes on with probability min(1, roulette_scale x its throughput), its

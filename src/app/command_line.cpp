@@ -135,6 +135,10 @@ void add_render_request_options(CLI::App& c, RenderRequest& r) {
   c.add_flag("--guide-light", r.guide_light,
                    "bdpt, vcm: light subpaths learn where what leaves a surface reaches the image and sample it, the "
                    "emission directions of area lights too (with --guide, both subpaths are guided; docs/guiding.md)");
+  c.add_option("--guide-distribution", r.guide_distribution,
+               "What guided paths learn directions with: quadtree (the SD-tree's, the default) or vmm (a mixture of "
+               "von Mises-Fisher lobes; docs/guiding.md)")
+      ->check(CLI::IsMember({name(GuideModel::Quadtree), name(GuideModel::Vmm)}));
   c.add_flag("--spectral", r.spectral,
                    "Render with sampled wavelengths, four per camera sample, as pbrt-v4 does, instead of in RGB "
                    "(docs/spectral.md)");

@@ -61,6 +61,7 @@ RenderOptions resolve_render_options(const Scene& scene, const RenderRequest& a)
   o.target_error = a.target_error;
   o.guiding = a.guide;
   o.guide_light_subpaths = a.guide_light;
+  o.guide_distribution = parse_guide_model(a.guide_distribution);
   o.adaptive = a.adaptive;
   if (a.target_error > 0 && a.spp == 0) o.spp = 1 << 16;  // adaptive: the limit is spp, when given
   o.maxdepth = a.maxdepth >= 0 ? a.maxdepth : ss.maxdepth;

@@ -10,7 +10,7 @@ namespace lantern {
 SDTree::SDTree(Vec3 lo, Vec3 hi, GuidingSettings settings) : settings_(settings) {
   cube_ = SpatialCube::around(lo, hi);
   nodes_.push_back(Node{});
-  leaves_.push_back(Leaf{});
+  leaves_.push_back(Leaf(settings_.distribution));
   leaves_[0].size = Vec3(cube_.extent);
   index_guide_shares();
 }
@@ -43,7 +43,7 @@ void SDTree::choose_alphas(Leaf& l) {
 
 void SDTree::update(uint32_t iteration) {
   for (Leaf& l : leaves_) {
-    for (DirectionalTree& d : l.learning) d.sum_up();
+    for (GuideDistribution& d : l.learning) d.sum_up();
     choose_alphas(l);
   }
   const uint64_t limit =
@@ -96,7 +96,7 @@ void SDTree::read_state(StateReader& in) {
   // bytes of counts, size, shares and moments.
   uint64_t leaf_count = 0;
   std::vector<Node> nodes = read_spatial_nodes(in, 2316, &leaf_count, "a guiding tree");
-  std::vector<Leaf> leaves(leaf_count);
+  std::vector<Leaf> leaves(leaf_count, Leaf(settings_.distribution));
   for (Leaf& l : leaves) {
     for (uint32_t b = 0; b < kBins; ++b) {
       l.sampled[b].read_state(in);

@@ -39,7 +39,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "guiding/directional_tree.h"
+#include "guiding/guide_distribution.h"
 #include "guiding/guide_record.h"
 #include "guiding/spatial_nodes.h"
 #include "math/common.h"
@@ -50,6 +50,7 @@ namespace lantern {
 struct GuidingSettings {
   double spatial_threshold = 12000.0;   // c
   double directional_threshold = 0.01;  // ρ
+  GuideDistributionKind distribution = GuideDistributionKind::kQuadtree;
 };
 
 class SDTree {
@@ -72,7 +73,7 @@ class SDTree {
   static constexpr size_t kMostLeaves = size_t(1) << 18;
 
   struct Leaf {
-    std::array<DirectionalTree, kBins> sampled, learning;
+    std::array<GuideDistribution, kBins> sampled, learning;
     uint64_t records = 0;  // this iteration's
     Vec3 size{0.f};        // the extents of its box
     std::array<float, kBins> alpha;
@@ -81,7 +82,10 @@ class SDTree {
     // (Fixed-point, as the directional trees' energies: DirectionalTree.)
     std::array<std::array<FixedSum, kAlphas.size()>, kBins> moment{};
     std::array<uint32_t, kBins> moment_records{};
-    Leaf() { alpha.fill(kFirstAlpha); }
+    explicit Leaf(GuideDistributionKind kind = GuideDistributionKind::kQuadtree) {
+      alpha.fill(kFirstAlpha);
+      if (kind != GuideDistributionKind::kQuadtree) sampled.fill(GuideDistribution(kind)), learning = sampled;
+    }
   };
   using Node = SpatialNode;
 
@@ -115,7 +119,7 @@ class SDTree {
       n = static_cast<std::remove_reference_t<decltype(n)>>(c.count());
     };
     for (Leaf& l : leaves_) {
-      for (DirectionalTree& d : l.learning)
+      for (GuideDistribution& d : l.learning)
         for (FixedSum& e : d.energies()) f(e);
       count(l.records);
       for (auto& m : l.moment)

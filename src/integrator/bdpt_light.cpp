@@ -307,9 +307,8 @@ void Bdpt::light_shade_stage(BdptWave& w) const {
     }
     if (media) w.light.medium[slot] = v.medium_towards(scene_, w.hits.next_d[i]);
     if (guided && guiding_->learning() && !drawn.specular) {
-      w.light_guide.push(slot, site.leaf, v.p, site.normal_bin,
-                         drawn.guide_pdf >= 0.f ? drawn.square : equal_area_sphere_to_square(drawn.wi), drawn.pdf,
-                         average(drawn.weight) * drawn.pdf, drawn.bsdf_pdf, drawn.guide_pdf, w.light.beta[slot]);
+      w.light_guide.push(slot, site.leaf, v.p, site.normal_bin, drawn.wi, drawn.pdf, average(drawn.weight) * drawn.pdf,
+                         drawn.bsdf_pdf, drawn.guide_pdf, w.light.beta[slot]);
       w.light_guide_depth.push_back(strategy_count(ld));
     }
   });

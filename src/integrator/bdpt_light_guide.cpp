@@ -34,7 +34,6 @@ void Bdpt::guide_emission(BdptWave& w, uint32_t slot, EmissionSample& es, LazyNu
   if (es.delta_pos || es.delta_dir || es.infinite || es.volume || es.n == Vec3(0.f)) return;
   const GuidingField::Site site = guiding_->importance_site(es.p, es.n, es.n);
   const GuideAt& guide = site.guide;
-  Vec2 square(0.f);
   float guide_pdf = -1.f, mix = es.pdf_dir;
   if (guide) {
     const float a = guide.alpha;
@@ -47,19 +46,15 @@ void Bdpt::guide_emission(BdptWave& w, uint32_t slot, EmissionSample& es, LazyNu
       }
       es = *again;
     } else {
-      float square_pdf = 0.f;
-      square = guide.tree->sample(Vec2(std::min((u_dir.x - a) / (1.f - a), 0x1.fffffep-1f), u_dir.y), &square_pdf);
-      if (!redirect_area_emission(scene_.lights, scene_.textures, es, glm::normalize(equal_area_square_to_sphere(square)),
-                                  w.lambda[slot])) {
+      float drawn_pdf = 0.f;
+      const Vec3 d = guide.sample(Vec2(std::min((u_dir.x - a) / (1.f - a), 0x1.fffffep-1f), u_dir.y), &drawn_pdf);
+      if (!redirect_area_emission(scene_.lights, scene_.textures, es, d, w.lambda[slot])) {
         *mix_pdf_dir = 0.f;  // (not an area light's sample: its direction was drawn for the guide's share)
         return;
       }
-      guide_pdf = sphere_pdf(square_pdf);
+      guide_pdf = drawn_pdf;
     }
-    if (guide_pdf < 0.f) {
-      square = equal_area_sphere_to_square(es.d);
-      guide_pdf = guide.pdf(square);
-    }
+    if (guide_pdf < 0.f) guide_pdf = guide.pdf(es.d);
     // (a direction only the guide draws has no density for MIS: its
     // weight is 0, and the subpath goes no further than its first point)
     if (!(es.pdf_dir > 0.f) || is_black(es.Le)) {
@@ -71,9 +66,9 @@ void Bdpt::guide_emission(BdptWave& w, uint32_t slot, EmissionSample& es, LazyNu
   *mix_pdf_dir = mix;
   if (guiding_->learning()) {
     const float cos_light = std::fabs(glm::dot(es.n, es.d));
-    w.light_guide.push(slot, site.leaf, es.p, site.normal_bin, guide ? square : equal_area_sphere_to_square(es.d), mix,
-                       average(es.Le) * cos_light, es.pdf_dir, guide_pdf,
-                       es.Le * (cos_light / (es.pdf_pos * mix) / settings_.light_subpath_rate));  // (as the subpath's beta)
+    w.light_guide.push(
+        slot, site.leaf, es.p, site.normal_bin, es.d, mix, average(es.Le) * cos_light, es.pdf_dir, guide_pdf,
+        es.Le * (cos_light / (es.pdf_pos * mix) / settings_.light_subpath_rate));  // (as the subpath's beta)
     w.light_guide_depth.push_back(0);
   }
 }

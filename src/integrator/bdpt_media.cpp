@@ -180,9 +180,8 @@ void Bdpt::eye_medium_stage(BdptWave& w) const {
       continue;
     }
     if (guides_eye() && guiding_->learning())
-      w.guide.push(slot, site.leaf, v.p, site.normal_bin,
-                   drawn.guide_pdf >= 0.f ? drawn.square : equal_area_sphere_to_square(drawn.wi), drawn.pdf,
-                   drawn.bsdf_pdf, drawn.bsdf_pdf, drawn.guide_pdf, w.eye.beta[slot]);
+      w.guide.push(slot, site.leaf, v.p, site.normal_bin, drawn.wi, drawn.pdf, drawn.bsdf_pdf, drawn.bsdf_pdf,
+                   drawn.guide_pdf, w.eye.beta[slot]);
   }
 }
 

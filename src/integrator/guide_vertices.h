@@ -28,7 +28,7 @@ namespace lantern {
 struct GuideVertices {
   std::vector<uint32_t> slot, leaf;
   std::vector<Vec3> p;
-  std::vector<Vec2> w;                                // the direction, on the equal-area square
+  std::vector<Vec3> w;                                // the direction (unit, world)
   std::vector<uint8_t> bin;                           // of the normal (SDTree::normal_bin)
   std::vector<float> pdf, fcos, bsdf_pdf, guide_pdf;  // fcos: f |cos| of the direction (averaged over wavelengths)
   std::vector<Spectrum> beta, L;
@@ -51,8 +51,8 @@ struct GuideVertices {
     scattered.beta.push_back(throughput), scattered.L.push_back(path_L);
   }
   size_t size() const { return slot.size(); }
-  void push(uint32_t s, uint32_t spatial_leaf, const Vec3& position, uint32_t normal_bin, Vec2 dir, float density,
-            float f_cos, float density_bsdf, float density_guide, const Spectrum& throughput) {
+  void push(uint32_t s, uint32_t spatial_leaf, const Vec3& position, uint32_t normal_bin, const Vec3& dir,
+            float density, float f_cos, float density_bsdf, float density_guide, const Spectrum& throughput) {
     fcos.push_back(f_cos), bsdf_pdf.push_back(density_bsdf), guide_pdf.push_back(density_guide);
     slot.push_back(s), leaf.push_back(spatial_leaf), p.push_back(position), bin.push_back(uint8_t(normal_bin)),
         w.push_back(dir);

@@ -20,7 +20,7 @@
 
 #include <optional>
 
-#include "guiding/directional_tree.h"
+#include "guiding/guide_distribution.h"
 #include "material/bsdf_common.h"
 #include "math/equal_area.h"
 #include "math/frame.h"
@@ -32,19 +32,20 @@ namespace lantern {
 // The guiding distribution at one vertex; tree null where there is none
 // (a BSDF that is all delta, a leaf without energy, before learning).
 struct GuideAt {
-  const DirectionalTree* tree = nullptr;
+  const GuideDistribution* tree = nullptr;
   float alpha = 1.f;  // the BSDF's share
 
   explicit operator bool() const { return tree != nullptr; }
-  // Solid-angle density of the direction at point p of the equal-area square.
-  float pdf(Vec2 p) const { return sphere_pdf(tree->pdf(p)); }
+  // Solid-angle density of a unit direction (world).
+  float pdf(const Vec3& w) const { return tree->sphere_pdf(w); }
+  // A unit direction drawn from the guide, and its density.
+  Vec3 sample(Vec2 u, float* pdf) const { return tree->sample_direction(u, pdf); }
   float mix(float bsdf_pdf, float guide_pdf) const { return alpha * bsdf_pdf + (1.f - alpha) * guide_pdf; }
 };
 
 struct ScatterSample {
   Vec3 wi{0.f};          // world
   Vec3 wi_local{0.f};    // shading frame
-  Vec2 square{0.f};      // wi on the equal-area square, where there is a guide (guide_pdf >= 0)
   Spectrum weight{0.f};  // f |cos| / density: what the throughput is multiplied by
   float pdf = 0.f;       // the density MIS uses (the mixture's; the BSDF's own for a delta sample)
   // Its parts: the BSDF's density (pdf()'s; what MIS against light
@@ -80,22 +81,18 @@ std::optional<ScatterSample> sample_scatter(const BSDF& bsdf, const Frame& frame
       s.pdf = bs->pdf;
       s.weight /= a;
     } else {
-      s.square = equal_area_sphere_to_square(s.wi);
-      s.guide_pdf = guide.pdf(s.square);
+      s.guide_pdf = guide.pdf(s.wi);
       s.pdf = guide.mix(s.bsdf_pdf, s.guide_pdf);
       if (!(s.pdf > 0.f)) return std::nullopt;
       s.weight *= s.bsdf_pdf / s.pdf;
     }
     return s;
   }
-  float square_pdf = 0.f;
-  s.square = guide.tree->sample(u2, &square_pdf);
-  s.wi = glm::normalize(equal_area_square_to_sphere(s.square));
+  s.wi = guide.sample(u2, &s.guide_pdf);
   s.wi_local = frame.to_local(s.wi);
   const Spectrum f = bsdf.f(wo, s.wi_local, mode);
   if (is_black(f)) return std::nullopt;
   s.bsdf_pdf = bsdf.pdf(wo, s.wi_local, mode);
-  s.guide_pdf = sphere_pdf(square_pdf);
   s.pdf = guide.mix(s.bsdf_pdf, s.guide_pdf);
   if (!(s.pdf > 0.f)) return std::nullopt;
   s.weight = f * (std::fabs(s.wi_local.z) / s.pdf);
@@ -114,11 +111,8 @@ inline std::optional<ScatterSample> sample_phase_scatter(const HenyeyGreenstein&
   if (!guide || uc < guide.alpha) {
     s.wi = phase.sample(wo, u2, &s.bsdf_pdf);
   } else {
-    float square_pdf = 0.f;
-    s.square = guide.tree->sample(u2, &square_pdf);
-    s.wi = glm::normalize(equal_area_square_to_sphere(s.square));
+    s.wi = guide.sample(u2, &s.guide_pdf);
     s.bsdf_pdf = phase.p(wo, s.wi);
-    s.guide_pdf = sphere_pdf(square_pdf);
   }
   if (!(s.bsdf_pdf > 0.f)) return std::nullopt;
   if (!guide) {
@@ -126,10 +120,7 @@ inline std::optional<ScatterSample> sample_phase_scatter(const HenyeyGreenstein&
     s.weight = Spectrum(1.f);
     return s;
   }
-  if (s.guide_pdf < 0.f) {
-    s.square = equal_area_sphere_to_square(s.wi);
-    s.guide_pdf = guide.pdf(s.square);
-  }
+  if (s.guide_pdf < 0.f) s.guide_pdf = guide.pdf(s.wi);
   s.pdf = guide.mix(s.bsdf_pdf, s.guide_pdf);
   if (!(s.pdf > 0.f)) return std::nullopt;
   s.weight = Spectrum(s.bsdf_pdf / s.pdf);

@@ -33,9 +33,10 @@ class GuidingField {
   // eye_subpaths: path and the eye subpaths of bdpt and vcm learn and
   // sample the radiance field; light_subpaths: the light subpaths of bdpt and vcm the
   // importance field.
-  GuidingField(Vec3 lo, Vec3 hi, uint64_t passes, bool eye_subpaths = true, bool light_subpaths = false)
-      : tree_(lo, hi),
-        importance_(lo, hi),
+  GuidingField(Vec3 lo, Vec3 hi, uint64_t passes, bool eye_subpaths = true, bool light_subpaths = false,
+               GuidingSettings settings = {})
+      : tree_(lo, hi, settings),
+        importance_(lo, hi, settings),
         scattered_(lo, hi),
         passes_(passes),
         eye_subpaths_(eye_subpaths),

@@ -90,9 +90,8 @@ void PathTracer::medium_scatter_stage(PathWave& w) const {
       continue;
     }
     if (guiding_ && guiding_->learning())
-      w.guide.push(slot, site.leaf, p, site.normal_bin,
-                   drawn->guide_pdf >= 0.f ? drawn->square : equal_area_sphere_to_square(wi), drawn->pdf,
-                   drawn->bsdf_pdf, drawn->bsdf_pdf, drawn->guide_pdf, w.beta[slot]);
+      w.guide.push(slot, site.leaf, p, site.normal_bin, wi, drawn->pdf, drawn->bsdf_pdf, drawn->bsdf_pdf,
+                   drawn->guide_pdf, w.beta[slot]);
     w.hits.alive[i] = 1;
     w.prev_p[slot] = p;
     w.prev_n[slot] = Vec3(0.f);

@@ -265,8 +265,8 @@ void PathTracer::shade_stage(PathWave& w) const {
       return;
     }
     if (guided && guiding_->learning() && !bs->specular)
-      w.guide.push(slot, site.leaf, v.p, site.normal_bin, bs->guide_pdf >= 0.f ? bs->square : equal_area_sphere_to_square(wi),
-                   bs->pdf, average(bs->weight) * bs->pdf, bs->bsdf_pdf, bs->guide_pdf, w.beta[slot]);
+      w.guide.push(slot, site.leaf, v.p, site.normal_bin, wi, bs->pdf, average(bs->weight) * bs->pdf, bs->bsdf_pdf,
+                   bs->guide_pdf, w.beta[slot]);
     w.hits.alive[i] = 1;
     w.prev_p[slot] = w.hits.p[i];
     w.prev_n[slot] = w.hits.ns[i];

@@ -52,6 +52,9 @@ std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& regi
   else if (o.adaptive) line("adaptive", "budget");
   if (o.guiding) line("guiding", "1");  // one sample per pass, guided directions
   if (o.guide_light_subpaths) line("guide-light", "1");
+  // (a field of lobes is not a field of quadtrees; the quadtree's name is
+  // left out, as checkpoints before the choice wrote it)
+  if (o.any_guiding() && o.guide_distribution == GuideModel::Vmm) line("guide-distribution", "vmm");
   if (o.gbuffer) line("gbuffer", "1");  // the film sums the samples' squares too
   if (o.spectral_buckets > 0)  // uniform wavelengths, and the film keeps the buckets
     line("spectral-buckets", std::to_string(o.spectral_buckets) + " over " + std::to_string(o.spectral_lambda_min) +
@@ -185,7 +188,10 @@ void Checkpointer::write_to(const std::string& path, const Film& film) {
 }
 
 GuidingField new_guiding_field(Vec3 lo, Vec3 hi, const RenderOptions& o) {
-  return GuidingField(lo, hi, o.time_limit_seconds > 0 ? 0 : uint64_t(o.spp), o.guiding, o.guide_light_subpaths);
+  GuidingSettings settings;
+  if (o.guide_distribution == GuideModel::Vmm) settings.distribution = GuideDistributionKind::kMixture;
+  return GuidingField(lo, hi, o.time_limit_seconds > 0 ? 0 : uint64_t(o.spp), o.guiding, o.guide_light_subpaths,
+                      settings);
 }
 
 JoinLearnt guiding_field_joiner(Vec3 lo, Vec3 hi, const RenderOptions& o) {

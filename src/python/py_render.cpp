@@ -110,6 +110,8 @@ void read_options(const py::kwargs& kw, RenderRequest& r, Outputs& out) {
       r.spectral = cast_option<bool>("spectral", value);
     else if (k == "guide") r.guide = cast_option<bool>("guide", value);
     else if (k == "guide_light") r.guide_light = cast_option<bool>("guide_light", value);
+    else if (k == "guide_distribution")
+      r.guide_distribution = cast_option<std::string>("guide_distribution", value);
     else if (k == "adaptive") r.adaptive = cast_option<bool>("adaptive", value);
     else if (k == "resolution") r.resolution = cast_option<std::vector<int>>("resolution", value);
     else if (k == "cropwindow") r.crop_window = cast_option<std::vector<float>>("cropwindow", value);
@@ -127,7 +129,7 @@ void read_options(const py::kwargs& kw, RenderRequest& r, Outputs& out) {
           "unknown render option '" + k +
           "'; the options are the command line's: integrator, spp, time, target_error, maxdepth, "
           "seed, sampler, light_sampler, light_choice, resolution, cropwindow, pixelbounds, pixel, spectral, guide, "
-          "guide_light, adaptive, threads, wave_size, rays, mis, vcm_radius, vcm_alpha, roulette, "
+          "guide_light, guide_distribution, adaptive, threads, wave_size, rays, mis, vcm_radius, vcm_alpha, roulette, "
           "split, light_subpaths, merging, output, stats, collect_stats, checkpoint, checkpoint_file, resume, "
           "keep_checkpoint");
   }
@@ -377,7 +379,7 @@ void bind_render(py::module_& m) {
       "Render a scene; keyword arguments are the command line's options (integrator, spp, time, target_error, "
       "maxdepth, seed, sampler, light_sampler, light_choice, resolution, cropwindow, pixelbounds, pixel, spectral, "
       "guide, "
-      "guide_light, adaptive, threads, "
+      "guide_light, guide_distribution, adaptive, threads, "
       "wave_size, rays, mis, "
       "vcm_radius, vcm_alpha, roulette, split, light_subpaths, checkpoint, checkpoint_file, resume, keep_checkpoint) "
       "and the files to write (output, stats). "
