@@ -45,7 +45,7 @@ VmfMixture fitted(Target target, int rounds, int records) {
     VmfMixture learning = m.refined();
     for (int i = 0; i < records; ++i) {
       const Vec3 w = glm::normalize(equal_area_square_to_sphere(Vec2(u(rng), u(rng))));
-      learning.add(VmfMixture::cell_of(w), float(target(w) * 4.0 * M_PI));
+      learning.add(VmfMixture::cell_of(w), float(target(w) * 4.0 * M_PI), 0.f);
     }
     learning.sum_up();
     m = learning;
@@ -97,7 +97,7 @@ TEST(VmfMixture, DensityIntegratesToOneAndMatchesItsSamples) {
       for (int sy = 0; sy < kSub; ++sy)
         for (int sx = 0; sx < kSub; ++sx) {
           const Vec2 q((x + (sx + 0.5f) / kSub) / kSquareGrid, (y + (sy + 0.5f) / kSub) / kSquareGrid);
-          p += m.sphere_pdf(glm::normalize(equal_area_square_to_sphere(q)));
+          p += m.sphere_pdf(glm::normalize(equal_area_square_to_sphere(q)), m.pivot());
         }
       p *= 4.0 * M_PI / double(kSquareGrid * kSquareGrid * kSub * kSub);
       expected[size_t(y * kSquareGrid + x)] = p;
@@ -112,9 +112,9 @@ TEST(VmfMixture, DensityIntegratesToOneAndMatchesItsSamples) {
   int differing = 0;
   for (int i = 0; i < n; ++i) {
     float pdf = 0.f;
-    const Vec3 w = m.sample(Vec2(u(rng), u(rng)), &pdf);
+    const Vec3 w = m.sample(Vec2(u(rng), u(rng)), m.pivot(), &pdf);
     ASSERT_NEAR(glm::length(w), 1.f, 1e-5f);
-    if (std::fabs(pdf - m.sphere_pdf(w)) > 1e-5f * pdf) ++differing;
+    if (std::fabs(pdf - m.sphere_pdf(w, m.pivot())) > 1e-5f * pdf) ++differing;
     const Vec2 p = equal_area_sphere_to_square(w);
     const int bx = std::min(kSquareGrid - 1, int(p.x * kSquareGrid)),
               by = std::min(kSquareGrid - 1, int(p.y * kSquareGrid));
@@ -147,7 +147,7 @@ TEST(VmfMixture, FitFindsALobesMeanAndConcentration) {
       const double c = 1.0 + std::log(1.0 - u(rng)) / kappa;  // (e^{-2κ} is 0 in double here)
       const double s = std::sqrt(std::max(0.0, 1.0 - c * c)), phi = 2.0 * M_PI * u(rng);
       const Vec3 w = glm::normalize(float(c) * kMeanA + float(s * std::cos(phi)) * t1 + float(s * std::sin(phi)) * t2);
-      learning.add(VmfMixture::cell_of(w), 1.f);
+      learning.add(VmfMixture::cell_of(w), 1.f, 0.f);
     }
     learning.sum_up();
     m = learning;
@@ -155,7 +155,7 @@ TEST(VmfMixture, FitFindsALobesMeanAndConcentration) {
   for (double angle : {0.0, 0.05, 0.1}) {
     const Vec3 w = glm::normalize(float(std::cos(angle)) * kMeanA + float(std::sin(angle)) * t1);
     const double want = vmf_density(kMeanA, kappa, w);
-    EXPECT_NEAR(m.sphere_pdf(w) / want, 1.0, angle == 0.0 ? 0.15 : 0.25) << angle << " radians off the mean";
+    EXPECT_NEAR(m.sphere_pdf(w, m.pivot()) / want, 1.0, angle == 0.0 ? 0.15 : 0.25) << angle << " radians off the mean";
   }
 }
 
@@ -171,8 +171,8 @@ TEST(VmfMixture, FitDoesNotDependOnTheRecordsOrderAndItsStateComesBack) {
     records.push_back({VmfMixture::cell_of(w), float(two_lobes(w)) * (0.5f + u(rng))});
   }
   VmfMixture forward = VmfMixture().refined(), backward = forward;
-  for (const auto& [cell, e] : records) forward.add(cell, e);
-  for (auto r = records.rbegin(); r != records.rend(); ++r) backward.add(r->first, r->second);
+  for (const auto& [cell, e] : records) forward.add(cell, e, 0.f);
+  for (auto r = records.rbegin(); r != records.rend(); ++r) backward.add(r->first, r->second, 0.f);
   forward.sum_up(), backward.sum_up();
   StringWriter a, b;
   forward.write_state(a), backward.write_state(b);
@@ -185,7 +185,7 @@ TEST(VmfMixture, FitDoesNotDependOnTheRecordsOrderAndItsStateComesBack) {
   back.write_state(again);
   EXPECT_EQ(again.bytes, a.bytes);
   const Vec3 w = glm::normalize(Vec3(0.2f, 0.4f, -0.3f));
-  EXPECT_EQ(back.sphere_pdf(w), forward.sphere_pdf(w));
+  EXPECT_EQ(back.sphere_pdf(w, Vec3(0.f)), forward.sphere_pdf(w, Vec3(0.f)));
 
   // A lobe's weight beyond 1 (the first lobe's weight: after the lobe
   // count, its mean and κ).

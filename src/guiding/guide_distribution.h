@@ -39,20 +39,28 @@ class GuideDistribution {
   uint32_t cell_of(const Vec3& w) const {
     return is_mixture() ? VmfMixture::cell_of(w) : tree_.cell_of(equal_area_sphere_to_square(w));
   }
-  void add(uint32_t cell, float energy) { is_mixture() ? mixture_.add(cell, energy) : tree_.add(cell, energy); }
+  void add(uint32_t cell, float energy, float inv_distance) {
+    is_mixture() ? mixture_.add(cell, energy, inv_distance) : tree_.add(cell, energy);
+  }
+  // The point directions are seen from (a mixture's pivot), and moving it
+  // (a quadtree has none: it sees every point of its leaf alike).
+  Vec3 pivot() const { return is_mixture() ? mixture_.pivot() : Vec3(0.f); }
+  void move_pivot(const Vec3& p) {
+    if (is_mixture()) mixture_.move_pivot(p);
+  }
   void sum_up() { is_mixture() ? mixture_.sum_up() : tree_.sum_up(); }
   double total() const { return is_mixture() ? mixture_.total() : tree_.total(); }
-  // A unit direction drawn from the distribution (total() > 0), and its
-  // solid-angle density.
-  Vec3 sample_direction(Vec2 u, float* pdf) const {
-    if (is_mixture()) return mixture_.sample(u, pdf);
+  // A unit direction drawn from the distribution as seen from point x
+  // (total() > 0), and its solid-angle density.
+  Vec3 sample_direction(Vec2 u, const Vec3& x, float* pdf) const {
+    if (is_mixture()) return mixture_.sample(u, x, pdf);
     float square_pdf = 0.f;
     const Vec3 w = glm::normalize(equal_area_square_to_sphere(tree_.sample(u, &square_pdf)));
     *pdf = lantern::sphere_pdf(square_pdf);
     return w;
   }
-  float sphere_pdf(const Vec3& w) const {
-    return is_mixture() ? mixture_.sphere_pdf(w) : lantern::sphere_pdf(tree_.pdf(equal_area_sphere_to_square(w)));
+  float sphere_pdf(const Vec3& w, const Vec3& x) const {
+    return is_mixture() ? mixture_.sphere_pdf(w, x) : lantern::sphere_pdf(tree_.pdf(equal_area_sphere_to_square(w)));
   }
   GuideDistribution refined(double threshold) const {
     GuideDistribution out(*this, Empty{});

@@ -12,6 +12,7 @@ SDTree::SDTree(Vec3 lo, Vec3 hi, GuidingSettings settings) : settings_(settings)
   nodes_.push_back(Node{});
   leaves_.push_back(Leaf(settings_.distribution));
   leaves_[0].size = Vec3(cube_.extent);
+  for (GuideDistribution& d : leaves_[0].learning) d.move_pivot(cube_.lo + Vec3(0.5f * cube_.extent));
   index_guide_shares();
 }
 
@@ -52,10 +53,15 @@ void SDTree::update(uint32_t iteration) {
   for (uint32_t n = 0; n < count; ++n)
     if (nodes_[n].child[0] == 0) split_spatial_leaf(nodes_, leaves_, n, limit, cube_, kMostLeaves);
   trained_ = false;
-  for (Leaf& l : leaves_) {
+  // (a mixture learns next as seen from its leaf's centre: a child's
+  // copy of its parent's lobes is re-aimed there)
+  const std::vector<Vec3> centre = spatial_leaf_centres(nodes_, cube_, leaves_.size());
+  for (size_t i = 0; i < leaves_.size(); ++i) {
+    Leaf& l = leaves_[i];
     for (uint32_t b = 0; b < kBins; ++b) {
       l.sampled[b] = std::move(l.learning[b]);
       l.learning[b] = l.sampled[b].refined(settings_.directional_threshold);
+      l.learning[b].move_pivot(centre[i]);
       trained_ = trained_ || l.sampled[b].total() > 0.0;
     }
     l.records = 0;

@@ -95,7 +95,7 @@ class SDTree {
   const Leaf& leaf(uint32_t i) const { return leaves_[i]; }
   void add(const GuideRecord& r) {
     Leaf& l = leaves_[r.leaf];
-    l.learning[r.bin].add(r.cell, r.energy);
+    l.learning[r.bin].add(r.cell, r.energy, r.inv_distance);
     ++l.records;
     if (r.guide_pdf < 0.f) return;
     ++l.moment_records[r.bin];

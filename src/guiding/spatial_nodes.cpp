@@ -29,6 +29,31 @@ uint32_t spatial_leaf_of(const std::vector<SpatialNode>& nodes, const SpatialCub
   }
 }
 
+std::vector<Vec3> spatial_leaf_centres(const std::vector<SpatialNode>& nodes, const SpatialCube& cube,
+                                       size_t leaf_count) {
+  std::vector<Vec3> centre(leaf_count, cube.lo + Vec3(0.5f * cube.extent));
+  struct Box {
+    uint32_t node;
+    Vec3 lo, size;
+  };
+  std::vector<Box> stack{{0, cube.lo, Vec3(cube.extent)}};
+  while (!stack.empty()) {
+    Box b = stack.back();
+    stack.pop_back();
+    const SpatialNode& n = nodes[b.node];
+    if (n.child[0] == 0) {
+      if (n.leaf < leaf_count) centre[n.leaf] = b.lo + 0.5f * b.size;
+      continue;
+    }
+    b.size[n.axis] *= 0.5f;
+    Vec3 upper = b.lo;
+    upper[n.axis] += b.size[n.axis];
+    stack.push_back({n.child[0], b.lo, b.size});
+    stack.push_back({n.child[1], upper, b.size});
+  }
+  return centre;
+}
+
 void write_spatial_nodes(StateWriter& out, const std::vector<SpatialNode>& nodes) {
   out.put(uint64_t(nodes.size()));
   for (const SpatialNode& n : nodes) {

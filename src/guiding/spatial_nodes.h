@@ -82,6 +82,10 @@ void split_spatial_leaf(std::vector<SpatialNode>& nodes, std::vector<Leaf>& leav
   split_spatial_leaf(nodes, leaves, a + 1, limit, cube, most_leaves);
 }
 
+// The centre of each leaf's box, by leaf index.
+std::vector<Vec3> spatial_leaf_centres(const std::vector<SpatialNode>& nodes, const SpatialCube& cube,
+                                       size_t leaf_count);
+
 void write_spatial_nodes(StateWriter& out, const std::vector<SpatialNode>& nodes);
 // What write_spatial_nodes wrote, and the count of leaves after it. Throws
 // std::runtime_error, naming `what`, for counts beyond what the bytes left

@@ -7,6 +7,10 @@
 #include <stdexcept>
 #include <string>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "math/frame.h"
 
 namespace lantern {
@@ -26,18 +30,29 @@ float kappa_of_mean_cosine(float r) {
 }
 
 // e^x for x <= 0, to about 2e-5 relative (e^x = 2^i 2^f, i = trunc(x /
-// ln 2), 2^f by its series to the 7th power), without a call, so that a
-// loop over lobes vectorises; below -87, e^-87. Only the E-step's
-// responsibilities use it: how records are shared among lobes is a choice
-// of the fit, not a density anything is divided by.
+// ln 2), 2^f by its series to the 7th power); below -87, e^-87. Only the
+// E-step's responsibilities use it: how records are shared among lobes is
+// a choice of the fit, not a density anything is divided by. Four lobes at
+// a time where SSE2 is (every x86-64), one at a time elsewhere.
+#if defined(__SSE2__)
+inline __m128 exp_nonpositive(__m128 x) {
+  const __m128 t = _mm_mul_ps(_mm_max_ps(x, _mm_set1_ps(-87.f)), _mm_set1_ps(1.44269504f));
+  const __m128i i = _mm_cvttps_epi32(t);  // toward zero: f in (-1, 0]
+  const __m128 f = _mm_mul_ps(_mm_sub_ps(t, _mm_cvtepi32_ps(i)), _mm_set1_ps(0.69314718f));
+  __m128 p = _mm_set1_ps(1.f / 720.f);
+  for (float c : {1.f / 120.f, 1.f / 24.f, 1.f / 6.f, 0.5f, 1.f, 1.f}) p = _mm_add_ps(_mm_mul_ps(p, f), _mm_set1_ps(c));
+  return _mm_mul_ps(p, _mm_castsi128_ps(_mm_slli_epi32(_mm_add_epi32(i, _mm_set1_epi32(127)), 23)));
+}
+#else
 inline float exp_nonpositive(float x) {
   const float t = std::max(x, -87.f) * 1.44269504f;
-  const int i = int(t);  // toward zero: f in (-1, 0]
+  const int i = int(t);
   const float f = (t - float(i)) * 0.69314718f;
-  const float p =
-      1.f + f * (1.f + f * (0.5f + f * (1.f / 6.f + f * (1.f / 24.f + f * (1.f / 120.f + f * (1.f / 720.f))))));
+  float p = 1.f / 720.f;
+  for (float c : {1.f / 120.f, 1.f / 24.f, 1.f / 6.f, 0.5f, 1.f, 1.f}) p = p * f + c;
   return p * std::bit_cast<float>(uint32_t(i + 127) << 23);
 }
+#endif
 
 }  // namespace
 
@@ -89,16 +104,61 @@ void VmfMixture::set_norms() {
     row_[kKappa * kLobes + j] = l.kappa;
     row_[kLogC * kLobes + j] = log_or_none(l.weight * l.norm);
     row_[kLogE * kLobes + j] = log_or_none(l.e_weight * l.norm);
+    row_[kInvDistance * kLobes + j] = l.inv_distance;
+  }
+  parallax_ = std::any_of(lobe_.begin(), lobe_.end(), [](const Lobe& l) { return l.inv_distance > 0.f; });
+}
+
+// A lobe's mean (x, y, z) re-aimed from a point o away from the pivot, as
+// sampling and densities both compute it. (A point at the lobe's target
+// keeps the lobe's own mean.)
+inline Vec3 mean_seen_from(float x, float y, float z, float inv_distance, const Vec3& o) {
+  const float X = x - o.x * inv_distance, Y = y - o.y * inv_distance, Z = z - o.z * inv_distance;
+  const float len2 = X * X + Y * Y + Z * Z;
+  if (!(len2 > 1e-8f)) return Vec3(x, y, z);
+  const float s = 1.f / std::sqrt(len2);
+  return Vec3(X * s, Y * s, Z * s);
+}
+
+void VmfMixture::means_from(const Vec3& x, float* mx, float* my, float* mz) const {
+  const Vec3 o = x - pivot_;
+  const float *ax = row(kX), *ay = row(kY), *az = row(kZ), *inv = row(kInvDistance);
+  for (uint32_t j = 0; j < kLobes; ++j) {
+    const Vec3 m = mean_seen_from(ax[j], ay[j], az[j], inv[j], o);
+    mx[j] = m.x, my[j] = m.y, mz[j] = m.z;
   }
 }
 
-void VmfMixture::add(uint32_t cell, float energy) {
+void VmfMixture::move_pivot(const Vec3& p) {
+  for (Lobe& l : lobe_) {
+    const Vec3 m = l.mean - (p - pivot_) * l.inv_distance;
+    const float len = glm::length(m);
+    if (!(len > 1e-4f)) continue;
+    l.mean = m / len;
+    l.inv_distance /= len;
+  }
+  pivot_ = p;
+  set_norms();
+}
+
+void VmfMixture::add(uint32_t cell, float energy, float inv_distance) {
   if (!(energy > 0.f)) return;  // (a record that found nothing moves no lobe)
   const Vec3 w = cell_direction(cell);
   const float *x = row(kX), *y = row(kY), *z = row(kZ), *kappa = row(kKappa), *c = row(kLogE);
-  std::array<float, kLobes> g;
+  alignas(16) std::array<float, kLobes> g;
+#if defined(__SSE2__)
+  static_assert(kLobes % 4 == 0);
+  const __m128 wx = _mm_set1_ps(w.x), wy = _mm_set1_ps(w.y), wz = _mm_set1_ps(w.z), one = _mm_set1_ps(1.f);
+  for (uint32_t j = 0; j < kLobes; j += 4) {
+    const __m128 d = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_loadu_ps(x + j), wx), _mm_mul_ps(_mm_loadu_ps(y + j), wy)),
+                                _mm_mul_ps(_mm_loadu_ps(z + j), wz));
+    const __m128 a = _mm_add_ps(_mm_mul_ps(_mm_loadu_ps(kappa + j), _mm_sub_ps(d, one)), _mm_loadu_ps(c + j));
+    _mm_store_ps(g.data() + j, exp_nonpositive(a));
+  }
+#else
   for (uint32_t j = 0; j < kLobes; ++j)
     g[j] = exp_nonpositive(kappa[j] * (x[j] * w.x + y[j] * w.y + z[j] * w.z - 1.f) + c[j]);
+#endif
   float all = 0.f;
   for (uint32_t j = 0; j < kLobes; ++j) all += g[j];
   if (!(all > 0.f)) return;
@@ -114,6 +174,7 @@ void VmfMixture::add(uint32_t cell, float energy) {
     s[2].add_saturating(e * (w.y + 1.f));
     s[3].add_saturating(e * (w.z + 1.f));
     s[4].add_saturating(e * e);
+    s[5].add_saturating(e * inv_distance);
   }
 }
 
@@ -141,6 +202,7 @@ void VmfMixture::sum_up() {
     const double e2 = s[4].value();
     const float n = e2 > 0.0 ? float(e * e / e2) : 1.f;
     l.kappa = std::min(kMostKappa, kappa_of_mean_cosine(r) * n / (n + kPriorRecords));
+    l.inv_distance = float(s[5].value() / e);
   }
   float kept = 0.f;
   for (Lobe& l : lobe_) {
@@ -159,8 +221,10 @@ VmfMixture VmfMixture::refined() const {
   return out;
 }
 
-float VmfMixture::sphere_pdf(const Vec3& w) const {
+float VmfMixture::sphere_pdf(const Vec3& w, const Vec3& at) const {
+  alignas(16) std::array<float, kLobes> mx, my, mz;
   const float *x = row(kX), *y = row(kY), *z = row(kZ), *kappa = row(kKappa), *c = row(kLogC);
+  if (parallax_) means_from(at, mx.data(), my.data(), mz.data()), x = mx.data(), y = my.data(), z = mz.data();
   float p = 0.f;
   for (uint32_t j = 0; j < kLobes; ++j) {
     const float a = kappa[j] * (x[j] * w.x + y[j] * w.y + z[j] * w.z - 1.f) + c[j];
@@ -169,7 +233,7 @@ float VmfMixture::sphere_pdf(const Vec3& w) const {
   return p;
 }
 
-Vec3 VmfMixture::sample(Vec2 u, float* pdf_out) const {
+Vec3 VmfMixture::sample(Vec2 u, const Vec3& at, float* pdf_out) const {
   // The lobe by u.x, and u.x reused within it (Pharr et al. 2023, sec. 2.2.2).
   const float total_weight = lobe_.back().cdf;
   const float x = u.x * total_weight;
@@ -178,22 +242,26 @@ Vec3 VmfMixture::sample(Vec2 u, float* pdf_out) const {
   const float lo = j == 0 ? 0.f : lobe_[j - 1].cdf;
   const float ux = std::clamp((x - lo) / std::max(lobe_[j].weight, 1e-30f), 0.f, 0x1.fffffep-1f);
   const Lobe& l = lobe_[j];
+  const Vec3 mean =
+      parallax_ ? mean_seen_from(row(kX)[j], row(kY)[j], row(kZ)[j], row(kInvDistance)[j], at - pivot_) : l.mean;
   // The cosine to the mean by inversion, in the form that stays exact for
   // large κ (Jakob 2012, "Numerically stable sampling of the von
   // Mises-Fisher distribution on S^2").
   const float c = std::clamp(1.f + std::log1p(ux * std::expm1(-2.f * l.kappa)) / l.kappa, -1.f, 1.f);
   const float s = std::sqrt(std::max(0.f, 1.f - c * c)), phi = 2.f * kPi * u.y;
-  const Vec3 w = glm::normalize(Frame::from_z(l.mean).from_local(Vec3(s * std::cos(phi), s * std::sin(phi), c)));
-  *pdf_out = sphere_pdf(w);
+  const Vec3 w = glm::normalize(Frame::from_z(mean).from_local(Vec3(s * std::cos(phi), s * std::sin(phi), c)));
+  *pdf_out = sphere_pdf(w, at);
   return w;
 }
 
 void VmfMixture::write_state(StateWriter& out) const {
+  out.put(pivot_);
   out.put_vector(lobe_);
   out.put_vector(sum_);
 }
 
 void VmfMixture::read_state(StateReader& in) {
+  const Vec3 pivot = in.get<Vec3>();
   std::vector<Lobe> lobes = in.get_vector<Lobe>(kLobes);
   std::vector<FixedSum> sums = in.get_vector<FixedSum>(kLobes * kSums);
   bool fine = lobes.size() == kLobes && sums.size() == kLobes * kSums;
@@ -201,11 +269,15 @@ void VmfMixture::read_state(StateReader& in) {
   for (const Lobe& l : lobes) {
     cdf += l.weight;
     fine = fine && std::fabs(glm::length(l.mean) - 1.f) < 1e-3f && l.kappa >= 0.f && l.kappa <= kMostKappa &&
-           l.weight >= 0.f && l.weight <= 1.f && l.e_weight >= 0.f && l.e_weight <= 1.f && l.cdf == cdf;
+           l.weight >= 0.f && l.weight <= 1.f && l.e_weight >= 0.f && l.e_weight <= 1.f && l.cdf == cdf &&
+           l.inv_distance >= 0.f && std::isfinite(l.inv_distance);
   }
   for (const FixedSum& s : sums) fine = fine && s.sane_total();
   fine = fine && (cdf == 0.f || std::fabs(cdf - 1.f) < 1e-3f);
   if (!fine) throw std::runtime_error("a guiding mixture of " + std::to_string(lobes.size()) + " lobes that cannot be");
+  fine = fine && std::isfinite(pivot.x + pivot.y + pivot.z);
+  if (!fine) throw std::runtime_error("a guiding mixture whose pivot is not finite");
+  pivot_ = pivot;
   lobe_ = std::move(lobes);
   sum_ = std::move(sums);
   set_norms();

@@ -8,6 +8,18 @@
 // them into a mean direction and a concentration: a small bright patch,
 // found by a few records an iteration, becomes one sharp lobe.
 //
+// Parallax (Ruppert et al. 2020, sec. 5): the lobes are defined as seen
+// from a pivot, a point of the leaf, and each knows how far away, on
+// average, what it points at lies. A record is turned into the direction
+// from the pivot to the point its path went on from (the vertex's position
+// plus its direction times the distance to the next vertex), and each lobe
+// sums the inverse distances of its records. A vertex elsewhere in the
+// leaf sees each lobe re-aimed at that point: the mean becomes
+// normalize(μ - (x - pivot) / d). So a leaf two metres wide does not blur
+// a patch five metres away over the angle its width subtends. A record
+// without a next vertex (escaped, or behind a specular one) has inverse
+// distance 0: it points at infinity, where parallax is none.
+//
 // One mixture plays the two roles of an iteration as the quadtree does:
 // the previous iteration's, fixed, is sampled; a copy of its lobes
 // (refined) collects this iteration's records as sufficient statistics,
@@ -52,17 +64,22 @@ class VmfMixture {
   // Independent Unit Vectors"), within 1e-4 radians.
   static uint32_t cell_of(const Vec3& w);
   static Vec3 cell_direction(uint32_t cell);
-  // Splits a record's energy among the lobes (the E-step).
-  void add(uint32_t cell, float energy);
+  // Splits a record's energy among the lobes (the E-step): its direction
+  // as seen from the pivot, and the inverse of its distance from there.
+  void add(uint32_t cell, float energy, float inv_distance);
+  const Vec3& pivot() const { return pivot_; }
+  // The same lobes seen from another pivot: each re-aimed at the point it
+  // points at, and its distance from there.
+  void move_pivot(const Vec3& p);
   // The lobes from the sums (the M-step); readies the mixture to be
   // sampled. Without energy the lobes stay.
   void sum_up();
   double total() const;
 
-  // A unit direction drawn from the mixture (total() > 0), and the
-  // mixture's solid-angle density there.
-  Vec3 sample(Vec2 u, float* pdf) const;
-  float sphere_pdf(const Vec3& w) const;
+  // A unit direction drawn from the mixture as seen from point x
+  // (total() > 0), and the mixture's solid-angle density there.
+  Vec3 sample(Vec2 u, const Vec3& x, float* pdf) const;
+  float sphere_pdf(const Vec3& w, const Vec3& x) const;
 
   // The mixture for the next iteration: these lobes, no energy.
   VmfMixture refined() const;
@@ -82,21 +99,27 @@ class VmfMixture {
     float e_weight = 0.f;  // in the E-step: the weight with a floor, so that no lobe stops learning
     float norm = 0.f;      // κ / (2π (1 - e^{-2κ})): the density at the mean
     float cdf = 0.f;       // the weights summed up to this lobe's, inclusive
+    float inv_distance = 0.f;  // of what it points at, from the pivot (0: at infinity)
   };
   const std::vector<Lobe>& lobes() const { return lobe_; }
 
  private:
   // Per lobe: energy times responsibility; the same times each coordinate
   // of the direction plus 1 (sums of terms that are not negative); the
-  // squared energy times responsibility (the records' effective number).
-  static constexpr uint32_t kSums = 5;
+  // square of energy times responsibility (the records' effective number);
+  // energy times responsibility times inverse distance.
+  static constexpr uint32_t kSums = 6;
+  Vec3 pivot_{0.f};
   std::vector<Lobe> lobe_;
   std::vector<FixedSum> sum_;
   // What look-ups read, a row of kLobes each: the means' coordinates, κ,
   // and the logarithms of weight times norm for the sampled mixture and
   // for the E-step (-inf for a lobe of weight 0), so that a lobe's term is
   // one exponential, exp(κ (μ·ω - 1) + log c).
-  enum Row { kX, kY, kZ, kKappa, kLogC, kLogE, kRows };
+  enum Row { kX, kY, kZ, kKappa, kLogC, kLogE, kInvDistance, kRows };
+  bool parallax_ = false;  // whether any lobe has a finite distance
+  // The lobes' means as seen from x, into rows of kLobes.
+  void means_from(const Vec3& x, float* mx, float* my, float* mz) const;
   std::vector<float> row_;
   const float* row(Row r) const { return row_.data() + size_t(r) * kLobes; }
   void set_norms();

@@ -32,7 +32,9 @@ struct GuideVertices {
   std::vector<uint8_t> bin;                           // of the normal (SDTree::normal_bin)
   std::vector<float> pdf, fcos, bsdf_pdf, guide_pdf;  // fcos: f |cos| of the direction (averaged over wavelengths)
   std::vector<Spectrum> beta, L;
-  size_t bounce_start = 0;  // the first vertex of the current bounce
+  std::vector<uint16_t> bounce;  // the bounce each vertex was made in (end_bounce counts them)
+  size_t bounce_start = 0;       // the first vertex of the current bounce
+  uint16_t bounces = 0;
   struct Scattered {
     std::vector<uint32_t> slot;
     std::vector<Vec3> p;
@@ -41,7 +43,8 @@ struct GuideVertices {
 
   void clear() {
     slot.clear(), leaf.clear(), p.clear(), w.clear(), bin.clear(), pdf.clear(), fcos.clear(), bsdf_pdf.clear(),
-        guide_pdf.clear(), beta.clear(), L.clear();
+        guide_pdf.clear(), beta.clear(), L.clear(), bounce.clear();
+    bounces = 0;
     scattered.slot.clear(), scattered.p.clear(), scattered.beta.clear(), scattered.L.clear();
     bounce_start = 0;
   }
@@ -59,11 +62,13 @@ struct GuideVertices {
     pdf.push_back(density);
     beta.push_back(throughput);
     L.emplace_back(0.f);
+    bounce.push_back(bounces);
   }
   // After a bounce's light samples were added: what each path had then.
   void end_bounce(const std::vector<Spectrum>& path_L) {
     for (size_t v = bounce_start; v < size(); ++v) L[v] = path_L[slot[v]];
     bounce_start = size();
+    if (bounces < UINT16_MAX) ++bounces;
   }
   // Once the paths have ended: a record per vertex into `out`. Each goes to
   // the leaf of a point drawn uniformly from a box of its own leaf's size
@@ -73,25 +78,53 @@ struct GuideVertices {
   // medium vertices' records go to `field`'s leaves, by its own leaves' box.
   void make_records(const std::vector<Spectrum>& path_L, const SDTree& tree, uint64_t key,
                     std::vector<GuideRecord>& out, const ScatterField* field = nullptr) const {
+    const std::vector<uint32_t> next = next_vertices();
     for (size_t v = 0; v < size(); ++v) {
       const float Li = per_throughput(path_L[slot[v]] - L[v], beta[v]);
       const float energy = Li / pdf[v];
       if (!std::isfinite(energy)) continue;
       RandomStream r = RandomStream::make(key, v, 0x6775696465ULL);
       const uint32_t into = tree.leaf_of(p[v] + tree.leaf(leaf[v]).size * jitter(r));
-      const uint32_t cell = tree.leaf(into).learning[bin[v]].cell_of(w[v]);
+      const GuideDistribution& learning = tree.leaf(into).learning[bin[v]];
+      // A mixture learns the direction from its pivot to where the path
+      // went on from, if that is known (guiding/vmf_mixture.h, parallax).
+      Vec3 dir = w[v];
+      float inv_distance = 0.f;
+      if (learning.is_mixture() && next[v] != kNone) {
+        const Vec3 to = p[next[v]] - learning.pivot();
+        const float d = glm::length(to);
+        if (d > 0.f && std::isfinite(d)) dir = to / d, inv_distance = 1.f / d;
+      }
+      const uint32_t cell = learning.cell_of(dir);
       const float estimate = fcos[v] * Li, second = estimate * estimate / pdf[v];
       // (a second moment too large for a float says nothing of α: left out)
-      out.push_back({into, cell, energy, second, bsdf_pdf[v], std::isfinite(second) ? guide_pdf[v] : -1.f, bin[v]});
+      out.push_back(
+          {into, cell, energy, second, bsdf_pdf[v], std::isfinite(second) ? guide_pdf[v] : -1.f, inv_distance, bin[v]});
     }
     for (size_t v = 0; field && v < scattered.slot.size(); ++v) {
       const float S = per_throughput(path_L[scattered.slot[v]] - scattered.L[v], scattered.beta[v]);
       if (!std::isfinite(S) || is_black(scattered.beta[v])) continue;  // (nothing carried: says nothing)
       RandomStream r = RandomStream::make(key, v, 0x7363617474ULL);
       const Vec3 x = scattered.p[v];
-      out.push_back(
-          {field->leaf_of(x + field->size(field->leaf_of(x)) * jitter(r)), 0, S, 0.f, 0.f, -1.f, kScatteredRecord});
+      out.push_back({field->leaf_of(x + field->size(field->leaf_of(x)) * jitter(r)), 0, S, 0.f, 0.f, -1.f, 0.f,
+                     kScatteredRecord});
     }
+  }
+  static constexpr uint32_t kNone = UINT32_MAX;
+  // Each vertex's next vertex on its path, made in the bounce after its
+  // own (the point its direction reached), or kNone (its path ended, or
+  // went on through a vertex that made none: a specular one).
+  std::vector<uint32_t> next_vertices() const {
+    std::vector<uint32_t> next(size(), kNone);
+    uint32_t most = 0;
+    for (uint32_t s : slot) most = std::max(most, s);
+    std::vector<uint32_t> later(size() > 0 ? size_t(most) + 1 : 0, kNone);
+    for (size_t v = size(); v-- > 0;) {
+      const uint32_t n = later[slot[v]];
+      if (n != kNone && bounce[n] == bounce[v] + 1) next[v] = n;
+      later[slot[v]] = uint32_t(v);
+    }
+    return next;
   }
   // What a path gathered, componentwise over the throughput it carried
   // (the channels it carried any of), averaged.
@@ -108,7 +141,7 @@ struct GuideVertices {
     return vector_bytes(scattered.slot) + vector_bytes(scattered.p) + vector_bytes(scattered.beta) +
            vector_bytes(scattered.L) + vector_bytes(slot) + vector_bytes(leaf) + vector_bytes(p) + vector_bytes(w) +
            vector_bytes(bin) + vector_bytes(pdf) + vector_bytes(fcos) + vector_bytes(bsdf_pdf) +
-           vector_bytes(guide_pdf) + vector_bytes(beta) + vector_bytes(L);
+           vector_bytes(guide_pdf) + vector_bytes(beta) + vector_bytes(L) + vector_bytes(bounce);
   }
 };
 

@@ -34,12 +34,13 @@ namespace lantern {
 struct GuideAt {
   const GuideDistribution* tree = nullptr;
   float alpha = 1.f;  // the BSDF's share
+  Vec3 p{0.f};        // the vertex's position (what a mixture's lobes are re-aimed from)
 
   explicit operator bool() const { return tree != nullptr; }
   // Solid-angle density of a unit direction (world).
-  float pdf(const Vec3& w) const { return tree->sphere_pdf(w); }
+  float pdf(const Vec3& w) const { return tree->sphere_pdf(w, p); }
   // A unit direction drawn from the guide, and its density.
-  Vec3 sample(Vec2 u, float* pdf) const { return tree->sample_direction(u, pdf); }
+  Vec3 sample(Vec2 u, float* pdf) const { return tree->sample_direction(u, p, pdf); }
   float mix(float bsdf_pdf, float guide_pdf) const { return alpha * bsdf_pdf + (1.f - alpha) * guide_pdf; }
 };
 

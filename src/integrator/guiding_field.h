@@ -65,7 +65,7 @@ class GuidingField {
     Site s;
     s.leaf = tree_.leaf_of(p);
     s.normal_bin = SDTree::normal_bin(glm::dot(ns, wo) < 0.f ? -ns : ns);
-    s.guide = at(s.leaf, s.normal_bin);
+    s.guide = at(tree_, s.leaf, s.normal_bin, p);
     return s;
   }
   // Where a vertex in a medium at p finds the field: its leaf's medium bin.
@@ -73,7 +73,7 @@ class GuidingField {
     Site s;
     s.leaf = tree_.leaf_of(p);
     s.normal_bin = SDTree::kMediumBin;
-    s.guide = at(s.leaf, s.normal_bin);
+    s.guide = at(tree_, s.leaf, s.normal_bin, p);
     return s;
   }
   // Where a light subpath's surface vertex finds the importance field.
@@ -81,12 +81,12 @@ class GuidingField {
     Site s;
     s.leaf = importance_.leaf_of(p);
     s.normal_bin = SDTree::normal_bin(glm::dot(ns, wo) < 0.f ? -ns : ns);
-    s.guide = at(importance_, s.leaf, s.normal_bin);
+    s.guide = at(importance_, s.leaf, s.normal_bin, p);
     return s;
   }
   // The distribution paths sample in a leaf for a normal's bin, if it has
   // one (none before the first iteration ends, or where no energy came).
-  GuideAt at(uint32_t leaf, uint32_t normal_bin) const { return at(tree_, leaf, normal_bin); }
+  GuideAt at(uint32_t leaf, uint32_t normal_bin, const Vec3& p) const { return at(tree_, leaf, normal_bin, p); }
   // Whether the waves of the current iteration record: the field they
   // learn is sampled for at least as many passes as the iteration lasts.
   // (Once not, never again: the last field learnt serves to the end, and
@@ -260,9 +260,9 @@ class GuidingField {
   bool pays(uint64_t passes) const { return iteration_end() + iteration_length() <= passes; }
   // The distribution a tree's leaf holds for a normal's bin, if any (none
   // before the first iteration ends, or where no energy came).
-  static GuideAt at(const SDTree& tree, uint32_t leaf, uint32_t normal_bin) {
+  static GuideAt at(const SDTree& tree, uint32_t leaf, uint32_t normal_bin, const Vec3& p) {
     const float alpha = tree.guide_share(leaf, normal_bin);
-    return alpha >= 0.f ? GuideAt{&tree.leaf(leaf).sampled[normal_bin], alpha} : GuideAt{};
+    return alpha >= 0.f ? GuideAt{&tree.leaf(leaf).sampled[normal_bin], alpha, p} : GuideAt{};
   }
 
   SDTree tree_, importance_;
