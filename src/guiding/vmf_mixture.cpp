@@ -19,7 +19,7 @@ namespace {
 
 // The density at the mean of a lobe of concentration κ on the unit sphere,
 // κ / (2π (1 - e^{-2κ})) (Fisher 1953; 1 / 4π as κ goes to 0).
-float vmf_norm(float kappa) { return kappa < 1e-4f ? kInv4Pi : kappa / (2.f * kPi * -std::expm1(-2.f * kappa)); }
+float vmf_norm(float kappa) { return !(kappa > 0.f) ? kInv4Pi : kappa / (2.f * kPi * -std::expm1(-2.f * kappa)); }
 
 // The concentration whose mean cosine to the lobe's mean is r (Banerjee
 // et al. 2005, "Clustering on the Unit Hypersphere using von Mises-Fisher
@@ -95,18 +95,25 @@ void VmfMixture::set_norms() {
   float cdf = 0.f;
   row_.resize(size_t(kLobes) * kRows);
   const auto log_or_none = [](float c) { return c > 0.f ? std::log(c) : -std::numeric_limits<float>::infinity(); };
+  const auto at = [this](Row r, uint32_t j) -> float& { return row_[size_t(r) * kLobes + j]; };
+  active_ = 0;
+  parallax_ = false;
   for (uint32_t j = 0; j < kLobes; ++j) {
     Lobe& l = lobe_[j];
     l.norm = vmf_norm(l.kappa);
     cdf += l.weight;
     l.cdf = cdf;
-    row_[kX * kLobes + j] = l.mean.x, row_[kY * kLobes + j] = l.mean.y, row_[kZ * kLobes + j] = l.mean.z;
-    row_[kKappa * kLobes + j] = l.kappa;
-    row_[kLogC * kLobes + j] = log_or_none(l.weight * l.norm);
-    row_[kLogE * kLobes + j] = log_or_none(l.e_weight * l.norm);
-    row_[kInvDistance * kLobes + j] = l.inv_distance;
+    at(kX, j) = l.mean.x, at(kY, j) = l.mean.y, at(kZ, j) = l.mean.z, at(kKappa, j) = l.kappa;
+    at(kLogE, j) = log_or_none(l.e_weight * l.norm);
+    if (!(l.weight > 0.f)) continue;
+    const uint32_t k = active_++;
+    at(kSX, k) = l.mean.x, at(kSY, k) = l.mean.y, at(kSZ, k) = l.mean.z, at(kSKappa, k) = l.kappa;
+    at(kSLogC, k) = std::log(l.weight * l.norm);
+    at(kSInvDistance, k) = l.inv_distance;
+    at(kSWeight, k) = l.weight;
+    at(kSCdf, k) = cdf;
+    parallax_ = parallax_ || l.inv_distance > 0.f;
   }
-  parallax_ = std::any_of(lobe_.begin(), lobe_.end(), [](const Lobe& l) { return l.inv_distance > 0.f; });
 }
 
 // A lobe's mean (x, y, z) re-aimed from a point o away from the pivot, as
@@ -122,8 +129,8 @@ inline Vec3 mean_seen_from(float x, float y, float z, float inv_distance, const 
 
 void VmfMixture::means_from(const Vec3& x, float* mx, float* my, float* mz) const {
   const Vec3 o = x - pivot_;
-  const float *ax = row(kX), *ay = row(kY), *az = row(kZ), *inv = row(kInvDistance);
-  for (uint32_t j = 0; j < kLobes; ++j) {
+  const float *ax = row(kSX), *ay = row(kSY), *az = row(kSZ), *inv = row(kSInvDistance);
+  for (uint32_t j = 0; j < active_; ++j) {
     const Vec3 m = mean_seen_from(ax[j], ay[j], az[j], inv[j], o);
     mx[j] = m.x, my[j] = m.y, mz[j] = m.z;
   }
@@ -223,31 +230,33 @@ VmfMixture VmfMixture::refined() const {
 
 float VmfMixture::sphere_pdf(const Vec3& w, const Vec3& at) const {
   alignas(16) std::array<float, kLobes> mx, my, mz;
-  const float *x = row(kX), *y = row(kY), *z = row(kZ), *kappa = row(kKappa), *c = row(kLogC);
+  const float *x = row(kSX), *y = row(kSY), *z = row(kSZ), *kappa = row(kSKappa), *c = row(kSLogC);
   if (parallax_) means_from(at, mx.data(), my.data(), mz.data()), x = mx.data(), y = my.data(), z = mz.data();
   float p = 0.f;
-  for (uint32_t j = 0; j < kLobes; ++j) {
+  for (uint32_t j = 0; j < active_; ++j) {
     const float a = kappa[j] * (x[j] * w.x + y[j] * w.y + z[j] * w.z - 1.f) + c[j];
-    if (a > -100.f) p += std::exp(a);  // (lobes of weight 0 have -inf; below, e^a is not a float)
+    if (a > -100.f) p += std::exp(a);  // (below, e^a is not a float)
   }
   return p;
 }
 
 Vec3 VmfMixture::sample(Vec2 u, const Vec3& at, float* pdf_out) const {
   // The lobe by u.x, and u.x reused within it (Pharr et al. 2023, sec. 2.2.2).
-  const float total_weight = lobe_.back().cdf;
-  const float x = u.x * total_weight;
+  // (over the lobes of weight above 0: sampled rows)
+  const float* cdf = row(kSCdf);
+  const float x = u.x * cdf[active_ - 1];
   uint32_t j = 0;
-  while (j + 1 < kLobes && !(x < lobe_[j].cdf)) ++j;
-  const float lo = j == 0 ? 0.f : lobe_[j - 1].cdf;
-  const float ux = std::clamp((x - lo) / std::max(lobe_[j].weight, 1e-30f), 0.f, 0x1.fffffep-1f);
-  const Lobe& l = lobe_[j];
-  const Vec3 mean =
-      parallax_ ? mean_seen_from(row(kX)[j], row(kY)[j], row(kZ)[j], row(kInvDistance)[j], at - pivot_) : l.mean;
+  while (j + 1 < active_ && !(x < cdf[j])) ++j;
+  const float lo = j == 0 ? 0.f : cdf[j - 1];
+  const float ux = std::clamp((x - lo) / row(kSWeight)[j], 0.f, 0x1.fffffep-1f);
+  const float kappa = row(kSKappa)[j];
+  const Vec3 mean = parallax_
+                        ? mean_seen_from(row(kSX)[j], row(kSY)[j], row(kSZ)[j], row(kSInvDistance)[j], at - pivot_)
+                        : Vec3(row(kSX)[j], row(kSY)[j], row(kSZ)[j]);
   // The cosine to the mean by inversion, in the form that stays exact for
   // large κ (Jakob 2012, "Numerically stable sampling of the von
   // Mises-Fisher distribution on S^2").
-  const float c = std::clamp(1.f + std::log1p(ux * std::expm1(-2.f * l.kappa)) / l.kappa, -1.f, 1.f);
+  const float c = std::clamp(1.f + std::log1p(ux * std::expm1(-2.f * kappa)) / kappa, -1.f, 1.f);
   const float s = std::sqrt(std::max(0.f, 1.f - c * c)), phi = 2.f * kPi * u.y;
   const Vec3 w = glm::normalize(Frame::from_z(mean).from_local(Vec3(s * std::cos(phi), s * std::sin(phi), c)));
   *pdf_out = sphere_pdf(w, at);
@@ -268,7 +277,7 @@ void VmfMixture::read_state(StateReader& in) {
   float cdf = 0.f;
   for (const Lobe& l : lobes) {
     cdf += l.weight;
-    fine = fine && std::fabs(glm::length(l.mean) - 1.f) < 1e-3f && l.kappa >= 0.f && l.kappa <= kMostKappa &&
+    fine = fine && std::fabs(glm::length(l.mean) - 1.f) < 1e-3f && l.kappa > 0.f && l.kappa <= kMostKappa &&
            l.weight >= 0.f && l.weight <= 1.f && l.e_weight >= 0.f && l.e_weight <= 1.f && l.cdf == cdf &&
            l.inv_distance >= 0.f && std::isfinite(l.inv_distance);
   }

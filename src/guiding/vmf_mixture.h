@@ -112,13 +112,16 @@ class VmfMixture {
   Vec3 pivot_{0.f};
   std::vector<Lobe> lobe_;
   std::vector<FixedSum> sum_;
-  // What look-ups read, a row of kLobes each: the means' coordinates, κ,
-  // and the logarithms of weight times norm for the sampled mixture and
-  // for the E-step (-inf for a lobe of weight 0), so that a lobe's term is
-  // one exponential, exp(κ (μ·ω - 1) + log c).
-  enum Row { kX, kY, kZ, kKappa, kLogC, kLogE, kInvDistance, kRows };
-  bool parallax_ = false;  // whether any lobe has a finite distance
-  // The lobes' means as seen from x, into rows of kLobes.
+  // What look-ups read, a row of kLobes each. For the E-step, every
+  // lobe's mean, κ and the logarithm of its floored weight times norm, so
+  // that a lobe's term is one exponential, exp(κ (μ·ω - 1) + log c). For
+  // sampling and densities, the lobes of weight above 0 alone, first
+  // (active_ of them): their means, κ, log weight times norm, inverse
+  // distance, weight and weights summed up to theirs.
+  enum Row { kX, kY, kZ, kKappa, kLogE, kSX, kSY, kSZ, kSKappa, kSLogC, kSInvDistance, kSWeight, kSCdf, kRows };
+  uint32_t active_ = 0;
+  bool parallax_ = false;  // whether any lobe sampled has a finite distance
+  // The sampled lobes' means as seen from x, into rows of kLobes.
   void means_from(const Vec3& x, float* mx, float* my, float* mz) const;
   std::vector<float> row_;
   const float* row(Row r) const { return row_.data() + size_t(r) * kLobes; }
