@@ -28,7 +28,7 @@ using namespace lantern::guiding_test;
 // inside its iterations of learning (and after them) and resumed, on one
 // and two threads in turn, makes the straight render's image bit for bit.
 // Resumed without the field (checked by leaving restore out), paths drew
-// other directions and the image differed.
+// other directions and the image differed. Fields of lobes too.
 TEST(Guiding, ResumesWithTheFieldItLearnt) {
   const auto scene = guided_room();
   // (Under the sanitizers the path tracer alone: the field's bytes are the
@@ -42,6 +42,13 @@ TEST(Guiding, ResumesWithTheFieldItLearnt) {
     o.spp = 16;          // iterations end after passes 1, 3 and 7
     o.wave_size = 128;   // 8 waves a pass: stops fall inside passes
     expect_resumes_to_the_straight_image(*scene, o, "lantern_guided_resume.ckpt", 7, 11, 4, name(integrator));
+  }
+  // A field of lobes (--guide-distribution vmm) as well.
+  {
+    RenderOptions o = guided_options(true);
+    o.spp = 16, o.wave_size = 128;
+    o.guide_distribution = GuideModel::Vmm;
+    expect_resumes_to_the_straight_image(*scene, o, "lantern_guided_resume_lobes.ckpt", 7, 11, 4, "lobes");
   }
   // Its iterations are planned from the budget: a larger one cannot go on
   // from it.

@@ -159,6 +159,38 @@ TEST(VmfMixture, FitFindsALobesMeanAndConcentration) {
   }
 }
 
+// Parallax: records of a patch 3 m above the pivot (directions and
+// inverse distances from the pivot, as GuideVertices::make_records makes
+// them), and a vertex 1 m to the side of the pivot. The lobe is re-aimed
+// at the patch from there: its density towards the patch is far above
+// its density along the pivot's direction, and its samples' mean
+// direction points at the patch.
+TEST(VmfMixture, LobesAreReAimedAtWhatTheyPointAtFromEachVertex) {
+  std::mt19937 rng(6);
+  std::uniform_real_distribution<float> u(-1.f, 1.f);
+  const Vec3 patch(0.f, 0.f, 3.f), vertex(1.f, 0.f, 0.f);
+  VmfMixture m;
+  ASSERT_EQ(m.pivot(), Vec3(0.f));
+  for (int round = 0; round < 3; ++round) {
+    VmfMixture learning = m.refined();
+    for (int i = 0; i < 20000; ++i) {
+      const Vec3 t = patch + 0.05f * Vec3(u(rng), u(rng), 0.f);
+      learning.add(VmfMixture::cell_of(glm::normalize(t)), 1.f, 1.f / glm::length(t));
+    }
+    learning.sum_up();
+    m = learning;
+  }
+  const Vec3 towards = glm::normalize(patch - vertex);
+  EXPECT_GT(m.sphere_pdf(towards, vertex), 20.f * m.sphere_pdf(Vec3(0.f, 0.f, 1.f), vertex));
+  Vec3 sum(0.f);
+  std::uniform_real_distribution<float> v(0.f, 1.f);
+  for (int i = 0; i < 20000; ++i) {
+    float pdf = 0.f;
+    sum += m.sample(Vec2(v(rng), v(rng)), vertex, &pdf);
+  }
+  EXPECT_LT(std::acos(std::min(1.f, glm::dot(glm::normalize(sum), towards))), 0.03f);
+}
+
 // The sums do not depend on the order records arrive in (fixed-point:
 // math/fixed_sum.h), so the fit does not either, bit for bit; and the
 // state comes back bit for bit, and is refused where it cannot be.

@@ -47,6 +47,7 @@ Records make_records(GuidingField& f, uint32_t seed, int n) {
           tree->leaf(g.leaf).learning[g.bin].cell_of(equal_area_square_to_sphere(Vec2(0.1f + 0.3f * u(rng), u(rng))));
       g.energy = energy;
       g.second = energy * energy, g.bsdf_pdf = 0.3f, g.guide_pdf = i % 3 == 0 ? -1.f : u(rng);
+      g.inv_distance = i % 2 == 0 ? 0.f : 0.2f + u(rng);  // (a mixture's parallax; a quadtree ignores it)
       (tree == &f.tree() ? r.eye : r.light).push_back(g);
     }
   }
@@ -97,9 +98,12 @@ struct TwoRanks {
 // Three iterations: one process deposits all records in reverse order;
 // two others each deposit every other one, then both take the sum of
 // their sums. All three save the same bytes after every iteration.
-TEST(GuidingSums, SharesAddUpToTheWholeInAnyOrder) {
+static void expect_shares_add_up(GuideDistributionKind kind) {
   const Vec3 lo(-1.f), hi(2.f);
-  GuidingField whole(lo, hi, 64, true, true), first(lo, hi, 64, true, true), second(lo, hi, 64, true, true);
+  GuidingSettings settings;
+  settings.distribution = kind;
+  GuidingField whole(lo, hi, 64, true, true, settings), first(lo, hi, 64, true, true, settings),
+      second(lo, hi, 64, true, true, settings);
   for (uint32_t iteration = 0; iteration < 3; ++iteration) {
     const Records all = make_records(whole, 7 + iteration, 40000);
     Records reversed{{all.eye.rbegin(), all.eye.rend()}, {all.light.rbegin(), all.light.rend()}};
@@ -119,8 +123,16 @@ TEST(GuidingSums, SharesAddUpToTheWholeInAnyOrder) {
   EXPECT_GE(whole.tree().leaves().size(), 4u);  // (they split alike)
   EXPECT_TRUE(whole.scatter_field().trained());
   // Sums of another field's shape are refused.
-  GuidingField other(lo, hi, 64, true, false);
+  GuidingField other(lo, hi, 64, true, false, settings);
   EXPECT_THROW(other.take_learnt_sums(whole.learnt_sums()), std::runtime_error);
+}
+
+// Fields of quadtrees and of lobes alike.
+TEST(GuidingSums, SharesAddUpToTheWholeInAnyOrder) {
+  for (const GuideDistributionKind kind : {GuideDistributionKind::kQuadtree, GuideDistributionKind::kMixture}) {
+    SCOPED_TRACE(kind == GuideDistributionKind::kMixture ? "lobes" : "quadtrees");
+    expect_shares_add_up(kind);
+  }
 }
 
 // MPI ranks' checkpoint pieces each hold the field the ranks shared and

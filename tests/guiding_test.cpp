@@ -193,7 +193,7 @@ TEST(SDTree, SplitsLeavesWithManyRecordsAndCopiesTheirDistribution) {
   EXPECT_EQ(tree.leaf_of(a), tree.leaf_of(b));
   const uint32_t leaf = tree.leaf_of(a);
   const uint32_t cell = tree.leaf(leaf).learning[2].cell_of(equal_area_square_to_sphere(Vec2(0.3f, 0.3f)));
-  for (int i = 0; i < 1000; ++i) tree.add({leaf, cell, 1.f, 0.f, 0.f, -1.f, 0.f, 2});
+  for (int i = 0; i < 1000; ++i) tree.add({leaf, cell, 1.f, 0.f, 0.f, -1.f, 2});
   tree.update(0);  // 1000 records over a limit of 100: split until each half holds at most 100
   EXPECT_TRUE(tree.trained());
   EXPECT_GE(tree.leaves().size(), 8u);
@@ -206,7 +206,7 @@ TEST(SDTree, SplitsLeavesWithManyRecordsAndCopiesTheirDistribution) {
   }
   // A leaf with few records stays whole.
   SDTree quiet(Vec3(0.f), Vec3(1.f), GuidingSettings{100.0, 0.01});
-  quiet.add({0, 0, 1.f, 0.f, 0.f, -1.f, 0.f, 0});
+  quiet.add({0, 0, 1.f, 0.f, 0.f, -1.f, 0});
   quiet.update(0);
   EXPECT_EQ(quiet.leaves().size(), 1u);
 }
@@ -252,9 +252,9 @@ TEST(SDTree, ChoosesTheBsdfShareWithTheLeastSecondMoment) {
     // Directions on the lobe, drawn by the mixture with the first alpha:
     // F = f|cos|L / p_mix with f|cos|L = 20 (the integrand's density, up to a scale).
     const float p0 = alpha * 0.3f + (1.f - alpha) * 20.f;
-    tree.add({0, 0, 0.f, 20.f * 20.f / p0, 0.3f, 20.f, 0.f, 0});
+    tree.add({0, 0, 0.f, 20.f * 20.f / p0, 0.3f, 20.f, 0});
     const float p1 = alpha * 20.f + (1.f - alpha) * 0.1f;
-    tree.add({0, 0, 0.f, 20.f * 20.f / p1, 20.f, 0.1f, 0.f, 1});
+    tree.add({0, 0, 0.f, 20.f * 20.f / p1, 20.f, 0.1f, 1});
   }
   tree.update(0);
   EXPECT_EQ(tree.leaf(0).alpha[0], SDTree::kAlphas.front());

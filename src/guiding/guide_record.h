@@ -18,10 +18,10 @@ struct GuideRecord {
   // mixture density it was drawn with, (f |cos| L)^2 / p_mix, and the two
   // densities of its direction (guide_pdf -1: drawn without a guide).
   float second, bsdf_pdf, guide_pdf;
+  uint8_t bin;  // that normal's bin (SDTree::normal_bin)
   // For a mixture of lobes: the inverse distance, from the leaf's pivot,
   // of where the path went on from (0: nowhere known; guiding/vmf_mixture.h).
-  float inv_distance;
-  uint8_t bin;  // that normal's bin (SDTree::normal_bin)
+  float inv_distance = 0.f;
 };
 
 // The bin of a record of guided distances: the radiance a medium vertex

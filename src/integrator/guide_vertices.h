@@ -99,15 +99,15 @@ struct GuideVertices {
       const float estimate = fcos[v] * Li, second = estimate * estimate / pdf[v];
       // (a second moment too large for a float says nothing of α: left out)
       out.push_back(
-          {into, cell, energy, second, bsdf_pdf[v], std::isfinite(second) ? guide_pdf[v] : -1.f, inv_distance, bin[v]});
+          {into, cell, energy, second, bsdf_pdf[v], std::isfinite(second) ? guide_pdf[v] : -1.f, bin[v], inv_distance});
     }
     for (size_t v = 0; field && v < scattered.slot.size(); ++v) {
       const float S = per_throughput(path_L[scattered.slot[v]] - scattered.L[v], scattered.beta[v]);
       if (!std::isfinite(S) || is_black(scattered.beta[v])) continue;  // (nothing carried: says nothing)
       RandomStream r = RandomStream::make(key, v, 0x7363617474ULL);
       const Vec3 x = scattered.p[v];
-      out.push_back({field->leaf_of(x + field->size(field->leaf_of(x)) * jitter(r)), 0, S, 0.f, 0.f, -1.f, 0.f,
-                     kScatteredRecord});
+      out.push_back(
+          {field->leaf_of(x + field->size(field->leaf_of(x)) * jitter(r)), 0, S, 0.f, 0.f, -1.f, kScatteredRecord});
     }
   }
   static constexpr uint32_t kNone = UINT32_MAX;
