@@ -31,6 +31,22 @@ def test_render_equals_the_command_line_bit_for_bit(cornell_box, lantern_binary,
     assert not np.array_equal(other.image, cli)
 
 
+def test_guide_distribution_means_the_flag_of_that_name(cornell_box, lantern_binary, tmp_path):
+    # guide_distribution="vmm" renders what --guide-distribution vmm renders,
+    # bit for bit, and another image than the quadtree's; a word that is
+    # neither is refused.
+    options = dict(integrator="path", spp=8, seed=3, resolution=(32, 32), guide=True)
+    lobes = lantern.render(cornell_box, guide_distribution="vmm", **options)
+    exr = tmp_path / "lobes.exr"
+    subprocess.run([lantern_binary, "render", cornell_box.path, "-q", "-o", str(exr), "--integrator", "path",
+                    "--spp", "8", "--seed", "3", "--resolution", "32", "32", "--guide", "--guide-distribution",
+                    "vmm"], check=True)
+    assert np.array_equal(lobes.image, lantern.read_image(str(exr)))
+    assert not np.array_equal(lobes.image, lantern.render(cornell_box, **options).image)
+    with pytest.raises(ValueError, match="guide distribution"):
+        lantern.render(cornell_box, guide_distribution="lobes", **options)
+
+
 def test_a_render_region_is_the_films_own_crop(cornell_box):
     # cropwindow, pixelbounds and pixel render what the Film's "cropwindow"
     # and "pixelbounds" render, bit for bit, as the command line's flags of
