@@ -14,6 +14,7 @@
 #include "guided_rooms.h"
 #include "guiding/sd_tree.h"
 #include "guiding/vmf_mixture.h"
+#include "integrator/guide_vertices.h"
 #include "lantern/render.h"
 #include "lantern/scene.h"
 #include "math/equal_area.h"
@@ -189,6 +190,39 @@ TEST(VmfMixture, LobesAreReAimedAtWhatTheyPointAtFromEachVertex) {
     sum += m.sample(Vec2(v(rng), v(rng)), vertex, &pdf);
   }
   EXPECT_LT(std::acos(std::min(1.f, glm::dot(glm::normalize(sum), towards))), 0.03f);
+}
+
+// A record's direction and distance for a mixture: from the leaf's pivot
+// to the point its path's ray reached (reached(), also where the path
+// ended there), else to its next vertex, else none (inverse distance 0,
+// its own direction).
+TEST(VmfMixture, RecordsAimFromThePivotAtWhereTheirPathWentOn) {
+  GuidingSettings settings;
+  settings.distribution = GuideDistributionKind::kMixture;
+  const SDTree tree(Vec3(0.f), Vec3(4.f), settings);
+  const Vec3 pivot = tree.leaf(0).learning[0].pivot();
+  ASSERT_LT(glm::length(pivot - Vec3(2.f)), 1e-5f);
+  GuideVertices g;
+  const Vec3 up(0.f, 0.f, 1.f);
+  for (uint32_t slot : {3u, 5u, 7u}) g.push(slot, 0, Vec3(1.f), 0, up, 1.f, 1.f, 1.f, -1.f, Spectrum(1.f));
+  std::vector<Spectrum> path_L(8, Spectrum(0.f));
+  g.end_bounce(path_L);
+  const Vec3 hit(1.f, 1.f, 3.5f), next(3.f, 3.f, 3.f);
+  g.reached(3, hit);                                              // a ray that reached a light
+  g.push(5, 0, next, 0, up, 1.f, 1.f, 1.f, -1.f, Spectrum(1.f));  // a vertex made there
+  g.end_bounce(path_L);
+  for (Spectrum& l : path_L) l = Spectrum(2.f);
+  std::vector<GuideRecord> out;
+  g.make_records(path_L, tree, 1, out);
+  ASSERT_EQ(out.size(), 4u);
+  const auto expect_aimed = [&](const GuideRecord& r, const Vec3& at) {
+    EXPECT_NEAR(r.inv_distance, 1.f / glm::length(at - pivot), 1e-6f);
+    EXPECT_GT(glm::dot(VmfMixture::cell_direction(r.cell), glm::normalize(at - pivot)), 0.99999f);
+  };
+  expect_aimed(out[0], hit);
+  expect_aimed(out[1], next);
+  EXPECT_EQ(out[2].inv_distance, 0.f);  // its ray reached nothing known
+  EXPECT_GT(glm::dot(VmfMixture::cell_direction(out[2].cell), up), 0.99999f);
 }
 
 // The sums do not depend on the order records arrive in (fixed-point:

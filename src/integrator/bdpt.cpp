@@ -69,6 +69,7 @@ void Bdpt::start_eye_subpaths(const WaveDesc& wave, BdptWave& w) const {
 
 // s = 0: emission found by the eye subpath; then hits are binned by material.
 void Bdpt::eye_surface_stage(BdptWave& w) const {
+  const bool learning = guides_eye() && guiding_->learning();
   w.hits.clear_bins();
   const ShapePools& shapes = scene_.shapes;
   const LightPools& lights = scene_.lights;
@@ -116,6 +117,7 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
     }
     ++w.stats.eye_vertices;
     SurfacePoint sp = hit_point(shapes, w.rays, i);
+    if (learning) w.guide.reached(slot, sp.p);
     Vec3 prev = w.eye.prev_p[slot];
     float dist2 = glm::dot(sp.p - prev, sp.p - prev);
     float cos_in = std::fabs(glm::dot(sp.ng, d));

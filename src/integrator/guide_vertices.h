@@ -13,7 +13,10 @@
 // scattered back along its path per unit sigma_s.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "accel/ray_batch.h"
@@ -33,6 +36,10 @@ struct GuideVertices {
   std::vector<float> pdf, fcos, bsdf_pdf, guide_pdf;  // fcos: f |cos| of the direction (averaged over wavelengths)
   std::vector<Spectrum> beta, L;
   std::vector<uint16_t> bounce;  // the bounce each vertex was made in (end_bounce counts them)
+  // Where each vertex's direction reached the scene (reached), NaN until
+  // it is known: the point a mixture's parallax aims at.
+  std::vector<Vec3> next_p;
+  std::vector<uint32_t> last_of_slot;  // each path's last vertex (kNone: none)
   size_t bounce_start = 0;       // the first vertex of the current bounce
   uint16_t bounces = 0;
   struct Scattered {
@@ -43,7 +50,8 @@ struct GuideVertices {
 
   void clear() {
     slot.clear(), leaf.clear(), p.clear(), w.clear(), bin.clear(), pdf.clear(), fcos.clear(), bsdf_pdf.clear(),
-        guide_pdf.clear(), beta.clear(), L.clear(), bounce.clear();
+        guide_pdf.clear(), beta.clear(), L.clear(), bounce.clear(), next_p.clear();
+    std::fill(last_of_slot.begin(), last_of_slot.end(), kNone);
     bounces = 0;
     scattered.slot.clear(), scattered.p.clear(), scattered.beta.clear(), scattered.L.clear();
     bounce_start = 0;
@@ -63,6 +71,16 @@ struct GuideVertices {
     beta.push_back(throughput);
     L.emplace_back(0.f);
     bounce.push_back(bounces);
+    next_p.emplace_back(std::numeric_limits<float>::quiet_NaN());
+    if (s >= last_of_slot.size()) last_of_slot.resize(size_t(s) + 1, kNone);
+    last_of_slot[s] = uint32_t(size() - 1);
+  }
+  // The ray a path's vertex of the bounce before sent reached a surface at
+  // p (the path may end there: on a light, by roulette).
+  void reached(uint32_t s, const Vec3& at) {
+    if (s >= last_of_slot.size()) return;
+    const uint32_t v = last_of_slot[s];
+    if (v != kNone && bounce[v] + 1 == bounces) next_p[v] = at;
   }
   // After a bounce's light samples were added: what each path had then.
   void end_bounce(const std::vector<Spectrum>& path_L) {
@@ -90,8 +108,9 @@ struct GuideVertices {
       // went on from, if that is known (guiding/vmf_mixture.h, parallax).
       Vec3 dir = w[v];
       float inv_distance = 0.f;
-      if (learning.is_mixture() && next[v] != kNone) {
-        const Vec3 to = p[next[v]] - learning.pivot();
+      const bool known = !std::isnan(next_p[v].x);
+      if (learning.is_mixture() && (known || next[v] != kNone)) {
+        const Vec3 to = (known ? next_p[v] : p[next[v]]) - learning.pivot();
         const float d = glm::length(to);
         if (d > 0.f && std::isfinite(d)) dir = to / d, inv_distance = 1.f / d;
       }
@@ -113,7 +132,9 @@ struct GuideVertices {
   static constexpr uint32_t kNone = UINT32_MAX;
   // Each vertex's next vertex on its path, made in the bounce after its
   // own (the point its direction reached), or kNone (its path ended, or
-  // went on through a vertex that made none: a specular one).
+  // went on through a vertex that made none: a specular one). For the
+  // vertices reached() was not told of (a medium's scattering points,
+  // light subpaths).
   std::vector<uint32_t> next_vertices() const {
     std::vector<uint32_t> next(size(), kNone);
     uint32_t most = 0;
@@ -141,7 +162,8 @@ struct GuideVertices {
     return vector_bytes(scattered.slot) + vector_bytes(scattered.p) + vector_bytes(scattered.beta) +
            vector_bytes(scattered.L) + vector_bytes(slot) + vector_bytes(leaf) + vector_bytes(p) + vector_bytes(w) +
            vector_bytes(bin) + vector_bytes(pdf) + vector_bytes(fcos) + vector_bytes(bsdf_pdf) +
-           vector_bytes(guide_pdf) + vector_bytes(beta) + vector_bytes(L) + vector_bytes(bounce);
+           vector_bytes(guide_pdf) + vector_bytes(beta) + vector_bytes(L) + vector_bytes(bounce) +
+           vector_bytes(next_p) + vector_bytes(last_of_slot);
   }
 };
 

@@ -150,6 +150,7 @@ void PathTracer::surface_stage(PathWave& w) const {
   const bool at_maxdepth = int(w.depth) == settings_.maxdepth + 1;  // only emission counts this deep
   const bool media = traces_media();
   const bool occlusion = settings_.ambient_occlusion;
+  const bool learning = guiding_ && guiding_->learning();
   if (media) w.scattered.clear();
   for (uint32_t i = 0; i < w.rays.count; ++i) {
     uint32_t slot = w.active[i];
@@ -192,6 +193,7 @@ void PathTracer::surface_stage(PathWave& w) const {
     }
     ++w.stats.eye_vertices;
     SurfacePoint sp = hit_point(shapes, w.rays, i);
+    if (learning) w.guide.reached(slot, sp.p);
     if (occlusion) {
       occlusion_ray(w, slot, sp, d);
       ++w.stats.eye_ends[size_t(PathEnd::MaxDepth)];
