@@ -253,11 +253,11 @@ TEST(VmfMixture, FitDoesNotDependOnTheRecordsOrderAndItsStateComesBack) {
   const Vec3 w = glm::normalize(Vec3(0.2f, 0.4f, -0.3f));
   EXPECT_EQ(back.sphere_pdf(w, Vec3(0.f)), forward.sphere_pdf(w, Vec3(0.f)));
 
-  // A lobe's weight beyond 1 (the first lobe's weight: after the lobe
-  // count, its mean and κ).
+  // A lobe's weight beyond 1 (the first lobe's weight: after the pivot,
+  // the lobe count, the lobe's mean and κ).
   std::string bad = a.bytes;
   const float two = 2.f;
-  std::memcpy(bad.data() + sizeof(uint64_t) + sizeof(Vec3) + sizeof(float), &two, sizeof two);
+  std::memcpy(bad.data() + sizeof(Vec3) + sizeof(uint64_t) + sizeof(Vec3) + sizeof(float), &two, sizeof two);
   VmfMixture refused;
   StringReader bad_in(bad);
   EXPECT_THROW(refused.read_state(bad_in), std::runtime_error);

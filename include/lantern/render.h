@@ -56,7 +56,7 @@ struct RenderOptions {
   bool guide_light_subpaths = false;
   // What each guiding leaf learns directions with: the SD-tree's quadtree
   // (Müller et al. 2017) or a mixture of von Mises-Fisher lobes fitted by
-  // EM (docs/guiding.md, "Lobes").
+  // EM (docs/guiding-lobes.md).
   GuideModel guide_distribution = GuideModel::Quadtree;
   bool any_guiding() const { return guiding || guide_light_subpaths; }
   // The path tracer's Russian roulette: from the second bounce on a path

@@ -29,9 +29,6 @@ class GuideDistribution {
     if (kind_ == GuideDistributionKind::kMixture) mixture_ = VmfMixture();
   }
   explicit GuideDistribution(DirectionalTree tree) : tree_(std::move(tree)) {}
-  explicit GuideDistribution(VmfMixture mixture)
-      : kind_(GuideDistributionKind::kMixture), mixture_(std::move(mixture)) {}
-  GuideDistributionKind kind() const { return kind_; }
   bool is_mixture() const { return kind_ == GuideDistributionKind::kMixture; }
 
   // The cell of a unit direction a record goes to (for a mixture, the
@@ -75,7 +72,6 @@ class GuideDistribution {
   size_t node_count() const { return is_mixture() ? mixture_.lobe_count() : tree_.node_count(); }
   size_t memory_bytes() const { return is_mixture() ? mixture_.memory_bytes() : tree_.memory_bytes(); }
   const DirectionalTree& tree() const { return tree_; }
-  const VmfMixture& mixture() const { return mixture_; }
 
   // The state of the kind this one is (a checkpoint's fingerprint says
   // which kind its field holds: render_checkpoints.cpp).

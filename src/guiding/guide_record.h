@@ -12,7 +12,10 @@ namespace lantern {
 
 struct GuideRecord {
   uint32_t leaf;  // the spatial leaf (SDTree::leaf_of)
-  uint32_t cell;  // the cell of its directional tree for the vertex's normal (DirectionalTree::cell_of)
+  // The cell of its directional tree for the vertex's normal
+  // (DirectionalTree::cell_of), or for a mixture its direction, packed
+  // (VmfMixture::cell_of).
+  uint32_t cell;
   float energy;
   // For the choice of the BSDF's share α: the squared estimate times the
   // mixture density it was drawn with, (f |cos| L)^2 / p_mix, and the two

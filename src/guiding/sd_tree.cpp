@@ -98,10 +98,14 @@ void SDTree::write_state(StateWriter& out) const {
 void SDTree::read_state(StateReader& in) {
   cube_.check(in, "the guiding field");
   const bool trained = in.get<uint8_t>() != 0;
-  // A leaf takes at least 14 trees of one node (112 bytes each) and 748
-  // bytes of counts, size, shares and moments.
+  // A leaf takes at least 14 distributions, quadtrees of one node (112
+  // bytes each) or mixtures (VmfMixture::kStateBytes), and 748 bytes of
+  // counts, size, shares and moments: a count of leaves the bytes cannot
+  // hold is refused before they are made.
+  const uint64_t distribution_bytes =
+      settings_.distribution == GuideDistributionKind::kMixture ? VmfMixture::kStateBytes : 112;
   uint64_t leaf_count = 0;
-  std::vector<Node> nodes = read_spatial_nodes(in, 2316, &leaf_count, "a guiding tree");
+  std::vector<Node> nodes = read_spatial_nodes(in, 2 * kBins * distribution_bytes + 748, &leaf_count, "a guiding tree");
   std::vector<Leaf> leaves(leaf_count, Leaf(settings_.distribution));
   for (Leaf& l : leaves) {
     for (uint32_t b = 0; b < kBins; ++b) {

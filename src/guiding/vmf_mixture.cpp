@@ -29,7 +29,8 @@ float kappa_of_mean_cosine(float r) {
   return r * (3.f - r * r) / (1.f - r * r);
 }
 
-// e^x for x <= 0, to about 2e-5 relative (e^x = 2^i 2^f, i = trunc(x /
+// e^x for x <= 0 (the E-step passes exponents less their largest), to
+// about 2e-5 relative (e^x = 2^i 2^f, i = trunc(x /
 // ln 2), 2^f by its series to the 7th power); below -87, e^-87. Only the
 // E-step's responsibilities use it: how records are shared among lobes is
 // a choice of the fit, not a density anything is divided by. Four lobes at
@@ -108,11 +109,17 @@ void VmfMixture::set_norms() {
     if (!(l.weight > 0.f)) continue;
     const uint32_t k = active_++;
     at(kSX, k) = l.mean.x, at(kSY, k) = l.mean.y, at(kSZ, k) = l.mean.z, at(kSKappa, k) = l.kappa;
-    at(kSLogC, k) = std::log(l.weight * l.norm);
+    at(kSLogC, k) = std::log(l.weight * l.norm);  // (divided by the weights' total below)
     at(kSInvDistance, k) = l.inv_distance;
     at(kSWeight, k) = l.weight;
     at(kSCdf, k) = cdf;
     parallax_ = parallax_ || l.inv_distance > 0.f;
+  }
+  // The density is the one draws follow, which choose a lobe by weight
+  // over the weights' total (cdf's last), whatever rounding left it at.
+  if (active_ > 0) {
+    const float log_total = std::log(at(kSCdf, active_ - 1));
+    for (uint32_t k = 0; k < active_; ++k) at(kSLogC, k) -= log_total;
   }
 }
 
@@ -137,6 +144,7 @@ void VmfMixture::means_from(const Vec3& x, float* mx, float* my, float* mz) cons
 }
 
 void VmfMixture::move_pivot(const Vec3& p) {
+  if (p == pivot_) return;
   for (Lobe& l : lobe_) {
     const Vec3 m = l.mean - (p - pivot_) * l.inv_distance;
     const float len = glm::length(m);
@@ -152,19 +160,22 @@ void VmfMixture::add(uint32_t cell, float energy, float inv_distance) {
   if (!(energy > 0.f)) return;  // (a record that found nothing moves no lobe)
   const Vec3 w = cell_direction(cell);
   const float *x = row(kX), *y = row(kY), *z = row(kZ), *kappa = row(kKappa), *c = row(kLogE);
+  // Each lobe's exponent, less the largest: a record far from every lobe
+  // still goes to the nearest, not evenly to all.
   alignas(16) std::array<float, kLobes> g;
+  float most = -std::numeric_limits<float>::infinity();
+  for (uint32_t j = 0; j < kLobes; ++j) {
+    g[j] = kappa[j] * (x[j] * w.x + y[j] * w.y + z[j] * w.z - 1.f) + c[j];
+    most = std::max(most, g[j]);
+  }
+  if (!(most > -std::numeric_limits<float>::infinity())) return;
 #if defined(__SSE2__)
   static_assert(kLobes % 4 == 0);
-  const __m128 wx = _mm_set1_ps(w.x), wy = _mm_set1_ps(w.y), wz = _mm_set1_ps(w.z), one = _mm_set1_ps(1.f);
-  for (uint32_t j = 0; j < kLobes; j += 4) {
-    const __m128 d = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_loadu_ps(x + j), wx), _mm_mul_ps(_mm_loadu_ps(y + j), wy)),
-                                _mm_mul_ps(_mm_loadu_ps(z + j), wz));
-    const __m128 a = _mm_add_ps(_mm_mul_ps(_mm_loadu_ps(kappa + j), _mm_sub_ps(d, one)), _mm_loadu_ps(c + j));
-    _mm_store_ps(g.data() + j, exp_nonpositive(a));
-  }
+  const __m128 top = _mm_set1_ps(most);
+  for (uint32_t j = 0; j < kLobes; j += 4)
+    _mm_store_ps(g.data() + j, exp_nonpositive(_mm_sub_ps(_mm_load_ps(g.data() + j), top)));
 #else
-  for (uint32_t j = 0; j < kLobes; ++j)
-    g[j] = exp_nonpositive(kappa[j] * (x[j] * w.x + y[j] * w.y + z[j] * w.z - 1.f) + c[j]);
+  for (uint32_t j = 0; j < kLobes; ++j) g[j] = exp_nonpositive(g[j] - most);
 #endif
   float all = 0.f;
   for (uint32_t j = 0; j < kLobes; ++j) all += g[j];
@@ -242,7 +253,12 @@ float VmfMixture::sphere_pdf(const Vec3& w, const Vec3& at) const {
 
 Vec3 VmfMixture::sample(Vec2 u, const Vec3& at, float* pdf_out) const {
   // The lobe by u.x, and u.x reused within it (Pharr et al. 2023, sec. 2.2.2).
-  // (over the lobes of weight above 0: sampled rows)
+  // (over the lobes of weight above 0: sampled rows; a mixture with none
+  // is never sampled, as its total is 0, and read_state refuses one)
+  if (active_ == 0) {
+    *pdf_out = 0.f;
+    return Vec3(0.f, 0.f, 1.f);
+  }
   const float* cdf = row(kSCdf);
   const float x = u.x * cdf[active_ - 1];
   uint32_t j = 0;
@@ -277,12 +293,12 @@ void VmfMixture::read_state(StateReader& in) {
   float cdf = 0.f;
   for (const Lobe& l : lobes) {
     cdf += l.weight;
-    fine = fine && std::fabs(glm::length(l.mean) - 1.f) < 1e-3f && l.kappa > 0.f && l.kappa <= kMostKappa &&
+    fine = fine && std::fabs(glm::length(l.mean) - 1.f) < 2e-6f && l.kappa > 0.f && l.kappa <= kMostKappa &&
            l.weight >= 0.f && l.weight <= 1.f && l.e_weight >= 0.f && l.e_weight <= 1.f && l.cdf == cdf &&
            l.inv_distance >= 0.f && std::isfinite(l.inv_distance);
   }
   for (const FixedSum& s : sums) fine = fine && s.sane_total();
-  fine = fine && (cdf == 0.f || std::fabs(cdf - 1.f) < 1e-3f);
+  fine = fine && std::fabs(cdf - 1.f) < 1e-3f;
   if (!fine) throw std::runtime_error("a guiding mixture of " + std::to_string(lobes.size()) + " lobes that cannot be");
   fine = fine && std::isfinite(pivot.x + pivot.y + pivot.z);
   if (!fine) throw std::runtime_error("a guiding mixture whose pivot is not finite");

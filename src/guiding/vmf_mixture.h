@@ -17,8 +17,8 @@
 // leaf sees each lobe re-aimed at that point: the mean becomes
 // normalize(μ - (x - pivot) / d). So a leaf two metres wide does not blur
 // a patch five metres away over the angle its width subtends. A record
-// without a next vertex (escaped, or behind a specular one) has inverse
-// distance 0: it points at infinity, where parallax is none.
+// whose ray escaped has inverse distance 0: it points at infinity, where
+// parallax is none.
 //
 // One mixture plays the two roles of an iteration as the quadtree does:
 // the previous iteration's, fixed, is sampled; a copy of its lobes
@@ -88,7 +88,9 @@ class VmfMixture {
   void read_state(StateReader& in);
 
   size_t lobe_count() const { return lobe_.size(); }
-  size_t memory_bytes() const { return lobe_.capacity() * sizeof(Lobe) + sum_.capacity() * sizeof(FixedSum); }
+  size_t memory_bytes() const {
+    return lobe_.capacity() * sizeof(Lobe) + sum_.capacity() * sizeof(FixedSum) + row_.capacity() * sizeof(float);
+  }
   // The sums, kSums per lobe, for adding up what processes learnt.
   std::vector<FixedSum>& energies() { return sum_; }
 
@@ -101,7 +103,6 @@ class VmfMixture {
     float cdf = 0.f;       // the weights summed up to this lobe's, inclusive
     float inv_distance = 0.f;  // of what it points at, from the pivot (0: at infinity)
   };
-  const std::vector<Lobe>& lobes() const { return lobe_; }
 
  private:
   // Per lobe: energy times responsibility; the same times each coordinate
@@ -126,6 +127,11 @@ class VmfMixture {
   std::vector<float> row_;
   const float* row(Row r) const { return row_.data() + size_t(r) * kLobes; }
   void set_norms();
+
+ public:
+  // The fewest bytes a mixture's state takes (for checks of counts read).
+  static constexpr uint64_t kStateBytes =
+      sizeof(Vec3) + 8 + kLobes * sizeof(Lobe) + 8 + kLobes * kSums * sizeof(FixedSum);
 };
 
 }  // namespace lantern

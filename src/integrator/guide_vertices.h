@@ -112,7 +112,8 @@ struct GuideVertices {
       if (learning.is_mixture() && (known || next[v] != kNone)) {
         const Vec3 to = (known ? next_p[v] : p[next[v]]) - learning.pivot();
         const float d = glm::length(to);
-        if (d > 0.f && std::isfinite(d)) dir = to / d, inv_distance = 1.f / d;
+        // (a point within a micron of the pivot is taken at a micron)
+        if (d > 0.f && std::isfinite(d)) dir = to / d, inv_distance = 1.f / std::max(d, 1e-6f);
       }
       const uint32_t cell = learning.cell_of(dir);
       const float estimate = fcos[v] * Li, second = estimate * estimate / pdf[v];
@@ -133,8 +134,9 @@ struct GuideVertices {
   // Each vertex's next vertex on its path, made in the bounce after its
   // own (the point its direction reached), or kNone (its path ended, or
   // went on through a vertex that made none: a specular one). For the
-  // vertices reached() was not told of (a medium's scattering points,
-  // light subpaths).
+  // vertices reached() was not told of: those whose ray scattered in a
+  // medium. (Light subpaths' vertices, which end_bounce does not count,
+  // find none: their records carry no distance.)
   std::vector<uint32_t> next_vertices() const {
     std::vector<uint32_t> next(size(), kNone);
     uint32_t most = 0;
