@@ -26,6 +26,32 @@ inline double chi2_critical(int dof) {
   return k * a * a * a;
 }
 
+// Counts of samples per bin against their expected counts: chi-square,
+// with the bins expected to hold fewer than 20 pooled into one so that the
+// statistic stays chi-square (and few samples where the pool expects ~0).
+template <class Counts>
+void expect_counts_fit(const Counts& observed, const std::vector<double>& expected, const std::string& what) {
+  double chi2 = 0.0, pool_o = 0.0, pool_e = 0.0;
+  int dof = 0;
+  for (size_t i = 0; i < observed.size(); ++i) {
+    if (expected[i] < 20.0) {
+      pool_o += observed[i];
+      pool_e += expected[i];
+      continue;
+    }
+    chi2 += sqr(float(observed[i] - expected[i])) / expected[i];
+    ++dof;
+  }
+  if (pool_e > 20.0) {
+    chi2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e;
+    ++dof;
+  } else {
+    EXPECT_LT(pool_o, 40.0 + 10.0 * pool_e) << what << ": samples where the pdf is ~0";
+  }
+  ASSERT_GT(dof, 1) << what;
+  EXPECT_LT(chi2, chi2_critical(dof - 1)) << what << " (dof " << dof - 1 << ")";
+}
+
 template <class BSDF>
 void expect_sampling_matches_pdf(const BSDF& bsdf, const Vec3& wo, TransportMode mode, const std::string& what) {
   constexpr int kTheta = 16, kPhi = 32;
@@ -73,26 +99,7 @@ void expect_sampling_matches_pdf(const BSDF& bsdf, const Vec3& wo, TransportMode
     }
   expected[kTheta * kPhi] = std::max(0.0, 1.0 - total) * kSamples;
   EXPECT_LT(total, 1.02) << what << ": the pdf integrates to more than 1";
-  // Pool bins with small expectations so the statistic stays chi-square.
-  double chi2 = 0.0, pool_o = 0.0, pool_e = 0.0;
-  int dof = 0;
-  for (size_t i = 0; i < observed.size(); ++i) {
-    if (expected[i] < 20.0) {
-      pool_o += observed[i];
-      pool_e += expected[i];
-      continue;
-    }
-    chi2 += sqr(float(observed[i] - expected[i])) / expected[i];
-    ++dof;
-  }
-  if (pool_e > 20.0) {
-    chi2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e;
-    ++dof;
-  } else {
-    EXPECT_LT(pool_o, 40.0 + 10.0 * pool_e) << what << ": samples where the pdf is ~0";
-  }
-  ASSERT_GT(dof, 1) << what;
-  EXPECT_LT(chi2, chi2_critical(dof - 1)) << what << " (dof " << dof - 1 << ")";
+  expect_counts_fit(observed, expected, what);
 }
 
 template <class BSDF>
