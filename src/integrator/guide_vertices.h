@@ -37,7 +37,8 @@ struct GuideVertices {
   std::vector<Spectrum> beta, L;
   std::vector<uint16_t> bounce;  // the bounce each vertex was made in (end_bounce counts them)
   // Where each vertex's direction reached the scene (reached), NaN until
-  // it is known: the point a mixture's parallax aims at.
+  // it is known: the point a mixture's parallax aims at. (Light subpaths'
+  // vertices, whose bounces end_bounce does not count, learn none.)
   std::vector<Vec3> next_p;
   std::vector<uint32_t> last_of_slot;  // each path's last vertex (kNone: none)
   size_t bounce_start = 0;       // the first vertex of the current bounce
@@ -64,6 +65,7 @@ struct GuideVertices {
   size_t size() const { return slot.size(); }
   void push(uint32_t s, uint32_t spatial_leaf, const Vec3& position, uint32_t normal_bin, const Vec3& dir,
             float density, float f_cos, float density_bsdf, float density_guide, const Spectrum& throughput) {
+    reached(s, position);  // (the path's vertex before sent its ray here)
     fcos.push_back(f_cos), bsdf_pdf.push_back(density_bsdf), guide_pdf.push_back(density_guide);
     slot.push_back(s), leaf.push_back(spatial_leaf), p.push_back(position), bin.push_back(uint8_t(normal_bin)),
         w.push_back(dir);
@@ -75,8 +77,9 @@ struct GuideVertices {
     if (s >= last_of_slot.size()) last_of_slot.resize(size_t(s) + 1, kNone);
     last_of_slot[s] = uint32_t(size() - 1);
   }
-  // The ray a path's vertex of the bounce before sent reached a surface at
-  // p (the path may end there: on a light, by roulette).
+  // The ray a path's vertex of the bounce before sent reached the scene at
+  // p: a surface (the path may end there: on a light, by roulette), or the
+  // point it scattered at in a medium, whose vertex push() tells of.
   void reached(uint32_t s, const Vec3& at) {
     if (s >= last_of_slot.size()) return;
     const uint32_t v = last_of_slot[s];
@@ -96,7 +99,6 @@ struct GuideVertices {
   // medium vertices' records go to `field`'s leaves, by its own leaves' box.
   void make_records(const std::vector<Spectrum>& path_L, const SDTree& tree, uint64_t key,
                     std::vector<GuideRecord>& out, const ScatterField* field = nullptr) const {
-    const std::vector<uint32_t> next = next_vertices();
     for (size_t v = 0; v < size(); ++v) {
       const float Li = per_throughput(path_L[slot[v]] - L[v], beta[v]);
       const float energy = Li / pdf[v];
@@ -108,9 +110,8 @@ struct GuideVertices {
       // went on from, if that is known (guiding/vmf_mixture.h, parallax).
       Vec3 dir = w[v];
       float inv_distance = 0.f;
-      const bool known = !std::isnan(next_p[v].x);
-      if (learning.is_mixture() && (known || next[v] != kNone)) {
-        const Vec3 to = (known ? next_p[v] : p[next[v]]) - learning.pivot();
+      if (learning.is_mixture() && !std::isnan(next_p[v].x)) {
+        const Vec3 to = next_p[v] - learning.pivot();
         const float d = glm::length(to);
         // (a point within a micron of the pivot is taken at a micron)
         if (d > 0.f && std::isfinite(d)) dir = to / d, inv_distance = 1.f / std::max(d, 1e-6f);
@@ -131,24 +132,6 @@ struct GuideVertices {
     }
   }
   static constexpr uint32_t kNone = UINT32_MAX;
-  // Each vertex's next vertex on its path, made in the bounce after its
-  // own (the point its direction reached), or kNone (its path ended, or
-  // went on through a vertex that made none: a specular one). For the
-  // vertices reached() was not told of: those whose ray scattered in a
-  // medium. (Light subpaths' vertices, which end_bounce does not count,
-  // find none: their records carry no distance.)
-  std::vector<uint32_t> next_vertices() const {
-    std::vector<uint32_t> next(size(), kNone);
-    uint32_t most = 0;
-    for (uint32_t s : slot) most = std::max(most, s);
-    std::vector<uint32_t> later(size() > 0 ? size_t(most) + 1 : 0, kNone);
-    for (size_t v = size(); v-- > 0;) {
-      const uint32_t n = later[slot[v]];
-      if (n != kNone && bounce[n] == bounce[v] + 1) next[v] = n;
-      later[slot[v]] = uint32_t(v);
-    }
-    return next;
-  }
   // What a path gathered, componentwise over the throughput it carried
   // (the channels it carried any of), averaged.
   static float per_throughput(const Spectrum& gathered, const Spectrum& throughput) {
