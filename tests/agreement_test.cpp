@@ -68,7 +68,7 @@ TEST(Agreement, PilotsGiveWayToTheAgreedChoice) {
   RenderOptions o;
   o.integrator = Integrator::Bdpt;
   o.width = o.height = 64;
-  o.spp = 16;
+  o.spp = 256;  // (large enough for the rate pilot: nothing is rendered here)
   o.maxdepth = 5;
   const ImageRegion region = image_region(*scene, o);
   RenderStats stats;
@@ -83,6 +83,7 @@ TEST(Agreement, PilotsGiveWayToTheAgreedChoice) {
   EXPECT_EQ(stats.light_subpath_rate, 0.3f) << "--stats reports the rate rendered";
   EXPECT_EQ(calls, 2) << "the rate, then the choice of light";
 
+  o.spp = 16;
   PathTracerSettings path = path_settings(*scene, o, region, uint32_t(o.spp));
   calls = 0;
   set_split(*scene, light_sampler, o, path, stats, saying(uint32_t(4), 0, &calls));

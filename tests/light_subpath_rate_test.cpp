@@ -78,6 +78,30 @@ TEST(LightSubpaths, PilotPredictsTheErrorOfEachRate) {
   }
 }
 
+// The pilot runs where the render has 16 times its samples or more (8 a
+// pixel of an image of about 64 x 64, twice that with several lights), or
+// under a time budget.
+TEST(LightSubpaths, PilotRunsOnlyWhereTheRenderIsSixteenTimesItsSize) {
+  const auto one_light = guided_room();
+  ASSERT_EQ(one_light->lights.all.size(), 1u);
+  RenderOptions o = bdpt_options(kLightSubpathsAuto);
+  o.width = o.height = 64;
+  auto worth = [&](const Scene& scene, uint32_t spp) {
+    return worth_a_rate_pilot(scene, bdpt_settings(scene, o, image_region(scene, o), spp));
+  };
+  EXPECT_TRUE(worth(*one_light, 128));
+  EXPECT_FALSE(worth(*one_light, 127));
+  EXPECT_TRUE(worth(*one_light, 0)) << "a time budget";
+  o.width = o.height = 640;  // (the pilot stays at 64 x 64: 2 samples a pixel are enough)
+  EXPECT_TRUE(worth(*one_light, 2));
+  EXPECT_FALSE(worth(*one_light, 1));
+  const auto two_lights = load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
+  ASSERT_EQ(two_lights->lights.all.size(), 2u);  // (its light's two triangles)
+  o.width = o.height = 32;
+  EXPECT_TRUE(worth(*two_lights, 256));
+  EXPECT_FALSE(worth(*two_lights, 255));
+}
+
 // Every thread count makes the same pilot, bit for bit, and so the same
 // choice: its sums run in wave order.
 TEST(LightSubpaths, PilotIsTheSameWhateverTheThreads) {
@@ -110,15 +134,21 @@ TEST(LightSubpaths, ChoiceNeedsAClearGain) {
 
 // The render reports the rate it used: the pilot's choice under auto
 // (with its estimates), the given rate otherwise, and nothing for vcm.
+// A render too small for the pilot renders at rate 1, with no estimates.
 TEST(LightSubpaths, RenderReportsItsRate) {
   const auto scene = guided_room();
   RenderOptions o = bdpt_options(kLightSubpathsAuto);
-  o.spp = 1;
+  o.time_limit_seconds = 0.01;  // (a time budget: the pilot runs whatever the render's size)
   RenderResult r = render(*scene, o);
   EXPECT_TRUE(r.stats.light_subpath_rate == 1.f || r.stats.light_subpath_rate == 0.5f ||
               r.stats.light_subpath_rate == 0.25f || r.stats.light_subpath_rate == 0.125f);
   EXPECT_EQ(r.stats.light_subpath_candidates.size(), kLightSubpathRates.size());
   EXPECT_EQ(r.stats.light_subpath_error.size(), kLightSubpathRates.size());
+  o.time_limit_seconds = 0.0;
+  o.spp = 1;
+  r = render(*scene, o);
+  EXPECT_EQ(r.stats.light_subpath_rate, 1.f);
+  EXPECT_TRUE(r.stats.light_subpath_candidates.empty());
   o.light_subpath_rate = 0.3f;
   r = render(*scene, o);
   EXPECT_EQ(r.stats.light_subpath_rate, 0.3f);

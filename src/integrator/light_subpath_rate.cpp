@@ -286,16 +286,32 @@ void consider_eye_subpaths_alone(const Scene& scene, const LightSampler& light_s
     choice.eye_alone_cost = choice.cost[k] * e.alone_cost / e.bdpt_cost;
   }
 }
+
+// The pilot's image: the render's whole image shrunk to about
+// kPilotPixels.
+std::pair<int, int> pilot_size(const BdptSettings& render) {
+  const int full_w = render.full_width > 0 ? render.full_width : render.width;
+  const int full_h = render.full_height > 0 ? render.full_height : render.height;
+  const int shrink = std::max(1, int(std::ceil(std::sqrt(double(full_w) * double(full_h) / kPilotPixels))));
+  return {std::max(1, full_w / shrink), std::max(1, full_h / shrink)};
+}
 }  // namespace
+
+bool worth_a_rate_pilot(const Scene& scene, const BdptSettings& render) {
+  if (render.planned_spp == 0) return true;
+  const auto [w, h] = pilot_size(render);
+  const double width = render.full_width > 0 ? render.full_width : render.width;
+  const double height = render.full_height > 0 ? render.full_height : render.height;
+  const double pilot = double(w) * double(h) * kPilotSpp * (scene.lights.all.size() > 1 ? 2.0 : 1.0);
+  return double(render.planned_spp) * width * height >= 16.0 * pilot;
+}
 
 LightSubpathRateChoice choose_light_subpath_rate(const Scene& scene, const LightSampler& light_sampler,
                                                  const BdptSettings& render, RayBackend backend,
                                                  const PathTracerSettings* eye_alone, double time_budget,
                                                  bool choose_light) {
-  const int full_w = render.full_width > 0 ? render.full_width : render.width;
-  const int full_h = render.full_height > 0 ? render.full_height : render.height;
-  const int shrink = std::max(1, int(std::ceil(std::sqrt(double(full_w) * double(full_h) / kPilotPixels))));
-  BdptSettings pilot = pilot_settings(render, std::max(1, full_w / shrink), std::max(1, full_h / shrink), kPilotSpp);
+  const auto [pilot_w, pilot_h] = pilot_size(render);
+  BdptSettings pilot = pilot_settings(render, pilot_w, pilot_h, kPilotSpp);
   pilot.record_strategies = true;
   pilot.light_subpath_rate = 1.f;
   // With several lights, light subpaths may choose theirs otherwise than
@@ -371,7 +387,7 @@ void set_light_subpath_rate(const Scene& scene, const LightSampler& light_sample
                             const PathTracerSettings& eye_alone, BdptSettings& bs, RenderStats& stats,
                             const RenderHooks& hooks, const LightSubpathRateChoice* known) {
   // (Debug unit weights have no counts to rescale: rate 1.)
-  if (opt.light_subpath_rate == kLightSubpathsAuto && !bs.unit_weights) {
+  if (opt.light_subpath_rate == kLightSubpathsAuto && !bs.unit_weights && (known || worth_a_rate_pilot(scene, bs))) {
     const bool alone = may_render_eye_subpaths_alone(scene, opt) && worth_a_grid_pilot(bs);
     LightSubpathRateChoice c =
         known ? *known

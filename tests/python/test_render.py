@@ -236,9 +236,10 @@ def test_bad_input_raises_clear_errors(tmp_path, cornell_box):
 
 def test_light_choice(source_dir):
     # How light subpaths choose their light: given, or (auto) the pilot's
-    # choice on a scene of several lights (the prism's sky and spot).
+    # choice on a scene of several lights (the prism's sky and spot), under
+    # a time budget (a render of a few samples is too small for the pilot).
     prism = lantern.load_scene(str(source_dir / "scenes" / "prism.pbrt"))
-    chosen = lantern.render(prism, spp=1, resolution=(48, 36), integrator="bdpt", collect_stats=True)
+    chosen = lantern.render(prism, time=0.1, resolution=(48, 36), integrator="bdpt", collect_stats=True)
     choice = chosen.stats["light_subpaths"]["light_choice"]
     assert choice["chosen"] != "power" and len(choice["probabilities"]) == 2
     given = lantern.render(prism, spp=1, resolution=(48, 36), integrator="bdpt", light_choice="power",
