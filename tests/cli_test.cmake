@@ -170,6 +170,9 @@ expect_run(NAME light-subpaths-auto-render EXIT 0 ARGS render ${SRC}/scenes/corn
            --resolution 16 16 --quiet -o ${OUT}/light-subpaths-auto.exr)
 expect_run(NAME light-subpaths-auto-header EXIT 0 MATCH "lantern:light_subpath_rate (1|0.5|0.25|0.125|0)" ARGS info
            ${OUT}/light-subpaths-auto.exr)
+# A render of fewer than 16 times the pilot's samples runs no pilot, and says so.
+expect_run(NAME light-subpaths-no-pilot EXIT 0 MATCH "light subpaths: 1 per camera sample \\(--light-subpaths auto\\): the render is too small"
+           ARGS render ${SRC}/scenes/cornell-box.pbrt --integrator bdpt --spp 8 --resolution 16 16 -o ${OUT}/light-subpaths-auto.exr)
 
 # SIGINT during a long render: exit 130 and an image with the samples so far,
 # for the path tracer and for bdpt (whose splats go through the same merge).

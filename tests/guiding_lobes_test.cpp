@@ -218,6 +218,27 @@ TEST(VmfMixture, RecordsAimFromThePivotAtWhereTheirPathWentOn) {
   EXPECT_GT(glm::dot(VmfMixture::cell_direction(out[2].cell), up), 0.99999f);
 }
 
+// In a render, the eye subpaths' records learn where their rays went: in a
+// closed room most of them (the rest end where no ray was traced), with
+// lobes; none with the quadtree, whose records are directions. The light
+// subpaths' records carry no distance (docs/guiding-lobes.md).
+TEST(GuidingLobes, RecordsLearnWhereTheirRaysWent) {
+  const auto scene = guided_room();
+  RenderOptions o = bdpt_options(1.f);
+  o.guiding = o.guide_light_subpaths = true;
+  o.guide_distribution = GuideModel::Vmm;
+  o.spp = 8;
+  o.collect_stats = true;
+  const RenderStats lobes = render(*scene, o).stats;
+  ASSERT_GT(lobes.guiding_records, 1000u);
+  EXPECT_GT(lobes.guiding_records_aimed, lobes.guiding_records / 2);
+  EXPECT_GT(lobes.guiding_light_records, 1000u);
+  o.guide_distribution = GuideModel::Quadtree;
+  const RenderStats quadtree = render(*scene, o).stats;
+  EXPECT_GT(quadtree.guiding_records, 1000u);
+  EXPECT_EQ(quadtree.guiding_records_aimed, 0u);
+}
+
 // The sums do not depend on the order records arrive in (fixed-point:
 // math/fixed_sum.h), so the fit does not either, bit for bit; and the
 // state comes back bit for bit, and is refused where it cannot be.

@@ -232,6 +232,10 @@ struct RenderStats {
   size_t guiding_leaves = 0, guiding_nodes = 0, guiding_bytes = 0, guiding_medium_leaves = 0;
   size_t guiding_distance_leaves = 0, guiding_distance_lit_leaves = 0;
   size_t guiding_light_leaves = 0;  // the importance field's (--guide-light)
+  // The records this process learnt from, of the radiance field (and those
+  // of them a mixture's parallax aims at the point their ray reached:
+  // --guide-distribution vmm; 0 otherwise) and of the importance field.
+  uint64_t guiding_records = 0, guiding_records_aimed = 0, guiding_light_records = 0;
 
   // Subpath vertices on surfaces, and why subpaths ended (escaped, absorbed,
   // roulette, maxdepth), summed over all samples.

@@ -266,6 +266,10 @@ void report(const std::string& out, const RenderOptions& o, const RenderResult& 
     logging::info("light subpaths: %g per camera sample, the pilot's choice (--light-subpaths auto)%s",
                   double(s.light_subpath_rate),
                   s.light_subpath_rate == 0.f ? ": they do not pay here, the path tracer rendered the eye subpaths alone" : "");
+  else if (s.light_subpath_rate >= 0.f && o.light_subpath_rate == kLightSubpathsAuto && !o.debug_unit_mis_weights)
+    logging::info(
+        "light subpaths: 1 per camera sample (--light-subpaths auto): the render is too small for its pilot "
+        "to pay, which needs 16 times the pilot's samples or a time budget");
   if (!s.light_choice.empty() && s.light_subpath_rate > 0.f)
     logging::info("light subpaths choose their light: %s, the pilot's choice", s.light_choice.c_str());
   if (s.timed && logging::enabled(logging::Level::Info)) print_stage_summary(s);

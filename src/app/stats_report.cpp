@@ -63,11 +63,17 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
   j["max_spp"] = s.max_spp;
   if (s.estimated_relmse >= 0) j["estimated_relmse"] = s.estimated_relmse;
   if (s.guiding_leaves > 0 || s.guiding_light_leaves > 0)
-    j["guiding"] = {
-        {"iterations", s.guiding_iterations},           {"spatial_leaves", s.guiding_leaves},
-        {"directional_nodes", s.guiding_nodes},         {"medium_leaves", s.guiding_medium_leaves},
-        {"distance_leaves", s.guiding_distance_leaves}, {"distance_lit_leaves", s.guiding_distance_lit_leaves},
-        {"light_leaves", s.guiding_light_leaves},       {"bytes", s.guiding_bytes}};
+    j["guiding"] = {{"iterations", s.guiding_iterations},
+                    {"spatial_leaves", s.guiding_leaves},
+                    {"directional_nodes", s.guiding_nodes},
+                    {"medium_leaves", s.guiding_medium_leaves},
+                    {"distance_leaves", s.guiding_distance_leaves},
+                    {"distance_lit_leaves", s.guiding_distance_lit_leaves},
+                    {"light_leaves", s.guiding_light_leaves},
+                    {"bytes", s.guiding_bytes},
+                    {"records", s.guiding_records},
+                    {"records_aimed", s.guiding_records_aimed},
+                    {"light_records", s.guiding_light_records}};
   j["light_paths"] = s.light_paths;
   j["seconds"] = {{"load", run.load_seconds}, {"bvh_build", run.scene_info.bvh_build_seconds}, {"render", s.seconds}};
   j["load_phases"] = nlohmann::json::array();

@@ -38,7 +38,9 @@ struct GuideVertices {
   std::vector<uint16_t> bounce;  // the bounce each vertex was made in (end_bounce counts them)
   // Where each vertex's direction reached the scene (reached), NaN until
   // it is known: the point a mixture's parallax aims at. (Light subpaths'
-  // vertices, whose bounces end_bounce does not count, learn none.)
+  // vertices, whose bounces end_bounce does not count, learn none: with
+  // their hits told, bdpt's caustics through glass were worse per sample,
+  // docs/guiding-lobes.md.)
   std::vector<Vec3> next_p;
   std::vector<uint32_t> last_of_slot;  // each path's last vertex (kNone: none)
   size_t bounce_start = 0;       // the first vertex of the current bounce

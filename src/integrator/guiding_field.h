@@ -103,12 +103,15 @@ class GuidingField {
 
   void deposit(const std::vector<GuideRecord>& records, const std::vector<GuideRecord>& light_records = {}) {
     for (const GuideRecord& r : records) {
-      if (r.bin == kScatteredRecord)
+      if (r.bin == kScatteredRecord) {
         scattered_.add(r.leaf, r.energy);
-      else
+      } else {
         tree_.add(r);
+        ++records_, records_aimed_ += r.inv_distance > 0.f;
+      }
     }
     for (const GuideRecord& r : light_records) importance_.add(r);
+    light_records_ += light_records.size();
   }
   void end_iteration() {
     if (eye_subpaths_) tree_.update(iteration_), scattered_.update(iteration_);
@@ -120,6 +123,8 @@ class GuidingField {
   // radiance field under --guide-light alone, is not counted).
   void report(RenderStats& stats) const {
     stats.guiding_iterations = iteration_;
+    stats.guiding_records = records_, stats.guiding_records_aimed = records_aimed_;
+    stats.guiding_light_records = light_records_;
     auto count = [&](const SDTree& tree) {
       for (const SDTree::Leaf& l : tree.leaves()) {
         for (uint32_t b = 0; b < SDTree::kBins; ++b)
@@ -271,6 +276,8 @@ class GuidingField {
   bool eye_subpaths_, light_subpaths_;
   uint32_t iteration_ = 0;
   bool done_ = false;
+  // (this process's records since it started, for --stats)
+  uint64_t records_ = 0, records_aimed_ = 0, light_records_ = 0;
 };
 
 }  // namespace lantern
