@@ -89,4 +89,9 @@ TEST(Agreement, PilotsGiveWayToTheAgreedChoice) {
   set_split(*scene, light_sampler, o, path, stats, saying(uint32_t(4), 0, &calls));
   EXPECT_EQ(path.split, 4u) << "a render too small for the split pilot still takes the agreed split";
   EXPECT_EQ(calls, 1);
+  BdptSettings small = bdpt_settings(*scene, o, region, uint32_t(o.spp));
+  calls = 0;
+  set_light_subpath_rate(*scene, light_sampler, o, eye_alone, small, stats, saying(0.3f, 0, &calls));
+  EXPECT_EQ(small.light_subpath_rate, 0.3f) << "a render too small for the rate pilot still takes the agreed rate";
+  EXPECT_EQ(calls, 2);
 }

@@ -100,6 +100,14 @@ TEST(LightSubpaths, PilotRunsOnlyWhereTheRenderIsSixteenTimesItsSize) {
   o.width = o.height = 32;
   EXPECT_TRUE(worth(*two_lights, 256));
   EXPECT_FALSE(worth(*two_lights, 255));
+  // Not choosing the light (--light-choice power or uniform): one pass.
+  EXPECT_TRUE(worth_a_rate_pilot(*two_lights, bdpt_settings(*two_lights, o, image_region(*two_lights, o), 128), false));
+  // A crop window's pixels are what the render renders; its pilot is the
+  // whole image's, at 64 x 64.
+  o.width = o.height = 640;
+  o.crop_window = {0.f, 0.05f, 0.f, 0.05f};  // 32 x 32 of them
+  EXPECT_FALSE(worth(*two_lights, 1023));
+  EXPECT_TRUE(worth(*two_lights, 1024));
 }
 
 // Every thread count makes the same pilot, bit for bit, and so the same

@@ -2,9 +2,10 @@
 // texture cache's limit plus a stated overhead, and its image does not
 // depend on the cache size. The renders run as `lantern render` processes so
 // that each one's peak resident memory is its own (wait4's ru_maxrss).
+#include <gtest/gtest.h>
+
 #include <OpenImageIO/half.h>
 #include <OpenImageIO/imageio.h>
-#include <gtest/gtest.h>
 #include <spawn.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -15,8 +16,8 @@
 #include <fstream>
 #include <thread>
 
-#include "lantern/image.h"
 #include "sanitizer.h"
+#include "lantern/image.h"
 
 extern char** environ;
 

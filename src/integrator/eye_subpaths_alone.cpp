@@ -186,9 +186,9 @@ int grid_pilot_stride(int width, int height) {
 double grid_pilot_samples() { return 4.0 * kGridPixels * kGridSpp; }  // (two seeds, bdpt and the path tracer)
 
 bool worth_a_grid_pilot(const BdptSettings& render) {
-  const double width = render.full_width > 0 ? render.full_width : render.width;
-  const double height = render.full_height > 0 ? render.full_height : render.height;
-  return render.planned_spp == 0 || double(render.planned_spp) * width * height >= 16.0 * grid_pilot_samples();
+  // (the render's own pixels, as for the rate pilot: light_subpath_rate.h)
+  return render.planned_spp == 0 ||
+         double(render.planned_spp) * double(render.width) * double(render.height) >= 16.0 * grid_pilot_samples();
 }
 
 EyeAloneEstimate estimate_eye_subpaths_alone(const Scene& scene, const LightSampler& light_sampler,

@@ -154,7 +154,8 @@ inline constexpr double kPilotsAgree = 4.0, kClearGain = 0.95;
 
 // Whether a render is large enough for the grid pilot: 16 times its
 // camera samples (grid_pilot_samples, half of them bdpt's) or more over
-// the whole image, or a time budget (for which the rate pilot's time
+// the render's pixels (a crop window's; every part's and MPI rank's whole
+// image), or a time budget (for which the rate pilot's time
 // decides: light_subpath_rate.cpp). Smaller renders keep light subpaths:
 // the pilot would cost more than it could save.
 bool worth_a_grid_pilot(const BdptSettings& render);

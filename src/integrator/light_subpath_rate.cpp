@@ -297,13 +297,14 @@ std::pair<int, int> pilot_size(const BdptSettings& render) {
 }
 }  // namespace
 
-bool worth_a_rate_pilot(const Scene& scene, const BdptSettings& render) {
+bool worth_a_rate_pilot(const Scene& scene, const BdptSettings& render, bool choose_light) {
   if (render.planned_spp == 0) return true;
   const auto [w, h] = pilot_size(render);
-  const double width = render.full_width > 0 ? render.full_width : render.width;
-  const double height = render.full_height > 0 ? render.full_height : render.height;
-  const double pilot = double(w) * double(h) * kPilotSpp * (scene.lights.all.size() > 1 ? 2.0 : 1.0);
-  return double(render.planned_spp) * width * height >= 16.0 * pilot;
+  const bool lights = choose_light && scene.lights.all.size() > 1 && render.light_choice.empty();
+  const double pilot = double(w) * double(h) * kPilotSpp * (lights ? 2.0 : 1.0);
+  // (the render's own pixels: a crop window's, or every part's and MPI
+  // rank's whole image, the same for all of them)
+  return double(render.planned_spp) * double(render.width) * double(render.height) >= 16.0 * pilot;
 }
 
 LightSubpathRateChoice choose_light_subpath_rate(const Scene& scene, const LightSampler& light_sampler,
@@ -383,38 +384,51 @@ float best_light_subpath_rate(const LightSubpathRateChoice& c, uint32_t spp) {
   return c.eye_alone && eye_subpaths_alone_pay(*c.eye_alone, c.eye_alone_first_ratio) ? 0.f : rate;
 }
 
+namespace {
+// --stats: a pilot's candidates and estimates.
+void report_pilot(const LightSubpathRateChoice& c, RenderStats& stats) {
+  if (!c.light_choice_candidates.empty()) {
+    stats.light_choice = c.light_choice_name;
+    stats.light_choice_probability.assign(c.light_choice.begin(), c.light_choice.end());
+    stats.light_choice_candidates = c.light_choice_candidates;
+    stats.light_choice_error = c.light_choice_error;
+    stats.light_choice_mse = c.light_choice_mse;
+    stats.light_choice_cost = c.light_choice_cost;
+  }
+  stats.light_subpath_candidates.assign(kLightSubpathRates.begin(), kLightSubpathRates.end());
+  stats.light_subpath_error.assign(c.error.begin(), c.error.end());
+  stats.light_subpath_cost.assign(c.cost.begin(), c.cost.end());
+  if (c.eye_alone_error >= 0.0) {
+    stats.light_subpath_candidates.push_back(0.0);
+    stats.light_subpath_error.push_back(c.eye_alone_error);
+    stats.light_subpath_cost.push_back(c.eye_alone_cost);
+  }
+}
+}  // namespace
+
 void set_light_subpath_rate(const Scene& scene, const LightSampler& light_sampler, const RenderOptions& opt,
                             const PathTracerSettings& eye_alone, BdptSettings& bs, RenderStats& stats,
                             const RenderHooks& hooks, const LightSubpathRateChoice* known) {
   // (Debug unit weights have no counts to rescale: rate 1.)
-  if (opt.light_subpath_rate == kLightSubpathsAuto && !bs.unit_weights && (known || worth_a_rate_pilot(scene, bs))) {
-    const bool alone = may_render_eye_subpaths_alone(scene, opt) && worth_a_grid_pilot(bs);
-    LightSubpathRateChoice c =
-        known ? *known
-              : choose_light_subpath_rate(scene, light_sampler, bs, opt.ray_backend, alone ? &eye_alone : nullptr,
-                                          opt.time_limit_seconds, opt.light_choice == LightChoiceKind::Auto);
+  if (opt.light_subpath_rate == kLightSubpathsAuto && !bs.unit_weights) {
+    const bool choose_light = opt.light_choice == LightChoiceKind::Auto;
+    const bool pilot = known || worth_a_rate_pilot(scene, bs, choose_light);
+    LightSubpathRateChoice c;  // (no pilot: rate 1, light by power)
+    if (known) {
+      c = *known;
+    } else if (pilot) {
+      const bool alone = may_render_eye_subpaths_alone(scene, opt) && worth_a_grid_pilot(bs);
+      c = choose_light_subpath_rate(scene, light_sampler, bs, opt.ray_backend, alone ? &eye_alone : nullptr,
+                                    opt.time_limit_seconds, choose_light);
+    }
     // (whether the grid pilot fits a time budget depends on the process's
-    // clock: the processes of one image take one's choice)
+    // clock, and vcm's choice may have been another process's: the
+    // processes of one image take one's choice, each of them asked)
     agree_on(hooks, c.rate);
     agree_on(hooks, c.light_choice);
     bs.light_subpath_rate = c.rate;
     if (c.rate > 0.f) bs.light_choice = c.light_choice;
-    if (!c.light_choice_candidates.empty()) {
-      stats.light_choice = c.light_choice_name;
-      stats.light_choice_probability.assign(c.light_choice.begin(), c.light_choice.end());
-      stats.light_choice_candidates = c.light_choice_candidates;
-      stats.light_choice_error = c.light_choice_error;
-      stats.light_choice_mse = c.light_choice_mse;
-      stats.light_choice_cost = c.light_choice_cost;
-    }
-    stats.light_subpath_candidates.assign(kLightSubpathRates.begin(), kLightSubpathRates.end());
-    stats.light_subpath_error.assign(c.error.begin(), c.error.end());
-    stats.light_subpath_cost.assign(c.cost.begin(), c.cost.end());
-    if (c.eye_alone_error >= 0.0) {
-      stats.light_subpath_candidates.push_back(0.0);
-      stats.light_subpath_error.push_back(c.eye_alone_error);
-      stats.light_subpath_cost.push_back(c.eye_alone_cost);
-    }
+    if (pilot) report_pilot(c, stats);
   }
   stats.light_subpath_rate = bs.light_subpath_rate;
 }

@@ -187,13 +187,14 @@ LightSubpathRateChoice choose_light_subpath_rate(const Scene& scene, const Light
                                                  double time_budget = 0.0, bool choose_light = true);
 
 // Whether a render is large enough for the rate pilot: 16 times the
-// pilot's camera samples (twice as many with several lights, for the
-// choice of light) or more over the whole image, or a time budget, as for
-// the grid pilot (eye_subpaths_alone.h). A smaller render keeps rate 1
-// and light subpaths that choose their light by power, pbrt-v4's bdpt: a
-// pilot that costs more than a sixteenth of the render cannot save what
-// it costs (the rates it chooses among win 5-30% at equal time).
-bool worth_a_rate_pilot(const Scene& scene, const BdptSettings& render);
+// pilot's camera samples (twice as many where it also chooses among
+// several lights: choose_light) or more over the render's pixels, or a
+// time budget, as for the grid pilot (eye_subpaths_alone.h). A smaller
+// render keeps rate 1 and light subpaths that choose their light by
+// power, pbrt-v4's bdpt: a pilot that costs more than a sixteenth of the
+// render cannot save what it costs (the rates it chooses among win 5-30%
+// at equal time).
+bool worth_a_rate_pilot(const Scene& scene, const BdptSettings& render, bool choose_light = true);
 
 // bs's rate: the options', or under auto the pilot's choice (`known`:
 // already made, by vcm's merge pilot), which stats report with its
