@@ -78,9 +78,10 @@ TEST(LightSubpaths, PilotPredictsTheErrorOfEachRate) {
   }
 }
 
-// The pilot runs where the render has 16 times its samples or more (8 a
-// pixel of an image of about 64 x 64, twice that with several lights), or
-// under a time budget.
+// The pilot runs where the render has 16 times its samples or more over
+// the pixels it renders (8 a pixel of an image of about 64 x 64, twice
+// that where it also chooses among several lights), or under a time
+// budget.
 TEST(LightSubpaths, PilotRunsOnlyWhereTheRenderIsSixteenTimesItsSize) {
   const auto one_light = guided_room();
   ASSERT_EQ(one_light->lights.all.size(), 1u);
