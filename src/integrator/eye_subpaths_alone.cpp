@@ -186,9 +186,7 @@ int grid_pilot_stride(int width, int height) {
 double grid_pilot_samples() { return 4.0 * kGridPixels * kGridSpp; }  // (two seeds, bdpt and the path tracer)
 
 bool worth_a_grid_pilot(const BdptSettings& render) {
-  // (the render's own pixels, as for the rate pilot: light_subpath_rate.h)
-  return render.planned_spp == 0 ||
-         double(render.planned_spp) * double(render.width) * double(render.height) >= 16.0 * grid_pilot_samples();
+  return render_pays_for_pilot(render.planned_spp, render.width, render.height, grid_pilot_samples());
 }
 
 EyeAloneEstimate estimate_eye_subpaths_alone(const Scene& scene, const LightSampler& light_sampler,

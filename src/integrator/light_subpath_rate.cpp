@@ -298,13 +298,10 @@ std::pair<int, int> pilot_size(const BdptSettings& render) {
 }  // namespace
 
 bool worth_a_rate_pilot(const Scene& scene, const BdptSettings& render, bool choose_light) {
-  if (render.planned_spp == 0) return true;
   const auto [w, h] = pilot_size(render);
   const bool lights = choose_light && scene.lights.all.size() > 1 && render.light_choice.empty();
   const double pilot = double(w) * double(h) * kPilotSpp * (lights ? 2.0 : 1.0);
-  // (the render's own pixels: a crop window's, or every part's and MPI
-  // rank's whole image, the same for all of them)
-  return double(render.planned_spp) * double(render.width) * double(render.height) >= 16.0 * pilot;
+  return render_pays_for_pilot(render.planned_spp, render.width, render.height, pilot);
 }
 
 LightSubpathRateChoice choose_light_subpath_rate(const Scene& scene, const LightSampler& light_sampler,

@@ -138,10 +138,7 @@ bool merges_pay(const MergeEstimate& e) {
 }
 
 bool worth_a_merge_pilot(const BdptSettings& vcm, uint32_t wave_paths) {
-  // (the film's pixels: a crop window's render is that part; every part of
-  // a render shares its film's size, and so the answer)
-  const double pilot = 2.0 * kMergePilotPasses * double(wave_paths);
-  return vcm.planned_spp == 0 || double(vcm.planned_spp) * double(vcm.width) * double(vcm.height) >= 16.0 * pilot;
+  return render_pays_for_pilot(vcm.planned_spp, vcm.width, vcm.height, 2.0 * kMergePilotPasses * double(wave_paths));
 }
 
 bool estimate_vcm(const Scene& scene, const LightSampler& light_sampler, const BdptSettings& vcm, uint32_t wave_paths,

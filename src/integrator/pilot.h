@@ -20,6 +20,16 @@ namespace lantern {
 inline constexpr uint32_t kPilotWaveSlots = 1024;
 inline constexpr size_t kPilotBatch = 8;  // waves
 
+// Whether a render pays for a pilot of pilot_samples camera samples (or
+// paths): it renders 16 times as many or more over its own pixels (a crop
+// window's; every part's and MPI rank's whole image, so all of them
+// answer alike), or has a time budget (planned_spp 0), where each pilot
+// weighs its time itself. A pilot costing more than a sixteenth of the
+// render cannot win back its cost from the gains it chooses among.
+inline bool render_pays_for_pilot(uint32_t planned_spp, int width, int height, double pilot_samples) {
+  return planned_spp == 0 || double(planned_spp) * double(width) * double(height) >= 16.0 * pilot_samples;
+}
+
 // A pilot's settings from a render's (BdptSettings, PathTracerSettings):
 // an image of width x height of its own, not a part of another, planned
 // for spp samples per pixel.

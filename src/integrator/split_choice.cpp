@@ -58,9 +58,8 @@ SplitChoice best_split(const std::array<double, kSplitCandidates.size()>& varian
 
 bool worth_a_split_pilot(const PathTracerSettings& render, double time_budget) {
   if (time_budget > 0.0) return time_budget >= 8.0;
-  const double width = render.width, height = render.height;
   const double pilot_paths = 2.0 * double(kSplitCandidates.size()) * kPilotPixels * kPilotSpp;
-  return render.planned_spp == 0 || double(render.planned_spp) * width * height >= 16.0 * pilot_paths;
+  return render_pays_for_pilot(render.planned_spp, render.width, render.height, pilot_paths);
 }
 
 SplitChoice choose_split(const Scene& scene, const LightSampler& light_sampler, const PathTracerSettings& render,
