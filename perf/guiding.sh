@@ -1,7 +1,8 @@
 #!/bin/sh
 # Path guiding at equal time: the path tracer (or INTEGRATOR=bdpt, vcm)
 # without --guide and with it, once per guiding distribution in MODELS
-# (default "quadtree vmm": --guide-distribution), for the same wall time
+# (default "quadtree vmm": --guide-distribution; a name ending in -never,
+# as vmm-never, adds --guide-stop never), for the same wall time
 # at the reference's resolution; `lantern compare` measures relMSE, its
 # firefly-robust form and MSE against perf/references/<scene>.exr (made
 # by perf/make-references.sh). Prints a Markdown table; the last two
@@ -25,7 +26,8 @@ for s in $scenes; do
   res="240 180"; case "$s" in cornell-box*) res="256 256" ;; lamp-street) res="240 135" ;; esac
   plain=""; plain_robust=""
   for g in no $models; do
-    flag=""; [ "$g" != no ] && flag="--guide --guide-distribution $g"
+    flag=""; [ "$g" != no ] && flag="--guide --guide-distribution ${g%-never}"
+    case "$g" in *-never) flag="$flag --guide-stop never" ;; esac
     "$lantern" render "scenes/$s.pbrt" --integrator "$integrator" $flag --time "$secs" --seed "$seed" \
       --resolution $res -o "$tmp/$s-$g.exr" 2> "$tmp/log"
     spp=$(grep ' spp (min)' "$tmp/log" | tail -n 1 | sed -n 's/.*, \([0-9]*\) spp (min).*/\1/p')

@@ -74,10 +74,13 @@ AttributeEnd)",
               "foggy-skylit-room.pbrt");
 }
 
+// (Guided to the end, --guide-stop never: these tests hold the guided
+// estimator itself; tests/guide_stop_test.cpp holds where guiding stops.)
 inline RenderOptions guided_options(bool guiding) {
   RenderOptions o;
   o.integrator = Integrator::Path;
   o.guiding = guiding;
+  o.guide_stop = false;
   o.spp = 64;
   o.maxdepth = 5;
   return o;

@@ -60,11 +60,12 @@ TEST(Guiding, ResumesWithTheFieldItLearnt) {
   o.spp = 16;
   o.resume = true;
   EXPECT_THROW(render(*scene, o), InputError);
-  // Guided checkpoints of formats 3 to 5 (before media had distributions,
+  // Guided checkpoints of formats 3 to 6 (before media had distributions,
   // before light subpaths were guided, before fixed-point sums and guided
-  // distances) are refused by their version, with what to do.
+  // distances, before the fields judged whether they pay) are refused by
+  // their version, with what to do.
   o.spp = 8;
-  for (const uint32_t format : {3u, 4u, 5u}) {
+  for (const uint32_t format : {3u, 4u, 5u, 6u}) {
     {
       std::fstream f(o.checkpoint_path, std::ios::in | std::ios::out | std::ios::binary);
       f.seekp(8);
@@ -90,7 +91,7 @@ TEST(Guiding, FieldBytesRoundTripAndBadOnesAreRefused) {
   GuidingField field(lo, hi, 64);
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> u(0.f, 1.f);
-  for (int iteration = 0; iteration < 3; ++iteration) {
+  for (int iteration = 0; iteration < 4; ++iteration) {
     std::vector<GuideRecord> records;
     for (int i = 0; i < 30000; ++i) {
       const Vec3 p = lo + (hi - lo) * Vec3(u(rng), u(rng), u(rng));
@@ -100,7 +101,8 @@ TEST(Guiding, FieldBytesRoundTripAndBadOnesAreRefused) {
       r.cell = field.tree().leaf(r.leaf).learning[r.bin].cell_of(
           equal_area_square_to_sphere(Vec2(0.1f + 0.3f * u(rng), u(rng))));
       r.energy = 1.f + u(rng);
-      r.second = r.energy, r.bsdf_pdf = 0.3f, r.guide_pdf = -1.f;
+      r.second = r.energy, r.bsdf_pdf = 0.3f, r.guide_pdf = i % 2 ? 0.3f : -1.f;
+      r.image = r.energy, r.drawn_pdf = 0.3f;  // (a guide that gains nothing: it stops after iteration 3)
       records.push_back(r);
     }
     field.deposit(records);
@@ -108,10 +110,14 @@ TEST(Guiding, FieldBytesRoundTripAndBadOnesAreRefused) {
   }
   const std::string bytes = field.save();
   ASSERT_GT(field.tree().leaves().size(), 1u);  // (it split)
+  ASSERT_TRUE(field.tree().stopped());
   GuidingField restored(lo, hi, 64);
   restored.restore(bytes);
   EXPECT_EQ(restored.save(), bytes);
   EXPECT_EQ(restored.iteration(), field.iteration());
+  EXPECT_TRUE(restored.tree().stopped());
+  EXPECT_EQ(restored.tree().stopped_after(), 3u);
+  EXPECT_FALSE(restored.learning()) << "nothing left to learn";
 
   auto refused = [&](std::string b) {
     GuidingField f(lo, hi, 64);

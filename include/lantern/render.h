@@ -58,6 +58,10 @@ struct RenderOptions {
   // (Müller et al. 2017) or a mixture of von Mises-Fisher lobes fitted by
   // EM (docs/guiding-lobes.md).
   GuideModel guide_distribution = GuideModel::Quadtree;
+  // Each guided field stops (no look-ups, no records) at the end of a
+  // learning iteration whose records say it does not pay
+  // (guiding/sd_tree.h, judge); false: guided to the end.
+  bool guide_stop = true;
   bool any_guiding() const { return guiding || guide_light_subpaths; }
   // The path tracer's Russian roulette: from the second bounce on a path
   // goes on with probability min(1, roulette_scale x its throughput), its
@@ -236,6 +240,12 @@ struct RenderStats {
   // of them a mixture's parallax aims at the point their ray reached:
   // --guide-distribution vmm; 0 otherwise) and of the importance field.
   uint64_t guiding_records = 0, guiding_records_aimed = 0, guiding_light_records = 0;
+  // Whether each field's guide paid for itself (guiding/sd_tree.h, judge):
+  // the iteration it stopped after (0 first; -1: it did not stop) and the
+  // share of the BSDF's second moment it left in the last iteration
+  // judged (-1: none), of the radiance field and of the importance field.
+  int32_t guiding_stopped_after = -1, guiding_light_stopped_after = -1;
+  double guiding_share = -1.0, guiding_light_share = -1.0;
 
   // Subpath vertices on surfaces, and why subpaths ended (escaped, absorbed,
   // roulette, maxdepth), summed over all samples.

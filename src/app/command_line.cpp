@@ -139,6 +139,11 @@ void add_render_request_options(CLI::App& c, RenderRequest& r) {
                "What guided paths learn directions with: quadtree (the SD-tree's, the default) or vmm (a mixture of "
                "von Mises-Fisher lobes; docs/guiding.md)")
       ->check(CLI::IsMember({name(GuideModel::Quadtree), name(GuideModel::Vmm)}));
+  c.add_option("--guide-stop", r.guide_stop,
+               "auto (the default): each guided field stops, for the rest of the render, at the end of a learning "
+               "iteration, from the fourth on, whose records say its guide left more than 0.7 of the second moment "
+               "the BSDF's directions alone would have; never: guided to the end (docs/guiding-stop.md)")
+      ->check(CLI::IsMember({"auto", "never"}));
   c.add_flag("--spectral", r.spectral,
                    "Render with sampled wavelengths, four per camera sample, as pbrt-v4 does, instead of in RGB "
                    "(docs/spectral.md)");

@@ -101,6 +101,7 @@ nlohmann::json render_settings_json(const RenderOptions& o) {
   if (o.guiding) j["guiding"] = true;
   if (o.guide_light_subpaths) j["guide_light"] = true;
   if (o.any_guiding() && o.guide_distribution == GuideModel::Vmm) j["guide_distribution"] = "vmm";
+  if (o.any_guiding() && !o.guide_stop) j["guide_stop"] = "never";
   return j;
 }
 
@@ -117,6 +118,7 @@ void add_render_settings(ImageMetadata& md, const RenderOptions& o) {
   if (o.guiding) md.emplace_back("lantern:guiding", "on");
   if (o.guide_light_subpaths) md.emplace_back("lantern:guide-light", "on");
   if (o.any_guiding() && o.guide_distribution == GuideModel::Vmm) md.emplace_back("lantern:guide-distribution", "vmm");
+  if (o.any_guiding() && !o.guide_stop) md.emplace_back("lantern:guide-stop", "never");
 }
 
 }  // namespace lantern

@@ -62,6 +62,9 @@ RenderOptions resolve_render_options(const Scene& scene, const RenderRequest& a)
   o.guiding = a.guide;
   o.guide_light_subpaths = a.guide_light;
   o.guide_distribution = parse_guide_model(a.guide_distribution);
+  if (a.guide_stop != "auto" && a.guide_stop != "never")
+    throw std::invalid_argument("--guide-stop: expected auto or never, got '" + a.guide_stop + "'");
+  o.guide_stop = a.guide_stop == "auto";
   o.adaptive = a.adaptive;
   if (a.target_error > 0 && a.spp == 0) o.spp = 1 << 16;  // adaptive: the limit is spp, when given
   o.maxdepth = a.maxdepth >= 0 ? a.maxdepth : ss.maxdepth;

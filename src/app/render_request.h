@@ -35,6 +35,7 @@ struct RenderRequest {
   std::string merging = "auto";         // vcm: RenderOptions::merging_pilot, "auto" or "on"
   bool spectral = false, guide = false, guide_light = false, adaptive = false;
   std::string guide_distribution = "quadtree";
+  std::string guide_stop = "auto";  // RenderOptions::guide_stop: "auto" or "never"
   std::vector<int> resolution;  // empty, or W H
   // The part of the image to render (pbrt-v4's flags of these names):
   // empty, or x0 x1 y0 y1 in [0, 1] / in pixels, or a pixel's X Y.

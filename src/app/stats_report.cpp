@@ -73,7 +73,11 @@ nlohmann::json stats_json(const RunInfo& run, const RenderStats& s) {
                     {"bytes", s.guiding_bytes},
                     {"records", s.guiding_records},
                     {"records_aimed", s.guiding_records_aimed},
-                    {"light_records", s.guiding_light_records}};
+                    {"light_records", s.guiding_light_records},
+                    {"stopped_after", s.guiding_stopped_after},
+                    {"share", s.guiding_share},
+                    {"light_stopped_after", s.guiding_light_stopped_after},
+                    {"light_share", s.guiding_light_share}};
   j["light_paths"] = s.light_paths;
   j["seconds"] = {{"load", run.load_seconds}, {"bvh_build", run.scene_info.bvh_build_seconds}, {"render", s.seconds}};
   j["load_phases"] = nlohmann::json::array();

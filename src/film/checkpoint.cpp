@@ -21,10 +21,11 @@ constexpr char kMagic[8] = {'L', 'N', 'T', 'N', 'C', 'K', 'P', 'T'};
 // 2: fixed-point sums, unit sets; 3: and what the integrator learnt; 4:
 // the same, a guiding field with distributions for media too; 5: and which
 // subpaths it guides, with the light subpaths' importance field; 6: its
-// sums in fixed point, and what guided distances learnt. A render that
-// learns nothing writes 2, which every version since reads; the guiding
-// fields of 3 to 5 are refused (their sums were doubles).
-constexpr uint32_t kVersion = 2, kLearntVersion = 6, kFirstGuidedVersion = 3;
+// sums in fixed point, and what guided distances learnt; 7: and whether
+// each field's guide pays (SDTree::judge). A render that learns nothing
+// writes 2, which every version since reads; the guiding fields of 3 to 6
+// are refused (they lack what 7 adds, and 3 to 5 summed in doubles).
+constexpr uint32_t kVersion = 2, kLearntVersion = 7, kFirstGuidedVersion = 3;
 
 class HashingWriter final : public StateWriter {
  public:
@@ -129,8 +130,8 @@ std::string read_header(HashingReader& r, const std::string& path, uint32_t* ver
   if (v >= kFirstGuidedVersion && v < kLearntVersion)
     throw InputError({path, 0, 0}, "file format version " + std::to_string(v) +
                                        " is a guided render's from an earlier Lantern version, whose guiding field "
-                                       "this version cannot continue (its field's sums are now fixed-point, and it "
-                                       "learns distances in media too); resume it with the version that wrote it");
+                                       "this version cannot continue (its field now also judges whether its guide "
+                                       "pays); resume it with the version that wrote it");
   if (v != kVersion && v != kLearntVersion)
     throw InputError({path, 0, 0}, "file format version " + std::to_string(v) + " is not " + std::to_string(kVersion) +
                                        " or " + std::to_string(kLearntVersion) + " (made by another Lantern version)");

@@ -10,8 +10,8 @@
 //   budget), u32 waves per pass, f64 elapsed_seconds
 //   u32 n, then n (u64 first, u64 end): the units done, sorted and disjoint
 //   the film state (Film::write_state)
-//   version 6 only: u64 length, bytes: what the integrator learnt (a
-//   guiding field, GuidingField::save), opaque here (versions 3 to 5 held
+//   version 7 only: u64 length, bytes: what the integrator learnt (a
+//   guiding field, GuidingField::save), opaque here (versions 3 to 6 held
 //   guiding fields of earlier layouts: refused)
 //   u64 FNV-1a hash of every byte before it
 // Written to a temporary name and renamed, so a crash mid-write leaves the

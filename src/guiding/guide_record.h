@@ -25,6 +25,10 @@ struct GuideRecord {
   // For a mixture of lobes: the inverse distance, from the leaf's pivot,
   // of where the path went on from (0: nowhere known; guiding/vmf_mixture.h).
   float inv_distance = 0.f;
+  // For whether guiding pays at all (SDTree::judge): the square of what
+  // the path brought the image after this vertex, (beta L)^2 (beta the
+  // throughput after it), and the density its direction was drawn with.
+  float image = 0.f, drawn_pdf = 0.f;
 };
 
 // The bin of a record of guided distances: the radiance a medium vertex

@@ -18,7 +18,7 @@ SDTree::SDTree(Vec3 lo, Vec3 hi, GuidingSettings settings) : settings_(settings)
 
 void SDTree::index_guide_shares() {
   guide_share_.assign(leaves_.size() * kBins, -1.f);
-  if (!trained_) return;
+  if (!trained_ || stopped_) return;
   for (size_t i = 0; i < leaves_.size(); ++i)
     for (uint32_t b = 0; b < kBins; ++b)
       if (leaves_[i].sampled[b].total() > 0.0) guide_share_[i * kBins + b] = leaves_[i].alpha[b];
@@ -42,7 +42,22 @@ void SDTree::choose_alphas(Leaf& l) {
   }
 }
 
+// Whether the guide paid for itself in iteration `iteration` (sd_tree.h):
+// where the records' (beta L)^2 as drawn is more than kPaysBelow of the
+// BSDF's own, it stops for the rest of the render.
+void SDTree::judge(uint32_t iteration) {
+  const double drawn = image_drawn_.value(), bsdf = image_bsdf_.value();
+  if (image_guided_ >= kJudgeMinRecords && bsdf > 0.0) {
+    image_share_ = drawn / bsdf;
+    if (settings_.stop_where_unpaid && !stopped_ && iteration >= kFirstJudged && image_share_ > kPaysBelow)
+      stopped_ = true, stopped_after_ = iteration;
+  }
+  image_drawn_ = FixedSum(), image_bsdf_ = FixedSum();
+  image_guided_ = 0;
+}
+
 void SDTree::update(uint32_t iteration) {
+  judge(iteration);
   for (Leaf& l : leaves_) {
     for (GuideDistribution& d : l.learning) d.sum_up();
     choose_alphas(l);
@@ -93,6 +108,11 @@ void SDTree::write_state(StateWriter& out) const {
     out.put(l.moment);
     out.put(l.moment_records);
   }
+  out.put(image_drawn_), out.put(image_bsdf_);
+  out.put(image_guided_);
+  out.put(uint8_t(stopped_));
+  out.put(stopped_after_);
+  out.put(image_share_);
 }
 
 void SDTree::read_state(StateReader& in) {
@@ -127,9 +147,19 @@ void SDTree::read_state(StateReader& in) {
                       });
     if (!fine) throw std::runtime_error("a guiding leaf with " + std::to_string(l.records) + " records, or a size or share that cannot be");
   }
+  const FixedSum drawn = in.get<FixedSum>(), bsdf = in.get<FixedSum>();
+  const uint64_t guided = in.get<uint64_t>();
+  const bool stopped = in.get<uint8_t>() != 0;
+  const uint32_t stopped_after = in.get<uint32_t>();
+  const double share = in.get<double>();
+  if (!drawn.sane_total() || !bsdf.sane_total() || stopped_after > 62 || !(share == -1.0 || share >= 0.0))
+    throw std::runtime_error("a guiding tree's verdict on whether it pays cannot be");
   nodes_ = std::move(nodes);
   leaves_ = std::move(leaves);
   trained_ = trained;
+  image_drawn_ = drawn, image_bsdf_ = bsdf;
+  image_guided_ = guided;
+  stopped_ = stopped, stopped_after_ = stopped_after, image_share_ = share;
   index_guide_shares();
 }
 

@@ -32,6 +32,21 @@
 // candidate with the least becomes α. Where the guide does not pay, α goes
 // up to 0.95 and the path tracer is nearly the unguided one; where it
 // does, down to 0.15.
+//
+// α per leaf cannot take away the look-ups' and records' cost, so the
+// tree also judges, render-wide, whether its guide pays at all (judge):
+// each record carries (beta L)^2, the square of what its path brought the
+// image after the vertex, and the iteration sums it as drawn and as the
+// BSDF alone would have drawn it (reweighted by p_mix / p_bsdf, as the
+// candidates above). From the fourth iteration on, where the guide left
+// more than 0.7 of the BSDF's sum, it stops: no leaf is guided again.
+// Guides that pay at equal time left 0.04 to 0.41 (lobes on the spotlit
+// room and the tiny-light box) and 0.29 to 0.55 (light subpaths on the
+// caustics and the pool); those that do not, 0.78 to 1 (the door ajar, the
+// lantern, the Cornell box, the lamp street; light subpaths 0.87 to 1).
+// The estimate favours the guide (the Cornell box: 0.87, where its
+// images' error per sample is 1.2 times the unguided one's) and a guided
+// sample costs 1.1 to 1.7 times an unguided one (docs/guiding-stop.md).
 #pragma once
 
 #include <array>
@@ -51,6 +66,7 @@ struct GuidingSettings {
   double spatial_threshold = 12000.0;   // c
   double directional_threshold = 0.01;  // ρ
   GuideDistributionKind distribution = GuideDistributionKind::kQuadtree;
+  bool stop_where_unpaid = true;  // judge (false: guide to the end, --guide-stop never)
 };
 
 class SDTree {
@@ -68,6 +84,14 @@ class SDTree {
   static constexpr std::array<float, 6> kAlphas = {0.15f, 0.3f, 0.5f, 0.7f, 0.85f, 0.95f};
   static constexpr float kFirstAlpha = 0.5f;         // until the records say otherwise (the paper's)
   static constexpr uint32_t kAlphaMinRecords = 256;  // guided records a choice needs
+  // judge: the first iteration judged (0 first; the fourth samples a field
+  // learnt from passes 3 to 6: on the tiny-light box, the third iteration's
+  // records left 0.70 of the BSDF's sum, the fourth's 0.37, the fifth's
+  // 0.04), the share of the BSDF's sum the guide must stay below, and the
+  // guided records, with light, a verdict needs.
+  static constexpr uint32_t kFirstJudged = 3;
+  static constexpr double kPaysBelow = 0.7;
+  static constexpr uint64_t kJudgeMinRecords = 1024;
   // A tree no larger than this many leaves, of a few KB each
   // (split_spatial_leaf).
   static constexpr size_t kMostLeaves = size_t(1) << 18;
@@ -97,6 +121,12 @@ class SDTree {
     Leaf& l = leaves_[r.leaf];
     l.learning[r.bin].add(r.cell, r.energy, r.inv_distance);
     ++l.records;
+    if (r.image > 0.f) {  // (a direction the BSDF cannot draw counts as the largest term: add_saturating)
+      const bool guided = r.guide_pdf >= 0.f;
+      image_drawn_.add_saturating(r.image);
+      image_bsdf_.add_saturating(guided ? float(double(r.image) * r.drawn_pdf / r.bsdf_pdf) : r.image);
+      image_guided_ += guided;
+    }
     if (r.guide_pdf < 0.f) return;
     ++l.moment_records[r.bin];
     for (size_t c = 0; c < kAlphas.size(); ++c) {
@@ -126,10 +156,18 @@ class SDTree {
         for (FixedSum& x : m) f(x);
       for (uint32_t& n : l.moment_records) count(n);
     }
+    f(image_drawn_), f(image_bsdf_);
+    count(image_guided_);
   }
 
   // Whether any leaf has a distribution to sample.
   bool trained() const { return trained_; }
+  // Whether judge stopped the guide, after which iteration (0 first), and
+  // the share of the BSDF's sum the guide left in the last iteration
+  // judged or measured (-1: none yet).
+  bool stopped() const { return stopped_; }
+  uint32_t stopped_after() const { return stopped_after_; }
+  double image_share() const { return image_share_; }
   // The BSDF's share α where a leaf's bin has a distribution to sample,
   // else -1: what a vertex looks up, kept apart from the leaves (whose
   // trees' sums it would read) and together, 7 floats a leaf.
@@ -146,6 +184,7 @@ class SDTree {
 
  private:
   static void choose_alphas(Leaf& l);
+  void judge(uint32_t iteration);
   void index_guide_shares();
 
   SpatialCube cube_;  // the cube the tree divides
@@ -154,6 +193,13 @@ class SDTree {
   std::vector<Leaf> leaves_;
   std::vector<float> guide_share_;  // kBins per leaf (guide_share)
   bool trained_ = false;
+  // judge's: this iteration's sums of the records' (beta L)^2, as drawn and
+  // as the BSDF alone would have, and its guided records.
+  FixedSum image_drawn_, image_bsdf_;
+  uint64_t image_guided_ = 0;
+  bool stopped_ = false;
+  uint32_t stopped_after_ = 0;
+  double image_share_ = -1.0;
 };
 
 }  // namespace lantern

@@ -46,8 +46,9 @@ class GuidingField {
   // The importance field the light subpaths learn and sample (where
   // what leaves a surface reaches the image: docs/guiding.md), if they are
   // guided.
-  bool guides_light_subpaths() const { return light_subpaths_; }
-  bool guides_eye_subpaths() const { return eye_subpaths_; }
+  // (Until the field's guide stops where it does not pay: SDTree::judge.)
+  bool guides_light_subpaths() const { return light_subpaths_ && !importance_.stopped(); }
+  bool guides_eye_subpaths() const { return eye_subpaths_ && !tree_.stopped(); }
   const SDTree& importance_tree() const { return importance_; }
   // What guides where the path tracer's rays scatter in homogeneous media
   // (integrator/guided_distance.h), once it has learnt; else null.
@@ -117,6 +118,9 @@ class GuidingField {
     if (eye_subpaths_) tree_.update(iteration_), scattered_.update(iteration_);
     if (light_subpaths_) importance_.update(iteration_);
     if (iteration_ < 62) ++iteration_;
+    // Nothing left to learn once every guide stopped and no distances are
+    // guided: no more records, nor iterations' ends.
+    if (!guides_eye_subpaths() && !guides_light_subpaths() && !scattered_.trained()) done_ = true;
   }
 
   // --stats: the fields in use (a tree the render does not sample, the
@@ -125,6 +129,14 @@ class GuidingField {
     stats.guiding_iterations = iteration_;
     stats.guiding_records = records_, stats.guiding_records_aimed = records_aimed_;
     stats.guiding_light_records = light_records_;
+    if (eye_subpaths_) {
+      stats.guiding_stopped_after = tree_.stopped() ? int32_t(tree_.stopped_after()) : -1;
+      stats.guiding_share = tree_.image_share();
+    }
+    if (light_subpaths_) {
+      stats.guiding_light_stopped_after = importance_.stopped() ? int32_t(importance_.stopped_after()) : -1;
+      stats.guiding_light_share = importance_.image_share();
+    }
     auto count = [&](const SDTree& tree) {
       for (const SDTree::Leaf& l : tree.leaves()) {
         for (uint32_t b = 0; b < SDTree::kBins; ++b)

@@ -69,7 +69,7 @@ void PathTracer::medium_scatter_stage(PathWave& w) const {
     path_next_event(sc, light_sampler_, w, slot, MediumVertex{phase, p, wo, m, w.ends.sigma_t[i]},
                     LazyNumber(s, dim + dims::kEyeLightSelect), s.get2d(dim + dims::kEyeLightPosition),
                     volume_number(w, slot), settings_.maxdepth);
-    const GuidingField::Site site = guiding_ ? guiding_->medium_site(p) : GuidingField::Site{};
+    const GuidingField::Site site = guides() ? guiding_->medium_site(p) : GuidingField::Site{};
     const float uc = site.guide ? s.get1d(dim + dims::kEyeBsdfComponent) : 0.f;
     const auto drawn = sample_phase_scatter(phase, wo, site.guide, uc, s.get2d(dim + dims::kEyeBsdfDirection));
     const LazyNumber u_rr(s, dim + dims::kEyeRoulette);
@@ -89,7 +89,7 @@ void PathTracer::medium_scatter_stage(PathWave& w) const {
       ++w.stats.eye_ends[size_t(PathEnd::Absorbed)];
       continue;
     }
-    if (guiding_ && guiding_->learning())
+    if (guides() && guiding_->learning())
       w.guide.push(slot, site.leaf, p, site.normal_bin, wi, drawn->pdf, drawn->bsdf_pdf, drawn->bsdf_pdf,
                    drawn->guide_pdf, w.beta[slot]);
     w.hits.alive[i] = 1;

@@ -239,7 +239,7 @@ void PathTracer::shade_stage(PathWave& w) const {
     const PathSampler& s_light = first_of_split ? w.camera_sampler[slot] : s;
     const LazyNumber u_light(s_light, dim + dims::kEyeLightSelect);
     // Guided where the BSDF is not all delta.
-    const bool guided = guiding_ && !bsdf.is_specular();
+    const bool guided = guides() && !bsdf.is_specular();
     const GuidingField::Site site = guided ? guiding_->site(v.p, v.ns, v.wo_world) : GuidingField::Site{};
     const GuideAt& guide = site.guide;
     if (!bsdf.is_specular() && !(first_of_split && w.leader[slot] != slot))

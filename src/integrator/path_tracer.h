@@ -142,6 +142,9 @@ class PathTracer {
     const uint32_t s = settings_.probe_stride;
     return (uint32_t(settings_.height) + s - 1 - s / 2) / s;
   }
+  // Whether directions are guided: a field, whose guide has not stopped
+  // where it does not pay (guided distances go on: distance_field()).
+  bool guides() const { return guiding_ && guiding_->guides_eye_subpaths(); }
   const GuidingField* guiding_ = nullptr;
 };
 

@@ -55,6 +55,7 @@ std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& regi
   // (a field of lobes is not a field of quadtrees; the quadtree's name is
   // left out, as checkpoints before the choice wrote it)
   if (o.any_guiding() && o.guide_distribution == GuideModel::Vmm) line("guide-distribution", "vmm");
+  if (o.any_guiding() && !o.guide_stop) line("guide-stop", "never");
   if (o.gbuffer) line("gbuffer", "1");  // the film sums the samples' squares too
   if (o.spectral_buckets > 0)  // uniform wavelengths, and the film keeps the buckets
     line("spectral-buckets", std::to_string(o.spectral_buckets) + " over " + std::to_string(o.spectral_lambda_min) +
@@ -190,6 +191,7 @@ void Checkpointer::write_to(const std::string& path, const Film& film) {
 GuidingField new_guiding_field(Vec3 lo, Vec3 hi, const RenderOptions& o) {
   GuidingSettings settings;
   if (o.guide_distribution == GuideModel::Vmm) settings.distribution = GuideDistributionKind::kMixture;
+  settings.stop_where_unpaid = o.guide_stop;
   return GuidingField(lo, hi, o.time_limit_seconds > 0 ? 0 : uint64_t(o.spp), o.guiding, o.guide_light_subpaths,
                       settings);
 }

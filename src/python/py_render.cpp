@@ -112,7 +112,12 @@ void read_options(const py::kwargs& kw, RenderRequest& r, Outputs& out) {
     else if (k == "guide_light") r.guide_light = cast_option<bool>("guide_light", value);
     else if (k == "guide_distribution")
       r.guide_distribution = cast_option<std::string>("guide_distribution", value);
-    else if (k == "adaptive") r.adaptive = cast_option<bool>("adaptive", value);
+    else if (k == "guide_stop") {
+      r.guide_stop = cast_option<std::string>("guide_stop", value);
+      if (r.guide_stop != "auto" && r.guide_stop != "never")
+        throw py::value_error("guide_stop: expected \"auto\" or \"never\"");
+    } else if (k == "adaptive")
+      r.adaptive = cast_option<bool>("adaptive", value);
     else if (k == "resolution") r.resolution = cast_option<std::vector<int>>("resolution", value);
     else if (k == "cropwindow") r.crop_window = cast_option<std::vector<float>>("cropwindow", value);
     else if (k == "pixelbounds") r.pixel_bounds = cast_option<std::vector<int>>("pixelbounds", value);
@@ -129,9 +134,9 @@ void read_options(const py::kwargs& kw, RenderRequest& r, Outputs& out) {
           "unknown render option '" + k +
           "'; the options are the command line's: integrator, spp, time, target_error, maxdepth, "
           "seed, sampler, light_sampler, light_choice, resolution, cropwindow, pixelbounds, pixel, spectral, guide, "
-          "guide_light, guide_distribution, adaptive, threads, wave_size, rays, mis, vcm_radius, vcm_alpha, roulette, "
-          "split, light_subpaths, merging, output, stats, collect_stats, checkpoint, checkpoint_file, resume, "
-          "keep_checkpoint");
+          "guide_light, guide_distribution, guide_stop, adaptive, threads, wave_size, rays, mis, vcm_radius, "
+          "vcm_alpha, roulette, split, light_subpaths, merging, output, stats, collect_stats, checkpoint, "
+          "checkpoint_file, resume, keep_checkpoint");
   }
   if (r.time > 0 && r.spp > 0)
     throw py::value_error("spp and time: give one budget (time renders passes until the time is up), as on the "
@@ -379,7 +384,7 @@ void bind_render(py::module_& m) {
       "Render a scene; keyword arguments are the command line's options (integrator, spp, time, target_error, "
       "maxdepth, seed, sampler, light_sampler, light_choice, resolution, cropwindow, pixelbounds, pixel, spectral, "
       "guide, "
-      "guide_light, guide_distribution, adaptive, threads, "
+      "guide_light, guide_distribution, guide_stop, adaptive, threads, "
       "wave_size, rays, mis, "
       "vcm_radius, vcm_alpha, roulette, split, light_subpaths, checkpoint, checkpoint_file, resume, keep_checkpoint) "
       "and the files to write (output, stats). "
