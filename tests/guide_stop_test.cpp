@@ -6,13 +6,16 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <limits>
 #include <string>
+#include <vector>
 
 #include "guided_rooms.h"
 #include "guiding/sd_tree.h"
 #include "integrator/guiding_field.h"
 #include "lantern/render.h"
 #include "lantern/scene.h"
+#include "math/state_io.h"
 #include "sanitizer.h"
 #include "stop_and_resume.h"
 
@@ -67,6 +70,19 @@ TEST(GuideStop, StopsFromTheFourthIterationWhereTheGuideLeavesMostOfTheBsdfsMome
   EXPECT_NEAR(kept.image_share(), 1.0 / 1.2, 1e-6);
   EXPECT_FALSE(few.stopped()) << "too few guided records for a verdict";
   EXPECT_EQ(few.image_share(), -1.0);
+  // A guided direction the BSDF cannot draw has no weight to the BSDF's
+  // density, nor does a square a float cannot hold: both are left out
+  // (counted, the first would have made the BSDF's sum the largest term
+  // and the guide look as if it paid).
+  SDTree odd(lo, hi);
+  for (uint32_t k = 0; k <= SDTree::kFirstJudged; ++k) {
+    feed_guided_records(odd, 1.2f, 2000);
+    odd.add({0, 0, 1.f, 1.f, 0.f, 5.f, 0, 0.f, 1.f, 5.f});
+    odd.add({0, 0, 1.f, 1.f, 1.f, 5.f, 0, 0.f, std::numeric_limits<float>::infinity(), 5.f});
+    odd.update(k);
+  }
+  EXPECT_TRUE(odd.stopped());
+  EXPECT_NEAR(odd.image_share(), 1.0 / 1.2, 1e-6);
   // A stopped tree offers no leaf its guide, though it learnt one.
   EXPECT_GE(paying.guide_share(0, 0), 0.f);
   EXPECT_TRUE(unpaid.trained());
@@ -80,12 +96,54 @@ TEST(GuideStop, StopsFromTheFourthIterationWhereTheGuideLeavesMostOfTheBsdfsMome
   EXPECT_NEAR(diluted.image_share(), 8000.0 / 26000.0, 1e-6);
 }
 
+// A field's bytes carry the verdict: a field that stopped comes back
+// stopped, with nothing left to learn; bytes whose verdict cannot be (a
+// stop before the fourth iteration, a share that is not a number) are
+// refused.
+TEST(GuideStop, TheVerdictComesBackFromTheFieldsBytes) {
+  const Vec3 lo(0.f), hi(1.f);
+  GuidingField field(lo, hi, 64);
+  for (uint32_t k = 0; k <= SDTree::kFirstJudged; ++k) {
+    const uint32_t cell = field.tree().leaf(0).learning[0].cell_of(Vec3(0.f, 0.f, 1.f));
+    field.deposit(std::vector<GuideRecord>(2000, GuideRecord{0, cell, 1.f, 1.f, 1.f, 1.2f, 0, 0.f, 1.f, 1.2f}));
+    field.end_iteration();
+  }
+  ASSERT_TRUE(field.tree().stopped());
+  EXPECT_FALSE(field.learning()) << "nothing left to learn";
+  const std::string bytes = field.save();
+  GuidingField restored(lo, hi, 64);
+  restored.restore(bytes);
+  EXPECT_EQ(restored.save(), bytes);
+  EXPECT_TRUE(restored.tree().stopped());
+  EXPECT_EQ(restored.tree().stopped_after(), SDTree::kFirstJudged);
+  EXPECT_FALSE(restored.learning());
+  // The verdict's bytes end the tree's: u8 stopped, u32 the iteration
+  // after which, f64 the share; then u8 and u8 for the subpaths guided
+  // and the scattered field's bytes.
+  StringWriter scattered;
+  field.scatter_field().write_state(scattered);
+  const size_t share_at = bytes.size() - scattered.bytes.size() - 2 - 8, after_at = share_at - 4;
+  auto refused = [&](size_t at, const void* value, size_t n) {
+    std::string b = bytes;
+    std::memcpy(b.data() + at, value, n);
+    GuidingField f(lo, hi, 64);
+    EXPECT_THROW(f.restore(b), std::runtime_error);
+  };
+  const uint32_t early = SDTree::kFirstJudged - 1;
+  refused(after_at, &early, sizeof early);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  refused(share_at, &nan, sizeof nan);
+  double share = 0.;
+  std::memcpy(&share, bytes.data() + share_at, sizeof share);
+  EXPECT_NEAR(share, restored.tree().image_share(), 0.0) << "(the offsets above)";
+}
+
 // In renders: on the tiny-light box, lobes guide the path tracer to the
 // light through its reflections, pay, and go on to the end (their records
 // leave 0.14 of the BSDF's sum here); on the Cornell box, lit by
-// next-event estimation, the quadtree's guide does not pay (0.9 to 1), nor
-// do bdpt's guided light subpaths, and both stop after the fourth
-// iteration, recording no more. (Fixed seeds: the verdicts are
+// next-event estimation, the quadtree's guide does not pay (1.00 at this
+// size), nor do bdpt's guided light subpaths (0.91), and both stop after
+// the fourth iteration, recording no more. (Fixed seeds: the verdicts are
 // deterministic.)
 TEST(GuideStop, TheGuideGoesOnWhereItPaysAndStopsWhereItDoesNot) {
   if (LANTERN_ASAN) GTEST_SKIP() << "the verdicts of whole renders: the Release suite runs it";

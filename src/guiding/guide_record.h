@@ -18,8 +18,9 @@ struct GuideRecord {
   uint32_t cell;
   float energy;
   // For the choice of the BSDF's share α: the squared estimate times the
-  // mixture density it was drawn with, (f |cos| L)^2 / p_mix, and the two
-  // densities of its direction (guide_pdf -1: drawn without a guide).
+  // mixture density it was drawn with, (f |cos| L)^2 / p_mix (Inf where too
+  // large for a float: left out), and the two densities of its direction
+  // (guide_pdf -1: drawn without a guide).
   float second, bsdf_pdf, guide_pdf;
   uint8_t bin;  // that normal's bin (SDTree::normal_bin)
   // For a mixture of lobes: the inverse distance, from the leaf's pivot,
@@ -27,7 +28,8 @@ struct GuideRecord {
   float inv_distance = 0.f;
   // For whether guiding pays at all (SDTree::judge): the square of what
   // the path brought the image after this vertex, (beta L)^2 (beta the
-  // throughput after it), and the density its direction was drawn with.
+  // throughput after it; Inf where too large for a float: left out), and
+  // the density its direction was drawn with.
   float image = 0.f, drawn_pdf = 0.f;
 };
 

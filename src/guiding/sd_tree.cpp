@@ -47,9 +47,9 @@ void SDTree::choose_alphas(Leaf& l) {
 // BSDF's own, it stops for the rest of the render.
 void SDTree::judge(uint32_t iteration) {
   const double drawn = image_drawn_.value(), bsdf = image_bsdf_.value();
-  if (image_guided_ >= kJudgeMinRecords && bsdf > 0.0) {
+  if (iteration >= kFirstJudged && image_guided_ >= kJudgeMinRecords && bsdf > 0.0) {
     image_share_ = drawn / bsdf;
-    if (settings_.stop_where_unpaid && !stopped_ && iteration >= kFirstJudged && image_share_ > kPaysBelow)
+    if (settings_.stop_where_unpaid && !stopped_ && image_share_ > kPaysBelow)
       stopped_ = true, stopped_after_ = iteration;
   }
   image_drawn_ = FixedSum(), image_bsdf_ = FixedSum();
@@ -152,8 +152,11 @@ void SDTree::read_state(StateReader& in) {
   const bool stopped = in.get<uint8_t>() != 0;
   const uint32_t stopped_after = in.get<uint32_t>();
   const double share = in.get<double>();
-  if (!drawn.sane_total() || !bsdf.sane_total() || stopped_after > 62 || !(share == -1.0 || share >= 0.0))
-    throw std::runtime_error("a guiding tree's verdict on whether it pays cannot be");
+  const bool verdict_fine =
+      drawn.sane_total() && bsdf.sane_total() && (share == -1.0 || (share >= 0.0 && std::isfinite(share))) &&
+      (stopped ? stopped_after >= kFirstJudged && stopped_after <= 62 && settings_.stop_where_unpaid
+               : stopped_after == 0);
+  if (!verdict_fine) throw std::runtime_error("a guiding tree's verdict on whether it pays cannot be");
   nodes_ = std::move(nodes);
   leaves_ = std::move(leaves);
   trained_ = trained;

@@ -121,9 +121,8 @@ struct GuideVertices {
       const uint32_t cell = learning.cell_of(dir);
       const float estimate = fcos[v] * Li, second = estimate * estimate / pdf[v];
       const float image = sqr(average(beta[v]) * Li);
-      // (a second moment too large for a float says nothing of α: left out)
-      out.push_back({into, cell, energy, second, bsdf_pdf[v], std::isfinite(second) ? guide_pdf[v] : -1.f, bin[v],
-                     inv_distance, std::isfinite(image) ? image : 0.f, pdf[v]});
+      // (a square too large for a float says nothing: SDTree::add leaves it out)
+      out.push_back({into, cell, energy, second, bsdf_pdf[v], guide_pdf[v], bin[v], inv_distance, image, pdf[v]});
     }
     for (size_t v = 0; field && v < scattered.slot.size(); ++v) {
       const float S = per_throughput(path_L[scattered.slot[v]] - scattered.L[v], scattered.beta[v]);

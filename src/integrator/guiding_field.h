@@ -115,8 +115,10 @@ class GuidingField {
     light_records_ += light_records.size();
   }
   void end_iteration() {
-    if (eye_subpaths_) tree_.update(iteration_), scattered_.update(iteration_);
-    if (light_subpaths_) importance_.update(iteration_);
+    // (a tree whose guide stopped has no records to learn from: left as it was)
+    if (eye_subpaths_ && !tree_.stopped()) tree_.update(iteration_);
+    if (eye_subpaths_) scattered_.update(iteration_);
+    if (light_subpaths_ && !importance_.stopped()) importance_.update(iteration_);
     if (iteration_ < 62) ++iteration_;
     // Nothing left to learn once every guide stopped and no distances are
     // guided: no more records, nor iterations' ends.
