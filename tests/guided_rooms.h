@@ -75,12 +75,15 @@ AttributeEnd)",
 }
 
 // (Guided to the end, --guide-stop never: these tests hold the guided
-// estimator itself; tests/guide_stop_test.cpp holds where guiding stops.)
+// estimator itself; tests/guide_stop_test.cpp holds where guiding stops.
+// With the quadtree, which they were written for; tests/guiding_lobes_test.cpp
+// holds the lobes.)
 inline RenderOptions guided_options(bool guiding) {
   RenderOptions o;
   o.integrator = Integrator::Path;
   o.guiding = guiding;
   o.guide_stop = false;
+  o.guide_distribution = GuideModel::Quadtree;
   o.spp = 64;
   o.maxdepth = 5;
   return o;

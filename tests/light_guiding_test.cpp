@@ -66,7 +66,8 @@ RenderOptions options(bool guide_light, bool guide_eye = false) {
   o.integrator = Integrator::Bdpt;
   o.guide_light_subpaths = guide_light;
   o.guiding = guide_eye;
-  o.guide_stop = false;  // (these tests hold the guided estimator: guided to the end)
+  o.guide_stop = false;                         // (these tests hold the guided estimator: guided to the end,
+  o.guide_distribution = GuideModel::Quadtree;  // with the quadtree they were written for)
   o.spp = 64;
   o.maxdepth = 5;
   return o;

@@ -56,8 +56,9 @@ struct RenderOptions {
   bool guide_light_subpaths = false;
   // What each guiding leaf learns directions with: the SD-tree's quadtree
   // (Müller et al. 2017) or a mixture of von Mises-Fisher lobes fitted by
-  // EM (docs/guiding-lobes.md).
-  GuideModel guide_distribution = GuideModel::Quadtree;
+  // EM (docs/guiding-lobes.md). The lobes: where guiding pays they pay
+  // more, and where it does not, guide_stop ends both alike.
+  GuideModel guide_distribution = GuideModel::Vmm;
   // Each guided field stops (no look-ups, no records) at the end of a
   // learning iteration whose records say it does not pay
   // (guiding/sd_tree.h, judge); false: guided to the end.

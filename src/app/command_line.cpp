@@ -136,8 +136,8 @@ void add_render_request_options(CLI::App& c, RenderRequest& r) {
                    "bdpt, vcm: light subpaths learn where what leaves a surface reaches the image and sample it, the "
                    "emission directions of area lights too (with --guide, both subpaths are guided; docs/guiding.md)");
   c.add_option("--guide-distribution", r.guide_distribution,
-               "What guided paths learn directions with: quadtree (the SD-tree's, the default) or vmm (a mixture of "
-               "von Mises-Fisher lobes; docs/guiding.md)")
+               "What guided paths learn directions with: vmm (a mixture of von Mises-Fisher lobes, the default; "
+               "docs/guiding-lobes.md) or quadtree (the SD-tree's; docs/guiding.md)")
       ->check(CLI::IsMember({name(GuideModel::Quadtree), name(GuideModel::Vmm)}));
   c.add_option("--guide-stop", r.guide_stop,
                "auto (the default): each guided field stops, for the rest of the render, at the end of a learning "

@@ -100,7 +100,7 @@ nlohmann::json render_settings_json(const RenderOptions& o) {
     j["light_subpaths"] = o.light_subpath_rate == kLightSubpathsAuto ? nlohmann::json("auto") : nlohmann::json(o.light_subpath_rate);
   if (o.guiding) j["guiding"] = true;
   if (o.guide_light_subpaths) j["guide_light"] = true;
-  if (o.any_guiding() && o.guide_distribution == GuideModel::Vmm) j["guide_distribution"] = "vmm";
+  if (o.any_guiding()) j["guide_distribution"] = name(o.guide_distribution);
   if (o.any_guiding() && !o.guide_stop) j["guide_stop"] = "never";
   return j;
 }
@@ -117,7 +117,7 @@ void add_render_settings(ImageMetadata& md, const RenderOptions& o) {
   if (uses_light_subpath_rate(o.integrator)) md.emplace_back("lantern:light_subpaths", light_subpaths_text(o.light_subpath_rate));
   if (o.guiding) md.emplace_back("lantern:guiding", "on");
   if (o.guide_light_subpaths) md.emplace_back("lantern:guide-light", "on");
-  if (o.any_guiding() && o.guide_distribution == GuideModel::Vmm) md.emplace_back("lantern:guide-distribution", "vmm");
+  if (o.any_guiding()) md.emplace_back("lantern:guide-distribution", name(o.guide_distribution));
   if (o.any_guiding() && !o.guide_stop) md.emplace_back("lantern:guide-stop", "never");
 }
 

@@ -34,7 +34,7 @@ struct RenderRequest {
   std::string light_subpaths = "auto";  // bdpt: RenderOptions::light_subpath_rate, "auto" or 0.01 to 1
   std::string merging = "auto";         // vcm: RenderOptions::merging_pilot, "auto" or "on"
   bool spectral = false, guide = false, guide_light = false, adaptive = false;
-  std::string guide_distribution = "quadtree";
+  std::string guide_distribution = "vmm";
   std::string guide_stop = "auto";  // RenderOptions::guide_stop: "auto" or "never"
   std::vector<int> resolution;  // empty, or W H
   // The part of the image to render (pbrt-v4's flags of these names):

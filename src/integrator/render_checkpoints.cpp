@@ -52,9 +52,7 @@ std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& regi
   else if (o.adaptive) line("adaptive", "budget");
   if (o.guiding) line("guiding", "1");  // one sample per pass, guided directions
   if (o.guide_light_subpaths) line("guide-light", "1");
-  // (a field of lobes is not a field of quadtrees; the quadtree's name is
-  // left out, as checkpoints before the choice wrote it)
-  if (o.any_guiding() && o.guide_distribution == GuideModel::Vmm) line("guide-distribution", "vmm");
+  if (o.any_guiding()) line("guide-distribution", name(o.guide_distribution));  // (lobes are not quadtrees)
   if (o.any_guiding() && !o.guide_stop) line("guide-stop", "never");
   if (o.gbuffer) line("gbuffer", "1");  // the film sums the samples' squares too
   if (o.spectral_buckets > 0)  // uniform wavelengths, and the film keeps the buckets

@@ -32,9 +32,9 @@ def test_render_equals_the_command_line_bit_for_bit(cornell_box, lantern_binary,
 
 
 def test_guide_distribution_means_the_flag_of_that_name(cornell_box, lantern_binary, tmp_path):
-    # guide_distribution="vmm" renders what --guide-distribution vmm renders,
-    # bit for bit, and another image than the quadtree's; a word that is
-    # neither is refused.
+    # guide_distribution="vmm" (the default) renders what
+    # --guide-distribution vmm renders, bit for bit, and another image than
+    # the quadtree's; a word that is neither is refused.
     options = dict(integrator="path", spp=8, seed=3, resolution=(32, 32), guide=True)
     lobes = lantern.render(cornell_box, guide_distribution="vmm", **options)
     exr = tmp_path / "lobes.exr"
@@ -42,9 +42,30 @@ def test_guide_distribution_means_the_flag_of_that_name(cornell_box, lantern_bin
                     "--spp", "8", "--seed", "3", "--resolution", "32", "32", "--guide", "--guide-distribution",
                     "vmm"], check=True)
     assert np.array_equal(lobes.image, lantern.read_image(str(exr)))
-    assert not np.array_equal(lobes.image, lantern.render(cornell_box, **options).image)
+    assert np.array_equal(lobes.image, lantern.render(cornell_box, **options).image)
+    assert not np.array_equal(lobes.image, lantern.render(cornell_box, guide_distribution="quadtree", **options).image)
     with pytest.raises(ValueError, match="guide distribution"):
         lantern.render(cornell_box, guide_distribution="lobes", **options)
+
+
+def test_guide_stop_means_the_flag_of_that_name(cornell_box, lantern_binary, tmp_path):
+    # guide_stop="never" renders what --guide-stop never renders, bit for
+    # bit; on the Cornell box, where the guide does not pay, the default
+    # stops it after the fourth iteration and renders another image; a word
+    # that is neither is refused.
+    options = dict(integrator="path", spp=32, seed=1, resolution=(64, 48), guide=True)
+    kept = lantern.render(cornell_box, guide_stop="never", collect_stats=True, **options)
+    exr = tmp_path / "kept.exr"
+    subprocess.run([lantern_binary, "render", cornell_box.path, "-q", "-o", str(exr), "--integrator", "path",
+                    "--spp", "32", "--seed", "1", "--resolution", "64", "48", "--guide", "--guide-stop", "never"],
+                   check=True)
+    assert np.array_equal(kept.image, lantern.read_image(str(exr)))
+    assert kept.stats["guiding"]["stopped_after"] == -1
+    stopped = lantern.render(cornell_box, collect_stats=True, **options)
+    assert stopped.stats["guiding"]["stopped_after"] == 3
+    assert not np.array_equal(stopped.image, kept.image)
+    with pytest.raises(ValueError, match="guide_stop"):
+        lantern.render(cornell_box, guide_stop="sometimes", **options)
 
 
 def test_a_render_region_is_the_films_own_crop(cornell_box):
