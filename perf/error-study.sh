@@ -10,6 +10,7 @@
 # pixels.) Prints a Markdown table; the last column is each
 # variant's relMSE over path's at the same time (below 1: it pays).
 # VARIANTS="path bdpt" chooses among them (path first: the ratios are to it).
+# GUIDE_DISTRIBUTION (default vmm, the default) is what +guide learns with.
 # Usage: perf/error-study.sh ["10 30 100"] [scenes...]   (from the repository root)
 set -eu
 times=${1:-"10 30 100"}
@@ -29,8 +30,8 @@ for s in $scenes; do
     path_err=""
     for v in $variants; do
       integrator=${v%%+*}
-      flags=""; case "$v" in *+guide) flags="--guide" ;; *+adaptive) flags="--adaptive" ;; esac
-      # shellcheck disable=SC2086 # flags holds zero or one word
+      flags=""; case "$v" in *+guide) flags="--guide --guide-distribution ${GUIDE_DISTRIBUTION:-vmm}" ;; *+adaptive) flags="--adaptive" ;; esac
+      # shellcheck disable=SC2086 # flags holds zero to three words
       "$lantern" render "scenes/$s.pbrt" --integrator "$integrator" $flags --time "$t" --seed 7 --resolution $res \
         -o "$tmp/$s-$v.exr" 2> "$tmp/log" || { echo "| $s | $v | $t | (failed: $(tail -n 1 "$tmp/log")) | | | |"; continue; }
       spp=$(grep ' spp (min)' "$tmp/log" | tail -n 1 | sed -n 's/.*, \([0-9]*\) spp (min).*/\1/p')

@@ -40,7 +40,8 @@ endforeach()
 # are fixed-point, so every rank learns the field one process learns: the
 # same image, bit for bit, for guided directions, light subpaths and
 # distances in fog.
-set(guided "path --guide@3x1" "bdpt --guide-light@2x2" "vcm --guide --guide-light@2x1")
+set(guided "path --guide@3x1" "bdpt --guide-light@2x2" "vcm --guide --guide-light@2x1"
+           "path --guide --guide-distribution quadtree@2x1")
 set(fog_guided "2x1")
 set(guided_cases)
 foreach(g IN LISTS guided)

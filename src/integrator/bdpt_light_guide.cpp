@@ -1,5 +1,4 @@
-// What guided light subpaths learn (docs/guiding.md, "Guided light
-// subpaths"). A light subpath y0 y1 ... serves every strategy with s >= 2
+// What guided light subpaths learn (docs/guiding-light.md). A light subpath y0 y1 ... serves every strategy with s >= 2
 // light vertices: connections to eye vertices (t >= 2), light tracing
 // (t = 1) and, in vcm, merges at its vertices. The direction drawn at vertex y_k (k >= 1) decides the vertices
 // y_{k+1}, y_{k+2}, ..., so the strategies with s >= k + 2 are what it

@@ -30,7 +30,7 @@ scenes = sorted(glob.glob(os.path.join(src, "scenes", "*.pbrt")))
 reals = ["0", "-1", "1e-30", "1e30", "1e-8", "3e38", "-3e38", "1e-45", "0.999999", "1.000001", "-0", "65536",
          "2", "0.5", "1e8", "-1e-8"]
 integers = ["0", "-1", "1", "2", "1000000", "2147483647", "-2147483648"]
-integrators = ["path", "bdpt", "vcm", "lt", "bpm", "ppm", "path --guide", "bdpt --guide-light", "bdpt --spectral",
+integrators = ["path", "bdpt", "vcm", "lt", "bpm", "ppm", "path --guide", "path --guide --guide-distribution quadtree", "bdpt --guide-light", "bdpt --spectral",
                "path --sampler independent"]
 number = re.compile(r"(?<![\w.])-?\d+\.?\d*(?:e-?\d+)?(?![\w.])")
 work = os.path.join(out_dir, "work")
