@@ -41,10 +41,10 @@
 // candidates above). From the fourth iteration on, where the guide left
 // more than 0.7 of the BSDF's sum, it stops: no leaf is guided again.
 // Guides that pay at equal time left 0.04 to 0.41 (lobes on the spotlit
-// room and the tiny-light box, 0.41 at 96 x 96) and 0.28 to 0.56 (light subpaths on the
-// caustics and the pool); those that do not, 0.78 to 1.02 (the door ajar,
-// the lantern, the Cornell box, the lamp street, bdpt's eye subpaths;
-// light subpaths 0.87 to 0.99).
+// room and the tiny-light box, 0.41 at 96 x 96) and 0.28 to 0.56 (light
+// subpaths on the caustics and the pool); those that do not, 0.78 to 1.02
+// (the door ajar, the lantern, the Cornell box, the lamp street, bdpt's
+// eye subpaths; light subpaths 0.87 to 0.99).
 // The estimate favours the guide (the Cornell box: 0.83, where its
 // images' error per sample is 1.2 times the unguided one's) and a guided
 // sample costs 1.1 to 1.7 times an unguided one (docs/guiding-stop.md).
@@ -162,7 +162,8 @@ class SDTree {
   bool trained() const { return trained_; }
   // Whether judge stopped the guide, after which iteration (0 first), and
   // the share of the BSDF's sum the guide left in the last iteration
-  // judged or measured (-1: none yet).
+  // judged (from the fourth on, with enough records; measured under
+  // --guide-stop never too; -1: none yet).
   bool stopped() const { return stopped_; }
   uint32_t stopped_after() const { return stopped_after_; }
   double image_share() const { return image_share_; }

@@ -1,10 +1,12 @@
-// What guided light subpaths learn (docs/guiding-light.md). A light subpath y0 y1 ... serves every strategy with s >= 2
-// light vertices: connections to eye vertices (t >= 2), light tracing
-// (t = 1) and, in vcm, merges at its vertices. The direction drawn at vertex y_k (k >= 1) decides the vertices
-// y_{k+1}, y_{k+2}, ..., so the strategies with s >= k + 2 are what it
-// brought to the image. Their sum, over the throughput after the vertex,
-// estimates the importance arriving back along that direction: the adjoint
-// of the radiance an eye vertex's record estimates (Veach 1997, sec. 3.7.6).
+// What guided light subpaths learn (docs/guiding-light.md). A light
+// subpath y0 y1 ... serves every strategy with s >= 2 light vertices:
+// connections to eye vertices (t >= 2), light tracing (t = 1) and, in vcm,
+// merges at its vertices. The direction drawn at vertex y_k (k >= 1)
+// decides the vertices y_{k+1}, y_{k+2}, ..., so the strategies with
+// s >= k + 2 are what it brought to the image. Their sum, over the
+// throughput after the vertex, estimates the importance arriving back
+// along that direction: the adjoint of the radiance an eye vertex's record
+// estimates (Veach 1997, sec. 3.7.6).
 // Learnt in the same records, trees and iterations as the radiance field,
 // it steers light subpaths towards the surfaces whose light the camera's
 // strategies use.
