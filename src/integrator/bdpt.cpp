@@ -101,18 +101,7 @@ void Bdpt::eye_surface_stage(BdptWave& w) const {
     if (!w.rays.hit(i)) {
       ++w.stats.eye_ends[size_t(PathEnd::Escaped)];
       if (media) apply_segment(w, w.eye, i);
-      if (!lights.infinite.empty()) {
-        const Vec3 prev = w.eye.prev_p[slot];
-        Spectrum Le = infinite_lights_Le(lights, scene_.textures, prev, d, w.lambda[slot]);
-        float rescaled = 0.f;
-        float wt = w.depth == 1
-                       ? 1.f
-                       : mis_weight_hit_light(m, infinite_lights_pdf(lights, scene_.textures, light_sampler_, prev, d),
-                                              infinite_emission_pdf(lights, scene_.textures, emission_choice_, d),
-                                              w.mis, &rescaled);
-        add_emission(w, slot, w.eye.beta[slot] * Le, emission_weight(m, wt), rescaled,
-                     lights.infinite.size() == 1 ? lights.infinite_to_all[0] : kNoLight);
-      }
+      add_escaped_emission(w, slot, d);
       continue;
     }
     ++w.stats.eye_vertices;
@@ -262,6 +251,25 @@ void Bdpt::flush_connections(BdptWave& w) const {
   if (w.shadow.media) trace_connections(w);
   else w.stream.occluded(w.shadow.rays);
   connection_stage(w);
+}
+
+// s = 0 for an eye subpath that left the scene along d: each infinite light
+// found, weighted against the strategies that sample that light
+// (`infinite_light_Le` says why one at a time).
+void Bdpt::add_escaped_emission(BdptWave& w, uint32_t slot, const Vec3& d) const {
+  const LightPools& lights = scene_.lights;
+  const MisState& m = w.eye.mis[slot];
+  const Vec3 prev = w.eye.prev_p[slot];
+  for (uint32_t k = 0; k < lights.infinite.size(); ++k) {
+    const Spectrum Le = infinite_light_Le(lights, scene_.textures, k, prev, d, w.lambda[slot]);
+    float rescaled = 0.f;
+    const float wt =
+        w.depth == 1 ? 1.f
+                     : mis_weight_hit_light(
+                           m, infinite_light_sampled_pdf(lights, scene_.textures, light_sampler_, k, prev, d),
+                           infinite_emission_pdf(lights, scene_.textures, emission_choice_, k, d), w.mis, &rescaled);
+    add_emission(w, slot, w.eye.beta[slot] * Le, emission_weight(m, wt), rescaled, lights.infinite_to_all[k]);
+  }
 }
 
 // s = 0: emission the eye subpath found at its current depth.

@@ -175,6 +175,7 @@ class Bdpt {
   void trace_connections(BdptWave& w) const;
   // rescaled: the part of its weight's ratio sum that the light subpath rate rescales
   // light: the light found (LightPools::all), for recorded strategies.
+  void add_escaped_emission(BdptWave& w, uint32_t slot, const Vec3& d) const;
   void add_emission(BdptWave& w, uint32_t slot, const Spectrum& unweighted, float weight, float rescaled,
                     uint32_t light) const;
   // A ray of slot's light subpath (an extension or a connection of

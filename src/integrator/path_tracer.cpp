@@ -182,11 +182,14 @@ void PathTracer::surface_stage(PathWave& w) const {
     }
     if (!w.rays.hit(i)) {
       ++w.stats.eye_ends[size_t(PathEnd::Escaped)];
-      if (!lights.infinite.empty() && !occlusion) {
-        Spectrum Le = infinite_lights_Le(lights, scene_.textures, w.prev_p[slot], d, w.lambda[slot]);
-        float weight = unweighted ? 1.f
-                                  : power_heuristic(prev_pdf, infinite_lights_pdf(lights, scene_.textures,
-                                                                                  light_sampler_, w.prev_p[slot], d));
+      // Each infinite light weighted against next-event estimation's
+      // density of choosing it (`infinite_light_Le` says why one at a time).
+      for (uint32_t k = 0; k < lights.infinite.size() && !occlusion; ++k) {
+        Spectrum Le = infinite_light_Le(lights, scene_.textures, k, w.prev_p[slot], d, w.lambda[slot]);
+        float weight =
+            unweighted ? 1.f
+                       : power_heuristic(prev_pdf, infinite_light_sampled_pdf(lights, scene_.textures, light_sampler_,
+                                                                              k, w.prev_p[slot], d));
         w.L[slot] += w.beta[slot] * weight * Le;
       }
       continue;

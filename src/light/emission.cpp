@@ -155,12 +155,10 @@ float area_emission_pdf(const LightPools& L, const ShapePools& shapes, const Dis
   return choice.discrete_pmf(L.area_to_all[area_index]) * area_point_density(shapes, a, p, n) * area_dir_pdf(a, n, w);
 }
 
-float infinite_emission_pdf(const LightPools& L, const TexturePools& tex, const Distribution1D& choice,
+float infinite_emission_pdf(const LightPools& L, const TexturePools& tex, const Distribution1D& choice, uint32_t index,
                             const Vec3& w_to_light) {
-  float pdf = 0.f;
-  for (uint32_t i = 0; i < L.infinite.size(); ++i)
-    pdf += choice.discrete_pmf(L.infinite_to_all[i]) * infinite_light_emission_dir_pdf(L, tex, i, w_to_light);
-  return pdf * disk_pdf(L);
+  return choice.discrete_pmf(L.infinite_to_all[index]) * infinite_light_emission_dir_pdf(L, tex, index, w_to_light) *
+         disk_pdf(L);
 }
 
 float emission_pdf(const LightPools& L, const ShapePools& shapes, const TexturePools& tex, const Distribution1D& choice,

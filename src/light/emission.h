@@ -49,9 +49,10 @@ float emission_pdf(const LightPools& lights, const ShapePools& shapes, const Tex
 // Same for the area light hit by a ray: area_index indexes LightPools::area.
 float area_emission_pdf(const LightPools& lights, const ShapePools& shapes, const Distribution1D& choice,
                         uint32_t area_index, const Vec3& p_light, const Vec3& n_light, const Vec3& w);
-// Emission density of the infinite lights (summed) sending light along -w_to_light.
+// Emission density (choice pmf included) with which a light subpath leaves
+// infinite light `index` (into LightPools::infinite) along -w_to_light.
 float infinite_emission_pdf(const LightPools& lights, const TexturePools& tex, const Distribution1D& choice,
-                            const Vec3& w_to_light);
+                            uint32_t index, const Vec3& w_to_light);
 
 // Radiance or intensity a light with finite position emits from (p, n) in
 // w, at the wavelengths l.

@@ -393,19 +393,11 @@ static RGB infinite_light_rgb(const LightPools& L, const InfiniteLight& e, const
   return env_lookup(e, tex, e.equal_area ? equal_area_sphere_to_square(wl) : dir_to_latlong(wl));
 }
 
-// In RGB the lights' colours add; with sampled wavelengths each light's
-// colour (or spectrum) becomes a spectrum first, as pbrt-v4's infinite
-// lights are separate lights.
-Spectrum infinite_lights_Le(const LightPools& L, const TexturePools& tex, const Vec3& p, const Vec3& w,
-                            const SampledWavelengths& l) {
-  if (l.is_rgb()) {
-    RGB sum(0.f);
-    for (const InfiniteLight& e : L.infinite) sum += infinite_light_rgb(L, e, tex, p, w);
-    return illuminant_spectrum(sum, l);
-  }
-  Spectrum sum(0.f);
-  for (const InfiniteLight& e : L.infinite) sum += light_spectrum(infinite_light_rgb(L, e, tex, p, w), e.spectrum, tex, l);
-  return sum;
+Spectrum infinite_light_Le(const LightPools& L, const TexturePools& tex, uint32_t index, const Vec3& p, const Vec3& w,
+                           const SampledWavelengths& l) {
+  const InfiniteLight& e = L.infinite[index];
+  const RGB c = infinite_light_rgb(L, e, tex, p, w);
+  return l.is_rgb() ? illuminant_spectrum(c, l) : light_spectrum(c, e.spectrum, tex, l);
 }
 
 float infinite_light_emission_dir_pdf(const LightPools& L, const TexturePools& tex, uint32_t index, const Vec3& w) {
@@ -425,12 +417,9 @@ float infinite_light_pdf(const LightPools& L, const TexturePools& tex, uint32_t 
   return sin_theta > 0.f ? e.distribution.pdf(uv) / (2.f * kPi * kPi * sin_theta) : 0.f;
 }
 
-float infinite_lights_pdf(const LightPools& L, const TexturePools& tex, const LightSampler& sampler, const Vec3& p,
-                          const Vec3& w) {
-  float pdf = 0.f;
-  for (uint32_t i = 0; i < L.infinite.size(); ++i)
-    pdf += sampler.pmf_infinite(L.infinite_to_all[i]) * infinite_light_pdf(L, tex, i, p, w);
-  return pdf;
+float infinite_light_sampled_pdf(const LightPools& L, const TexturePools& tex, const LightSampler& sampler,
+                                 uint32_t index, const Vec3& p, const Vec3& w) {
+  return sampler.pmf_infinite(L.infinite_to_all[index]) * infinite_light_pdf(L, tex, index, p, w);
 }
 
 MediumHandle emission_medium(const LightPools& L, const ShapePools& shapes, uint32_t light, const Vec3& n,

@@ -176,19 +176,25 @@ inline Spectrum area_light_Le(const AreaLight& l, const TexturePools& tex, const
   return light_spectrum(area_light_rgb(l, tex, n, uv, w), l.spectrum, tex, lambda);
 }
 
-// Radiance from infinite lights along a ray from p leaving the scene in
-// direction w (a portal light's only through its window), at wavelengths l.
-Spectrum infinite_lights_Le(const LightPools& lights, const TexturePools& tex, const Vec3& p, const Vec3& w,
-                            const SampledWavelengths& l);
+// Radiance of infinite light `index` (into LightPools::infinite) along a
+// ray from p leaving the scene in direction w (a portal light's only
+// through its window), at wavelengths l. Each infinite light is a light of
+// its own: a ray that escapes finds each of them, each weighted against
+// the strategies that sample that light (a sum of several, weighted by
+// their summed densities, would not match what next-event estimation and
+// light subpaths, which choose one light, weigh: a constant sky beside an
+// environment map came out 1.5% dark).
+Spectrum infinite_light_Le(const LightPools& lights, const TexturePools& tex, uint32_t index, const Vec3& p,
+                           const Vec3& w, const SampledWavelengths& l);
 // The same for one given light (index into `all`), without the selection pmf.
 std::optional<LightSample> sample_light_from(const LightPools& lights, const ShapePools& shapes, const TexturePools& tex,
                                              uint32_t light, const Vec3& p, Vec2 u, const SampledWavelengths& l,
                                              float u_volume = 0.5f);
 
 // Density (times the light sampler's pmf) that sample_light produces
-// direction w from p, from the infinite lights.
-float infinite_lights_pdf(const LightPools& lights, const TexturePools& tex, const LightSampler& sampler, const Vec3& p,
-                          const Vec3& w);
+// direction w from p by choosing infinite light `index`.
+float infinite_light_sampled_pdf(const LightPools& lights, const TexturePools& tex, const LightSampler& sampler,
+                                 uint32_t index, const Vec3& p, const Vec3& w);
 // Solid-angle density of direction w from p for infinite light `index`
 // alone (no pmf).
 float infinite_light_pdf(const LightPools& lights, const TexturePools& tex, uint32_t index, const Vec3& p, const Vec3& w);
