@@ -140,11 +140,11 @@ expect_run(NAME bad-light-choice EXIT 2 MATCH "--light-choice: bvh not in" ARGS 
 # --guide-stop: auto or never, anything else a usage error; a guided render's
 # stats say whether its guide stopped (on the Cornell box the lobes, the
 # default, do not pay: their records leave 0.93 of the BSDF's second moment
-# in the fourth iteration at this size, and they stop after it), and never
+# in the third iteration at this size, and they stop after it), and never
 # goes on to the end. The header names the distribution.
 expect_run(NAME bad-guide-stop EXIT 2 MATCH "--guide-stop: maybe not in" ARGS render ${SRC}/scenes/cornell-box.pbrt
            --guide --guide-stop maybe)
-expect_run(NAME guide-stop-stats EXIT 0 MATCH "\"stopped_after\": 3" ARGS render ${SRC}/scenes/cornell-box.pbrt
+expect_run(NAME guide-stop-stats EXIT 0 MATCH "\"stopped_after\": 2" ARGS render ${SRC}/scenes/cornell-box.pbrt
            --guide --spp 32 --seed 1 --resolution 64 48 --quiet -o ${OUT}/guide-stop.exr --stats -)
 expect_run(NAME guide-stop-never EXIT 0 MATCH "\"stopped_after\": -1" ARGS render ${SRC}/scenes/cornell-box.pbrt
            --guide --guide-stop never --spp 32 --seed 1 --resolution 64 48 --quiet -o ${OUT}/guide-kept.exr --stats -)

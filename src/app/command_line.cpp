@@ -141,8 +141,9 @@ void add_render_request_options(CLI::App& c, RenderRequest& r) {
       ->check(CLI::IsMember({name(GuideModel::Quadtree), name(GuideModel::Vmm)}));
   c.add_option("--guide-stop", r.guide_stop,
                "auto (the default): each guided field stops, for the rest of the render, at the end of a learning "
-               "iteration, from the fourth on, whose records say its guide left more than 0.7 of the second moment "
-               "the BSDF's directions alone would have; never: guided to the end (docs/guiding-stop.md)")
+               "iteration whose records say its guide left more of the second moment the BSDF's directions alone "
+               "would have than 0.9 (the third iteration) or 0.7 (a later one); never: guided to the end "
+               "(docs/guiding-stop.md)")
       ->check(CLI::IsMember({"auto", "never"}));
   c.add_flag("--spectral", r.spectral,
                    "Render with sampled wavelengths, four per camera sample, as pbrt-v4 does, instead of in RGB "

@@ -43,13 +43,13 @@ void SDTree::choose_alphas(Leaf& l) {
 }
 
 // Whether the guide paid for itself in iteration `iteration` (sd_tree.h):
-// where the records' (beta L)^2 as drawn is more than kPaysBelow of the
+// where the records' (beta L)^2 as drawn is more than pays_below of the
 // BSDF's own, it stops for the rest of the render.
 void SDTree::judge(uint32_t iteration) {
   const double drawn = image_drawn_.value(), bsdf = image_bsdf_.value();
   if (iteration >= kFirstJudged && image_guided_ >= kJudgeMinRecords && bsdf > 0.0) {
     image_share_ = drawn / bsdf;
-    if (settings_.stop_where_unpaid && !stopped_ && image_share_ > kPaysBelow)
+    if (settings_.stop_where_unpaid && !stopped_ && image_share_ > pays_below(iteration))
       stopped_ = true, stopped_after_ = iteration;
   }
   image_drawn_ = FixedSum(), image_bsdf_ = FixedSum();

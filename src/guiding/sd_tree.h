@@ -38,8 +38,9 @@
 // each record carries (beta L)^2, the square of what its path brought the
 // image after the vertex, and the iteration sums it as drawn and as the
 // BSDF alone would have drawn it (reweighted by p_mix / p_bsdf, as the
-// candidates above). From the fourth iteration on, where the guide left
-// more than 0.7 of the BSDF's sum, it stops: no leaf is guided again.
+// candidates above). Where the guide left more than 0.9 of the BSDF's sum
+// in the third iteration, or more than 0.7 from the fourth on, it stops:
+// no leaf is guided again.
 // Guides that pay at equal time left 0.04 to 0.41 (lobes on the spotlit
 // room and the tiny-light box, 0.41 at 96 x 96) and 0.28 to 0.56 (light
 // subpaths on the caustics and the pool); those that do not, 0.78 to 1.02
@@ -87,13 +88,22 @@ class SDTree {
   static constexpr std::array<float, 6> kAlphas = {0.15f, 0.3f, 0.5f, 0.7f, 0.85f, 0.95f};
   static constexpr float kFirstAlpha = 0.5f;         // until the records say otherwise (the paper's)
   static constexpr uint32_t kAlphaMinRecords = 256;  // guided records a choice needs
-  // judge: the first iteration judged (0 first; the fourth samples a field
-  // learnt from passes 3 to 6: on the tiny-light box, the third iteration's
-  // records left 0.70 of the BSDF's sum, the fourth's 0.37, the fifth's
-  // 0.04), the share of the BSDF's sum the guide must stay below, and the
-  // guided records, with light, a verdict needs.
-  static constexpr uint32_t kFirstJudged = 3;
+  // judge: the first iteration judged (0 first) and the share of the
+  // BSDF's sum a guide must stay below there, then from kJudgedFully on.
+  // The third iteration samples a field learnt from passes 1 and 2 alone,
+  // too little to find a small light (on the tiny-light box the lobes'
+  // records left 0.39 to 0.41 of the BSDF's sum there, the fourth's 0.15
+  // to 0.24, the fifth's 0.14), so only a guide that left nearly all of it
+  // stops then: on the shipped scenes guides that pay left at most 0.82
+  // in their third iteration, and every one that left more than 0.9 there
+  // (0.93 to 1.28) stopped after its fourth under the rule that starts
+  // there (docs/guiding-stop.md). From the fourth, the share must stay
+  // below 0.7. Last, the guided records, with light, a verdict needs.
+  static constexpr uint32_t kFirstJudged = 2;
+  static constexpr double kPaysBelowFirst = 0.9;
+  static constexpr uint32_t kJudgedFully = 3;
   static constexpr double kPaysBelow = 0.7;
+  static double pays_below(uint32_t iteration) { return iteration < kJudgedFully ? kPaysBelowFirst : kPaysBelow; }
   static constexpr uint64_t kJudgeMinRecords = 1024;
   // A tree no larger than this many leaves, of a few KB each
   // (split_spatial_leaf).
@@ -162,7 +172,7 @@ class SDTree {
   bool trained() const { return trained_; }
   // Whether judge stopped the guide, after which iteration (0 first), and
   // the share of the BSDF's sum the guide left in the last iteration
-  // judged (from the fourth on, with enough records; measured under
+  // judged (from the third on, with enough records; measured under
   // --guide-stop never too; -1: none yet).
   bool stopped() const { return stopped_; }
   uint32_t stopped_after() const { return stopped_after_; }

@@ -51,7 +51,7 @@ def test_guide_distribution_means_the_flag_of_that_name(cornell_box, lantern_bin
 def test_guide_stop_means_the_flag_of_that_name(cornell_box, lantern_binary, tmp_path):
     # guide_stop="never" renders what --guide-stop never renders, bit for
     # bit; on the Cornell box, where the guide does not pay, the default
-    # stops it after the fourth iteration and renders another image; a word
+    # stops it after the third iteration and renders another image; a word
     # that is neither is refused.
     options = dict(integrator="path", spp=32, seed=1, resolution=(64, 48), guide=True)
     kept = lantern.render(cornell_box, guide_stop="never", collect_stats=True, **options)
@@ -62,7 +62,7 @@ def test_guide_stop_means_the_flag_of_that_name(cornell_box, lantern_binary, tmp
     assert np.array_equal(kept.image, lantern.read_image(str(exr)))
     assert kept.stats["guiding"]["stopped_after"] == -1
     stopped = lantern.render(cornell_box, collect_stats=True, **options)
-    assert stopped.stats["guiding"]["stopped_after"] == 3
+    assert stopped.stats["guiding"]["stopped_after"] == 2
     assert not np.array_equal(stopped.image, kept.image)
     with pytest.raises(ValueError, match="guide_stop"):
         lantern.render(cornell_box, guide_stop="sometimes", **options)
