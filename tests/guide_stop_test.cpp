@@ -135,6 +135,14 @@ TEST(GuideStop, TheVerdictComesBackFromTheFieldsBytes) {
   };
   const uint32_t early = SDTree::kFirstJudged - 1;
   refused(after_at, &early, sizeof early);
+  {  // (a stop after the first iteration judged is one that can be)
+    std::string b = bytes;
+    const uint32_t first = SDTree::kFirstJudged;
+    std::memcpy(b.data() + after_at, &first, sizeof first);
+    GuidingField f(lo, hi, 64);
+    EXPECT_NO_THROW(f.restore(b));
+    EXPECT_EQ(f.tree().stopped_after(), SDTree::kFirstJudged);
+  }
   const double nan = std::numeric_limits<double>::quiet_NaN();
   refused(share_at, &nan, sizeof nan);
   double share = 0.;

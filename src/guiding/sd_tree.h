@@ -93,7 +93,7 @@ class SDTree {
   // The third iteration samples a field learnt from passes 1 and 2 alone,
   // too little to find a small light (on the tiny-light box the lobes'
   // records left 0.39 to 0.41 of the BSDF's sum there, the fourth's 0.15
-  // to 0.24, the fifth's 0.14), so only a guide that left nearly all of it
+  // to 0.24, the fifth's 0.14 to 0.16), so only a guide that left nearly all of it
   // stops then: on the shipped scenes guides that pay left at most 0.82
   // in their third iteration, and every one that left more than 0.9 there
   // (0.93 to 1.28) stopped after its fourth under the rule that starts

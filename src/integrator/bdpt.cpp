@@ -262,6 +262,7 @@ void Bdpt::add_escaped_emission(BdptWave& w, uint32_t slot, const Vec3& d) const
   const Vec3 prev = w.eye.prev_p[slot];
   for (uint32_t k = 0; k < lights.infinite.size(); ++k) {
     const Spectrum Le = infinite_light_Le(lights, scene_.textures, k, prev, d, w.lambda[slot]);
+    if (is_black(Le) && !settings_.record_strategies) continue;  // (a pilot's records hold it as a zero)
     float rescaled = 0.f;
     const float wt =
         w.depth == 1 ? 1.f

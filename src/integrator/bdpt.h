@@ -173,9 +173,9 @@ class Bdpt {
   void light_medium_stage(BdptWave& w) const;
   void light_medium_arrival(BdptWave& w, uint32_t i) const;
   void trace_connections(BdptWave& w) const;
+  void add_escaped_emission(BdptWave& w, uint32_t slot, const Vec3& d) const;
   // rescaled: the part of its weight's ratio sum that the light subpath rate rescales
   // light: the light found (LightPools::all), for recorded strategies.
-  void add_escaped_emission(BdptWave& w, uint32_t slot, const Vec3& d) const;
   void add_emission(BdptWave& w, uint32_t slot, const Spectrum& unweighted, float weight, float rescaled,
                     uint32_t light) const;
   // A ray of slot's light subpath (an extension or a connection of

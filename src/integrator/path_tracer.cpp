@@ -186,6 +186,7 @@ void PathTracer::surface_stage(PathWave& w) const {
       // density of choosing it (`infinite_light_Le` says why one at a time).
       for (uint32_t k = 0; k < lights.infinite.size() && !occlusion; ++k) {
         Spectrum Le = infinite_light_Le(lights, scene_.textures, k, w.prev_p[slot], d, w.lambda[slot]);
+        if (is_black(Le)) continue;
         float weight =
             unweighted ? 1.f
                        : power_heuristic(prev_pdf, infinite_light_sampled_pdf(lights, scene_.textures, light_sampler_,
