@@ -3,6 +3,7 @@
 // every integrator and every kind of subpath.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -20,9 +21,27 @@ namespace lantern {
 // normal from Embree's Ng (hit point minus centre, formed in the ray's
 // frame): origin + t * direction would lose a small sphere's shape far from
 // the origin.
+//
+// A triangle hit's barycentrics are clamped onto the triangle: on an edge
+// Embree's can fall a rounding outside it (more often in its AVX-512
+// kernels), and the point then lay a float's step past the edge, beyond a
+// wall's top and above the ceiling that meets it, where its rays to a light
+// outside the room went through (tests/extremes_test.cpp, ScaleInvariance).
+// With all three barycentrics at least 0, a coordinate that the edge's two
+// vertices share is never passed (triangle_point adds only terms of one
+// sign to the vertex that has it).
+inline Vec2 triangle_barycentrics(float u, float v) {
+  u = std::clamp(u, 0.f, 1.f), v = std::clamp(v, 0.f, 1.f);
+  if (1.f - u - v < 0.f) v = 1.f - u;  // (as triangle_point forms b0: then exactly 0)
+  return Vec2(u, v);
+}
+
 inline SurfacePoint local_hit_point(const ShapePools& shapes, const RayBatch& rays, uint32_t i, const Instance* inst) {
   const Geometry& g = shapes.geometries[rays.geom_id[i]];
-  if (g.kind == ShapeKind::Mesh) return triangle_point(shapes.meshes[g.index], rays.prim_id[i], rays.u[i], rays.v[i]);
+  if (g.kind == ShapeKind::Mesh) {
+    const Vec2 b = triangle_barycentrics(rays.u[i], rays.v[i]);
+    return triangle_point(shapes.meshes[g.index], rays.prim_id[i], b.x, b.y);
+  }
   if (g.kind == ShapeKind::Quadric) return quadric_point(shapes.quadrics[g.index], Vec2(rays.u[i], rays.v[i]));
   if (g.kind == ShapeKind::Bilinear) return bilinear_point(shapes.patches[g.index], rays.prim_id[i], Vec2(rays.u[i], rays.v[i]));
   if (g.kind == ShapeKind::Curve) {
