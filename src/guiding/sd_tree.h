@@ -93,12 +93,12 @@ class SDTree {
   // The third iteration samples a field learnt from passes 1 and 2 alone,
   // too little to find a small light (on the tiny-light box the lobes'
   // records left 0.39 to 0.41 of the BSDF's sum there, the fourth's 0.15
-  // to 0.24, the fifth's 0.14 to 0.16), so only a guide that left nearly all of it
-  // stops then: on the shipped scenes guides that pay left at most 0.82
-  // in their third iteration, and every one that left more than 0.9 there
-  // (0.93 to 1.28) stopped after its fourth under the rule that starts
-  // there (docs/guiding-stop.md). From the fourth, the share must stay
-  // below 0.7. Last, the guided records, with light, a verdict needs.
+  // to 0.24, the fifth's 0.14 to 0.16), so only a guide that left nearly
+  // all of it stops then: on the shipped scenes guides that pay left at
+  // most 0.82 in their third iteration, and every one that left more than
+  // 0.9 there (0.93 to 1.28) stopped after its fourth under the rule that
+  // starts there (docs/guiding-stop.md). From the fourth, the share must
+  // stay below 0.7. Last, the guided records, with light, a verdict needs.
   static constexpr uint32_t kFirstJudged = 2;
   static constexpr double kPaysBelowFirst = 0.9;
   static constexpr uint32_t kJudgedFully = 3;
