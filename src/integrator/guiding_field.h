@@ -100,6 +100,9 @@ class GuidingField {
   // The pass count at which the current iteration ends.
   uint64_t iteration_end() const { return (uint64_t(2) << iteration_) - 1; }
   uint64_t iteration_length() const { return uint64_t(1) << iteration_; }
+  // The passes of the iterations before the current one: where learning
+  // ended, once it has.
+  uint64_t learnt_passes() const { return iteration_end() - iteration_length(); }
   uint32_t iteration() const { return iteration_; }
 
   void deposit(const std::vector<GuideRecord>& records, const std::vector<GuideRecord>& light_records = {}) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
 #include <mutex>
 
 #include "film/film.h"
@@ -33,6 +34,10 @@ struct PassContext {
   GuidingField* guiding;  // null: paths are not guided
   const std::atomic<bool>& cancelled;  // RenderSession::cancel
   uint32_t split = 1;                  // the path tracer's paths per camera sample (PathTracerSettings::split)
+  // A guided path tracer's split once its guide stopped: chooses it (the
+  // split pilot, if asked for), sets it in the tracer and returns it
+  // (pass_layout.h). Empty for other integrators.
+  std::function<uint32_t()> unguided_split = {};
   bool peer_interrupted = false;       // another process of the render was interrupted (RenderHooks::share_learnt)
   bool stop_requested() const { return cancelled.load() || (hooks.cancel && hooks.cancel->load()); }
 };

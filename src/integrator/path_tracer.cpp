@@ -35,14 +35,21 @@ PathTracer::PathTracer(const Scene& scene, const LightSampler& light_sampler, co
       camera_(scene.camera, s.full_width > 0 ? s.full_width : s.width, s.full_height > 0 ? s.full_height : s.height),
       sampler_(make_sampler_spec(s.sampler, s.width, s.height, s.planned_spp, s.seed)) {
   if (scene.textures.uses_footprint) footprints_ = FootprintModel(camera_, s.footprint_spp);
-  if (s.split > 1 && scene.media.empty() && !s.ambient_occlusion && !s.direct_lighting) {
-    while ((2u << split_log2_) <= s.split) ++split_log2_;
-    // The camera samples are a sequence of their own: N paths per pixel
-    // are N / split camera samples, each stratified against the others.
-    const uint32_t planned = s.planned_spp > 0 ? std::max(1u, s.planned_spp >> split_log2_) : 0u;
-    camera_sampler_ = make_sampler_spec(s.sampler, s.width, s.height, planned, s.seed ^ 0x5EED5EED5EED5EEDULL);
-    split_pixels_ = find_split_pixels(s.ray_backend);
-  }
+  split_camera_samples(s.split);
+}
+
+void PathTracer::split_camera_samples(uint32_t split) {
+  const PathTracerSettings& s = settings_;
+  settings_.split = split;
+  split_log2_ = 0;
+  split_pixels_.clear();
+  if (split <= 1 || !scene_.media.empty() || s.ambient_occlusion || s.direct_lighting) return;
+  while ((2u << split_log2_) <= split) ++split_log2_;
+  // The camera samples are a sequence of their own: N paths per pixel
+  // are N / split camera samples, each stratified against the others.
+  const uint32_t planned = s.planned_spp > 0 ? std::max(1u, s.planned_spp >> split_log2_) : 0u;
+  camera_sampler_ = make_sampler_spec(s.sampler, s.width, s.height, planned, s.seed ^ 0x5EED5EED5EED5EEDULL);
+  split_pixels_ = find_split_pixels(s.ray_backend);
 }
 
 WavePools<PathWave> PathTracer::make_wave_state(uint32_t capacity, RayStream stream) const {

@@ -237,7 +237,7 @@ MetropolisSettings metropolis_settings(const Scene& scene, const RenderOptions& 
 }
 
 uint32_t camera_sample_split(const Scene& scene, const RenderOptions& opt) {
-  return splits_camera_samples(opt.integrator) && scene.media.empty() && !opt.any_guiding() ? opt.split : 1u;
+  return splits_camera_samples(opt.integrator) && scene.media.empty() ? opt.split : 1u;
 }
 
 void check_processes(const RenderOptions& opt, const RenderHooks& hooks) {

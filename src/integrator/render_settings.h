@@ -39,7 +39,8 @@ BdptSettings bdpt_settings(const Scene& scene, const RenderOptions& opt, const I
                            uint32_t planned_spp);
 // The paths per camera sample the path tracer renders (RenderOptions::split,
 // kSplitAuto for the pilot's choice; bdpt's eye subpaths alone too): 1 for
-// other integrators, in scenes with media and for guided paths.
+// other integrators and in scenes with media. (Guided paths split once
+// their guide stops: integrator/pass_layout.h.)
 uint32_t camera_sample_split(const Scene& scene, const RenderOptions& opt);
 PathTracerSettings path_settings(const Scene& scene, const RenderOptions& opt, const ImageRegion& region,
                                  uint32_t planned_spp);

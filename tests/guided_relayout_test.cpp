@@ -1,0 +1,103 @@
+// A guided render goes on as an unguided one once its field has learnt
+// (integrator/pass_layout.h): passes of one sample per pixel while the
+// field learns, then the passes an unguided render of its budget takes,
+// and split camera samples where the guide stopped.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "guided_rooms.h"
+#include "guiding/sd_tree.h"
+#include "integrator/pass_layout.h"
+#include "lantern/render.h"
+#include "lantern/scene.h"
+#include "sanitizer.h"
+#include "stat_compare.h"
+#include "stop_and_resume.h"
+
+using namespace lantern;
+using namespace lantern::guiding_test;
+
+namespace {
+
+std::shared_ptr<Scene> cornell_box() {
+  return load_scene(std::string(LANTERN_SOURCE_DIR) + "/scenes/cornell-box.pbrt");
+}
+
+// The Cornell box's quadtree guide stops after its third iteration (pass
+// 7, guide_stop_test.cpp); the camera samples split in 4 from pass 8 on.
+RenderOptions stopping_options(uint32_t spp) {
+  RenderOptions o = guided_options(true);
+  o.guide_stop = true;
+  o.split = 4;
+  o.width = 64, o.height = 48;
+  o.spp = int(spp);
+  o.seed = 1;
+  o.collect_stats = true;
+  return o;
+}
+
+}  // namespace
+
+// The units of a render laid out in passes of one sample up to sample 16
+// and of 16 from there are numbered 0, 1, 2, ... each once, pass after
+// pass, whatever the wave counts of the two layouts.
+TEST(PassLayout, TheSecondLayoutsUnitsFollowTheFirsts) {
+  const uint32_t pixels = 1000, total = 45;
+  const PassLayout a = pass_layout(1, pixels, false, 128);
+  EXPECT_EQ(a.waves, 8u);
+  const PassLayout b = pass_layout(16, pixels, false, 128, &a, 16);
+  EXPECT_EQ(b.pixels_per_wave, 8u);
+  EXPECT_EQ(b.waves, 125u);
+  EXPECT_EQ(b.first_pass, 16u);
+  uint64_t expected = 0;
+  for (uint32_t first = 0; first < total;) {
+    const PassLayout& l = first < 16 ? a : b;
+    EXPECT_EQ(l.pass_of(first), first < 16 ? first : 16 + (first - 16) / 16);
+    for (uint32_t w = 0; w < l.waves; ++w) EXPECT_EQ(l.unit_of(first, w), expected++) << first << " " << w;
+    first += l.pass_spp;
+  }
+  EXPECT_EQ(b.units_to(total), expected);  // (the last pass, cut short at 45, counts whole)
+  EXPECT_EQ(a.units_to(16), b.first_unit);
+}
+
+// Where the guide stopped, the render's camera samples split as the
+// unguided render's do (--split 4), it takes its budget's samples, no
+// more, no fewer, and its image is the unguided one's: region means over
+// independent renders agree within 4.5 standard errors.
+TEST(GuidedRelayout, StoppedGuideSplitsAndConvergesToTheUnguidedImage) {
+  if (LANTERN_ASAN) GTEST_SKIP() << "whole renders' verdicts: the Release suite runs it";
+  const auto box = cornell_box();
+  const RenderOptions o = stopping_options(64);
+  const RenderResult stopped = render(*box, o);
+  EXPECT_EQ(stopped.stats.guiding_stopped_after, int32_t(SDTree::kFirstJudged));
+  EXPECT_EQ(stopped.stats.split, 4u);
+  EXPECT_EQ(stopped.stats.samples, uint64_t(64) * 48 * 64);
+  // (a guide that goes on keeps whole camera samples)
+  RenderOptions never = o;
+  never.guide_stop = false;
+  EXPECT_EQ(render(*box, never).stats.split, 1u);
+
+  std::vector<Region> regions;
+  for (int y = 0; y < 48; y += 16)
+    for (int x = 0; x < 64; x += 16) regions.push_back({x, y, 16, 16});
+  RenderOptions plain = o;
+  plain.guiding = false;
+  const RegionStats unguided = stats_of(render_runs(*box, plain, 6, 100), regions);
+  const RegionStats guided = stats_of(render_runs(*box, o, 6, 200), regions);
+  max_z(unguided, guided);
+  expect_means_agree(unguided, guided, 0.0, "guided path, stopped and split");
+}
+
+// A render stopped before the relayout, inside the passes of one sample
+// that lead up to it and after it, on one and two threads in turn,
+// resumes to the straight render's image bit for bit: the second layout
+// and its split follow from the field its checkpoint keeps.
+TEST(GuidedRelayout, ResumesAcrossTheRelayoutToTheStraightImage) {
+  const auto box = cornell_box();
+  RenderOptions o = stopping_options(24);
+  o.wave_size = 1024;  // 3 waves a pass of one sample, 48 of sixteen
+  o.collect_stats = false;
+  expect_resumes_to_the_straight_image(*box, o, "lantern_guided_relayout.ckpt", 5, 7, 3, "path, split after the stop");
+}
