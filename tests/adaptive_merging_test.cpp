@@ -1,4 +1,4 @@
-// Adaptive sampling with vcm (integrator/render.cpp's choose_adaptive):
+// Adaptive sampling with vcm (integrator/run_passes.h's choose_adaptive):
 // every pass traces all its light subpaths, takes camera samples only for
 // the pixels that take it, and keeps its splats to those pixels, scaled by
 // its own light paths. So each pixel averages whole passes of vcm, whose

@@ -153,7 +153,7 @@ void append_active_pixels(const Film& film, uint32_t pass, const uint32_t* pixel
 // What `opt` asks for, over an image of `pixels` pixels.
 AdaptiveGoal adaptive_goal(const RenderOptions& opt, size_t pixels);
 
-// The render loop's side of it (integrator/render.cpp's run_passes): off,
+// The render loop's side of it (integrator/run_passes.h): off,
 // every pixel taking every pass, for a goal that is off.
 class AdaptivePasses {
  public:

@@ -200,7 +200,7 @@ class GuidingField {
   // as one process that rendered every piece's units would hold it. Every
   // piece holds the field the processes shared at the start of its
   // iteration and its own sums since. A process saves its piece at the
-  // end of every iteration before it shares its sums (render.cpp), so no
+  // end of every iteration before it shares its sums (run_passes.h), so no
   // process starts iteration k + 1 before every piece is of iteration k at
   // least: pieces are of the newest iteration, or of the one before saved
   // at its end, whose sums the newer pieces' field holds. So the newest

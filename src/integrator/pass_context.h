@@ -1,4 +1,4 @@
-// What a render's drivers (render.cpp's passes, metropolis.cpp's chains)
+// What a render's drivers (run_passes.h's passes, metropolis.cpp's chains)
 // work with besides the integrator: the film, the counters, the stop.
 #pragma once
 

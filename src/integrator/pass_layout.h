@@ -1,4 +1,4 @@
-// How a render lays its samples out (render.cpp's run_passes): in passes,
+// How a render lays its samples out (run_passes.h): in passes,
 // each a range of sample indices of every pixel, and each pass in waves,
 // runs of pixels of the tile order. Units, the waves numbered through the
 // whole render, are what checkpoints, MPI's tickets and --part count.

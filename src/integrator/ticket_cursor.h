@@ -1,6 +1,6 @@
 // The render loop's walk over its units (waves numbered through the whole
 // render), pass by pass: all of them, or with MPI's tickets only those the
-// tickets name (integrator/render.cpp's run_passes).
+// tickets name (integrator/run_passes.h).
 #pragma once
 
 #include <cstdint>
