@@ -10,6 +10,7 @@
 #include "guided_rooms.h"
 #include "guiding/sd_tree.h"
 #include "integrator/pass_layout.h"
+#include "integrator/render_checkpoints.h"
 #include "lantern/render.h"
 #include "lantern/scene.h"
 #include "sanitizer.h"
@@ -26,7 +27,8 @@ std::shared_ptr<Scene> cornell_box() {
 }
 
 // The Cornell box's quadtree guide stops after its third iteration (pass
-// 7, guide_stop_test.cpp); the camera samples split in 4 from pass 8 on.
+// 7, guide_stop_test.cpp); passes of 16 samples whose camera samples split
+// in 4 take over from sample 16 (passes 7 to 15 are of one sample, unguided).
 RenderOptions stopping_options(uint32_t spp) {
   RenderOptions o = guided_options(true);
   o.guide_stop = true;
@@ -60,6 +62,19 @@ TEST(PassLayout, TheSecondLayoutsUnitsFollowTheFirsts) {
   }
   EXPECT_EQ(b.units_to(total), expected);  // (the last pass, cut short at 45, counts whole)
   EXPECT_EQ(a.units_to(16), b.first_unit);
+  // A checkpoint's bound holds every relayout the field may make: after
+  // pass 0, 1, 3, 7, 15 or 31 (from 0, 16, 16, 16, 16, 32: 375, 378 or
+  // 128 x 2 + 125 = 381 units), or none (360).
+  EXPECT_EQ(most_guided_units(a, 16, pixels, false, 128, total), 381u);
+}
+
+// Guided checkpoints of the layout before (one sample per pass to the
+// end, "guiding=1") number their units otherwise: refused by name.
+TEST(PassLayout, GuidedFingerprintNamesTheLayout) {
+  RenderOptions o = guided_options(true);
+  ImageRegion region;
+  region.width = region.height = 8;
+  EXPECT_NE(sequence_fingerprint(o, region).find("\nguiding=2\n"), std::string::npos);
 }
 
 // Where the guide stopped, the render's camera samples split as the

@@ -58,7 +58,8 @@ struct PassLayout {
   }
   // The paths of its largest wave.
   uint32_t capacity() const { return pixels_per_wave * pass_spp; }
-  // The render's units up to `total_spp` samples per pixel.
+  // The render's units up to `total_spp` samples per pixel, with this
+  // layout to the end.
   uint64_t units_to(uint32_t total_spp) const {
     const uint64_t passes = total_spp > first_sample ? (total_spp - first_sample + pass_spp - 1) / pass_spp : 0;
     return first_unit + passes * waves;
@@ -81,6 +82,23 @@ inline PassLayout pass_layout(uint32_t pass_spp, uint32_t pixels, bool merging, 
     l.first_unit = before->unit_of(from, 0);
   }
   return l;
+}
+
+// The most units a guided render of `total_spp` samples per pixel (not
+// under a time budget) may number: `learning`, its layout of passes of one
+// sample, to the end, or `after` from wherever the field stops learning
+// (the end of an iteration, 2^k - 1) on. A checkpoint's bound on its units
+// (Checkpointer::set_units), the same before and after the relayout.
+inline uint64_t most_guided_units(const PassLayout& learning, uint32_t pass_spp, uint32_t pixels, bool merging,
+                                  int wave_size, uint32_t total_spp) {
+  uint64_t most = learning.units_to(total_spp);
+  for (uint64_t learnt = 0; learnt < total_spp; learnt = 2 * learnt + 1) {
+    const uint64_t from = (learnt + pass_spp - 1) / pass_spp * pass_spp;
+    if (from >= total_spp) break;
+    const PassLayout after = pass_layout(pass_spp, pixels, merging, wave_size, &learning, uint32_t(from));
+    most = std::max(most, after.units_to(total_spp));
+  }
+  return most;
 }
 
 }  // namespace lantern

@@ -235,12 +235,13 @@ RenderResult RenderSession::render_all() {
     // before rank 0's scheduler thread, which shares MPI with them, starts.
     auto run_path_tracer = [&](PathTracerSettings ps) {
       uint32_t unguided = ps.split;  // a guided render's, once its guide stops
+      RenderStats pilot_stats;       // (its pilot's figures, reported if its camera samples split)
       if (cx.guiding) {
         ps.split = 1;
         if (unguided == kSplitAuto && s.hooks.agree) {
           PathTracerSettings pilot = ps;
           pilot.split = kSplitAuto;
-          set_split(scene, light_sampler, opt, pilot, res.stats, s.hooks);
+          set_split(scene, light_sampler, opt, pilot, pilot_stats, s.hooks);
           unguided = pilot.split;
         }
       } else if (ps.split == kSplitAuto) {
@@ -251,7 +252,13 @@ RenderResult RenderSession::render_all() {
       if (cx.guiding && unguided != 1)
         cx.unguided_split = [&, ps, unguided]() mutable {
           ps.split = unguided;
-          if (ps.split == kSplitAuto) set_split(scene, light_sampler, opt, ps, res.stats, RenderHooks{});
+          if (ps.split == kSplitAuto) {
+            set_split(scene, light_sampler, opt, ps, res.stats, RenderHooks{});
+          } else {
+            res.stats.split_candidates = pilot_stats.split_candidates;
+            res.stats.split_error = pilot_stats.split_error;
+            res.stats.split_camera_share = pilot_stats.split_camera_share;
+          }
           tracer.split_camera_samples(ps.split);
           return res.stats.split = ps.split;
         };
@@ -268,9 +275,12 @@ RenderResult RenderSession::render_all() {
       if (bs.merging)
         res.stats.vcm_wave_paths = merging_wave_paths(uint32_t(film.width() * film.height()), opt.wave_size);
       PathTracerSettings eye_alone = path_settings(scene, opt, s.region, planned_spp);
-      if (uses_light_subpath_rate(opt.integrator))
-        set_light_subpath_rate(scene, light_sampler, opt, eye_alone, bs, res.stats, s.hooks,
+      if (uses_light_subpath_rate(opt.integrator)) {
+        PathTracerSettings judged = eye_alone;  // (guided, whole camera samples while the guide is in use)
+        if (cx.guiding) judged.split = 1;
+        set_light_subpath_rate(scene, light_sampler, opt, judged, bs, res.stats, s.hooks,
                                merging.bdpt ? &*merging.bdpt : nullptr);
+      }
       report_merging(merging, merging_seconds, res.stats);
       // (no light subpaths: the path tracer, eye_subpaths_alone.h, whose
       // camera samples may split as its own do)

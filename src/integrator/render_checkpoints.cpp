@@ -50,8 +50,11 @@ std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& regi
   line("budget", o.time_limit_seconds > 0 ? std::string("time") : "spp " + std::to_string(o.spp));
   if (o.target_error > 0) line("target-error", std::to_string(o.target_error));  // adaptive passes
   else if (o.adaptive) line("adaptive", "budget");
-  if (o.guiding) line("guiding", "1");  // one sample per pass, guided directions
-  if (o.guide_light_subpaths) line("guide-light", "1");
+  // Guided renders: passes of one sample while the field learns, an
+  // unguided render's after (integrator/pass_layout.h); "1" was one sample
+  // per pass to the end, whose units number otherwise.
+  if (o.guiding) line("guiding", "2");
+  if (o.guide_light_subpaths) line("guide-light", "2");
   if (o.any_guiding()) line("guide-distribution", name(o.guide_distribution));  // (lobes are not quadtrees)
   if (o.any_guiding() && !o.guide_stop) line("guide-stop", "never");
   if (o.gbuffer) line("gbuffer", "1");  // the film sums the samples' squares too

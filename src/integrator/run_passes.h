@@ -114,7 +114,12 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
   bool relaid = !cx.guiding || merging || goal.on();
   const uint32_t capacity =
       relaid ? layout.capacity() : std::max({layout.capacity(), uint32_t(std::max(opt.wave_size, 1)), 16u});
-  checkpoints.set_units(timed ? 0 : (total_spp + layout.pass_spp - 1) / layout.pass_spp, layout.waves);
+  if (relaid || timed)
+    checkpoints.set_units(timed ? 0 : (total_spp + layout.pass_spp - 1) / layout.pass_spp, layout.waves);
+  else  // (the passes after the relayout are of min(total_spp, 16) whatever the split)
+    checkpoints.set_units(most_guided_units(layout, pass_samples(merging, false, false, false, 1, total_spp), pixels,
+                                            merging, opt.wave_size, total_spp),
+                          1);
 
   using State = typename decltype(tracer.make_wave_state(0, RayStream(nullptr, backend, nullptr)))::element_type;
   // Units: waves numbered through the whole render (passes one after
@@ -190,10 +195,8 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
     if (relaid) return UINT64_MAX;
     if (!relayout) relayout = plan_relayout(cx, merging, timed, total_spp);
     if (first < relayout->from) return relayout->from;
-    if (relayout->pass_spp != layout.pass_spp) {
+    if (relayout->pass_spp != layout.pass_spp)
       layout = pass_layout(relayout->pass_spp, pixels, merging, opt.wave_size, &layout, relayout->from);
-      checkpoints.set_units(timed ? 0 : layout.units_to(total_spp), 1);
-    }
     cx.split = relayout->split;
     relaid = true;
     return UINT64_MAX;
