@@ -4,9 +4,11 @@
 // and split camera samples where the guide stopped.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <string>
 #include <vector>
 
+#include "film/checkpoint.h"
 #include "guided_rooms.h"
 #include "guiding/sd_tree.h"
 #include "integrator/pass_layout.h"
@@ -115,4 +117,27 @@ TEST(GuidedRelayout, ResumesAcrossTheRelayoutToTheStraightImage) {
   o.wave_size = 1024;  // 3 waves a pass of one sample, 48 of sixteen
   o.collect_stats = false;
   expect_resumes_to_the_straight_image(*box, o, "lantern_guided_relayout.ckpt", 5, 7, 3, "path, split after the stop");
+}
+
+// A finished guided render's film file holds every unit it counts, whether
+// a second layout came (24 spp: from sample 16) or none could (12 spp: the
+// stop after pass 7 leaves no pass of 12 samples, so no camera sample
+// splits and no split is chosen): --part 1/1's film files merge as
+// finished (merge_parts.cpp).
+TEST(GuidedRelayout, AFinishedRendersFilmCountsItsOwnUnits) {
+  if (LANTERN_ASAN) GTEST_SKIP() << "whole renders' verdicts: the Release suite runs it";
+  const auto box = cornell_box();
+  for (const uint32_t spp : {24u, 12u}) {
+    RenderOptions o = stopping_options(spp);
+    o.wave_size = 1024;
+    o.film_path = ::testing::TempDir() + "/lantern_guided_relayout.film";
+    const RenderResult r = render(*box, o);
+    EXPECT_EQ(r.stats.guiding_stopped_after, int32_t(SDTree::kFirstJudged)) << spp;
+    EXPECT_EQ(r.stats.split, spp == 24 ? 4u : 1u) << spp;
+    Film film(0, 0, PixelFilter{});
+    const CheckpointInfo ci = read_film_file(o.film_path, film);
+    EXPECT_EQ(ci.done.size(), ci.passes * ci.waves) << spp;
+    EXPECT_EQ(ci.done.size(), spp == 24 ? 16u * 3 + 48 : 12u * 3) << spp;
+    std::remove(o.film_path.c_str());
+  }
 }

@@ -83,10 +83,18 @@ struct Relayout {
 };
 inline Relayout plan_relayout(PassContext& cx, bool merging, bool timed, uint32_t total_spp) {
   const GuidingField& field = *cx.guiding;
-  const uint32_t split = !field.guides_eye_subpaths() && cx.unguided_split ? cx.unguided_split() : cx.split;
+  auto from_for = [&](uint32_t pass_spp) {  // (the learnt passes are of one sample)
+    const uint64_t from = (field.learnt_passes() + pass_spp - 1) / pass_spp * pass_spp;
+    return uint32_t(std::min<uint64_t>(from, UINT32_MAX));
+  };
+  // The split is chosen only where passes of more than one sample follow:
+  // under --spp their size does not depend on it.
+  uint32_t split = cx.split;
+  if (!field.guides_eye_subpaths() && cx.unguided_split &&
+      (timed || from_for(pass_samples(merging, false, false, false, 1, total_spp)) < total_spp))
+    split = cx.unguided_split();
   const uint32_t pass_spp = pass_samples(merging, false, timed, false, split, total_spp);
-  const uint64_t from = (field.learnt_passes() + pass_spp - 1) / pass_spp * pass_spp;  // (passes of one sample)
-  return {uint32_t(std::min<uint64_t>(from, UINT32_MAX)), pass_spp, split};
+  return {from_for(pass_spp), pass_spp, split};
 }
 
 // Runs one integrator over all passes. Waves flow through a pipeline whose
@@ -114,9 +122,14 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
   bool relaid = !cx.guiding || merging || goal.on();
   const uint32_t capacity =
       relaid ? layout.capacity() : std::max({layout.capacity(), uint32_t(std::max(opt.wave_size, 1)), 16u});
-  if (relaid || timed)
+  // A checkpoint's bound on its units: until a guided render's layout is
+  // known (its relayout, or its end), the most any relayout may number
+  // (the passes after one are of min(total_spp, 16), whatever the split);
+  // then its own count, which --part's film files and merges read.
+  const bool bounded = !relaid && !timed;
+  if (!bounded)
     checkpoints.set_units(timed ? 0 : (total_spp + layout.pass_spp - 1) / layout.pass_spp, layout.waves);
-  else  // (the passes after the relayout are of min(total_spp, 16) whatever the split)
+  else
     checkpoints.set_units(most_guided_units(layout, pass_samples(merging, false, false, false, 1, total_spp), pixels,
                                             merging, opt.wave_size, total_spp),
                           1);
@@ -197,6 +210,7 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
     if (first < relayout->from) return relayout->from;
     if (relayout->pass_spp != layout.pass_spp)
       layout = pass_layout(relayout->pass_spp, pixels, merging, opt.wave_size, &layout, relayout->from);
+    if (bounded) checkpoints.set_units(layout.units_to(total_spp), 1);
     cx.split = relayout->split;
     relaid = true;
     return UINT64_MAX;
@@ -319,6 +333,7 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
   }
   // The last pass merged is complete unless the render stopped inside it.
   if (merged_pass_first != kNoPass && !stop) pass_done(merged_pass_first);
+  if (bounded && !stop) checkpoints.set_units(layout.units_to(total_spp), 1);  // (no relayout came)
   gather_stats(states, film_seconds, cx.stats);
   return stop;
 }
