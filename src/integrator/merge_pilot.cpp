@@ -249,8 +249,7 @@ MergingChoice choose_merging(const Scene& scene, const LightSampler& light_sampl
   no_merges.merge = false;
   const RenderOptions as_bdpt = rendered_as(opt, no_merges, scene);
   BdptSettings bdpt = bdpt_settings(scene, as_bdpt, region, planned_spp);
-  PathTracerSettings eye_alone = path_settings(scene, as_bdpt, region, planned_spp);
-  if (opt.any_guiding()) eye_alone.split = 1;  // (whole camera samples while the guide is in use)
+  const PathTracerSettings eye_alone = path_settings(scene, as_bdpt, region, planned_spp);
   const bool alone = may_render_eye_subpaths_alone(scene, as_bdpt) && worth_a_grid_pilot(bdpt);
   c.bdpt = choose_light_subpath_rate(scene, light_sampler, bdpt, opt.ray_backend, alone ? &eye_alone : nullptr,
                                      opt.time_limit_seconds, opt.light_choice == LightChoiceKind::Auto);

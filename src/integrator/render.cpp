@@ -234,10 +234,9 @@ RenderResult RenderSession::render_all() {
     // the ranks agree on its choice: the ranks' calls to agree must come
     // before rank 0's scheduler thread, which shares MPI with them, starts.
     auto run_path_tracer = [&](PathTracerSettings ps) {
-      uint32_t unguided = ps.split;  // a guided render's, once its guide stops
-      RenderStats pilot_stats;       // (its pilot's figures, reported if its camera samples split)
+      uint32_t unguided = split_once_unguided(scene, opt);  // a guided render's, once its guide stops
+      RenderStats pilot_stats;  // (its pilot's figures, reported if its camera samples split)
       if (cx.guiding) {
-        ps.split = 1;
         if (unguided == kSplitAuto && s.hooks.agree) {
           PathTracerSettings pilot = ps;
           pilot.split = kSplitAuto;
@@ -275,12 +274,9 @@ RenderResult RenderSession::render_all() {
       if (bs.merging)
         res.stats.vcm_wave_paths = merging_wave_paths(uint32_t(film.width() * film.height()), opt.wave_size);
       PathTracerSettings eye_alone = path_settings(scene, opt, s.region, planned_spp);
-      if (uses_light_subpath_rate(opt.integrator)) {
-        PathTracerSettings judged = eye_alone;  // (guided, whole camera samples while the guide is in use)
-        if (cx.guiding) judged.split = 1;
-        set_light_subpath_rate(scene, light_sampler, opt, judged, bs, res.stats, s.hooks,
+      if (uses_light_subpath_rate(opt.integrator))
+        set_light_subpath_rate(scene, light_sampler, opt, eye_alone, bs, res.stats, s.hooks,
                                merging.bdpt ? &*merging.bdpt : nullptr);
-      }
       report_merging(merging, merging_seconds, res.stats);
       // (no light subpaths: the path tracer, eye_subpaths_alone.h, whose
       // camera samples may split as its own do)

@@ -236,8 +236,12 @@ MetropolisSettings metropolis_settings(const Scene& scene, const RenderOptions& 
   return m;
 }
 
-uint32_t camera_sample_split(const Scene& scene, const RenderOptions& opt) {
+uint32_t split_once_unguided(const Scene& scene, const RenderOptions& opt) {
   return splits_camera_samples(opt.integrator) && scene.media.empty() ? opt.split : 1u;
+}
+
+uint32_t camera_sample_split(const Scene& scene, const RenderOptions& opt) {
+  return opt.any_guiding() ? 1u : split_once_unguided(scene, opt);
 }
 
 void check_processes(const RenderOptions& opt, const RenderHooks& hooks) {

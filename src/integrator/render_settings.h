@@ -39,9 +39,12 @@ BdptSettings bdpt_settings(const Scene& scene, const RenderOptions& opt, const I
                            uint32_t planned_spp);
 // The paths per camera sample the path tracer renders (RenderOptions::split,
 // kSplitAuto for the pilot's choice; bdpt's eye subpaths alone too): 1 for
-// other integrators and in scenes with media. (Guided paths split once
-// their guide stops: integrator/pass_layout.h.)
+// other integrators, in scenes with media and for guided paths, whose
+// guide is in use from the start (their pilots see them so too).
 uint32_t camera_sample_split(const Scene& scene, const RenderOptions& opt);
+// A guided path tracer's split once its guide stops (pass_layout.h): what
+// camera_sample_split gives the same render unguided.
+uint32_t split_once_unguided(const Scene& scene, const RenderOptions& opt);
 PathTracerSettings path_settings(const Scene& scene, const RenderOptions& opt, const ImageRegion& region,
                                  uint32_t planned_spp);
 // The paths of each wave of a pass of one sample per pixel (vcm, bpm, ppm):
