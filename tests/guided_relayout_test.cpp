@@ -5,12 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <mutex>
 #include <string>
 #include <vector>
 
 #include "film/checkpoint.h"
 #include "guided_rooms.h"
 #include "guiding/sd_tree.h"
+#include "integrator/adaptive_sampling.h"
 #include "integrator/pass_layout.h"
 #include "integrator/render_checkpoints.h"
 #include "lantern/render.h"
@@ -70,6 +72,32 @@ TEST(PassLayout, TheSecondLayoutsUnitsFollowTheFirsts) {
   EXPECT_EQ(most_guided_units(a, 16, pixels, false, 128, total), 381u);
 }
 
+// Under adaptive sampling the second layout begins after the pair of
+// samples whose pixels were decided before the field was known to have
+// learnt (pass_layout.h), and the adaptive passes are numbered on across
+// it: pairs of one-sample passes, then passes of 16.
+TEST(PassLayout, AdaptiveRelayoutBeginsAfterTheDecidedPairs) {
+  EXPECT_EQ(relayout_from(7, 16, false), 16u);
+  EXPECT_EQ(relayout_from(7, 16, true), 16u);
+  EXPECT_EQ(relayout_from(15, 16, false), 16u);
+  EXPECT_EQ(relayout_from(15, 16, true), 32u);  // (the pair 16, 17 was decided at sample 14)
+  EXPECT_EQ(relayout_from(31, 16, true), 48u);
+  EXPECT_EQ(relayout_from(7, 5, true), 10u);  // (a pair ends there)
+  Film film(8, 8, PixelFilter{});
+  std::mutex mutex;
+  const std::vector<uint32_t> order = tile_order(8, 8);
+  AdaptiveGoal goal;
+  goal.budget = 64.0 * 40;
+  AdaptivePasses adaptive(film, mutex, order, 64, 2, goal);
+  EXPECT_EQ(adaptive.pass_of(31), 15u);
+  adaptive.relayout(32, 16);
+  EXPECT_EQ(adaptive.pass_of(30), 15u);
+  EXPECT_EQ(adaptive.pass_of(31), 15u);
+  EXPECT_EQ(adaptive.pass_of(32), 16u);
+  EXPECT_EQ(adaptive.pass_of(47), 16u);
+  EXPECT_EQ(adaptive.pass_of(48), 17u);
+}
+
 // Guided checkpoints of the layout before (one sample per pass to the
 // end, "guiding=1") number their units otherwise: refused by name.
 TEST(PassLayout, GuidedFingerprintNamesTheLayout) {
@@ -77,6 +105,8 @@ TEST(PassLayout, GuidedFingerprintNamesTheLayout) {
   ImageRegion region;
   region.width = region.height = 8;
   EXPECT_NE(sequence_fingerprint(o, region).find("\nguiding=2\n"), std::string::npos);
+  o.adaptive = true;  // (one sample per pass to the end under "2")
+  EXPECT_NE(sequence_fingerprint(o, region).find("\nguiding=3\n"), std::string::npos);
 }
 
 // Where the guide stopped, the render's camera samples split as the
@@ -139,5 +169,70 @@ TEST(GuidedRelayout, AFinishedRendersFilmCountsItsOwnUnits) {
     EXPECT_EQ(ci.done.size(), ci.passes * ci.waves) << spp;
     EXPECT_EQ(ci.done.size(), spp == 24 ? 16u * 3 + 48 : 12u * 3) << spp;
     std::remove(o.film_path.c_str());
+  }
+}
+
+// An adaptive guided render lays its passes out again too. Where the guide
+// stopped (after pass 7), its camera samples split as the unguided
+// render's do, it spends its budget of samples exactly, and its image is
+// the unguided adaptive render's: region means over independent renders
+// agree within 4.5 standard errors.
+TEST(GuidedRelayout, AdaptiveRendersSplitAfterTheStopAndSpendTheirBudget) {
+  if (LANTERN_ASAN) GTEST_SKIP() << "whole renders' verdicts: the Release suite runs it";
+  const auto box = cornell_box();
+  RenderOptions o = stopping_options(64);
+  o.adaptive = true;
+  const RenderResult stopped = render(*box, o);
+  EXPECT_EQ(stopped.stats.guiding_stopped_after, int32_t(SDTree::kFirstJudged));
+  EXPECT_EQ(stopped.stats.split, 4u);
+  EXPECT_EQ(stopped.stats.samples, uint64_t(64) * 48 * 64);
+  EXPECT_GT(stopped.stats.max_spp, 64u);  // (the budget went where it pays)
+
+  std::vector<Region> regions;
+  for (int y = 0; y < 48; y += 16)
+    for (int x = 0; x < 64; x += 16) regions.push_back({x, y, 16, 16});
+  RenderOptions plain = o;
+  plain.guiding = false;
+  const RegionStats unguided = stats_of(render_runs(*box, plain, 6, 100), regions);
+  const RegionStats guided = stats_of(render_runs(*box, o, 6, 200), regions);
+  max_z(unguided, guided);
+  expect_means_agree(unguided, guided, 0.0, "adaptive guided path, stopped and split");
+}
+
+// An adaptive guided render whose field learns to pass 15 (--spp 40, the
+// guide kept): passes of one sample to sample 32, then of 16. Stopped
+// inside both and resumed, on one and two threads in turn, it ends on the
+// straight render's image and spends its budget exactly.
+TEST(GuidedRelayout, AdaptiveRendersResumeAcrossTheRelayout) {
+  const auto box = cornell_box();
+  RenderOptions o = stopping_options(40);
+  o.guide_stop = false;
+  o.adaptive = true;
+  o.wave_size = 1024;  // 3 waves a pass of one sample, 48 of sixteen
+  o.collect_stats = false;
+  const RenderResult straight = render(*box, o);
+  EXPECT_EQ(straight.stats.samples, uint64_t(40) * 48 * 64);
+  expect_resumes_to_the_straight_image(*box, o, "lantern_guided_adaptive.ckpt", 9, 13, 3, "adaptive, guide kept");
+}
+
+// A budget whose passes were pairs of one sample before the relayout
+// leaves a remainder no block of 16 pixels fits in a pass of 16: the
+// render ends there, rather than going on through passes no pixel takes to
+// adaptive sampling's limit of samples per pixel (the spotlit room at 240
+// x 180, 128 spp, took five times as long so).
+TEST(GuidedRelayout, AdaptiveBudgetEndsWhenNoBlockFits) {
+  if (LANTERN_ASAN) GTEST_SKIP() << "whole renders' verdicts: the Release suite runs it";
+  const auto box = cornell_box();
+  for (const uint32_t spp : {40u, 48u, 56u, 64u}) {
+    RenderOptions o = stopping_options(spp);
+    o.guide_stop = false;
+    o.adaptive = true;
+    uint32_t reached = 0;
+    RenderHooks hooks;
+    hooks.pass_done = [&](uint32_t s) { reached = s; };
+    const RenderResult r = render(*box, o, hooks);
+    EXPECT_LE(r.stats.samples, uint64_t(spp) * 48 * 64) << spp;
+    EXPECT_GT(r.stats.samples + 16 * 16, uint64_t(spp) * 48 * 64) << spp;  // (to a block of a pass)
+    EXPECT_LE(reached, r.stats.max_spp + 16) << spp;
   }
 }

@@ -68,7 +68,7 @@ PassSummary summarize_pass(const Film& film, const std::vector<uint32_t>& order,
 }
 
 PassSummary summarize_budget_pass(const Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave,
-                                  uint32_t pass, uint32_t pass_spp) {
+                                  uint32_t s) {
   std::vector<std::pair<double, size_t>> roots;  // sqrt(v_b), pixels
   double error = 0.0;
   size_t pixels = 0;
@@ -78,9 +78,9 @@ PassSummary summarize_budget_pass(const Film& film, const std::vector<uint32_t>&
     const double e = estimated_error(film, block, n, ErrorMeasure::Balanced);
     roots.emplace_back(std::sqrt(e * double(film.sample_count(block[0]))), n);
   });
-  PassSummary s;
-  if (pixels == 0) return s;
-  s.estimate = error / double(pixels);
+  PassSummary m;
+  if (pixels == 0) return m;
+  m.estimate = error / double(pixels);
   std::sort(roots.begin(), roots.end());
   double R = roots.back().first;
   size_t below = 0;
@@ -89,20 +89,19 @@ PassSummary summarize_budget_pass(const Film& film, const std::vector<uint32_t>&
       R = root;
       break;
     }
-  const double spp = double(pass_spp) * double(pass + 1);
-  s.lambda = R > 0.0 ? (R / spp) * (R / spp) : 0.0;
-  return s;
+  m.lambda = R > 0.0 ? (R / double(s)) * (R / double(s)) : 0.0;
+  return m;
 }
 
 void decide_pass(Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave, double lambda, uint32_t pass,
-                 uint32_t pass_spp, ErrorMeasure measure) {
+                 uint32_t underway_spp, ErrorMeasure measure) {
   uint8_t* mask = film.pass_mask(pass);
   for_each_block(order, pixels_per_wave, [&](const uint32_t* pixels, size_t n) {
     // A block's pixels have taken the same passes, so the same count.
     const uint32_t count = film.sample_count(pixels[0]);
     // (the pass under way, which it may be taking, counted as taken)
-    const bool needed =
-        count + pass_spp < kAdaptiveFirstSamples || estimated_error(film, pixels, n, measure) > lambda * double(count);
+    const bool needed = count + underway_spp < kAdaptiveFirstSamples ||
+                        estimated_error(film, pixels, n, measure) > lambda * double(count);
     for (size_t i = 0; i < n; ++i) mask[pixels[i]] = needed ? 1 : 0;
   });
 }
@@ -168,6 +167,16 @@ AdaptivePasses::AdaptivePasses(Film& film, std::mutex& film_mutex, const std::ve
   if (on()) film_.track_halves();
 }
 
+void AdaptivePasses::relayout(uint32_t from, uint32_t pass_spp) {
+  from_ = from;
+  after_spp_ = pass_spp;
+}
+
+uint32_t AdaptivePasses::first_of(uint32_t pass) const {
+  const uint32_t before = from_ / pass_spp_;  // the passes before the relayout
+  return pass < before ? pass * pass_spp_ : from_ + (pass - before) * after_spp_;
+}
+
 bool AdaptivePasses::reached(uint32_t pass) const {
   if (!on() || pass < 2) return false;
   std::lock_guard<std::mutex> lock(mutex_);
@@ -182,8 +191,8 @@ void AdaptivePasses::measure_before(uint32_t pass) {
   std::vector<double>& measured = film_.pass_measurements();
   if (measured.size() >= 2 * size_t(pass)) return;
   PassSummary m = goal_.target > 0 ? summarize_pass(film_, order_, pixels_per_wave_, goal_.target)
-                                   : summarize_budget_pass(film_, order_, pixels_per_wave_, pass, pass_spp_);
-  decide_pass(film_, order_, pixels_per_wave_, m.lambda, pass + 1, pass_spp_, goal_.measure());
+                                   : summarize_budget_pass(film_, order_, pixels_per_wave_, first_of(pass + 1));
+  decide_pass(film_, order_, pixels_per_wave_, m.lambda, pass + 1, spp_of(pass), goal_.measure());
   if (goal_.target <= 0 && pixels_taking(film_, pass + 1) == 0) {
     // No block's estimate asks for more (an image without light, or one
     // converged to the estimate's precision): a budget is spent evenly
@@ -193,13 +202,16 @@ void AdaptivePasses::measure_before(uint32_t pass) {
   if (goal_.target <= 0 && std::isfinite(goal_.budget)) {
     // The samples the image holds once pass `pass` is merged; what is left
     // goes to pass + 1, and none after it.
-    const double planned = double(film_.total_samples()) + double(pass_spp_) * double(pixels_taking(film_, pass));
-    const double left = std::floor((goal_.budget - planned) / double(pass_spp_));
-    if (left < 1.0) {
+    const double planned = double(film_.total_samples()) + double(spp_of(pass)) * double(pixels_taking(film_, pass));
+    const double left = std::floor((goal_.budget - planned) / double(spp_of(pass + 1)));
+    if (left >= 1.0) trim_pass(film_, order_, pixels_per_wave_, pass + 1, uint64_t(left), goal_.measure());
+    // Spent, to a block: no block that asks fits in what is left. (Passes
+    // of different sizes, pairs of one sample before a guided render's
+    // relayout, leave remainders no block of a larger pass fits; nor may
+    // a partial block at a wave's end, where the others are whole.)
+    if (left < 1.0 || pixels_taking(film_, pass + 1) == 0) {
       m.lambda = std::numeric_limits<double>::infinity();
       std::fill_n(film_.pass_mask(pass + 1), order_.size(), uint8_t(0));
-    } else {
-      trim_pass(film_, order_, pixels_per_wave_, pass + 1, uint64_t(left), goal_.measure());
     }
   }
   measured.push_back(m.lambda);

@@ -44,7 +44,7 @@
 // proportional to sqrt(v_b) with v_b in the balanced measure (ErrorMeasure
 // below), is then followed for a total that grows pass by pass: deciding
 // pass p + 1, a block takes it while
-//   n_b < s sqrt(v_b) / R,   s = (p + 1) * pass samples,
+//   n_b < s sqrt(v_b) / R,   s the samples before pass p + 1,
 // R the 95th percentile of sqrt(v_b) over the image's pixels. So the
 // blocks at R and above take every pass (one pass is the most a block can
 // take at a time), and a block of a quarter of R's root variance every
@@ -129,15 +129,15 @@ struct PassSummary {
 };
 PassSummary summarize_pass(const Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave,
                            double target);
-// Without a target: lambda for deciding pass `pass` + 1 when a pass is
-// `pass_spp` samples (the rate rule above), in the summary's place.
+// Without a target: lambda for deciding a pass that begins at sample `s`
+// (the rate rule above), in the summary's place.
 PassSummary summarize_budget_pass(const Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave,
-                                  uint32_t pass, uint32_t pass_spp);
+                                  uint32_t s);
 
 // At the end of pass p - 2: which blocks take pass p under `lambda`
-// (Film::pass_mask), passes being `pass_spp` samples.
+// (Film::pass_mask), pass p - 1, under way, being `underway_spp` samples.
 void decide_pass(Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave, double lambda, uint32_t pass,
-                 uint32_t pass_spp, ErrorMeasure measure);
+                 uint32_t underway_spp, ErrorMeasure measure);
 // Keeps at most `pixels` of those that take pass p (p >= 2): whole blocks,
 // those of largest e_b / n_b first (ties: tile order).
 void trim_pass(Film& film, const std::vector<uint32_t>& order, uint32_t pixels_per_wave, uint32_t pass, uint64_t pixels,
@@ -157,12 +157,21 @@ AdaptiveGoal adaptive_goal(const RenderOptions& opt, size_t pixels);
 // every pixel taking every pass, for a goal that is off.
 class AdaptivePasses {
  public:
-  // `order`: the tile order, cut into waves of pixels_per_wave, of passes
-  // of pass_spp samples; the film's measurements and choices are read and
-  // written under film_mutex.
+  // `order`: the tile order, cut into waves of pixels_per_wave (the blocks
+  // lie inside them), of passes of pass_spp samples; the film's
+  // measurements and choices are read and written under film_mutex.
   AdaptivePasses(Film& film, std::mutex& film_mutex, const std::vector<uint32_t>& order, uint32_t pixels_per_wave,
                  uint32_t pass_spp, AdaptiveGoal goal);
   bool on() const { return goal_.on(); }
+  // From sample `from` (a multiple of the passes' samples so far) on,
+  // passes are `pass_spp` samples (a guided render's second layout,
+  // integrator/pass_layout.h). Known before any pass from there on is
+  // decided, and the same in every run of the render.
+  void relayout(uint32_t from, uint32_t pass_spp);
+  // The pass that holds sample `first`.
+  uint32_t pass_of(uint32_t first) const {
+    return first < from_ ? first / pass_spp_ : from_ / pass_spp_ + (first - from_) / after_spp_;
+  }
   // Pass p is not to begin: the image estimate after pass p - 2 was below
   // the target, or the budget is spent.
   bool reached(uint32_t pass) const;
@@ -177,7 +186,12 @@ class AdaptivePasses {
   Film& film_;
   std::mutex& mutex_;
   const std::vector<uint32_t>& order_;
+  // The first sample of pass p, and its samples.
+  uint32_t first_of(uint32_t pass) const;
+  uint32_t spp_of(uint32_t pass) const { return first_of(pass + 1) - first_of(pass); }
+
   uint32_t pixels_per_wave_, pass_spp_;
+  uint32_t from_ = UINT32_MAX, after_spp_ = 1;  // the passes from sample from_ on (relayout)
   AdaptiveGoal goal_;
 };
 

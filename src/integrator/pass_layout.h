@@ -24,7 +24,10 @@
 // new passes follow from the field's state (its iteration, whether it
 // learns, whether its guide stopped), which checkpoints keep and MPI's
 // ranks share, so a resumed run and every rank lay the render out alike.
-// (Not under adaptive sampling, whose passes are decided for one layout.)
+// Under adaptive sampling, which decides a pass's pixels two passes ahead
+// (adaptive_sampling.h), the second layout begins after the samples
+// already decided when the field is known to have learnt: those were
+// decided as passes of one sample.
 #pragma once
 
 #include <algorithm>
@@ -41,6 +44,19 @@ inline uint32_t pass_samples(bool merging, bool learning, bool timed, bool adapt
   if (merging || learning) return 1;
   if (timed && !adaptive) return split;
   return std::min<uint32_t>(total_spp, 16u);
+}
+
+// Where the second layout begins after a field that learnt `learnt`
+// passes (of one sample): the first multiple of its `pass_spp` from there
+// on; under adaptive sampling from learnt + 3 on. (The field is known to
+// have learnt once its last pass, learnt - 1, is merged; by then adaptive
+// sampling has decided the pixels of the pair of samples after that pass's
+// pair, up to sample learnt + 2 when learnt is odd, as it is after an
+// iteration: 2^k - 1; and at an even sample, where a pair ends.)
+inline uint64_t relayout_from(uint64_t learnt, uint32_t pass_spp, bool adaptive) {
+  const uint64_t after = learnt + (adaptive ? 3 : 0);
+  const uint64_t step = adaptive && pass_spp % 2 ? 2 * uint64_t(pass_spp) : pass_spp;
+  return (after + step - 1) / step * step;
 }
 
 struct PassLayout {
@@ -90,10 +106,10 @@ inline PassLayout pass_layout(uint32_t pass_spp, uint32_t pixels, bool merging, 
 // (the end of an iteration, 2^k - 1) on. A checkpoint's bound on its units
 // (Checkpointer::set_units), the same before and after the relayout.
 inline uint64_t most_guided_units(const PassLayout& learning, uint32_t pass_spp, uint32_t pixels, bool merging,
-                                  int wave_size, uint32_t total_spp) {
+                                  int wave_size, uint32_t total_spp, bool adaptive = false) {
   uint64_t most = learning.units_to(total_spp);
   for (uint64_t learnt = 0; learnt < total_spp; learnt = 2 * learnt + 1) {
-    const uint64_t from = (learnt + pass_spp - 1) / pass_spp * pass_spp;
+    const uint64_t from = relayout_from(learnt, pass_spp, adaptive);
     if (from >= total_spp) break;
     const PassLayout after = pass_layout(pass_spp, pixels, merging, wave_size, &learning, uint32_t(from));
     most = std::max(most, after.units_to(total_spp));

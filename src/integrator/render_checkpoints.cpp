@@ -52,9 +52,11 @@ std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& regi
   else if (o.adaptive) line("adaptive", "budget");
   // Guided renders: passes of one sample while the field learns, an
   // unguided render's after (integrator/pass_layout.h); "1" was one sample
-  // per pass to the end, whose units number otherwise.
-  if (o.guiding) line("guiding", "2");
-  if (o.guide_light_subpaths) line("guide-light", "2");
+  // per pass to the end, whose units number otherwise, and so was "2"
+  // under adaptive sampling.
+  const char* guided_layout = o.target_error > 0 || o.adaptive ? "3" : "2";
+  if (o.guiding) line("guiding", guided_layout);
+  if (o.guide_light_subpaths) line("guide-light", guided_layout);
   if (o.any_guiding()) line("guide-distribution", name(o.guide_distribution));  // (lobes are not quadtrees)
   if (o.any_guiding() && !o.guide_stop) line("guide-stop", "never");
   if (o.gbuffer) line("gbuffer", "1");  // the film sums the samples' squares too

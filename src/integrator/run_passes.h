@@ -81,19 +81,18 @@ inline void choose_adaptive(const AdaptivePasses& adaptive, uint32_t pass, bool 
 struct Relayout {
   uint32_t from, pass_spp, split;
 };
-inline Relayout plan_relayout(PassContext& cx, bool merging, bool timed, uint32_t total_spp) {
+inline Relayout plan_relayout(PassContext& cx, bool merging, bool timed, bool adaptive, uint32_t total_spp) {
   const GuidingField& field = *cx.guiding;
-  auto from_for = [&](uint32_t pass_spp) {  // (the learnt passes are of one sample)
-    const uint64_t from = (field.learnt_passes() + pass_spp - 1) / pass_spp * pass_spp;
-    return uint32_t(std::min<uint64_t>(from, UINT32_MAX));
+  auto from_for = [&](uint32_t pass_spp) {
+    return uint32_t(std::min<uint64_t>(relayout_from(field.learnt_passes(), pass_spp, adaptive), UINT32_MAX));
   };
   // The split is chosen only where passes of more than one sample follow:
   // under --spp their size does not depend on it.
   uint32_t split = cx.split;
   if (!field.guides_eye_subpaths() && cx.unguided_split &&
-      (timed || from_for(pass_samples(merging, false, false, false, 1, total_spp)) < total_spp))
+      (timed || from_for(pass_samples(merging, false, false, adaptive, 1, total_spp)) < total_spp))
     split = cx.unguided_split();
-  const uint32_t pass_spp = pass_samples(merging, false, timed, false, split, total_spp);
+  const uint32_t pass_spp = pass_samples(merging, false, timed, adaptive, split, total_spp);
   return {from_for(pass_spp), pass_spp, split};
 }
 
@@ -119,7 +118,7 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
                                   pixels, merging, opt.wave_size);
   // A guided render's passes give way to an unguided render's once its
   // field has learnt (pass_layout.h): room in the waves for those too.
-  bool relaid = !cx.guiding || merging || goal.on();
+  bool relaid = !cx.guiding || merging;
   const uint32_t capacity =
       relaid ? layout.capacity() : std::max({layout.capacity(), uint32_t(std::max(opt.wave_size, 1)), 16u});
   // A checkpoint's bound on its units: until a guided render's layout is
@@ -130,8 +129,8 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
   if (!bounded)
     checkpoints.set_units(timed ? 0 : (total_spp + layout.pass_spp - 1) / layout.pass_spp, layout.waves);
   else
-    checkpoints.set_units(most_guided_units(layout, pass_samples(merging, false, false, false, 1, total_spp), pixels,
-                                            merging, opt.wave_size, total_spp),
+    checkpoints.set_units(most_guided_units(layout, pass_samples(merging, false, false, goal.on(), 1, total_spp),
+                                            pixels, merging, opt.wave_size, total_spp, goal.on()),
                           1);
 
   using State = typename decltype(tracer.make_wave_state(0, RayStream(nullptr, backend, nullptr)))::element_type;
@@ -170,13 +169,16 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
   // by its own light paths (choose_adaptive): vcm's weights change from
   // pass to pass (the radius shrinks), so a pixel's light tracing must be
   // averaged over the passes its camera samples are.
-  const uint32_t adaptive_spp = layout.pass_spp == 1 ? 2 : layout.pass_spp;
-  AdaptivePasses adaptive(film, cx.film_mutex, order, layout.pixels_per_wave, adaptive_spp, goal);
-  size_t tokens = 2 * size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
-  if (adaptive.on()) tokens = std::min<size_t>(tokens, size_t(layout.waves) * (adaptive_spp / layout.pass_spp));
-  std::vector<WaveOutput> outputs(tokens);
+  auto pipeline_passes = [&] { return layout.pass_spp == 1 ? 2u : 1u; };  // in a pass of adaptive sampling
+  AdaptivePasses adaptive(film, cx.film_mutex, order, layout.pixels_per_wave, layout.pass_spp * pipeline_passes(),
+                          goal);
+  const size_t most_tokens = 2 * size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
+  auto tokens_now = [&] {  // (each segment's pipeline starts empty, so its layout's)
+    return adaptive.on() ? std::min<size_t>(most_tokens, size_t(layout.waves) * pipeline_passes()) : most_tokens;
+  };
+  std::vector<WaveOutput> outputs(most_tokens);
   for (WaveOutput& o : outputs) o.keep_spectra = film.buckets().count > 0;  // Film "spectral"
-  std::vector<std::vector<uint32_t>> active(adaptive.on() ? tokens : 0);    // each slot's pixels that take the pass
+  std::vector<std::vector<uint32_t>> active(adaptive.on() ? most_tokens : 0);  // each slot's pixels that take the pass
 
   std::atomic<bool> stop{false};
   bool issued = false;  // a wave was started in this run
@@ -206,7 +208,10 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
   auto end_of_segment = [&]() -> uint64_t {
     if (cx.guiding && cx.guiding->learning()) return cx.guiding->iteration_end() * layout.pass_spp;
     if (relaid) return UINT64_MAX;
-    if (!relayout) relayout = plan_relayout(cx, merging, timed, total_spp);
+    if (!relayout) {
+      relayout = plan_relayout(cx, merging, timed, goal.on(), total_spp);
+      adaptive.relayout(relayout->from, relayout->pass_spp);
+    }
     if (first < relayout->from) return relayout->from;
     if (relayout->pass_spp != layout.pass_spp)
       layout = pass_layout(relayout->pass_spp, pixels, merging, opt.wave_size, &layout, relayout->from);
@@ -217,6 +222,7 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
   };
   for (uint64_t segment_end = end_of_segment();; segment_end = end_of_segment()) {
     const bool learning = cx.guiding && cx.guiding->learning();
+    const size_t tokens = tokens_now();
     tbb::parallel_pipeline(
         tokens,
         tbb::make_filter<void, WaveItem>(tbb::filter_mode::serial_in_order, [&](tbb::flow_control& fc) -> WaveItem {
@@ -228,7 +234,7 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
           // ticket is taken that will not be rendered.
           const bool ticketed = bool(hooks.next_ticket);
           for (;;) {
-            if (first >= total_spp || first >= segment_end || adaptive.reached(first / adaptive_spp)) break;
+            if (first >= total_spp || first >= segment_end || adaptive.reached(adaptive.pass_of(first))) break;
             if (!ticketed && !tickets.next(first, next, layout.waves, wanted)) {
               if (advance_pass()) continue;
               break;  // the last pass is done
@@ -264,7 +270,7 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
           WaveOutput& out = outputs[item.slot];
           out.clear();
           if (adaptive.on())
-            choose_adaptive(adaptive, item.first / adaptive_spp, merging, film, uint64_t(pixels) * layout.pass_spp,
+            choose_adaptive(adaptive, adaptive.pass_of(item.first), merging, film, uint64_t(pixels) * layout.pass_spp,
                             wave, out, active[item.slot]);
           if (wave.pixel_count > 0)
             trace_wave(tracer, wave, *states.local(), out, hooks.timeline, int64_t(unit_of(item.first, wi)));
@@ -275,7 +281,7 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
           // a new pass means the one before is complete.
           if (merged_pass_first != item.first) {
             if (merged_pass_first != kNoPass) pass_done(merged_pass_first);
-            adaptive.measure_before(item.first / adaptive_spp);
+            adaptive.measure_before(adaptive.pass_of(item.first));
             merged_pass_first = item.first;
           }
           const uint64_t unit = unit_of(item.first, item.wave);
