@@ -107,6 +107,8 @@ TEST(PassLayout, GuidedFingerprintNamesTheLayout) {
   EXPECT_NE(sequence_fingerprint(o, region).find("\nguiding=2\n"), std::string::npos);
   o.adaptive = true;  // (one sample per pass to the end under "2")
   EXPECT_NE(sequence_fingerprint(o, region).find("\nguiding=3\n"), std::string::npos);
+  o.integrator = Integrator::Vcm;  // (merging: passes of one sample to the end, as under "2")
+  EXPECT_NE(sequence_fingerprint(o, region).find("\nguiding=2\n"), std::string::npos);
 }
 
 // Where the guide stopped, the render's camera samples split as the

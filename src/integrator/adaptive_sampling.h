@@ -52,7 +52,8 @@
 // (no light) is taken by all. A sample budget is
 // spent exactly, to a block: when the pass after next would pass it, that
 // pass keeps the blocks of largest e_b / n_b that fit, and the render
-// ends after it (lambda recorded as infinity).
+// ends after it (lambda recorded as infinity); so too when none of the
+// blocks that ask fits in what is left.
 #pragma once
 
 #include <algorithm>
@@ -158,7 +159,8 @@ AdaptiveGoal adaptive_goal(const RenderOptions& opt, size_t pixels);
 class AdaptivePasses {
  public:
   // `order`: the tile order, cut into waves of pixels_per_wave (the blocks
-  // lie inside them), of passes of pass_spp samples; the film's
+  // lie inside them, and stay so after a relayout), of passes of pass_spp
+  // samples; the film's
   // measurements and choices are read and written under film_mutex.
   AdaptivePasses(Film& film, std::mutex& film_mutex, const std::vector<uint32_t>& order, uint32_t pixels_per_wave,
                  uint32_t pass_spp, AdaptiveGoal goal);

@@ -27,7 +27,7 @@
 // Under adaptive sampling, which decides a pass's pixels two passes ahead
 // (adaptive_sampling.h), the second layout begins after the samples
 // already decided when the field is known to have learnt: those were
-// decided as passes of one sample.
+// decided as passes of one sample (relayout_from).
 #pragma once
 
 #include <algorithm>
@@ -52,7 +52,7 @@ inline uint32_t pass_samples(bool merging, bool learning, bool timed, bool adapt
 // have learnt once its last pass, learnt - 1, is merged; by then adaptive
 // sampling has decided the pixels of the pair of samples after that pass's
 // pair, up to sample learnt + 2 when learnt is odd, as it is after an
-// iteration: 2^k - 1; and at an even sample, where a pair ends.)
+// iteration: 2^k - 1; and at an even sample, where a pair begins.)
 inline uint64_t relayout_from(uint64_t learnt, uint32_t pass_spp, bool adaptive) {
   const uint64_t after = learnt + (adaptive ? 3 : 0);
   const uint64_t step = adaptive && pass_spp % 2 ? 2 * uint64_t(pass_spp) : pass_spp;

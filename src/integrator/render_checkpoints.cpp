@@ -54,7 +54,8 @@ std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& regi
   // unguided render's after (integrator/pass_layout.h); "1" was one sample
   // per pass to the end, whose units number otherwise, and so was "2"
   // under adaptive sampling.
-  const char* guided_layout = o.target_error > 0 || o.adaptive ? "3" : "2";
+  // (merging renders keep passes of one sample: no second layout)
+  const char* guided_layout = (o.target_error > 0 || o.adaptive) && !merges_vertices(o.integrator) ? "3" : "2";
   if (o.guiding) line("guiding", guided_layout);
   if (o.guide_light_subpaths) line("guide-light", guided_layout);
   if (o.any_guiding()) line("guide-distribution", name(o.guide_distribution));  // (lobes are not quadtrees)

@@ -81,7 +81,10 @@ inline void choose_adaptive(const AdaptivePasses& adaptive, uint32_t pass, bool 
 struct Relayout {
   uint32_t from, pass_spp, split;
 };
-inline Relayout plan_relayout(PassContext& cx, bool merging, bool timed, bool adaptive, uint32_t total_spp) {
+// `reach`: the samples per pixel the render reaches, its mean under an
+// adaptive budget.
+inline Relayout plan_relayout(PassContext& cx, bool merging, bool timed, bool adaptive, uint32_t total_spp,
+                              uint32_t reach) {
   const GuidingField& field = *cx.guiding;
   auto from_for = [&](uint32_t pass_spp) {
     return uint32_t(std::min<uint64_t>(relayout_from(field.learnt_passes(), pass_spp, adaptive), UINT32_MAX));
@@ -90,7 +93,7 @@ inline Relayout plan_relayout(PassContext& cx, bool merging, bool timed, bool ad
   // under --spp their size does not depend on it.
   uint32_t split = cx.split;
   if (!field.guides_eye_subpaths() && cx.unguided_split &&
-      (timed || from_for(pass_samples(merging, false, false, adaptive, 1, total_spp)) < total_spp))
+      (timed || from_for(pass_samples(merging, false, false, adaptive, 1, total_spp)) < reach))
     split = cx.unguided_split();
   const uint32_t pass_spp = pass_samples(merging, false, timed, adaptive, split, total_spp);
   return {from_for(pass_spp), pass_spp, split};
@@ -202,14 +205,14 @@ bool run_passes(const Tracer& tracer, PassContext& cx) {
   };
   // While a guiding field learns, the pipeline stops at the end of each of
   // its iterations (the waves drain, the field is updated) and starts again.
-  // Once it has learnt, the passes of one sample go on to the first sample
-  // the unguided render's passes divide, and from there those take over.
+  // Once it has learnt, the passes of one sample go on to where the
+  // unguided render's passes begin (relayout_from), and those take over.
   std::optional<Relayout> relayout;
   auto end_of_segment = [&]() -> uint64_t {
     if (cx.guiding && cx.guiding->learning()) return cx.guiding->iteration_end() * layout.pass_spp;
     if (relaid) return UINT64_MAX;
     if (!relayout) {
-      relayout = plan_relayout(cx, merging, timed, goal.on(), total_spp);
+      relayout = plan_relayout(cx, merging, timed, goal.on(), total_spp, budgeted ? uint32_t(opt.spp) : total_spp);
       adaptive.relayout(relayout->from, relayout->pass_spp);
     }
     if (first < relayout->from) return relayout->from;
