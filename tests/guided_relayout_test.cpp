@@ -111,32 +111,33 @@ TEST(PassLayout, GuidedFingerprintNamesTheLayout) {
   EXPECT_NE(sequence_fingerprint(o, region).find("\nguiding=2\n"), std::string::npos);
 }
 
-// Where the guide stopped, the render's camera samples split as the
-// unguided render's do (--split 4), it takes its budget's samples, no
-// more, no fewer, and its image is the unguided one's: region means over
+// Once the field has learnt, the render's camera samples split as the
+// unguided render's do (--split 4), whether its guide stopped (after pass
+// 7: split from sample 16) or goes on (learnt to pass 31: from sample 32,
+// each path of a camera sample drawing from the guide at the shared first
+// hit with its own numbers); it takes its budget's samples, no more, no
+// fewer, and its image is the unguided one's: region means over
 // independent renders agree within 4.5 standard errors.
-TEST(GuidedRelayout, StoppedGuideSplitsAndConvergesToTheUnguidedImage) {
+TEST(GuidedRelayout, LearntFieldSplitsAndConvergesToTheUnguidedImage) {
   if (LANTERN_ASAN) GTEST_SKIP() << "whole renders' verdicts: the Release suite runs it";
   const auto box = cornell_box();
-  const RenderOptions o = stopping_options(64);
-  const RenderResult stopped = render(*box, o);
-  EXPECT_EQ(stopped.stats.guiding_stopped_after, int32_t(SDTree::kFirstJudged));
-  EXPECT_EQ(stopped.stats.split, 4u);
-  EXPECT_EQ(stopped.stats.samples, uint64_t(64) * 48 * 64);
-  // (a guide that goes on keeps whole camera samples)
-  RenderOptions never = o;
-  never.guide_stop = false;
-  EXPECT_EQ(render(*box, never).stats.split, 1u);
-
   std::vector<Region> regions;
   for (int y = 0; y < 48; y += 16)
     for (int x = 0; x < 64; x += 16) regions.push_back({x, y, 16, 16});
-  RenderOptions plain = o;
+  RenderOptions plain = stopping_options(64);
   plain.guiding = false;
   const RegionStats unguided = stats_of(render_runs(*box, plain, 6, 100), regions);
-  const RegionStats guided = stats_of(render_runs(*box, o, 6, 200), regions);
-  max_z(unguided, guided);
-  expect_means_agree(unguided, guided, 0.0, "guided path, stopped and split");
+  for (const bool stops : {true, false}) {
+    RenderOptions o = stopping_options(64);
+    o.guide_stop = stops;
+    const RenderResult r = render(*box, o);
+    EXPECT_EQ(r.stats.guiding_stopped_after, stops ? int32_t(SDTree::kFirstJudged) : -1);
+    EXPECT_EQ(r.stats.split, 4u) << stops;
+    EXPECT_EQ(r.stats.samples, uint64_t(64) * 48 * 64) << stops;
+    const RegionStats guided = stats_of(render_runs(*box, o, 6, 200), regions);
+    max_z(unguided, guided);
+    expect_means_agree(unguided, guided, 0.0, stops ? "guided path, stopped and split" : "guided path, split");
+  }
 }
 
 // A render stopped before the relayout, inside the passes of one sample

@@ -34,7 +34,7 @@ struct PassContext {
   GuidingField* guiding;  // null: paths are not guided
   const std::atomic<bool>& cancelled;  // RenderSession::cancel
   uint32_t split = 1;                  // the path tracer's paths per camera sample (PathTracerSettings::split)
-  // A guided path tracer's split once its guide stopped: chooses it (the
+  // A guided path tracer's split once its field has learnt: chooses it (the
   // split pilot, if asked for), sets it in the tracer and returns it
   // (pass_layout.h). Empty for other integrators.
   std::function<uint32_t()> unguided_split = {};

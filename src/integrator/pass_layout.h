@@ -19,8 +19,10 @@
 // ended, or its guide stopped where it does not pay: SDTree::judge), the
 // render goes on in the passes an unguided render of its budget takes,
 // from the first sample their size divides: a second layout, whose units
-// follow the first's. Where the guide stopped, the path tracer's camera
-// samples split then as an unguided render's do. Both the moment and the
+// follow the first's. The path tracer's camera samples then split as an
+// unguided render's do, whether its guide stopped or goes on (a guided
+// path's first hit is shared as an unguided one's, and each path samples
+// the guide there with its own numbers). Both the moment and the
 // new passes follow from the field's state (its iteration, whether it
 // learns, whether its guide stopped), which checkpoints keep and MPI's
 // ranks share, so a resumed run and every rank lay the render out alike.

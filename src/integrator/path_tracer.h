@@ -46,7 +46,7 @@ struct PathTracerSettings {
   // A sample index then counts paths: samples i to i + split - 1 of a
   // pixel (aligned) are one camera sample's. 1 in scenes with media,
   // ambient occlusion and directlighting, and for guided paths until their
-  // guide stops (split_camera_samples).
+  // field has learnt (split_camera_samples).
   uint32_t split = 1;
   RayBackend ray_backend = RayBackend::StreamNp;  // of the rays that find the pixels to split
   // Which pixels may be split: those at (s/2 + i s, s/2 + j s) for a probe
@@ -95,7 +95,7 @@ class PathTracer {
   void set_guiding(const GuidingField* field) { guiding_ = field; }
   // Splits the camera samples of the waves traced from now on in `split`
   // paths (PathTracerSettings::split; 1: whole), as the constructor does
-  // with the settings': a guided render's, once its guide stopped
+  // with the settings': a guided render's, once its field has learnt
   // (integrator/pass_layout.h).
   void split_camera_samples(uint32_t split);
   // Whether the camera samples of a pixel of the film are split

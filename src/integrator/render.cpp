@@ -229,12 +229,13 @@ RenderResult RenderSession::render_all() {
     };
     // The path tracer, its camera samples split in ps.split paths
     // (kSplitAuto: the pilot's choice). Guided, they stay whole while the
-    // guide is in use, and the pilot runs when it stops, if it does
-    // (pass_layout.h). Under MPI it runs before the render instead, where
-    // the ranks agree on its choice: the ranks' calls to agree must come
-    // before rank 0's scheduler thread, which shares MPI with them, starts.
+    // field learns, and the pilot runs once it has learnt, if passes of
+    // more than one sample follow (pass_layout.h). Under MPI it runs before
+    // the render instead, where the ranks agree on its choice: the ranks'
+    // calls to agree must come before rank 0's scheduler thread, which
+    // shares MPI with them, starts.
     auto run_path_tracer = [&](PathTracerSettings ps) {
-      uint32_t unguided = split_once_unguided(scene, opt);  // a guided render's, once its guide stops
+      uint32_t unguided = split_once_unguided(scene, opt);  // a guided render's, once its field has learnt
       RenderStats pilot_stats;  // (its pilot's figures, reported if its camera samples split)
       if (cx.guiding) {
         if (unguided == kSplitAuto && s.hooks.agree) {

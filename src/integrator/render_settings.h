@@ -40,9 +40,9 @@ BdptSettings bdpt_settings(const Scene& scene, const RenderOptions& opt, const I
 // The paths per camera sample the path tracer renders (RenderOptions::split,
 // kSplitAuto for the pilot's choice; bdpt's eye subpaths alone too): 1 for
 // other integrators, in scenes with media and for guided paths, whose
-// guide is in use from the start (their pilots see them so too).
+// field learns from the start (their pilots see them so too).
 uint32_t camera_sample_split(const Scene& scene, const RenderOptions& opt);
-// A guided path tracer's split once its guide stops (pass_layout.h): what
+// A guided path tracer's split once its field has learnt (pass_layout.h): what
 // camera_sample_split gives the same render unguided.
 uint32_t split_once_unguided(const Scene& scene, const RenderOptions& opt);
 PathTracerSettings path_settings(const Scene& scene, const RenderOptions& opt, const ImageRegion& region,

@@ -76,8 +76,9 @@ inline void choose_adaptive(const AdaptivePasses& adaptive, uint32_t pass, bool 
 
 // Where a guided render's passes give way to an unguided render's once
 // its field has learnt (pass_layout.h): from sample `from` on, passes of
-// `pass_spp`, the path tracer's camera samples split in `split` paths
-// where the guide stopped (the split pilot runs then, if asked for).
+// `pass_spp`, the path tracer's camera samples split in `split` paths,
+// whether its guide stopped or goes on (the split pilot runs then, if
+// asked for).
 struct Relayout {
   uint32_t from, pass_spp, split;
 };
@@ -92,8 +93,7 @@ inline Relayout plan_relayout(PassContext& cx, bool merging, bool timed, bool ad
   // The split is chosen only where passes of more than one sample follow:
   // under --spp their size does not depend on it.
   uint32_t split = cx.split;
-  if (!field.guides_eye_subpaths() && cx.unguided_split &&
-      (timed || from_for(pass_samples(merging, false, false, adaptive, 1, total_spp)) < reach))
+  if (cx.unguided_split && (timed || from_for(pass_samples(merging, false, false, adaptive, 1, total_spp)) < reach))
     split = cx.unguided_split();
   const uint32_t pass_spp = pass_samples(merging, false, timed, adaptive, split, total_spp);
   return {from_for(pass_spp), pass_spp, split};
