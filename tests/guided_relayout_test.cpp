@@ -104,7 +104,11 @@ TEST(PassLayout, GuidedFingerprintNamesTheLayout) {
   RenderOptions o = guided_options(true);
   ImageRegion region;
   region.width = region.height = 8;
+  o.split = 1;  // (whole camera samples, as under "2")
   EXPECT_NE(sequence_fingerprint(o, region).find("\nguiding=2\n"), std::string::npos);
+  o.split = 4;  // (whole camera samples while the guide went on under "2")
+  EXPECT_NE(sequence_fingerprint(o, region).find("\nguiding=3\n"), std::string::npos);
+  o.split = 1;
   o.adaptive = true;  // (one sample per pass to the end under "2")
   EXPECT_NE(sequence_fingerprint(o, region).find("\nguiding=3\n"), std::string::npos);
   o.integrator = Integrator::Vcm;  // (merging: passes of one sample to the end, as under "2")

@@ -52,10 +52,14 @@ std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& regi
   else if (o.adaptive) line("adaptive", "budget");
   // Guided renders: passes of one sample while the field learns, an
   // unguided render's after (integrator/pass_layout.h); "1" was one sample
-  // per pass to the end, whose units number otherwise, and so was "2"
-  // under adaptive sampling.
-  // (merging renders keep passes of one sample: no second layout)
-  const char* guided_layout = (o.target_error > 0 || o.adaptive) && !merges_vertices(o.integrator) ? "3" : "2";
+  // per pass to the end, whose units number otherwise. Under "2" so were
+  // adaptive renders' (merging renders' still are: no second layout), and
+  // the path tracer's camera samples split after it only where the guide
+  // had stopped (under a time budget, passes of a camera sample number
+  // their units by the split).
+  const bool relaid_adaptive = (o.target_error > 0 || o.adaptive) && !merges_vertices(o.integrator);
+  const bool split_beside_guide = splits_camera_samples(o.integrator) && o.split != 1;
+  const char* guided_layout = relaid_adaptive || split_beside_guide ? "3" : "2";
   if (o.guiding) line("guiding", guided_layout);
   if (o.guide_light_subpaths) line("guide-light", guided_layout);
   if (o.any_guiding()) line("guide-distribution", name(o.guide_distribution));  // (lobes are not quadtrees)
