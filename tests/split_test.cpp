@@ -162,6 +162,19 @@ TEST(SplitChoice, LeastErrorAtEqualTimeWins) {
   EXPECT_EQ(best_split({0.0, 0.0}, 0.2).split, 1u);  // (a black image)
 }
 
+// The split pilot's choice for the path tracer on a shipped scene at
+// width x height.
+SplitChoice pilot_choice(const char* name, int width, int height) {
+  const auto scene = shipped(name);
+  const LightSampler light_sampler(scene->lights, scene->shapes, scene->textures, LightSamplerKind::Bvh);
+  RenderOptions o;
+  o.integrator = Integrator::Path;
+  o.width = width;
+  o.height = height;
+  const PathTracerSettings ps = path_settings(*scene, o, image_region(*scene, o), 0);
+  return choose_split(*scene, light_sampler, ps, RayBackend::StreamNp);
+}
+
 // The pilot weighs its candidates' pixels by their values from every
 // candidate's images alike: a rare bright path in a split image no longer
 // decides it. The spotlit room and the lantern, where 4 paths per camera
@@ -174,14 +187,7 @@ TEST(SplitChoice, ARareBrightPathInASplitImageDoesNotDecide) {
   for (const auto& [name, width, height, most] :
        {std::tuple{"spotlit-room.pbrt", 240, 180, 1.5}, std::tuple{"lantern.pbrt", 240, 180, 1.5},
         std::tuple{"cornell-box-tiny-light.pbrt", 256, 256, 0.98}}) {
-    const auto scene = shipped(name);
-    const LightSampler light_sampler(scene->lights, scene->shapes, scene->textures, LightSamplerKind::Bvh);
-    RenderOptions o;
-    o.integrator = Integrator::Path;
-    o.width = width;
-    o.height = height;
-    const PathTracerSettings ps = path_settings(*scene, o, image_region(*scene, o), 0);
-    const SplitChoice c = choose_split(*scene, light_sampler, ps, RayBackend::StreamNp);
+    const SplitChoice c = pilot_choice(name, width, height);
     EXPECT_LT(c.error[1], most) << name;
   }
 }
@@ -196,14 +202,7 @@ TEST(SplitChoice, SplitsTheCornellBoxNotTheStreet) {
   if (LANTERN_ASAN) GTEST_SKIP() << "the pilot traces half a million paths";
   for (const auto& [name, width, height, split] :
        {std::tuple{"cornell-box.pbrt", 256, 256, 4u}, std::tuple{"lamp-street.pbrt", 240, 135, 1u}}) {
-    const auto scene = shipped(name);
-    const LightSampler light_sampler(scene->lights, scene->shapes, scene->textures, LightSamplerKind::Bvh);
-    RenderOptions o;
-    o.integrator = Integrator::Path;
-    o.width = width;
-    o.height = height;
-    const PathTracerSettings ps = path_settings(*scene, o, image_region(*scene, o), 0);
-    const SplitChoice c = choose_split(*scene, light_sampler, ps, RayBackend::StreamNp);
+    const SplitChoice c = pilot_choice(name, width, height);
     EXPECT_EQ(c.split, split) << name << ": the pilot's error for 4 is " << c.error[1] << " of 1's";
   }
 }
