@@ -11,6 +11,7 @@
 
 #include "film/image_metrics.h"
 #include "guided_rooms.h"
+#include "integrator/render_checkpoints.h"
 #include "integrator/render_settings.h"
 #include "integrator/split_choice.h"
 #include "lantern/render.h"
@@ -190,6 +191,23 @@ TEST(SplitChoice, ARareBrightPathInASplitImageDoesNotDecide) {
     const SplitChoice c = pilot_choice(name, width, height);
     EXPECT_LT(c.error[1], most) << name;
   }
+}
+
+// A timed render's units number by its split (a pass is a camera sample),
+// which --split auto's pilot chooses again on resume: checkpoints of timed
+// renders whose pilot weighed pixels by whole camera samples alone, and
+// may have chosen otherwise, are refused by name.
+TEST(SplitChoice, TimedCheckpointsNameThePilot) {
+  RenderOptions o;
+  o.integrator = Integrator::Path;
+  o.split = kSplitAuto;
+  ImageRegion region;
+  region.width = region.height = 8;
+  EXPECT_NE(sequence_fingerprint(o, region).find("\nsplit=auto\n"), std::string::npos);
+  o.time_limit_seconds = 10;
+  EXPECT_NE(sequence_fingerprint(o, region).find("\nsplit=auto (pilot 2)\n"), std::string::npos);
+  o.split = 4;
+  EXPECT_NE(sequence_fingerprint(o, region).find("\nsplit=4\n"), std::string::npos);
 }
 
 // The pilot splits the Cornell box, whose noise is light that bounces

@@ -33,7 +33,12 @@ std::string sequence_fingerprint(const RenderOptions& o, const ImageRegion& regi
   if (uses_light_subpath_rate(o.integrator) && o.light_subpath_rate != 1.f)
     line("light-subpaths", light_subpaths_text(o.light_subpath_rate));
   // (the camera samples' layout; renders from before splitting resume with --split 1)
-  if (splits_camera_samples(o.integrator) && o.split != 1) line("split", split_text(o.split));
+  // Under a time budget a pass is one camera sample, so the units number
+  // by the split, which `auto`'s pilot chooses again on resume: its second
+  // weighing of pixels (split_choice.cpp) may choose otherwise than the
+  // first did, so timed renders it chose for say so.
+  if (splits_camera_samples(o.integrator) && o.split != 1)
+    line("split", split_text(o.split) + (o.split == kSplitAuto && o.time_limit_seconds > 0 ? " (pilot 2)" : ""));
   line("seed", std::to_string(o.seed));
   line("light-sampler", name(o.light_sampler));
   // (auto, the default, keeps the fingerprint of renders from before the
