@@ -95,13 +95,13 @@ SplitChoice choose_split(const Scene& scene, const LightSampler& light_sampler, 
   double image_mean = 0.0;
   for (size_t p = 0; p < n; ++p) {
     for (const auto& pair : images) value[p] += (pair[0].mean[p] + pair[1].mean[p]) * per_pixel;
-    image_mean += value[p] / double(n);
+    if (std::isfinite(value[p])) image_mean += value[p] / double(n);  // (a pixel that is not: left out below)
   }
   std::array<double, kSplitCandidates.size()> variance{};
   for (size_t p = 0; p < n; ++p) {
     const double mu = value[p];
     const double weight = 1.0 / (mu * mu + image_mean * image_mean);
-    if (!std::isfinite(weight)) continue;
+    if (!std::isfinite(mu) || !std::isfinite(weight)) continue;
     for (size_t i = 0; i < kSplitCandidates.size(); ++i)
       variance[i] += weight * 0.5 * std::pow(images[i][0].mean[p] - images[i][1].mean[p], 2);
   }

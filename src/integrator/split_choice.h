@@ -13,9 +13,9 @@
 // sample's next-event estimate is stratified across the pixel's camera
 // samples, which a model of independent samples would miss (one predicted
 // 1.1 times the error of whole camera samples in the Cornell box, where
-// splitting by 4 leaves 0.88). Each pixel weighs as relative to its value squared plus the
-// image's mean squared (as bdpt's light subpath rate weighs them,
-// light_subpath_rate.h). The cost of a path split k ways is a / k + 1 - a
+// splitting by 4 leaves 0.88). Each pixel weighs as relative to its value
+// squared plus the image's mean squared, its value the mean of every
+// candidate's images there (split_choice.cpp). The cost of a path split k ways is a / k + 1 - a
 // of a whole camera sample's, with a = 0.5 / v the share of its work done
 // once per camera sample, v the surface vertices of a path: measured at
 // equal settings, a was 0.17 in the Cornell box's paths of 2.67 vertices
