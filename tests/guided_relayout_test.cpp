@@ -1,7 +1,7 @@
 // A guided render goes on as an unguided one once its field has learnt
 // (integrator/pass_layout.h): passes of one sample per pixel while the
 // field learns, then the passes an unguided render of its budget takes,
-// and split camera samples where the guide stopped.
+// and split camera samples, whether the guide stopped or goes on.
 #include <gtest/gtest.h>
 
 #include <cstdio>

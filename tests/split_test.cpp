@@ -182,7 +182,7 @@ SplitChoice pilot_choice(const char* name, int width, int height) {
 // sample leave 0.88 and 0.97 of the relMSE at equal time
 // (docs/splitting.md), were estimated at 29 and 20 times whole camera
 // samples' error when the values came from whole camera samples alone; the
-// small-light Cornell box (0.83 of it, measured at 128 spp) at 1.7.
+// small-light Cornell box (0.83 of it at equal time) at 1.7.
 TEST(SplitChoice, ARareBrightPathInASplitImageDoesNotDecide) {
   if (LANTERN_ASAN) GTEST_SKIP() << "the pilot traces half a million paths";
   for (const auto& [name, width, height, most] :

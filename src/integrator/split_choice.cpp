@@ -75,8 +75,8 @@ SplitChoice choose_split(const Scene& scene, const LightSampler& light_sampler, 
   std::vector<uint32_t> pixels;
   for (uint32_t y = stride / 2; y < height; y += stride)
     for (uint32_t x = stride / 2; x < width; x += stride) pixels.push_back(y * width + x);
-  // Two seeds of each candidate; every pixel weighed by its value squared
-  // plus the image's mean squared, its value from every candidate's images
+  // Two seeds of each candidate; every pixel's error relative to its value
+  // squared plus the image's mean squared, its value from every candidate's images
   // alike. (From whole camera samples' alone, a rare bright path in one of
   // theirs raised its pixel's value and so lowered its own weight, while
   // one in a split image kept its full weight: the spotlit room's and the
